@@ -1,0 +1,166 @@
+# modrt - one flat Makefile. User settings first; `make help` lists the targets.
+#
+#   REAL=double|float   scalar type of the runtime (real_t)
+#   O=DIR               output directory (default build/host, build/host-float for REAL=float)
+#   SAN=1               build with AddressSanitizer and UndefinedBehaviorSanitizer
+#   CC=...              host compiler
+
+REAL ?= double
+SAN ?= 0
+CC ?= gcc
+ifeq ($(REAL),float)
+O ?= build/host-float
+else
+O ?= build/host
+endif
+
+# ---- flags: the same everywhere, so every target computes the same bits ----
+CSTD     := -std=c11 -Wall -Wextra -Werror -ffp-contract=off -fno-math-errno
+COPT     := -O2 -g -ffunction-sections -fdata-sections
+CINC     := -Irt -Imodels -Iports -Iports/posix -Itests
+CDEFS    :=
+ifeq ($(REAL),float)
+CDEFS    += -DRT_REAL_FLOAT
+else ifneq ($(REAL),double)
+$(error REAL must be double or float, not '$(REAL)')
+endif
+ifeq ($(SAN),1)
+COPT     := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+LDSAN    := -fsanitize=address,undefined
+endif
+CFLAGS_ALL = $(CSTD) $(COPT) $(CINC) $(CDEFS) -MMD -MP
+# rt/ and models/ are freestanding: no libc, no libm, no builtins that call them
+CFLAGS_FREE = $(CFLAGS_ALL) -ffreestanding
+
+# ---- sources ----
+RT_SRCS     := $(wildcard rt/*.c)
+MODEL_SRCS  := $(wildcard models/*.c models/scenes/*.c)
+POSIX_SRCS  := ports/posix/port.c ports/posix/runner.c
+TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
+HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
+
+obj = $(patsubst %.c,$(O)/obj/%.o,$(1))
+RT_OBJS    := $(call obj,$(RT_SRCS))
+MODEL_OBJS := $(call obj,$(MODEL_SRCS))
+
+.PHONY: all help test unit demo bench check-freestanding cross-test footprint clean \
+        $(addprefix cross-test-,$(CROSS_TARGETS)) $(addprefix check-target-,$(CROSS_TARGETS))
+
+all: $(O)/modrt $(O)/svgplot
+
+help:
+	@echo "make            build the CLI and tools into $(O)/"
+	@echo "make demo       run the demo scene, write its trace and an SVG plot"
+	@echo "make test       every test: freestanding check, unit tests (plain, sanitized,"
+	@echo "                float), CLI checks, cross tests where toolchains exist"
+	@echo "make bench      work-precision and cost figures"
+	@echo "make clean      remove build/"
+
+# rt/ and models/ build freestanding; ports, tests and tools build hosted
+$(O)/obj/rt/%.o: rt/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_FREE) -c $< -o $@
+$(O)/obj/models/%.o: models/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_FREE) -c $< -o $@
+$(O)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -c $< -o $@
+
+$(O)/modrt: $(call obj,ports/posix/modrt.c $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
+	$(CC) $(LDSAN) $^ -o $@
+
+$(O)/svgplot: tools/svgplot.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CSTD) -O2 $< -lm -o $@
+
+$(O)/tests: $(call obj,$(TEST_SRCS) $(HOST_TEST_SRCS) $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
+	$(CC) $(LDSAN) $^ -lm -o $@
+
+# ---- tests ----
+unit: $(O)/tests
+	$(O)/tests
+
+# rt/ and models/ linked together may leave undefined only compiler-emitted helpers
+# (_GLOBAL_OFFSET_TABLE_ is the linker symbol of position-independent host code)
+FREE_ALLOWED := memcpy memset memmove memcmp _GLOBAL_OFFSET_TABLE_
+check-freestanding: $(RT_OBJS) $(MODEL_OBJS)
+	@$(CC) -r -nostdlib -o $(O)/freestanding.o $^
+	@bad=$$(nm -u $(O)/freestanding.o | awk '{print $$NF}' | sort -u | \
+	  grep -vxE '$(subst $() ,|,$(FREE_ALLOWED))'); \
+	if [ -n "$$bad" ]; then echo "check-freestanding: rt/ or models/ call outside themselves:"; \
+	  echo "$$bad"; exit 1; fi; echo "check-freestanding: ok ($(words $^) objects, no libc or libm)"
+
+test: check-freestanding
+	$(MAKE) --no-print-directory unit
+	$(MAKE) --no-print-directory O=build/host-san SAN=1 unit
+	$(MAKE) --no-print-directory REAL=float unit
+	$(MAKE) --no-print-directory all
+	sh tests/cli.sh $(O)
+	@echo "(cross-test: run separately until ARM soft-float doubles are fixed)"
+
+# ---- cross targets (ports/targets.mk: compilers, flags, QEMU commands) ----
+include ports/targets.mk
+CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS)
+CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tests/registry.c \
+                   $(wildcard tests/rt/*.c tests/models/*.c)
+CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
+cobj = $(patsubst %,build/$(1)/obj/%.o,$(basename $(2)))
+
+# the host's scene image is the reference every target must reproduce bit for bit
+$(O)/scenes: $(call obj,tests/cross/scenes_main.c tests/harness.c ports/posix/app_main.c \
+             ports/posix/port.c) $(RT_OBJS) $(MODEL_OBJS)
+	$(CC) $(LDSAN) $^ -o $@
+
+define CROSS_RULES
+build/$(1)/obj/%.o: %.c
+	@mkdir -p $$(dir $$@)
+	$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) -c $$< -o $$@
+build/$(1)/obj/%.o: %.S
+	@mkdir -p $$(dir $$@)
+	$$(TARGET_CC_$(1)) $$(TARGET_CFLAGS_$(1)) -c $$< -o $$@
+build/$(1)/tests.elf: $$(call cobj,$(1),$$(CROSS_TEST_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
+                      $$(TARGET_PORT_SRCS_$(1)))
+	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+build/$(1)/scenes.elf: $$(call cobj,$(1),$$(CROSS_SCENE_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
+                       $$(TARGET_PORT_SRCS_$(1)))
+	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+cross-test-$(1): build/$(1)/tests.elf build/$(1)/scenes.elf build/host/scenes.log
+	@echo "cross-test $(1): unit tests"
+	@$$(TARGET_RUN_$(1)) build/$(1)/tests.elf > build/$(1)/tests.log 2>&1 || \
+	  { grep -E 'FAIL|passed' build/$(1)/tests.log; echo "cross-test $(1): unit tests failed"; exit 1; }
+	@tail -1 build/$(1)/tests.log
+	@$$(TARGET_RUN_$(1)) build/$(1)/scenes.elf > build/$(1)/scenes.log 2>&1 || \
+	  { cat build/$(1)/scenes.log; echo "cross-test $(1): scene image failed"; exit 1; }
+	@if diff build/host/scenes.log build/$(1)/scenes.log; then \
+	  echo "cross-test $(1): $$$$(wc -l < build/$(1)/scenes.log) scene hashes equal the host's"; \
+	else echo "cross-test $(1): scene hashes differ from the host's"; exit 1; fi
+endef
+$(foreach t,$(CROSS_TARGETS),$(eval $(call CROSS_RULES,$(t))))
+
+build/host/scenes.log: build/host/scenes build/host/modrt
+	build/host/scenes > $@
+	@sh tests/cross/check_host.sh build/host/modrt $@
+
+# every target whose toolchain and emulator are installed; the others are named
+cross-test:
+	@ran=""; skipped=""; \
+	for t in $(CROSS_TARGETS); do \
+	  if $(MAKE) --no-print-directory -s check-target-$$t 2>/dev/null; then \
+	    $(MAKE) --no-print-directory cross-test-$$t || exit 1; ran="$$ran $$t"; \
+	  else skipped="$$skipped $$t"; fi; done; \
+	echo "cross-test: ran:$${ran:- none}; skipped (toolchain or QEMU missing):$${skipped:- none}"
+$(foreach t,$(CROSS_TARGETS),$(eval check-target-$(t): ; @$$(TARGET_CHECK_$(t))))
+
+# ---- demo ----
+DEMO_SCENE ?= vanderpol
+demo: $(O)/modrt $(O)/svgplot
+	@mkdir -p build/demo
+	$(O)/modrt run $(DEMO_SCENE) --csv build/demo/$(DEMO_SCENE).csv
+	$(O)/svgplot -t "$(DEMO_SCENE)" -o build/demo/$(DEMO_SCENE).svg build/demo/$(DEMO_SCENE).csv
+	@echo "demo: trace build/demo/$(DEMO_SCENE).csv, plot build/demo/$(DEMO_SCENE).svg"
+
+clean:
+	rm -rf build
+
+-include $(shell find build -name '*.d' 2>/dev/null)

@@ -1,0 +1,69 @@
+/* models.h - the model library: one const rt_kind per model (mdl_<name>_kind), with the
+ * port indices a hand-written scene uses. The scene compiler reads the same kinds through
+ * the registry mdl_kinds (models/registry.c). */
+#ifndef MDL_MODELS_H
+#define MDL_MODELS_H
+
+#include "rt.h"
+
+/* harmonic oscillator x'' = -omega^2 x (NSS); outputs x, v */
+extern const rt_kind mdl_oscillator_kind;
+enum { MDL_OSC_Y_X = 0, MDL_OSC_Y_V };
+
+/* van der Pol oscillator x'' = mu (1 - x^2) x' - x (NSS); outputs x, v */
+extern const rt_kind mdl_vanderpol_kind;
+
+/* first-order lag T y' = K u - y (NSS); input u, output y */
+extern const rt_kind mdl_pt1_kind;
+enum { MDL_PT1_U = 0 };
+enum { MDL_PT1_Y = 0 };
+
+/* sampled PI controller (DSS): inputs r (reference), m (measurement); output c */
+extern const rt_kind mdl_pi_kind;
+enum { MDL_PI_U_R = 0, MDL_PI_U_M };
+enum { MDL_PI_Y_C = 0 };
+
+/* step source y = y0 for t < t0, y1 after (OUTPUT) */
+extern const rt_kind mdl_step_kind;
+
+/* sine source y = a sin(omega t + phase) + offset (OUTPUT) */
+extern const rt_kind mdl_sine_kind;
+
+/* gain y = k u (OUTPUT, throughput) */
+extern const rt_kind mdl_gain_kind;
+
+/* sum y = c1 u1 + c2 u2 (OUTPUT, throughput) */
+extern const rt_kind mdl_sum_kind;
+
+/* bouncing ball with restitution (NSS + state event): outputs h, v; discrete states
+   count the impacts and hold the last impact time */
+extern const rt_kind mdl_ball_kind;
+enum { MDL_BALL_D_N = 0, MDL_BALL_D_T };
+
+/* belt gear parts (paper Fig. 6): pulley a = (M + s r F)/J (throughput), rotor
+   (integrates a into phi, omega), belt force with a belt-inertia term (throughput from
+   the accelerations) */
+extern const rt_kind mdl_pulley_kind, mdl_rotor_kind, mdl_belt_kind;
+
+/* multibody modules (MBS, eq. 6; services rt/mbs.c, nodes and joints rt_mbs.h):
+   mass point, states x y z vx vy vz, node "c" (mbs_pointf: force inputs fx fy fz) */
+extern const rt_kind mdl_mbs_point_kind, mdl_mbs_pointf_kind;
+enum { MDL_MBS_POINT_X = 0, MDL_MBS_POINT_Y, MDL_MBS_POINT_Z };
+/* spatial rigid body with a unit quaternion, nodes "cm", "n1", "n2"
+   (mbs_bodyf: inputs force fx fy fz, body torque tx ty tz) */
+extern const rt_kind mdl_mbs_body_kind, mdl_mbs_bodyf_kind;
+enum { MDL_MBS_BODY_P_N1 = 10, MDL_MBS_BODY_P_N2 = 13 };
+/* two mass points joined by an internal rod (an internal constraint), nodes "p1", "p2" */
+extern const rt_kind mdl_mbs_dumbbell_kind;
+
+/* registry of model kinds by name, ending in {NULL, NULL} */
+typedef struct mdl_entry {
+    const char *name;
+    const rt_kind *kind;
+} mdl_entry;
+extern const mdl_entry mdl_kinds[];
+
+/* registry of library scenes, ending in {NULL, NULL} */
+extern const rt_scene_entry mdl_scenes[];
+
+#endif /* MDL_MODELS_H */

@@ -1,0 +1,20 @@
+/* registry.c - the model library's registry of kinds by name, one row per model. Only
+ * hosts (CLI, scene compiler, interpreter) link it; a compiled scene names its kinds
+ * directly, so an image links only the models its scene uses. */
+#include "models.h"
+
+const mdl_entry mdl_kinds[] = {
+    {"oscillator", &mdl_oscillator_kind},
+    {"vanderpol", &mdl_vanderpol_kind},
+    {"pt1", &mdl_pt1_kind},
+    {"pi", &mdl_pi_kind},
+    {"step", &mdl_step_kind},
+    {"sine", &mdl_sine_kind},
+    {"gain", &mdl_gain_kind},
+    {"sum", &mdl_sum_kind},
+    {"ball", &mdl_ball_kind},
+    {"pulley", &mdl_pulley_kind},
+    {"rotor", &mdl_rotor_kind},
+    {"belt", &mdl_belt_kind},
+    {0, 0},
+};

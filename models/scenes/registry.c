@@ -1,0 +1,11 @@
+/* registry.c - the registry of library scenes, one row per scene, for hosts. */
+#include "scenes.h"
+
+const rt_scene_entry mdl_scenes[] = {
+    {"oscillator", &mdl_scene_oscillator},
+    {"vanderpol", &mdl_scene_vanderpol},
+    {"pi_loop", &mdl_scene_pi_loop},
+    {"bouncing_ball", &mdl_scene_bouncing_ball},
+    {"beltgear", &mdl_scene_beltgear},
+    {0, 0},
+};

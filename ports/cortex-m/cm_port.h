@@ -1,0 +1,50 @@
+/* cm_port.h - private to the Cortex-M port: the MPS2 clock, the registers the port uses
+ * and the functions startup.c and port.c share. Applications include ports/port.h only. */
+#ifndef CM_PORT_H
+#define CM_PORT_H
+
+#include <stdint.h>
+
+/* MPS2 FPGA images (AN385/AN386/AN500) clock the CPU, SysTick (processor clock) and the
+   CMSDK timers from the same 25 MHz SYSCLK; QEMU models the same. Override with
+   -DCM_SYSCLK_HZ=... for another board. */
+#ifndef CM_SYSCLK_HZ
+#define CM_SYSCLK_HZ 25000000u
+#endif
+
+#define CM_REG(addr) (*(volatile uint32_t *)(uintptr_t)(addr))
+
+/* System control space (ARMv7-M). */
+#define CM_SYST_CSR   CM_REG(0xE000E010u) /* SysTick control and status */
+#define CM_SYST_RVR   CM_REG(0xE000E014u) /* reload value (24 bits) */
+#define CM_SYST_CVR   CM_REG(0xE000E018u) /* current value */
+#define CM_ICSR       CM_REG(0xE000ED04u)
+#define CM_VTOR       CM_REG(0xE000ED08u)
+#define CM_SHCSR      CM_REG(0xE000ED24u)
+#define CM_CFSR       CM_REG(0xE000ED28u)
+#define CM_HFSR       CM_REG(0xE000ED2Cu)
+#define CM_MMFAR      CM_REG(0xE000ED34u)
+#define CM_BFAR       CM_REG(0xE000ED38u)
+#define CM_CPACR      CM_REG(0xE000ED88u)
+
+/* CMSDK APB dual timer (SP804-like) at 0x40002000: timer 1 is the cost counter. */
+#define CM_DUALTIMER1_LOAD  CM_REG(0x40002000u)
+#define CM_DUALTIMER1_VALUE CM_REG(0x40002004u)
+#define CM_DUALTIMER1_CTRL  CM_REG(0x40002008u)
+#define CM_DUALTIMER_CTRL_EN     (1u << 7)
+#define CM_DUALTIMER_CTRL_32BIT  (1u << 1)
+
+/* Semihosting (ARM "bkpt 0xab" on M-profile). */
+#define CM_SYS_WRITE0        0x04u
+#define CM_SYS_EXIT          0x18u
+#define CM_SYS_EXIT_EXTENDED 0x20u
+#define CM_ADP_STOPPED_APPLICATION_EXIT 0x20026u
+
+/* port.c: starts the cost counter; called by the reset handler before app_main. */
+void cm_port_init(void);
+/* port.c: the SysTick exception handler (referenced by the vector table). */
+void SysTick_Handler(void);
+/* port.c: writes "label0xXXXXXXXX" through semihosting (used by the fault reports). */
+void cm_write_hex(const char *label, uint32_t v);
+
+#endif /* CM_PORT_H */

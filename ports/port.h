@@ -1,0 +1,33 @@
+/* port.h - what every port provides to an application (CLI, scene runner, test runner).
+ *
+ * A port is chosen by the include path and the sources the build links: ports/posix for
+ * hosts and Linux targets, ports/cortex-m and ports/riscv for bare metal. The runtime in
+ * rt/ never includes this header: only applications and the test harness do. */
+#ifndef PORT_H
+#define PORT_H
+
+#include <stdint.h>
+
+/* Writes a NUL-terminated string to the console (stdout, UART or semihosting). */
+void port_write(const char *s);
+/* Ends the program with an exit status (0 = success); does not return. */
+void port_exit(int code);
+/* A deterministic cost counter (retired instructions or cycles under QEMU -icount),
+   or 0 where the port has none. */
+uint64_t port_cycles(void);
+
+/* Periodic tick source: calls fn every period_us microseconds of the port's time base
+   (a hardware timer on bare metal, CLOCK_MONOTONIC with an absolute deadline on POSIX).
+   Returns 0 on success, -1 if the port cannot provide the period. */
+int port_timer_start(uint32_t period_us, void (*fn)(void));
+/* Waits for the next timer tick (WFI on bare metal, clock_nanosleep on POSIX). */
+void port_timer_wait(void);
+void port_timer_stop(void);
+/* Returns 1 if the tick now running has passed its deadline (an overrun), else 0. */
+int port_timer_late(void);
+
+/* The application's entry point, called by bare-metal startup code after .data/.bss
+   are set up; its return value becomes the exit status. */
+int app_main(void);
+
+#endif /* PORT_H */

@@ -1,0 +1,281 @@
+/* modrt.c - the host command line: list, describe and run the registered scenes on the
+ * POSIX port. Every bad argument ends in one line on stderr and exit status 2; a run that
+ * met faults exits with status 1 after its summary. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "models.h"
+#include "runner.h"
+
+#define MAX_SETS_ARGS 32 /* --set options on one command line */
+
+static rt_sim sim; /* the caller owns the runtime's storage */
+
+static int usage(void)
+{
+    fputs("modrt: usage: modrt list | info SCENE | run SCENE [--t-end S] [--csv FILE|-] "
+          "[--every N] [--set BLOCK.PARAM=VALUE]... [--realtime]\n",
+          stderr);
+    return 2;
+}
+
+static int fail(const char *what, const char *detail)
+{
+    fprintf(stderr, "modrt: %s%s%s\n", what, detail ? ": " : "", detail ? detail : "");
+    return 2;
+}
+
+static const rt_scene *find_scene(const char *name)
+{
+    for (const rt_scene_entry *e = mdl_scenes; e->name; e++)
+        if (strcmp(e->name, name) == 0)
+            return e->scene;
+    return NULL;
+}
+
+/* a whole string as a finite number */
+static int parse_real(const char *s, double *v)
+{
+    char *end;
+    errno = 0;
+    *v = strtod(s, &end);
+    return *s && !*end && errno == 0 && *v == *v && *v - *v == 0;
+}
+
+static int cmd_list(void)
+{
+    for (const rt_scene_entry *e = mdl_scenes; e->name; e++)
+        printf("%-16s %s\n", e->name, e->scene->doc ? e->scene->doc : "");
+    return 0;
+}
+
+static const char *type_name(rt_kind_type t)
+{
+    static const char *const names[] = {"output", "nss", "lss", "dss", "mbs"};
+    return (unsigned)t < sizeof names / sizeof names[0] ? names[t] : "?";
+}
+
+static void info_blocks(const rt_scene *sc)
+{
+    printf("blocks: %u\n", sc->nblocks);
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_block *bl = &sc->blocks[b];
+        const rt_kind *k = bl->kind;
+        printf("  %-10s %-12s %-6s set %u  nu %u ny %u nx %u nd %u np %u nr %u", bl->name,
+               k->name, type_name(k->type), bl->set, k->nu, k->ny, k->nx, k->nd, k->np, k->nr);
+        if (k->type == RT_KIND_DSS)
+            printf("  ts %g s", (double)bl->ts);
+        putchar('\n');
+    }
+}
+
+static void info_wiring(const rt_scene *sc)
+{
+    printf("connections: %u\n", sc->nconns);
+    for (uint16_t c = 0; c < sc->nconns; c++) {
+        const rt_conn *cn = &sc->conns[c];
+        const rt_block *f = &sc->blocks[cn->from], *t = &sc->blocks[cn->to];
+        printf("  %s.%s -> %s.%s\n", f->name, f->kind->y_names[cn->y], t->name,
+               t->kind->u_names[cn->u]);
+    }
+    for (uint16_t i = 0; i < sc->ndefaults; i++) {
+        const rt_default *d = &sc->defaults[i];
+        printf("  %g -> %s.%s\n", (double)d->value, sc->blocks[d->block].name,
+               sc->blocks[d->block].kind->u_names[d->u]);
+    }
+    printf("sets: %u\n", sc->nsets);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        printf("  %-10s %-8s step %g s (%u ticks of %g s)\n", sc->sets[s].name,
+               sc->sets[s].method->name, (double)(sc->dt * (real_t)sc->sets[s].ratio),
+               (unsigned)sc->sets[s].ratio, (double)sc->dt);
+}
+
+/* a torn input as "From.y -> To.u" */
+static void print_torn(const rt_scene *sc, const rt_sim *s, uint16_t k)
+{
+    uint16_t gi = s->torn_in[k], src = s->torn_src[k], b = 0, f = 0;
+    while (b + 1 < sc->nblocks && s->u_off[b + 1] <= gi)
+        b++;
+    while (f + 1 < sc->nblocks && s->y_off[f + 1] <= src)
+        f++;
+    printf(" %s.%s -> %s.%s;", sc->blocks[f].name, sc->blocks[f].kind->y_names[src - s->y_off[f]],
+           sc->blocks[b].name, sc->blocks[b].kind->u_names[gi - s->u_off[b]]);
+}
+
+static void info_order(const rt_scene *sc, const rt_sim *s)
+{
+    printf("evaluation order:");
+    for (uint16_t i = 0; i < s->nseq; i++) {
+        const rt_seq_step *st = &s->seq[i];
+        if (st->kind == RT_SEQ_LOOP)
+            printf(" [loop %u:", (unsigned)st->index);
+        else
+            printf(" %s", sc->blocks[st->index].name);
+        for (uint8_t l = 0; l < s->nloops; l++)
+            if (s->loops[l].actual && s->loops[l].seq1 == i + 1)
+                printf(" ]");
+    }
+    printf("\nloops: %u\n", s->nloops);
+    for (uint8_t l = 0; l < s->nloops; l++) {
+        const rt_loop *lp = &s->loops[l];
+        printf("  %u %s:", (unsigned)l, lp->actual ? "actual" : "potential");
+        for (uint16_t i = 0; i < lp->nblocks; i++)
+            printf(" %s", sc->blocks[s->loop_blocks[lp->first + i]].name);
+        if (lp->actual) {
+            printf("; torn:");
+            for (uint16_t k = lp->torn0; k < lp->torn0 + lp->ntorn; k++)
+                print_torn(sc, s, k);
+        } else {
+            printf("; solved by ordering");
+        }
+        putchar('\n');
+    }
+}
+
+static int cmd_info(const char *name)
+{
+    const rt_scene *sc = find_scene(name);
+    if (!sc)
+        return fail("unknown scene", name);
+    rt_status st = rt_init(sc, &sim);
+    printf("scene: %s\n%s\nbase tick: %g s\nend time: %g s\n", sc->name, sc->doc,
+           (double)sc->dt, (double)sc->t_end);
+    info_blocks(sc);
+    info_wiring(sc);
+    info_order(sc, &sim);
+    printf("recorded:");
+    for (uint16_t i = 0; i < sc->nrecs; i++)
+        printf(" %s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
+    printf("\ninit: %s%s%s\n", rt_status_name(st), st ? ": " : "", st ? rt_error_text(&sim) : "");
+    return st == RT_OK ? 0 : 1;
+}
+
+/* BLOCK.PARAM=VALUE */
+static int apply_set(const rt_scene *sc, const char *arg)
+{
+    char buf[128];
+    double v;
+    if (strlen(arg) >= sizeof buf)
+        return fail("--set argument too long", arg);
+    strcpy(buf, arg);
+    char *dot = strchr(buf, '.'), *eq = strchr(buf, '=');
+    if (!dot || !eq || eq < dot)
+        return fail("--set expects BLOCK.PARAM=VALUE, got", arg);
+    *dot = 0, *eq = 0;
+    if (!parse_real(eq + 1, &v))
+        return fail("--set value is not a finite number", arg);
+    if (rt_block_index(sc, buf) < 0)
+        return fail("--set: unknown block", buf);
+    rt_status st = rt_set_param(sc, &sim, buf, dot + 1, (real_t)v);
+    if (st == RT_E_PARAM)
+        return fail("--set: value out of range for the parameter", arg);
+    if (st != RT_OK)
+        return fail("--set: block has no parameter or state named", dot + 1);
+    return 0;
+}
+
+static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, double wall)
+{
+    fprintf(f, "scene: %s\nticks: %llu\nsim_time: %.17g\nwall_s: %.6f\n", sc->name,
+            (unsigned long long)s->tick, (double)rt_time(sc, s), wall);
+    fprintf(f, "status: %s\n", s->status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
+                                                  : rt_status_name(s->status));
+    for (int c = 0; c < RT_CNT_COUNT; c++) {
+        fprintf(f, "%s: %u", rt_counter_key((rt_counter)c), (unsigned)s->count[c]);
+        if (s->last_block[c] >= 0 && c != RT_CNT_EVENTS)
+            fprintf(f, " (last %s)", sc->blocks[s->last_block[c]].name);
+        fputc('\n', f);
+    }
+    fprintf(f, "event_iter_max: %u\n", (unsigned)s->event_iter_max);
+    if (s->ntorn > 0) {
+        fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)s->loop_iter_max);
+        for (uint32_t i = 0; i <= s->loop_iter_max; i++)
+            fprintf(f, " %u", (unsigned)s->loop_hist[i]);
+        fprintf(f, "\nloop_residual: %g\n", (double)s->loop_residual);
+    }
+    fprintf(f, "hash: %016llx\n", (unsigned long long)s->hash);
+}
+
+typedef struct run_args {
+    const char *csv;
+    double t_end;
+    int has_t_end, realtime;
+    unsigned every;
+    const char *sets[MAX_SETS_ARGS];
+    int nsets;
+} run_args;
+
+static int parse_run(int argc, char **argv, run_args *a)
+{
+    a->every = 1;
+    for (int i = 3; i < argc; i++) {
+        const char *o = argv[i];
+        double v;
+        int more = i + 1 < argc;
+        if (strcmp(o, "--realtime") == 0) {
+            a->realtime = 1;
+        } else if (strcmp(o, "--t-end") == 0 && more) {
+            if (!parse_real(argv[++i], &v) || v < 0)
+                return fail("--t-end expects a time >= 0 in seconds, got", argv[i]);
+            a->t_end = v, a->has_t_end = 1;
+        } else if (strcmp(o, "--csv") == 0 && more) {
+            a->csv = argv[++i];
+        } else if (strcmp(o, "--every") == 0 && more) {
+            if (!parse_real(argv[++i], &v) || v < 1 || v > 1e9 || v != (double)(unsigned)v)
+                return fail("--every expects a whole number >= 1, got", argv[i]);
+            a->every = (unsigned)v;
+        } else if (strcmp(o, "--set") == 0 && more) {
+            if (a->nsets >= MAX_SETS_ARGS)
+                return fail("too many --set options", argv[i]);
+            a->sets[a->nsets++] = argv[++i];
+        } else {
+            return fail("unknown or incomplete option", o);
+        }
+    }
+    return 0;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    run_args a = {0};
+    const rt_scene *base = find_scene(argv[2]);
+    if (!base)
+        return fail("unknown scene", argv[2]);
+    if (parse_run(argc, argv, &a))
+        return 2;
+    rt_scene sc = *base; /* the const scene, with the end time the user asked for */
+    if (a.has_t_end)
+        sc.t_end = (real_t)a.t_end;
+    rt_status st = rt_init(&sc, &sim);
+    if (st != RT_OK)
+        return fail(rt_status_name(st), rt_error_text(&sim));
+    for (int i = 0; i < a.nsets; i++)
+        if (apply_set(&sc, a.sets[i]))
+            return 2;
+    rt_refresh(&sc, &sim);
+    FILE *csv = NULL;
+    int to_stdout = a.csv && strcmp(a.csv, "-") == 0;
+    if (a.csv && !(csv = to_stdout ? stdout : fopen(a.csv, "w")))
+        return fail("cannot write the CSV file", a.csv);
+    port_run_opts o = {csv, a.every, a.realtime};
+    port_run_result r;
+    st = port_run(&sc, &sim, &o, &r);
+    if (csv && !to_stdout && fclose(csv) != 0)
+        return fail("error writing the CSV file", a.csv);
+    summary(to_stdout ? stderr : stdout, &sc, &sim, st, r.wall_s);
+    return sim.status == RT_OK ? 0 : 1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2 && strcmp(argv[1], "list") == 0 && argc == 2)
+        return cmd_list();
+    if (argc == 3 && strcmp(argv[1], "info") == 0)
+        return cmd_info(argv[2]);
+    if (argc >= 3 && strcmp(argv[1], "run") == 0)
+        return cmd_run(argc, argv);
+    return usage();
+}

@@ -1,0 +1,107 @@
+/* eval.c - evaluation of one scene instant: input gathering (y = P u, eq. 2), the output
+ * sequence, root functions, and the right-hand side of a set (eqs. 3-5).
+ *
+ * This is the inner loop of every integrator stage: no searching, only the tables
+ * rt_init computed. */
+#include "rti.h"
+
+void rti_gather(rt_sim *sim, uint16_t b)
+{
+    /* pointers and a size_t index: with a uint16_t index into several arrays of the
+       struct, GCC 12's AArch64 ivopts built addresses from -7 * sim, a later pass took
+       them for NULL dereferences and deleted every call of this function as pure */
+    const uint8_t *kind = sim->src_kind;
+    const uint16_t *src = sim->src;
+    real_t *u = sim->u;
+    for (size_t i = sim->u_off[b], end = sim->u_off[b + 1]; i < end; i++) {
+        switch (kind[i]) {
+        case RT_SRC_Y:
+            u[i] = sim->y[src[i]];
+            break;
+        case RT_SRC_TORN:
+            u[i] = sim->torn_val[src[i]];
+            break;
+        default:
+            u[i] = sim->def[i];
+            break;
+        }
+    }
+}
+
+/* a DSS block produces new outputs only at its sample hits */
+static int dss_hit(const rt_sim *sim, uint16_t b, rti_mode mode)
+{
+    return mode == RTI_AT_TICK && sim->tick % sim->period[b] == 0;
+}
+
+/* calls the output equation of block b */
+static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t, rti_mode mode)
+{
+    const rt_kind *k = sc->blocks[b].kind;
+    if (k->type == RT_KIND_DSS && !dss_hit(sim, b, mode))
+        return;
+    rt_args a;
+    rti_gather(sim, b);
+    rti_args(sc, sim, b, t, sc->dt * (real_t)sim->period[b], &a);
+    k->output(&a, sim->y + sim->y_off[b]);
+}
+
+void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, real_t t,
+                   rti_mode mode)
+{
+    for (uint16_t s = begin; s < end; s++)
+        call_output(sc, sim, sim->seq[s].index, t, mode);
+}
+
+void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode)
+{
+    for (uint16_t s = 0; s < sim->nseq; s++) {
+        const rt_seq_step *st = &sim->seq[s];
+        if (st->kind == RT_SEQ_CALL) {
+            call_output(sc, sim, st->index, t, mode);
+            continue;
+        }
+        /* an actual loop: the solver runs its segment until the torn inputs agree */
+        const rt_loop *l = &sim->loops[st->index];
+        sc->loop_solver->solve(sc, sim, (uint8_t)st->index, t, mode);
+        s = (uint16_t)(l->seq1 - 1);
+    }
+}
+
+void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r)
+{
+    uint16_t n = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nr == 0 || sc->blocks[b].set != s)
+            continue;
+        rt_args a;
+        rti_gather(sim, b);
+        rti_args(sc, sim, b, t, 0, &a);
+        k->roots(&a, r + n);
+        n = (uint16_t)(n + k->nr);
+    }
+}
+
+rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
+{
+    const rti_rhs_ctx *c = ctx;
+    const rt_scene *sc = c->sc;
+    rt_sim *sim = c->sim;
+    uint16_t base = sim->set_x[c->set];
+
+    rti_outputs(sc, sim, t, RTI_IN_STEP);
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nx == 0 || !k->deriv || sc->blocks[b].set != c->set)
+            continue;
+        rt_args a;
+        rti_gather(sim, b);
+        rti_args(sc, sim, b, t, c->h, &a);
+        k->deriv(&a, xdot + (sim->x_off[b] - base));
+    }
+    /* multibody blocks of the set are solved together (eqs. 6, 7b, 9) */
+    if (sc->mbs)
+        sc->mbs->accel(sc, sim, c->set, t, xdot);
+    return RT_OK;
+}

@@ -1,0 +1,261 @@
+/* init.c - rt_init: checks a scene against its kinds and the compile-time limits, lays out
+ * the value arrays, routes every input (y = P u, eq. 2), and computes the evaluation order.
+ *
+ * All of this runs once, before the first tick; nothing here is on the tick path. */
+#include "rti.h"
+
+int rti_feeds(const rt_kind *k, uint16_t j, uint16_t i)
+{
+    switch (k->feed) {
+    case RT_FEED_ALL:
+        return 1;
+    case RT_FEED_TABLE:
+        return k->feed_table[j * k->nu + i] != 0;
+    default:
+        return 0;
+    }
+}
+
+/* the services a kind must provide for its sizes and type */
+static rt_status check_kind(rt_sim *sim, const rt_block *b)
+{
+    const rt_kind *k = b->kind;
+    int ok = k != 0;
+    ok = ok && (k->ny == 0 || k->output != 0);
+    ok = ok && (k->nr == 0 || (k->roots != 0 && k->event != 0));
+    ok = ok && (k->feed != RT_FEED_TABLE || k->feed_table != 0);
+    if (ok && (k->type == RT_KIND_NSS || k->type == RT_KIND_LSS))
+        ok = k->deriv != 0;
+    if (ok && k->type == RT_KIND_DSS)
+        ok = k->update != 0 && k->nx == 0;
+    if (ok && (k->type == RT_KIND_OUTPUT))
+        ok = k->nx == 0 && k->nd == 0;
+    if (ok && k->type == RT_KIND_MBS)
+        ok = k->spec != 0 && k->deriv == 0;
+    if (!ok)
+        return rti_fail(sim, RT_E_SCENE, "block ", b->name,
+                        ": its kind lacks a service its sizes or type require",
+                        (const char *)0);
+    return RT_OK;
+}
+
+/* sample period of a DSS block in base ticks; 0 on a mismatch */
+static uint32_t period_ticks(const rt_scene *sc, const rt_block *b)
+{
+    if (!(b->ts > 0) || !(sc->dt > 0))
+        return 0;
+    real_t r = b->ts / sc->dt;
+    uint32_t n = (uint32_t)(r + (real_t)0.5);
+    real_t err = rt_fabs((real_t)n * sc->dt - b->ts);
+    return (n > 0 && err <= (real_t)1e-6 * b->ts) ? n : 0;
+}
+
+/* offsets of every block's slices; continuous states grouped by set */
+static rt_status layout(const rt_scene *sc, rt_sim *sim)
+{
+    uint32_t nx = 0, nd = 0, nu = 0, ny = 0, np = 0, nr = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        sim->set_x[s] = (uint16_t)nx;
+        sim->set_r[s] = (uint16_t)nr;
+        for (uint16_t b = 0; b < sc->nblocks; b++) {
+            if (sc->blocks[b].set != s)
+                continue;
+            sim->x_off[b] = (uint16_t)nx;
+            nx += sc->blocks[b].kind->nx;
+            nr += sc->blocks[b].kind->nr;
+            if (nx > RT_MAX_X || nr > RT_MAX_ROOTS)
+                return rti_fail(sim, RT_E_CAPACITY, "states or roots exceed RT_MAX_X or ",
+                                "RT_MAX_ROOTS", (const char *)0);
+        }
+    }
+    sim->set_x[sc->nsets] = (uint16_t)nx;
+    sim->set_r[sc->nsets] = (uint16_t)nr;
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (sc->sets[s].method->implicit &&
+            sim->set_x[s + 1] - sim->set_x[s] > RT_MAX_IMPLICIT_N)
+            return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
+                            ": an implicit method's states exceed RT_MAX_IMPLICIT_N",
+                            (const char *)0);
+
+    sim->x_off[sc->nblocks] = (uint16_t)nx;
+    for (uint16_t b = 0; b <= sc->nblocks; b++) {
+        sim->d_off[b] = (uint16_t)nd;
+        sim->u_off[b] = (uint16_t)nu;
+        sim->y_off[b] = (uint16_t)ny;
+        sim->p_off[b] = (uint16_t)np;
+        if (b == sc->nblocks)
+            break;
+        const rt_kind *k = sc->blocks[b].kind;
+        nd += k->nd, nu += k->nu, ny += k->ny, np += k->np;
+        if (nd > RT_MAX_D || nu > RT_MAX_U || ny > RT_MAX_Y || np > RT_MAX_P)
+            return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
+                            " exceeds RT_MAX_D, RT_MAX_U, RT_MAX_Y or RT_MAX_P",
+                            (const char *)0);
+    }
+    return RT_OK;
+}
+
+/* copies n values from src, or from fallback, or zeros */
+static void fill(real_t *dst, const real_t *src, const real_t *fallback, uint16_t n)
+{
+    for (uint16_t i = 0; i < n; i++)
+        dst[i] = src ? src[i] : fallback ? fallback[i] : 0;
+}
+
+/* parameters, initial states, sample periods; each block's parameter check */
+static rt_status initial_values(const rt_scene *sc, rt_sim *sim)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_block *bl = &sc->blocks[b];
+        const rt_kind *k = bl->kind;
+        fill(sim->p + sim->p_off[b], bl->p, k->p_default, k->np);
+        fill(sim->x + sim->x_off[b], bl->x0, k->x_default, k->nx);
+        fill(sim->d + sim->d_off[b], bl->d0, k->d_default, k->nd);
+        for (uint16_t j = 0; j < k->ny; j++)
+            sim->y[sim->y_off[b] + j] = 0;
+        sim->period[b] = 0;
+        if (k->type == RT_KIND_DSS && (sim->period[b] = period_ticks(sc, bl)) == 0)
+            return rti_fail(sim, RT_E_SCENE, "block ", bl->name,
+                            ": sample period is not a positive multiple of the base tick",
+                            (const char *)0);
+        if (k->check && k->check(sim->p + sim->p_off[b], k->spec) != RT_OK)
+            return rti_fail(sim, RT_E_PARAM, "block ", bl->name,
+                            ": parameters out of range for kind ", k->name, (const char *)0);
+    }
+    return RT_OK;
+}
+
+/* one connection: indices in range, input not yet driven */
+static rt_status route_conn(const rt_scene *sc, rt_sim *sim, const rt_conn *c)
+{
+    if (c->from >= sc->nblocks || c->to >= sc->nblocks)
+        return rti_fail(sim, RT_E_SCENE, "a connection names a block index out of range",
+                        (const char *)0);
+    const rt_block *f = &sc->blocks[c->from], *t = &sc->blocks[c->to];
+    if (c->y >= f->kind->ny)
+        return rti_fail(sim, RT_E_SCENE, "connection from ", f->name,
+                        ": output index out of range", (const char *)0);
+    if (c->u >= t->kind->nu)
+        return rti_fail(sim, RT_E_SCENE, "connection to ", t->name,
+                        ": input index out of range", (const char *)0);
+    uint16_t gi = (uint16_t)(sim->u_off[c->to] + c->u);
+    if (sim->src_kind[gi] != 0xFF)
+        return rti_fail(sim, RT_E_SCENE, "input ", t->name, ".", t->kind->u_names[c->u],
+                        " is driven twice", (const char *)0);
+    sim->src_kind[gi] = RT_SRC_Y;
+    sim->src[gi] = (uint16_t)(sim->y_off[c->from] + c->y);
+    return RT_OK;
+}
+
+/* every input reads a connected output or a default value */
+static rt_status route(const rt_scene *sc, rt_sim *sim)
+{
+    uint16_t nu = sim->u_off[sc->nblocks];
+    rt_status st;
+    for (uint16_t i = 0; i < nu; i++)
+        sim->src_kind[i] = 0xFF, sim->src[i] = 0, sim->def[i] = 0, sim->u[i] = 0;
+    for (uint16_t c = 0; c < sc->nconns; c++)
+        if ((st = route_conn(sc, sim, &sc->conns[c])) != RT_OK)
+            return st;
+    for (uint16_t i = 0; i < sc->ndefaults; i++) {
+        const rt_default *d = &sc->defaults[i];
+        if (d->block >= sc->nblocks || d->u >= sc->blocks[d->block].kind->nu)
+            return rti_fail(sim, RT_E_SCENE, "a default value names an input out of range",
+                            (const char *)0);
+        uint16_t gi = (uint16_t)(sim->u_off[d->block] + d->u);
+        if (sim->src_kind[gi] != 0xFF)
+            return rti_fail(sim, RT_E_SCENE, "input ", sc->blocks[d->block].name, ".",
+                            sc->blocks[d->block].kind->u_names[d->u],
+                            " is both connected and given a default", (const char *)0);
+        sim->src_kind[gi] = RT_SRC_DEFAULT;
+        sim->def[gi] = d->value;
+    }
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t i = 0; i < sc->blocks[b].kind->nu; i++)
+            if (sim->src_kind[sim->u_off[b] + i] == 0xFF)
+                return rti_fail(sim, RT_E_UNCONNECTED, "input ", sc->blocks[b].name, ".",
+                                sc->blocks[b].kind->u_names[i],
+                                " is not connected and has no default value",
+                                (const char *)0);
+    return RT_OK;
+}
+
+/* scene-level checks before anything is laid out */
+static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
+{
+    if (sc->nblocks > RT_MAX_BLOCKS)
+        return rti_fail(sim, RT_E_CAPACITY, "blocks exceed RT_MAX_BLOCKS", (const char *)0);
+    if (sc->nsets == 0 || sc->nsets > RT_MAX_SETS)
+        return rti_fail(sim, RT_E_CAPACITY, "a scene needs 1 to RT_MAX_SETS sets",
+                        (const char *)0);
+    if (!(sc->dt > 0) || !(sc->t_end >= 0) || !rt_isfinite(sc->t_end))
+        return rti_fail(sim, RT_E_SCENE, "base tick must be > 0 and end time >= 0",
+                        (const char *)0);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (!sc->sets[s].method || sc->sets[s].ratio == 0 ||
+            sc->sets[s].method->stages > RT_MAX_STAGES)
+            return rti_fail(sim, RT_E_SCENE, "set ", sc->sets[s].name,
+                            ": needs a method and a step of at least one tick",
+                            (const char *)0);
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        rt_status st = check_kind(sim, &sc->blocks[b]);
+        if (st != RT_OK)
+            return st;
+        if (sc->blocks[b].kind->type == RT_KIND_MBS && !sc->mbs)
+            return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name,
+                            " is a multibody module but the scene names no MBS services",
+                            (const char *)0);
+        if (sc->blocks[b].set >= sc->nsets)
+            return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name,
+                            " names a set that does not exist", (const char *)0);
+    }
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        const rt_rec *r = &sc->recs[i];
+        const rt_kind *k = r->block < sc->nblocks ? sc->blocks[r->block].kind : 0;
+        uint16_t n = !k ? 0 : r->what == RT_SIG_Y ? k->ny : r->what == RT_SIG_X ? k->nx : k->nd;
+        if (r->index >= n)
+            return rti_fail(sim, RT_E_SCENE, "a recorded signal is out of range",
+                            (const char *)0);
+    }
+    return RT_OK;
+}
+
+/* the number of ticks that reaches t_end, rounded to the nearest tick */
+static uint64_t tick_count(const rt_scene *sc)
+{
+    real_t n = sc->t_end / sc->dt;
+    return (uint64_t)(n + (real_t)0.5);
+}
+
+rt_status rt_init(const rt_scene *sc, rt_sim *sim)
+{
+    rt_status st;
+    if (!sc || !sim)
+        return RT_E_ARG;
+    sim->sc = sc;
+    sim->err[0] = 0;
+    sim->status = RT_OK;
+    sim->tick = 0;
+    sim->nseq = 0;
+    sim->nloops = 0;
+    sim->event_iter_max = 0;
+    sim->loop_iter_max = 0;
+    sim->loop_residual = 0;
+    for (int i = 0; i <= RT_LOOP_ITER_LIMIT; i++)
+        sim->loop_hist[i] = 0;
+    sim->hash = RT_HASH_INIT;
+    for (int c = 0; c < RT_CNT_COUNT; c++)
+        sim->count[c] = 0, sim->last_block[c] = -1;
+    for (uint8_t s = 0; s < RT_MAX_SETS; s++) {
+        sim->imp[s].valid = 0, sim->imp[s].age = 0, sim->imp[s].h_factored = 0;
+        sim->istats[s] = (rt_istats){0, 0, 0, 0};
+    }
+    if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
+        (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
+        (st = rti_order(sc, sim)) != RT_OK)
+        return st;
+    if (sc->mbs && (st = (rt_status)sc->mbs->init(sc, sim)) != RT_OK)
+        return st;
+    sim->n_ticks = tick_count(sc);
+    return rt_refresh(sc, sim);
+}

@@ -1,0 +1,102 @@
+/* linalg.c - dense LU with partial pivoting and its solves, on caller-owned storage.
+ *
+ * Used by the multibody index-1 solve and projection and by the implicit integrators.
+ * Loops run in a fixed order, so the same matrix gives the same bits on every target. */
+#include "linalg.h"
+
+real_t rti_norm_inf(const real_t *v, uint16_t n)
+{
+    real_t m = 0;
+    for (uint16_t i = 0; i < n; i++) {
+        real_t a = rt_fabs(v[i]);
+        m = a > m ? a : m;
+    }
+    return m;
+}
+
+/* row with the largest magnitude in column k at or below the diagonal */
+static uint16_t pivot_row(const real_t *a, uint16_t n, uint16_t k)
+{
+    uint16_t p = k;
+    real_t best = rt_fabs(a[k * n + k]);
+    for (uint16_t i = (uint16_t)(k + 1); i < n; i++) {
+        real_t v = rt_fabs(a[i * n + k]);
+        if (v > best)
+            best = v, p = i;
+    }
+    return p;
+}
+
+static void swap_rows(real_t *a, uint16_t n, uint16_t i, uint16_t j)
+{
+    for (uint16_t c = 0; c < n; c++) {
+        real_t t = a[i * n + c];
+        a[i * n + c] = a[j * n + c];
+        a[j * n + c] = t;
+    }
+}
+
+rt_status rti_lu(real_t *a, uint16_t n, uint16_t *piv, real_t tol)
+{
+    rt_status st = RT_OK;
+    real_t scale = rti_norm_inf(a, (uint16_t)(n * n));
+    real_t floor_ = tol * (scale > 0 ? scale : 1);
+    for (uint16_t k = 0; k < n; k++) {
+        uint16_t p = pivot_row(a, n, k);
+        piv[k] = p;
+        if (p != k)
+            swap_rows(a, n, p, k);
+        real_t d = a[k * n + k];
+        if (!(rt_fabs(d) > floor_)) {
+            /* singular or NaN: continue with the threshold so the result stays finite */
+            st = RT_E_SINGULAR;
+            d = a[k * n + k] = d < 0 ? -floor_ : floor_;
+        }
+        for (uint16_t i = (uint16_t)(k + 1); i < n; i++) {
+            real_t l = a[i * n + k] / d;
+            a[i * n + k] = l;
+            for (uint16_t j = (uint16_t)(k + 1); j < n; j++)
+                a[i * n + j] -= l * a[k * n + j];
+        }
+    }
+    return st;
+}
+
+void rti_lu_solve(const real_t *lu, uint16_t n, const uint16_t *piv, real_t *b)
+{
+    for (uint16_t k = 0; k < n; k++) {
+        real_t t = b[piv[k]];
+        b[piv[k]] = b[k];
+        b[k] = t;
+    }
+    for (uint16_t i = 1; i < n; i++) /* L y = P b */
+        for (uint16_t j = 0; j < i; j++)
+            b[i] -= lu[i * n + j] * b[j];
+    for (uint16_t i = n; i-- > 0;) { /* U x = y */
+        for (uint16_t j = (uint16_t)(i + 1); j < n; j++)
+            b[i] -= lu[i * n + j] * b[j];
+        b[i] /= lu[i * n + i];
+    }
+}
+
+void rti_lu_solve_cols(const real_t *lu, uint16_t n, const uint16_t *piv, real_t *b,
+                       uint16_t m)
+{
+    for (uint16_t k = 0; k < n; k++) /* apply the row swaps in factorization order */
+        if (piv[k] != k)
+            for (uint16_t c = 0; c < m; c++) {
+                real_t t = b[piv[k] * m + c];
+                b[piv[k] * m + c] = b[k * m + c];
+                b[k * m + c] = t;
+            }
+    for (uint16_t c = 0; c < m; c++) {
+        for (uint16_t i = 1; i < n; i++)
+            for (uint16_t j = 0; j < i; j++)
+                b[i * m + c] -= lu[i * n + j] * b[j * m + c];
+        for (uint16_t i = n; i-- > 0;) {
+            for (uint16_t j = (uint16_t)(i + 1); j < n; j++)
+                b[i * m + c] -= lu[i * n + j] * b[j * m + c];
+            b[i * m + c] /= lu[i * n + i];
+        }
+    }
+}

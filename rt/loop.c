@@ -1,0 +1,160 @@
+/* loop.c - the solver of actual algebraic loops (paper, section 3): simplified Newton on
+ * the torn inputs with Broyden's update of the inverse Jacobian (Dennis & Schnabel).
+ *
+ * The unknowns w are the torn inputs of one loop; the residual is F(w) = w - y(w), where
+ * y are the outputs on the loop-closing edges after the loop's segment of the evaluation
+ * sequence ran with the inputs at w. The first solve estimates the Jacobian by forward
+ * differences and inverts it; later solves start from the last solution and the last
+ * inverse (both kept in rt_sim), so a linear loop converges in one iteration. At most
+ * the scene's iteration bound per solve: a solve that does not converge is counted with
+ * its residual and the tick goes on with the last iterate. */
+#include "linalg.h"
+#include "rti.h"
+
+#define DEFAULT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-5 : (real_t)1e-10)
+#define SQRT_EPS (RT_REAL_IS_FLOAT ? (real_t)3.4526698e-04 : (real_t)1.4901161193847656e-08)
+#define QUART_EPS (RT_REAL_IS_FLOAT ? (real_t)1.8581361e-02 : (real_t)1.2207031250e-04)
+#define PIVOT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-6 : (real_t)1e-13)
+
+typedef struct solve_ctx {
+    const rt_scene *sc;
+    rt_sim *sim;
+    const rt_loop *lp;
+    real_t t;
+    rti_mode mode;
+    uint16_t n;
+    real_t *w; /* the torn inputs of this loop (in rt_sim.torn_val) */
+} solve_ctx;
+
+/* F(w) = w - y(w) after running the loop's segment; 0 if any value is not finite */
+static int residual(const solve_ctx *c, real_t *f)
+{
+    rt_sim *sim = c->sim;
+    int finite = 1;
+    rti_run_calls(c->sc, sim, c->lp->seq0, c->lp->seq1, c->t, c->mode);
+    for (uint16_t i = 0; i < c->n; i++) {
+        f[i] = c->w[i] - sim->y[sim->torn_src[c->lp->torn0 + i]];
+        finite = finite && rt_isfinite(f[i]);
+    }
+    return finite;
+}
+
+/* max_i |f_i| / (1 + |w_i|): relative for large signals, absolute near zero */
+static real_t scaled_norm(const solve_ctx *c, const real_t *f)
+{
+    real_t m = 0;
+    for (uint16_t i = 0; i < c->n; i++) {
+        real_t v = rt_fabs(f[i]) / (1 + rt_fabs(c->w[i]));
+        m = v > m ? v : m;
+    }
+    return m;
+}
+
+/* H = J^-1 with J by forward differences at w (f = F(w) given); on a singular J the
+   inverse degrades to the identity, i.e. plain fixed-point steps, and is counted.
+   The increment grows with the residual: the roundoff in a difference quotient is about
+   eps |F| / d, so d ~ eps^(1/4) |F| keeps it below the tolerance after one Newton step
+   of a linear loop, while staying small against that step for a nonlinear one. */
+static void fd_inverse(const solve_ctx *c, const real_t *f, real_t *H, real_t *J, real_t *fj)
+{
+    uint16_t n = c->n;
+    real_t fmax = rti_norm_inf(f, n);
+    for (uint16_t j = 0; j < n; j++) {
+        real_t wj = c->w[j];
+        real_t d = SQRT_EPS * (rt_fabs(wj) > 1 ? rt_fabs(wj) : 1) + QUART_EPS * fmax;
+        c->w[j] = wj + d;
+        residual(c, fj);
+        for (uint16_t i = 0; i < n; i++)
+            J[i * n + j] = (fj[i] - f[i]) / d;
+        c->w[j] = wj;
+    }
+    for (uint16_t i = 0; i < n; i++)
+        for (uint16_t j = 0; j < n; j++)
+            H[i * n + j] = i == j ? 1 : 0;
+    if (rti_lu(J, n, c->sim->loop_piv, PIVOT_TOL) != RT_OK) {
+        rti_count(c->sim, RT_CNT_SINGULAR, c->sim->loop_blocks[c->lp->first], RT_E_SINGULAR);
+        return;
+    }
+    rti_lu_solve_cols(J, n, c->sim->loop_piv, H, n);
+}
+
+/* Broyden's good update of the inverse: H += (s - H y) (s^T H) / (s^T H y) */
+static void broyden_update(uint16_t n, real_t *H, const real_t *s, const real_t *y,
+                           real_t *hy, real_t *sh)
+{
+    real_t den = 0;
+    for (uint16_t i = 0; i < n; i++) {
+        hy[i] = 0;
+        for (uint16_t j = 0; j < n; j++)
+            hy[i] += H[i * n + j] * y[j];
+        den += s[i] * hy[i];
+    }
+    for (uint16_t j = 0; j < n; j++) {
+        sh[j] = 0;
+        for (uint16_t i = 0; i < n; i++)
+            sh[j] += s[i] * H[i * n + j];
+    }
+    if (!(rt_fabs(den) > RT_EPS * rti_norm_inf(s, n) * rti_norm_inf(hy, n)))
+        return; /* no usable secant information: keep H */
+    for (uint16_t i = 0; i < n; i++)
+        for (uint16_t j = 0; j < n; j++)
+            H[i * n + j] += (s[i] - hy[i]) * sh[j] / den;
+}
+
+/* one Newton-Broyden step from w with residual f; returns 0 (and restores w and the
+   segment's outputs) if the trial point gave non-finite values */
+static int newton_step(const solve_ctx *c, real_t *H, real_t *f, real_t *fn, real_t *s,
+                       real_t *scratch)
+{
+    uint16_t n = c->n;
+    for (uint16_t i = 0; i < n; i++) {
+        s[i] = 0;
+        for (uint16_t j = 0; j < n; j++)
+            s[i] -= H[i * n + j] * f[j];
+        c->w[i] += s[i];
+    }
+    if (!residual(c, fn)) {
+        for (uint16_t i = 0; i < n; i++)
+            c->w[i] -= s[i];
+        residual(c, f);
+        return 0;
+    }
+    for (uint16_t i = 0; i < n; i++)
+        fn[i] -= f[i]; /* y = F(w + s) - F(w) */
+    broyden_update(n, H, s, fn, scratch, scratch + n);
+    for (uint16_t i = 0; i < n; i++)
+        f[i] += fn[i];
+    return 1;
+}
+
+static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode)
+{
+    rt_loop *lp = &sim->loops[l];
+    solve_ctx c = {sc, sim, lp, t, (rti_mode)mode, lp->ntorn, sim->torn_val + lp->torn0};
+    uint16_t n = c.n;
+    real_t *H = sim->loop_h + lp->h0;
+    real_t *f = sim->loop_work, *fn = f + n, *s = fn + n, *scratch = s + n;
+    real_t tol = sc->loop_tol > 0 ? sc->loop_tol : DEFAULT_TOL;
+    uint32_t max = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
+    uint32_t it = 0;
+    int ok = residual(&c, f);
+    max = max > RT_LOOP_ITER_LIMIT ? RT_LOOP_ITER_LIMIT : max;
+    if (ok && scaled_norm(&c, f) > tol && !lp->h_valid) {
+        fd_inverse(&c, f, H, scratch, fn);
+        lp->h_valid = 1;
+        ok = residual(&c, f); /* the difference steps left the segment at w + d e_n */
+    }
+    while (ok && scaled_norm(&c, f) > tol && it < max) {
+        ok = newton_step(&c, H, f, fn, s, scratch);
+        it++;
+    }
+    sim->loop_hist[it]++;
+    sim->loop_iter_max = it > sim->loop_iter_max ? it : sim->loop_iter_max;
+    real_t r = ok ? scaled_norm(&c, f) : (real_t)1 / (real_t)0;
+    if (r > tol) {
+        rti_count(sim, RT_CNT_NOCONV, sim->loop_blocks[lp->first], RT_E_NOCONV);
+        sim->loop_residual = r > sim->loop_residual ? r : sim->loop_residual;
+    }
+}
+
+const rt_loop_ops rt_broyden = {.solve = solve};

@@ -1,0 +1,349 @@
+/* order.c - evaluation order and loop classification (paper, section 3).
+ *
+ * Two graphs are searched for strongly connected components:
+ *  - the block graph (an edge for every connection): a component with a cycle is a
+ *    potential loop;
+ *  - the port graph (output port -> output port when the first feeds an input that the
+ *    second depends on directly): a component with a cycle is an actual loop, one that
+ *    every block on it passes through by throughput.
+ * The evaluation sequence walks the port graph in topological order and calls a block
+ * again only when an output needs inputs that were not final at its last call. So a
+ * potential loop costs a repeated call at most, and is solved by ordering alone.
+ * An actual loop is torn: a depth-first search inside it marks the inputs that carry
+ * its back edges (the loop-closing edges); without them the loop is acyclic, its calls
+ * form one contiguous segment of the sequence, and the torn inputs become the unknowns
+ * the loop solver iterates on. */
+#include "rti.h"
+
+/* block owning global output v */
+static uint16_t block_of_y(const rt_sim *sim, uint16_t nb, uint16_t v)
+{
+    uint16_t b = 0;
+    while (b + 1 < nb && sim->y_off[b + 1] <= v)
+        b++;
+    return b;
+}
+
+typedef struct graph_ctx {
+    const rt_scene *sc;
+    const rt_sim *sim;
+} graph_ctx;
+
+/* port graph: successors of output v are the outputs of each block it feeds that depend
+   on the fed input; cursor = (connection << 16) | next output to try */
+static int port_next(const void *ctx, uint16_t v, uint32_t *cursor)
+{
+    const graph_ctx *g = ctx;
+    const rt_scene *sc = g->sc;
+    uint16_t a = block_of_y(g->sim, sc->nblocks, v);
+    uint16_t ya = (uint16_t)(v - g->sim->y_off[a]);
+    for (uint32_t c = *cursor >> 16; c < sc->nconns; c++) {
+        const rt_conn *cn = &sc->conns[c];
+        uint32_t j = (c == (*cursor >> 16)) ? (*cursor & 0xFFFFu) : 0;
+        if (cn->from != a || cn->y != ya)
+            continue;
+        const rt_kind *k = sc->blocks[cn->to].kind;
+        if (g->sim->src_kind[g->sim->u_off[cn->to] + cn->u] == RT_SRC_TORN)
+            j = k->ny; /* a torn input no longer carries the edge */
+        for (; j < k->ny; j++) {
+            if (rti_feeds(k, (uint16_t)j, cn->u)) {
+                *cursor = (c << 16) | (j + 1);
+                return g->sim->y_off[cn->to] + (int)j;
+            }
+        }
+        *cursor = (c + 1) << 16;
+    }
+    *cursor = (uint32_t)sc->nconns << 16;
+    return -1;
+}
+
+/* block graph: successors of block v are the blocks its outputs are connected to */
+static int block_next(const void *ctx, uint16_t v, uint32_t *cursor)
+{
+    const graph_ctx *g = ctx;
+    while (*cursor < g->sc->nconns) {
+        const rt_conn *cn = &g->sc->conns[(*cursor)++];
+        if (cn->from == v)
+            return cn->to;
+    }
+    return -1;
+}
+
+/* a component is a loop if it has several nodes or a node that reaches itself */
+static int is_cycle(rti_next_fn next, const graph_ctx *g, const uint16_t *comp, uint16_t n,
+                    uint16_t id, uint16_t *first)
+{
+    uint16_t count = 0;
+    *first = 0;
+    for (uint16_t v = 0; v < n; v++)
+        if (comp[v] == id && count++ == 0)
+            *first = v;
+    if (count > 1)
+        return 1;
+    uint32_t cur = 0;
+    for (int s; (s = next(g, *first, &cur)) >= 0;)
+        if (s == *first)
+            return 1;
+    return 0;
+}
+
+/* appends block b to loop being built, skipping repeats */
+static void loop_add_block(rt_sim *sim, rt_loop *l, uint16_t b)
+{
+    for (uint16_t i = 0; i < l->nblocks; i++)
+        if (sim->loop_blocks[l->first + i] == b)
+            return;
+    sim->loop_blocks[l->first + l->nblocks++] = b;
+}
+
+/* is block b on one of the actual loops recorded so far? */
+static int in_actual_loop(const rt_sim *sim, uint16_t b)
+{
+    for (uint8_t l = 0; l < sim->nloops; l++)
+        for (uint16_t i = 0; sim->loops[l].actual && i < sim->loops[l].nblocks; i++)
+            if (sim->loop_blocks[sim->loops[l].first + i] == b)
+                return 1;
+    return 0;
+}
+
+/* a block component that holds an actual loop is reported as that loop only */
+static int holds_actual(const rt_sim *sim, const uint16_t *comp, uint16_t n, uint16_t id)
+{
+    for (uint16_t v = 0; v < n; v++)
+        if (comp[v] == id && in_actual_loop(sim, v))
+            return 1;
+    return 0;
+}
+
+/* records every cyclic component of a graph as a loop */
+static rt_status record_loops(const rt_scene *sc, rt_sim *sim, rti_next_fn next,
+                              const graph_ctx *g, uint16_t n, uint16_t ncomp, int ports,
+                              uint16_t *used)
+{
+    uint16_t *comp = sim->w.scc.comp;
+    for (uint16_t id = 0; id < ncomp; id++) {
+        uint16_t first = 0;
+        if (!is_cycle(next, g, comp, n, id, &first) || (!ports && holds_actual(sim, comp, n, id)))
+            continue;
+        if (sim->nloops >= RT_MAX_LOOPS)
+            return rti_fail(sim, RT_E_CAPACITY, "more algebraic loops than RT_MAX_LOOPS",
+                            (const char *)0);
+        rt_loop *l = &sim->loops[sim->nloops++];
+        l->actual = (uint8_t)ports;
+        l->first = *used;
+        l->nblocks = 0;
+        l->seq0 = first; /* a port of the loop, where tearing starts its search */
+        l->seq1 = l->torn0 = l->ntorn = l->h0 = 0;
+        l->h_valid = 0;
+        for (uint16_t v = 0; v < n; v++) {
+            if (comp[v] != id)
+                continue;
+            uint16_t b = ports ? block_of_y(sim, sc->nblocks, v) : v;
+            if (*used + l->nblocks >= 2 * RT_MAX_BLOCKS)
+                return rti_fail(sim, RT_E_CAPACITY, "loop listing exceeds 2*RT_MAX_BLOCKS",
+                                (const char *)0);
+            loop_add_block(sim, l, b);
+        }
+        *used = (uint16_t)(*used + l->nblocks);
+    }
+    return RT_OK;
+}
+
+/* position after which every input that output j of block b depends on is final */
+static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, uint16_t j)
+{
+    const rt_kind *k = sc->blocks[b].kind;
+    uint16_t req = 0;
+    for (uint16_t i = 0; i < k->nu; i++) {
+        uint16_t gi = (uint16_t)(sim->u_off[b] + i);
+        if (sim->src_kind[gi] != RT_SRC_Y || !rti_feeds(k, j, i))
+            continue;
+        uint16_t d = sim->w.scc.done[sim->src[gi]];
+        if (d > req)
+            req = d;
+    }
+    return req;
+}
+
+/* appends one entry to the sequence */
+static rt_status emit(rt_sim *sim, uint8_t kind, uint16_t index)
+{
+    if (sim->nseq >= RT_MAX_SEQ)
+        return rti_fail(sim, RT_E_CAPACITY, "evaluation sequence exceeds RT_MAX_SEQ",
+                        (const char *)0);
+    sim->seq[sim->nseq].kind = kind;
+    sim->seq[sim->nseq++].index = index;
+    return RT_OK;
+}
+
+/* makes output v final: reuses the block's last call if it came after every input v
+   needs (and after floor, the start of a loop segment), else calls the block again */
+static rt_status place_port(const rt_scene *sc, rt_sim *sim, uint16_t v, uint16_t floor)
+{
+    rt_scc_work *w = &sim->w.scc;
+    uint16_t b = block_of_y(sim, sc->nblocks, v);
+    uint16_t req = inputs_ready(sc, sim, b, (uint16_t)(v - sim->y_off[b]));
+    req = req > floor ? req : floor;
+    if (w->last[b] > req) {
+        w->done[v] = w->last[b];
+        return RT_OK;
+    }
+    rt_status st = emit(sim, RT_SEQ_CALL, b);
+    w->last[b] = w->done[v] = sim->nseq;
+    return st;
+}
+
+/* one actual loop: a marker, then its ports in the order of the torn (acyclic) graph */
+static rt_status place_loop(const rt_scene *sc, rt_sim *sim, uint16_t ny, uint16_t oid,
+                            uint16_t nc_torn, int l)
+{
+    rt_scc_work *w = &sim->w.scc;
+    rt_loop *lp = &sim->loops[l];
+    rt_status st = emit(sim, RT_SEQ_LOOP, (uint16_t)l);
+    uint16_t floor = sim->nseq;
+    lp->seq0 = sim->nseq;
+    for (uint16_t id = nc_torn; id-- > 0 && st == RT_OK;)
+        for (uint16_t v = 0; v < ny && st == RT_OK; v++)
+            if (w->orig[v] == oid && w->comp[v] == id)
+                st = place_port(sc, sim, v, floor);
+    lp->seq1 = sim->nseq;
+    return st;
+}
+
+/* walks the original components in topological order; loops become segments */
+static rt_status build_sequence(const rt_scene *sc, rt_sim *sim, uint16_t ny, uint16_t nc_orig,
+                                uint16_t nc_torn, const uint8_t *is_loop)
+{
+    rt_scc_work *w = &sim->w.scc;
+    rt_status st = RT_OK;
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        w->last[b] = 0;
+    sim->nseq = 0;
+    /* components are numbered sinks first: walk them from the highest id down */
+    for (uint16_t oid = nc_orig; oid-- > 0 && st == RT_OK;) {
+        int l = is_loop[oid] - 1; /* the actual loop of this component, or -1 */
+        if (l >= 0) {
+            st = place_loop(sc, sim, ny, oid, nc_torn, l);
+            continue;
+        }
+        for (uint16_t v = 0; v < ny && st == RT_OK; v++)
+            if (w->orig[v] == oid)
+                st = place_port(sc, sim, v, 0);
+    }
+    return st;
+}
+
+/* marks input gi torn for loop l: its value becomes an unknown of the loop solver */
+static rt_status tear_input(rt_sim *sim, uint16_t gi, rt_loop *lp)
+{
+    if (sim->ntorn >= RT_MAX_TORN)
+        return rti_fail(sim, RT_E_CAPACITY, "torn loop inputs exceed RT_MAX_TORN",
+                        (const char *)0);
+    sim->torn_in[sim->ntorn] = gi;
+    sim->torn_src[sim->ntorn] = sim->src[gi];
+    sim->torn_val[sim->ntorn] = 0;
+    sim->src_kind[gi] = RT_SRC_TORN;
+    sim->src[gi] = sim->ntorn++;
+    lp->ntorn++;
+    return RT_OK;
+}
+
+/* depth-first search inside component id from root: every edge back to a port on the
+   current path closes a loop, and its input is torn */
+static rt_status tear_from(const graph_ctx *g, rt_sim *sim, uint16_t id, uint16_t root,
+                           rt_loop *lp)
+{
+    rt_scc_work *w = &sim->w.scc;
+    const rt_scene *sc = g->sc;
+    uint16_t depth = 0;
+    w->call[depth++] = root;
+    w->color[root] = 1;
+    w->cursor[root] = 0;
+    while (depth > 0) {
+        uint16_t v = w->call[depth - 1];
+        int s = port_next(g, v, &w->cursor[v]);
+        if (s < 0) {
+            w->color[v] = 2;
+            depth--;
+            continue;
+        }
+        if (w->orig[s] != id)
+            continue;
+        if (w->color[s] == 1) {
+            const rt_conn *cn = &sc->conns[(w->cursor[v] >> 16)];
+            rt_status st = tear_input(sim, (uint16_t)(sim->u_off[cn->to] + cn->u), lp);
+            if (st != RT_OK)
+                return st;
+        } else if (w->color[s] == 0) {
+            w->color[s] = 1;
+            w->cursor[s] = 0;
+            w->call[depth++] = (uint16_t)s;
+        }
+    }
+    return RT_OK;
+}
+
+/* tears every actual loop; is_loop[component] = loop index + 1 */
+static rt_status tear_loops(const rt_scene *sc, rt_sim *sim, const graph_ctx *g, uint16_t ny,
+                            uint8_t nactual, uint8_t *is_loop)
+{
+    rt_scc_work *w = &sim->w.scc;
+    uint16_t h = 0;
+    sim->ntorn = 0;
+    for (uint16_t v = 0; v < ny; v++)
+        w->color[v] = 0;
+    for (uint8_t l = 0; l < nactual; l++) {
+        rt_loop *lp = &sim->loops[l];
+        uint16_t root = lp->seq0; /* record_loops left a port of the loop here */
+        uint16_t id = w->orig[root];
+        lp->torn0 = sim->ntorn, lp->ntorn = 0, lp->h0 = h, lp->h_valid = 0;
+        is_loop[id] = (uint8_t)(l + 1);
+        rt_status st = tear_from(g, sim, id, root, lp);
+        if (st != RT_OK)
+            return st;
+        h = (uint16_t)(h + lp->ntorn * lp->ntorn);
+    }
+    (void)sc;
+    return RT_OK;
+}
+
+rt_status rti_order(const rt_scene *sc, rt_sim *sim)
+{
+    graph_ctx g = {sc, sim};
+    rt_scc_work *w = &sim->w.scc;
+    uint16_t ny = sim->y_off[sc->nblocks], used = 0;
+    uint8_t is_loop[RT_MAX_NODES];
+    rt_status st;
+    sim->nloops = 0;
+    sim->ntorn = 0;
+
+    /* actual loops: cycles of the port graph */
+    uint16_t nc_orig = rti_scc(ny, port_next, &g, w, w->comp);
+    st = record_loops(sc, sim, port_next, &g, ny, nc_orig, 1, &used);
+    if (st != RT_OK)
+        return st;
+    uint8_t nactual = sim->nloops;
+    for (uint16_t v = 0; v < ny; v++)
+        w->orig[v] = w->comp[v];
+    for (uint16_t c = 0; c < nc_orig; c++)
+        is_loop[c] = 0;
+
+    /* potential loops: cycles of the block graph that hold no actual loop */
+    uint16_t nc = rti_scc(sc->nblocks, block_next, &g, w, w->comp);
+    st = record_loops(sc, sim, block_next, &g, sc->nblocks, nc, 0, &used);
+    if (st != RT_OK)
+        return st;
+    if (nactual > 0 && !sc->loop_solver) {
+        const rt_loop *l = &sim->loops[0];
+        return rti_fail(sim, RT_E_LOOP, "actual algebraic loop through block ",
+                        sc->blocks[sim->loop_blocks[l->first]].name,
+                        " and the scene names no loop solver", (const char *)0);
+    }
+
+    /* tear them, then order the now acyclic graph */
+    st = tear_loops(sc, sim, &g, ny, nactual, is_loop);
+    if (st != RT_OK)
+        return st;
+    uint16_t nc_torn = rti_scc(ny, port_next, &g, w, w->comp);
+    return build_sequence(sc, sim, ny, nc_orig, nc_torn, is_loop);
+}

@@ -1,0 +1,473 @@
+/* rt.h - the public API of the modrt runtime: block kinds, scenes, the simulator state,
+ * status codes and the functions that initialise and tick a scene.
+ *
+ * Model (const, fits in flash): rt_kind (what a block computes), rt_scene (which blocks,
+ * how they are wired, which sets integrate them). State (mutable, RAM): rt_sim, one per
+ * running scene, owned by the caller. Every step-path function takes (model, state, ...)
+ * in that order. Nothing here allocates; nothing here aborts. */
+#ifndef RT_H
+#define RT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rt_config.h"
+#include "rt_math.h"
+#include "rt_mbs.h"
+
+/* ------------------------------------------------------------------ status codes */
+
+/* Declared once; expanded into the enum and the name table (rt_status_name). */
+#define RT_STATUS_LIST(X)                                                        \
+    X(RT_OK, "ok")                                                               \
+    X(RT_E_ARG, "bad argument")                                                  \
+    X(RT_E_SCENE, "malformed scene")                                             \
+    X(RT_E_CAPACITY, "scene exceeds a compile-time limit")                       \
+    X(RT_E_UNCONNECTED, "input is not connected and has no default value")       \
+    X(RT_E_LOOP, "algebraic loop that cannot be solved")                         \
+    X(RT_E_PARAM, "parameter out of range")                                      \
+    X(RT_E_NAN, "non-finite value")                                              \
+    X(RT_E_NOCONV, "iteration did not converge")                                 \
+    X(RT_E_SINGULAR, "singular or near-singular matrix")                         \
+    X(RT_E_EVENT, "too many state events in one step")                           \
+    X(RT_E_OVERRUN, "tick deadline overrun")                                     \
+    X(RT_E_DONE, "end time reached")
+
+typedef enum {
+#define RT_X_ENUM(id, text) id,
+    RT_STATUS_LIST(RT_X_ENUM)
+#undef RT_X_ENUM
+    RT_STATUS_COUNT
+} rt_status;
+
+/* Fault counters bumped inside a tick (a tick never stops half-way; it counts, degrades
+ * deterministically and remembers the last offending block). */
+#define RT_COUNTER_LIST(X)                                                       \
+    X(RT_CNT_NAN, "nan", "non-finite output, derivative or state")               \
+    X(RT_CNT_EVENT_LIMIT, "event_limit", "events beyond RT_EVENTS_PER_STEP_MAX") \
+    X(RT_CNT_EVENT_NOLOC, "event_noloc", "root not located within the bound")    \
+    X(RT_CNT_NOCONV, "noconv", "iteration not converged within its bound")       \
+    X(RT_CNT_SINGULAR, "singular", "singular matrix met")                        \
+    X(RT_CNT_DEGRADED, "degraded", "step accepted with residual above tolerance")\
+    X(RT_CNT_OVERRUN, "overrun", "tick finished after its deadline")             \
+    X(RT_CNT_EVENTS, "events", "state events handled")
+
+typedef enum {
+#define RT_X_ENUM(id, key, text) id,
+    RT_COUNTER_LIST(RT_X_ENUM)
+#undef RT_X_ENUM
+    RT_CNT_COUNT
+} rt_counter;
+
+/* Returns the constant text of a status code ("?" for a value out of range). */
+const char *rt_status_name(rt_status s);
+/* Returns the short key of a counter, as printed in run summaries ("?" if out of range). */
+const char *rt_counter_key(rt_counter c);
+
+/* ------------------------------------------------------------------ block kinds */
+
+/* The paper's classification (section 2). */
+typedef enum {
+    RT_KIND_OUTPUT = 0, /* y = g(u,p,t)                              eq. (1) */
+    RT_KIND_NSS,        /* x' = f(x,u,p,t), y = g(x,u,p,t)           eq. (3) */
+    RT_KIND_LSS,        /* x' = A x + B u, y = C x + D u             eq. (4) */
+    RT_KIND_DSS,        /* x[k+1] = f(x[k],u[k],p), y held over k     eq. (5) */
+    RT_KIND_MBS         /* q' = K z + b, M z' = k - (GK)^T lambda    eq. (6) */
+} rt_kind_type;
+
+/* How a kind's outputs depend directly on its inputs (its throughputs). */
+typedef enum {
+    RT_FEED_NONE = 0, /* no output depends directly on an input */
+    RT_FEED_ALL,      /* every output depends on every input */
+    RT_FEED_TABLE     /* rt_kind.feed[i*nu + j] != 0: output i depends on input j */
+} rt_feed;
+
+/* Everything a block function reads, for one evaluation. */
+typedef struct rt_args {
+    real_t t;          /* time [s] */
+    real_t h;          /* step of the call: set step for derivatives, sample period for DSS [s] */
+    const real_t *x;   /* continuous state, nx values */
+    const real_t *d;   /* discrete state, nd values */
+    const real_t *u;   /* inputs, nu values */
+    const real_t *p;   /* parameters, np values */
+    const void *spec;  /* the kind's type-specific const data (rt_kind.spec) */
+} rt_args;
+
+/* A block kind: sizes, names and services, like the paper's system_descr (Fig. 3).
+ * Every slot may be NULL where the comment says so; the runtime checks the rest at init. */
+typedef struct rt_kind {
+    const char *name;       /* type identifier, e.g. "oscillator" */
+    rt_kind_type type;      /* classification */
+    uint16_t nu, ny;        /* inputs, outputs */
+    uint16_t nx, nd;        /* continuous states, discrete states */
+    uint16_t np, nr;        /* parameters, root functions */
+    const char *const *u_names; /* nu names (NULL only if nu == 0) */
+    const char *const *y_names; /* ny names */
+    const char *const *x_names; /* nx names */
+    const char *const *d_names; /* nd names */
+    const char *const *p_names; /* np names */
+    const real_t *p_default;    /* np default parameters; NULL: all zero */
+    const real_t *x_default;    /* nx default initial states; NULL: all zero */
+    const real_t *d_default;    /* nd default initial discrete states; NULL: all zero */
+    rt_feed feed;               /* throughput class */
+    const uint8_t *feed_table;  /* ny*nu row-major, only for RT_FEED_TABLE */
+    const int8_t *root_dir;     /* nr crossing directions: -1 falling, +1 rising, 0 both;
+                                   NULL: both */
+
+    /* Called once at rt_init with the instance parameters: returns RT_OK or RT_E_PARAM.
+       May be NULL (no check). */
+    rt_status (*check)(const real_t *p, const void *spec);
+    /* Output equation: writes ny outputs. Called in evaluation order at every stage;
+       for DSS only at sample hits (outputs are held in between). NULL iff ny == 0. */
+    void (*output)(const rt_args *a, real_t *y);
+    /* State equation: writes nx derivatives. NSS and LSS; NULL otherwise. */
+    void (*deriv)(const rt_args *a, real_t *xdot);
+    /* Discrete update: writes nd next states from a->d and a->u at a sample hit. DSS only. */
+    void (*update)(const rt_args *a, real_t *dnext);
+    /* Root functions of state events: writes nr values. NULL iff nr == 0. */
+    void (*roots)(const rt_args *a, real_t *r);
+    /* Event handler, called at the located time of root `which` with the state after the
+       crossing; may change x and d in place. NULL iff nr == 0. */
+    void (*event)(const rt_args *a, uint16_t which, real_t *x, real_t *d);
+    const void *spec;           /* type-specific part (LSS matrices, MBS description) */
+} rt_kind;
+
+/* Type-specific part of a linear state-space kind: its sizes (equal to the kind's) and
+ * row-major A (nx*nx), B (nx*nu; NULL: zero), C (ny*nx), D (ny*nu; NULL: zero).
+ * The LSS services in rt/lss.c read it. */
+typedef struct rt_lss_spec {
+    uint16_t nx, nu, ny;
+    const real_t *A, *B, *C, *D;
+} rt_lss_spec;
+
+/* LSS services, for kinds that describe a linear state-space system. */
+void rt_lss_output(const rt_args *a, real_t *y);
+void rt_lss_deriv(const rt_args *a, real_t *xdot);
+
+/* ------------------------------------------------------------------ integrators */
+
+struct rt_sim;
+struct rt_integrator;
+
+/* Right-hand side of one set: evaluates f at time t with the set's state as it currently
+ * stands in x (the integrator writes stage states there) and writes n derivatives. */
+typedef struct rt_rhs {
+    rt_status (*eval)(void *ctx, real_t t, real_t *xdot);
+    void *ctx;
+} rt_rhs;
+
+/* What an implicit method keeps from step to step for one set: the factored iteration
+ * matrix is reused until its age reaches the set's refresh interval or h changes. */
+typedef struct rt_implicit_ws {
+    real_t lu[RT_MAX_IMPLICIT_N * RT_MAX_IMPLICIT_N]; /* LU factors, row-major */
+    real_t jac[RT_MAX_IMPLICIT_N * RT_MAX_IMPLICIT_N];/* last Jacobian df/dx */
+    uint16_t piv[RT_MAX_IMPLICIT_N];                  /* row pivots of lu */
+    real_t h_factored;        /* step (times method constant) lu belongs to */
+    uint32_t age;             /* steps since the Jacobian was refreshed */
+    uint8_t valid;            /* lu holds a usable factorization */
+} rt_implicit_ws;
+
+/* Statistics an implicit method reports per set (high-water marks for sizing). */
+typedef struct rt_istats {
+    uint32_t newton_iter_max; /* most Newton iterations in one step */
+    uint32_t jac_evals;       /* Jacobian refreshes */
+    uint32_t degraded;        /* steps ended with residual above tolerance */
+    real_t last_residual;     /* residual norm after the last iteration */
+} rt_istats;
+
+/* Per-set settings of an implicit method (rt_set; zeros select the defaults). */
+typedef struct rt_implicit_cfg {
+    uint8_t newton_max;       /* Newton iterations per stage (default 4) */
+    uint16_t jac_every;       /* refresh the Jacobian every N steps (default 1) */
+    real_t tol;               /* residual tolerance, scaled norm (default 1e-8) */
+} rt_implicit_cfg;
+
+/* Workspace an integrator may use for one step of one set (carved from rt_sim). */
+typedef struct rt_iwork {
+    real_t *k[RT_MAX_STAGES]; /* stage derivatives, n values each */
+    real_t *x0;               /* state at the start of the step */
+    rt_implicit_ws *imp;      /* persistent implicit data of this set */
+    rt_istats *stats;         /* statistics of this set */
+    const rt_implicit_cfg *cfg; /* settings of this set */
+} rt_iwork;
+
+/* A fixed-step integration method (const method table). */
+typedef struct rt_integrator {
+    const char *name;  /* e.g. "rk4" */
+    uint8_t order;     /* classical order of convergence */
+    uint8_t stages;    /* right-hand-side evaluations per step (explicit methods) */
+    uint8_t implicit;  /* 1: needs rt_iwork.imp (n <= RT_MAX_IMPLICIT_N) */
+    /* Advances x (n values) from t to t+h in place. Returns RT_OK, RT_E_NOCONV when the
+       step ended with a residual above tolerance (counted as degraded), or the first
+       error of the right-hand side; the step is always completed. */
+    rt_status (*step)(const struct rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
+                      real_t *x, uint16_t n, const rt_iwork *w);
+    const void *tab;   /* method data, e.g. a Butcher tableau */
+} rt_integrator;
+
+/* The library of integrators: a registry of {name, method} rows ending in {NULL, NULL}. */
+typedef struct rt_integrator_entry {
+    const char *name;
+    const rt_integrator *method;
+} rt_integrator_entry;
+extern const rt_integrator_entry rt_integrators[];
+extern const rt_integrator rt_euler, rt_heun, rt_bs3, rt_rk4, rt_dopri5;
+extern const rt_integrator rt_beuler, rt_trap, rt_sdirk2, rt_sdirk3, rt_ros2;
+/* Returns the integrator registered under name, or NULL. */
+const rt_integrator *rt_integrator_find(const char *name);
+
+/* ------------------------------------------------------------------ scenes */
+
+/* A block instance of a scene. */
+typedef struct rt_block {
+    const char *name;      /* instance name, e.g. "Osc" */
+    const rt_kind *kind;   /* what it computes */
+    const real_t *p;       /* kind->np parameters; NULL: the kind's defaults */
+    const real_t *x0;      /* kind->nx initial states; NULL: the kind's defaults */
+    const real_t *d0;      /* kind->nd initial discrete states; NULL: the kind's defaults */
+    uint8_t set;           /* index of the set that integrates it */
+    real_t ts;             /* sample period of a DSS block [s]: a multiple of the base tick */
+} rt_block;
+
+/* One connection of the incidence y = P u (eq. 2): output port -> input port. */
+typedef struct rt_conn {
+    uint16_t from, y;      /* source block index, its output index */
+    uint16_t to, u;        /* destination block index, its input index */
+} rt_conn;
+
+/* A constant value for an input that is not connected. */
+typedef struct rt_default {
+    uint16_t block, u;     /* block index, input index */
+    real_t value;
+} rt_default;
+
+/* A set: blocks integrated together by one method at one fixed step. */
+typedef struct rt_set {
+    const char *name;
+    const rt_integrator *method;
+    uint32_t ratio;        /* step = ratio * base tick */
+    rt_implicit_cfg implicit; /* settings of an implicit method; zeros: defaults */
+} rt_set;
+
+/* What a recorded signal reads. RT_SIG_MBS: a multibody quantity computed by the scene's
+   MBS services (energy, constraint residuals, joint reactions; index from rt_mbs.h). */
+typedef enum { RT_SIG_Y = 0, RT_SIG_X, RT_SIG_D, RT_SIG_MBS } rt_sig_kind;
+
+typedef struct rt_rec {
+    uint16_t block;        /* block index */
+    uint8_t what;          /* rt_sig_kind */
+    uint16_t index;        /* output, state or discrete-state index */
+} rt_rec;
+
+/* A scene: one experiment, const data (what the scene compiler generates). */
+typedef struct rt_scene {
+    const char *name;
+    const char *doc;              /* one line shown by `modrt list` */
+    real_t dt;                    /* base tick [s] */
+    real_t t_end;                 /* end time [s] */
+    const rt_block *blocks;
+    uint16_t nblocks;
+    const rt_conn *conns;
+    uint16_t nconns;
+    const rt_default *defaults;
+    uint16_t ndefaults;
+    const rt_set *sets;
+    uint8_t nsets;
+    const rt_rec *recs;
+    uint16_t nrecs;
+    /* multibody: joints between nodes, and the services (NULL: the scene has no MBS
+       blocks, and links none of that code) */
+    const rt_joint *joints;
+    uint16_t njoints;
+    const rt_mbs_ops *mbs;
+    uint8_t stab;          /* rt_stab: post-stabilization of MBS sets */
+    real_t baumgarte[2];   /* alpha, beta of Baumgarte stabilization [1/s, 1/s^2] */
+    /* algebraic loops: the solver of actual loops (NULL: an actual loop is an error) */
+    const struct rt_loop_ops *loop_solver;
+    uint8_t loop_iter_max; /* Broyden iterations per loop evaluation (0: default) */
+    real_t loop_tol;       /* residual tolerance of torn inputs (0: default) */
+} rt_scene;
+
+/* Post-stabilization of multibody sets. */
+typedef enum {
+    RT_STAB_PROJECT = 0, /* two-iteration position and direct velocity projection (eq. 10) */
+    RT_STAB_NONE,        /* none: shows the drift */
+    RT_STAB_BAUMGARTE    /* Baumgarte terms in the acceleration constraint, no projection */
+} rt_stab;
+
+/* Registry row of a scene; registries end with {NULL, NULL}. */
+typedef struct rt_scene_entry {
+    const char *name;
+    const rt_scene *scene;
+} rt_scene_entry;
+
+/* ------------------------------------------------------------------ simulator state */
+
+/* Where a block input takes its value from (derived at init). */
+typedef enum {
+    RT_SRC_Y = 0,      /* an output: y[src] */
+    RT_SRC_DEFAULT,    /* the scene's constant: def[i] */
+    RT_SRC_TORN        /* a torn loop input: the solver's unknown torn_val[src] */
+} rt_src_kind;
+
+/* One entry of the evaluation sequence. */
+typedef enum {
+    RT_SEQ_CALL = 0,   /* call block `index`'s output equation */
+    RT_SEQ_LOOP        /* solve actual loop `index`: its calls follow this entry */
+} rt_seq_kind;
+
+typedef struct rt_seq_step {
+    uint8_t kind;      /* rt_seq_kind */
+    uint16_t index;    /* block or loop */
+} rt_seq_step;
+
+/* A loop found in the signal graph (reported by `modrt info`). A potential loop is a
+ * strongly connected component of the block graph, solved by ordering alone; an actual
+ * loop is one of the port-level throughput graph, torn at loop-closing edges whose
+ * inputs become the unknowns of a Broyden iteration. */
+typedef struct rt_loop {
+    uint8_t actual;            /* 1: every block on it has throughput (actual loop) */
+    uint16_t nblocks;          /* blocks in the strongly connected component */
+    uint16_t first;            /* index of its first block in rt_sim.loop_blocks */
+    /* actual loops only */
+    uint16_t torn0, ntorn;     /* its torn inputs: rt_sim.torn_in[torn0 .. +ntorn] */
+    uint16_t seq0, seq1;       /* its calls: rt_sim.seq[seq0 .. seq1) */
+    uint16_t h0;               /* its inverse Jacobian: rt_sim.loop_h[h0 .. +ntorn^2] */
+    uint8_t h_valid;           /* loop_h holds an estimate */
+} rt_loop;
+
+/* The solver of actual loops a scene names (rt_scene.loop_solver; rt/loop.c). */
+struct rt_sim;
+typedef struct rt_loop_ops {
+    /* Solves loop l at time t: evaluates its calls with the torn inputs as unknowns
+       until the residual is below the scene's tolerance or the iteration bound. */
+    void (*solve)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t l, real_t t,
+                  int mode);
+} rt_loop_ops;
+extern const rt_loop_ops rt_broyden;
+
+/* Scratch of the graph searches at init (shares storage with the integrator workspace). */
+typedef struct rt_scc_work {
+    uint16_t index[RT_MAX_NODES];
+    uint16_t low[RT_MAX_NODES];
+    uint16_t stack[RT_MAX_NODES];
+    uint16_t call[RT_MAX_NODES];   /* explicit depth-first call stack */
+    uint32_t cursor[RT_MAX_NODES]; /* successor cursor per node */
+    uint8_t on[RT_MAX_NODES];      /* node is on the component stack */
+    uint16_t comp[RT_MAX_NODES];   /* component of each node */
+    uint16_t done[RT_MAX_NODES];   /* sequence position where an output became final */
+    uint16_t orig[RT_MAX_NODES];   /* component before tearing */
+    uint8_t color[RT_MAX_NODES];   /* tearing search: 0 new, 1 on the path, 2 done */
+    uint16_t last[RT_MAX_BLOCKS];  /* sequence position of a block's last call */
+} rt_scc_work;
+
+/* The mutable state of one running scene. The caller owns it (static storage);
+ * rt_init fills every field. Sizes are the compile-time limits of rt_config.h. */
+typedef struct rt_sim {
+    const rt_scene *sc;
+
+    /* sets: slice of x each set integrates, and its step in base ticks */
+    uint16_t set_x[RT_MAX_SETS + 1];
+    uint16_t set_r[RT_MAX_SETS + 1]; /* slice of r holding each set's root values */
+
+    /* layout: offsets of each block's slice in the value arrays (size nblocks + 1) */
+    uint16_t x_off[RT_MAX_BLOCKS + 1], d_off[RT_MAX_BLOCKS + 1];
+    uint16_t u_off[RT_MAX_BLOCKS + 1], y_off[RT_MAX_BLOCKS + 1];
+    uint16_t p_off[RT_MAX_BLOCKS + 1];
+    uint32_t period[RT_MAX_BLOCKS]; /* DSS sample period in base ticks, 0 otherwise */
+
+    /* signal routing: each input reads y[src[i]] or def[i] */
+    uint8_t src_kind[RT_MAX_U];      /* rt_src_kind */
+    uint16_t src[RT_MAX_U];          /* global output index */
+    real_t def[RT_MAX_U];            /* default value */
+
+    /* evaluation order (rt/order.c) */
+    rt_seq_step seq[RT_MAX_SEQ];
+    uint16_t nseq;
+    rt_loop loops[RT_MAX_LOOPS];
+    uint8_t nloops;
+    uint16_t loop_blocks[2 * RT_MAX_BLOCKS]; /* blocks of each loop, see rt_loop */
+
+    /* torn loop inputs (rt/loop.c): the unknowns of the actual loops */
+    uint16_t ntorn;
+    uint16_t torn_in[RT_MAX_TORN];   /* global input index of each torn input */
+    uint16_t torn_src[RT_MAX_TORN];  /* the output that drives it (loop-closing edge) */
+    real_t torn_val[RT_MAX_TORN];    /* current value (warm start for the next solve) */
+    real_t loop_h[RT_MAX_TORN * RT_MAX_TORN]; /* inverse Jacobians, Broyden-updated */
+    uint32_t loop_hist[RT_LOOP_ITER_LIMIT + 1]; /* solves by iterations taken */
+    uint32_t loop_iter_max;          /* high-water mark of iterations per solve */
+    real_t loop_residual;            /* largest residual left by a solve that failed */
+    real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* solver scratch */
+    uint16_t loop_piv[RT_MAX_TORN];
+
+    /* values */
+    real_t x[RT_MAX_X];              /* continuous state */
+    real_t d[RT_MAX_D];              /* discrete state */
+    real_t u[RT_MAX_U];              /* gathered inputs */
+    real_t y[RT_MAX_Y];              /* outputs (DSS outputs held between hits) */
+    real_t p[RT_MAX_P];              /* parameters (may be changed before the run) */
+    real_t r[RT_MAX_ROOTS];          /* root values at the end of the last step */
+
+    /* integrator workspace; the graph searches of rt_init use the same storage */
+    union {
+        real_t k[RT_MAX_STAGES][RT_MAX_X];
+        rt_scc_work scc;
+    } w;
+    real_t x0[RT_MAX_X];
+    real_t xb[RT_MAX_X];             /* state at the right end of an event bracket */
+    rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
+    rt_istats istats[RT_MAX_SETS];   /* implicit methods' statistics per set */
+    rt_mbs_work mbs;                 /* multibody assembly workspace */
+    real_t xs[RT_MAX_X];             /* saved state for event location */
+    real_t rs[RT_MAX_ROOTS];         /* root values scratch */
+
+    /* time and accounting */
+    uint64_t tick;                   /* base ticks done; t = tick * dt */
+    uint64_t n_ticks;                /* ticks to reach t_end */
+    uint32_t count[RT_CNT_COUNT];    /* fault counters */
+    int16_t last_block[RT_CNT_COUNT];/* last offending block per counter, -1 none */
+    uint32_t event_iter_max;         /* high-water mark of event-location iterations */
+    rt_status status;                /* first fault met (RT_OK while clean) */
+    uint64_t hash;                   /* FNV-1a over recorded values */
+    char err[RT_ERR_LEN];            /* what rt_init found wrong, and where */
+} rt_sim;
+
+/* ------------------------------------------------------------------ API */
+
+/* Initialises sim for scene: layout, parameters and initial states, signal routing and
+ * evaluation order, initial outputs. Returns RT_OK or the first problem found; on error
+ * sim holds a description for rt_error_text. */
+rt_status rt_init(const rt_scene *scene, rt_sim *sim);
+/* Returns the text describing the last init error ("" if none). */
+const char *rt_error_text(const rt_sim *sim);
+/* Advances the scene by one base tick. Always completes the tick; faults go to the
+ * counters and to sim->status. Returns RT_E_DONE once t_end is reached. */
+rt_status rt_tick(const rt_scene *scene, rt_sim *sim);
+/* Time of the current state [s]. */
+real_t rt_time(const rt_scene *scene, const rt_sim *sim);
+/* Re-evaluates all outputs at the current state (after changing parameters). */
+rt_status rt_refresh(const rt_scene *scene, rt_sim *sim);
+
+/* Recording: fills the nrecs recorded values at the current state and folds them into
+ * sim->hash. */
+void rt_record(const rt_scene *scene, rt_sim *sim, real_t *out);
+/* Returns the value of recorded signal i at the current state. */
+real_t rt_rec_value(const rt_scene *scene, const rt_sim *sim, uint16_t i);
+/* Name parts of recorded signal i: block name and signal name. */
+const char *rt_rec_signal(const rt_scene *scene, uint16_t i);
+
+/* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */
+int rt_block_index(const rt_scene *scene, const char *name);
+int rt_param_index(const rt_kind *kind, const char *name);
+/* Sets parameter `name` of block `block` before or between ticks; RT_E_ARG if unknown. */
+rt_status rt_set_param(const rt_scene *scene, rt_sim *sim, const char *block,
+                       const char *name, real_t value);
+
+/* Trace hash: FNV-1a 64 over the IEEE bit pattern of each value, little-endian. */
+#define RT_HASH_INIT 0xcbf29ce484222325ull
+uint64_t rt_hash_real(uint64_t h, real_t v);
+
+/* Length-limited string helpers for freestanding code. */
+int rt_streq(const char *a, const char *b);
+
+#endif /* RT_H */

@@ -1,0 +1,116 @@
+/* rt_config.h - compile-time configuration of modrt: the scalar type and every capacity limit.
+ *
+ * Every limit is a named constant with a default that a build may override with -D
+ * (a per-scene build passes the exact sizes of its scene; test builds shrink them to
+ * reach edge cases). The runtime checks a scene against these limits at init and
+ * returns RT_E_CAPACITY naming the limit; it never writes past a static array. */
+#ifndef RT_CONFIG_H
+#define RT_CONFIG_H
+
+/* scalar type: double by default, float with -DRT_REAL_FLOAT (make REAL=float) */
+#ifdef RT_REAL_FLOAT
+typedef float real_t;
+#define RT_EPS 1.1920929e-07f /* unit roundoff of real_t */
+#define RT_REAL_IS_FLOAT 1
+#else
+typedef double real_t;
+#define RT_EPS 2.220446049250313e-16 /* unit roundoff of real_t */
+#define RT_REAL_IS_FLOAT 0
+#endif
+
+/* ---- scene size limits (totals over all blocks of one scene) ---- */
+#ifndef RT_MAX_BLOCKS
+#define RT_MAX_BLOCKS 64 /* block instances */
+#endif
+#ifndef RT_MAX_X
+#define RT_MAX_X 256 /* continuous states */
+#endif
+#ifndef RT_MAX_D
+#define RT_MAX_D 64 /* discrete states */
+#endif
+#ifndef RT_MAX_U
+#define RT_MAX_U 256 /* block inputs */
+#endif
+#ifndef RT_MAX_Y
+#define RT_MAX_Y 256 /* block outputs */
+#endif
+#ifndef RT_MAX_P
+#define RT_MAX_P 512 /* parameters */
+#endif
+#ifndef RT_MAX_ROOTS
+#define RT_MAX_ROOTS 16 /* state-event root functions */
+#endif
+#ifndef RT_MAX_SETS
+#define RT_MAX_SETS 4 /* integration sets */
+#endif
+#ifndef RT_MAX_REC
+#define RT_MAX_REC 64 /* recorded signals */
+#endif
+#ifndef RT_MAX_LOOPS
+#define RT_MAX_LOOPS 8 /* potential + actual algebraic loops reported */
+#endif
+
+#ifndef RT_ERR_LEN
+#define RT_ERR_LEN 128 /* characters of an init error description */
+#endif
+
+/* nodes of the graphs searched at init (output ports, blocks) */
+#define RT_MAX_NODES (RT_MAX_Y > RT_MAX_BLOCKS ? RT_MAX_Y : RT_MAX_BLOCKS)
+
+/* evaluation sequence: at most one call per output port plus one per block */
+#define RT_MAX_SEQ (RT_MAX_Y + RT_MAX_BLOCKS)
+
+/* ---- integrators ---- */
+#ifndef RT_MAX_STAGES
+#define RT_MAX_STAGES 7 /* Runge-Kutta stages (Dormand-Prince needs 7) */
+#endif
+
+/* ---- multibody (rt/mbs.c) ---- */
+#ifndef RT_MAX_MBS_Z
+#define RT_MAX_MBS_Z 64 /* generalized velocities of the MBS blocks of one set */
+#endif
+#ifndef RT_MAX_MBS_Q
+#define RT_MAX_MBS_Q 80 /* generalized coordinates of the MBS blocks of one set */
+#endif
+#ifndef RT_MAX_MBS_C
+#define RT_MAX_MBS_C 40 /* constraints (internal + joints) of one set */
+#endif
+#ifndef RT_MAX_JOINTS
+#define RT_MAX_JOINTS 32 /* joints of a scene */
+#endif
+
+/* ---- implicit integrators and algebraic loops ---- */
+#ifndef RT_MAX_IMPLICIT_N
+#define RT_MAX_IMPLICIT_N 64 /* states of a set integrated by an implicit method */
+#endif
+#ifndef RT_MAX_TORN
+#define RT_MAX_TORN 16 /* torn inputs over all actual loops */
+#endif
+#ifndef RT_LOOP_ITER_MAX
+#define RT_LOOP_ITER_MAX 8 /* default Broyden iterations per loop evaluation */
+#endif
+#ifndef RT_LOOP_ITER_LIMIT
+#define RT_LOOP_ITER_LIMIT 32 /* the most a scene may ask for (sizes the histogram) */
+#endif
+
+/* ---- state events ---- */
+#ifndef RT_EVENT_ITER_MAX
+#define RT_EVENT_ITER_MAX 48 /* re-steps to locate one root (Illinois) */
+#endif
+#ifndef RT_EVENTS_PER_STEP_MAX
+#define RT_EVENTS_PER_STEP_MAX 4 /* events handled within one set step */
+#endif
+#ifndef RT_EVENT_TTOL
+/* width of the final event bracket, relative to the step: 1e-12 of a 1 ms step is 1 fs,
+   far below any model's time scale, yet reached in a few Illinois iterations */
+#define RT_EVENT_TTOL (RT_REAL_IS_FLOAT ? (real_t)1e-6 : (real_t)1e-12)
+#endif
+
+#if RT_MAX_BLOCKS > 65535 || RT_MAX_Y > 65535 || RT_MAX_U > 65535 || RT_MAX_X > 65535
+#error "modrt indexes blocks, states and ports with 16-bit integers: keep every RT_MAX_* below 65536."
+#endif
+#if RT_MAX_STAGES < 7
+#error "RT_MAX_STAGES must be at least 7: the fifth-order Dormand-Prince method has seven stages."
+#endif
+
+#endif /* RT_CONFIG_H */

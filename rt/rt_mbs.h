@@ -1,0 +1,291 @@
+/* rt_mbs.h - multibody modules (paper, eqs. 6-10): the MBS kind's type-specific part,
+ * interaction nodes [r|S], joint kinds and joints between nodes, the recordable MBS
+ * signals, and the workspace of the assembly, the index-1 solve and the projection.
+ * Included by rt.h; the services live in rt/mbs.c, rt/mbs_asm.c, rt/mbs_project.c and
+ * the joint kinds in rt/joints.c. docs/mbs.md gives the equations as implemented.
+ *
+ * An MBS block kind (rt_kind.type == RT_KIND_MBS, deriv == NULL, spec -> rt_mbs_spec)
+ * has nx = nq + nz states x = [q, z] and describes, in the descriptor form of eq. 6,
+ *     q' = K(q) z + b(q,t)                      (6a)
+ *     M(q) z' = k(q,z,u,t) - (G K)^T lambda     (6b)
+ *     g(q,t) = 0                                (6c, internal constraints)
+ * Its interaction nodes give position, rotation, velocities, Jacobians with respect to z
+ * and the acceleration terms, so that joints (rt_joint_kind) never see a block's
+ * coordinates. The runtime stacks the blocks of one set into the block-diagonal system
+ * of eq. 9 and solves it with the Schur complement W M^-1 W^T, W = G K. */
+#ifndef RT_MBS_H
+#define RT_MBS_H
+
+#include <stdint.h>
+
+#include "rt_config.h"
+
+struct rt_scene;
+struct rt_sim;
+struct rt_args;
+
+/* ------------------------------------------------------------------ limits */
+
+#ifndef RT_MAX_MBS_BZ
+#define RT_MAX_MBS_BZ 16 /* generalized velocities of one MBS block (node Jacobians, M) */
+#endif
+#ifndef RT_MBS_PIVOT_TOL
+/* pivot threshold of the factorizations of M and W M^-1 W^T, relative to the largest
+   entry: a well-posed chain of ten links has relative pivots near 1e-2, a redundant or
+   straightened chain near the unit roundoff */
+#define RT_MBS_PIVOT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-5 : (real_t)1e-10)
+#endif
+#ifndef RT_MBS_RES_TOL
+/* largest |g| accepted after the two projection iterations; above it the step is counted
+   as degraded (RT_CNT_DEGRADED) [m or 1] */
+#define RT_MBS_RES_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-4 : (real_t)1e-9)
+#endif
+#ifndef RT_MBS_LEN_MIN
+/* a spherical difference joint whose nodes are closer than this has no direction;
+   its direction falls back to +x deterministically [m] */
+#define RT_MBS_LEN_MIN (RT_REAL_IS_FLOAT ? (real_t)1e-15 : (real_t)1e-100)
+#endif
+#define RT_MBS_JOINT_NC_MAX 6 /* constraint equations of one joint (the fixed joint has 6) */
+/* touched (block, constraint row) pairs over all sets: each row touches one or two blocks */
+#define RT_MBS_MAX_TOUCH (2 * RT_MAX_MBS_C * RT_MAX_SETS)
+
+#if RT_MAX_MBS_C * RT_MAX_MBS_Z > 65535 || RT_MAX_MBS_Z * RT_MAX_MBS_BZ > 65535
+#error "rt_mbs_work indexes its matrices with 16-bit integers: keep RT_MAX_MBS_C * RT_MAX_MBS_Z and RT_MAX_MBS_Z * RT_MAX_MBS_BZ below 65536."
+#endif
+
+/* ------------------------------------------------------------------ nodes */
+
+/* The state of one interaction node [r|S] (paper, Fig. 2), all in the inertial frame.
+ * With the block's generalized velocities z, the node's velocities are
+ *     v = Jr z + (terms of b and t),  w = Jw z + (...),
+ * and its accelerations r'' = Jr z' + ar, w' = Jw z' + aw, where Jr, Jw are the 3 x nz
+ * Jacobians the node function writes on request. */
+typedef struct rt_mbs_node {
+    real_t r[3];  /* position [m] */
+    real_t S[9];  /* rotation of the node frame to the inertial frame, row-major */
+    real_t v[3];  /* velocity [m/s] */
+    real_t w[3];  /* angular velocity [rad/s] */
+    real_t ar[3]; /* acceleration at z' = 0 [m/s^2] */
+    real_t aw[3]; /* angular acceleration at z' = 0 [rad/s^2] */
+} rt_mbs_node;
+
+/* ------------------------------------------------------------------ the MBS kind */
+
+/* flags of rt_mbs_spec */
+#define RT_MBS_M_DIAG 0x01 /* M is diagonal: mass() writes nz values, solves divide */
+
+/* Type-specific part of an MBS kind (rt_kind.spec). The hooks read the block's state
+ * x = [q (nq), z (nz)], inputs, parameters and time through rt_args; none may allocate
+ * or fail, and each must give finite values for any finite state. */
+typedef struct rt_mbs_spec {
+    uint16_t nq, nz;  /* coordinates, velocities: the kind's nx is nq + nz */
+    uint16_t nc;      /* internal constraints (eq. 6c within the module) */
+    uint16_t nn;      /* interaction nodes */
+    uint8_t flags;    /* special properties (paper, Fig. 3): RT_MBS_M_DIAG */
+    const char *const *node_names; /* nn names, e.g. "c" */
+    /* Kinematics without the rheonomic term: qd = K(q) v for any v of nz values (eq. 6a).
+       Reads q only (the projection calls it with the predicted q). Never NULL. */
+    void (*kin)(const struct rt_args *a, const real_t *v, real_t *qd);
+    /* Rheonomic term b(q,t) of eq. 6a, nq values. NULL: b = 0. */
+    void (*kinb)(const struct rt_args *a, real_t *b);
+    /* Mass matrix M(q), nz x nz row-major, symmetric positive definite; with
+       RT_MBS_M_DIAG only its nz diagonal entries. Never NULL. */
+    void (*mass)(const struct rt_args *a, real_t *M);
+    /* Applied, gyroscopic and input forces k(q,z,u,t) of eq. 6b, nz values. Never NULL. */
+    void (*force)(const struct rt_args *a, real_t *k);
+    /* Internal constraints: g (nc values, eq. 6c) and g' (nc, eq. 7a); if W is not NULL
+       also W = G K (nc rows of nz, row stride ld) and the acceleration term gam with
+       g'' = W z' + gam (eq. 7b). NULL iff nc == 0. */
+    void (*constr)(const struct rt_args *a, real_t *g, real_t *gd, real_t *W, uint16_t ld,
+                   real_t *gam);
+    /* Node i: fills n; if J is not NULL also writes the Jacobians as 6 rows of nz values
+       (rows 0-2: Jr, rows 3-5: Jw). Never NULL when nn > 0. */
+    void (*node)(const struct rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J);
+    /* Kinetic energy e[0] = z^T M z / 2 and potential energy e[1] [J]. Never NULL. */
+    void (*energy)(const struct rt_args *a, real_t *e);
+    /* Called on q after the position projection, e.g. to renormalize unit quaternions
+       (which K keeps tangent). NULL: nothing to do. */
+    void (*normalize)(real_t *q);
+} rt_mbs_spec;
+
+/* ------------------------------------------------------------------ joints */
+
+/* What a joint kind computes from its two nodes: the constraints g (eq. 8 and kin), their
+ * time derivative g' = C [v1; w1; v2; w2] (eq. 7a; C has 12 columns: node 1 velocity,
+ * node 1 angular velocity, node 2 velocity, node 2 angular velocity), and the term c of
+ * the acceleration constraint g'' = C [r1''; w1'; r2''; w2'] + c (eq. 7b). */
+typedef struct rt_joint_eval {
+    real_t g[RT_MBS_JOINT_NC_MAX];       /* residuals [m or 1] */
+    real_t C[RT_MBS_JOINT_NC_MAX][12];   /* velocity coefficients */
+    real_t c[RT_MBS_JOINT_NC_MAX];       /* C' [v1; w1; v2; w2] */
+} rt_joint_eval;
+
+/* A joint kind (const table element, rt/joints.c). */
+typedef struct rt_joint_kind {
+    const char *name;             /* e.g. "sphdiff" */
+    uint8_t nc;                   /* constraint equations, <= RT_MBS_JOINT_NC_MAX */
+    uint8_t np;                   /* parameters */
+    const char *const *p_names;   /* np names (NULL iff np == 0) */
+    /* Returns 0 when the parameters are valid. NULL: any parameters are. */
+    int (*check)(const real_t *p);
+    /* Evaluates g, C and c for nodes n1, n2. Never NULL; finite for finite nodes. */
+    void (*eval)(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
+                 rt_joint_eval *e);
+} rt_joint_kind;
+
+/* the library of joint kinds */
+extern const rt_joint_kind rt_joint_sphdiff;   /* |r1 - r2| - l = 0 (eq. 8); p = {l [m]} */
+extern const rt_joint_kind rt_joint_spherical; /* r1 - r2 = 0 */
+extern const rt_joint_kind rt_joint_revolute;  /* r1 = r2, node z axes parallel */
+extern const rt_joint_kind rt_joint_fixed;     /* r1 = r2, S1 = S2 (a fixed anchor) */
+
+/* Registry row of a joint kind; the registry rt_joint_kinds ends with {NULL, NULL}. */
+typedef struct rt_joint_entry {
+    const char *name;
+    const rt_joint_kind *kind;
+} rt_joint_entry;
+extern const rt_joint_entry rt_joint_kinds[];
+
+/* A joint instance of a scene: links node n1 of block b1 with node n2 of block b2;
+   b2 = -1 links to an inertial node (an anchor) at position at, rotation at_S. Both
+   blocks must be MBS blocks of the same set. */
+typedef struct rt_joint {
+    const char *name;                 /* e.g. "J1" (named in error messages) */
+    const rt_joint_kind *kind;
+    int16_t b1, n1;                   /* block index, node index */
+    int16_t b2, n2;                   /* block index or -1, node index */
+    const real_t *p;                  /* kind->np parameters (e.g. the length l of eq. 8) */
+    const real_t *at;                 /* anchor position [m], 3 values; NULL: origin */
+    const real_t *at_S;               /* anchor rotation, 9 values row-major; NULL: unit */
+} rt_joint;
+
+/* ------------------------------------------------------------------ signals */
+
+/* Recordable MBS quantities: rt_rec {block, RT_SIG_MBS, index}. For index below
+ * RT_MBS_SIG_JOINT the quantity belongs to the set of `block` (any MBS block of it) and
+ * is computed from the current state. Joint signals have index RT_MBS_SIG_JOINT_AT(j, c)
+ * and block = the joint's b1 (the block the reaction acts on). */
+enum {
+    RT_MBS_SIG_ENERGY = 0, /* "energy": kinetic + potential energy of the set [J] */
+    RT_MBS_SIG_KINETIC,    /* "kinetic" [J] */
+    RT_MBS_SIG_POTENTIAL,  /* "potential" [J] */
+    RT_MBS_SIG_RESIDUAL,   /* "residual": largest |g| of the set's constraints [m or 1] */
+    RT_MBS_SIG_RESIDUAL_V, /* "residual_v": largest |g'| [m/s or 1/s] */
+    RT_MBS_SIG_NSET,       /* (count) */
+    RT_MBS_SIG_JOINT = 16  /* first joint signal */
+};
+/* components of a joint signal: reaction force (inertial frame) and torque on node 1
+   from the last index-1 solve (refreshed at the step end when a scene records them), and
+   the multipliers lambda of the joint's rows (the tension for a spherical difference) */
+enum {
+    RT_MBS_JSIG_FX = 0, RT_MBS_JSIG_FY, RT_MBS_JSIG_FZ, /* "fx" "fy" "fz" [N] */
+    RT_MBS_JSIG_MX, RT_MBS_JSIG_MY, RT_MBS_JSIG_MZ,     /* "mx" "my" "mz" [N m] */
+    RT_MBS_JSIG_LAMBDA,                                 /* "lambda1".. per row */
+    RT_MBS_JSIG_COUNT = RT_MBS_JSIG_LAMBDA + RT_MBS_JOINT_NC_MAX
+};
+#define RT_MBS_SIG_JOINT_AT(j, c) ((uint16_t)(RT_MBS_SIG_JOINT + (j) * RT_MBS_JSIG_COUNT + (c)))
+
+/* ------------------------------------------------------------------ workspace */
+
+/* Workspace of the multibody services, in rt_sim. The tables are filled by init; the
+ * matrices are scratch of the set being evaluated (one set at a time), sized by the
+ * per-set limits RT_MAX_MBS_*. Index conventions: a set's velocities z are numbered
+ * block by block (zo), its constraint rows internal rows first (co), then joint rows
+ * (jrow). */
+typedef struct rt_mbs_work {
+    /* tables (init) */
+    uint16_t zo[RT_MAX_BLOCKS];     /* first velocity of each MBS block within its set */
+    uint16_t qo[RT_MAX_BLOCKS];     /* first coordinate of each MBS block within its set */
+    uint16_t mo[RT_MAX_BLOCKS];     /* first entry of its M factors in M */
+    uint16_t co[RT_MAX_BLOCKS];     /* first internal constraint row within its set */
+    uint16_t to[RT_MAX_BLOCKS + 1]; /* its touched rows: trow[to[b] .. to[b+1]) */
+    uint16_t trow[RT_MBS_MAX_TOUCH];/* constraint rows touching each block, ascending */
+    uint16_t jrow[RT_MAX_JOINTS];   /* first row of each joint within its set */
+    uint16_t nz[RT_MAX_SETS];       /* velocities of each set's MBS blocks */
+    uint16_t nq[RT_MAX_SETS];       /* coordinates of each set's MBS blocks */
+    uint16_t nc[RT_MAX_SETS];       /* constraint rows of each set */
+    uint8_t need_lambda;            /* the scene records joint reactions */
+
+    /* scratch of one set */
+    real_t M[RT_MAX_MBS_Z * RT_MAX_MBS_BZ];  /* LU factors of the diagonal blocks of M */
+    uint16_t Mpiv[RT_MAX_MBS_Z];             /* their row pivots (per block) */
+    real_t W[RT_MAX_MBS_C * RT_MAX_MBS_Z];   /* W = G K, nc x nz row-major (touched) */
+    real_t Y[RT_MAX_MBS_Z * RT_MAX_MBS_C];   /* M^-1 W^T, nz x nc row-major (touched) */
+    real_t A[RT_MAX_MBS_C * RT_MAX_MBS_C];   /* W M^-1 W^T, then its LU factors */
+    uint16_t Apiv[RT_MAX_MBS_C];             /* row pivots of A */
+    real_t a[RT_MAX_MBS_Z];                  /* forces k, then free accelerations M^-1 k */
+    real_t g[RT_MAX_MBS_C];                  /* g [m or 1] */
+    real_t gd[RT_MAX_MBS_C];                 /* g' */
+    real_t gam[RT_MAX_MBS_C];                /* acceleration term of eq. 7b */
+    real_t lam[RT_MAX_MBS_C];                /* multipliers, or projection corrections */
+    real_t dz[RT_MAX_MBS_Z];                 /* velocity-space correction */
+    real_t qt[RT_MAX_MBS_Q];                 /* predicted coordinates (projection) */
+    real_t J[2][6 * RT_MAX_MBS_BZ];          /* Jacobians of a joint's two nodes */
+    real_t jlam[RT_MAX_JOINTS * RT_MBS_JOINT_NC_MAX]; /* multipliers of each joint */
+
+    /* statistics (high-water marks for sizing and reports) */
+    real_t res_max;       /* largest |g| right after a projection */
+    uint32_t projections; /* projections done */
+} rt_mbs_work;
+
+/* ------------------------------------------------------------------ services */
+
+/* The multibody services a scene with MBS blocks names (rt_scene.mbs = &rt_mbs). */
+typedef struct rt_mbs_ops {
+    /* Called at the end of rt_init: checks joints, sizes and recorded MBS signals, builds
+       the tables, and projects the initial state (RT_STAB_PROJECT). Returns an rt_status. */
+    int (*init)(const struct rt_scene *sc, struct rt_sim *sim);
+    /* Fills q' and z' of the set's MBS blocks (index-1 system, eqs. 6a, 6b, 7b, 9) into
+       xdot (the set's slice). Called in every right-hand side, after all outputs. */
+    void (*accel)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
+                  real_t *xdot);
+    /* Post-stabilizing projection of the set's MBS state at time t (eq. 10), after every
+       step of the set when the scene's stab is RT_STAB_PROJECT. */
+    void (*project)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+    /* Value of the recorded signal {block, RT_SIG_MBS, index} at the current state. */
+    real_t (*signal)(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t block,
+                     uint16_t index);
+    /* Its name (without the block's), e.g. "energy" or "fx". */
+    const char *(*signal_name)(const struct rt_scene *sc, uint16_t block, uint16_t index);
+} rt_mbs_ops;
+
+/* The services of rt/mbs.c. */
+extern const rt_mbs_ops rt_mbs;
+
+/* ------------------------------------------------------------------ internal */
+
+/* Shared by rt/mbs*.c only (rt/mbs_asm.c defines them). What rti_mbs_assemble evaluates: */
+enum {
+    RTI_MBS_G = 0,     /* g and g' only */
+    RTI_MBS_JAC = 1,   /* also M (factored), W and gam */
+    RTI_MBS_FORCE = 2  /* also the free accelerations M^-1 k (needs RTI_MBS_JAC) */
+};
+/* Is block b an MBS block of set `set`? */
+int rti_mbs_in_set(const struct rt_scene *sc, uint16_t b, uint8_t set);
+/* Evaluates joint ji: its nodes (Jacobians into J1, J2 unless NULL) and its kind. */
+void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t ji, real_t t,
+                   rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2,
+                   rt_joint_eval *e);
+/* Evaluates the set's MBS blocks and joints at the current state into sim->mbs. */
+void rti_mbs_assemble(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
+                      int what);
+/* Forms Y = M^-1 W^T and A = W Y over the touched rows and factors A; a singular A is
+   counted (RT_CNT_SINGULAR) with the block of the offending row. */
+void rti_mbs_schur(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set);
+/* v (nc values) <- A^-1 v with the factors of rti_mbs_schur. */
+void rti_mbs_solve(struct rt_sim *sim, uint8_t set, real_t *v);
+/* dz = -Y v: the velocity-space correction of multipliers v. */
+void rti_mbs_correct(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set,
+                     const real_t *v, real_t *dz);
+/* The block owning constraint row `row` of the set (a joint's b1), or -1. */
+int rti_mbs_row_block(const struct rt_scene *sc, const struct rt_sim *sim, uint8_t set,
+                      uint16_t row);
+/* The index-1 solve at the current state: lambda into lam and jlam, and
+   z' = a + dz (free accelerations plus constraint part). */
+void rti_mbs_lambda(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+/* The accel service (see rt_mbs_ops) and the project service (rt/mbs_project.c). */
+void rti_mbs_accel(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
+                   real_t *xdot);
+void rti_mbs_project(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+
+#endif /* RT_MBS_H */

@@ -1,0 +1,81 @@
+/* rti.h - internal interfaces shared between the files of rt/ (prefix rti_).
+ * Applications include rt.h only. */
+#ifndef RTI_H
+#define RTI_H
+
+#include "rt.h"
+
+/* evaluation modes of the output sequence */
+typedef enum {
+    RTI_AT_TICK = 0, /* at a tick boundary: DSS blocks whose sample hits are called */
+    RTI_IN_STEP      /* inside a set step: DSS outputs are held, not called */
+} rti_mode;
+
+/* ---- text (util.c) ---- */
+/* Writes the NULL-terminated list of strings into sim->err and returns status. */
+rt_status rti_fail(rt_sim *sim, rt_status status, ...);
+/* Bumps counter c and remembers block b (-1: none); keeps the first fault in sim->status. */
+void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status);
+
+/* ---- layout and routing (init.c) ---- */
+/* Output index `j` of block `b` depends directly on its input `i`. */
+int rti_feeds(const rt_kind *k, uint16_t j, uint16_t i);
+
+/* ---- evaluation order (order.c) ---- */
+/* Builds sim->seq and sim->loops from the port-level throughput graph; RT_E_LOOP when an
+   actual loop is found (its blocks are in sim->loops). */
+rt_status rti_order(const rt_scene *sc, rt_sim *sim);
+
+/* ---- evaluation (eval.c) ---- */
+/* Fills an argument record for block b at time t. Always inline: the record holds
+   pointers into *sim, and GCC 12 (AArch64, -O1 and up) lost that escape in its summary
+   of an out-of-line version, deleting the input gathering before block calls as dead
+   stores (seen as wrong results under qemu-aarch64; x86-64 happened to inline it). */
+static inline void rti_args(const rt_scene *sc, const rt_sim *sim, uint16_t b, real_t t,
+                            real_t h, rt_args *a)
+{
+    a->t = t;
+    a->h = h;
+    a->x = sim->x + sim->x_off[b];
+    a->d = sim->d + sim->d_off[b];
+    a->u = sim->u + sim->u_off[b];
+    a->p = sim->p + sim->p_off[b];
+    a->spec = sc->blocks[b].kind->spec;
+}
+/* Gathers the inputs of block b from the outputs that feed them (y = P u). */
+void rti_gather(rt_sim *sim, uint16_t b);
+/* Calls the output equations of sequence entries [begin, end) (a loop segment). */
+void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, real_t t,
+                   rti_mode mode);
+/* Evaluates the output sequence at time t, solving actual loops on the way. */
+void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode);
+/* Root values of the blocks of set s at time t (outputs must be current) into r. */
+void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
+/* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
+rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
+
+typedef struct rti_rhs_ctx {
+    const rt_scene *sc;
+    rt_sim *sim;
+    uint8_t set;
+    real_t h;
+} rti_rhs_ctx;
+
+/* ---- set steps and events (step.c) ---- */
+/* Advances set s from t by its step h, handling state events; never stops half-way. */
+void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
+
+/* ---- graph search (scc.c) ---- */
+/* Successor enumeration: returns the next successor of v after cursor (updating it),
+   or -1 when v has no more. Cursors start at 0. */
+typedef int (*rti_next_fn)(const void *ctx, uint16_t v, uint32_t *cursor);
+
+typedef rt_scc_work rti_scc_work;
+
+/* Tarjan's strongly connected components over n nodes without recursion. Writes the
+   component id of each node into comp (components numbered in reverse topological order:
+   sinks first) and returns the number of components. */
+uint16_t rti_scc(uint16_t n, rti_next_fn next, const void *ctx, rti_scc_work *w,
+                 uint16_t *comp);
+
+#endif /* RTI_H */

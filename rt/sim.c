@@ -1,0 +1,156 @@
+/* sim.c - the tick: discrete updates at their sample hits, each set's step on its fixed
+ * schedule, outputs at the new time; plus recording and look-ups by name.
+ *
+ * Time is the integer tick count times the base step, never an accumulated sum, so
+ * t is the same bits after a million ticks on every target. */
+#include "rti.h"
+
+real_t rt_time(const rt_scene *sc, const rt_sim *sim)
+{
+    return (real_t)sim->tick * sc->dt;
+}
+
+/* the first block whose outputs are not finite, or -1 */
+static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t j = sim->y_off[b]; j < sim->y_off[b + 1]; j++)
+            if (!rt_isfinite(sim->y[j]))
+                return b;
+    return -1;
+}
+
+rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
+{
+    real_t t = rt_time(sc, sim);
+    rti_outputs(sc, sim, t, RTI_AT_TICK);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        rti_roots(sc, sim, s, t, sim->r + sim->set_r[s]);
+    return RT_OK;
+}
+
+/* x[k+1] = f(x[k], u[k]) for every DSS block whose sample hits at this tick (eq. 5) */
+static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->type != RT_KIND_DSS || sim->tick % sim->period[b] != 0)
+            continue;
+        real_t next[RT_MAX_D];
+        rt_args a;
+        rti_gather(sim, b);
+        rti_args(sc, sim, b, t, sc->dt * (real_t)sim->period[b], &a);
+        k->update(&a, next);
+        for (uint16_t i = 0; i < k->nd; i++)
+            sim->d[sim->d_off[b] + i] = next[i];
+    }
+}
+
+rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
+{
+    if (sim->tick >= sim->n_ticks)
+        return RT_E_DONE;
+    real_t t = rt_time(sc, sim);
+    discrete_updates(sc, sim, t);
+    /* fixed schedule: a set steps when the tick count is a multiple of its ratio */
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        uint32_t ratio = sc->sets[s].ratio;
+        if (sim->tick % ratio == 0)
+            rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
+    }
+    sim->tick++;
+    rt_refresh(sc, sim);
+    int bad = nonfinite_output(sc, sim);
+    if (bad >= 0)
+        rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);
+    return sim->tick >= sim->n_ticks ? RT_E_DONE : RT_OK;
+}
+
+real_t rt_rec_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
+{
+    const rt_rec *r = &sc->recs[i];
+    switch (r->what) {
+    case RT_SIG_X:
+        return sim->x[sim->x_off[r->block] + r->index];
+    case RT_SIG_D:
+        return sim->d[sim->d_off[r->block] + r->index];
+    case RT_SIG_MBS: /* energy, residuals, reactions (rt/mbs.c) */
+        return sc->mbs ? sc->mbs->signal(sc, sim, r->block, r->index) : 0;
+    default:
+        return sim->y[sim->y_off[r->block] + r->index];
+    }
+}
+
+const char *rt_rec_signal(const rt_scene *sc, uint16_t i)
+{
+    const rt_rec *r = &sc->recs[i];
+    const rt_kind *k = sc->blocks[r->block].kind;
+    if (r->what == RT_SIG_MBS)
+        return sc->mbs ? sc->mbs->signal_name(sc, r->block, r->index) : "?";
+    const char *const *names = r->what == RT_SIG_X ? k->x_names
+                             : r->what == RT_SIG_D ? k->d_names : k->y_names;
+    return names ? names[r->index] : "?";
+}
+
+void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
+{
+    sim->hash = rt_hash_real(sim->hash, rt_time(sc, sim));
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        real_t v = rt_rec_value(sc, sim, i);
+        if (out)
+            out[i] = v;
+        sim->hash = rt_hash_real(sim->hash, v);
+    }
+}
+
+int rt_block_index(const rt_scene *sc, const char *name)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        if (rt_streq(sc->blocks[b].name, name))
+            return b;
+    return -1;
+}
+
+/* index of name in a list of n names, or -1 */
+static int name_index(const char *const *names, uint16_t n, const char *name)
+{
+    for (uint16_t i = 0; names && i < n; i++)
+        if (rt_streq(names[i], name))
+            return i;
+    return -1;
+}
+
+int rt_param_index(const rt_kind *k, const char *name)
+{
+    return name_index(k->p_names, k->np, name);
+}
+
+rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const char *name,
+                       real_t value)
+{
+    int b = rt_block_index(sc, block);
+    if (b < 0)
+        return RT_E_ARG;
+    const rt_kind *k = sc->blocks[b].kind;
+    int i = rt_param_index(k, name);
+    if (i >= 0) {
+        real_t *p = sim->p + sim->p_off[b];
+        real_t old = p[i];
+        p[i] = value;
+        if (k->check && k->check(p, k->spec) != RT_OK) {
+            p[i] = old;
+            return RT_E_PARAM;
+        }
+        return RT_OK;
+    }
+    /* before the first tick, initial states can be set by name too */
+    if (sim->tick == 0 && (i = name_index(k->x_names, k->nx, name)) >= 0) {
+        sim->x[sim->x_off[b] + i] = value;
+        return RT_OK;
+    }
+    if (sim->tick == 0 && (i = name_index(k->d_names, k->nd, name)) >= 0) {
+        sim->d[sim->d_off[b] + i] = value;
+        return RT_OK;
+    }
+    return RT_E_ARG;
+}

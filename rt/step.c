@@ -1,0 +1,212 @@
+/* step.c - one step of one set: the integrator, then state events (the paper's roots).
+ *
+ * A root crossing found at the end of a step is located by the Illinois variant of
+ * regula falsi, re-stepping from the saved state to trial fractions of the step, at most
+ * RT_EVENT_ITER_MAX times. The block's event handler runs at the right end of the final
+ * bracket (just past the crossing, so the condition has definitely fired), and the step
+ * is finished from there. At most RT_EVENTS_PER_STEP_MAX events per step: the work of a
+ * tick stays bounded whatever the model does. */
+#include "rti.h"
+
+/* integrates the set from t by h in place, then post-stabilizes its multibody part
+   (eq. 10); a step that ended above its residual tolerance is counted as degraded */
+static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+{
+    rti_rhs_ctx ctx = {sc, sim, s, h};
+    rt_rhs f = {rti_rhs, &ctx};
+    rt_iwork w;
+    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    for (int i = 0; i < RT_MAX_STAGES; i++)
+        w.k[i] = sim->w.k[i];
+    w.x0 = sim->x0;
+    w.imp = &sim->imp[s];
+    w.stats = &sim->istats[s];
+    w.cfg = &sc->sets[s].implicit;
+    rt_status st = sc->sets[s].method->step(sc->sets[s].method, &f, t, h, sim->x + x0, n, &w);
+    if (st == RT_E_NOCONV)
+        rti_count(sim, RT_CNT_DEGRADED, -1, RT_E_NOCONV);
+    if (sc->mbs && sc->stab == RT_STAB_PROJECT)
+        sc->mbs->project(sc, sim, s, t + h);
+}
+
+/* does root i cross from ra to rb in its declared direction? */
+static int crossed(const rt_kind *k, uint16_t i, real_t ra, real_t rb)
+{
+    int dir = k->root_dir ? k->root_dir[i] : 0;
+    int down = ra > 0 && rb <= 0, up = ra < 0 && rb >= 0;
+    return dir < 0 ? down : dir > 0 ? up : (down || up);
+}
+
+/* first root of the set (in block order) crossing between ra and rb; -1 if none.
+   Writes the owning block into *blk and the root's index within it into *which. */
+static int find_crossing(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *ra,
+                         const real_t *rb, uint16_t *blk, uint16_t *which)
+{
+    uint16_t n = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nr == 0 || sc->blocks[b].set != s)
+            continue;
+        for (uint16_t i = 0; i < k->nr; i++, n++)
+            if (crossed(k, i, ra[n], rb[n])) {
+                *blk = b, *which = i;
+                return n;
+            }
+    }
+    (void)sim;
+    return -1;
+}
+
+/* state at fraction th of the step from the saved start state, with its roots in r */
+static void trial(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, real_t th,
+                  real_t *r)
+{
+    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    for (uint16_t i = 0; i < n; i++)
+        sim->x[x0 + i] = sim->xs[i];
+    integrate(sc, sim, s, t, th * h);
+    rti_outputs(sc, sim, t + th * h, RTI_IN_STEP);
+    rti_roots(sc, sim, s, t + th * h, r);
+}
+
+typedef struct bracket {
+    real_t a, b;   /* fractions of the step around the crossing */
+    real_t ra, rb; /* the located root's values there */
+    int root;      /* root index within the set */
+} bracket;
+
+/* narrows the bracket by Illinois regula falsi; leaves the state at its right end in xb */
+static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, bracket *k,
+                   const real_t *r_start)
+{
+    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    int side = 0;
+    uint32_t it = 0;
+    /* rb == 0: the right end sits exactly on the root, nothing left to narrow */
+    for (; it < RT_EVENT_ITER_MAX && k->b - k->a > RT_EVENT_TTOL && k->rb != 0; it++) {
+        real_t th = (k->a * k->rb - k->b * k->ra) / (k->rb - k->ra);
+        if (!(th > k->a && th < k->b))
+            th = (real_t)0.5 * (k->a + k->b);
+        /* keep the trial half a tolerance inside the bracket: once the secant sits on the
+           root, the next trial lands on the other side and the bracket collapses */
+        real_t guard = (real_t)0.5 * RT_EVENT_TTOL;
+        th = th < k->a + guard ? k->a + guard : th > k->b - guard ? k->b - guard : th;
+        trial(sc, sim, s, t, h, th, sim->rs);
+        uint16_t blk, which;
+        /* an earlier crossing of any root in [a, th] takes over the bracket */
+        int c = find_crossing(sc, sim, s, r_start, sim->rs, &blk, &which);
+        if (c >= 0) {
+            k->root = c, k->b = th, k->rb = sim->rs[c];
+            for (uint16_t i = 0; i < n; i++)
+                sim->xb[i] = sim->x[x0 + i];
+            k->ra = side == -1 ? k->ra * (real_t)0.5 : k->ra; /* Illinois */
+            side = -1;
+        } else {
+            k->a = th, k->ra = sim->rs[k->root];
+            k->rb = side == 1 ? k->rb * (real_t)0.5 : k->rb;
+            side = 1;
+        }
+    }
+    if (it > sim->event_iter_max)
+        sim->event_iter_max = it;
+    if (k->b - k->a > RT_EVENT_TTOL && k->rb != 0)
+        rti_count(sim, RT_CNT_EVENT_NOLOC, -1, RT_E_NOCONV);
+}
+
+/* runs the event handler of the located root at time te with the state in xb */
+static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, int root)
+{
+    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    uint16_t blk = 0, which = 0, m = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nr == 0 || sc->blocks[b].set != s)
+            continue;
+        if (root < m + k->nr) {
+            blk = b, which = (uint16_t)(root - m);
+            break;
+        }
+        m = (uint16_t)(m + k->nr);
+    }
+    for (uint16_t i = 0; i < n; i++)
+        sim->x[x0 + i] = sim->xb[i];
+    rti_outputs(sc, sim, te, RTI_IN_STEP);
+    rt_args a;
+    rti_gather(sim, blk);
+    rti_args(sc, sim, blk, te, 0, &a);
+    sc->blocks[blk].kind->event(&a, which, sim->x + sim->x_off[blk],
+                                sim->d + sim->d_off[blk]);
+    rti_count(sim, RT_CNT_EVENTS, blk, RT_OK);
+}
+
+/* sub-steps from t0 to t + h, locating and firing events on the way */
+static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+{
+    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    uint16_t nr = (uint16_t)(sim->set_r[s + 1] - sim->set_r[s]);
+    real_t *r = sim->r + sim->set_r[s];
+    real_t t0 = t, span = h;
+    for (int ev = 0;; ev++) {
+        for (uint16_t i = 0; i < n; i++)
+            sim->xs[i] = sim->x[x0 + i];
+        integrate(sc, sim, s, t0, span);
+        rti_outputs(sc, sim, t0 + span, RTI_IN_STEP);
+        rti_roots(sc, sim, s, t0 + span, sim->rs);
+        uint16_t blk, which;
+        int c = find_crossing(sc, sim, s, r, sim->rs, &blk, &which);
+        if (c < 0)
+            break;
+        if (ev >= RT_EVENTS_PER_STEP_MAX) {
+            rti_count(sim, RT_CNT_EVENT_LIMIT, blk, RT_E_EVENT);
+            break;
+        }
+        bracket k = {0, 1, r[c], sim->rs[c], c};
+        for (uint16_t i = 0; i < n; i++)
+            sim->xb[i] = sim->x[x0 + i];
+        locate(sc, sim, s, t0, span, &k, r);
+        real_t te = t0 + k.b * span;
+        fire(sc, sim, s, te, k.root);
+        /* the rest of the step starts from the handled state */
+        span = (t0 + span) - te;
+        t0 = te;
+        rti_outputs(sc, sim, t0, RTI_IN_STEP);
+        rti_roots(sc, sim, s, t0, r);
+        if (!(span > 0))
+            break;
+    }
+    for (uint16_t i = 0; i < nr; i++)
+        r[i] = sim->rs[i];
+}
+
+/* the first block of the set holding a non-finite state, or -1 */
+static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (sc->blocks[b].set != s)
+            continue;
+        for (uint16_t i = sim->x_off[b]; i < sim->x_off[b] + sc->blocks[b].kind->nx; i++)
+            if (!rt_isfinite(sim->x[i]))
+                return b;
+    }
+    return -1;
+}
+
+void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+{
+    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    if (sim->set_r[s + 1] > sim->set_r[s]) {
+        step_with_events(sc, sim, s, t, h);
+    } else {
+        for (uint16_t i = 0; i < n; i++)
+            sim->xs[i] = sim->x[x0 + i];
+        integrate(sc, sim, s, t, h);
+    }
+    /* a non-finite state is not propagated: the set keeps its state from before the step
+       (deterministic degradation) and the fault is counted with the block */
+    int bad = nonfinite_block(sc, sim, s);
+    if (bad >= 0) {
+        for (uint16_t i = 0; i < n; i++)
+            sim->x[x0 + i] = sim->xs[i];
+        rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);
+    }
+}

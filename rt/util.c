@@ -1,0 +1,80 @@
+/* util.c - status and counter names, the trace hash, and the few string helpers that
+ * freestanding code needs (no libc). */
+#include <stdarg.h>
+
+#include "rti.h"
+
+static const char *const status_text[] = {
+#define RT_X_TEXT(id, text) text,
+    RT_STATUS_LIST(RT_X_TEXT)
+#undef RT_X_TEXT
+};
+
+static const char *const counter_key[] = {
+#define RT_X_KEY(id, key, text) key,
+    RT_COUNTER_LIST(RT_X_KEY)
+#undef RT_X_KEY
+};
+
+const char *rt_status_name(rt_status s)
+{
+    return (unsigned)s < RT_STATUS_COUNT ? status_text[s] : "?";
+}
+
+const char *rt_counter_key(rt_counter c)
+{
+    return (unsigned)c < RT_CNT_COUNT ? counter_key[c] : "?";
+}
+
+int rt_streq(const char *a, const char *b)
+{
+    while (*a && *a == *b)
+        a++, b++;
+    return *a == *b;
+}
+
+rt_status rti_fail(rt_sim *sim, rt_status status, ...)
+{
+    va_list ap;
+    size_t n = 0;
+    va_start(ap, status);
+    for (const char *s; (s = va_arg(ap, const char *)) != 0;)
+        while (*s && n + 1 < RT_ERR_LEN)
+            sim->err[n++] = *s++;
+    va_end(ap);
+    sim->err[n] = 0;
+    return status;
+}
+
+const char *rt_error_text(const rt_sim *sim)
+{
+    return sim->err;
+}
+
+void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status)
+{
+    sim->count[c]++;
+    sim->last_block[c] = (int16_t)b;
+    if (sim->status == RT_OK)
+        sim->status = status;
+}
+
+/* FNV-1a over the bytes of the value's bit pattern, least significant byte first, so the
+   hash does not depend on the target's byte order */
+uint64_t rt_hash_real(uint64_t h, real_t v)
+{
+    union {
+        real_t r;
+#if RT_REAL_IS_FLOAT
+        uint32_t u;
+#else
+        uint64_t u;
+#endif
+    } bits;
+    bits.r = v;
+    for (unsigned i = 0; i < sizeof bits.u; i++) {
+        h ^= (uint64_t)((bits.u >> (8 * i)) & 0xFFu);
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}

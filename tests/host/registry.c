@@ -1,0 +1,8 @@
+/* registry.c - the host-only test tables (they use libm or stdio as references). */
+#include "harness.h"
+
+void test_rmath_libm(void);
+
+static const th_test rmath_libm_tests[] = {{"rmath_libm", test_rmath_libm}, {0, 0}};
+
+const th_test *const th_host[] = {rmath_libm_tests, 0};

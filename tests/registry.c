@@ -1,0 +1,21 @@
+/* registry.c - the portable test tables: everything here runs on the host and, unchanged,
+ * on bare-metal targets under QEMU. One table per test file. */
+#include "harness.h"
+
+extern const th_test th_integ_tests[], th_order_tests[], th_event_tests[], th_sim_tests[];
+extern const th_test th_scene_tests[], th_linalg_tests[], th_loop_tests[];
+
+void test_rmath_values(void);
+void test_rmath_identities(void);
+
+static const th_test rmath_tests[] = {
+    {"rmath_values", test_rmath_values},
+    {"rmath_identities", test_rmath_identities},
+    {0, 0},
+};
+
+const th_test *const th_portable[] = {
+    rmath_tests, th_integ_tests, th_order_tests, th_event_tests, th_sim_tests,
+    th_scene_tests, th_linalg_tests, th_loop_tests,
+    0,
+};

@@ -1,0 +1,156 @@
+/* test_sim.c - tests of rt/sim.c, rt/lss.c and rt/util.c: integer time, deterministic
+ * hashes, parameter setting, LSS against its closed form, NaN containment, and the
+ * X-macro lists. */
+#include "models.h"
+#include "scenes/scenes.h"
+#include "testutil.h"
+
+/* hash of a whole oscillator run, after optionally nudging omega by one bit */
+static uint64_t run_hash(int nudge)
+{
+    const rt_scene *sc = &mdl_scene_oscillator;
+    rt_scene short_sc = *sc;
+    short_sc.t_end = 1;
+    if (!tu_init(&short_sc))
+        return 0;
+    if (nudge) {
+        union { real_t r; uint64_t u; } w;
+        w.u = 0;
+        w.r = tu_sim.p[0];
+        w.u ^= 1; /* the least significant mantissa bit */
+        TH_CHECK(rt_set_param(&short_sc, &tu_sim, "Osc", "omega", w.r) == RT_OK);
+        rt_refresh(&short_sc, &tu_sim);
+    }
+    rt_record(&short_sc, &tu_sim, 0);
+    while (rt_tick(&short_sc, &tu_sim) == RT_OK)
+        rt_record(&short_sc, &tu_sim, 0);
+    rt_record(&short_sc, &tu_sim, 0);
+    return tu_sim.hash;
+}
+
+static void test_hash_determinism(void)
+{
+    uint64_t a = run_hash(0), b = run_hash(0), c = run_hash(1);
+    TH_EQ_U64(a, b);
+    TH_CHECK(a != c);
+    /* the hash of one value: FNV-1a over 8 (or 4) bytes, independently folded here */
+    uint64_t h = RT_HASH_INIT;
+    union { real_t r; uint64_t u; } one;
+    one.u = 0;
+    one.r = 1;
+    for (unsigned i = 0; i < sizeof(real_t); i++)
+        h = (h ^ ((one.u >> (8 * i)) & 0xFF)) * 0x100000001b3ull;
+    TH_EQ_U64(rt_hash_real(RT_HASH_INIT, 1), h);
+}
+
+/* t is tick * dt: after 10^6 ticks of 1 ms it is exactly the product, not a sum */
+static void test_integer_time(void)
+{
+    static const rt_block bl[] = {{.name = "S", .kind = &mdl_step_kind}};
+    static const rt_set set[] = {{.name = "s", .method = &rt_euler, .ratio = 1}};
+    rt_scene sc = {.name = "clock", .dt = (real_t)1e-3, .t_end = 1000, .blocks = bl,
+                   .nblocks = 1, .sets = set, .nsets = 1};
+    if (!tu_init(&sc))
+        return;
+    TH_CHECK(tu_sim.n_ticks == 1000000);
+    tu_sim.tick = 999999;
+    TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE);
+    TH_CHECK(rt_time(&sc, &tu_sim) == (real_t)1000000 * (real_t)1e-3);
+    TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE && tu_sim.tick == 1000000);
+}
+
+static void test_set_param(void)
+{
+    const rt_scene *sc = &mdl_scene_pi_loop;
+    if (!tu_init(sc))
+        return;
+    TH_CHECK(rt_set_param(sc, &tu_sim, "Plant", "T", (real_t)0.25) == RT_OK);
+    TH_CHECK(rt_set_param(sc, &tu_sim, "Plant", "T", -1) == RT_E_PARAM);
+    TH_NEAR(tu_sim.p[tu_sim.p_off[2] + 1], 0.25, 0); /* the bad value was not kept */
+    TH_CHECK(rt_set_param(sc, &tu_sim, "Plant", "nope", 1) == RT_E_ARG);
+    TH_CHECK(rt_set_param(sc, &tu_sim, "Nobody", "T", 1) == RT_E_ARG);
+    TH_CHECK(rt_set_param(sc, &tu_sim, "Plant", "y", 2) == RT_OK); /* initial state */
+    TH_NEAR(tu_sim.x[0], 2, 0);
+}
+
+/* an LSS oscillator x' = v, v' = -w^2 x gives cos(w t) like the NSS one */
+static const real_t lss_A[] = {0, 1, -(real_t)(4 * RT_PI * RT_PI), 0};
+static const real_t lss_C[] = {1, 0};
+static const rt_lss_spec lss_spec = {.nx = 2, .nu = 0, .ny = 1, .A = lss_A, .C = lss_C};
+static const char *const lss_x[] = {"x", "v"};
+static const real_t lss_x0[] = {1, 0};
+static const rt_kind lss_osc = {
+    .name = "lss_osc", .type = RT_KIND_LSS, .ny = 1, .nx = 2,
+    .y_names = lss_x, .x_names = lss_x, .x_default = lss_x0, .feed = RT_FEED_NONE,
+    .output = rt_lss_output, .deriv = rt_lss_deriv, .spec = &lss_spec,
+};
+
+static void test_lss(void)
+{
+    static const rt_block bl[] = {{.name = "L", .kind = &lss_osc}};
+    static const rt_set set[] = {{.name = "s", .method = &rt_rk4, .ratio = 1}};
+    rt_scene sc = {.name = "lss", .dt = (real_t)1e-3, .t_end = (real_t)2.25, .blocks = bl,
+                   .nblocks = 1, .sets = set, .nsets = 1};
+    if (!tu_init(&sc))
+        return;
+    while (rt_tick(&sc, &tu_sim) == RT_OK)
+        ;
+    /* x(2.25) = cos(4.5 pi) = 0, v(2.25) = -2 pi sin(4.5 pi) = -2 pi */
+    double tol = RT_REAL_IS_FLOAT ? 2e-3 : 1e-9;
+    TH_NEAR(tu_y(&sc, "L", 0), 0, tol);
+    TH_NEAR(tu_sim.x[1], -2 * RT_PI, tol * 10);
+}
+
+/* a derivative that turns NaN at t > 0.5: the tick completes, the state is held, the
+   fault is counted with its block */
+static const char *const nan_names[] = {"x"};
+static void nan_deriv(const rt_args *a, real_t *xdot)
+{
+    real_t zero = 0;
+    xdot[0] = a->t > (real_t)0.5 ? zero / zero : 1;
+}
+static void nan_out(const rt_args *a, real_t *y) { y[0] = a->x[0]; }
+static const rt_kind nan_kind = {
+    .name = "nan", .type = RT_KIND_NSS, .ny = 1, .nx = 1, .y_names = nan_names,
+    .x_names = nan_names, .feed = RT_FEED_NONE, .output = nan_out, .deriv = nan_deriv,
+};
+
+static void test_nan_contained(void)
+{
+    static const rt_block bl[] = {{.name = "Ok", .kind = &mdl_oscillator_kind},
+                                  {.name = "Bad", .kind = &nan_kind}};
+    static const rt_set set[] = {{.name = "s", .method = &rt_rk4, .ratio = 1}};
+    rt_scene sc = {.name = "nan", .dt = (real_t)0.01, .t_end = 1, .blocks = bl,
+                   .nblocks = 2, .sets = set, .nsets = 1};
+    if (!tu_init(&sc))
+        return;
+    while (rt_tick(&sc, &tu_sim) == RT_OK)
+        ;
+    TH_CHECK(tu_sim.tick == 100);
+    TH_CHECK(tu_sim.status == RT_E_NAN && tu_sim.count[RT_CNT_NAN] > 0);
+    TH_CHECK(tu_sim.last_block[RT_CNT_NAN] == 1);
+    TH_CHECK(rt_isfinite(tu_sim.x[0]) && rt_isfinite(tu_sim.x[2]));
+    TH_NEAR(tu_sim.x[2], 0.5, 0.02); /* held near where it went bad */
+}
+
+/* every status and counter has a name, and out-of-range values are safe */
+static void test_lists(void)
+{
+    for (int s = 0; s < RT_STATUS_COUNT; s++)
+        TH_CHECK(rt_status_name((rt_status)s)[0] != '?');
+    for (int c = 0; c < RT_CNT_COUNT; c++)
+        TH_CHECK(rt_counter_key((rt_counter)c)[0] != '?');
+    TH_CHECK(rt_status_name(RT_STATUS_COUNT)[0] == '?');
+    TH_CHECK(rt_counter_key(RT_CNT_COUNT)[0] == '?');
+    TH_CHECK(rt_streq(rt_status_name(RT_OK), "ok"));
+}
+
+const th_test th_sim_tests[] = {
+    {"sim_hash_determinism", test_hash_determinism},
+    {"sim_integer_time", test_integer_time},
+    {"sim_set_param", test_set_param},
+    {"sim_lss", test_lss},
+    {"sim_nan_contained", test_nan_contained},
+    {"sim_lists", test_lists},
+    {0, 0},
+};

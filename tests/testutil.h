@@ -1,0 +1,19 @@
+/* testutil.h - helpers shared by the tests: run a scene to a time, read a recorded
+ * signal, and one static simulator (the runtime's storage is the caller's). */
+#ifndef TU_TESTUTIL_H
+#define TU_TESTUTIL_H
+
+#include "harness.h"
+#include "rt.h"
+
+/* one simulator for all tests (large: it holds every static limit) */
+extern rt_sim tu_sim;
+
+/* Initialises sc into tu_sim and checks it returned RT_OK. */
+int tu_init(const rt_scene *sc);
+/* Ticks until time t (rounded to ticks) or the end; returns the last status. */
+rt_status tu_run_to(const rt_scene *sc, real_t t);
+/* Value of output j of the named block at the current state. */
+real_t tu_y(const rt_scene *sc, const char *block, uint16_t j);
+
+#endif /* TU_TESTUTIL_H */
