@@ -44,7 +44,8 @@ RT_OBJS    := $(call obj,$(RT_SRCS))
 MODEL_OBJS := $(call obj,$(MODEL_SRCS))
 
 .PHONY: all help test unit demo bench check-freestanding cross-test footprint clean \
-        $(addprefix cross-test-,$(CROSS_TARGETS)) $(addprefix check-target-,$(CROSS_TARGETS))
+        $(addprefix cross-test-,$(CROSS_TARGETS)) $(addprefix check-target-,$(CROSS_TARGETS)) \
+        foot-elf
 
 all: $(O)/modrt $(O)/svgplot
 
@@ -151,6 +152,29 @@ cross-test:
 	  else skipped="$$skipped $$t"; fi; done; \
 	echo "cross-test: ran:$${ran:- none}; skipped (toolchain or QEMU missing):$${skipped:- none}"
 $(foreach t,$(CROSS_TARGETS),$(eval check-target-$(t): ; @$$(TARGET_CHECK_$(t))))
+
+# ---- footprint: one image per scene and target, sized by `modrt sizes` ----
+FOOT_TARGETS := m3 m4f m7 rv32 rv64
+# everything but the registries: a scene names its kinds and methods directly
+FOOT_SRCS = tests/cross/footprint_main.c tests/harness.c \
+            $(filter-out rt/registry.c,$(RT_SRCS)) \
+            $(filter-out models/registry.c models/scenes/%,$(MODEL_SRCS))
+footprint: build/host/modrt $(INSN_COUNT_SO)
+	sh tools/footprint.sh "$(FOOT_TARGETS)" > docs/footprint.md
+	@echo "footprint: wrote docs/footprint.md"
+# one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes)
+FOOT_TICKS ?= 1000
+foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
+	@mkdir -p build/foot/$(T)
+	@$(TARGET_CC_$(T)) $(CROSS_CFLAGS) $(TARGET_CFLAGS_$(T)) $(shell build/host/modrt sizes $(S)) \
+	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) models/scenes/$(S).c \
+	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)/$(S).elf
+$(INSN_COUNT_SO): $(INSN_COUNT_SRC)
+	@mkdir -p $(dir $@)
+	$(INSN_COUNT_CC) $(INSN_COUNT_CFLAGS) -o $@ $<
+# prints a make variable (used by tools/footprint.sh)
+print-%:
+	@echo '$($*)'
 
 # ---- demo ----
 DEMO_SCENE ?= vanderpol

@@ -211,6 +211,8 @@ static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
     }
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         const rt_rec *r = &sc->recs[i];
+        if (r->what == RT_SIG_MBS)
+            continue; /* multibody signals are checked by the MBS services' init */
         const rt_kind *k = r->block < sc->nblocks ? sc->blocks[r->block].kind : 0;
         uint16_t n = !k ? 0 : r->what == RT_SIG_Y ? k->ny : r->what == RT_SIG_X ? k->nx : k->nd;
         if (r->index >= n)

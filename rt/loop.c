@@ -102,9 +102,11 @@ static void broyden_update(uint16_t n, real_t *H, const real_t *s, const real_t 
 }
 
 /* one Newton-Broyden step from w with residual f; returns 0 (and restores w and the
-   segment's outputs) if the trial point gave non-finite values */
+   segment's outputs) if the trial point gave non-finite values. A step that lands within
+   the tolerance leaves H as it is: its secant is mostly roundoff, and updating with it
+   would slowly spoil an inverse that is already good (seen in single precision). */
 static int newton_step(const solve_ctx *c, real_t *H, real_t *f, real_t *fn, real_t *s,
-                       real_t *scratch)
+                       real_t *scratch, real_t tol)
 {
     uint16_t n = c->n;
     for (uint16_t i = 0; i < n; i++) {
@@ -118,6 +120,11 @@ static int newton_step(const solve_ctx *c, real_t *H, real_t *f, real_t *fn, rea
             c->w[i] -= s[i];
         residual(c, f);
         return 0;
+    }
+    if (scaled_norm(c, fn) <= tol) {
+        for (uint16_t i = 0; i < n; i++)
+            f[i] = fn[i];
+        return 1;
     }
     for (uint16_t i = 0; i < n; i++)
         fn[i] -= f[i]; /* y = F(w + s) - F(w) */
@@ -145,7 +152,7 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
         ok = residual(&c, f); /* the difference steps left the segment at w + d e_n */
     }
     while (ok && scaled_norm(&c, f) > tol && it < max) {
-        ok = newton_step(&c, H, f, fn, s, scratch);
+        ok = newton_step(&c, H, f, fn, s, scratch, tol);
         it++;
     }
     sim->loop_hist[it]++;

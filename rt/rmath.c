@@ -469,7 +469,8 @@ static int32_t exp_core(double hi, double lo, double *a, double *b)
     two_sum(rh, rl + lo, &rh, &rl); /* fold in lo (pow's tail can exceed ulp(rh)) */
     int32_t j = (int32_t)((uint32_t)n & 31u), k = (n - j) / 32;
     /* e^rh - 1 - rh, Taylor to degree 7: the next term is below 2^-67 */
-    double q = rh * rh * (0.5 + rh * (1.0 / 6 + rh * (1.0 / 24 + rh * (1.0 / 120 + rh * (1.0 / 720 + rh * (1.0 / 5040))))));
+    double q = rh * rh * (0.5 + rh * (1.0 / 6 + rh * (1.0 / 24 + rh * (1.0 / 120
+                        + rh * (1.0 / 720 + rh * (1.0 / 5040))))));
     double th = EXP2_T[j][0], tl = EXP2_T[j][1];
     /* T e^(rh + rl) = T (1 + rh + q + rl (1 + rh)), T rh exact, small terms summed last */
     two_prod(th, rh, &ph, &pe);
@@ -583,7 +584,8 @@ static void log_dd(double x, double *hi, double *lo)
     two_prod(uh, F, &p, &pe);
     double ul = ((f - p) - pe) / F;
     two_prod(uh, uh, &q, &qe);
-    double poly = uh * q * (1.0 / 3 - uh * (0.25 - uh * (0.2 - uh * (1.0 / 6 - uh * (1.0 / 7 - uh * (0.125 - uh * (1.0 / 9 - uh * 0.1)))))));
+    double poly = uh * q * (1.0 / 3 - uh * (0.25 - uh * (0.2 - uh * (1.0 / 6
+                            - uh * (1.0 / 7 - uh * (0.125 - uh * (1.0 / 9 - uh * 0.1)))))));
     /* sum the large terms exactly, collect every error term in l */
     double s, e1, e2, e3;
     two_sum((double)k * LN2_HI, LOG_T[i - 91][0], &s, &e1);
@@ -709,7 +711,8 @@ static void atan_core(double vh, double vl, double *hi, double *lo)
     two_prod(th, dh, &q, &qe);
     double tl = (((nh - q) - qe) + nl - th * dl) / dh;
     double z = th * th;
-    double poly = th * z * (1.0 / 3 - z * (0.2 - z * (1.0 / 7 - z * (1.0 / 9 - z * (1.0 / 11)))));
+    double poly = th * z * (1.0 / 3 - z * (0.2 - z * (1.0 / 7 - z * (1.0 / 9
+                            - z * (1.0 / 11)))));
     double s, e;
     two_sum(ATAN_T[i][0], th, &s, &e);
     fast_two_sum(s, e + ATAN_T[i][1] + ((tl - tl * z) - poly), hi, lo);
@@ -841,7 +844,8 @@ static double tanh_d(double x)
     } else if (ax < 0.0625) {
         /* Taylor to x^13, the next term is below 2^-65 x */
         double z = x * x;
-        h = ax + ax * z * (-1.0 / 3 + z * (2.0 / 15 + z * (-17.0 / 315 + z * (62.0 / 2835 + z * (-1382.0 / 155925 + z * (21844.0 / 6081075))))));
+        h = ax + ax * z * (-1.0 / 3 + z * (2.0 / 15 + z * (-17.0 / 315 + z * (62.0 / 2835
+                           + z * (-1382.0 / 155925 + z * (21844.0 / 6081075))))));
     } else {
         /* E = e^2|x| in dd, then (E - 1) / (E + 1): no cancellation left for |x| >= 1/16 */
         double a, b, eh, el, nh, nl, dh, dl;

@@ -169,7 +169,7 @@ typedef struct rt_implicit_ws {
 
 /* Statistics an implicit method reports per set (high-water marks for sizing). */
 typedef struct rt_istats {
-    uint32_t newton_iter_max; /* most Newton iterations in one step */
+    uint32_t newton_iter_max; /* most Newton iterations in one step (all stages) */
     uint32_t jac_evals;       /* Jacobian refreshes */
     uint32_t degraded;        /* steps ended with residual above tolerance */
     real_t last_residual;     /* residual norm after the last iteration */
@@ -179,7 +179,8 @@ typedef struct rt_istats {
 typedef struct rt_implicit_cfg {
     uint8_t newton_max;       /* Newton iterations per stage (default 4) */
     uint16_t jac_every;       /* refresh the Jacobian every N steps (default 1) */
-    real_t tol;               /* residual tolerance, scaled norm (default 1e-8) */
+    real_t tol;               /* residual tolerance, scaled norm (default 1e-8;
+                                 1e-5 with RT_REAL_FLOAT) */
 } rt_implicit_cfg;
 
 /* Workspace an integrator may use for one step of one set (carved from rt_sim). */
@@ -195,7 +196,7 @@ typedef struct rt_iwork {
 typedef struct rt_integrator {
     const char *name;  /* e.g. "rk4" */
     uint8_t order;     /* classical order of convergence */
-    uint8_t stages;    /* right-hand-side evaluations per step (explicit methods) */
+    uint8_t stages;    /* stages per step (explicit: right-hand-side evaluations) */
     uint8_t implicit;  /* 1: needs rt_iwork.imp (n <= RT_MAX_IMPLICIT_N) */
     /* Advances x (n values) from t to t+h in place. Returns RT_OK, RT_E_NOCONV when the
        step ended with a residual above tolerance (counted as degraded), or the first

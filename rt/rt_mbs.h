@@ -50,7 +50,8 @@ struct rt_args;
 #define RT_MBS_MAX_TOUCH (2 * RT_MAX_MBS_C * RT_MAX_SETS)
 
 #if RT_MAX_MBS_C * RT_MAX_MBS_Z > 65535 || RT_MAX_MBS_Z * RT_MAX_MBS_BZ > 65535
-#error "rt_mbs_work indexes its matrices with 16-bit integers: keep RT_MAX_MBS_C * RT_MAX_MBS_Z and RT_MAX_MBS_Z * RT_MAX_MBS_BZ below 65536."
+#error "rt_mbs_work indexes its matrices with 16-bit integers: keep RT_MAX_MBS_C * \
+RT_MAX_MBS_Z and RT_MAX_MBS_Z * RT_MAX_MBS_BZ below 65536."
 #endif
 
 /* ------------------------------------------------------------------ nodes */

@@ -25,6 +25,8 @@ static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
     rt_status st = sc->sets[s].method->step(sc->sets[s].method, &f, t, h, sim->x + x0, n, &w);
     if (st == RT_E_NOCONV)
         rti_count(sim, RT_CNT_DEGRADED, -1, RT_E_NOCONV);
+    else if (st == RT_E_SINGULAR)
+        rti_count(sim, RT_CNT_SINGULAR, -1, RT_E_SINGULAR);
     if (sc->mbs && sc->stab == RT_STAB_PROJECT)
         sc->mbs->project(sc, sim, s, t + h);
 }

@@ -7,5 +7,6 @@ const rt_scene_entry mdl_scenes[] = {
     {"pi_loop", &mdl_scene_pi_loop},
     {"bouncing_ball", &mdl_scene_bouncing_ball},
     {"beltgear", &mdl_scene_beltgear},
+    {"pendulum10", &mdl_scene_pendulum10},
     {0, 0},
 };

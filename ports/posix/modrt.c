@@ -16,7 +16,7 @@ static rt_sim sim; /* the caller owns the runtime's storage */
 
 static int usage(void)
 {
-    fputs("modrt: usage: modrt list | info SCENE | run SCENE [--t-end S] [--csv FILE|-] "
+    fputs("modrt: usage: modrt list | info SCENE | sizes SCENE | run SCENE [--t-end S] [--csv FILE|-] "
           "[--every N] [--set BLOCK.PARAM=VALUE]... [--realtime]\n",
           stderr);
     return 2;
@@ -269,8 +269,41 @@ static int cmd_run(int argc, char **argv)
     return sim.status == RT_OK ? 0 : 1;
 }
 
+static unsigned at_least_1(unsigned n) { return n ? n : 1; }
+
+/* the compile-time limits that fit this scene exactly, as -D flags for a per-scene build
+   (multibody limits stay at their defaults: their workspace is sized per set) */
+static int cmd_sizes(const char *name)
+{
+    const rt_scene *sc = find_scene(name);
+    if (!sc)
+        return fail("unknown scene", name);
+    rt_status st = rt_init(sc, &sim);
+    if (st != RT_OK)
+        return fail(rt_status_name(st), rt_error_text(&sim));
+    unsigned implicit = 1;
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (sc->sets[s].method->implicit && (unsigned)(sim.set_x[s + 1] - sim.set_x[s]) > implicit)
+            implicit = sim.set_x[s + 1] - sim.set_x[s];
+    uint16_t nb = sc->nblocks;
+    printf("-DRT_MAX_BLOCKS=%u -DRT_MAX_X=%u -DRT_MAX_D=%u -DRT_MAX_U=%u -DRT_MAX_Y=%u "
+           "-DRT_MAX_P=%u -DRT_MAX_ROOTS=%u -DRT_MAX_SETS=%u -DRT_MAX_REC=%u "
+           "-DRT_MAX_LOOPS=%u -DRT_MAX_TORN=%u -DRT_MAX_IMPLICIT_N=%u",
+           at_least_1(nb), at_least_1(sim.x_off[nb]), at_least_1(sim.d_off[nb]),
+           at_least_1(sim.u_off[nb]), at_least_1(sim.y_off[nb]), at_least_1(sim.p_off[nb]),
+           at_least_1(sim.set_r[sc->nsets]), at_least_1(sc->nsets), at_least_1(sc->nrecs),
+           at_least_1(sim.nloops), at_least_1(sim.ntorn), implicit);
+    if (!sc->mbs)
+        printf(" -DRT_MAX_JOINTS=1 -DRT_MAX_MBS_Z=1 -DRT_MAX_MBS_Q=1 -DRT_MAX_MBS_C=1 "
+               "-DRT_MAX_MBS_BZ=1");
+    putchar('\n');
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 3 && strcmp(argv[1], "sizes") == 0)
+        return cmd_sizes(argv[2]);
     if (argc >= 2 && strcmp(argv[1], "list") == 0 && argc == 2)
         return cmd_list();
     if (argc == 3 && strcmp(argv[1], "info") == 0)

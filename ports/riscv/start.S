@@ -33,7 +33,7 @@
 #define FREGBYTES 4
 #endif
 
-    .section .text.init, "ax", @progbits
+    .section .boot, "ax", @progbits  /* not .text.<name>: -ffunction-sections cannot collide */
     .globl _start
     .type _start, @function
 _start:

@@ -287,7 +287,8 @@ static void check_symmetry_and_pythagoras(void)
         real_t s = rt_sin(x), c = rt_cos(x), t = rt_tan(x);
         if (rt_sin(-x) != -s || rt_cos(-x) != c || rt_tan(-x) != -t) bad_sym++;
         if (dabs((double)s * s + (double)c * c - 1.0) > 3 * EPS) bad_pyth++;
-        if (dabs((double)c) > 0.1 && dabs((double)t - (double)s / c) > 3 * EPS * dabs((double)t)) bad_tan++;
+        if (dabs((double)c) > 0.1 && dabs((double)t - (double)s / c) > 3 * EPS * dabs((double)t))
+            bad_tan++;
         /* cos x = sin(x + pi/2) at small x, where x + pi/2 rounds by at most one ulp */
         if (i < 500) {
             real_t y = x + (real_t)RT_HALF_PI;
@@ -309,7 +310,8 @@ static void check_inverses(void)
         real_t x = uni(-1.0, 1.0), ax = rt_fabs(x);
         if (dabs((double)rt_asin(rt_sin(x)) - x) > 3 * EPS * ax) bad_asin++;
         real_t y = uni(0.1, 3.0); /* acos'(cos y) = -1/sin y */
-        if (dabs((double)rt_acos(rt_cos(y)) - y) > (1 / (double)rt_sin(y) + 2 * y) * EPS) bad_acos++;
+        if (dabs((double)rt_acos(rt_cos(y)) - y) > (1 / (double)rt_sin(y) + 2 * y) * EPS)
+            bad_acos++;
         real_t u = uni(-1.5, 1.5);
         if (dabs((double)rt_atan(rt_tan(u)) - u) > 3 * EPS * dabs((double)u)) bad_atan++;
         real_t th = uni(-3.1, 3.1), r = uni(0.001, 1000);
@@ -341,7 +343,9 @@ static void check_exp_log_pow(void)
         if (dabs(ab - rt_exp(a + b)) > (3 + dabs(sum)) * EPS * ab) bad_add++;
         real_t px = uni(0.01, 100), py = uni(-5, 5);
         if (dabs((double)rt_pow(px, py) * rt_pow(px, -py) - 1) > 3 * EPS) bad_pow++;
-        if (rt_pow(px, 2) != px * px || rt_pow(px, -1) != 1 / px || rt_pow(px, (real_t)0.5) != rt_sqrt(px)) bad_int++;
+        if (rt_pow(px, 2) != px * px || rt_pow(px, -1) != 1 / px ||
+            rt_pow(px, (real_t)0.5) != rt_sqrt(px))
+            bad_int++;
         real_t p3 = px * px * px; /* two roundings: within 1.5 ulp of x^3 */
         if (dabs((double)rt_pow(-px, 3) + p3) > 2 * EPS * p3) bad_recip++;
         real_t h = uni(0.5, 10), e2 = rt_exp(2 * h);

@@ -1,0 +1,215 @@
+/* mbs_body.c - a spatial rigid body as a multibody module (eq. 6): coordinates
+ * q = [r (3), p (4)] with p a unit quaternion (scalar first) of the body-to-inertial
+ * rotation R(p), velocities z = [v (3, inertial), w (3, body frame)]. Free of
+ * singularities: the quaternion enters only through K,
+ *     r' = v,  p' = 1/2 p (x) (0, w)                      (eq. 6a, K(q) 7 x 6, b = 0)
+ * and K keeps |p| constant up to the integrator's error; the projection renormalizes it.
+ * M = diag(m I, J) is constant; k = [m g + f, -w x J w + tau] (eq. 6b).
+ * Three interaction nodes with node frame = body frame: "cm" at the centre of mass, "n1"
+ * and "n2" at body-frame offsets given as parameters.
+ * Parameters: m [kg], the inertia tensor about the centre of mass in the body frame Jxx,
+ * Jyy, Jzz, Jxy, Jyz, Jxz [kg m^2] (tensor entries), gravity gx, gy, gz [m/s^2], node
+ * offsets n1x.. n2z [m]. Two kinds: mbs_body (gravity only) and mbs_bodyf (inputs: force
+ * fx, fy, fz [N] at the centre of mass, inertial frame; torque tx, ty, tz [N m], body
+ * frame). Outputs: position, velocity, body angular velocity. */
+#include "models.h"
+
+enum { P_M = 0, P_J = 1, P_G = 7, P_N1 = 10, P_N2 = 13, NP = 16 };
+
+static const char *const x_names[] = {"x", "y", "z", "p0", "p1", "p2", "p3",
+                                      "vx", "vy", "vz", "wx", "wy", "wz"};
+static const char *const y_names[] = {"x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz"};
+static const char *const p_names[] = {"m", "Jxx", "Jyy", "Jzz", "Jxy", "Jyz", "Jxz",
+                                      "gx", "gy", "gz", "n1x", "n1y", "n1z",
+                                      "n2x", "n2y", "n2z"};
+static const char *const u_names[] = {"fx", "fy", "fz", "tx", "ty", "tz"};
+static const char *const node_names[] = {"cm", "n1", "n2"};
+static const real_t p_default[NP] = {1, (real_t)0.1, (real_t)0.1, (real_t)0.1, 0, 0, 0,
+                                     0, 0, (real_t)-9.81, 0, 0, 0, 0, 0, 0};
+static const real_t x_default[13] = {0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+
+static void cross3(const real_t *a, const real_t *b, real_t *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* y = A x for a row-major 3 x 3 A */
+static void mul3(const real_t *A, const real_t *x, real_t *y)
+{
+    for (int i = 0; i < 3; i++)
+        y[i] = A[3 * i] * x[0] + A[3 * i + 1] * x[1] + A[3 * i + 2] * x[2];
+}
+
+/* the symmetric inertia tensor from its six parameters */
+static void inertia(const real_t *p, real_t *J)
+{
+    const real_t *j = p + P_J;
+    J[0] = j[0], J[4] = j[1], J[8] = j[2];
+    J[1] = J[3] = j[3];
+    J[5] = J[7] = j[4];
+    J[2] = J[6] = j[5];
+}
+
+/* R(p / |p|), row-major; a zero quaternion reads as the identity (finite, deterministic) */
+static void rotation(const real_t *q, real_t *R)
+{
+    real_t n = rt_sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    real_t a = 1, b = 0, c = 0, d = 0;
+    if (n > 0)
+        a = q[0] / n, b = q[1] / n, c = q[2] / n, d = q[3] / n;
+    R[0] = 1 - 2 * (c * c + d * d), R[1] = 2 * (b * c - a * d), R[2] = 2 * (b * d + a * c);
+    R[3] = 2 * (b * c + a * d), R[4] = 1 - 2 * (b * b + d * d), R[5] = 2 * (c * d - a * b);
+    R[6] = 2 * (b * d - a * c), R[7] = 2 * (c * d + a * b), R[8] = 1 - 2 * (b * b + c * c);
+}
+
+/* r' = v, p' = 1/2 p (x) (0, w): the K of eq. 6a applied to v = [v; w] */
+static void kin(const rt_args *a, const real_t *v, real_t *qd)
+{
+    const real_t *p = a->x + 3, *w = v + 3;
+    qd[0] = v[0], qd[1] = v[1], qd[2] = v[2];
+    qd[3] = (real_t)-0.5 * (p[1] * w[0] + p[2] * w[1] + p[3] * w[2]);
+    qd[4] = (real_t)0.5 * (p[0] * w[0] + p[2] * w[2] - p[3] * w[1]);
+    qd[5] = (real_t)0.5 * (p[0] * w[1] + p[3] * w[0] - p[1] * w[2]);
+    qd[6] = (real_t)0.5 * (p[0] * w[2] + p[1] * w[1] - p[2] * w[0]);
+}
+
+/* M = diag(m I, J), 6 x 6 */
+static void mass(const rt_args *a, real_t *M)
+{
+    real_t J[9];
+    inertia(a->p, J);
+    for (int i = 0; i < 36; i++)
+        M[i] = 0;
+    for (int i = 0; i < 3; i++) {
+        M[7 * i] = a->p[P_M];
+        for (int k = 0; k < 3; k++)
+            M[(3 + i) * 6 + 3 + k] = J[3 * i + k];
+    }
+}
+
+/* k = [m g, -w x J w]: gravity and the gyroscopic torque (Euler's equations) */
+static void force(const rt_args *a, real_t *k)
+{
+    const real_t *w = a->x + 10;
+    real_t J[9], Jw[3];
+    inertia(a->p, J);
+    mul3(J, w, Jw);
+    cross3(w, Jw, k + 3);
+    for (int i = 0; i < 3; i++) {
+        k[i] = a->p[P_M] * a->p[P_G + i];
+        k[3 + i] = -k[3 + i];
+    }
+}
+
+/* plus the inputs: force at the centre of mass (inertial), torque (body frame) */
+static void force_u(const rt_args *a, real_t *k)
+{
+    force(a, k);
+    for (int i = 0; i < 6; i++)
+        k[i] += a->u[i];
+}
+
+/* node at body offset s: r = r0 + R s, v = v0 + R (w x s), w_I = R w,
+   ar = R (w x (w x s)), aw = 0; Jr = [I, -R [s]x], Jw = [0, R] */
+static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
+{
+    static const real_t zero[3] = {0, 0, 0};
+    const real_t *s = i == 1 ? a->p + P_N1 : i == 2 ? a->p + P_N2 : zero;
+    const real_t *w = a->x + 10;
+    real_t R[9], t[3], ws[3], wws[3];
+    rotation(a->x + 3, R);
+    cross3(w, s, ws);
+    cross3(w, ws, wws);
+    mul3(R, s, t);
+    for (int k = 0; k < 3; k++)
+        n->r[k] = a->x[k] + t[k];
+    mul3(R, ws, t);
+    for (int k = 0; k < 3; k++)
+        n->v[k] = a->x[7 + k] + t[k], n->aw[k] = 0;
+    mul3(R, w, n->w);
+    mul3(R, wws, n->ar);
+    for (int k = 0; k < 9; k++)
+        n->S[k] = R[k];
+    if (!J)
+        return;
+    /* column c of [s]x is s x e_c, so column c of -R [s]x is -R (s x e_c) */
+    for (int k = 0; k < 36; k++)
+        J[k] = 0;
+    for (int c = 0; c < 3; c++) {
+        real_t e[3] = {0, 0, 0}, se[3], col[3];
+        e[c] = 1;
+        cross3(s, e, se);
+        mul3(R, se, col);
+        for (int r = 0; r < 3; r++) {
+            J[r * 6 + r] = 1;
+            J[r * 6 + 3 + c] = -col[r];
+            J[(3 + r) * 6 + 3 + c] = R[3 * r + c];
+        }
+    }
+}
+
+/* T = m |v|^2 / 2 + w^T J w / 2, V = -m g . r */
+static void energy(const rt_args *a, real_t *e)
+{
+    const real_t *x = a->x, *p = a->p, *w = x + 10;
+    real_t J[9], Jw[3];
+    inertia(p, J);
+    mul3(J, w, Jw);
+    e[0] = (real_t)0.5 * (p[P_M] * (x[7] * x[7] + x[8] * x[8] + x[9] * x[9]) +
+                          (w[0] * Jw[0] + w[1] * Jw[1] + w[2] * Jw[2]));
+    e[1] = -p[P_M] * (p[P_G] * x[0] + p[P_G + 1] * x[1] + p[P_G + 2] * x[2]);
+}
+
+/* p <- p / |p| after the position projection */
+static void normalize(real_t *q)
+{
+    real_t n = rt_sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
+    if (n > 0)
+        for (int i = 3; i < 7; i++)
+            q[i] /= n;
+}
+
+static void output(const rt_args *a, real_t *y)
+{
+    for (int i = 0; i < 3; i++)
+        y[i] = a->x[i], y[3 + i] = a->x[7 + i], y[6 + i] = a->x[10 + i];
+}
+
+/* m > 0 and J positive definite (leading minors), everything finite */
+static rt_status check(const real_t *p, const void *spec)
+{
+    (void)spec;
+    for (int i = 0; i < NP; i++)
+        if (!rt_isfinite(p[i]))
+            return RT_E_PARAM;
+    real_t J[9];
+    inertia(p, J);
+    real_t m2 = J[0] * J[4] - J[1] * J[3];
+    real_t det = J[0] * (J[4] * J[8] - J[5] * J[7]) - J[1] * (J[3] * J[8] - J[5] * J[6]) +
+                 J[2] * (J[3] * J[7] - J[4] * J[6]);
+    return p[P_M] > 0 && J[0] > 0 && m2 > 0 && det > 0 ? RT_OK : RT_E_PARAM;
+}
+
+static const rt_mbs_spec spec = {
+    .nq = 7, .nz = 6, .nn = 3, .node_names = node_names, .kin = kin, .mass = mass,
+    .force = force, .node = node, .energy = energy, .normalize = normalize,
+};
+static const rt_mbs_spec spec_u = {
+    .nq = 7, .nz = 6, .nn = 3, .node_names = node_names, .kin = kin, .mass = mass,
+    .force = force_u, .node = node, .energy = energy, .normalize = normalize,
+};
+
+const rt_kind mdl_mbs_body_kind = {
+    .name = "mbs_body", .type = RT_KIND_MBS, .ny = 9, .nx = 13, .np = NP,
+    .y_names = y_names, .x_names = x_names, .p_names = p_names, .p_default = p_default,
+    .x_default = x_default, .feed = RT_FEED_NONE, .check = check, .output = output,
+    .spec = &spec,
+};
+const rt_kind mdl_mbs_bodyf_kind = {
+    .name = "mbs_bodyf", .type = RT_KIND_MBS, .nu = 6, .ny = 9, .nx = 13, .np = NP,
+    .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
+    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_NONE, .check = check,
+    .output = output, .spec = &spec_u,
+};

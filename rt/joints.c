@@ -1,0 +1,155 @@
+/* joints.c - the library of joint kinds: each computes, from the states of its two
+ * interaction nodes, the constraints g, their velocity coefficients C (g' = C [v1; w1;
+ * v2; w2], eq. 7a) and the acceleration term c (g'' = C [r1''; w1'; r2''; w2'] + c,
+ * eq. 7b). Joints never see block coordinates: rt/mbs_asm.c maps C through the nodes'
+ * Jacobians into rows of W = G K (eq. 9c).
+ *
+ * Orientation conditions are written as perpendicularity of node axes, u . w = 0 with
+ * u = S2 e_i and w = S1 e_j: their derivative is (u x w) . (w2 - w1), smooth everywhere. */
+#include "rt.h"
+
+static real_t dot3(const real_t *a, const real_t *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross3(const real_t *a, const real_t *b, real_t *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* column i of a row-major rotation: the node frame's axis i in the inertial frame */
+static void axis(const real_t *S, int i, real_t *u)
+{
+    u[0] = S[i], u[1] = S[3 + i], u[2] = S[6 + i];
+}
+
+static void clear(rt_joint_eval *e, int nc)
+{
+    for (int i = 0; i < nc; i++) {
+        e->g[i] = e->c[i] = 0;
+        for (int j = 0; j < 12; j++)
+            e->C[i][j] = 0;
+    }
+}
+
+/* rows 0-2: r1 - r2 = 0; g' = v1 - v2, no acceleration term */
+static void coincide(const rt_mbs_node *n1, const rt_mbs_node *n2, rt_joint_eval *e)
+{
+    for (int i = 0; i < 3; i++) {
+        e->g[i] = n1->r[i] - n2->r[i];
+        e->C[i][i] = 1;
+        e->C[i][6 + i] = -1;
+    }
+}
+
+/* row k: u . w = 0 with u = axis iu of node 2, w = axis iw of node 1;
+   g' = (u x w) . (w2 - w1), c = ((w2 x u) x w + u x (w1 x w)) . (w2 - w1) */
+static void perpendicular(const rt_mbs_node *n1, const rt_mbs_node *n2, int iu, int iw,
+                          int k, rt_joint_eval *e)
+{
+    real_t u[3], w[3], n[3], ud[3], wd[3], t1[3], t2[3], dw[3];
+    axis(n2->S, iu, u);
+    axis(n1->S, iw, w);
+    cross3(u, w, n);
+    cross3(n2->w, u, ud);
+    cross3(n1->w, w, wd);
+    cross3(ud, w, t1);
+    cross3(u, wd, t2);
+    e->g[k] = dot3(u, w);
+    for (int i = 0; i < 3; i++) {
+        e->C[k][3 + i] = -n[i];
+        e->C[k][9 + i] = n[i];
+        dw[i] = n2->w[i] - n1->w[i];
+        t1[i] += t2[i];
+    }
+    e->c[k] = dot3(t1, dw);
+}
+
+/* ---- spherical difference joint |r1 - r2| - l = 0 (eq. 8); p = {l} ----
+   with d = r1 - r2, e = d / |d|: g' = e . (v1 - v2), c = (|d'|^2 - (e . d')^2) / |d| */
+static void sphdiff_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
+                         rt_joint_eval *e)
+{
+    real_t d[3], dd[3], u[3] = {1, 0, 0};
+    for (int i = 0; i < 3; i++)
+        d[i] = n1->r[i] - n2->r[i], dd[i] = n1->v[i] - n2->v[i];
+    real_t len = rt_sqrt(dot3(d, d));
+    clear(e, 1);
+    e->g[0] = len - p[0];
+    /* coincident nodes have no direction: +x, no curvature term (finite, deterministic) */
+    if (len > RT_MBS_LEN_MIN)
+        for (int i = 0; i < 3; i++)
+            u[i] = d[i] / len;
+    for (int i = 0; i < 3; i++)
+        e->C[0][i] = u[i], e->C[0][6 + i] = -u[i];
+    if (len > RT_MBS_LEN_MIN) {
+        real_t ud = dot3(u, dd);
+        e->c[0] = (dot3(dd, dd) - ud * ud) / len;
+    }
+}
+
+static int sphdiff_check(const real_t *p)
+{
+    return p[0] > 0 && rt_isfinite(p[0]) ? 0 : 1;
+}
+
+/* ---- spherical joint r1 = r2 ---- */
+static void spherical_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
+                           rt_joint_eval *e)
+{
+    (void)p;
+    clear(e, 3);
+    coincide(n1, n2, e);
+}
+
+/* ---- revolute joint: r1 = r2 and the nodes' z axes parallel (rotation about them
+   free): (S2 e_z) . (S1 e_x) = 0, (S2 e_z) . (S1 e_y) = 0 ---- */
+static void revolute_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
+                          rt_joint_eval *e)
+{
+    (void)p;
+    clear(e, 5);
+    coincide(n1, n2, e);
+    perpendicular(n1, n2, 2, 0, 3, e);
+    perpendicular(n1, n2, 2, 1, 4, e);
+}
+
+/* ---- fixed joint: r1 = r2 and S1 = S2 (with b2 = -1: a node clamped to the inertial
+   frame); three perpendicularities pin the orientation ---- */
+static void fixed_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
+                       rt_joint_eval *e)
+{
+    (void)p;
+    clear(e, 6);
+    coincide(n1, n2, e);
+    perpendicular(n1, n2, 1, 2, 3, e);
+    perpendicular(n1, n2, 2, 0, 4, e);
+    perpendicular(n1, n2, 0, 1, 5, e);
+}
+
+static const char *const sphdiff_p[] = {"l"};
+
+const rt_joint_kind rt_joint_sphdiff = {
+    .name = "sphdiff", .nc = 1, .np = 1, .p_names = sphdiff_p,
+    .check = sphdiff_check, .eval = sphdiff_eval,
+};
+const rt_joint_kind rt_joint_spherical = {
+    .name = "spherical", .nc = 3, .eval = spherical_eval,
+};
+const rt_joint_kind rt_joint_revolute = {
+    .name = "revolute", .nc = 5, .eval = revolute_eval,
+};
+const rt_joint_kind rt_joint_fixed = {
+    .name = "fixed", .nc = 6, .eval = fixed_eval,
+};
+
+const rt_joint_entry rt_joint_kinds[] = {
+    {"sphdiff", &rt_joint_sphdiff},
+    {"spherical", &rt_joint_spherical},
+    {"revolute", &rt_joint_revolute},
+    {"fixed", &rt_joint_fixed},
+    {0, 0},
+};

@@ -1,0 +1,303 @@
+/* mbs.c - the multibody services a scene names with .mbs = &rt_mbs: init (checks of the
+ * MBS blocks, joints and recorded MBS signals against the compile-time limits, the index
+ * tables of rt_mbs_work, the initial projection) and the recordable MBS signals (energy,
+ * constraint residuals, joint reactions). The solve is in rt/mbs_asm.c, the projection in
+ * rt/mbs_project.c, the joint kinds in rt/joints.c. */
+#include "rti.h"
+
+static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
+{
+    return (const rt_mbs_spec *)sc->blocks[b].kind->spec;
+}
+
+static int is_mbs(const rt_scene *sc, int b)
+{
+    return b >= 0 && b < sc->nblocks && sc->blocks[b].kind->type == RT_KIND_MBS;
+}
+
+/* ------------------------------------------------------------------ init checks */
+
+/* a kind's MBS part: sizes agree, the hooks its sizes need are there */
+static rt_status check_spec(const rt_scene *sc, rt_sim *sim, uint16_t b)
+{
+    const rt_kind *k = sc->blocks[b].kind;
+    const rt_mbs_spec *sp = spec_of(sc, b);
+    int ok = sp->nq + sp->nz == k->nx && sp->nz > 0 && sp->kin && sp->mass && sp->force &&
+             sp->energy && (sp->nc == 0 || sp->constr) && (sp->nn == 0 || sp->node);
+    if (!ok)
+        return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name,
+                        ": its MBS description is inconsistent (nx != nq + nz, or a hook "
+                        "is missing)", (const char *)0);
+    if (sp->nz > RT_MAX_MBS_BZ)
+        return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
+                        ": velocities exceed RT_MAX_MBS_BZ", (const char *)0);
+    return RT_OK;
+}
+
+/* one joint: kind, blocks, nodes, one set, parameters */
+static rt_status check_joint(const rt_scene *sc, rt_sim *sim, const rt_joint *j)
+{
+    const char *name = j->name ? j->name : "?";
+    const rt_joint_kind *k = j->kind;
+    if (!k || !k->eval || k->nc == 0 || k->nc > RT_MBS_JOINT_NC_MAX)
+        return rti_fail(sim, RT_E_SCENE, "joint ", name, ": no valid joint kind",
+                        (const char *)0);
+    if (!is_mbs(sc, j->b1) || (j->b2 != -1 && !is_mbs(sc, j->b2)))
+        return rti_fail(sim, RT_E_SCENE, "joint ", name,
+                        ": links a block that does not exist or is not an MBS block",
+                        (const char *)0);
+    if (j->n1 < 0 || j->n1 >= spec_of(sc, (uint16_t)j->b1)->nn ||
+        (j->b2 >= 0 && (j->n2 < 0 || j->n2 >= spec_of(sc, (uint16_t)j->b2)->nn)))
+        return rti_fail(sim, RT_E_SCENE, "joint ", name, ": node index out of range",
+                        (const char *)0);
+    if (j->b2 >= 0 && sc->blocks[j->b1].set != sc->blocks[j->b2].set)
+        return rti_fail(sim, RT_E_SCENE, "joint ", name,
+                        ": links blocks of different sets (a joint couples one index-1 "
+                        "system)", (const char *)0);
+    if ((k->np > 0 && !j->p) || (k->check && j->p && k->check(j->p) != 0))
+        return rti_fail(sim, RT_E_PARAM, "joint ", name, ": parameters out of range for ",
+                        k->name, (const char *)0);
+    return RT_OK;
+}
+
+/* offsets of each MBS block within its set, and the set totals against the limits */
+static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
+{
+    rt_mbs_work *w = &sim->mbs;
+    uint32_t mo[RT_MAX_SETS] = {0};
+    for (uint8_t s = 0; s < RT_MAX_SETS; s++)
+        w->nz[s] = w->nq[s] = w->nc[s] = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        w->zo[b] = w->qo[b] = w->mo[b] = w->co[b] = 0;
+        if (!is_mbs(sc, b))
+            continue;
+        rt_status st = check_spec(sc, sim, b);
+        if (st != RT_OK)
+            return st;
+        const rt_mbs_spec *sp = spec_of(sc, b);
+        uint8_t s = sc->blocks[b].set;
+        w->zo[b] = w->nz[s], w->qo[b] = w->nq[s], w->co[b] = w->nc[s];
+        w->mo[b] = (uint16_t)mo[s];
+        uint32_t nz = (uint32_t)w->nz[s] + sp->nz, nq = (uint32_t)w->nq[s] + sp->nq;
+        uint32_t nc = (uint32_t)w->nc[s] + sp->nc;
+        mo[s] += (uint32_t)sp->nz * sp->nz;
+        if (nz > RT_MAX_MBS_Z || nq > RT_MAX_MBS_Q || nc > RT_MAX_MBS_C)
+            return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
+                            ": MBS blocks exceed RT_MAX_MBS_Z, RT_MAX_MBS_Q or RT_MAX_MBS_C",
+                            (const char *)0);
+        w->nz[s] = (uint16_t)nz, w->nq[s] = (uint16_t)nq, w->nc[s] = (uint16_t)nc;
+    }
+    return RT_OK;
+}
+
+/* joint rows follow the internal rows of their set, in joint order */
+static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
+{
+    rt_mbs_work *w = &sim->mbs;
+    if (sc->njoints > RT_MAX_JOINTS)
+        return rti_fail(sim, RT_E_CAPACITY, "joints exceed RT_MAX_JOINTS", (const char *)0);
+    if (sc->njoints > 0 && !sc->joints)
+        return rti_fail(sim, RT_E_SCENE, "njoints > 0 but no joint table", (const char *)0);
+    for (uint16_t j = 0; j < sc->njoints; j++) {
+        const rt_joint *jt = &sc->joints[j];
+        rt_status st = check_joint(sc, sim, jt);
+        if (st != RT_OK)
+            return st;
+        uint8_t s = sc->blocks[jt->b1].set;
+        if (w->nc[s] + jt->kind->nc > RT_MAX_MBS_C)
+            return rti_fail(sim, RT_E_CAPACITY, "joint ", jt->name,
+                            ": the constraints of its set exceed RT_MAX_MBS_C",
+                            (const char *)0);
+        w->jrow[j] = w->nc[s];
+        w->nc[s] = (uint16_t)(w->nc[s] + jt->kind->nc);
+        for (uint16_t i = 0; i < RT_MBS_JOINT_NC_MAX; i++)
+            w->jlam[j * RT_MBS_JOINT_NC_MAX + i] = 0;
+    }
+    return RT_OK;
+}
+
+/* the rows each block touches (its internal rows, then its joints' rows), ascending */
+static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
+{
+    rt_mbs_work *w = &sim->mbs;
+    uint32_t n = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        w->to[b] = (uint16_t)n;
+        if (!is_mbs(sc, b))
+            continue;
+        for (uint16_t i = 0; i < spec_of(sc, b)->nc && n < RT_MBS_MAX_TOUCH; i++)
+            w->trow[n++] = (uint16_t)(w->co[b] + i);
+        for (uint16_t j = 0; j < sc->njoints; j++) {
+            const rt_joint *jt = &sc->joints[j];
+            if (jt->b1 != b && jt->b2 != b)
+                continue;
+            for (uint16_t i = 0; i < jt->kind->nc && n < RT_MBS_MAX_TOUCH; i++)
+                w->trow[n++] = (uint16_t)(w->jrow[j] + i);
+        }
+        if (n >= RT_MBS_MAX_TOUCH)
+            return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
+                            ": constraint rows exceed RT_MBS_MAX_TOUCH", (const char *)0);
+    }
+    w->to[sc->nblocks] = (uint16_t)n;
+    return RT_OK;
+}
+
+/* recorded MBS signals: an MBS block, a known quantity, a joint acting on that block */
+static rt_status check_recs(const rt_scene *sc, rt_sim *sim)
+{
+    sim->mbs.need_lambda = 0;
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        const rt_rec *r = &sc->recs[i];
+        if (r->what != RT_SIG_MBS)
+            continue;
+        int ok = is_mbs(sc, r->block);
+        if (ok && r->index >= RT_MBS_SIG_NSET) {
+            uint16_t j = (uint16_t)((r->index - RT_MBS_SIG_JOINT) / RT_MBS_JSIG_COUNT);
+            uint16_t c = (uint16_t)((r->index - RT_MBS_SIG_JOINT) % RT_MBS_JSIG_COUNT);
+            ok = r->index >= RT_MBS_SIG_JOINT && j < sc->njoints &&
+                 sc->joints[j].b1 == (int16_t)r->block &&
+                 (c < RT_MBS_JSIG_LAMBDA || c - RT_MBS_JSIG_LAMBDA < sc->joints[j].kind->nc);
+            sim->mbs.need_lambda = 1;
+        }
+        if (!ok)
+            return rti_fail(sim, RT_E_SCENE, "a recorded MBS signal of ",
+                            sc->blocks[r->block < sc->nblocks ? r->block : 0].name,
+                            " names no MBS quantity of that block", (const char *)0);
+    }
+    return RT_OK;
+}
+
+static int init(const rt_scene *sc, rt_sim *sim)
+{
+    rt_status st;
+    if (sc->stab > RT_STAB_BAUMGARTE ||
+        (sc->stab == RT_STAB_BAUMGARTE &&
+         !(sc->baumgarte[0] >= 0 && sc->baumgarte[1] >= 0 &&
+           rt_isfinite(sc->baumgarte[0]) && rt_isfinite(sc->baumgarte[1]))))
+        return rti_fail(sim, RT_E_SCENE, "unknown stabilization, or Baumgarte parameters "
+                        "not finite and >= 0", (const char *)0);
+    if ((st = block_tables(sc, sim)) != RT_OK || (st = joint_tables(sc, sim)) != RT_OK ||
+        (st = touch_tables(sc, sim)) != RT_OK || (st = check_recs(sc, sim)) != RT_OK)
+        return st;
+    sim->mbs.res_max = 0;
+    sim->mbs.projections = 0;
+    /* the index-1 formulation needs consistent initial values: project them once */
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (sim->mbs.nz[s] > 0 && (sc->stab == RT_STAB_PROJECT || sim->mbs.need_lambda))
+            rti_mbs_project(sc, sim, s, 0); /* also the initial multipliers, if recorded */
+    return RT_OK;
+}
+
+/* ------------------------------------------------------------------ signals */
+
+/* largest |g| (pos) or |g'| (!pos) of the set's constraints at the current state */
+static real_t residual(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_t t, int pos)
+{
+    real_t worst = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_mbs_spec *sp;
+        if (!rti_mbs_in_set(sc, b, set) || (sp = spec_of(sc, b))->nc == 0)
+            continue;
+        real_t g[RT_MAX_MBS_C], gd[RT_MAX_MBS_C];
+        rt_args a;
+        rti_args(sc, sim, b, t, 0, &a);
+        sp->constr(&a, g, gd, 0, 0, 0);
+        for (uint16_t i = 0; i < sp->nc; i++)
+            worst = rt_fmax(worst, rt_fabs(pos ? g[i] : gd[i]));
+    }
+    for (uint16_t j = 0; j < sc->njoints; j++) {
+        if (sc->blocks[sc->joints[j].b1].set != set)
+            continue;
+        rt_mbs_node n1, n2;
+        rt_joint_eval e;
+        rti_mbs_joint(sc, sim, j, t, &n1, &n2, 0, 0, &e);
+        for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++) {
+            const real_t *C = e.C[i];
+            real_t gd = 0;
+            for (int k = 0; k < 3; k++)
+                gd += C[k] * n1.v[k] + C[3 + k] * n1.w[k] + C[6 + k] * n2.v[k] +
+                      C[9 + k] * n2.w[k];
+            worst = rt_fmax(worst, rt_fabs(pos ? e.g[i] : gd));
+        }
+    }
+    return worst;
+}
+
+/* kinetic (which = 0), potential (1) or total (2) energy of the set */
+static real_t energy(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_t t, int which)
+{
+    real_t sum = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!rti_mbs_in_set(sc, b, set))
+            continue;
+        real_t e[2];
+        rt_args a;
+        rti_args(sc, sim, b, t, 0, &a);
+        spec_of(sc, b)->energy(&a, e);
+        sum += which == 2 ? e[0] + e[1] : e[which];
+    }
+    return sum;
+}
+
+/* component c of joint j's reaction on node 1: -C1^T lambda, or lambda itself */
+static real_t reaction(const rt_scene *sc, const rt_sim *sim, uint16_t j, uint16_t c,
+                       real_t t)
+{
+    const real_t *lam = sim->mbs.jlam + j * RT_MBS_JOINT_NC_MAX;
+    if (c >= RT_MBS_JSIG_LAMBDA)
+        return lam[c - RT_MBS_JSIG_LAMBDA];
+    rt_mbs_node n1, n2;
+    rt_joint_eval e;
+    rti_mbs_joint(sc, sim, j, t, &n1, &n2, 0, 0, &e);
+    real_t f = 0;
+    for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
+        f -= e.C[i][c] * lam[i];
+    return f;
+}
+
+static real_t signal(const rt_scene *sc, const rt_sim *sim, uint16_t block, uint16_t index)
+{
+    uint8_t set = sc->blocks[block].set;
+    real_t t = rt_time(sc, sim);
+    switch (index) {
+    case RT_MBS_SIG_ENERGY:
+        return energy(sc, sim, set, t, 2);
+    case RT_MBS_SIG_KINETIC:
+        return energy(sc, sim, set, t, 0);
+    case RT_MBS_SIG_POTENTIAL:
+        return energy(sc, sim, set, t, 1);
+    case RT_MBS_SIG_RESIDUAL:
+        return residual(sc, sim, set, t, 1);
+    case RT_MBS_SIG_RESIDUAL_V:
+        return residual(sc, sim, set, t, 0);
+    default:
+        index = (uint16_t)(index - RT_MBS_SIG_JOINT);
+        return reaction(sc, sim, index / RT_MBS_JSIG_COUNT, index % RT_MBS_JSIG_COUNT, t);
+    }
+}
+
+static const char *const set_names[RT_MBS_SIG_NSET] = {
+    "energy", "kinetic", "potential", "residual", "residual_v",
+};
+static const char *const joint_names[RT_MBS_JSIG_COUNT] = {
+    "fx", "fy", "fz", "mx", "my", "mz",
+    "lambda1", "lambda2", "lambda3", "lambda4", "lambda5", "lambda6",
+};
+
+static const char *signal_name(const rt_scene *sc, uint16_t block, uint16_t index)
+{
+    (void)sc, (void)block;
+    if (index < RT_MBS_SIG_NSET)
+        return set_names[index];
+    if (index < RT_MBS_SIG_JOINT)
+        return "?";
+    return joint_names[(index - RT_MBS_SIG_JOINT) % RT_MBS_JSIG_COUNT];
+}
+
+const rt_mbs_ops rt_mbs = {
+    .init = init,
+    .accel = rti_mbs_accel,
+    .project = rti_mbs_project,
+    .signal = signal,
+    .signal_name = signal_name,
+};

@@ -1,0 +1,342 @@
+/* mbs_asm.c - the multibody assembly and the index-1 solve of one set: the block-diagonal
+ * M and the stacked W = G K of eq. 9, the Schur complement A = W M^-1 W^T over the rows
+ * each block touches, the multipliers lambda, and z' (eqs. 6b, 7b); the mbs accel service.
+ *
+ * Only (block, row) pairs that can be non-zero are formed: a joint row touches the two
+ * blocks it links, an internal row its own block, so a chain of n bodies costs O(n) here
+ * plus one dense LU of A (its size is the number of constraints). Loops run in a fixed
+ * order, so the same state gives the same bits on every target. */
+#include "linalg.h"
+#include "rti.h"
+
+static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
+{
+    return (const rt_mbs_spec *)sc->blocks[b].kind->spec;
+}
+
+int rti_mbs_in_set(const rt_scene *sc, uint16_t b, uint8_t set)
+{
+    return sc->blocks[b].kind->type == RT_KIND_MBS && sc->blocks[b].set == set;
+}
+
+/* ------------------------------------------------------------------ nodes and joints */
+
+/* an inertial node: the joint's anchor point and frame, at rest */
+static void anchor(const rt_joint *j, rt_mbs_node *n)
+{
+    for (int i = 0; i < 3; i++) {
+        n->r[i] = j->at ? j->at[i] : 0;
+        n->v[i] = n->w[i] = n->ar[i] = n->aw[i] = 0;
+    }
+    for (int i = 0; i < 9; i++)
+        n->S[i] = j->at_S ? j->at_S[i] : (i % 4 == 0 ? 1 : 0);
+}
+
+/* node `side` (0: n1 of b1, 1: n2 of b2) of joint j; Jacobians into J if not NULL */
+static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, int side,
+                       real_t t, rt_mbs_node *n, real_t *J)
+{
+    int16_t b = side ? j->b2 : j->b1;
+    if (b < 0) {
+        anchor(j, n);
+        return;
+    }
+    rt_args a;
+    rti_args(sc, sim, (uint16_t)b, t, 0, &a);
+    spec_of(sc, (uint16_t)b)->node(&a, (uint16_t)(side ? j->n2 : j->n1), n, J);
+}
+
+void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
+                   rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2, rt_joint_eval *e)
+{
+    const rt_joint *j = &sc->joints[ji];
+    joint_node(sc, sim, j, 0, t, n1, J1);
+    joint_node(sc, sim, j, 1, t, n2, J2);
+    j->kind->eval(j->p, n1, n2, e);
+}
+
+/* C_i . [x1; y1; x2; y2] for four 3-vectors */
+static real_t row_dot(const real_t *C, const real_t *x1, const real_t *y1, const real_t *x2,
+                      const real_t *y2)
+{
+    real_t s = 0;
+    for (int k = 0; k < 3; k++)
+        s += C[k] * x1[k] + C[3 + k] * y1[k] + C[6 + k] * x2[k] + C[9 + k] * y2[k];
+    return s;
+}
+
+/* W[row, block cols] (+)= C6 J: six coefficients times a node's 6 x nz Jacobian; zero
+   coefficients (a translational joint's rotation part) are skipped */
+static void map_row(const real_t *C6, const real_t *J, uint16_t nz, real_t *Wrow, int add)
+{
+    if (!add)
+        for (uint16_t c = 0; c < nz; c++)
+            Wrow[c] = 0;
+    for (int k = 0; k < 6; k++) {
+        if (C6[k] == 0)
+            continue;
+        for (uint16_t c = 0; c < nz; c++)
+            Wrow[c] += C6[k] * J[k * nz + c];
+    }
+}
+
+/* rows of joint ji: g, g', and with RTI_MBS_JAC the rows of W and gam (eq. 7b) */
+static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_t ji,
+                           real_t t, int what)
+{
+    rt_mbs_work *w = &sim->mbs;
+    const rt_joint *j = &sc->joints[ji];
+    int jac = what & RTI_MBS_JAC;
+    rt_mbs_node n1, n2;
+    rt_joint_eval e;
+    rti_mbs_joint(sc, sim, ji, t, &n1, &n2, jac ? w->J[0] : 0, jac ? w->J[1] : 0, &e);
+    uint16_t ld = w->nz[set];
+    for (uint16_t i = 0; i < j->kind->nc; i++) {
+        uint16_t r = (uint16_t)(w->jrow[ji] + i);
+        w->g[r] = e.g[i];
+        w->gd[r] = row_dot(e.C[i], n1.v, n1.w, n2.v, n2.w);
+        if (!jac)
+            continue;
+        w->gam[r] = row_dot(e.C[i], n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
+        uint16_t b1 = (uint16_t)j->b1;
+        map_row(e.C[i], w->J[0], spec_of(sc, b1)->nz, w->W + r * ld + w->zo[b1], 0);
+        if (j->b2 >= 0) {
+            uint16_t b2 = (uint16_t)j->b2;
+            map_row(e.C[i] + 6, w->J[1], spec_of(sc, b2)->nz, w->W + r * ld + w->zo[b2],
+                    b2 == b1);
+        }
+    }
+}
+
+/* ------------------------------------------------------------------ blocks */
+
+/* factors block b's M in place (a diagonal M is only checked); a pivot at or below the
+   threshold is counted and replaced by it, so the solves stay finite */
+static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *M,
+                        uint16_t *piv)
+{
+    rt_status st = RT_OK;
+    if (sp->flags & RT_MBS_M_DIAG) {
+        real_t big = 0;
+        for (uint16_t i = 0; i < sp->nz; i++)
+            big = M[i] > big ? M[i] : big;
+        real_t floor_ = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);
+        for (uint16_t i = 0; i < sp->nz; i++)
+            if (!(M[i] > floor_))
+                M[i] = floor_, st = RT_E_SINGULAR;
+    } else {
+        st = rti_lu(M, sp->nz, piv, RT_MBS_PIVOT_TOL);
+    }
+    if (st != RT_OK)
+        rti_count(sim, RT_CNT_SINGULAR, b, RT_E_SINGULAR);
+}
+
+/* v <- M^-1 v with the factors of mass_factor */
+static void mass_solve(const rt_mbs_spec *sp, const real_t *M, const uint16_t *piv, real_t *v)
+{
+    if (sp->flags & RT_MBS_M_DIAG)
+        for (uint16_t i = 0; i < sp->nz; i++)
+            v[i] /= M[i];
+    else
+        rti_lu_solve(M, sp->nz, piv, v);
+}
+
+/* block b's own part: M factors, free accelerations M^-1 k, internal constraint rows */
+static void assemble_block(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_t b,
+                           real_t t, int what)
+{
+    rt_mbs_work *w = &sim->mbs;
+    const rt_mbs_spec *sp = spec_of(sc, b);
+    uint16_t zo = w->zo[b], ld = w->nz[set];
+    real_t *M = w->M + w->mo[b];
+    rt_args a;
+    rti_args(sc, sim, b, t, 0, &a);
+    if (what & RTI_MBS_JAC) {
+        sp->mass(&a, M);
+        mass_factor(sim, sp, b, M, w->Mpiv + zo);
+    }
+    if (what & RTI_MBS_FORCE) {
+        rti_gather(sim, b); /* the inputs are applied forces (eq. 6b) */
+        sp->force(&a, w->a + zo);
+        mass_solve(sp, M, w->Mpiv + zo, w->a + zo);
+    }
+    if (sp->nc > 0) {
+        uint16_t r = w->co[b];
+        real_t *W = (what & RTI_MBS_JAC) ? w->W + r * ld + zo : 0;
+        sp->constr(&a, w->g + r, w->gd + r, W, ld, w->gam + r);
+    }
+}
+
+void rti_mbs_assemble(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, int what)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        if (rti_mbs_in_set(sc, b, set))
+            assemble_block(sc, sim, set, b, t, what);
+    for (uint16_t j = 0; j < sc->njoints; j++)
+        if (sc->blocks[sc->joints[j].b1].set == set)
+            assemble_joint(sc, sim, set, j, t, what);
+}
+
+/* ------------------------------------------------------------------ the Schur complement */
+
+int rti_mbs_row_block(const rt_scene *sc, const rt_sim *sim, uint8_t set, uint16_t row)
+{
+    const rt_mbs_work *w = &sim->mbs;
+    for (uint16_t j = 0; j < sc->njoints; j++) {
+        const rt_joint *jt = &sc->joints[j];
+        if (sc->blocks[jt->b1].set == set && row >= w->jrow[j] &&
+            row < w->jrow[j] + jt->kind->nc)
+            return jt->b1;
+    }
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        if (rti_mbs_in_set(sc, b, set) && row >= w->co[b] &&
+            row < w->co[b] + spec_of(sc, b)->nc)
+            return b;
+    return -1;
+}
+
+/* a pivot of A fell below the threshold: count it with the block of that row */
+static void report_singular(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t floor_)
+{
+    rt_mbs_work *w = &sim->mbs;
+    uint16_t m = w->nc[set], perm[RT_MAX_MBS_C], row = 0;
+    for (uint16_t i = 0; i < m; i++)
+        perm[i] = i;
+    /* replay the row swaps of rti_lu: position k of U holds original row perm[k] */
+    for (uint16_t k = 0; k < m; k++) {
+        uint16_t p = w->Apiv[k], s = perm[k];
+        perm[k] = perm[p], perm[p] = s;
+    }
+    for (uint16_t k = 0; k < m; k++)
+        if (rt_fabs(w->A[k * m + k]) <= floor_) {
+            row = perm[k];
+            break;
+        }
+    rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, set, row), RT_E_SINGULAR);
+}
+
+/* block b's share of Y = M^-1 W^T and A = W Y, over the rows it touches */
+static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b, uint16_t m,
+                        uint16_t ld)
+{
+    uint16_t zo = w->zo[b], nz = sp->nz;
+    const real_t *M = w->M + w->mo[b];
+    for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
+        uint16_t r = w->trow[i];
+        real_t col[RT_MAX_MBS_BZ];
+        for (uint16_t c = 0; c < nz; c++)
+            col[c] = w->W[r * ld + zo + c];
+        mass_solve(sp, M, w->Mpiv + zo, col);
+        for (uint16_t c = 0; c < nz; c++)
+            w->Y[(zo + c) * m + r] = col[c];
+    }
+    for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++)
+        for (uint16_t k = w->to[b]; k < w->to[b + 1]; k++) {
+            uint16_t r = w->trow[i], s = w->trow[k];
+            real_t acc = 0;
+            for (uint16_t c = 0; c < nz; c++)
+                acc += w->W[r * ld + zo + c] * w->Y[(zo + c) * m + s];
+            w->A[r * m + s] += acc;
+        }
+}
+
+void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
+{
+    rt_mbs_work *w = &sim->mbs;
+    uint16_t m = w->nc[set], ld = w->nz[set];
+    if (m == 0)
+        return;
+    for (uint16_t i = 0; i < m * m; i++)
+        w->A[i] = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        if (rti_mbs_in_set(sc, b, set))
+            schur_block(w, spec_of(sc, b), b, m, ld);
+    real_t scale = rti_norm_inf(w->A, (uint16_t)(m * m));
+    if (rti_lu(w->A, m, w->Apiv, RT_MBS_PIVOT_TOL) != RT_OK)
+        report_singular(sc, sim, set, RT_MBS_PIVOT_TOL * (scale > 0 ? scale : 1));
+}
+
+void rti_mbs_solve(rt_sim *sim, uint8_t set, real_t *v)
+{
+    rti_lu_solve(sim->mbs.A, sim->mbs.nc[set], sim->mbs.Apiv, v);
+}
+
+void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *v,
+                     real_t *dz)
+{
+    rt_mbs_work *w = &sim->mbs;
+    uint16_t m = w->nc[set];
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!rti_mbs_in_set(sc, b, set))
+            continue;
+        for (uint16_t c = w->zo[b]; c < w->zo[b] + spec_of(sc, b)->nz; c++) {
+            real_t acc = 0;
+            for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++)
+                acc += w->Y[c * m + w->trow[i]] * v[w->trow[i]];
+            dz[c] = -acc;
+        }
+    }
+}
+
+/* ------------------------------------------------------------------ the index-1 solve */
+
+void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
+{
+    rt_mbs_work *w = &sim->mbs;
+    uint16_t m = w->nc[set], ld = w->nz[set];
+    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC | RTI_MBS_FORCE);
+    for (uint16_t c = 0; c < ld; c++)
+        w->dz[c] = 0;
+    if (m == 0)
+        return;
+    rti_mbs_schur(sc, sim, set);
+    /* A lambda = W M^-1 k + gam (+ alpha g' + beta g): eq. 7b with z' from eq. 6b */
+    int baum = sc->stab == RT_STAB_BAUMGARTE;
+    for (uint16_t r = 0; r < m; r++)
+        w->lam[r] = w->gam[r] +
+                    (baum ? sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r] : 0);
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!rti_mbs_in_set(sc, b, set))
+            continue;
+        uint16_t zo = w->zo[b], nz = spec_of(sc, b)->nz;
+        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
+            uint16_t r = w->trow[i];
+            real_t acc = 0;
+            for (uint16_t c = 0; c < nz; c++)
+                acc += w->W[r * ld + zo + c] * w->a[zo + c];
+            w->lam[r] += acc;
+        }
+    }
+    rti_mbs_solve(sim, set, w->lam);
+    rti_mbs_correct(sc, sim, set, w->lam, w->dz);
+    for (uint16_t j = 0; j < sc->njoints; j++)
+        if (sc->blocks[sc->joints[j].b1].set == set)
+            for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
+                w->jlam[j * RT_MBS_JOINT_NC_MAX + i] = w->lam[w->jrow[j] + i];
+}
+
+/* q' = K z + b (eq. 6a) and z' = M^-1 (k - W^T lambda) for every MBS block of the set */
+void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_t *xdot)
+{
+    rt_mbs_work *w = &sim->mbs;
+    if (w->nz[set] == 0)
+        return;
+    rti_mbs_lambda(sc, sim, set, t);
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!rti_mbs_in_set(sc, b, set))
+            continue;
+        const rt_mbs_spec *sp = spec_of(sc, b);
+        real_t *qd = xdot + (sim->x_off[b] - sim->set_x[set]);
+        rt_args a;
+        rti_args(sc, sim, b, t, 0, &a);
+        sp->kin(&a, a.x + sp->nq, qd);
+        if (sp->kinb) {
+            real_t *bq = w->qt + w->qo[b]; /* qt is free outside the projection */
+            sp->kinb(&a, bq);
+            for (uint16_t i = 0; i < sp->nq; i++)
+                qd[i] += bq[i];
+        }
+        for (uint16_t c = 0; c < sp->nz; c++)
+            qd[sp->nq + c] = w->a[w->zo[b] + c] + w->dz[w->zo[b] + c];
+    }
+}

@@ -1,0 +1,137 @@
+/* mbs_project.c - the post-stabilizing projection of a set's multibody state after every
+ * step (paper, section 3, eq. 10; Hairer & Wanner VII.2, Ascher et al. 1995):
+ *
+ *   positions:  exactly two simplified-Newton iterations of the mass-weighted projection,
+ *               M and W = G K frozen at the predicted state (q~, z~):
+ *                   q_{k+1} = q_k - K(q~) M^-1 W^T (W M^-1 W^T)^-1 g(q_k)        (10a)
+ *               then unit quaternions are renormalized (the correction K ds is tangent);
+ *   velocities: one direct solve at the projected q, since g' is linear in z:
+ *                   z = z~ - M^-1 W^T (W M^-1 W^T)^-1 g'(q, z~)                  (10b)
+ *
+ * From consistent values g(q~) = O(h^(p+1)); Newton is quadratic, so two iterations leave
+ * O(h^(4(p+1))), roundoff for any practical step, at a fixed cost per step. */
+#include "rti.h"
+
+static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
+{
+    return (const rt_mbs_spec *)sc->blocks[b].kind->spec;
+}
+
+/* qt <- q of every MBS block of the set: the frozen point of the iteration */
+static void save_q(const rt_scene *sc, rt_sim *sim, uint8_t set)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!rti_mbs_in_set(sc, b, set))
+            continue;
+        for (uint16_t i = 0; i < spec_of(sc, b)->nq; i++)
+            sim->mbs.qt[sim->mbs.qo[b] + i] = sim->x[sim->x_off[b] + i];
+    }
+}
+
+/* q += K(q~) dz, block by block: the velocity-space correction mapped to coordinates */
+static void move_q(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
+{
+    rt_mbs_work *w = &sim->mbs;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!rti_mbs_in_set(sc, b, set))
+            continue;
+        const rt_mbs_spec *sp = spec_of(sc, b);
+        real_t dq[RT_MAX_MBS_Q];
+        rt_args a;
+        rti_args(sc, sim, b, t, 0, &a);
+        a.x = w->qt + w->qo[b]; /* K at the predicted coordinates (kin reads q only) */
+        sp->kin(&a, w->dz + w->zo[b], dq);
+        for (uint16_t i = 0; i < sp->nq; i++)
+            sim->x[sim->x_off[b] + i] += dq[i];
+    }
+}
+
+/* z += dz for every MBS block of the set */
+static void move_z(const rt_scene *sc, rt_sim *sim, uint8_t set)
+{
+    rt_mbs_work *w = &sim->mbs;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!rti_mbs_in_set(sc, b, set))
+            continue;
+        const rt_mbs_spec *sp = spec_of(sc, b);
+        real_t *z = sim->x + sim->x_off[b] + sp->nq;
+        for (uint16_t c = 0; c < sp->nz; c++)
+            z[c] += w->dz[w->zo[b] + c];
+    }
+}
+
+/* the kinds' own normalization (unit quaternions) */
+static void normalize(const rt_scene *sc, rt_sim *sim, uint8_t set)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        if (rti_mbs_in_set(sc, b, set) && spec_of(sc, b)->normalize)
+            spec_of(sc, b)->normalize(sim->x + sim->x_off[b]);
+}
+
+/* one correction: v <- A^-1 v (v = g or g'), dz = -Y v */
+static void correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *rhs)
+{
+    rt_mbs_work *w = &sim->mbs;
+    for (uint16_t r = 0; r < w->nc[set]; r++)
+        w->lam[r] = rhs[r];
+    rti_mbs_solve(sim, set, w->lam);
+    rti_mbs_correct(sc, sim, set, w->lam, w->dz);
+}
+
+/* largest |g| after the projection: a high-water mark, and a degraded step above the
+   tolerance (the two iterations did not reach the manifold: a far-off or singular state) */
+static void check_residual(const rt_scene *sc, rt_sim *sim, uint8_t set)
+{
+    rt_mbs_work *w = &sim->mbs;
+    real_t worst = 0;
+    uint16_t row = 0;
+    for (uint16_t r = 0; r < w->nc[set]; r++) {
+        real_t v = rt_fabs(w->g[r]);
+        if (!(v <= worst)) /* NaN counts as worst */
+            worst = v, row = r;
+    }
+    w->projections++;
+    if (!(worst <= w->res_max))
+        w->res_max = worst;
+    if (!(worst <= RT_MBS_RES_TOL))
+        rti_count(sim, RT_CNT_DEGRADED, rti_mbs_row_block(sc, sim, set, row), RT_E_NOCONV);
+}
+
+/* multipliers at the step end, for recorded joint reactions: outputs give the inputs */
+static void refresh_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
+{
+    if (!sim->mbs.need_lambda)
+        return;
+    rti_outputs(sc, sim, t, RTI_IN_STEP);
+    rti_mbs_lambda(sc, sim, set, t);
+}
+
+void rti_mbs_project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
+{
+    rt_mbs_work *w = &sim->mbs;
+    if (w->nz[set] == 0)
+        return;
+    if (sc->stab != RT_STAB_PROJECT || w->nc[set] == 0) {
+        if (sc->stab == RT_STAB_PROJECT)
+            normalize(sc, sim, set);
+        refresh_lambda(sc, sim, set, t);
+        return;
+    }
+    /* positions (10a): M, W and K frozen at the predicted state, two iterations */
+    save_q(sc, sim, set);
+    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC);
+    rti_mbs_schur(sc, sim, set);
+    correct(sc, sim, set, w->g);
+    move_q(sc, sim, set, t);
+    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_G);
+    correct(sc, sim, set, w->g);
+    move_q(sc, sim, set, t);
+    normalize(sc, sim, set);
+    /* velocities (10b): W and M at the projected positions, one solve */
+    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC);
+    rti_mbs_schur(sc, sim, set);
+    correct(sc, sim, set, w->gd);
+    move_z(sc, sim, set);
+    check_residual(sc, sim, set);
+    refresh_lambda(sc, sim, set, t);
+}

@@ -1,0 +1,29 @@
+#!/bin/sh
+# errors.sh - one bad scene per kind of error (tests/scenec/errors/*.scn): scenec --check
+# must exit 1 with exactly the line the file's first `// expect: ` comment gives, and
+# `modrt run FILE.scn` must print the same line after "modrt: " and exit 2.
+# Usage: sh tests/scenec/errors.sh SCENEC MODRT
+set -u
+SCENEC=$1 M=$2
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0 fail=0 modrt_ok=1
+ok()  { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL errors: $*"; }
+
+# does this modrt read scene files yet (the patch of ports/posix/modrt.c)?
+"$M" run tests/scenec/errors/syntax.scn 2>&1 | grep -q "unknown scene" && modrt_ok=0
+for f in tests/scenec/errors/*.scn; do
+    want=$(sed -n 's|^// expect: ||p' "$f" | head -1)
+    "$SCENEC" --check "$f" > "$T/out" 2> "$T/err"; rc=$?
+    got=$(cat "$T/err")
+    if [ "$rc" -eq 1 ] && [ "$got" = "$want" ] && [ ! -s "$T/out" ]; then ok; else
+        bad "$f (exit $rc)"; echo "  want: $want"; echo "  got:  $got"; fi
+    [ "$modrt_ok" -eq 1 ] || continue
+    "$M" run "$f" > "$T/out" 2> "$T/err"; rc=$?
+    [ "$rc" -eq 2 ] && [ "$(cat "$T/err")" = "modrt: $want" ] && ok || \
+        bad "$f: modrt run (exit $rc): $(cat "$T/err")"
+done
+[ "$modrt_ok" -eq 1 ] || echo "errors: modrt does not read scene files yet; checked scenec only"
+echo "errors: $(ls tests/scenec/errors/*.scn | wc -l) error kinds; $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,62 @@
+#!/bin/sh
+# footprint.sh - builds one image per library scene and target (only that scene, only its
+# models, limits sized by `modrt sizes`), runs it under QEMU with the instruction-count
+# plugin, and prints docs/footprint.md: flash and RAM (from the size tool), the stack
+# high-water mark of the ticks (painted stack), instructions per tick (min/median/max over
+# every tick, deterministic under -icount), the models linked, and the trace hash checked
+# against the host's. Usage: sh tools/footprint.sh "m3 m4f m7 rv32 rv64"
+set -eu
+targets=$1
+M=build/host/modrt
+so=$(make -s print-INSN_COUNT_SO)
+scenes=$($M list | awk '{print $1}')
+
+cat <<HDR
+# Footprint and cost per tick
+
+Written by \`make footprint\` (tools/footprint.sh); do not edit by hand. One image per
+scene and target: \`tests/cross/footprint_main.c\`, the scene's const tables, the runtime
+and only the models the scene names (\`-ffunction-sections -fdata-sections
+-Wl,--gc-sections\`, no registries), compiled with the exact limits \`modrt sizes SCENE\`
+prints. Instruction counts come from QEMU's TCG plugin \`tools/qemu/insn_count.c\`,
+counting guest instructions between successive \`port_cycles()\` calls, which the image
+makes once per tick: one interval is one \`rt_tick\` plus recording the traced values into
+the hash. Counts are deterministic (run under \`-icount shift=0\`). The stack column is the
+high-water mark of the painted stack during the ticks (init excluded), measured, not a
+static bound. Each image runs the first FOOT_TICKS ticks of its scene (default 1000, or
+the whole scene if shorter); the host hash is taken over the same ticks. Flash = text + data, RAM = data + bss (static, the whole \`rt_sim\`), both in
+bytes. Every image's trace hash is compared with \`modrt run\` on the host.
+
+| scene | target | flash | RAM | stack | insn/tick min | median | max | hash = host | models linked |
+|---|---|---:|---:|---:|---:|---:|---:|:-:|---|
+HDR
+
+for s in $scenes; do
+    # the host reference over the same ticks as the image
+    dt=$($M info "$s" | sed -n 's/^base tick: \([^ ]*\) s$/\1/p')
+    ticks=$(make -s print-FOOT_TICKS)
+    host=$($M run "$s" --t-end "$(awk -v d="$dt" -v n="$ticks" 'BEGIN { printf "%.17g", d * n }')" | sed -n 's/^hash: //p')
+    for t in $targets; do
+        if ! make -s "check-target-$t" 2>/dev/null; then
+            echo "| $s | $t | skipped: toolchain or QEMU missing | | | | | | | |"
+            continue
+        fi
+        make -s foot-elf T="$t" S="$s"
+        elf=build/foot/$t/$s.elf
+        size=$(make -s "print-TARGET_SIZE_$t")
+        nm=$(make -s "print-TARGET_NM_$t")
+        set -- $($size "$elf" | awk 'NR == 2 {print $1, $2, $3}')
+        flash=$(($1 + $2)) ram=$(($2 + $3))
+        addr=$($nm "$elf" | awk '$3 == "port_cycles" {print $1}')
+        run=$(make -s "print-TARGET_RUN_$t")
+        # the run command ends in -kernel: put the plugin before it
+        out=$(eval "$(echo "$run" | sed "s|-kernel\$|-plugin $(pwd)/$so,addr=0x$addr -d plugin -kernel|") $elf" 2>&1 || true)
+        hash=$(echo "$out" | sed -n 's/.* hash \([0-9a-f]*\) .*/\1/p')
+        stack=$(echo "$out" | sed -n 's/.* stack \([0-9]*\).*/\1/p')
+        stats=$(echo "$out" | sed -n 's/.*min \([0-9]*\) median \([0-9]*\) max \([0-9]*\).*/\1 | \2 | \3/p')
+        models=$($nm "$elf" | awk '$3 ~ /^mdl_.*_kind$/ {sub(/^mdl_/, "", $3); sub(/_kind$/, "", $3); print $3}' | sort | tr '\n' ' ')
+        same=no
+        [ "$hash" = "$host" ] && same=yes
+        echo "| $s | $t | $flash | $ram | $stack | $stats | $same | $models |"
+    done
+done

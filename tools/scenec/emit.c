@@ -1,0 +1,511 @@
+/* emit.c - the checked scene as C: const tables in the form of the hand-written scenes
+ * (rt_block, rt_conn, rt_default, rt_set, rt_rec, rt_joint, rt_scene) and, for defined
+ * systems, a const rt_kind with C services. Values are printed as (real_t)<shortest
+ * double literal>, so the compiled scene holds exactly what image.c builds in host
+ * memory; define bodies are printed from the VM's bytecode, operation by operation.
+ * The file declares only the model kinds it names, so an image links only those. */
+#include "scn.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void scn_real_literal(double v, char *buf, size_t n)
+{
+    if (v > -1e15 && v < 1e15 && v == (double)(long long)v) {
+        snprintf(buf, n, "%.0f", v); /* whole numbers as written: 10, -2, 0 */
+        return;
+    }
+    for (int prec = 1; prec <= 17; prec++) {
+        snprintf(buf, n, "%.*g", prec, v);
+        if (strtod(buf, NULL) == v)
+            return;
+    }
+}
+
+/* "(real_t)<literal>" in a static buffer ring, for one printf */
+static const char *R(double v)
+{
+    static char ring[8][40];
+    static unsigned k;
+    char *b = ring[k++ % 8];
+    memcpy(b, "(real_t)", 8);
+    scn_real_literal(v, b + 8, sizeof ring[0] - 8);
+    return b;
+}
+
+/* a C string literal's body: quotes, backslashes and '?' escaped (no trigraphs) */
+static void cstring(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\' || *s == '?')
+            fputc('\\', f);
+        fputc(*s, f);
+    }
+}
+
+/* text inside a comment: no comment end */
+static void ctext(FILE *f, const char *s)
+{
+    for (; *s; s++)
+        fputc(*s == '/' && s[1] == '*' ? '|' : *s == '*' && s[1] == '/' ? '+' : *s, f);
+}
+
+/* ------------------------------------------------------------------ expressions */
+
+/* one node of a statement's expression tree, rebuilt from its postfix code */
+typedef struct node {
+    const scn_ins *in;
+    int kid[3];
+    int depth;                  /* longest path to a leaf */
+    int temp;                   /* >= 0: printed once into const real_t t<temp> */
+} node;
+
+#define TEMP_DEPTH 12 /* a subtree this deep gets its own temporary: bounded nesting */
+
+static int arity(const scn_ins *in)
+{
+    if (in->op <= SCN_OP_LOC)
+        return 0;
+    if (in->op == SCN_OP_NEG || in->op == SCN_OP_NOT)
+        return 1;
+    if (in->op == SCN_OP_SEL)
+        return 3;
+    if (in->op == SCN_OP_CALL)
+        return scn_fns[in->a].nargs;
+    return 2;
+}
+
+/* the tree of code [i0, i1) (without the final OUT/SETLOC); returns the root */
+static int build_tree(const scn_ins *code, uint32_t i0, uint32_t i1, node *nd, int *ntemp)
+{
+    int st[SCN_MAX_STACK + 1], sp = 0, n = 0;
+    for (uint32_t i = i0; i < i1; i++, n++) {
+        node *x = &nd[n];
+        int k = arity(&code[i]);
+        x->in = &code[i], x->depth = 1, x->temp = -1;
+        for (int j = k - 1; j >= 0; j--) {
+            x->kid[j] = st[--sp];
+            if (nd[x->kid[j]].depth + 1 > x->depth)
+                x->depth = nd[x->kid[j]].depth + 1;
+        }
+        if (x->depth >= TEMP_DEPTH)
+            x->temp = (*ntemp)++, x->depth = 1;
+        st[sp++] = n;
+    }
+    return sp ? st[sp - 1] : -1;
+}
+
+static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top);
+
+static void kids(FILE *f, const scn_ctx *c, const node *nd, const node *x, const char *sep)
+{
+    expr(f, c, nd, x->kid[0], 0);
+    fputs(sep, f);
+    expr(f, c, nd, x->kid[1], 0);
+}
+
+static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top)
+{
+    static const char *const bin[] = {" + ", " - ", " * ", " / ", " < ", " <= ", " > ",
+                                      " >= ", " == ", " != "};
+    const node *x = &nd[i];
+    const scn_ins *in = x->in;
+    if (x->temp >= 0 && !top) {
+        fprintf(f, "t%d", x->temp);
+        return;
+    }
+    switch (in->op) {
+    case SCN_OP_CONST: fputs(R(c->sc.k[in->a]), f); return;
+    case SCN_OP_TIME: fputs("a->t", f); return;
+    case SCN_OP_STEP: fputs("a->h", f); return;
+    case SCN_OP_IN: fprintf(f, "a->u[%u]", in->a); return;
+    case SCN_OP_PAR: fprintf(f, "a->p[%u]", in->a); return;
+    case SCN_OP_STATE: fprintf(f, "a->x[%u]", in->a); return;
+    case SCN_OP_DSTATE: fprintf(f, "a->d[%u]", in->a); return;
+    case SCN_OP_LOC: fprintf(f, "l%u", in->a); return;
+    case SCN_OP_NEG: fputs("(-", f), expr(f, c, nd, x->kid[0], 0), fputs(")", f); return;
+    case SCN_OP_NOT:
+        fputs("(", f), expr(f, c, nd, x->kid[0], 0), fputs(" == 0 ? (real_t)1 : (real_t)0)", f);
+        return;
+    case SCN_OP_AND:
+    case SCN_OP_OR:
+        fputs("(", f), kids(f, c, nd, x, in->op == SCN_OP_AND ? " != 0 && " : " != 0 || ");
+        fputs(" != 0 ? (real_t)1 : (real_t)0)", f);
+        return;
+    case SCN_OP_SEL:
+        fputs("(", f), expr(f, c, nd, x->kid[0], 0), fputs(" != 0 ? ", f);
+        kids(f, c, nd, &(node){.kid = {x->kid[1], x->kid[2]}}, " : "), fputs(")", f);
+        return;
+    case SCN_OP_CALL:
+        fprintf(f, "%s(", scn_fns[in->a].c), expr(f, c, nd, x->kid[0], 0);
+        if (scn_fns[in->a].nargs == 2)
+            fputs(", ", f), expr(f, c, nd, x->kid[1], 0);
+        fputs(")", f);
+        return;
+    default: /* arithmetic and comparisons */
+        fputs("(", f), kids(f, c, nd, x, bin[in->op - SCN_OP_ADD]);
+        fputs(in->op >= SCN_OP_LT ? " ? (real_t)1 : (real_t)0)" : ")", f);
+    }
+}
+
+/* one body statement: its temporaries, then `const real_t l<i> = ...;` or `out[i] = ...;` */
+static void statement(FILE *f, const scn_ctx *c, const scn_stmt *st, const char *out, int *ntemp)
+{
+    uint32_t n = st->code1 - st->code0 - 1;
+    node *nd = malloc((n ? n : 1) * sizeof *nd);
+    if (!nd)
+        return;
+    int root = build_tree(c->sc.code, st->code0, st->code1 - 1, nd, ntemp);
+    for (uint32_t i = 0; i < n; i++)
+        if (nd[i].temp >= 0 && (int)i != root) {
+            fprintf(f, "    const real_t t%d = ", nd[i].temp);
+            expr(f, c, nd, (int)i, 1);
+            fputs(";\n", f);
+        }
+    if (st->kind == SCN_ST_LET)
+        fprintf(f, "    const real_t l%u = ", st->index);
+    else
+        fprintf(f, "    %s[%u] = ", out, st->index);
+    expr(f, c, nd, root, 1);
+    fputs(";\n", f);
+    free(nd);
+}
+
+/* ------------------------------------------------------------------ defines */
+
+static void names(FILE *f, const char *id, const char *what, const scn_var *v, uint16_t n)
+{
+    if (n == 0)
+        return;
+    fprintf(f, "static const char *const %s_%s[] = {", id, what);
+    for (uint16_t i = 0; i < n; i++)
+        fprintf(f, "%s\"%s\"", i ? ", " : "", v[i].name.s);
+    fputs("};\n", f);
+}
+
+static void reals(FILE *f, const char *id, const char *what, const double *v, size_t n)
+{
+    if (n == 0)
+        return;
+    fprintf(f, "static const real_t %s_%s[] = {", id, what);
+    for (size_t i = 0; i < n; i++)
+        fprintf(f, "%s%s", i ? ", " : "", R(v[i]));
+    fputs("};\n", f);
+}
+
+static void var_reals(FILE *f, const char *id, const char *what, const scn_var *v, uint16_t n)
+{
+    double d[SCN_MAX_PORTS];
+    for (uint16_t i = 0; i < n; i++)
+        d[i] = v[i].init;
+    reals(f, id, what, d, n);
+}
+
+static void service(FILE *f, const scn_ctx *c, const scn_define *d, const char *id,
+                    uint8_t kind)
+{
+    static const char *const fn[] = {"", "output", "deriv", "update"};
+    static const char *const out[] = {"", "y", "xdot", "dnext"};
+    uint8_t in[SCN_MAX_STMTS];
+    int ntemp = 0;
+    scn_service(c, d, kind, in);
+    fprintf(f, "\nstatic void %s_%s(const rt_args *a, real_t *%s)\n{\n    (void)a;\n", id,
+            fn[kind], out[kind]);
+    for (uint32_t s = d->st0; s < d->st1; s++)
+        if (in[s - d->st0])
+            statement(f, c, &c->sc.st[s], out[kind], &ntemp);
+    fputs("}\n", f);
+}
+
+static void lss_spec(FILE *f, const scn_define *d, const char *id)
+{
+    const scn_matrix *m[4] = {&d->A, &d->B, &d->C, &d->D};
+    static const char *const mn[4] = {"A", "B", "C", "D"};
+    for (int i = 0; i < 4; i++)
+        reals(f, id, mn[i], m[i]->v, (size_t)m[i]->rows * m[i]->cols);
+    fprintf(f, "static const rt_lss_spec %s_lss = {\n    .nx = %u, .nu = %u, .ny = %u,", id,
+            d->nx, d->nu, d->ny);
+    for (int i = 0; i < 4; i++)
+        if ((size_t)m[i]->rows * m[i]->cols > 0)
+            fprintf(f, " .%s = %s_%s,", mn[i], id, mn[i]);
+    fputs("\n};\n", f);
+}
+
+static const char *const type_id[] = {"RT_KIND_OUTPUT", "RT_KIND_NSS", "RT_KIND_LSS",
+                                      "RT_KIND_DSS", "RT_KIND_MBS"};
+static const char *const feed_id[] = {"RT_FEED_NONE", "RT_FEED_ALL", "RT_FEED_TABLE"};
+
+static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
+{
+    static const char *const dtype[] = {"ss_system", "lss_system", "dss_system"};
+    const rt_kind *k = d->kind;
+    const char *id = d->name.s;
+    char pre[SCN_MAX_NAME + 4];
+    int dss = d->type == SCN_DEF_DSS;
+    snprintf(pre, sizeof pre, "d_%s", id);
+    fprintf(f, "\n/* ---- define %s (%s), %s:%u */\n", dtype[d->type], id,
+            scn_path(c, d->name.pos), (unsigned)d->name.pos.line);
+    names(f, pre, "u", d->u, d->nu), names(f, pre, "y", d->y, d->ny);
+    names(f, pre, "p", d->p, d->np), names(f, pre, "x", d->x, d->nx);
+    var_reals(f, pre, "pdef", d->p, d->np), var_reals(f, pre, "xdef", d->x, d->nx);
+    if (k->feed == RT_FEED_TABLE) {
+        fprintf(f, "static const uint8_t %s_feed[] = {", pre);
+        for (size_t i = 0; i < (size_t)d->ny * d->nu; i++)
+            fprintf(f, "%s%u", i ? ", " : "", d->feed[i]);
+        fputs("};\n", f);
+    }
+    if (d->type == SCN_DEF_LSS) {
+        lss_spec(f, d, pre);
+    } else {
+        if (d->ny)
+            service(f, c, d, pre, SCN_ST_OUT);
+        if (d->nx && !dss)
+            service(f, c, d, pre, SCN_ST_DER);
+        if (dss)
+            service(f, c, d, pre, SCN_ST_NEXT);
+    }
+    fprintf(f, "\nstatic const rt_kind %s_kind = {\n    .name = \"%s\", .type = %s,\n", pre, id,
+            type_id[k->type]);
+    fprintf(f, "    .nu = %u, .ny = %u, .nx = %u, .nd = %u, .np = %u,\n", k->nu, k->ny, k->nx,
+            k->nd, k->np);
+    const char *slot[] = {d->nu ? "u" : 0, d->ny ? "y" : 0, d->np ? "p" : 0,
+                          d->nx ? "x" : 0};
+    const char *field[] = {"u_names", "y_names", "p_names", dss ? "d_names" : "x_names"};
+    for (int i = 0; i < 4; i++)
+        if (slot[i])
+            fprintf(f, "    .%s = %s_%s,\n", field[i], pre, slot[i]);
+    if (d->np)
+        fprintf(f, "    .p_default = %s_pdef,\n", pre);
+    if (d->nx)
+        fprintf(f, "    .%s = %s_xdef,\n", dss ? "d_default" : "x_default", pre);
+    fprintf(f, "    .feed = %s,", feed_id[k->feed]);
+    if (k->feed == RT_FEED_TABLE)
+        fprintf(f, " .feed_table = %s_feed,", pre);
+    fputs("\n   ", f);
+    if (d->type == SCN_DEF_LSS)
+        fprintf(f, "%s .deriv = rt_lss_deriv, .spec = &%s_lss,",
+                d->ny ? " .output = rt_lss_output," : "", pre);
+    if (d->type != SCN_DEF_LSS && d->ny)
+        fprintf(f, " .output = %s_output,", pre);
+    if (d->type != SCN_DEF_LSS && d->nx && !dss)
+        fprintf(f, " .deriv = %s_deriv,", pre);
+    if (dss)
+        fprintf(f, " .update = %s_update,", pre);
+    fputs("\n};\n", f);
+}
+
+/* ------------------------------------------------------------------ the scene */
+
+static int used_define(const scn_scene *s, uint16_t d)
+{
+    for (uint16_t b = 0; b < s->nblk; b++)
+        if (s->blk[b].def == d)
+            return 1;
+    return 0;
+}
+
+static void header(FILE *f, scn_ctx *c)
+{
+    const scn_scene *s = &c->sc;
+    fprintf(f, "/* %s.c - scene `%s`", s->name.s, s->name.s);
+    if (s->doc && *s->doc)
+        fputs(": ", f), ctext(f, s->doc);
+    fputs(".\n * Generated by scenec from ", f);
+    ctext(f, c->files[0].path);
+    fputs(": edit that file, not this one.", f);
+    const char *units = "";
+    for (uint16_t b = 0; b < s->nblk; b++)
+        if (s->blk[b].unit && !strstr(units, s->blk[b].unit))
+            units = scn_fmt(c, "%s%s%s", units, *units ? ", " : "", s->blk[b].unit);
+    if (*units)
+        fputs("\n * Units named by `from file`: ", f), ctext(f, units), fputs(".", f);
+    fputs(" */\n#include \"rt.h\"\n\n/* the model kinds this scene names, and only those */\n", f);
+    for (uint16_t b = 0; b < s->nblk; b++) {
+        int first = 1;
+        for (uint16_t e = 0; e < b; e++)
+            first &= s->blk[e].kind != s->blk[b].kind;
+        if (first && s->blk[b].def < 0)
+            fprintf(f, "extern const rt_kind mdl_%s_kind;\n", s->blk[b].type.s);
+    }
+    for (uint16_t d = 0; d < s->ndef; d++)
+        if (used_define(s, d))
+            define_kind(f, c, &s->def[d]);
+}
+
+static void block_values(FILE *f, const scn_block *b)
+{
+    char id[SCN_MAX_NAME + 4];
+    snprintf(id, sizeof id, "b_%s", b->name.s);
+    if (b->p_given)
+        reals(f, id, "p", b->p, b->kind->np);
+    if (b->x_given)
+        reals(f, id, "x0", b->x0, b->kind->nx);
+    if (b->d_given)
+        reals(f, id, "d0", b->d0, b->kind->nd);
+}
+
+static void blocks(FILE *f, const scn_scene *s)
+{
+    fputs("\nenum {", f);
+    for (uint16_t b = 0; b < s->nblk; b++)
+        fprintf(f, "%s B_%s", b ? "," : "", s->blk[b].name.s);
+    fputs(" };\n\n", f);
+    for (uint16_t b = 0; b < s->nblk; b++)
+        block_values(f, &s->blk[b]);
+    fputs("static const rt_block blocks[] = {\n", f);
+    for (uint16_t i = 0; i < s->nblk; i++) {
+        const scn_block *b = &s->blk[i];
+        const char *n = b->name.s;
+        fprintf(f, "    [B_%s] = {.name = \"%s\", .kind = &", n, n);
+        fprintf(f, b->def >= 0 ? "d_%s_kind" : "mdl_%s_kind", b->type.s);
+        if (b->p_given)
+            fprintf(f, ", .p = b_%s_p", n);
+        if (b->x_given)
+            fprintf(f, ", .x0 = b_%s_x0", n);
+        if (b->d_given)
+            fprintf(f, ", .d0 = b_%s_d0", n);
+        if (b->set)
+            fprintf(f, ", .set = %d", b->set);
+        if (b->ts > 0)
+            fprintf(f, ", .ts = %s", R(b->ts));
+        fputs("},\n", f);
+    }
+    fputs("};\n", f);
+}
+
+static void wiring(FILE *f, const scn_scene *s)
+{
+    if (s->nconn)
+        fputs("static const rt_conn conns[] = {\n", f);
+    for (uint16_t i = 0; i < s->nconn; i++) {
+        const scn_conn *cn = &s->conn[i];
+        fprintf(f, "    {B_%s, %u, B_%s, %u}, /* %s.%s -> %s.%s", s->blk[cn->fb].name.s, cn->fy,
+                s->blk[cn->tb].name.s, cn->tu, cn->from.block.s, cn->from.port.s,
+                cn->to.block.s, cn->to.port.s);
+        if (cn->interp)
+            fprintf(f, ", interpolation %s (issue 6)", scn_interp_key[cn->interp]);
+        fputs(" */\n", f);
+    }
+    if (s->nconn)
+        fputs("};\n", f);
+    if (s->ndflt)
+        fputs("static const rt_default defaults[] = {\n", f);
+    for (uint16_t i = 0; i < s->ndflt; i++) {
+        const scn_default *d = &s->dflt[i];
+        const scn_block *b = &s->blk[d->b];
+        fprintf(f, "    {B_%s, %u, %s}, /* %s.%s */\n", b->name.s, d->u, R(d->v), b->name.s,
+                b->kind->u_names[d->u]);
+    }
+    if (s->ndflt)
+        fputs("};\n", f);
+}
+
+static void sets(FILE *f, const scn_scene *s)
+{
+    fputs("static const rt_set sets[] = {\n", f);
+    for (uint16_t i = 0; i < s->nset; i++) {
+        const scn_set *st = &s->set[i];
+        fprintf(f, "    {.name = \"%s\", .method = &rt_%s, .ratio = %u", st->name.s, st->m->name,
+                (unsigned)st->ratio);
+        if (st->newton || st->jacobian || st->tol != 0)
+            fprintf(f, ", .implicit = {.newton_max = %u, .jac_every = %u, .tol = %s}",
+                    (unsigned)st->newton, (unsigned)st->jacobian, R(st->tol));
+        fputs("},", f);
+        if (st->interp)
+            fprintf(f, " /* interpolation %s (issue 6) */", scn_interp_key[st->interp]);
+        fputs("\n", f);
+    }
+    fputs("};\n", f);
+}
+
+static void recs(FILE *f, const scn_scene *s)
+{
+    static const char *const what[] = {"RT_SIG_Y", "RT_SIG_X", "RT_SIG_D", "RT_SIG_MBS"};
+    if (!s->nrec)
+        return;
+    fputs("static const rt_rec recs[] = {\n", f);
+    for (uint16_t i = 0; i < s->nrec; i++) {
+        const scn_rec *r = &s->rec[i];
+        fprintf(f, "    {B_%s, %s, %u}, /* %s.%s */\n", s->blk[r->r.block].name.s, what[r->r.what],
+                r->r.index, r->sig.block.s, r->sig.port.s);
+    }
+    fputs("};\n", f);
+}
+
+static void joints(FILE *f, const scn_scene *s)
+{
+    char id[SCN_MAX_NAME + 4];
+    for (uint16_t i = 0; i < s->njnt; i++) {
+        const scn_joint *j = &s->jnt[i];
+        snprintf(id, sizeof id, "j_%s", j->name.s);
+        reals(f, id, "p", j->p, j->kind->np);
+        if (s->lnk[j->link].has_at)
+            reals(f, id, "at", s->lnk[j->link].at, 3);
+    }
+    if (s->njnt)
+        fputs("static const rt_joint joints[] = {\n", f);
+    for (uint16_t i = 0; i < s->njnt; i++) {
+        const scn_joint *j = &s->jnt[i];
+        const scn_link *l = &s->lnk[j->link];
+        fprintf(f, "    {.name = \"%s\", .kind = &rt_joint_%s, .b1 = B_%s, .n1 = %d, ", j->name.s,
+                j->kind->name, s->blk[l->b1].name.s, l->n1);
+        if (l->b2 >= 0)
+            fprintf(f, ".b2 = B_%s, .n2 = %d", s->blk[l->b2].name.s, l->n2);
+        else
+            fputs(".b2 = -1", f);
+        if (j->kind->np)
+            fprintf(f, ", .p = j_%s_p", j->name.s);
+        if (l->has_at)
+            fprintf(f, ", .at = j_%s_at", j->name.s);
+        fputs("},\n", f);
+    }
+    if (s->njnt)
+        fputs("};\n", f);
+}
+
+static void scene(FILE *f, const scn_ctx *c)
+{
+    static const char *const stab[] = {"RT_STAB_PROJECT", "RT_STAB_NONE", "RT_STAB_BAUMGARTE"};
+    const scn_scene *s = &c->sc;
+    const rt_scene *im = &c->image;
+    fprintf(f, "\nconst rt_scene " SCN_SYMBOL_PREFIX "%s = {\n    .name = \"%s\",\n    .doc = \"",
+            s->name.s, s->name.s);
+    cstring(f, s->doc ? s->doc : "");
+    fprintf(f, "\",\n    .dt = %s,", R(s->dt));
+    fprintf(f, " .t_end = %s,\n", R(s->t_end));
+    fprintf(f, "    .blocks = blocks, .nblocks = %u,\n", s->nblk);
+    if (s->nconn)
+        fprintf(f, "    .conns = conns, .nconns = %u,\n", s->nconn);
+    if (s->ndflt)
+        fprintf(f, "    .defaults = defaults, .ndefaults = %u,\n", s->ndflt);
+    fprintf(f, "    .sets = sets, .nsets = %u,\n", s->nset);
+    if (s->nrec)
+        fprintf(f, "    .recs = recs, .nrecs = %u,\n", s->nrec);
+    if (s->njnt)
+        fprintf(f, "    .joints = joints, .njoints = %u,\n", s->njnt);
+    if (im->mbs)
+        fprintf(f, "    .mbs = &rt_mbs, .stab = %s,\n", stab[im->stab]);
+    if (im->mbs && (s->alpha != 0 || s->beta != 0))
+        fprintf(f, "    .baumgarte = {%s, %s},\n", R(s->alpha), R(s->beta));
+    if (s->solver.s)
+        fprintf(f, "    .loop_solver = &rt_broyden,\n");
+    if (s->loop_iter)
+        fprintf(f, "    .loop_iter_max = %u,\n", (unsigned)s->loop_iter);
+    if (s->loop_tol != 0)
+        fprintf(f, "    .loop_tol = %s,\n", R(s->loop_tol));
+    fputs("};\n", f);
+}
+
+int scn_emit(scn_ctx *c, FILE *f)
+{
+    if (c->err)
+        return -1;
+    header(f, c);
+    blocks(f, &c->sc);
+    wiring(f, &c->sc);
+    sets(f, &c->sc);
+    recs(f, &c->sc);
+    joints(f, &c->sc);
+    scene(f, c);
+    return ferror(f) ? -1 : 0;
+}

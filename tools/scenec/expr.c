@@ -1,0 +1,597 @@
+/* expr.c - expressions of the scene language: constant expressions (evaluated in double
+ * while parsing), define bodies compiled to the bytecode of vm.c, and LSS matrices.
+ * Also the token tests every parser uses.
+ *
+ * Body expressions keep the order they are written in: a + b + c is (a + b) + c, and
+ * emit.c prints the same tree fully parenthesized, so the VM and the generated C do the
+ * same operations in the same order (the build uses -ffp-contract=off). */
+#include "scn.h"
+
+#include <string.h>
+
+const scn_fn scn_fns[] = {
+    {"sqrt", 1, rt_sqrt, 0, "rt_sqrt"},     {"sin", 1, rt_sin, 0, "rt_sin"},
+    {"cos", 1, rt_cos, 0, "rt_cos"},        {"tan", 1, rt_tan, 0, "rt_tan"},
+    {"asin", 1, rt_asin, 0, "rt_asin"},     {"acos", 1, rt_acos, 0, "rt_acos"},
+    {"atan", 1, rt_atan, 0, "rt_atan"},     {"atan2", 2, 0, rt_atan2, "rt_atan2"},
+    {"exp", 1, rt_exp, 0, "rt_exp"},        {"log", 1, rt_log, 0, "rt_log"},
+    {"pow", 2, 0, rt_pow, "rt_pow"},        {"tanh", 1, rt_tanh, 0, "rt_tanh"},
+    {"abs", 1, rt_fabs, 0, "rt_fabs"},      {"floor", 1, rt_floor, 0, "rt_floor"},
+    {"min", 2, 0, rt_fmin, "rt_fmin"},      {"max", 2, 0, rt_fmax, "rt_fmax"},
+    {0, 0, 0, 0, 0},
+};
+
+/* ------------------------------------------------------------------ tokens */
+
+int scn_is_op(const scn_ctx *c, const char *op)
+{
+    return c->tok.kind == SCN_T_OP && strcmp(c->tok.op, op) == 0;
+}
+
+int scn_is_word(const scn_ctx *c, const char *w)
+{
+    return c->tok.kind == SCN_T_ID && strcmp(c->tok.s, w) == 0;
+}
+
+int scn_accept_op(scn_ctx *c, const char *op)
+{
+    if (!scn_is_op(c, op))
+        return 0;
+    scn_next(c);
+    return 1;
+}
+
+void scn_expect_op(scn_ctx *c, const char *op)
+{
+    if (!scn_accept_op(c, op))
+        scn_fail_tok(c, "syntax error", scn_fmt(c, "'%s'", op));
+}
+
+void scn_expect_word(scn_ctx *c, const char *w)
+{
+    if (scn_is_word(c, w))
+        scn_next(c);
+    else
+        scn_fail_tok(c, "syntax error", scn_fmt(c, "'%s'", w));
+}
+
+scn_name scn_expect_name(scn_ctx *c, const char *what)
+{
+    scn_name n = {"", c->tok.pos};
+    if (c->tok.kind != SCN_T_ID) {
+        scn_fail_tok(c, "syntax error", what);
+        return n;
+    }
+    n.s = c->tok.s;
+    scn_next(c);
+    return n;
+}
+
+/* nesting guard of the recursive descent: 0 when too deep (and the error is set) */
+static int enter(scn_ctx *c)
+{
+    if (++c->edepth <= SCN_MAX_EXPR_DEPTH)
+        return 1;
+    scn_fail_tok(c, "expression nested too deeply", "at most 48 levels of nesting");
+    return 0;
+}
+
+/* ------------------------------------------------------------------ constants */
+
+static double c_sum(scn_ctx *c);
+
+static double c_primary(scn_ctx *c)
+{
+    double v = 0;
+    if (c->tok.kind == SCN_T_NUM) {
+        v = c->tok.num;
+        scn_next(c);
+    } else if (scn_is_word(c, "pi")) {
+        v = RT_PI;
+        scn_next(c);
+    } else if (scn_accept_op(c, "(")) {
+        v = c_sum(c);
+        scn_expect_op(c, ")");
+    } else {
+        scn_fail_tok(c, "not a constant",
+                     "a number, pi, + - * / or parentheses (a constant expression)");
+    }
+    return v;
+}
+
+static double c_unary(scn_ctx *c)
+{
+    double v = 0;
+    if (!enter(c))
+        return 0;
+    if (scn_accept_op(c, "-"))
+        v = -c_unary(c);
+    else if (scn_accept_op(c, "+"))
+        v = c_unary(c);
+    else
+        v = c_primary(c);
+    c->edepth--;
+    return v;
+}
+
+static double c_product(scn_ctx *c)
+{
+    double v = c_unary(c);
+    while (!c->err && (scn_is_op(c, "*") || scn_is_op(c, "/"))) {
+        int mul = scn_is_op(c, "*");
+        scn_next(c);
+        double w = c_unary(c);
+        v = mul ? v * w : v / w;
+    }
+    return v;
+}
+
+static double c_sum(scn_ctx *c)
+{
+    double v = 0;
+    if (!enter(c))
+        return 0;
+    v = c_product(c);
+    while (!c->err && (scn_is_op(c, "+") || scn_is_op(c, "-"))) {
+        int add = scn_is_op(c, "+");
+        scn_next(c);
+        double w = c_product(c);
+        v = add ? v + w : v - w;
+    }
+    c->edepth--;
+    return v;
+}
+
+double scn_const_expr(scn_ctx *c)
+{
+    scn_tok start = c->tok;
+    double v = c_sum(c);
+    if (!c->err && !(v - v == 0))
+        scn_fail(c, start.pos, scn_near(c, &start), "value is not finite",
+                 "a constant expression with a finite value");
+    return v;
+}
+
+void scn_parse_matrix(scn_ctx *c, scn_matrix *m)
+{
+    double v[SCN_MAX_MATRIX];
+    uint32_t n = 0, cols = 0, rows = 0, in_row = 0;
+    m->pos = c->tok.pos;
+    scn_expect_op(c, "[");
+    while (!c->err && !scn_is_op(c, "]")) {
+        if (n >= SCN_MAX_MATRIX) {
+            scn_fail_tok(c, "matrix too large", "at most 1024 entries");
+            return;
+        }
+        v[n++] = scn_const_expr(c), in_row++;
+        if (scn_accept_op(c, ","))
+            continue;
+        if (rows > 0 && in_row != cols)
+            scn_fail(c, m->pos, "[", "matrix rows of different lengths",
+                     scn_fmt(c, "%u entries in every row", (unsigned)cols));
+        cols = in_row, in_row = 0, rows++;
+        if (!scn_accept_op(c, ";") && !scn_is_op(c, "]"))
+            scn_fail_tok(c, "syntax error", "',' between entries, ';' between rows or ']'");
+    }
+    scn_expect_op(c, "]");
+    m->rows = (uint16_t)rows, m->cols = (uint16_t)cols, m->given = 1;
+    m->v = scn_alloc(c, (n ? n : 1) * sizeof(double));
+    memcpy(m->v, v, n * sizeof(double));
+}
+
+/* ------------------------------------------------------------------ bytecode */
+
+static void emit(scn_ctx *c, uint8_t op, uint16_t a, int push)
+{
+    scn_scene *s = &c->sc;
+    if (c->err)
+        return;
+    if (s->ncode >= SCN_MAX_CODE) {
+        scn_fail_tok(c, "define bodies too large", "at most 32768 operations in all bodies");
+        return;
+    }
+    s->code[s->ncode++] = (scn_ins){op, a};
+    c->sdepth = (uint32_t)((int)c->sdepth + push);
+    if (c->sdepth > c->smax)
+        c->smax = c->sdepth;
+    if (c->sdepth > SCN_MAX_STACK)
+        scn_fail_tok(c, "expression too complex", "at most 64 pending operands");
+}
+
+static void emit_const(scn_ctx *c, double v)
+{
+    scn_scene *s = &c->sc;
+    uint32_t i = 0;
+    while (i < s->nk && memcmp(&s->k[i], &v, sizeof v) != 0)
+        i++;
+    if (i == s->nk) {
+        if (s->nk >= SCN_MAX_CONST) {
+            scn_fail_tok(c, "too many constants", "at most 4096 constants in all bodies");
+            return;
+        }
+        s->k[s->nk++] = v;
+    }
+    emit(c, SCN_OP_CONST, (uint16_t)i, 1);
+}
+
+/* ------------------------------------------------------------------ body expressions */
+
+
+static int find_var(const scn_var *v, uint16_t n, const char *name)
+{
+    for (uint16_t i = 0; i < n; i++)
+        if (strcmp(v[i].name.s, name) == 0)
+            return i;
+    return -1;
+}
+
+static int find_local(const scn_define *d, const char *name)
+{
+    for (uint16_t i = 0; i < d->nloc; i++)
+        if (strcmp(d->loc[i].s, name) == 0)
+            return i;
+    return -1;
+}
+
+static void expr(scn_ctx *c);
+
+/* a constant index in [0, n) inside brackets */
+static uint16_t index_in(scn_ctx *c, uint16_t n, const char *vec)
+{
+    uint16_t i = 0;
+    scn_expect_op(c, "[");
+    if (c->tok.kind != SCN_T_NUM || !(c->tok.num >= 0 && c->tok.num < n) ||
+        c->tok.num != (double)(uint16_t)c->tok.num)
+        scn_fail_tok(c, "index out of range",
+                     n ? scn_fmt(c, "a whole number from 0 to %u for the %s", n - 1u, vec)
+                       : scn_fmt(c, "no index: the define has no %s", vec));
+    else
+        i = (uint16_t)c->tok.num;
+    scn_next(c);
+    scn_expect_op(c, "]");
+    return i;
+}
+
+static const char *names_of(scn_ctx *c, const scn_define *d)
+{
+    const char *all[4 * SCN_MAX_PORTS + SCN_MAX_LOCALS];
+    size_t n = 0;
+    for (uint16_t i = 0; i < d->nu; i++)
+        all[n++] = d->u[i].name.s;
+    for (uint16_t i = 0; i < d->np; i++)
+        all[n++] = d->p[i].name.s;
+    for (uint16_t i = 0; i < d->nx; i++)
+        all[n++] = d->x[i].name.s;
+    for (uint16_t i = 0; i < d->nloc; i++)
+        all[n++] = d->loc[i].s;
+    return scn_list(c, all, n, 12);
+}
+
+/* a name in an expression: local, input, parameter, state, t, h or pi */
+static void name_ref(scn_ctx *c, scn_name n)
+{
+    const scn_define *d = c->def;
+    uint8_t state_op = d->type == SCN_DEF_DSS ? SCN_OP_DSTATE : SCN_OP_STATE;
+    int i;
+    if ((i = find_local(d, n.s)) >= 0)
+        emit(c, SCN_OP_LOC, (uint16_t)i, 1);
+    else if ((i = find_var(d->u, d->nu, n.s)) >= 0)
+        emit(c, SCN_OP_IN, (uint16_t)i, 1);
+    else if ((i = find_var(d->p, d->np, n.s)) >= 0)
+        emit(c, SCN_OP_PAR, (uint16_t)i, 1);
+    else if ((i = find_var(d->x, d->nx, n.s)) >= 0)
+        emit(c, state_op, (uint16_t)i, 1);
+    else if (strcmp(n.s, "t") == 0)
+        emit(c, SCN_OP_TIME, 0, 1);
+    else if (strcmp(n.s, "h") == 0)
+        emit(c, SCN_OP_STEP, 0, 1);
+    else if (strcmp(n.s, "pi") == 0)
+        emit_const(c, RT_PI);
+    else if (find_var(d->y, d->ny, n.s) >= 0)
+        scn_fail(c, n.pos, n.s, "an output cannot be read in a body",
+                 "an input, parameter, state or let name");
+    else
+        scn_fail(c, n.pos, n.s, "unknown name",
+                 scn_fmt(c, "t, h, pi or a name of %s (%s)", d->name.s, names_of(c, d)));
+}
+
+/* u[i], p[i], x[i] */
+static int indexed_ref(scn_ctx *c, scn_name n)
+{
+    const scn_define *d = c->def;
+    uint8_t state_op = d->type == SCN_DEF_DSS ? SCN_OP_DSTATE : SCN_OP_STATE;
+    if (strcmp(n.s, "u") == 0)
+        emit(c, SCN_OP_IN, index_in(c, d->nu, "inputs"), 1);
+    else if (strcmp(n.s, "p") == 0)
+        emit(c, SCN_OP_PAR, index_in(c, d->np, "parameters"), 1);
+    else if (strcmp(n.s, "x") == 0)
+        emit(c, state_op, index_in(c, d->nx, "states"), 1);
+    else
+        return 0;
+    return 1;
+}
+
+/* f(args): an elementary function, or if(c, a, b) */
+static void call(scn_ctx *c, scn_name n)
+{
+    int f = -1, nargs = 0;
+    for (int i = 0; scn_fns[i].name; i++)
+        if (strcmp(scn_fns[i].name, n.s) == 0)
+            f = i;
+    int want = strcmp(n.s, "if") == 0 ? 3 : f >= 0 ? scn_fns[f].nargs : -1;
+    if (want < 0) {
+        const char *fn[32];
+        size_t k = 0;
+        for (int i = 0; scn_fns[i].name; i++)
+            fn[k++] = scn_fns[i].name;
+        fn[k++] = "if";
+        scn_fail(c, n.pos, n.s, "unknown function", scn_list(c, fn, k, 32));
+        return;
+    }
+    scn_expect_op(c, "(");
+    while (!c->err && !scn_is_op(c, ")")) {
+        expr(c), nargs++;
+        if (!scn_accept_op(c, ","))
+            break;
+    }
+    if (!c->err && nargs != want)
+        scn_fail(c, n.pos, n.s, "wrong number of arguments",
+                 scn_fmt(c, "%d argument%s for %s", want, want == 1 ? "" : "s", n.s));
+    scn_expect_op(c, ")");
+    if (want == 3)
+        emit(c, SCN_OP_SEL, 0, -2);
+    else
+        emit(c, SCN_OP_CALL, (uint16_t)f, 1 - want);
+}
+
+static void primary(scn_ctx *c)
+{
+    if (c->tok.kind == SCN_T_NUM) {
+        emit_const(c, c->tok.num);
+        scn_next(c);
+    } else if (c->tok.kind == SCN_T_ID) {
+        scn_name n = {c->tok.s, c->tok.pos};
+        scn_next(c);
+        if (scn_is_op(c, "(")) {
+            call(c, n);
+        } else if (!(scn_is_op(c, "[") && indexed_ref(c, n))) {
+            name_ref(c, n);
+        }
+    } else if (scn_accept_op(c, "(")) {
+        expr(c);
+        scn_expect_op(c, ")");
+    } else {
+        scn_fail_tok(c, "syntax error", "a number, a name, a function call or '('");
+    }
+}
+
+static void unary(scn_ctx *c);
+
+/* a ^ b, right-associative, binding tighter than unary minus: -x^2 = -(x^2) */
+static void power(scn_ctx *c)
+{
+    primary(c);
+    if (!c->err && scn_accept_op(c, "^")) {
+        unary(c);
+        uint16_t f = 0;
+        while (strcmp(scn_fns[f].name, "pow") != 0) /* ^ means pow */
+            f++;
+        emit(c, SCN_OP_CALL, f, -1);
+    }
+}
+
+static void unary(scn_ctx *c)
+{
+    if (!enter(c))
+        return;
+    if (scn_accept_op(c, "-")) {
+        unary(c);
+        emit(c, SCN_OP_NEG, 0, 0);
+    } else if (scn_accept_op(c, "!")) {
+        unary(c);
+        emit(c, SCN_OP_NOT, 0, 0);
+    } else if (scn_accept_op(c, "+")) {
+        unary(c);
+    } else {
+        power(c);
+    }
+    c->edepth--;
+}
+
+/* binary levels, loosest first; each row: operators and their operations */
+typedef struct level {
+    const char *ops[4];
+    uint8_t code[4];
+} level;
+static const level levels[] = {
+    {{"||"}, {SCN_OP_OR}},
+    {{"&&"}, {SCN_OP_AND}},
+    {{"==", "!="}, {SCN_OP_EQ, SCN_OP_NE}},
+    {{"<", "<=", ">", ">="}, {SCN_OP_LT, SCN_OP_LE, SCN_OP_GT, SCN_OP_GE}},
+    {{"+", "-"}, {SCN_OP_ADD, SCN_OP_SUB}},
+    {{"*", "/"}, {SCN_OP_MUL, SCN_OP_DIV}},
+};
+#define NLEVELS (sizeof levels / sizeof levels[0])
+
+static int level_op(const scn_ctx *c, size_t lv)
+{
+    for (int i = 0; i < 4 && levels[lv].ops[i]; i++)
+        if (scn_is_op(c, levels[lv].ops[i]))
+            return i;
+    return -1;
+}
+
+static void binary(scn_ctx *c, size_t lv)
+{
+    if (lv == NLEVELS) {
+        unary(c);
+        return;
+    }
+    binary(c, lv + 1);
+    int i;
+    while (!c->err && (i = level_op(c, lv)) >= 0) {
+        scn_next(c);
+        binary(c, lv + 1);
+        emit(c, levels[lv].code[i], 0, -1);
+    }
+}
+
+/* cond ? a : b, right-associative */
+static void expr(scn_ctx *c)
+{
+    if (!enter(c))
+        return;
+    binary(c, 0);
+    if (!c->err && scn_accept_op(c, "?")) {
+        expr(c);
+        scn_expect_op(c, ":");
+        expr(c);
+        emit(c, SCN_OP_SEL, 0, -2);
+    }
+    c->edepth--;
+}
+
+/* ------------------------------------------------------------------ body statements */
+
+static void add_stmt(scn_ctx *c, uint8_t kind, uint16_t index, scn_pos pos)
+{
+    scn_scene *s = &c->sc;
+    if (s->nst >= SCN_MAX_STMTS) {
+        scn_fail(c, pos, "=", "too many body statements", "at most 512 in all bodies");
+        return;
+    }
+    uint32_t code0 = s->ncode;
+    c->sdepth = 0;
+    expr(c);
+    emit(c, kind == SCN_ST_LET ? SCN_OP_SETLOC : SCN_OP_OUT, index, -1);
+    scn_expect_op(c, ";");
+    s->st[s->nst++] = (scn_stmt){kind, index, code0, s->ncode, pos};
+}
+
+/* the target of `name = ...`: an output */
+static int target_output(scn_ctx *c, scn_name n)
+{
+    int i = find_var(c->def->y, c->def->ny, n.s);
+    if (i < 0)
+        scn_fail(c, n.pos, n.s, "not an output of the define",
+                 "y[i], xdot[i], xnext[i], der(state), next(state), let name or an output "
+                 "name on the left of '='");
+    return i;
+}
+
+/* the state inside der( ) or next( ) */
+static int target_state(scn_ctx *c)
+{
+    scn_expect_op(c, "(");
+    scn_name n = scn_expect_name(c, "a state name");
+    scn_expect_op(c, ")");
+    int i = c->err ? -1 : find_var(c->def->x, c->def->nx, n.s);
+    if (!c->err && i < 0)
+        scn_fail(c, n.pos, n.s, "unknown state",
+                 scn_fmt(c, "a state of %s", c->def->name.s));
+    return i;
+}
+
+static void let_stmt(scn_ctx *c)
+{
+    scn_define *d = c->def;
+    scn_name n = scn_expect_name(c, "a name after let");
+    if (c->err)
+        return;
+    if (find_local(d, n.s) >= 0 || find_var(d->u, d->nu, n.s) >= 0 ||
+        find_var(d->y, d->ny, n.s) >= 0 || find_var(d->p, d->np, n.s) >= 0 ||
+        find_var(d->x, d->nx, n.s) >= 0 || !strcmp(n.s, "t") || !strcmp(n.s, "h") ||
+        !strcmp(n.s, "pi")) {
+        scn_fail(c, n.pos, n.s, "name already used in the define", "a new name after let");
+        return;
+    }
+    if (d->nloc >= SCN_MAX_LOCALS) {
+        scn_fail(c, n.pos, n.s, "too many let names", "at most 128 per define");
+        return;
+    }
+    scn_pos pos = c->tok.pos;
+    scn_expect_op(c, "=");
+    /* the name is visible only after its own expression */
+    uint16_t i = d->nloc;
+    add_stmt(c, SCN_ST_LET, i, pos);
+    d->loc[d->nloc++] = n;
+}
+
+/* which kind of assignment a body statement is and to which index */
+static void body_stmt(scn_ctx *c)
+{
+    scn_define *d = c->def;
+    int dss = d->type == SCN_DEF_DSS;
+    scn_name n = scn_expect_name(c, "a body statement: y[i] = ..., xdot[i] = ..., "
+                                    "xnext[i] = ..., der(x) = ..., let v = ... or '}'");
+    if (c->err)
+        return;
+    uint8_t kind = SCN_ST_OUT;
+    int i = -1;
+    if (strcmp(n.s, "let") == 0 && c->tok.kind == SCN_T_ID) {
+        let_stmt(c);
+        return;
+    }
+    if (scn_is_op(c, "[") && !strcmp(n.s, "y")) {
+        i = index_in(c, d->ny, "outputs");
+    } else if (scn_is_op(c, "[") && (!strcmp(n.s, "xdot") || !strcmp(n.s, "xnext"))) {
+        kind = n.s[1] == 'd' ? SCN_ST_DER : SCN_ST_NEXT;
+        i = index_in(c, d->nx, "states");
+    } else if (scn_is_op(c, "(") && (!strcmp(n.s, "der") || !strcmp(n.s, "next"))) {
+        kind = n.s[0] == 'd' ? SCN_ST_DER : SCN_ST_NEXT;
+        i = target_state(c);
+    } else {
+        i = target_output(c, n);
+    }
+    if (c->err)
+        return;
+    if ((kind == SCN_ST_DER && dss) || (kind == SCN_ST_NEXT && !dss)) {
+        scn_fail(c, n.pos, n.s, dss ? "a dss_system has next states, not derivatives"
+                                    : "an ss_system has derivatives, not next states",
+                 dss ? "xnext[i] = ... or next(state) = ..." : "xdot[i] = ... or der(state) = ...");
+        return;
+    }
+    for (uint32_t s = d->st0; s < c->sc.nst; s++)
+        if (c->sc.st[s].kind == kind && c->sc.st[s].index == i) {
+            scn_fail(c, n.pos, n.s, "assigned twice in the body",
+                     "one equation per output and per state");
+            return;
+        }
+    scn_pos pos = c->tok.pos;
+    scn_expect_op(c, "=");
+    add_stmt(c, kind, (uint16_t)i, pos);
+}
+
+/* after the body: every output and every state has its equation */
+static void body_complete(scn_ctx *c, scn_define *d, scn_pos end)
+{
+    uint8_t xk = d->type == SCN_DEF_DSS ? SCN_ST_NEXT : SCN_ST_DER;
+    for (int pass = 0; pass < 2 && !c->err; pass++) {
+        uint8_t kind = pass ? xk : SCN_ST_OUT;
+        uint16_t n = pass ? d->nx : d->ny;
+        for (uint16_t i = 0; i < n && !c->err; i++) {
+            uint32_t s = d->st0;
+            while (s < c->sc.nst && !(c->sc.st[s].kind == kind && c->sc.st[s].index == i))
+                s++;
+            if (s < c->sc.nst)
+                continue;
+            const char *name = pass ? d->x[i].name.s : d->y[i].name.s;
+            scn_fail(c, end, "}", pass ? "state has no equation" : "output not assigned",
+                     pass ? scn_fmt(c, "%s(%s) = ... in the body", xk == SCN_ST_NEXT ? "next" : "der", name)
+                          : scn_fmt(c, "y[%u] = ... (%s) in the body", (unsigned)i, name));
+        }
+    }
+}
+
+void scn_parse_body(scn_ctx *c, scn_define *d)
+{
+    c->def = d;
+    d->st0 = c->sc.nst;
+    scn_expect_op(c, "{");
+    while (!c->err && !scn_is_op(c, "}") && c->tok.kind != SCN_T_EOF)
+        body_stmt(c);
+    scn_pos end = c->tok.pos;
+    scn_expect_op(c, "}");
+    d->st1 = c->sc.nst;
+    body_complete(c, d, end);
+}

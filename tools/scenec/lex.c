@@ -1,0 +1,456 @@
+/* lex.c - sources and tokens of the scene language: the arena every part allocates from,
+ * the one error report (file:line:col: error: what near 'text'; expected what), the main
+ * file and its includes, and the tokenizer with comments, strings and numbers. */
+#define _XOPEN_SOURCE 700
+#include "scn.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ------------------------------------------------------------------ arena */
+
+struct scn_chunk {
+    scn_chunk *next;
+    size_t used, cap;           /* bytes of data */
+    max_align_t data[];
+};
+
+#define CHUNK_BYTES 65536 /* one arena chunk; larger requests get their own */
+
+void *scn_alloc(scn_ctx *c, size_t n)
+{
+    size_t a = sizeof(max_align_t);
+    n = n ? (n + a - 1) / a * a : a;
+    scn_chunk *k = c->chunks;
+    if (!k || k->cap - k->used < n) {
+        size_t cap = n > CHUNK_BYTES ? n : CHUNK_BYTES;
+        scn_chunk *fresh = malloc(sizeof *fresh + cap);
+        if (!fresh) { /* a host tool with bounded inputs: nothing sensible is left */
+            fputs("scenec: out of memory\n", stderr);
+            abort();
+        }
+        fresh->cap = cap, fresh->used = 0;
+        /* a big one-off request goes behind the current chunk, which keeps serving */
+        if (k && cap > CHUNK_BYTES) {
+            fresh->next = k->next, k->next = fresh;
+        } else {
+            fresh->next = k, c->chunks = fresh;
+        }
+        k = fresh;
+    }
+    void *p = (char *)k->data + k->used;
+    k->used += n;
+    memset(p, 0, n);
+    return p;
+}
+
+char *scn_strndup(scn_ctx *c, const char *s, size_t n)
+{
+    char *d = scn_alloc(c, n + 1);
+    memcpy(d, s, n);
+    d[n] = 0;
+    return d;
+}
+
+char *scn_fmt(scn_ctx *c, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    char *d = scn_alloc(c, n > 0 ? (size_t)n + 1 : 1);
+    va_start(ap, fmt);
+    vsnprintf(d, n > 0 ? (size_t)n + 1 : 1, fmt, ap);
+    va_end(ap);
+    return d;
+}
+
+char *scn_list(scn_ctx *c, const char *const *names, size_t n, size_t max)
+{
+    char *out = scn_fmt(c, "%s", n ? "" : "(none)");
+    for (size_t i = 0; i < n && i < max; i++)
+        out = scn_fmt(c, "%s%s%s", out, i ? ", " : "", names[i]);
+    return n > max ? scn_fmt(c, "%s, ...", out) : out;
+}
+
+scn_ctx *scn_new(void)
+{
+    return calloc(1, sizeof(scn_ctx));
+}
+
+void scn_free(scn_ctx *c)
+{
+    if (!c)
+        return;
+    for (scn_chunk *k = c->chunks, *next; k; k = next)
+        next = k->next, free(k);
+    free(c);
+}
+
+/* ------------------------------------------------------------------ errors */
+
+const char *scn_path(const scn_ctx *c, scn_pos pos)
+{
+    return pos.file < c->nfiles ? c->files[pos.file].path : "?";
+}
+
+/* text for a message: printable, at most 40 characters */
+static const char *sanitize(scn_ctx *c, const char *s, size_t n)
+{
+    size_t m = n > 40 ? 40 : n;
+    char *d = scn_alloc(c, m + 4);
+    for (size_t i = 0; i < m; i++)
+        d[i] = (s[i] >= 32 && s[i] < 127) ? s[i] : '?';
+    if (n > m)
+        memcpy(d + m, "...", 3);
+    return d;
+}
+
+const char *scn_near(scn_ctx *c, const scn_tok *t)
+{
+    return t->kind == SCN_T_EOF ? "end of file" : sanitize(c, t->raw, t->rawlen);
+}
+
+void scn_fail(scn_ctx *c, scn_pos pos, const char *near, const char *what,
+              const char *expected)
+{
+    if (c->err)
+        return;
+    c->err = 1;
+    snprintf(c->msg, sizeof c->msg, "%s:%u:%u: error: %s near '%s'; expected %s",
+             scn_path(c, pos), (unsigned)pos.line, (unsigned)pos.col, what,
+             sanitize(c, near, strlen(near)), expected);
+}
+
+void scn_fail_tok(scn_ctx *c, const char *what, const char *expected)
+{
+    scn_fail(c, c->tok.pos, scn_near(c, &c->tok), what, expected);
+}
+
+/* ------------------------------------------------------------------ files */
+
+/* reads a whole file into the arena; -1 if it cannot, -2 if it is too large */
+static int read_file(scn_ctx *c, const char *path, const char **text, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    char *buf = malloc(SCN_MAX_SRC + 1);
+    size_t n = buf ? fread(buf, 1, SCN_MAX_SRC + 1, f) : 0;
+    int bad = !buf || ferror(f);
+    fclose(f);
+    if (bad || n > SCN_MAX_SRC) {
+        free(buf);
+        return bad ? -1 : -2;
+    }
+    *text = scn_strndup(c, buf, n);
+    *len = n;
+    free(buf);
+    return 0;
+}
+
+/* registers a source and starts reading it at its first character */
+static int add_file(scn_ctx *c, const char *path, const char *real, const char *text,
+                    size_t len)
+{
+    scn_file *f = &c->files[c->nfiles];
+    f->path = path, f->real = real, f->text = text, f->len = len;
+    scn_lexer *l = &c->lx[c->depth];
+    l->file = c->nfiles++, l->off = 0, l->line = 1, l->col = 1;
+    return 0;
+}
+
+static const char *resolve(scn_ctx *c, const char *path)
+{
+    char *r = realpath(path, NULL);
+    const char *out = scn_strndup(c, r ? r : path, strlen(r ? r : path));
+    free(r);
+    return out;
+}
+
+int scn_open_main(scn_ctx *c, const char *path, const char *text, size_t len)
+{
+    scn_pos at = {0, 1, 1};
+    c->depth = 0;
+    if (!text) {
+        int r = read_file(c, path, &text, &len);
+        if (r < 0) {
+            c->files[0].path = path, c->nfiles = 1; /* for the message */
+            scn_fail(c, at, path, r == -2 ? "scene file too large" : "cannot read the scene file",
+                     r == -2 ? "at most 1 MiB" : "a readable file");
+            return -1;
+        }
+    } else if (len > SCN_MAX_SRC) {
+        c->files[0].path = path, c->nfiles = 1;
+        scn_fail(c, at, path, "scene file too large", "at most 1 MiB");
+        return -1;
+    }
+    add_file(c, path, c->sandbox ? path : resolve(c, path), text, len);
+    scn_next(c);
+    return c->err ? -1 : 0;
+}
+
+/* the includer's directory joined with name (name as is when absolute) */
+static const char *beside(scn_ctx *c, const char *includer, const char *name)
+{
+    const char *slash = strrchr(includer, '/');
+    if (name[0] == '/' || !slash)
+        return name;
+    return scn_fmt(c, "%.*s/%s", (int)(slash - includer), includer, name);
+}
+
+/* the first existing file among: beside the includer, then the -I directories */
+static const char *find_include(scn_ctx *c, const char *name)
+{
+    const char *p = beside(c, c->files[c->lx[c->depth].file].path, name);
+    FILE *f;
+    for (int i = -1; i < (int)c->nincdirs; i++) {
+        if (i >= 0 && name[0] != '/')
+            p = scn_fmt(c, "%s/%s", c->incdirs[i], name);
+        if ((f = fopen(p, "rb")) != NULL) {
+            fclose(f);
+            return p;
+        }
+    }
+    return NULL;
+}
+
+int scn_push_include(scn_ctx *c, const char *name, scn_pos pos)
+{
+    const char *near = scn_fmt(c, "\"%s\"", name);
+    if (c->depth >= SCN_MAX_DEPTH || c->nfiles >= SCN_MAX_FILES) {
+        scn_fail(c, pos, near, "includes nested too deeply or too many files",
+                 "at most 16 levels and 64 files");
+        return -1;
+    }
+    const char *path = c->sandbox || !name[0] ? NULL : find_include(c, name);
+    if (!path) {
+        scn_fail(c, pos, near, "include file not found",
+                 "a file beside the including file or in a -I directory");
+        return -1;
+    }
+    const char *real = resolve(c, path);
+    for (int d = 0; d <= c->depth; d++)
+        if (strcmp(c->files[c->lx[d].file].real, real) == 0) {
+            scn_fail(c, pos, near, "recursive include",
+                     scn_fmt(c, "a file not already being read (%s includes itself)",
+                             c->files[c->lx[d].file].path));
+            return -1;
+        }
+    const char *text;
+    size_t len;
+    int r = read_file(c, path, &text, &len);
+    if (r < 0) {
+        scn_fail(c, pos, near, r == -2 ? "include file too large" : "cannot read include file",
+                 r == -2 ? "at most 1 MiB" : "a readable file");
+        return -1;
+    }
+    c->depth++;
+    add_file(c, path, real, text, len);
+    scn_next(c);
+    return c->err ? -1 : 0;
+}
+
+void scn_pop_include(scn_ctx *c)
+{
+    if (c->depth > 0)
+        c->depth--;
+    scn_next(c);
+}
+
+/* ------------------------------------------------------------------ characters */
+
+static int at(const scn_ctx *c, size_t k)
+{
+    const scn_lexer *l = &c->lx[c->depth];
+    const scn_file *f = &c->files[l->file];
+    return l->off + k < f->len ? (unsigned char)f->text[l->off + k] : -1;
+}
+
+static void adv(scn_ctx *c)
+{
+    scn_lexer *l = &c->lx[c->depth];
+    if (at(c, 0) == '\n')
+        l->line++, l->col = 1;
+    else
+        l->col++;
+    l->off++;
+}
+
+static scn_pos here(const scn_ctx *c)
+{
+    const scn_lexer *l = &c->lx[c->depth];
+    return (scn_pos){l->file, l->line, l->col};
+}
+
+static const char *cur(const scn_ctx *c)
+{
+    const scn_lexer *l = &c->lx[c->depth];
+    return c->files[l->file].text + l->off;
+}
+
+static int is_alpha(int ch) { return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || ch == '_'; }
+static int is_digit(int ch) { return ch >= '0' && ch <= '9'; }
+
+/* blanks and comments; an unterminated block comment is an error at its start */
+static void skip_blank(scn_ctx *c)
+{
+    for (;;) {
+        int ch = at(c, 0);
+        if (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r' || ch == '\f' || ch == '\v') {
+            adv(c);
+        } else if (ch == '/' && at(c, 1) == '/') {
+            while (at(c, 0) >= 0 && at(c, 0) != '\n')
+                adv(c);
+        } else if (ch == '/' && at(c, 1) == '*') {
+            scn_pos start = here(c);
+            adv(c), adv(c);
+            while (at(c, 0) >= 0 && !(at(c, 0) == '*' && at(c, 1) == '/'))
+                adv(c);
+            if (at(c, 0) < 0) {
+                scn_fail(c, start, "/*", "unterminated comment", "'*/' before the end of the file");
+                return;
+            }
+            adv(c), adv(c);
+        } else {
+            return;
+        }
+    }
+}
+
+/* ------------------------------------------------------------------ tokens */
+
+static void lex_name(scn_ctx *c, scn_tok *t)
+{
+    while (is_alpha(at(c, 0)) || is_digit(at(c, 0)))
+        adv(c);
+    t->kind = SCN_T_ID;
+    t->rawlen = (uint32_t)(cur(c) - t->raw);
+    t->s = scn_strndup(c, t->raw, t->rawlen);
+    if (t->rawlen > SCN_MAX_NAME)
+        scn_fail(c, t->pos, t->s, "name too long", "at most 63 characters");
+}
+
+/* digits [. digits] [e [+-] digits], not followed by a letter, digit or '.' */
+static void lex_number(scn_ctx *c, scn_tok *t)
+{
+    int bad = 0;
+    while (is_digit(at(c, 0)))
+        adv(c);
+    if (at(c, 0) == '.') {
+        adv(c);
+        while (is_digit(at(c, 0)))
+            adv(c);
+    }
+    if (at(c, 0) == 'e' || at(c, 0) == 'E') {
+        int k = (at(c, 1) == '+' || at(c, 1) == '-') ? 2 : 1;
+        if (is_digit(at(c, k))) {
+            for (int i = 0; i < k; i++)
+                adv(c);
+            while (is_digit(at(c, 0)))
+                adv(c);
+        }
+    }
+    while (is_alpha(at(c, 0)) || is_digit(at(c, 0)) || at(c, 0) == '.')
+        adv(c), bad = 1;
+    t->kind = SCN_T_NUM;
+    t->rawlen = (uint32_t)(cur(c) - t->raw);
+    const char *text = scn_strndup(c, t->raw, t->rawlen);
+    if (bad || t->rawlen > 400) {
+        scn_fail(c, t->pos, text, "bad number",
+                 "a decimal number such as 2, 0.5 or 1e-3 (a unit follows after a space)");
+        return;
+    }
+    errno = 0;
+    t->num = strtod(text, NULL);
+    if (errno == ERANGE && (t->num > 1 || t->num < -1))
+        scn_fail(c, t->pos, text, "number out of range", "a finite double");
+}
+
+/* "text" with the escapes \" and \\ */
+static void lex_string(scn_ctx *c, scn_tok *t)
+{
+    adv(c);
+    size_t n = 0;
+    char *buf = scn_alloc(c, 256);
+    for (;;) {
+        int ch = at(c, 0);
+        if (ch < 0 || ch == '\n') {
+            scn_fail(c, t->pos, "\"", "unterminated string", "a closing '\"' on the same line");
+            return;
+        }
+        adv(c);
+        if (ch == '"')
+            break;
+        if (ch == '\\') {
+            ch = at(c, 0);
+            if (ch != '"' && ch != '\\') {
+                scn_fail(c, here(c), "\\", "bad escape in string", "\\\" or \\\\");
+                return;
+            }
+            adv(c);
+        }
+        if (n >= 255) {
+            scn_fail(c, t->pos, "\"", "string too long", "at most 255 characters");
+            return;
+        }
+        buf[n++] = (char)ch;
+    }
+    t->kind = SCN_T_STR;
+    t->s = buf;
+    t->rawlen = (uint32_t)(cur(c) - t->raw);
+}
+
+static void lex_op(scn_ctx *c, scn_tok *t)
+{
+    static const char *const two[] = {"<=", ">=", "==", "!=", "&&", "||"};
+    static const char one[] = "(){}[],;.=+-*/^<>!?:";
+    int a = at(c, 0), b = at(c, 1);
+    for (size_t i = 0; i < sizeof two / sizeof two[0]; i++)
+        if (a == two[i][0] && b == two[i][1]) {
+            t->op[0] = (char)a, t->op[1] = (char)b;
+            adv(c), adv(c);
+            t->kind = SCN_T_OP, t->rawlen = 2;
+            return;
+        }
+    if (a > 0 && strchr(one, a)) {
+        t->op[0] = (char)a;
+        adv(c);
+        t->kind = SCN_T_OP, t->rawlen = 1;
+        return;
+    }
+    t->rawlen = 1;
+    scn_fail(c, t->pos, sanitize(c, t->raw, 1), "unexpected character",
+             "a name, a number, a string or one of ( ) { } [ ] , ; . = + - * / ^ < > ! ? :");
+}
+
+void scn_next(scn_ctx *c)
+{
+    scn_tok *t = &c->tok;
+    memset(t, 0, sizeof *t);
+    if (c->err || c->nfiles == 0) {
+        t->raw = "";
+        return; /* after an error the stream ends, so every loop terminates */
+    }
+    skip_blank(c);
+    t->pos = here(c);
+    t->raw = cur(c);
+    if (c->err)
+        return;
+    int ch = at(c, 0);
+    if (ch < 0)
+        t->kind = SCN_T_EOF;
+    else if (is_alpha(ch))
+        lex_name(c, t);
+    else if (is_digit(ch) || (ch == '.' && is_digit(at(c, 1))))
+        lex_number(c, t);
+    else if (ch == '"')
+        lex_string(c, t);
+    else
+        lex_op(c, t);
+    if (c->err)
+        t->kind = SCN_T_EOF;
+}

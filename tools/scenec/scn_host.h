@@ -1,0 +1,15 @@
+/* scn_host.h - scene files for hosts: what the modrt CLI calls so that `modrt run FILE.scn`
+ * and `modrt info FILE.scn` compile a scene file in host memory and run it directly, its
+ * defined systems evaluated by the scene compiler's bytecode interpreter. */
+#ifndef SCN_HOST_H
+#define SCN_HOST_H
+
+#include "rt.h"
+
+/* Does the command-line argument name a scene file (it ends in ".scn")? */
+int scn_host_is_file(const char *arg);
+/* Compiles the scene file at path into host memory; returns the scene (valid until the
+   process ends), or NULL after printing "modrt: FILE:LINE:COL: error: ..." to stderr. */
+const rt_scene *scn_host_load(const char *path);
+
+#endif /* SCN_HOST_H */

@@ -1,0 +1,100 @@
+/* vm.c - the expression VM of the host interpreter (`modrt run FILE.scn`): runs the
+ * service programs of defined systems on a small stack of real_t. Each operation is the
+ * one emit.c prints as C, in the same order, so an interpreted scene and its compiled
+ * form compute the same bits. */
+#include "scn.h"
+
+/* a binary operation on the two top operands */
+static real_t binop(uint8_t op, real_t a, real_t b)
+{
+    switch (op) {
+    case SCN_OP_ADD: return a + b;
+    case SCN_OP_SUB: return a - b;
+    case SCN_OP_MUL: return a * b;
+    case SCN_OP_DIV: return a / b;
+    case SCN_OP_LT: return a < b ? (real_t)1 : (real_t)0;
+    case SCN_OP_LE: return a <= b ? (real_t)1 : (real_t)0;
+    case SCN_OP_GT: return a > b ? (real_t)1 : (real_t)0;
+    case SCN_OP_GE: return a >= b ? (real_t)1 : (real_t)0;
+    case SCN_OP_EQ: return a == b ? (real_t)1 : (real_t)0;
+    case SCN_OP_NE: return a != b ? (real_t)1 : (real_t)0;
+    case SCN_OP_AND: return a != 0 && b != 0 ? (real_t)1 : (real_t)0;
+    default: return a != 0 || b != 0 ? (real_t)1 : (real_t)0; /* SCN_OP_OR */
+    }
+}
+
+/* the value an operand instruction pushes */
+static real_t operand(const scn_prog *p, const scn_ins *in, const rt_args *a,
+                      const real_t *loc)
+{
+    switch (in->op) {
+    case SCN_OP_CONST: return p->k[in->a];
+    case SCN_OP_TIME: return a->t;
+    case SCN_OP_STEP: return a->h;
+    case SCN_OP_IN: return a->u[in->a];
+    case SCN_OP_PAR: return a->p[in->a];
+    case SCN_OP_STATE: return a->x[in->a];
+    case SCN_OP_DSTATE: return a->d[in->a];
+    default: return loc[in->a]; /* SCN_OP_LOC */
+    }
+}
+
+/* a dispatch loop over the program: operands push, operations replace the top */
+static void run(const scn_prog *p, const rt_args *a, real_t *out)
+{
+    real_t st[SCN_MAX_STACK + 1], loc[SCN_MAX_LOCALS];
+    uint32_t sp = 0;
+    for (uint32_t i = 0; i < p->n; i++) {
+        const scn_ins *in = &p->ins[i];
+        const scn_fn *f;
+        switch (in->op) {
+        case SCN_OP_NEG:
+            st[sp - 1] = -st[sp - 1];
+            break;
+        case SCN_OP_NOT:
+            st[sp - 1] = st[sp - 1] == 0 ? (real_t)1 : (real_t)0;
+            break;
+        case SCN_OP_SEL:
+            sp -= 2;
+            st[sp - 1] = st[sp - 1] != 0 ? st[sp] : st[sp + 1];
+            break;
+        case SCN_OP_CALL:
+            f = &scn_fns[in->a];
+            if (f->nargs == 1) {
+                st[sp - 1] = f->f1(st[sp - 1]);
+            } else {
+                sp--;
+                st[sp - 1] = f->f2(st[sp - 1], st[sp]);
+            }
+            break;
+        case SCN_OP_OUT:
+            out[in->a] = st[--sp];
+            break;
+        case SCN_OP_SETLOC:
+            loc[in->a] = st[--sp];
+            break;
+        default:
+            if (in->op <= SCN_OP_LOC) {
+                st[sp++] = operand(p, in, a, loc);
+            } else {
+                sp--;
+                st[sp - 1] = binop(in->op, st[sp - 1], st[sp]);
+            }
+        }
+    }
+}
+
+void scn_vm_output(const rt_args *a, real_t *y)
+{
+    run(&((const scn_vm_spec *)a->spec)->out, a, y);
+}
+
+void scn_vm_deriv(const rt_args *a, real_t *xdot)
+{
+    run(&((const scn_vm_spec *)a->spec)->der, a, xdot);
+}
+
+void scn_vm_update(const rt_args *a, real_t *dnext)
+{
+    run(&((const scn_vm_spec *)a->spec)->upd, a, dnext);
+}
