@@ -11,14 +11,17 @@
  * Jyy, Jzz, Jxy, Jyz, Jxz [kg m^2] (tensor entries), gravity gx, gy, gz [m/s^2], node
  * offsets n1x.. n2z [m]. Two kinds: mbs_body (gravity only) and mbs_bodyf (inputs: force
  * fx, fy, fz [N] at the centre of mass, inertial frame; torque tx, ty, tz [N m], body
- * frame). Outputs: position, velocity, body angular velocity. */
+ * frame). Outputs: position and velocity of the centre of mass, body angular velocity,
+ * position and velocity of nodes n1 and n2. */
 #include "models.h"
 
 enum { P_M = 0, P_J = 1, P_G = 7, P_N1 = 10, P_N2 = 13, NP = 16 };
 
 static const char *const x_names[] = {"x", "y", "z", "p0", "p1", "p2", "p3",
                                       "vx", "vy", "vz", "wx", "wy", "wz"};
-static const char *const y_names[] = {"x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz"};
+static const char *const y_names[] = {"x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz",
+                                      "n1x", "n1y", "n1z", "n1vx", "n1vy", "n1vz",
+                                      "n2x", "n2y", "n2z", "n2vx", "n2vy", "n2vz"};
 static const char *const p_names[] = {"m", "Jxx", "Jyy", "Jzz", "Jxy", "Jyz", "Jxz",
                                       "gx", "gy", "gz", "n1x", "n1y", "n1z",
                                       "n2x", "n2y", "n2z"};
@@ -171,10 +174,17 @@ static void normalize(real_t *q)
             q[i] /= n;
 }
 
+/* centre of mass, body angular velocity, and nodes n1, n2 (position, velocity) */
 static void output(const rt_args *a, real_t *y)
 {
-    for (int i = 0; i < 3; i++)
+    rt_mbs_node n1, n2;
+    node(a, 1, &n1, 0);
+    node(a, 2, &n2, 0);
+    for (int i = 0; i < 3; i++) {
         y[i] = a->x[i], y[3 + i] = a->x[7 + i], y[6 + i] = a->x[10 + i];
+        y[9 + i] = n1.r[i], y[12 + i] = n1.v[i];
+        y[15 + i] = n2.r[i], y[18 + i] = n2.v[i];
+    }
 }
 
 /* m > 0 and J positive definite (leading minors), everything finite */
@@ -202,13 +212,13 @@ static const rt_mbs_spec spec_u = {
 };
 
 const rt_kind mdl_mbs_body_kind = {
-    .name = "mbs_body", .type = RT_KIND_MBS, .ny = 9, .nx = 13, .np = NP,
+    .name = "mbs_body", .type = RT_KIND_MBS, .ny = 21, .nx = 13, .np = NP,
     .y_names = y_names, .x_names = x_names, .p_names = p_names, .p_default = p_default,
     .x_default = x_default, .feed = RT_FEED_NONE, .check = check, .output = output,
     .spec = &spec,
 };
 const rt_kind mdl_mbs_bodyf_kind = {
-    .name = "mbs_bodyf", .type = RT_KIND_MBS, .nu = 6, .ny = 9, .nx = 13, .np = NP,
+    .name = "mbs_bodyf", .type = RT_KIND_MBS, .nu = 6, .ny = 21, .nx = 13, .np = NP,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default, .feed = RT_FEED_NONE, .check = check,
     .output = output, .spec = &spec_u,

@@ -52,7 +52,8 @@ enum { MDL_MBS_POINT_X = 0, MDL_MBS_POINT_Y, MDL_MBS_POINT_Z };
 /* spatial rigid body with a unit quaternion, nodes "cm", "n1", "n2"
    (mbs_bodyf: inputs force fx fy fz, body torque tx ty tz) */
 extern const rt_kind mdl_mbs_body_kind, mdl_mbs_bodyf_kind;
-enum { MDL_MBS_BODY_P_N1 = 10, MDL_MBS_BODY_P_N2 = 13 };
+enum { MDL_MBS_BODY_P_N1 = 10, MDL_MBS_BODY_P_N2 = 13 };     /* node offsets (parameters) */
+enum { MDL_MBS_BODY_Y_N1 = 9, MDL_MBS_BODY_Y_N2 = 15 };      /* node x y z vx vy vz (outputs) */
 /* two mass points joined by an internal rod (an internal constraint), nodes "p1", "p2" */
 extern const rt_kind mdl_mbs_dumbbell_kind;
 

@@ -21,6 +21,9 @@ void rti_gather(rt_sim *sim, uint16_t b)
         case RT_SRC_TORN:
             u[i] = sim->torn_val[src[i]];
             break;
+        case RT_SRC_XSET:
+            u[i] = rti_xset_value(sim, src[i], sim->src_set[i], sim->interp[i], sim->t_now);
+            break;
         default:
             u[i] = sim->def[i];
             break;
@@ -49,21 +52,32 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t, r
 void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, real_t t,
                    rti_mode mode)
 {
+    sim->t_now = t;
     for (uint16_t s = begin; s < end; s++)
         call_output(sc, sim, sim->seq[s].index, t, mode);
 }
 
+/* is block b evaluated in the pass under way (its set, or every set)? */
+static int in_pass(const rt_scene *sc, const rt_sim *sim, uint16_t b)
+{
+    return sim->set_now == RT_ALL_SETS || sc->blocks[b].set == sim->set_now;
+}
+
 void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode)
 {
+    sim->t_now = t;
     for (uint16_t s = 0; s < sim->nseq; s++) {
         const rt_seq_step *st = &sim->seq[s];
         if (st->kind == RT_SEQ_CALL) {
-            call_output(sc, sim, st->index, t, mode);
+            if (in_pass(sc, sim, st->index))
+                call_output(sc, sim, st->index, t, mode);
             continue;
         }
-        /* an actual loop: the solver runs its segment until the torn inputs agree */
+        /* an actual loop (all in one set: cross-set edges are no algebraic
+           dependency): the solver runs its segment until the torn inputs agree */
         const rt_loop *l = &sim->loops[st->index];
-        sc->loop_solver->solve(sc, sim, (uint8_t)st->index, t, mode);
+        if (in_pass(sc, sim, sim->loop_blocks[l->first]))
+            sc->loop_solver->solve(sc, sim, (uint8_t)st->index, t, mode);
         s = (uint16_t)(l->seq1 - 1);
     }
 }
@@ -71,6 +85,7 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode)
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r)
 {
     uint16_t n = 0;
+    sim->t_now = t;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
         if (k->nr == 0 || sc->blocks[b].set != s)
@@ -90,6 +105,7 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     rt_sim *sim = c->sim;
     uint16_t base = sim->set_x[c->set];
 
+    sim->set_now = c->set;
     rti_outputs(sc, sim, t, RTI_IN_STEP);
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;

@@ -152,8 +152,12 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
 {
     uint16_t nu = sim->u_off[sc->nblocks];
     rt_status st;
-    for (uint16_t i = 0; i < nu; i++)
+    for (uint16_t i = 0; i < nu; i++) {
         sim->src_kind[i] = 0xFF, sim->src[i] = 0, sim->def[i] = 0, sim->u[i] = 0;
+        sim->interp[i] = 0, sim->src_set[i] = 0;
+    }
+    for (uint16_t v = 0; v < sim->y_off[sc->nblocks]; v++)
+        sim->xsrc[v] = 0;
     for (uint16_t c = 0; c < sc->nconns; c++)
         if ((st = route_conn(sc, sim, &sc->conns[c])) != RT_OK)
             return st;
@@ -251,10 +255,14 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     for (uint8_t s = 0; s < RT_MAX_SETS; s++) {
         sim->imp[s].valid = 0, sim->imp[s].age = 0, sim->imp[s].h_factored = 0;
         sim->istats[s] = (rt_istats){0, 0, 0, 0};
+        sim->set_tick[s] = 0, sim->hist_n[s] = 0, sim->set_xout[s] = 0;
+        sim->xset_err[s] = 0, sim->sched[s] = s;
     }
+    sim->set_now = RT_ALL_SETS;
+    sim->t_now = 0;
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
-        (st = rti_order(sc, sim)) != RT_OK)
+        (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK)
         return st;
     if (sc->mbs && (st = (rt_status)sc->mbs->init(sc, sim)) != RT_OK)
         return st;

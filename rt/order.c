@@ -43,8 +43,9 @@ static int port_next(const void *ctx, uint16_t v, uint32_t *cursor)
         if (cn->from != a || cn->y != ya)
             continue;
         const rt_kind *k = sc->blocks[cn->to].kind;
-        if (g->sim->src_kind[g->sim->u_off[cn->to] + cn->u] == RT_SRC_TORN)
-            j = k->ny; /* a torn input no longer carries the edge */
+        uint8_t src = g->sim->src_kind[g->sim->u_off[cn->to] + cn->u];
+        if (src == RT_SRC_TORN || src == RT_SRC_XSET)
+            j = k->ny; /* a torn or cross-set input carries no algebraic edge */
         for (; j < k->ny; j++) {
             if (rti_feeds(k, (uint16_t)j, cn->u)) {
                 *cursor = (c << 16) | (j + 1);
@@ -63,8 +64,8 @@ static int block_next(const void *ctx, uint16_t v, uint32_t *cursor)
     const graph_ctx *g = ctx;
     while (*cursor < g->sc->nconns) {
         const rt_conn *cn = &g->sc->conns[(*cursor)++];
-        if (cn->from == v)
-            return cn->to;
+        if (cn->from == v && g->sc->blocks[cn->from].set == g->sc->blocks[cn->to].set)
+            return cn->to; /* across sets a signal is sampled, so it closes no loop */
     }
     return -1;
 }

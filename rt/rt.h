@@ -230,6 +230,22 @@ typedef struct rt_block {
     real_t ts;             /* sample period of a DSS block [s]: a multiple of the base tick */
 } rt_block;
 
+/* How a signal that crosses from one set to another is reconstructed between the
+ * source set's communication points (multirate, rt/xset.c). Errors in the macro step H:
+ * hold O(H), linear extrapolation O(H^2), linear interpolation O(H^2), Hermite O(H^3).
+ * Interpolation needs the source set to have stepped first: the schedule runs the
+ * slowest set first, so a fast set interpolates a slow one and a slow set extrapolates
+ * a fast one (an interpolating scheme falls back to extrapolation there). */
+typedef enum {
+    RT_INTERP_SET = 0,     /* on a connection: the destination set's scheme */
+    RT_INTERP_HOLD,        /* the value at the last communication point */
+    RT_INTERP_EXTRAP,      /* linear extrapolation from the last two points */
+    RT_INTERP_LINEAR,      /* linear interpolation between the points around t */
+    RT_INTERP_HERMITE,     /* cubic Hermite on the points around t, slopes from the
+                              parabola through the last three points */
+    RT_INTERP_COUNT
+} rt_interp;
+
 /* One connection of the incidence y = P u (eq. 2): output port -> input port. */
 typedef struct rt_conn {
     uint16_t from, y;      /* source block index, its output index */
@@ -247,6 +263,7 @@ typedef struct rt_set {
     const char *name;
     const rt_integrator *method;
     uint32_t ratio;        /* step = ratio * base tick */
+    uint8_t interp;        /* rt_interp of its inputs from other sets (0: hold) */
     rt_implicit_cfg implicit; /* settings of an implicit method; zeros: defaults */
 } rt_set;
 
@@ -270,6 +287,8 @@ typedef struct rt_scene {
     uint16_t nblocks;
     const rt_conn *conns;
     uint16_t nconns;
+    const uint8_t *conn_interp;   /* nconns rt_interp values for connections across sets;
+                                     NULL (or RT_INTERP_SET): the destination set's */
     const rt_default *defaults;
     uint16_t ndefaults;
     const rt_set *sets;
@@ -308,7 +327,8 @@ typedef struct rt_scene_entry {
 typedef enum {
     RT_SRC_Y = 0,      /* an output: y[src] */
     RT_SRC_DEFAULT,    /* the scene's constant: def[i] */
-    RT_SRC_TORN        /* a torn loop input: the solver's unknown torn_val[src] */
+    RT_SRC_TORN,       /* a torn loop input: the solver's unknown torn_val[src] */
+    RT_SRC_XSET        /* an output of another set, reconstructed from its history */
 } rt_src_kind;
 
 /* One entry of the evaluation sequence. */
@@ -362,6 +382,8 @@ typedef struct rt_scc_work {
     uint16_t last[RT_MAX_BLOCKS];  /* sequence position of a block's last call */
 } rt_scc_work;
 
+#define RT_ALL_SETS 0xFF
+
 /* The mutable state of one running scene. The caller owns it (static storage);
  * rt_init fills every field. Sizes are the compile-time limits of rt_config.h. */
 typedef struct rt_sim {
@@ -400,6 +422,21 @@ typedef struct rt_sim {
     real_t loop_residual;            /* largest residual left by a solve that failed */
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];
+
+    /* multirate (rt/xset.c): schedule, set clocks and cross-set signal history */
+    uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
+    uint64_t set_tick[RT_MAX_SETS];  /* tick each set's state belongs to */
+    uint8_t set_now;                 /* set being evaluated (RT_ALL_SETS: every set) */
+    real_t t_now;                    /* time of the evaluation under way [s] */
+    uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
+    uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
+    uint8_t set_xout[RT_MAX_SETS];   /* 1: the set has outputs read by other sets */
+    real_t xset_err[RT_MAX_SETS];    /* monitor: largest change of a set's cross-set
+                                        outputs against their linear extrapolation */
+    uint8_t xsrc[RT_MAX_Y];          /* 1: output read by another set (keeps history) */
+    real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
+    uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
+    real_t hist_y[RT_HIST][RT_MAX_Y];/* cross-set outputs at those times */
 
     /* values */
     real_t x[RT_MAX_X];              /* continuous state */

@@ -65,6 +65,9 @@ typedef double real_t;
 #define RT_MAX_STAGES 7 /* Runge-Kutta stages (Dormand-Prince needs 7) */
 #endif
 
+/* ---- multirate (rt/xset.c) ---- */
+#define RT_HIST 3 /* communication points kept per cross-set signal (Hermite needs 3) */
+
 /* ---- multibody (rt/mbs.c) ---- */
 #ifndef RT_MAX_MBS_Z
 #define RT_MAX_MBS_Z 64 /* generalized velocities of the MBS blocks of one set */

@@ -61,6 +61,14 @@ typedef struct rti_rhs_ctx {
     real_t h;
 } rti_rhs_ctx;
 
+/* ---- multirate (xset.c) ---- */
+/* Marks inputs fed by another set, chooses their schemes, orders the schedule. */
+rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
+/* Pushes set s's outputs read by other sets, at time t, into their history. */
+void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
+/* Output v of set q reconstructed at time t by the scheme. */
+real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
+
 /* ---- set steps and events (step.c) ---- */
 /* Advances set s from t by its step h, handling state events; never stops half-way. */
 void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);

@@ -20,12 +20,26 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
     return -1;
 }
 
+/* outputs and roots of set s at the time of its state */
+static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    real_t ts = (real_t)sim->set_tick[s] * sc->dt;
+    sim->set_now = s;
+    rti_outputs(sc, sim, ts, sim->set_tick[s] == sim->tick ? RTI_AT_TICK : RTI_IN_STEP);
+    rti_roots(sc, sim, s, ts, sim->r + sim->set_r[s]);
+}
+
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
-    real_t t = rt_time(sc, sim);
-    rti_outputs(sc, sim, t, RTI_AT_TICK);
-    for (uint8_t s = 0; s < sc->nsets; s++)
-        rti_roots(sc, sim, s, t, sim->r + sim->set_r[s]);
+    for (uint8_t i = 0; i < sc->nsets; i++)
+        refresh_set(sc, sim, sim->sched[i]);
+    /* before the first tick the history starts afresh (parameters may have changed) */
+    if (sim->tick == 0)
+        for (uint8_t s = 0; s < sc->nsets; s++) {
+            sim->hist_n[s] = 0;
+            rti_xset_push(sc, sim, s, 0);
+        }
+    sim->set_now = RT_ALL_SETS;
     return RT_OK;
 }
 
@@ -38,6 +52,8 @@ static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
             continue;
         real_t next[RT_MAX_D];
         rt_args a;
+        sim->set_now = sc->blocks[b].set;
+        sim->t_now = t;
         rti_gather(sim, b);
         rti_args(sc, sim, b, t, sc->dt * (real_t)sim->period[b], &a);
         k->update(&a, next);
@@ -52,11 +68,21 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
         return RT_E_DONE;
     real_t t = rt_time(sc, sim);
     discrete_updates(sc, sim, t);
-    /* fixed schedule: a set steps when the tick count is a multiple of its ratio */
-    for (uint8_t s = 0; s < sc->nsets; s++) {
+    /* fixed schedule: a set steps when the tick count is a multiple of its ratio,
+       slowest first (rt/xset.c), and publishes its outputs for the other sets */
+    for (uint8_t i = 0; i < sc->nsets; i++) {
+        uint8_t s = sim->sched[i];
         uint32_t ratio = sc->sets[s].ratio;
-        if (sim->tick % ratio == 0)
-            rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
+        if (sim->tick % ratio != 0)
+            continue;
+        sim->set_now = s;
+        rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
+        sim->set_tick[s] = sim->tick + ratio;
+        if (sim->set_xout[s]) {
+            real_t ts = (real_t)sim->set_tick[s] * sc->dt;
+            rti_outputs(sc, sim, ts, RTI_IN_STEP);
+            rti_xset_push(sc, sim, s, ts);
+        }
     }
     sim->tick++;
     rt_refresh(sc, sim);

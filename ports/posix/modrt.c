@@ -93,6 +93,50 @@ static void info_wiring(const rt_scene *sc)
                (unsigned)sc->sets[s].ratio, (double)sc->dt);
 }
 
+static const char *interp_name(uint8_t i)
+{
+    static const char *const names[] = {"set", "hold", "extrap", "linear", "hermite"};
+    return i < RT_INTERP_COUNT ? names[i] : "?";
+}
+
+static uint32_t gcd(uint32_t a, uint32_t b)
+{
+    while (b) {
+        uint32_t r = a % b;
+        a = b, b = r;
+    }
+    return a;
+}
+
+/* the fixed schedule: step order within a tick, which sets step at which tick over one
+   period of the ratios (shown up to 24 ticks), and the signals that cross sets */
+static void info_schedule(const rt_scene *sc, const rt_sim *s)
+{
+    uint32_t period = 1; /* least common multiple of the ratios */
+    for (uint8_t i = 0; i < sc->nsets; i++)
+        period = period / gcd(period, sc->sets[i].ratio) * sc->sets[i].ratio;
+    printf("schedule: slowest first:");
+    for (uint8_t i = 0; i < sc->nsets; i++)
+        printf(" %s", sc->sets[s->sched[i]].name);
+    printf("; period %u ticks\n", (unsigned)period);
+    for (uint32_t k = 0; k < period && k < 24; k++) {
+        printf("  tick %2u:", (unsigned)k);
+        for (uint8_t i = 0; i < sc->nsets; i++)
+            if (k % sc->sets[s->sched[i]].ratio == 0)
+                printf(" %s", sc->sets[s->sched[i]].name);
+        putchar('\n');
+    }
+    for (uint16_t c = 0; c < sc->nconns; c++) {
+        const rt_conn *cn = &sc->conns[c];
+        uint16_t gi = (uint16_t)(s->u_off[cn->to] + cn->u);
+        if (s->src_kind[gi] != RT_SRC_XSET)
+            continue;
+        printf("  across sets: %s.%s -> %s.%s by %s\n", sc->blocks[cn->from].name,
+               sc->blocks[cn->from].kind->y_names[cn->y], sc->blocks[cn->to].name,
+               sc->blocks[cn->to].kind->u_names[cn->u], interp_name(s->interp[gi]));
+    }
+}
+
 /* a torn input as "From.y -> To.u" */
 static void print_torn(const rt_scene *sc, const rt_sim *s, uint16_t k)
 {
@@ -145,6 +189,7 @@ static int cmd_info(const char *name)
            (double)sc->dt, (double)sc->t_end);
     info_blocks(sc);
     info_wiring(sc);
+    info_schedule(sc, &sim);
     info_order(sc, &sim);
     printf("recorded:");
     for (uint16_t i = 0; i < sc->nrecs; i++)
@@ -190,6 +235,9 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
         fputc('\n', f);
     }
     fprintf(f, "event_iter_max: %u\n", (unsigned)s->event_iter_max);
+    for (uint8_t k = 0; k < sc->nsets; k++)
+        if (s->set_xout[k])
+            fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)s->xset_err[k]);
     if (s->ntorn > 0) {
         fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)s->loop_iter_max);
         for (uint32_t i = 0; i <= s->loop_iter_max; i++)

@@ -67,12 +67,16 @@ scn_name scn_expect_name(scn_ctx *c, const char *what)
     return n;
 }
 
-/* nesting guard of the recursive descent: 0 when too deep (and the error is set) */
+/* nesting guard of the recursive descent, taken at each parenthesis, call, prefix
+   operator, power and conditional: 0 when too deep (and the error is set); the caller
+   that got 1 decrements c->edepth when it returns */
 static int enter(scn_ctx *c)
 {
     if (++c->edepth <= SCN_MAX_EXPR_DEPTH)
         return 1;
-    scn_fail_tok(c, "expression nested too deeply", "at most 48 levels of nesting");
+    c->edepth--;
+    scn_fail_tok(c, "expression nested too deeply",
+                 "at most 64 nested parentheses, calls and operators");
     return 0;
 }
 
@@ -89,10 +93,12 @@ static double c_primary(scn_ctx *c)
     } else if (scn_is_word(c, "pi")) {
         v = RT_PI;
         scn_next(c);
-    } else if (scn_accept_op(c, "(")) {
+    } else if (scn_is_op(c, "(") && enter(c)) {
+        scn_next(c);
         v = c_sum(c);
         scn_expect_op(c, ")");
-    } else {
+        c->edepth--;
+    } else if (!c->err) {
         scn_fail_tok(c, "not a constant",
                      "a number, pi, + - * / or parentheses (a constant expression)");
     }
@@ -102,16 +108,15 @@ static double c_primary(scn_ctx *c)
 static double c_unary(scn_ctx *c)
 {
     double v = 0;
+    int neg = scn_is_op(c, "-");
+    if (!(neg || scn_is_op(c, "+")))
+        return c_primary(c);
     if (!enter(c))
         return 0;
-    if (scn_accept_op(c, "-"))
-        v = -c_unary(c);
-    else if (scn_accept_op(c, "+"))
-        v = c_unary(c);
-    else
-        v = c_primary(c);
+    scn_next(c);
+    v = c_unary(c);
     c->edepth--;
-    return v;
+    return neg ? -v : v;
 }
 
 static double c_product(scn_ctx *c)
@@ -128,17 +133,13 @@ static double c_product(scn_ctx *c)
 
 static double c_sum(scn_ctx *c)
 {
-    double v = 0;
-    if (!enter(c))
-        return 0;
-    v = c_product(c);
+    double v = c_product(c);
     while (!c->err && (scn_is_op(c, "+") || scn_is_op(c, "-"))) {
         int add = scn_is_op(c, "+");
         scn_next(c);
         double w = c_product(c);
         v = add ? v + w : v - w;
     }
-    c->edepth--;
     return v;
 }
 
@@ -352,15 +353,18 @@ static void primary(scn_ctx *c)
     } else if (c->tok.kind == SCN_T_ID) {
         scn_name n = {c->tok.s, c->tok.pos};
         scn_next(c);
-        if (scn_is_op(c, "(")) {
+        if (scn_is_op(c, "(") && enter(c)) {
             call(c, n);
+            c->edepth--;
         } else if (!(scn_is_op(c, "[") && indexed_ref(c, n))) {
             name_ref(c, n);
         }
-    } else if (scn_accept_op(c, "(")) {
+    } else if (scn_is_op(c, "(") && enter(c)) {
+        scn_next(c);
         expr(c);
         scn_expect_op(c, ")");
-    } else {
+        c->edepth--;
+    } else if (!c->err) {
         scn_fail_tok(c, "syntax error", "a number, a name, a function call or '('");
     }
 }
@@ -371,8 +375,10 @@ static void unary(scn_ctx *c);
 static void power(scn_ctx *c)
 {
     primary(c);
-    if (!c->err && scn_accept_op(c, "^")) {
+    if (!c->err && scn_is_op(c, "^") && enter(c)) {
+        scn_next(c);
         unary(c);
+        c->edepth--;
         uint16_t f = 0;
         while (strcmp(scn_fns[f].name, "pow") != 0) /* ^ means pow */
             f++;
@@ -382,19 +388,17 @@ static void power(scn_ctx *c)
 
 static void unary(scn_ctx *c)
 {
+    int neg = scn_is_op(c, "-"), not = scn_is_op(c, "!");
+    if (!(neg || not || scn_is_op(c, "+"))) {
+        power(c);
+        return;
+    }
     if (!enter(c))
         return;
-    if (scn_accept_op(c, "-")) {
-        unary(c);
-        emit(c, SCN_OP_NEG, 0, 0);
-    } else if (scn_accept_op(c, "!")) {
-        unary(c);
-        emit(c, SCN_OP_NOT, 0, 0);
-    } else if (scn_accept_op(c, "+")) {
-        unary(c);
-    } else {
-        power(c);
-    }
+    scn_next(c);
+    unary(c);
+    if (neg || not)
+        emit(c, neg ? SCN_OP_NEG : SCN_OP_NOT, 0, 0);
     c->edepth--;
 }
 
@@ -439,16 +443,15 @@ static void binary(scn_ctx *c, size_t lv)
 /* cond ? a : b, right-associative */
 static void expr(scn_ctx *c)
 {
-    if (!enter(c))
-        return;
     binary(c, 0);
-    if (!c->err && scn_accept_op(c, "?")) {
+    if (!c->err && scn_is_op(c, "?") && enter(c)) {
+        scn_next(c);
         expr(c);
         scn_expect_op(c, ":");
         expr(c);
         emit(c, SCN_OP_SEL, 0, -2);
+        c->edepth--;
     }
-    c->edepth--;
 }
 
 /* ------------------------------------------------------------------ body statements */

@@ -236,7 +236,7 @@ int scn_push_include(scn_ctx *c, const char *name, scn_pos pos)
     for (int d = 0; d <= c->depth; d++)
         if (strcmp(c->files[c->lx[d].file].real, real) == 0) {
             scn_fail(c, pos, near, "recursive include",
-                     scn_fmt(c, "a file not already being read (%s includes itself)",
+                     scn_fmt(c, "a file not already open in the chain of includes (%s is)",
                              c->files[c->lx[d].file].path));
             return -1;
         }

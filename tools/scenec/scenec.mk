@@ -38,6 +38,7 @@ scenes: $(SCN_GEN_SRCS)
 # modrt reads scene files through host.c; its include of scn_host.h finds tools/scenec
 $(O)/modrt: $(SCN_LIB_OBJS)
 $(call obj,ports/posix/modrt.c): CINC += -I$(SCN_DIR)
+$(O)/obj/tests/scenec/%.o: CINC += -I$(SCN_DIR)
 
 ifeq ($(O),build/host)
 $(SCENEC): $(call obj,$(SCN_DIR)/scenec.c) $(SCN_LIB_OBJS) $(RT_OBJS) $(SCN_MODEL_OBJS)
@@ -95,7 +96,8 @@ build/fuzz/scenec-fuzz: $(SCN_FUZZ_SRCS) tests/scenec/fuzz_main.c $(wildcard $(S
 	@if echo 'int LLVMFuzzerTestOneInput(const char*d,long n){(void)d;(void)n;return 0;}' | \
 	    clang -x c -fsanitize=fuzzer - -o build/fuzz/probe 2>/dev/null; then \
 	  echo "fuzz: libFuzzer (clang -fsanitize=fuzzer,address,undefined)"; \
-	  clang $(SCN_FUZZ_FLAGS) -fsanitize=fuzzer,address,undefined $(SCN_FUZZ_SRCS) -o $@; \
+	  clang $(SCN_FUZZ_FLAGS) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+	    $(SCN_FUZZ_SRCS) -o $@; \
 	else \
 	  echo "fuzz: no libFuzzer; the mutation loop of tests/scenec/fuzz_main.c with ASan+UBSan"; \
 	  $(CC) $(SCN_FUZZ_FLAGS) -fsanitize=address,undefined -fno-sanitize-recover=all \

@@ -31,7 +31,7 @@
 #define SCN_MAX_DEPTH 16        /* include nesting */
 #define SCN_MAX_SRC (1u << 20)  /* bytes of one source file */
 #define SCN_MAX_NAME 63         /* characters of a name */
-#define SCN_MAX_EXPR_DEPTH 48   /* nesting of one expression */
+#define SCN_MAX_EXPR_DEPTH 64   /* nested parentheses, calls and operators */
 #define SCN_MAX_STACK 64        /* VM operand stack of one expression */
 #define SCN_MAX_DEFINES 32      /* define statements */
 #define SCN_MAX_PORTS 64        /* inputs, outputs, parameters or states of one define */

@@ -62,7 +62,7 @@ static void set_ratio(scn_ctx *c, scn_set *st)
     }
     st->ratio = ticks_of(st->step, s->dt, 1e-9);
     if (!st->ratio)
-        scn_fail(c, st->step_pos, scn_fmt(c, "%g", st->step),
+        scn_fail(c, st->step_pos, scn_fmt(c, "%g s", st->step),
                  "step is not a whole multiple of the base tick",
                  scn_fmt(c, "a multiple of %g s, or a step in ticks such as (2 ticks)", s->dt));
 }
@@ -222,7 +222,7 @@ static void period(scn_ctx *c, scn_block *b)
     int dss = b->kind->type == RT_KIND_DSS;
     scn_pos at = b->ts_pos;
     if (!dss && b->ts > 0) {
-        scn_fail(c, at, scn_fmt(c, "%g", b->ts), "period given for a system that is not discrete",
+        scn_fail(c, at, scn_fmt(c, "%g s", b->ts), "period given for a system that is not discrete",
                  "period (...) only for discrete (dss) systems");
         return;
     }
@@ -234,7 +234,7 @@ static void period(scn_ctx *c, scn_block *b)
         scn_fail(c, b->name.pos, b->name.s, "sample period missing",
                  "period (<time>) in its load statement or its define");
     else if (!ticks_of(b->ts, s->dt, 1e-6))
-        scn_fail(c, at, scn_fmt(c, "%g", b->ts), "sample period is not a whole multiple of the "
+        scn_fail(c, at, scn_fmt(c, "%g s", b->ts), "sample period is not a whole multiple of the "
                                                  "base tick",
                  scn_fmt(c, "a multiple of %g s", s->dt));
 }
