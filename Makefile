@@ -8,6 +8,8 @@
 REAL ?= double
 SAN ?= 0
 CC ?= gcc
+# parallel jobs of the sub-makes `make test` runs
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 ifeq ($(REAL),float)
 O ?= build/host-float
 else
@@ -35,13 +37,16 @@ CFLAGS_FREE = $(CFLAGS_ALL) -ffreestanding
 # ---- sources ----
 RT_SRCS     := $(wildcard rt/*.c)
 MODEL_SRCS  := $(wildcard models/*.c models/scenes/*.c)
-POSIX_SRCS  := ports/posix/port.c ports/posix/runner.c
+POSIX_SRCS  := ports/posix/port.c ports/posix/runner.c ports/posix/tune.c
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
 
 obj = $(patsubst %.c,$(O)/obj/%.o,$(1))
 RT_OBJS    := $(call obj,$(RT_SRCS))
 MODEL_OBJS := $(call obj,$(MODEL_SRCS))
+
+# the scene language: scenec, generated scenes, modrt's scene files (docs/scene-language.md)
+include tools/scenec/scenec.mk
 
 .PHONY: all help test unit demo bench check-freestanding cross-test footprint clean \
         $(addprefix cross-test-,$(CROSS_TARGETS)) $(addprefix check-target-,$(CROSS_TARGETS)) \
@@ -93,20 +98,28 @@ check-freestanding: $(RT_OBJS) $(MODEL_OBJS)
 	  echo "$$bad"; exit 1; fi; echo "check-freestanding: ok ($(words $^) objects, no libc or libm)"
 
 test: check-freestanding
-	$(MAKE) --no-print-directory unit
-	$(MAKE) --no-print-directory O=build/host-san SAN=1 unit
-	$(MAKE) --no-print-directory REAL=float unit
-	$(MAKE) --no-print-directory all
+	$(MAKE) --no-print-directory -j$(JOBS) unit
+	$(MAKE) --no-print-directory -j$(JOBS) O=build/host-san SAN=1 unit
+	$(MAKE) --no-print-directory -j$(JOBS) REAL=float unit
+	$(MAKE) --no-print-directory -j$(JOBS) all
 	sh tests/cli.sh $(O)
-	@echo "(cross-test: run separately until ARM soft-float doubles are fixed)"
+	$(MAKE) --no-print-directory -j$(JOBS) scenec-test
+	$(MAKE) --no-print-directory fuzz-short
+	$(MAKE) --no-print-directory -j$(JOBS) cross-test
 
 # ---- cross targets (ports/targets.mk: compilers, flags, QEMU commands) ----
 include ports/targets.mk
-CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS)
+CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS) -MMD -MP
 CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tests/registry.c \
                    $(wildcard tests/rt/*.c tests/models/*.c)
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
+CROSS_RT_SRCS := tests/cross/rt_main.c tests/harness.c
+CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 cobj = $(patsubst %,build/$(1)/obj/%.o,$(basename $(2)))
+
+# the host's binary64 results are the reference for every target's arithmetic
+$(O)/softfloat: $(call obj,$(CROSS_SOFTFLOAT_SRCS) ports/posix/app_main.c ports/posix/port.c)
+	$(CC) $(LDSAN) $^ -o $@
 
 # the host's scene image is the reference every target must reproduce bit for bit
 $(O)/scenes: $(call obj,tests/cross/scenes_main.c tests/harness.c ports/posix/app_main.c \
@@ -126,7 +139,18 @@ build/$(1)/tests.elf: $$(call cobj,$(1),$$(CROSS_TEST_SRCS) $$(RT_SRCS) $$(MODEL
 build/$(1)/scenes.elf: $$(call cobj,$(1),$$(CROSS_SCENE_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
                        $$(TARGET_PORT_SRCS_$(1)))
 	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
-cross-test-$(1): build/$(1)/tests.elf build/$(1)/scenes.elf build/host/scenes.log
+build/$(1)/rt.elf: $$(call cobj,$(1),$$(CROSS_RT_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
+                   $$(TARGET_PORT_SRCS_$(1)))
+	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+build/$(1)/softfloat.elf: $$(call cobj,$(1),$$(CROSS_SOFTFLOAT_SRCS) $$(TARGET_PORT_SRCS_$(1)))
+	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+cross-test-$(1): build/$(1)/tests.elf build/$(1)/scenes.elf build/$(1)/rt.elf \
+                 build/host/scenes.log build/$(1)/softfloat.elf build/host/softfloat.log
+	@$$(TARGET_RUN_$(1)) build/$(1)/softfloat.elf > build/$(1)/softfloat.log 2>&1 || \
+	  { cat build/$(1)/softfloat.log; echo "cross-test $(1): softfloat test failed"; exit 1; }
+	@if diff build/host/softfloat.log build/$(1)/softfloat.log; then \
+	  echo "cross-test $(1): $$$$(grep -c hash build/$(1)/softfloat.log) binary64 result hashes equal the host's"; \
+	else echo "cross-test $(1): binary64 result hashes differ from the host's"; exit 1; fi
 	@echo "cross-test $(1): unit tests"
 	@$$(TARGET_RUN_$(1)) build/$(1)/tests.elf > build/$(1)/tests.log 2>&1 || \
 	  { grep -E 'FAIL|passed' build/$(1)/tests.log; echo "cross-test $(1): unit tests failed"; exit 1; }
@@ -136,8 +160,19 @@ cross-test-$(1): build/$(1)/tests.elf build/$(1)/scenes.elf build/host/scenes.lo
 	@if diff build/host/scenes.log build/$(1)/scenes.log; then \
 	  echo "cross-test $(1): $$$$(wc -l < build/$(1)/scenes.log) scene hashes equal the host's"; \
 	else echo "cross-test $(1): scene hashes differ from the host's"; exit 1; fi
+	@$$(TARGET_RUN_$(1)) build/$(1)/rt.elf > build/$(1)/rt.log 2>&1 || \
+	  { cat build/$(1)/rt.log; echo "cross-test $(1): timer-paced run failed"; exit 1; }
+	@h=$$$$(sed -n 's/.* hash //p' build/$(1)/rt.log); \
+	if [ "$$$$h" = "$$$$(build/host/modrt run pi_loop | sed -n 's/^hash: //p')" ]; then \
+	  echo "cross-test $(1): timer-paced pi_loop: $$$$(sed 's/^rt scene pi_loop //' build/$(1)/rt.log)"; \
+	else cat build/$(1)/rt.log; echo "cross-test $(1): timer-paced hash differs"; exit 1; fi
+	@if [ "$$(TARGET_VTIME_$(1))" = 1 ] && ! grep -q ' overruns 0 ' build/$(1)/rt.log; then \
+	  echo "cross-test $(1): overruns in deterministic virtual time"; exit 1; fi
 endef
 $(foreach t,$(CROSS_TARGETS),$(eval $(call CROSS_RULES,$(t))))
+
+build/host/softfloat.log: build/host/softfloat
+	build/host/softfloat > $@
 
 build/host/scenes.log: build/host/scenes build/host/modrt
 	build/host/scenes > $@
@@ -166,7 +201,8 @@ footprint: build/host/modrt $(INSN_COUNT_SO)
 FOOT_TICKS ?= 1000
 foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@mkdir -p build/foot/$(T)
-	@$(TARGET_CC_$(T)) $(CROSS_CFLAGS) $(TARGET_CFLAGS_$(T)) $(shell build/host/modrt sizes $(S)) \
+	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
+	  $(shell build/host/modrt sizes $(S)) \
 	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) models/scenes/$(S).c \
 	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
@@ -176,12 +212,25 @@ $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 print-%:
 	@echo '$($*)'
 
+# ---- benchmarks: figures and plots into docs/ (never timed tests) ----
+$(O)/mbs_bench: $(call obj,tools/bench/mbs_bench.c) $(RT_OBJS) $(MODEL_OBJS)
+	$(CC) $(LDSAN) $^ -lm -o $@
+bench: $(O)/mbs_bench $(O)/svgplot
+	@mkdir -p build/bench
+	$(O)/mbs_bench --csv build/bench/mbs.csv --doc docs/mbs.md
+	$(O)/svgplot --xy --logx --logy -t "pendulum10: position error at 2 s against host CPU time" \
+	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
+	    -o docs/mbs_bench.svg build/bench/mbs.csv
+
 # ---- demo ----
-DEMO_SCENE ?= vanderpol
+# the paper's first example: the 10-body pendulum; plot the tip, the middle, the first body
+DEMO_SCENE ?= pendulum10
+DEMO_COLS ?= B1.x,B1.z,B5.x,B5.z,B10.x,B10.z
 demo: $(O)/modrt $(O)/svgplot
 	@mkdir -p build/demo
 	$(O)/modrt run $(DEMO_SCENE) --csv build/demo/$(DEMO_SCENE).csv
-	$(O)/svgplot -t "$(DEMO_SCENE)" -o build/demo/$(DEMO_SCENE).svg build/demo/$(DEMO_SCENE).csv
+	$(O)/svgplot -t "$(DEMO_SCENE)" $(if $(DEMO_COLS),-c $(DEMO_COLS)) \
+	    -o build/demo/$(DEMO_SCENE).svg build/demo/$(DEMO_SCENE).csv
 	@echo "demo: trace build/demo/$(DEMO_SCENE).csv, plot build/demo/$(DEMO_SCENE).svg"
 
 clean:

@@ -67,4 +67,14 @@ extern const mdl_entry mdl_kinds[];
 /* registry of library scenes, ending in {NULL, NULL} */
 extern const rt_scene_entry mdl_scenes[];
 
+/* driven arm (models/actuator.c): stiff second-order servo y'' + 2 zeta omega y' +
+   omega^2 y = omega^2 k u (NSS; input u, outputs y, yd); digital PD controller with
+   feed-forward raising an arm along a quintic (DSS; inputs x z of the arm's end, outputs
+   u, theta, thr); motor turning the arm (OUTPUT; inputs tau x z, outputs fx fy fz) */
+extern const rt_kind mdl_servo2_kind, mdl_arm_pd_kind, mdl_arm_motor_kind;
+enum { MDL_SERVO2_Y = 0, MDL_SERVO2_YD };
+enum { MDL_ARM_PD_U_X = 0, MDL_ARM_PD_U_Z };
+enum { MDL_ARM_PD_Y_U = 0, MDL_ARM_PD_Y_THETA, MDL_ARM_PD_Y_THR };
+enum { MDL_ARM_MOTOR_U_TAU = 0, MDL_ARM_MOTOR_U_X, MDL_ARM_MOTOR_U_Z };
+
 #endif /* MDL_MODELS_H */

@@ -21,5 +21,8 @@ const mdl_entry mdl_kinds[] = {
     {"pulley", &mdl_pulley_kind},
     {"rotor", &mdl_rotor_kind},
     {"belt", &mdl_belt_kind},
+    {"servo2", &mdl_servo2_kind},
+    {"arm_pd", &mdl_arm_pd_kind},
+    {"arm_motor", &mdl_arm_motor_kind},
     {0, 0},
 };

@@ -16,6 +16,8 @@
 #                       (bare metal: ends in -kernel; the ELF's exit status is QEMU's)
 #   TARGET_SIZE_t       size tool;  TARGET_NM_t  nm tool
 #   TARGET_CHECK_t      availability check (exit 0 when toolchain and emulator exist)
+#   TARGET_VTIME_t      1 where time is virtual and deterministic (bare metal under
+#                       -icount): a timer-paced run there must have no overruns
 # TARGET_QEMU_EXTRA is spliced into every TARGET_RUN_t before the ELF, e.g. for the
 # instruction-count plugin:  TARGET_QEMU_EXTRA='$(call insn_count_opts,m3,app.elf)'.
 #
@@ -32,8 +34,10 @@ TARGET_QEMU_EXTRA ?=
 
 # ------------------------------------------------------------------ Cortex-M (MPS2)
 
+# softfloat.c: correctly rounded binary64 helpers replacing libgcc's (whose ARM
+# __aeabi_dadd/dsub mis-round some cancellations); empty where the FPU does doubles (M7)
 CM_PORT_SRCS := $(PORTS_DIR)/cortex-m/startup.c $(PORTS_DIR)/cortex-m/port.c \
-                $(PORTS_DIR)/common/libc_min.c
+                $(PORTS_DIR)/common/libc_min.c $(PORTS_DIR)/common/softfloat.c
 CM_LDFLAGS := -T$(PORTS_DIR)/cortex-m/link.ld -nostartfiles -nostdlib -Wl,--gc-sections -lgcc
 CM_QEMU = timeout 120 qemu-system-arm -display none -monitor none -serial null \
           -chardev stdio,id=sh0 -semihosting-config enable=on,target=native,chardev=sh0 \
@@ -49,6 +53,7 @@ TARGET_RUN_m3        = $(CM_QEMU) -M mps2-an385 $(TARGET_QEMU_EXTRA) -kernel
 TARGET_SIZE_m3      := arm-none-eabi-size
 TARGET_NM_m3        := arm-none-eabi-nm
 TARGET_CHECK_m3     := $(CM_CHECK)
+TARGET_VTIME_m3     := 1
 
 TARGET_CC_m4f        := arm-none-eabi-gcc
 TARGET_ARCH_m4f      := -mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard
@@ -59,6 +64,7 @@ TARGET_RUN_m4f        = $(CM_QEMU) -M mps2-an386 $(TARGET_QEMU_EXTRA) -kernel
 TARGET_SIZE_m4f      := arm-none-eabi-size
 TARGET_NM_m4f        := arm-none-eabi-nm
 TARGET_CHECK_m4f     := $(CM_CHECK)
+TARGET_VTIME_m4f     := 1
 
 TARGET_CC_m7        := arm-none-eabi-gcc
 TARGET_ARCH_m7      := -mcpu=cortex-m7 -mthumb -mfpu=fpv5-d16 -mfloat-abi=hard
@@ -69,6 +75,7 @@ TARGET_RUN_m7        = $(CM_QEMU) -M mps2-an500 $(TARGET_QEMU_EXTRA) -kernel
 TARGET_SIZE_m7      := arm-none-eabi-size
 TARGET_NM_m7        := arm-none-eabi-nm
 TARGET_CHECK_m7     := $(CM_CHECK)
+TARGET_VTIME_m7     := 1
 
 # ------------------------------------------------------------------ RISC-V (QEMU virt)
 
@@ -92,6 +99,7 @@ TARGET_RUN_rv32        = timeout 120 qemu-system-riscv32 $(RV_QEMU_OPTS) $(TARGE
 TARGET_SIZE_rv32      := riscv64-unknown-elf-size
 TARGET_NM_rv32        := riscv64-unknown-elf-nm
 TARGET_CHECK_rv32     := $(RV_CHECK) && command -v qemu-system-riscv32 >/dev/null
+TARGET_VTIME_rv32     := 1
 
 TARGET_CC_rv64        := riscv64-unknown-elf-gcc
 TARGET_ARCH_rv64      := -march=rv64gc -mabi=lp64d -mcmodel=medany
@@ -102,6 +110,7 @@ TARGET_RUN_rv64        = timeout 120 qemu-system-riscv64 $(RV_QEMU_OPTS) $(TARGE
 TARGET_SIZE_rv64      := riscv64-unknown-elf-size
 TARGET_NM_rv64        := riscv64-unknown-elf-nm
 TARGET_CHECK_rv64     := $(RV_CHECK) && command -v qemu-system-riscv64 >/dev/null
+TARGET_VTIME_rv64     := 1
 
 # ------------------------------------------------------------------ AArch64 Linux (user mode)
 
@@ -117,6 +126,7 @@ TARGET_RUN_aarch64        = timeout 120 env -i qemu-aarch64 $(TARGET_QEMU_EXTRA)
 TARGET_SIZE_aarch64      := aarch64-linux-gnu-size
 TARGET_NM_aarch64        := aarch64-linux-gnu-nm
 TARGET_CHECK_aarch64     := command -v aarch64-linux-gnu-gcc aarch64-linux-gnu-size qemu-aarch64 >/dev/null
+TARGET_VTIME_aarch64     := 0
 
 # ------------------------------------------------------------------ instruction-count plugin
 

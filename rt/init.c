@@ -215,8 +215,13 @@ static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
     }
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         const rt_rec *r = &sc->recs[i];
-        if (r->what == RT_SIG_MBS)
-            continue; /* multibody signals are checked by the MBS services' init */
+        if (r->what == RT_SIG_MBS) {
+            if (!sc->mbs || r->block >= sc->nblocks)
+                return rti_fail(sim, RT_E_SCENE, "a recorded multibody signal names no ",
+                                "multibody block of a scene with MBS services",
+                                (const char *)0);
+            continue; /* its index is checked by the MBS services' init */
+        }
         const rt_kind *k = r->block < sc->nblocks ? sc->blocks[r->block].kind : 0;
         uint16_t n = !k ? 0 : r->what == RT_SIG_Y ? k->ny : r->what == RT_SIG_X ? k->nx : k->nd;
         if (r->index >= n)
@@ -224,6 +229,22 @@ static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
                             (const char *)0);
     }
     return RT_OK;
+}
+
+/* zeroes the step scratch: the graph searches just used it, and a re-used rt_sim holds
+   the last run's stages there; an implicit method may read it as an initial guess, and
+   a replay must not depend on what ran before */
+static void clear_scratch(rt_sim *sim)
+{
+    for (int i = 0; i < RT_MAX_STAGES; i++)
+        for (int j = 0; j < RT_MAX_X; j++)
+            sim->w.k[i][j] = 0;
+    for (int j = 0; j < RT_MAX_X; j++)
+        sim->x0[j] = sim->xs[j] = sim->xb[j] = 0;
+    for (int j = 0; j < RT_MAX_ROOTS; j++)
+        sim->rs[j] = 0;
+    for (int j = 0; j < RT_MAX_TORN * (RT_MAX_TORN + 4); j++)
+        sim->loop_work[j] = 0;
 }
 
 /* the number of ticks that reaches t_end, rounded to the nearest tick */
@@ -264,6 +285,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK)
         return st;
+    clear_scratch(sim);
     if (sc->mbs && (st = (rt_status)sc->mbs->init(sc, sim)) != RT_OK)
         return st;
     sim->n_ticks = tick_count(sc);

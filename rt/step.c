@@ -27,7 +27,8 @@ static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
         rti_count(sim, RT_CNT_DEGRADED, -1, RT_E_NOCONV);
     else if (st == RT_E_SINGULAR)
         rti_count(sim, RT_CNT_SINGULAR, -1, RT_E_SINGULAR);
-    if (sc->mbs && sc->stab == RT_STAB_PROJECT)
+    /* projects when stab is RT_STAB_PROJECT; otherwise refreshes recorded reactions */
+    if (sc->mbs)
         sc->mbs->project(sc, sim, s, t + h);
 }
 

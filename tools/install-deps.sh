@@ -14,6 +14,11 @@ have qemu-system-arm         || need="$need qemu-system-arm"
 have qemu-system-riscv64     || need="$need qemu-system-misc"
 have qemu-aarch64            || need="$need qemu-user"
 have aarch64-linux-gnu-gcc   || need="$need gcc-aarch64-linux-gnu libc6-dev-arm64-cross"
+# libFuzzer for the scene-language fuzz target (tests/scenec/fuzz.sh falls back to its
+# own random mutator without it)
+have clang                   || need="$need clang"
+ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1 || \
+    need="$need libclang-rt-dev"
 if [ -z "$need" ]; then
     echo "install-deps: everything is installed"
     exit 0

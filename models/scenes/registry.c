@@ -8,5 +8,7 @@ const rt_scene_entry mdl_scenes[] = {
     {"bouncing_ball", &mdl_scene_bouncing_ball},
     {"beltgear", &mdl_scene_beltgear},
     {"pendulum10", &mdl_scene_pendulum10},
+    {"pendulum10_actuated", &mdl_scene_pendulum10_actuated},
+    {"pendulum10_actuated_single", &mdl_scene_pendulum10_actuated_single},
     {0, 0},
 };

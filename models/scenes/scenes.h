@@ -10,5 +10,7 @@ extern const rt_scene mdl_scene_pi_loop;
 extern const rt_scene mdl_scene_bouncing_ball;
 extern const rt_scene mdl_scene_beltgear;
 extern const rt_scene mdl_scene_pendulum10;
+extern const rt_scene mdl_scene_pendulum10_actuated;
+extern const rt_scene mdl_scene_pendulum10_actuated_single;
 
 #endif /* MDL_SCENES_H */

@@ -1,6 +1,7 @@
-/* modrt.c - the host command line: list, describe and run the registered scenes on the
- * POSIX port. Every bad argument ends in one line on stderr and exit status 2; a run that
- * met faults exits with status 1 after its summary. */
+/* modrt.c - the host command line: list, describe and run the registered scenes, or a
+ * scene file (FILE.scn, compiled in host memory by tools/scenec), on the POSIX port.
+ * Every bad argument ends in one line on stderr and exit status 2; a run that met faults
+ * exits with status 1 after its summary. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <stdio.h>
@@ -9,6 +10,8 @@
 
 #include "models.h"
 #include "runner.h"
+#include "scn_host.h"
+#include "tune.h"
 
 #define MAX_SETS_ARGS 32 /* --set options on one command line */
 
@@ -30,10 +33,18 @@ static int fail(const char *what, const char *detail)
 
 static const rt_scene *find_scene(const char *name)
 {
+    if (scn_host_is_file(name)) /* a scene file: compiled in host memory, defines on the VM */
+        return scn_host_load(name);
     for (const rt_scene_entry *e = mdl_scenes; e->name; e++)
         if (strcmp(e->name, name) == 0)
             return e->scene;
     return NULL;
+}
+
+/* the scene compiler has already said what is wrong with a scene file */
+static int no_scene(const char *name)
+{
+    return scn_host_is_file(name) ? 2 : fail("unknown scene", name);
 }
 
 /* a whole string as a finite number */
@@ -80,6 +91,14 @@ static void info_wiring(const rt_scene *sc)
         const rt_block *f = &sc->blocks[cn->from], *t = &sc->blocks[cn->to];
         printf("  %s.%s -> %s.%s\n", f->name, f->kind->y_names[cn->y], t->name,
                t->kind->u_names[cn->u]);
+    }
+    for (uint16_t j = 0; j < sc->njoints; j++) {
+        const rt_joint *jt = &sc->joints[j];
+        printf("  joint %s: %s", jt->name, sc->blocks[jt->b1].name);
+        if (jt->b2 >= 0)
+            printf(" -- %s\n", sc->blocks[jt->b2].name);
+        else
+            printf(" -- inertial point\n");
     }
     for (uint16_t i = 0; i < sc->ndefaults; i++) {
         const rt_default *d = &sc->defaults[i];
@@ -183,7 +202,7 @@ static int cmd_info(const char *name)
 {
     const rt_scene *sc = find_scene(name);
     if (!sc)
-        return fail("unknown scene", name);
+        return no_scene(name);
     rt_status st = rt_init(sc, &sim);
     printf("scene: %s\n%s\nbase tick: %g s\nend time: %g s\n", sc->name, sc->doc,
            (double)sc->dt, (double)sc->t_end);
@@ -291,7 +310,7 @@ static int cmd_run(int argc, char **argv)
     run_args a = {0};
     const rt_scene *base = find_scene(argv[2]);
     if (!base)
-        return fail("unknown scene", argv[2]);
+        return no_scene(argv[2]);
     if (parse_run(argc, argv, &a))
         return 2;
     rt_scene sc = *base; /* the const scene, with the end time the user asked for */
@@ -303,7 +322,8 @@ static int cmd_run(int argc, char **argv)
     for (int i = 0; i < a.nsets; i++)
         if (apply_set(&sc, a.sets[i]))
             return 2;
-    rt_refresh(&sc, &sim);
+    if (a.nsets > 0) /* only then: a refresh re-solves loops from a new warm start */
+        rt_refresh(&sc, &sim);
     FILE *csv = NULL;
     int to_stdout = a.csv && strcmp(a.csv, "-") == 0;
     if (a.csv && !(csv = to_stdout ? stdout : fopen(a.csv, "w")))
@@ -325,7 +345,7 @@ static int cmd_sizes(const char *name)
 {
     const rt_scene *sc = find_scene(name);
     if (!sc)
-        return fail("unknown scene", name);
+        return no_scene(name);
     rt_status st = rt_init(sc, &sim);
     if (st != RT_OK)
         return fail(rt_status_name(st), rt_error_text(&sim));
@@ -358,5 +378,7 @@ int main(int argc, char **argv)
         return cmd_info(argv[2]);
     if (argc >= 3 && strcmp(argv[1], "run") == 0)
         return cmd_run(argc, argv);
+    if (argc >= 3 && strcmp(argv[1], "tune") == 0) /* ports/posix/tune.c */
+        return tune_main(find_scene(argv[2]), argc, argv);
     return usage();
 }

@@ -37,7 +37,8 @@ has_sym() { awk -v s="$1" '$3 == s && $2 != "U" { f = 1 } END { exit !f }' "$T/n
 check_image() {
     nm -u "$2" | awk '{ print $2 }' | sort -u > "$T/refs"
     grep -E '^mdl_.*_kind$' "$T/refs" > "$T/used"
-    units=$(while read -r k; do awk -v k="$k" '$1 == k { print $2 }' "$T/kinds"; done < "$T/used" | sort -u)
+    units=$(while read -r k; do awk -v k="$k" '$1 == k { print $2 }' "$T/kinds"; done \
+            < "$T/used" | sort -u)
     nm -l "$1" > "$T/nm"
     foreign=""
     for m in $MODELS; do
@@ -52,7 +53,9 @@ check_image() {
         grep -qx "$s" "$T/refs" || ! has_sym "$s" || foreign="$foreign $s"
     done
     if ! grep -qx rt_mbs "$T/refs"; then
-        for u in mbs mbs_asm mbs_project joints; do has_unit "rt/$u.c" && foreign="$foreign rt/$u.c"; done
+        for u in mbs mbs_asm mbs_project joints; do
+            has_unit "rt/$u.c" && foreign="$foreign rt/$u.c"
+        done
     fi
     grep -qx rt_broyden "$T/refs" || ! has_unit rt/loop.c || foreign="$foreign rt/loop.c"
     linked=$(echo "$units" | tr '\n' ' ')
@@ -71,7 +74,7 @@ for s in "$O"/obj/build/gen/scenes/*.o; do
     run=$("$T/$name") || { echo "FAIL effects: $name image does not run"; fail=1; }
     report=$(check_image "$T/$name" "$s") || fail=1
     size=$(size "$T/$name" | awk 'NR == 2 { printf "text %6d data %5d", $1, $2 }')
-    printf 'effects: %-14s %s  %s  (hash %s)\n' "$name" "$size" "$report" "${run##* }"
+    printf 'effects: %-26s %s  %s  (hash %s)\n' "$name" "$size" "$report" "${run##* }"
 done
 [ "$n" -gt 0 ] || { echo "FAIL effects: no compiled scenes in $O/obj/build/gen/scenes"; exit 1; }
 
@@ -83,7 +86,8 @@ $CC -Wl,--gc-sections -Wl,--undefined=mdl_kinds "$T/main.o" "$first" $RT $MODELS
 if report=$(check_image "$T/control" "$first"); then
     echo "FAIL effects: the control image (with the kinds registry) passed the check"; fail=1
 else
-    echo "effects: control ($name with the kinds registry forced in) is caught: ${report#FOREIGN: }" | cut -c1-150
+    echo "effects: control ($name, kinds registry forced in) caught: ${report#FOREIGN: }" |
+        cut -c1-100
 fi
 [ "$fail" -eq 0 ] && echo "effects: ok, $n scene images hold only what their scenes name"
 exit $fail

@@ -60,7 +60,13 @@ static void mutate(buf *x, const buf *other)
         if (at + k <= x->n)
             memmove(x->b + at, x->b + at + k, x->n - at - k), x->n -= k;
         break;
-    case 4: if (at + k <= x->n) insert(x, rnd((uint32_t)x->n + 1), x->b + at, k); break;
+    case 4: /* duplicate k bytes elsewhere (through a copy: the ranges may overlap) */
+        if (at + k <= x->n) {
+            uint8_t tmp[16];
+            memcpy(tmp, x->b + at, k);
+            insert(x, rnd((uint32_t)x->n + 1), tmp, k);
+        }
+        break;
     default: /* splice: the head of x, the tail of other */
         if (other->n) {
             size_t from = rnd((uint32_t)other->n), take = other->n - from;

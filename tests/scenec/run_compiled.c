@@ -1,6 +1,7 @@
 /* run_compiled.c - runs every compiled scene, the library's (mdl_scenes) and the scene
- * language tests' (scn_test_scenes), as `modrt run` does (a record at t = 0 and after
- * every tick) and prints "NAME HASH STATUS" per scene for tests/scenec/hashes.sh. */
+ * language tests' (scn_test_scenes), as `modrt run` does (rt_init, a record at t = 0 and
+ * after every tick) and prints "NAME HASH STATUS" per scene for
+ * tests/scenec/hashes.sh. */
 #include <stdio.h>
 
 #include "models.h"

@@ -9,10 +9,11 @@
 
 #include "models.h"
 
-const char *const scn_interp_key[SCN_INTERP_COUNT] = {
-#define SCN_X_KEY(id, key, text) key,
-    SCN_INTERP_LIST(SCN_X_KEY)
-#undef SCN_X_KEY
+/* in the order of rt_interp; "set" (RT_INTERP_SET) is what a connection without a
+   clause gets, so it is not written in a scene */
+const char *const scn_interp_key[RT_INTERP_COUNT] = {
+    [RT_INTERP_SET] = "set", [RT_INTERP_HOLD] = "hold", [RT_INTERP_EXTRAP] = "extrapolate",
+    [RT_INTERP_LINEAR] = "linear", [RT_INTERP_HERMITE] = "hermite",
 };
 
 /* ------------------------------------------------------------------ look-ups */
@@ -223,14 +224,15 @@ static void defines(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
     for (uint16_t i = 0; i < s->ndef && !c->err; i++) {
-        scn_define *d = &s->def[i];
+        scn_define *d = s->def[i];
         if (scn_library_kind(d->name.s))
             scn_fail(c, d->name.pos, d->name.s, "type name already used by the model library",
                      "a new name for the defined system");
         for (uint16_t j = 0; j < i && !c->err; j++)
-            if (!strcmp(s->def[j].name.s, d->name.s))
+            if (!strcmp(s->def[j]->name.s, d->name.s))
                 scn_fail(c, d->name.pos, d->name.s, "system defined twice",
-                         scn_fmt(c, "one define per name (first at %s)", scn_where(c, s->def[j].name.pos)));
+                         scn_fmt(c, "one define per name (first at %s)",
+                                 scn_where(c, s->def[j]->name.pos)));
         if (!c->err)
             define_kind(c, d);
     }
@@ -245,7 +247,7 @@ static const char *type_list(scn_ctx *c)
     for (const mdl_entry *e = mdl_kinds; e->name && k < 64; e++)
         n[k++] = e->name;
     for (uint16_t i = 0; i < c->sc.ndef; i++)
-        n[k++] = c->sc.def[i].name.s;
+        n[k++] = c->sc.def[i]->name.s;
     return scn_list(c, n, k, 40);
 }
 
@@ -263,8 +265,8 @@ static void block_kind(scn_ctx *c, scn_block *b)
     const scn_scene *s = &c->sc;
     const scn_define *d = NULL;
     for (uint16_t i = 0; i < s->ndef; i++)
-        if (!strcmp(s->def[i].name.s, b->type.s))
-            b->def = (int16_t)i, d = &s->def[i];
+        if (!strcmp(s->def[i]->name.s, b->type.s))
+            b->def = (int16_t)i, d = s->def[i];
     b->kind = d ? d->kind : scn_library_kind(b->type.s);
     if (!b->kind) {
         scn_fail(c, b->type.pos, b->type.s, "unknown system type",
@@ -419,7 +421,8 @@ static void connection(scn_ctx *c, uint16_t ci)
 {
     scn_scene *s = &c->sc;
     scn_conn *cn = &s->conn[ci];
-    int fb = scn_block_of(c, cn->from.block), fy = fb < 0 ? -1 : port_of(c, &s->blk[fb], cn->from.port, 1);
+    int fb = scn_block_of(c, cn->from.block);
+    int fy = fb < 0 ? -1 : port_of(c, &s->blk[fb], cn->from.port, 1);
     int tb = fy < 0 ? -1 : scn_block_of(c, cn->to.block);
     int tu = tb < 0 ? -1 : port_of(c, &s->blk[tb], cn->to.port, 0);
     if (tu < 0)
@@ -481,6 +484,9 @@ int scn_check(scn_ctx *c)
         scn_check_links(c);
     if (!c->err)
         scn_check_rest(c);
+    if (s->nblk == 0) /* last: a file of defines only reports their errors first */
+        scn_fail(c, (scn_pos){0, 1, 1}, s->name.s, "scene without systems",
+                 "at least one load system (...);");
     return c->err ? -1 : 0;
 }
 

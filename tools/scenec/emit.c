@@ -329,7 +329,7 @@ static void header(FILE *f, scn_ctx *c)
     }
     for (uint16_t d = 0; d < s->ndef; d++)
         if (used_define(s, d))
-            define_kind(f, c, &s->def[d]);
+            define_kind(f, c, s->def[d]);
 }
 
 static void block_values(FILE *f, const scn_block *b)
@@ -373,18 +373,32 @@ static void blocks(FILE *f, const scn_scene *s)
     fputs("};\n", f);
 }
 
+static const char *const interp_id[] = {"RT_INTERP_SET", "RT_INTERP_HOLD", "RT_INTERP_EXTRAP",
+                                        "RT_INTERP_LINEAR", "RT_INTERP_HERMITE"};
+
+static int any_conn_interp(const scn_scene *s)
+{
+    for (uint16_t i = 0; i < s->nconn; i++)
+        if (s->conn[i].interp)
+            return 1;
+    return 0;
+}
+
 static void wiring(FILE *f, const scn_scene *s)
 {
+    if (any_conn_interp(s)) {
+        fputs("static const uint8_t conn_interp[] = {", f);
+        for (uint16_t i = 0; i < s->nconn; i++)
+            fprintf(f, "%s%s", i ? ", " : "", interp_id[s->conn[i].interp]);
+        fputs("};\n", f);
+    }
     if (s->nconn)
         fputs("static const rt_conn conns[] = {\n", f);
     for (uint16_t i = 0; i < s->nconn; i++) {
         const scn_conn *cn = &s->conn[i];
-        fprintf(f, "    {B_%s, %u, B_%s, %u}, /* %s.%s -> %s.%s", s->blk[cn->fb].name.s, cn->fy,
-                s->blk[cn->tb].name.s, cn->tu, cn->from.block.s, cn->from.port.s,
+        fprintf(f, "    {B_%s, %u, B_%s, %u}, /* %s.%s -> %s.%s */\n", s->blk[cn->fb].name.s,
+                cn->fy, s->blk[cn->tb].name.s, cn->tu, cn->from.block.s, cn->from.port.s,
                 cn->to.block.s, cn->to.port.s);
-        if (cn->interp)
-            fprintf(f, ", interpolation %s (issue 6)", scn_interp_key[cn->interp]);
-        fputs(" */\n", f);
     }
     if (s->nconn)
         fputs("};\n", f);
@@ -407,13 +421,12 @@ static void sets(FILE *f, const scn_scene *s)
         const scn_set *st = &s->set[i];
         fprintf(f, "    {.name = \"%s\", .method = &rt_%s, .ratio = %u", st->name.s, st->m->name,
                 (unsigned)st->ratio);
-        if (st->newton || st->jacobian || st->tol != 0)
-            fprintf(f, ", .implicit = {.newton_max = %u, .jac_every = %u, .tol = %s}",
-                    (unsigned)st->newton, (unsigned)st->jacobian, R(st->tol));
-        fputs("},", f);
         if (st->interp)
-            fprintf(f, " /* interpolation %s (issue 6) */", scn_interp_key[st->interp]);
-        fputs("\n", f);
+            fprintf(f, ", .interp = %s", interp_id[st->interp]);
+        if (st->newton || st->jacobian || st->tol != 0)
+            fprintf(f, ",\n     .implicit = {.newton_max = %u, .jac_every = %u, .tol = %s}",
+                    (unsigned)st->newton, (unsigned)st->jacobian, R(st->tol));
+        fputs("},\n", f);
     }
     fputs("};\n", f);
 }
@@ -476,6 +489,8 @@ static void scene(FILE *f, const scn_ctx *c)
     fprintf(f, "    .blocks = blocks, .nblocks = %u,\n", s->nblk);
     if (s->nconn)
         fprintf(f, "    .conns = conns, .nconns = %u,\n", s->nconn);
+    if (any_conn_interp(s))
+        fputs("    .conn_interp = conn_interp,\n", f);
     if (s->ndflt)
         fprintf(f, "    .defaults = defaults, .ndefaults = %u,\n", s->ndflt);
     fprintf(f, "    .sets = sets, .nsets = %u,\n", s->nset);

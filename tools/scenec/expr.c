@@ -76,7 +76,8 @@ static int enter(scn_ctx *c)
         return 1;
     c->edepth--;
     scn_fail_tok(c, "expression nested too deeply",
-                 "at most 64 nested parentheses, calls and operators");
+                 scn_fmt(c, "at most %u nested parentheses, calls and operators",
+                         SCN_MAX_EXPR_DEPTH));
     return 0;
 }
 
@@ -161,7 +162,7 @@ void scn_parse_matrix(scn_ctx *c, scn_matrix *m)
     scn_expect_op(c, "[");
     while (!c->err && !scn_is_op(c, "]")) {
         if (n >= SCN_MAX_MATRIX) {
-            scn_fail_tok(c, "matrix too large", "at most 1024 entries");
+            scn_fail_tok(c, "matrix too large", scn_fmt(c, "at most %u entries", SCN_MAX_MATRIX));
             return;
         }
         v[n++] = scn_const_expr(c), in_row++;
@@ -188,7 +189,8 @@ static void emit(scn_ctx *c, uint8_t op, uint16_t a, int push)
     if (c->err)
         return;
     if (s->ncode >= SCN_MAX_CODE) {
-        scn_fail_tok(c, "define bodies too large", "at most 32768 operations in all bodies");
+        scn_fail_tok(c, "define bodies too large",
+                     scn_fmt(c, "at most %u operations in all bodies", SCN_MAX_CODE));
         return;
     }
     s->code[s->ncode++] = (scn_ins){op, a};
@@ -196,7 +198,8 @@ static void emit(scn_ctx *c, uint8_t op, uint16_t a, int push)
     if (c->sdepth > c->smax)
         c->smax = c->sdepth;
     if (c->sdepth > SCN_MAX_STACK)
-        scn_fail_tok(c, "expression too complex", "at most 64 pending operands");
+        scn_fail_tok(c, "expression too complex",
+                     scn_fmt(c, "at most %u pending operands", SCN_MAX_STACK));
 }
 
 static void emit_const(scn_ctx *c, double v)
@@ -207,7 +210,8 @@ static void emit_const(scn_ctx *c, double v)
         i++;
     if (i == s->nk) {
         if (s->nk >= SCN_MAX_CONST) {
-            scn_fail_tok(c, "too many constants", "at most 4096 constants in all bodies");
+            scn_fail_tok(c, "too many constants",
+                         scn_fmt(c, "at most %u constants in all bodies", SCN_MAX_CONST));
             return;
         }
         s->k[s->nk++] = v;
@@ -460,7 +464,8 @@ static void add_stmt(scn_ctx *c, uint8_t kind, uint16_t index, scn_pos pos)
 {
     scn_scene *s = &c->sc;
     if (s->nst >= SCN_MAX_STMTS) {
-        scn_fail(c, pos, "=", "too many body statements", "at most 512 in all bodies");
+        scn_fail(c, pos, "=", "too many body statements",
+                 scn_fmt(c, "at most %u in all bodies", SCN_MAX_STMTS));
         return;
     }
     uint32_t code0 = s->ncode;
@@ -509,7 +514,8 @@ static void let_stmt(scn_ctx *c)
         return;
     }
     if (d->nloc >= SCN_MAX_LOCALS) {
-        scn_fail(c, n.pos, n.s, "too many let names", "at most 128 per define");
+        scn_fail(c, n.pos, n.s, "too many let names",
+                 scn_fmt(c, "at most %u per define", SCN_MAX_LOCALS));
         return;
     }
     scn_pos pos = c->tok.pos;
@@ -580,7 +586,8 @@ static void body_complete(scn_ctx *c, scn_define *d, scn_pos end)
                 continue;
             const char *name = pass ? d->x[i].name.s : d->y[i].name.s;
             scn_fail(c, end, "}", pass ? "state has no equation" : "output not assigned",
-                     pass ? scn_fmt(c, "%s(%s) = ... in the body", xk == SCN_ST_NEXT ? "next" : "der", name)
+                     pass ? scn_fmt(c, "%s(%s) = ... in the body",
+                                    xk == SCN_ST_NEXT ? "next" : "der", name)
                           : scn_fmt(c, "y[%u] = ... (%s) in the body", (unsigned)i, name));
         }
     }

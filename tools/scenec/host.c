@@ -15,14 +15,17 @@ int scn_host_is_file(const char *arg)
 
 const rt_scene *scn_host_load(const char *path)
 {
-    static scn_ctx *c; /* owns the scene's memory until exit */
-    if (!c && !(c = scn_new())) {
+    static scn_ctx *last; /* owns the scene's memory until exit (modrt loads one) */
+    scn_ctx *c = scn_new();
+    if (!c) {
         fputs("modrt: out of memory\n", stderr);
         return NULL;
     }
     if (scn_compile(c, path, NULL, 0) != 0) {
         fprintf(stderr, "modrt: %s\n", c->msg);
+        scn_free(c);
         return NULL;
     }
-    return &c->image;
+    last = c;
+    return &last->image;
 }

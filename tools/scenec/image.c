@@ -88,8 +88,12 @@ static void wiring(scn_ctx *c, rt_scene *sc)
 {
     const scn_scene *s = &c->sc;
     rt_conn *cn = scn_alloc(c, (s->nconn + 1u) * sizeof *cn);
-    for (uint16_t i = 0; i < s->nconn; i++)
+    uint8_t *in = scn_alloc(c, s->nconn + 1u), any = 0;
+    for (uint16_t i = 0; i < s->nconn; i++) {
         cn[i] = (rt_conn){s->conn[i].fb, s->conn[i].fy, s->conn[i].tb, s->conn[i].tu};
+        in[i] = s->conn[i].interp, any |= in[i];
+    }
+    sc->conn_interp = any ? in : NULL; /* only scenes that choose per connection */
     rt_default *df = scn_alloc(c, (s->ndflt + 1u) * sizeof *df);
     for (uint16_t i = 0; i < s->ndflt; i++)
         df[i] = (rt_default){s->dflt[i].b, s->dflt[i].u, (real_t)s->dflt[i].v};
@@ -104,6 +108,7 @@ static void sets_recs(scn_ctx *c, rt_scene *sc)
     for (uint16_t i = 0; i < s->nset; i++) {
         const scn_set *x = &s->set[i];
         st[i].name = x->name.s, st[i].method = x->m, st[i].ratio = x->ratio;
+        st[i].interp = x->interp;
         st[i].implicit.newton_max = (uint8_t)x->newton;
         st[i].implicit.jac_every = (uint16_t)x->jacobian;
         st[i].implicit.tol = (real_t)x->tol;
@@ -161,7 +166,7 @@ int scn_build_image(scn_ctx *c)
     const real_t *k = reals(c, s->k, s->nk);
     memset(sc, 0, sizeof *sc);
     for (uint16_t i = 0; i < s->ndef; i++)
-        dk[i] = define_services(c, &s->def[i], k);
+        dk[i] = define_services(c, s->def[i], k);
     sc->name = s->name.s, sc->doc = s->doc ? s->doc : "";
     sc->dt = (real_t)s->dt, sc->t_end = (real_t)s->t_end;
     blocks(c, sc, dk);

@@ -180,12 +180,12 @@ int scn_open_main(scn_ctx *c, const char *path, const char *text, size_t len)
         if (r < 0) {
             c->files[0].path = path, c->nfiles = 1; /* for the message */
             scn_fail(c, at, path, r == -2 ? "scene file too large" : "cannot read the scene file",
-                     r == -2 ? "at most 1 MiB" : "a readable file");
+                     r == -2 ? scn_fmt(c, "at most %u bytes", SCN_MAX_SRC) : "a readable file");
             return -1;
         }
     } else if (len > SCN_MAX_SRC) {
         c->files[0].path = path, c->nfiles = 1;
-        scn_fail(c, at, path, "scene file too large", "at most 1 MiB");
+        scn_fail(c, at, path, "scene file too large", scn_fmt(c, "at most %u bytes", SCN_MAX_SRC));
         return -1;
     }
     add_file(c, path, c->sandbox ? path : resolve(c, path), text, len);
@@ -223,7 +223,7 @@ int scn_push_include(scn_ctx *c, const char *name, scn_pos pos)
     const char *near = scn_fmt(c, "\"%s\"", name);
     if (c->depth >= SCN_MAX_DEPTH || c->nfiles >= SCN_MAX_FILES) {
         scn_fail(c, pos, near, "includes nested too deeply or too many files",
-                 "at most 16 levels and 64 files");
+                 scn_fmt(c, "at most %u levels and %u files", SCN_MAX_DEPTH, SCN_MAX_FILES));
         return -1;
     }
     const char *path = c->sandbox || !name[0] ? NULL : find_include(c, name);
@@ -245,7 +245,7 @@ int scn_push_include(scn_ctx *c, const char *name, scn_pos pos)
     int r = read_file(c, path, &text, &len);
     if (r < 0) {
         scn_fail(c, pos, near, r == -2 ? "include file too large" : "cannot read include file",
-                 r == -2 ? "at most 1 MiB" : "a readable file");
+                 r == -2 ? scn_fmt(c, "at most %u bytes", SCN_MAX_SRC) : "a readable file");
         return -1;
     }
     c->depth++;
@@ -292,7 +292,10 @@ static const char *cur(const scn_ctx *c)
     return c->files[l->file].text + l->off;
 }
 
-static int is_alpha(int ch) { return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || ch == '_'; }
+static int is_alpha(int ch)
+{
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || ch == '_';
+}
 static int is_digit(int ch) { return ch >= '0' && ch <= '9'; }
 
 /* blanks and comments; an unterminated block comment is an error at its start */
@@ -331,7 +334,8 @@ static void lex_name(scn_ctx *c, scn_tok *t)
     t->rawlen = (uint32_t)(cur(c) - t->raw);
     t->s = scn_strndup(c, t->raw, t->rawlen);
     if (t->rawlen > SCN_MAX_NAME)
-        scn_fail(c, t->pos, t->s, "name too long", "at most 63 characters");
+        scn_fail(c, t->pos, t->s, "name too long",
+                 scn_fmt(c, "at most %u characters", SCN_MAX_NAME));
 }
 
 /* digits [. digits] [e [+-] digits], not followed by a letter, digit or '.' */

@@ -115,7 +115,8 @@ static double paren_time(scn_ctx *c, int allow_ticks, uint8_t *ticks, scn_pos *p
     if (!found && allow_ticks && (scn_is_word(c, "tick") || scn_is_word(c, "ticks")))
         is_ticks = found = 1;
     if (!found) {
-        scn_fail_tok(c, "unknown time unit", allow_ticks ? "s, ms, us, ns or ticks" : "s, ms, us or ns");
+        scn_fail_tok(c, "unknown time unit",
+                     allow_ticks ? "s, ms, us, ns or ticks" : "s, ms, us or ns");
         return 0;
     }
     if (c->tok.kind == SCN_T_ID)
@@ -132,11 +133,11 @@ static double paren_time(scn_ctx *c, int allow_ticks, uint8_t *ticks, scn_pos *p
 
 static int interp_of(scn_ctx *c, scn_name n)
 {
-    for (int i = 1; i < SCN_INTERP_COUNT; i++)
+    for (int i = RT_INTERP_HOLD; i < RT_INTERP_COUNT; i++)
         if (strcmp(scn_interp_key[i], n.s) == 0)
             return i;
     scn_fail(c, n.pos, n.s, "unknown interpolation",
-             scn_list(c, scn_interp_key + 1, SCN_INTERP_COUNT - 1, 8));
+             scn_list(c, scn_interp_key + RT_INTERP_HOLD, RT_INTERP_COUNT - RT_INTERP_HOLD, 8));
     return 0;
 }
 
@@ -226,7 +227,8 @@ static uint16_t var_list(scn_ctx *c, scn_var *v, int with_init, const char *what
     while (!c->err && !scn_is_op(c, ")")) {
         scn_name nm = scn_expect_name(c, what);
         if (!c->err && n >= SCN_MAX_PORTS)
-            scn_fail(c, nm.pos, nm.s, "too many names in the list", "at most 64");
+            scn_fail(c, nm.pos, nm.s, "too many names in the list",
+                     scn_fmt(c, "at most %u", SCN_MAX_PORTS));
         if (c->err)
             break;
         v[n].name = nm, v[n].init = 0;
@@ -331,12 +333,12 @@ static void st_define(scn_ctx *c, scn_pos at)
         return;
     }
     if (s->ndef >= SCN_MAX_DEFINES) {
-        scn_fail(c, at, "define", "too many defines", "at most 32 per scene");
+        scn_fail(c, at, "define", "too many defines",
+                 scn_fmt(c, "at most %u per scene", SCN_MAX_DEFINES));
         return;
     }
     scn_next(c);
-    scn_define *d = &s->def[s->ndef];
-    memset(d, 0, sizeof *d);
+    scn_define *d = s->def[s->ndef] = scn_alloc(c, sizeof *d);
     d->type = (uint8_t)type;
     d->name = paren_name(c, "the name of the defined system");
     define_clauses(c, d);
@@ -350,11 +352,18 @@ static void st_define(scn_ctx *c, scn_pos at)
         s->ndef++;
 }
 
-/* a block or joint name not used before */
+static int is_statement_word(const char *w);
+
+/* a block or joint name not used before, and not a word that begins a statement */
 static int fresh_name(scn_ctx *c, scn_name n)
 {
     const scn_scene *s = &c->sc;
     const scn_name *old = NULL;
+    if (is_statement_word(n.s)) {
+        scn_fail(c, n.pos, n.s, "reserved word",
+                 "a name that does not begin a statement (Block.name = ... would not parse)");
+        return 0;
+    }
     for (uint16_t i = 0; i < s->nblk && !old; i++)
         if (!strcmp(s->blk[i].name.s, n.s))
             old = &s->blk[i].name;
@@ -608,7 +617,8 @@ static void st_assign(scn_ctx *c)
     a.v = scn_const_expr(c);
     scn_expect_op(c, ";");
     if (!c->err && s->nasg >= SCN_MAX_ASSIGN)
-        scn_fail(c, a.lhs.block.pos, a.lhs.block.s, "too many assignments", "at most 2048");
+        scn_fail(c, a.lhs.block.pos, a.lhs.block.s, "too many assignments",
+                 scn_fmt(c, "at most %u", SCN_MAX_ASSIGN));
     if (!c->err)
         s->asg[s->nasg++] = a;
 }
@@ -625,6 +635,14 @@ static const stmt_entry stmts[] = {
     {"record", st_record},   {"solve", st_solve},     {"stabilization", st_stab},
     {0, 0},
 };
+
+static int is_statement_word(const char *w)
+{
+    for (const stmt_entry *e = stmts; e->word; e++)
+        if (!strcmp(e->word, w))
+            return 1;
+    return 0;
+}
 
 static void statement(scn_ctx *c)
 {

@@ -128,14 +128,14 @@ static int cmd_compile(const opts *o)
     return rc;
 }
 
-/* as `modrt run` does: a record at t = 0 and after every tick, then the summary */
+/* as `modrt run` does: rt_init, a record at t = 0 and after every tick, the summary */
 static int cmd_run(const opts *o)
 {
     scn_ctx *c = compile(o, o->in[0]);
     if (!c)
         return 1;
     rt_scene *sc = &c->image;
-    rt_sim *sim = c->sim;
+    rt_sim *sim = scn_alloc(c, sizeof *sim); /* a fresh one, as modrt's static storage */
     rt_status st = rt_init(sc, sim);
     if (st == RT_OK) {
         rt_record(sc, sim, NULL);

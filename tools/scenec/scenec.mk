@@ -31,6 +31,7 @@ SCN_LIB_OBJS  = $(call obj,$(SCN_LIB_SRCS))
 SCN_MODEL_OBJS = $(filter-out $(O)/obj/models/scenes/% $(O)/obj/build/%,$(MODEL_OBJS))
 
 .PHONY: scenec scenes scenec-test fuzz fuzz-short
+.SECONDARY: $(SCN_GEN_SRCS) $(SCN_TGEN_SRCS)
 
 scenec: $(SCENEC)
 scenes: $(SCN_GEN_SRCS)
@@ -84,7 +85,7 @@ scenec-test: $(SCENEC) $(O)/modrt $(O)/scenec-run $(O)/scenec-tests \
              $(call obj,$(SCN_GEN_SRCS))
 	$(O)/scenec-tests
 	sh tests/scenec/errors.sh $(SCENEC) $(O)/modrt
-	sh tests/scenec/hashes.sh $(SCENEC) $(O)/modrt $(O)/scenec-run
+	REAL=$(REAL) sh tests/scenec/hashes.sh $(SCENEC) $(O)/modrt $(O)/scenec-run
 	CC="$(CC)" CFLAGS="$(CFLAGS_ALL)" sh tests/scenec/effects.sh $(O)
 
 # ---- fuzzing: libFuzzer where clang has it, else a deterministic mutation loop ----

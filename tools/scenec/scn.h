@@ -37,10 +37,10 @@
 #define SCN_MAX_PORTS 64        /* inputs, outputs, parameters or states of one define */
 #define SCN_MAX_LOCALS 128      /* let names of one define */
 #define SCN_MAX_STMTS 512       /* statements of all define bodies */
-#define SCN_MAX_CODE 32768      /* instructions of all define bodies */
+#define SCN_MAX_CODE 16384      /* instructions of all define bodies */
 #define SCN_MAX_CONST 4096      /* constants of all define bodies */
 #define SCN_MAX_MATRIX 1024     /* entries of one LSS matrix */
-#define SCN_MAX_ASSIGN 2048     /* Block.name = value statements */
+#define SCN_MAX_ASSIGN 1024     /* Block.name = value statements */
 #define SCN_MAX_RECS RT_MAX_REC /* recorded signals */
 #define SCN_MAX_MEMBERS 256     /* set members over all sets */
 #define SCN_MSG_LEN 600         /* characters of an error message */
@@ -140,21 +140,8 @@ void scn_vm_update(const rt_args *a, real_t *dnext);
 
 /* ------------------------------------------------------------------ the scene */
 
-/* interpolation of signals crossing sets (issue 6: parsed and kept, not yet run) */
-#define SCN_INTERP_LIST(X)                                                     \
-    X(SCN_INTERP_DEFAULT, "default", "the set's (hold for a set)")             \
-    X(SCN_INTERP_HOLD, "hold", "zero-order hold")                              \
-    X(SCN_INTERP_EXTRAP, "extrapolate", "linear extrapolation")                \
-    X(SCN_INTERP_LINEAR, "linear", "linear interpolation, slowest set first")  \
-    X(SCN_INTERP_HERMITE, "hermite", "cubic Hermite")
-
-typedef enum {
-#define SCN_X_ENUM(id, key, text) id,
-    SCN_INTERP_LIST(SCN_X_ENUM)
-#undef SCN_X_ENUM
-    SCN_INTERP_COUNT
-} scn_interp;
-extern const char *const scn_interp_key[SCN_INTERP_COUNT];
+/* names of the interpolation schemes (rt_interp) of signals that cross sets */
+extern const char *const scn_interp_key[RT_INTERP_COUNT];
 
 typedef enum { SCN_DEF_SS = 0, SCN_DEF_LSS, SCN_DEF_DSS } scn_def_type;
 typedef enum { SCN_ST_LET = 0, SCN_ST_OUT, SCN_ST_DER, SCN_ST_NEXT } scn_stmt_kind;
@@ -222,7 +209,7 @@ typedef struct scn_joint {
 
 typedef struct scn_conn {
     scn_ref from, to;
-    uint8_t interp;             /* scn_interp */
+    uint8_t interp;             /* rt_interp; RT_INTERP_SET: the destination set's */
     uint16_t fb, fy, tb, tu;    /* resolved: block and port indices */
 } scn_conn;
 
@@ -251,7 +238,7 @@ typedef struct scn_set {
     double step;                /* [s], or ticks if step_ticks */
     uint8_t step_ticks, has_step;
     scn_pos step_pos;
-    uint8_t interp;             /* scn_interp */
+    uint8_t interp;             /* rt_interp of inputs from other sets (0: hold) */
     uint8_t has_members;
     uint16_t m0, m1;            /* its members in scn_scene.members */
     uint32_t newton, jacobian;
@@ -282,7 +269,7 @@ typedef struct scn_scene {
     double alpha, beta;
     uint8_t stab_kind;          /* rt_stab */
 
-    scn_define def[SCN_MAX_DEFINES];
+    scn_define *def[SCN_MAX_DEFINES]; /* arena: only the defines written */
     uint16_t ndef;
     scn_block blk[RT_MAX_BLOCKS];
     uint16_t nblk;

@@ -189,7 +189,8 @@ static void joint_params(scn_ctx *c, const scn_joint *j)
     real_t p[256];
     for (uint16_t i = 0; i < k->np && !c->err; i++) {
         if (!j->p_at[i])
-            scn_fail(c, j->name.pos, j->name.s, scn_fmt(c, "joint parameter %s not set", k->p_names[i]),
+            scn_fail(c, j->name.pos, j->name.s,
+                     scn_fmt(c, "joint parameter %s not set", k->p_names[i]),
                      scn_fmt(c, "%s.%s = <value>;", j->name.s, k->p_names[i]));
         p[i] = (real_t)j->p[i];
     }
@@ -229,7 +230,7 @@ static void period(scn_ctx *c, scn_block *b)
     if (!dss)
         return;
     if (!(b->ts > 0) && b->def >= 0)
-        b->ts = s->def[b->def].period, at = s->def[b->def].period_pos;
+        b->ts = s->def[b->def]->period, at = s->def[b->def]->period_pos;
     if (!(b->ts > 0))
         scn_fail(c, b->name.pos, b->name.s, "sample period missing",
                  "period (<time>) in its load statement or its define");
