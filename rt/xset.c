@@ -29,7 +29,7 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
         sim->set_xout[sf] = 1;
     }
     /* schedule: by ratio, largest first; equal ratios keep their scene order */
-    for (uint8_t i = 0; i < sc->nsets; i++) {
+    for (uint8_t i = 0; i < sc->nsets && i < RT_MAX_SETS; i++) { /* init checked nsets */
         uint8_t j = i;
         for (; j > 0 && sc->sets[sim->sched[j - 1]].ratio < sc->sets[i].ratio; j--)
             sim->sched[j] = sim->sched[j - 1];

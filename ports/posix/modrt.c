@@ -361,10 +361,23 @@ static int cmd_sizes(const char *name)
            at_least_1(sim.u_off[nb]), at_least_1(sim.y_off[nb]), at_least_1(sim.p_off[nb]),
            at_least_1(sim.set_r[sc->nsets]), at_least_1(sc->nsets), at_least_1(sc->nrecs),
            at_least_1(sim.nloops), at_least_1(sim.ntorn), implicit);
-    if (!sc->mbs)
-        printf(" -DRT_MAX_JOINTS=1 -DRT_MAX_MBS_Z=1 -DRT_MAX_MBS_Q=1 -DRT_MAX_MBS_C=1 "
-               "-DRT_MAX_MBS_BZ=1");
-    putchar('\n');
+    /* multibody workspace: per set, the largest velocities, coordinates, constraint rows;
+       per block, the largest velocity count */
+    unsigned nz = 1, nq = 1, nc = 1, bz = 1;
+    for (uint8_t s = 0; sc->mbs && s < sc->nsets; s++) {
+        nz = sim.mbs.nz[s] > nz ? sim.mbs.nz[s] : nz;
+        nq = sim.mbs.nq[s] > nq ? sim.mbs.nq[s] : nq;
+        nc = sim.mbs.nc[s] > nc ? sim.mbs.nc[s] : nc;
+    }
+    for (uint16_t b = 0; b < nb; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->type == RT_KIND_MBS) {
+            const rt_mbs_spec *m = k->spec;
+            bz = m->nz > bz ? m->nz : bz;
+        }
+    }
+    printf(" -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
+           "-DRT_MAX_MBS_BZ=%u\n", at_least_1(sc->njoints), nz, nq, nc, bz);
     return 0;
 }
 

@@ -408,9 +408,9 @@ static int parse(int argc, char **argv, tune_opts *o, int *verbose)
         } else if (strcmp(a, "--only") == 0 && more) {
             o->only = argv[++i];
         } else if (strcmp(a, "--doublings") == 0 && more) {
-            if (!number(argv[++i], &v) || v < 0 || v > TUNE_DOUBLINGS_MAX || v != (int)v)
-                return fail("--doublings expects a whole number from 0 to 12, got", argv[i]);
-            o->doublings = v > 0 ? (unsigned)v : 0;
+            if (!number(argv[++i], &v) || v < 1 || v > TUNE_DOUBLINGS_MAX || v != (int)v)
+                return fail("--doublings expects a whole number from 1 to 12, got", argv[i]);
+            o->doublings = (unsigned)v;
         } else if (strcmp(a, "--ref-div") == 0 && more) {
             if (!number(argv[++i], &v) || v < 2 || v > 1024 || v != (int)v ||
                 ((int)v & ((int)v - 1)) != 0)

@@ -10,6 +10,18 @@
 
 static double absd(double v) { return v < 0 ? -v : v; }
 
+#ifndef TEST_ACTUATED_T_END
+/* hosted builds run the scenes for their full 10 s (about 0.3 s at -O2); bare-metal
+   builds under QEMU (soft float on some targets, some 20 s for 10 s) the first 3.2 s,
+   which still compare the two scenes while the link rises. A multiple of the chain's
+   16 ms step: the multirate chain is then at the same time as the single set. */
+#if __STDC_HOSTED__
+#define TEST_ACTUATED_T_END 10
+#else
+#define TEST_ACTUATED_T_END 3.2
+#endif
+#endif
+
 /* ------------------------------------------------------------------ servo2 */
 
 /* y(t) and y'(t) of y'' + 2 z w y' + w^2 y = w^2 k u for a unit step u at t = 0 from rest,
@@ -204,15 +216,18 @@ static const notes multi_notes = {
     "multirate: largest |theta| from 6.5 s on [rad]",
 };
 
-/* runs a scene to its end: clean, links intact, the arm horizontal from 6.5 s on and
-   never far from its reference; positions of B1..B10 at 10 s into pos */
+/* runs a scene to TEST_ACTUATED_T_END: clean, links intact, the arm never far from its
+   reference and horizontal from 6.5 s on; positions of B1..B10 at the end into pos */
 static void run_scene(const rt_scene *sc, const notes *n, double *pos)
 {
     if (!tu_init(sc))
         return;
     int th = rt_block_index(sc, "Ctrl");
+    uint64_t end = (uint64_t)((real_t)TEST_ACTUATED_T_END / sc->dt + (real_t)0.5);
     double links = 0, track = 0, hold = 0;
-    while (rt_tick(sc, &tu_sim) == RT_OK) {
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        TH_CHECK(end % sc->sets[s].ratio == 0); /* every set at the end time */
+    while (tu_sim.tick < end && rt_tick(sc, &tu_sim) == RT_OK) {
         real_t t = rt_time(sc, &tu_sim);
         const real_t *y = tu_sim.y + tu_sim.y_off[th];
         double e = absd((double)(y[MDL_ARM_PD_Y_THETA] - y[MDL_ARM_PD_Y_THR]));
@@ -227,12 +242,12 @@ static void run_scene(const rt_scene *sc, const notes *n, double *pos)
     th_note(n->links, links);
     th_note(n->track, track);
     th_note(n->hold, hold);
-    TH_CHECK(tu_sim.tick == tu_sim.n_ticks && tu_sim.status == RT_OK);
+    TH_CHECK(tu_sim.tick == end && tu_sim.status == RT_OK);
     TH_CHECK(tu_sim.count[RT_CNT_DEGRADED] == 0 && tu_sim.count[RT_CNT_NAN] == 0);
     TH_CHECK(links < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
     TH_CHECK(tu_sim.mbs.res_max < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
     TH_CHECK(track < 0.02); /* about 1 deg */
-    TH_CHECK(hold < 0.005); /* horizontal within 0.3 deg */
+    TH_CHECK(hold < 0.005); /* horizontal within 0.3 deg (0 when the run ends before) */
     for (int b = 0; b < 10; b++)
         for (int k = 0; k < 3; k++)
             pos[3 * b + k] = (double)tu_sim.y[tu_sim.y_off[b] + k];
@@ -246,8 +261,10 @@ static void test_scenes_agree(void)
     run_scene(&mdl_scene_pendulum10_actuated, &multi_notes, pm);
     for (int i = 0; i < 30; i++)
         d = absd(ps[i] - pm[i]) > d ? absd(ps[i] - pm[i]) : d;
-    th_note("multirate - single rate, largest position difference at 10 s [m]", d);
+    th_note("multirate - single rate, largest position difference at the end [m]", d);
     TH_CHECK(d < (RT_REAL_IS_FLOAT ? 1e-3 : 1e-4));
+    if (TEST_ACTUATED_T_END < 10)
+        return;
     /* the arm is up and the chain hangs from it: B1 near (1, 0, 0) */
     TH_NEAR(pm[0], 1, 1e-4);
     TH_NEAR(pm[2], 0, 5e-3);

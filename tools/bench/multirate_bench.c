@@ -426,7 +426,7 @@ static void summary(FILE *f, const row *const *w, const double *t, int md)
     fprintf(f, "%sbound also on every position every %g s of the run:\n", li, T_SAMPLE);
     winner(f, md ? "  - cheapest single rate: " : "  cheapest single rate: ", w[2], t[2]);
     winner(f, md ? "  - cheapest multirate: " : "  cheapest multirate:   ", w[3], t[3]);
-    fprintf(f, "%s  speedup %.3g\n", md ? "  -" : "", t[2] / t[3]);
+    fprintf(f, "%sspeedup %.3g\n", md ? "  - " : "  ", t[2] / t[3]);
     fprintf(f, "%sbound on every position at 10 s (issue 6):\n", li);
     winner(f, md ? "  - cheapest single rate: " : "cheapest single rate: ", w[0], t[0]);
     winner(f, md ? "  - cheapest multirate: " : "cheapest multirate:   ", w[1], t[1]);
