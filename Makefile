@@ -36,7 +36,9 @@ CFLAGS_FREE = $(CFLAGS_ALL) -ffreestanding
 
 # ---- sources ----
 RT_SRCS     := $(wildcard rt/*.c)
-MODEL_SRCS  := $(wildcard models/*.c models/scenes/*.c)
+# the library scenes are compiled from models/scenes/*.scn by scenec (tools/scenec/)
+MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
+               $(patsubst models/scenes/%.scn,build/gen/scenes/%.c,$(wildcard models/scenes/*.scn))
 POSIX_SRCS  := ports/posix/port.c ports/posix/runner.c ports/posix/tune.c
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
@@ -193,8 +195,8 @@ FOOT_TARGETS := m3 m4f m7 rv32 rv64
 # everything but the registries: a scene names its kinds and methods directly
 FOOT_SRCS = tests/cross/footprint_main.c tests/harness.c \
             $(filter-out rt/registry.c,$(RT_SRCS)) \
-            $(filter-out models/registry.c models/scenes/%,$(MODEL_SRCS))
-footprint: build/host/modrt $(INSN_COUNT_SO)
+            $(filter-out models/registry.c models/scenes/% build/gen/%,$(MODEL_SRCS))
+footprint: build/host/modrt $(INSN_COUNT_SO) scenes
 	sh tools/footprint.sh "$(FOOT_TARGETS)" > docs/footprint.md
 	@echo "footprint: wrote docs/footprint.md"
 # one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes)
@@ -203,7 +205,7 @@ foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@mkdir -p build/foot/$(T)
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
 	  $(shell build/host/modrt sizes $(S)) \
-	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) models/scenes/$(S).c \
+	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) build/gen/scenes/$(S).c \
 	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 	@mkdir -p $(dir $@)
@@ -215,12 +217,19 @@ print-%:
 # ---- benchmarks: figures and plots into docs/ (never timed tests) ----
 $(O)/mbs_bench: $(call obj,tools/bench/mbs_bench.c) $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
-bench: $(O)/mbs_bench $(O)/svgplot
+$(O)/multirate_bench: $(call obj,tools/bench/multirate_bench.c) $(RT_OBJS) $(MODEL_OBJS)
+	$(CC) $(LDSAN) $^ -lm -o $@
+bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot
 	@mkdir -p build/bench
 	$(O)/mbs_bench --csv build/bench/mbs.csv --doc docs/mbs.md
 	$(O)/svgplot --xy --logx --logy -t "pendulum10: position error at 2 s against host CPU time" \
 	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
 	    -o docs/mbs_bench.svg build/bench/mbs.csv
+	$(O)/multirate_bench --csv build/bench/multirate.csv --doc docs/multirate.md
+	$(O)/svgplot --xy --logx --logy \
+	    -t "pendulum10_actuated: position error at 10 s against host CPU time" \
+	    -x "host CPU s per run of 10 s" -y "largest position error at 10 s [m]" \
+	    -o docs/multirate_bench.svg build/bench/multirate.csv
 
 # ---- demo ----
 # the paper's first example: the 10-body pendulum; plot the tip, the middle, the first body

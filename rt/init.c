@@ -156,8 +156,11 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
         sim->src_kind[i] = 0xFF, sim->src[i] = 0, sim->def[i] = 0, sim->u[i] = 0;
         sim->interp[i] = 0, sim->src_set[i] = 0;
     }
-    for (uint16_t v = 0; v < sim->y_off[sc->nblocks]; v++)
+    for (uint16_t v = 0; v < sim->y_off[sc->nblocks]; v++) {
         sim->xsrc[v] = 0;
+        for (int k = 0; k < RT_HIST; k++)
+            sim->hist_y[k][v] = 0;
+    }
     for (uint16_t c = 0; c < sc->nconns; c++)
         if ((st = route_conn(sc, sim, &sc->conns[c])) != RT_OK)
             return st;

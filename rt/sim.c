@@ -33,12 +33,21 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
     for (uint8_t i = 0; i < sc->nsets; i++)
         refresh_set(sc, sim, sim->sched[i]);
-    /* before the first tick the history starts afresh (parameters may have changed) */
-    if (sim->tick == 0)
+    /* before the first tick the history starts afresh (parameters may have changed), and
+       the sets are refreshed once more so each reads the others' initial outputs rather
+       than an empty history */
+    if (sim->tick == 0 && sc->nsets > 1) {
         for (uint8_t s = 0; s < sc->nsets; s++) {
             sim->hist_n[s] = 0;
             rti_xset_push(sc, sim, s, 0);
         }
+        for (uint8_t i = 0; i < sc->nsets; i++)
+            refresh_set(sc, sim, sim->sched[i]);
+        for (uint8_t s = 0; s < sc->nsets; s++) {
+            sim->hist_n[s] = 0;
+            rti_xset_push(sc, sim, s, 0);
+        }
+    }
     sim->set_now = RT_ALL_SETS;
     return RT_OK;
 }

@@ -66,7 +66,11 @@ h1=$($M run oscillator --t-end 1 --set Osc.omega=6.2831853071795871 | hash_of)
 [ "$h0" != "$h1" ] && ok || bad "one-bit parameter change kept the hash"
 $M run pi_loop --set Plant.T=0.25 --set PI.Kp=1.5 >/dev/null && ok || bad "--set pi_loop"
 
+# the offline tuner picks the declared schedule of the actuated pendulum at 1e-4 m
+$M tune pendulum10_actuated --tol 1e-4 | grep -q '^schedule: chain=16 servo=1$' && ok || bad "tune"
+
 # bad input: one clear line, exit 2, nothing crashes
+expect_err "tune without tol" 2 "tune needs --tol" $M tune oscillator
 expect_err "no args" 2 "usage" $M
 expect_err "unknown command" 2 "usage" $M frobnicate
 expect_err "unknown scene" 2 "unknown scene: nope" $M run nope

@@ -1,4 +1,5 @@
-/* scenes.h - the library scenes (one const rt_scene per file of models/scenes/). */
+/* scenes.h - the library scenes: one const rt_scene per models/scenes/<name>.scn, compiled
+ * by scenec into build/gen/scenes/<name>.c (tools/scenec/scenec.mk). */
 #ifndef MDL_SCENES_H
 #define MDL_SCENES_H
 

@@ -59,7 +59,7 @@ static int parse_real(const char *s, double *v)
 static int cmd_list(void)
 {
     for (const rt_scene_entry *e = mdl_scenes; e->name; e++)
-        printf("%-16s %s\n", e->name, e->scene->doc ? e->scene->doc : "");
+        printf("%-28s %s\n", e->name, e->scene->doc ? e->scene->doc : "");
     return 0;
 }
 
