@@ -215,9 +215,10 @@ print-%:
 	@echo '$($*)'
 
 # ---- benchmarks: figures and plots into docs/ (never timed tests) ----
-$(O)/mbs_bench: $(call obj,tools/bench/mbs_bench.c) $(RT_OBJS) $(MODEL_OBJS)
+$(O)/mbs_bench: $(call obj,tools/bench/mbs_bench.c tools/bench/bench_doc.c) $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
-$(O)/multirate_bench: $(call obj,tools/bench/multirate_bench.c) $(RT_OBJS) $(MODEL_OBJS)
+$(O)/multirate_bench: $(call obj,tools/bench/multirate_bench.c tools/bench/bench_doc.c) \
+                     $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
 bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot
 	@mkdir -p build/bench

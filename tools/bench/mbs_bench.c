@@ -16,6 +16,7 @@
  *   --reps repetitions per run, the fastest counts (default 3)
  *   --quick fewer, coarser runs (a smoke test) */
 #define _POSIX_C_SOURCE 200809L
+#include "bench_doc.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,9 +32,6 @@
 #define RUN_CAP_S 0.5    /* a method stops refining once one run takes longer [s] */
 #define ERR_FLOOR 1e-11  /* ... or once its error is this close to roundoff [m] */
 #define ROUND_S 0.05     /* shortest timed round of repeated runs [s] */
-#define MAX_DOC 131072   /* bytes of the document the table is spliced into */
-#define DOC_BEGIN "<!-- bench:begin -->"
-#define DOC_END "<!-- bench:end -->"
 
 static rt_sim sim;
 static double ref_xz[2 * NB]; /* reference positions (x, z) of B1..B10 at T_CHECK [m] */
@@ -196,22 +194,6 @@ static void print_cheapest(FILE *f, const row *rows, int n, int md)
     }
 }
 
-/* the host's processor, for the record (Linux); "unknown" elsewhere */
-static void cpu_name(char *buf, size_t n)
-{
-    snprintf(buf, n, "unknown");
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    char line[256];
-    while (f && fgets(line, sizeof line, f))
-        if (!strncmp(line, "model name", 10) && strchr(line, ':')) {
-            snprintf(buf, n, "%s", strchr(line, ':') + 2);
-            buf[strcspn(buf, "\n")] = 0;
-            break;
-        }
-    if (f)
-        fclose(f);
-}
-
 static void print_table(FILE *f, const row *rows, int n, int md)
 {
     if (md) {
@@ -247,40 +229,6 @@ static FILE *text_stream(char *buf, size_t n)
         exit(1);
     }
     return f;
-}
-
-static int write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    if (!f || fputs(text, f) < 0 || fclose(f) != 0) {
-        perror(path);
-        return 1;
-    }
-    return 0;
-}
-
-/* replaces the lines between the bench markers of path with text */
-static int splice_doc(const char *path, const char *text)
-{
-    static char old[MAX_DOC], out[2 * MAX_DOC];
-    FILE *f = fopen(path, "r");
-    size_t n = f ? fread(old, 1, sizeof old - 1, f) : 0;
-    if (!f || n == sizeof old - 1) {
-        fprintf(stderr, "mbs_bench: cannot read %s (or larger than %d bytes)\n", path, MAX_DOC);
-        if (f)
-            fclose(f);
-        return 1;
-    }
-    fclose(f);
-    old[n] = 0;
-    char *a = strstr(old, DOC_BEGIN), *b = a ? strstr(a, DOC_END) : 0;
-    if (!a || !b) {
-        fprintf(stderr, "mbs_bench: %s lacks the lines %s and %s\n", path, DOC_BEGIN, DOC_END);
-        return 1;
-    }
-    a += strlen(DOC_BEGIN);
-    snprintf(out, sizeof out, "%.*s\n%s%s", (int)(a - old), old, text, b);
-    return write_file(path, out);
 }
 
 int main(int argc, char **argv)
@@ -331,7 +279,7 @@ int main(int argc, char **argv)
     if (md || doc) {
         static char text[MAX_DOC];
         char cpu[128];
-        cpu_name(cpu, sizeof cpu);
+        bench_cpu_name(cpu, sizeof cpu);
         FILE *f = text_stream(text, sizeof text);
         fprintf(f, "Host: %s; best of %d timed rounds per row. Reference: the chain in "
                    "minimal coordinates, RK4 at %.1e s (halving its step changes it by "
@@ -340,9 +288,9 @@ int main(int argc, char **argv)
         fprintf(f, "\nCheapest step of each method within 1e-6 m at 2 s:\n\n");
         print_cheapest(f, rows, n, 1);
         fclose(f);
-        if (md && write_file(md, text) != 0)
+        if (md && bench_write_file(md, text) != 0)
             return 1;
-        if (doc && splice_doc(doc, text) != 0)
+        if (doc && bench_splice_doc("mbs_bench", doc, text) != 0)
             return 1;
     }
     if (csv) {

@@ -28,6 +28,7 @@
  *   --final rounds of the side-by-side timing of the winners (default 9)
  *   --quick fewer configurations (a smoke test) */
 #define _POSIX_C_SOURCE 200809L
+#include "bench_doc.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,9 +47,6 @@
 #define ROUND_S 0.05       /* shortest timed round of repeated runs [s] */
 #define SLOW_S 1.0         /* a sweep point slower than this is timed once [s] */
 #define MAX_ROWS 512       /* sweep points */
-#define MAX_DOC 131072     /* bytes of the document the summary is spliced into */
-#define DOC_BEGIN "<!-- bench:begin -->"
-#define DOC_END "<!-- bench:end -->"
 
 static rt_sim sim;
 static double ref_pos[3 * NB]; /* reference positions of B1..B10 at 10 s [m] */
@@ -296,22 +294,6 @@ static const row *cheapest(int multi, int strict)
 
 /* ------------------------------------------------------------------ output */
 
-/* the host's processor, for the record (Linux); "unknown" elsewhere */
-static void cpu_name(char *buf, size_t n)
-{
-    snprintf(buf, n, "unknown");
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    char line[256];
-    while (f && fgets(line, sizeof line, f))
-        if (!strncmp(line, "model name", 10) && strchr(line, ':')) {
-            snprintf(buf, n, "%s", strchr(line, ':') + 2);
-            buf[strcspn(buf, "\n")] = 0;
-            break;
-        }
-    if (f)
-        fclose(f);
-}
-
 static void print_rows(FILE *f, int md)
 {
     if (md)
@@ -371,42 +353,6 @@ static int write_csv(const char *path)
         fprintf(f, "%s,%.6g,%.6g\n", name, rows[i].cpu, rows[i].err > 1e-14 ? rows[i].err : 1e-14);
     }
     return fclose(f) != 0;
-}
-
-static int write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    if (!f || fputs(text, f) < 0 || fclose(f) != 0) {
-        perror(path);
-        return 1;
-    }
-    return 0;
-}
-
-/* replaces the lines between the bench markers of path with text */
-static int splice_doc(const char *path, const char *text)
-{
-    static char old[MAX_DOC], out[2 * MAX_DOC];
-    FILE *f = fopen(path, "r");
-    size_t n = f ? fread(old, 1, sizeof old - 1, f) : 0;
-    if (!f || n == sizeof old - 1) {
-        fprintf(stderr, "multirate_bench: cannot read %s (or larger than %d bytes)\n", path,
-                MAX_DOC);
-        if (f)
-            fclose(f);
-        return 1;
-    }
-    fclose(f);
-    old[n] = 0;
-    char *a = strstr(old, DOC_BEGIN), *b = a ? strstr(a, DOC_END) : 0;
-    if (!a || !b) {
-        fprintf(stderr, "multirate_bench: %s lacks the lines %s and %s\n", path, DOC_BEGIN,
-                DOC_END);
-        return 1;
-    }
-    a += strlen(DOC_BEGIN);
-    snprintf(out, sizeof out, "%.*s\n%s%s", (int)(a - old), old, text, b);
-    return write_file(path, out);
 }
 
 /* a winner's configuration, error and time */
@@ -517,7 +463,7 @@ int main(int argc, char **argv)
     if (md || doc) {
         static char text[MAX_DOC];
         char cpu[128];
-        cpu_name(cpu, sizeof cpu);
+        bench_cpu_name(cpu, sizeof cpu);
         FILE *f = fmemopen(text, sizeof text, "w");
         if (!f) {
             perror("fmemopen");
@@ -531,9 +477,9 @@ int main(int argc, char **argv)
         fprintf(f, "\n");
         print_rows(f, 1);
         fclose(f);
-        if (md && write_file(md, text) != 0)
+        if (md && bench_write_file(md, text) != 0)
             return 1;
-        if (doc && splice_doc(doc, text) != 0)
+        if (doc && bench_splice_doc("multirate_bench", doc, text) != 0)
             return 1;
     }
     return 0;
