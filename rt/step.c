@@ -42,7 +42,7 @@ static int crossed(const rt_kind *k, uint16_t i, real_t ra, real_t rb)
 
 /* first root of the set (in block order) crossing between ra and rb; -1 if none.
    Writes the owning block into *blk and the root's index within it into *which. */
-static int find_crossing(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *ra,
+static int find_crossing(const rt_scene *sc, uint8_t s, const real_t *ra,
                          const real_t *rb, uint16_t *blk, uint16_t *which)
 {
     uint16_t n = 0;
@@ -56,7 +56,6 @@ static int find_crossing(const rt_scene *sc, const rt_sim *sim, uint8_t s, const
                 return n;
             }
     }
-    (void)sim;
     return -1;
 }
 
@@ -97,7 +96,7 @@ static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
         trial(sc, sim, s, t, h, th, sim->rs);
         uint16_t blk, which;
         /* an earlier crossing of any root in [a, th] takes over the bracket */
-        int c = find_crossing(sc, sim, s, r_start, sim->rs, &blk, &which);
+        int c = find_crossing(sc, s, r_start, sim->rs, &blk, &which);
         if (c >= 0) {
             k->root = c, k->b = th, k->rb = sim->rs[c];
             for (uint16_t i = 0; i < n; i++)
@@ -156,7 +155,7 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         rti_outputs(sc, sim, t0 + span, RTI_IN_STEP);
         rti_roots(sc, sim, s, t0 + span, sim->rs);
         uint16_t blk, which;
-        int c = find_crossing(sc, sim, s, r, sim->rs, &blk, &which);
+        int c = find_crossing(sc, s, r, sim->rs, &blk, &which);
         if (c < 0)
             break;
         if (ev >= RT_EVENTS_PER_STEP_MAX) {

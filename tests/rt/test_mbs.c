@@ -207,6 +207,20 @@ typedef struct drift {
     double res, resv, energy; /* largest |g|, |g'|, |E - E0| over the run */
 } drift;
 
+/* prints a run's largest residuals and energy error, prefixed by label */
+static void note_drift(const char *label, const drift *d)
+{
+    th_put("  ");
+    th_put(label);
+    th_put(" |g| ");
+    th_put_real(d->res);
+    th_put(", |g'| ");
+    th_put_real(d->resv);
+    th_put(", |E - E0| [J/kg] ");
+    th_put_real(d->energy);
+    th_put("\n");
+}
+
 static drift run_drift(const rt_scene *sc, uint64_t steps)
 {
     drift d = {0, 0, 0};
@@ -238,12 +252,8 @@ static void test_drift_10s(void)
     sc.stab = RT_STAB_BAUMGARTE;
     sc.baumgarte[0] = 20, sc.baumgarte[1] = 100;
     drift baum = run_drift(&sc, 10000);
-    th_note("10 s, projection:    |g|", on.res);
-    th_note("10 s, projection:    |g'|", on.resv);
-    th_note("10 s, projection:    |E - E0| [J/kg]", on.energy);
-    th_note("10 s, no projection: |g|", off.res);
-    th_note("10 s, no projection: |g'|", off.resv);
-    th_note("10 s, no projection: |E - E0| [J/kg]", off.energy);
+    note_drift("10 s, projection:   ", &on);
+    note_drift("10 s, no projection:", &off);
     th_note("10 s, Baumgarte 20/100: |g|", baum.res);
     double eps = RT_REAL_IS_FLOAT ? 1e-6 : 1e-15;
     TH_CHECK(on.res < 4 * eps && on.resv < 40 * eps);
@@ -283,12 +293,8 @@ static void test_drift_long(void)
     sc.stab = RT_STAB_NONE;
     drift off = run_drift(&sc, TEST_MBS_LONG_STEPS);
     th_note("steps", TEST_MBS_LONG_STEPS);
-    th_note("projection:    |g|", on.res);
-    th_note("projection:    |g'|", on.resv);
-    th_note("projection:    |E - E0| [J/kg]", on.energy);
-    th_note("no projection: |g|", off.res);
-    th_note("no projection: |g'|", off.resv);
-    th_note("no projection: |E - E0| [J/kg]", off.energy);
+    note_drift("projection:   ", &on);
+    note_drift("no projection:", &off);
     double eps = RT_REAL_IS_FLOAT ? 1e-6 : 1e-15;
     TH_CHECK(on.res < 4 * eps && on.resv < 40 * eps);
     TH_CHECK(off.res > 1e5 * eps && off.energy > 5 * on.energy);
