@@ -19,7 +19,7 @@ endif
 # ---- flags: the same everywhere, so every target computes the same bits ----
 CSTD     := -std=c11 -Wall -Wextra -Werror -ffp-contract=off -fno-math-errno
 COPT     := -O2 -g -ffunction-sections -fdata-sections
-CINC     := -Irt -Imodels -Iports -Iports/posix -Itests
+CINC     := -Irt -Imodels -Iports -Iports/posix -Itools/modrt -Itests
 CDEFS    :=
 ifeq ($(REAL),float)
 CDEFS    += -DRT_REAL_FLOAT
@@ -39,7 +39,7 @@ RT_SRCS     := $(wildcard rt/*.c)
 # the library scenes are compiled from models/scenes/*.scn by scenec (tools/scenec/)
 MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
                $(patsubst models/scenes/%.scn,build/gen/scenes/%.c,$(wildcard models/scenes/*.scn))
-POSIX_SRCS  := ports/posix/port.c ports/posix/runner.c ports/posix/tune.c
+POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
 
@@ -75,7 +75,7 @@ $(O)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -c $< -o $@
 
-$(O)/modrt: $(call obj,ports/posix/modrt.c $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
+$(O)/modrt: $(call obj,tools/modrt/modrt.c $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -o $@
 
 $(O)/svgplot: tools/svgplot.c

@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli.sh - tests of the host command line (ports/posix/modrt.c): listing, info, runs,
+# cli.sh - tests of the host command line (tools/modrt/modrt.c): listing, info, runs,
 # deterministic hashes, CSV output and one clear error line for every kind of bad input.
 # Usage: sh tests/cli.sh BUILD_DIR
 set -u

@@ -1,4 +1,4 @@
-/* test_tune.c - tests of ports/posix/tune.c (`modrt tune`): on a two-set linear system
+/* test_tune.c - tests of tools/modrt/tune.c (`modrt tune`): on a two-set linear system
  * with a known solution, the schedule the tuner chooses meets its tolerance when re-run
  * and compared with the exact solution, doubling any set's step would not (so no cheaper
  * candidate was passed over), and the tuner's measured error is the re-run's.

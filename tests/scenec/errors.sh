@@ -12,7 +12,7 @@ pass=0 fail=0 modrt_ok=1
 ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL errors: $*"; }
 
-# does this modrt read scene files yet (the patch of ports/posix/modrt.c)?
+# does this modrt read scene files yet (the patch of tools/modrt/modrt.c)?
 "$M" run tests/scenec/errors/syntax.scn 2>&1 | grep -q "unknown scene" && modrt_ok=0
 for f in tests/scenec/errors/*.scn; do
     want=$(sed -n 's|^// expect: ||p' "$f" | head -1)

@@ -28,7 +28,7 @@ for f in models/scenes/*.scn tests/scenec/scenes/*.scn; do
         [ "$hs" = "$hc" ] && ok || bad "$f: scenec --run $hs, compiled $hc"
         line="$line = scenec --run $hs"
     fi
-    # modrt reads scene files once ports/posix/modrt.c has the patch
+    # modrt reads scene files once tools/modrt/modrt.c has the patch
     "$M" run "$f" > "$T/modrt" 2> "$T/err"
     if grep -q "unknown scene" "$T/err"; then
         skipped="$skipped $f"

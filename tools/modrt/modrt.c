@@ -391,7 +391,7 @@ int main(int argc, char **argv)
         return cmd_info(argv[2]);
     if (argc >= 3 && strcmp(argv[1], "run") == 0)
         return cmd_run(argc, argv);
-    if (argc >= 3 && strcmp(argv[1], "tune") == 0) /* ports/posix/tune.c */
+    if (argc >= 3 && strcmp(argv[1], "tune") == 0) /* tools/modrt/tune.c */
         return tune_main(find_scene(argv[2]), argc, argv);
     return usage();
 }
