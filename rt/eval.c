@@ -10,22 +10,22 @@ void rti_gather(rt_sim *sim, uint16_t b)
     /* pointers and a size_t index: with a uint16_t index into several arrays of the
        struct, GCC 12's AArch64 ivopts built addresses from -7 * sim, a later pass took
        them for NULL dereferences and deleted every call of this function as pure */
-    const uint8_t *kind = sim->src_kind;
-    const uint16_t *src = sim->src;
-    real_t *u = sim->u;
-    for (size_t i = sim->u_off[b], end = sim->u_off[b + 1]; i < end; i++) {
+    const uint8_t *kind = sim->plan.src_kind;
+    const uint16_t *src = sim->plan.src;
+    real_t *u = sim->work.u;
+    for (size_t i = sim->plan.u_off[b], end = sim->plan.u_off[b + 1]; i < end; i++) {
         switch (kind[i]) {
         case RT_SRC_Y:
-            u[i] = sim->y[src[i]];
+            u[i] = sim->state.y[src[i]];
             break;
         case RT_SRC_TORN:
-            u[i] = sim->torn_val[src[i]];
+            u[i] = sim->state.torn_val[src[i]];
             break;
         case RT_SRC_XSET:
-            u[i] = rti_xset_value(sim, src[i], sim->src_set[i], sim->interp[i], sim->t_now);
+            u[i] = rti_xset_value(sim, src[i], sim->plan.src_set[i], sim->plan.interp[i], sim->work.t_now);
             break;
         default:
-            u[i] = sim->def[i];
+            u[i] = sim->plan.def[i];
             break;
         }
     }
@@ -34,7 +34,7 @@ void rti_gather(rt_sim *sim, uint16_t b)
 /* a DSS block produces new outputs only at its sample hits */
 static int dss_hit(const rt_sim *sim, uint16_t b, rti_mode mode)
 {
-    return mode == RTI_AT_TICK && sim->tick % sim->period[b] == 0;
+    return mode == RTI_AT_TICK && sim->state.tick % sim->plan.period[b] == 0;
 }
 
 /* calls the output equation of block b */
@@ -45,29 +45,29 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t, r
         return;
     rt_args a;
     rti_gather(sim, b);
-    rti_args(sc, sim, b, t, sc->dt * (real_t)sim->period[b], &a);
-    k->output(&a, sim->y + sim->y_off[b]);
+    rti_args(sc, sim, b, t, sc->dt * (real_t)sim->plan.period[b], &a);
+    k->output(&a, sim->state.y + sim->plan.y_off[b]);
 }
 
 void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, real_t t,
                    rti_mode mode)
 {
-    sim->t_now = t;
+    sim->work.t_now = t;
     for (uint16_t s = begin; s < end; s++)
-        call_output(sc, sim, sim->seq[s].index, t, mode);
+        call_output(sc, sim, sim->plan.seq[s].index, t, mode);
 }
 
 /* is block b evaluated in the pass under way (its set, or every set)? */
 static int in_pass(const rt_scene *sc, const rt_sim *sim, uint16_t b)
 {
-    return sim->set_now == RT_ALL_SETS || sc->blocks[b].set == sim->set_now;
+    return sim->work.set_now == RT_ALL_SETS || sc->blocks[b].set == sim->work.set_now;
 }
 
 void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode)
 {
-    sim->t_now = t;
-    for (uint16_t s = 0; s < sim->nseq; s++) {
-        const rt_seq_step *st = &sim->seq[s];
+    sim->work.t_now = t;
+    for (uint16_t s = 0; s < sim->plan.nseq; s++) {
+        const rt_seq_step *st = &sim->plan.seq[s];
         if (st->kind == RT_SEQ_CALL) {
             if (in_pass(sc, sim, st->index))
                 call_output(sc, sim, st->index, t, mode);
@@ -75,8 +75,8 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode)
         }
         /* an actual loop (all in one set: cross-set edges are no algebraic
            dependency): the solver runs its segment until the torn inputs agree */
-        const rt_loop *l = &sim->loops[st->index];
-        if (in_pass(sc, sim, sim->loop_blocks[l->first]))
+        const rt_loop *l = &sim->plan.loops[st->index];
+        if (in_pass(sc, sim, sim->plan.loop_blocks[l->first]))
             sc->loop_solver->solve(sc, sim, (uint8_t)st->index, t, mode);
         s = (uint16_t)(l->seq1 - 1);
     }
@@ -85,7 +85,7 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode)
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r)
 {
     uint16_t n = 0;
-    sim->t_now = t;
+    sim->work.t_now = t;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
         if (k->nr == 0 || sc->blocks[b].set != s)
@@ -103,9 +103,9 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     const rti_rhs_ctx *c = ctx;
     const rt_scene *sc = c->sc;
     rt_sim *sim = c->sim;
-    uint16_t base = sim->set_x[c->set];
+    uint16_t base = sim->plan.set_x[c->set];
 
-    sim->set_now = c->set;
+    sim->work.set_now = c->set;
     rti_outputs(sc, sim, t, RTI_IN_STEP);
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
@@ -114,7 +114,7 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
         rt_args a;
         rti_gather(sim, b);
         rti_args(sc, sim, b, t, c->h, &a);
-        k->deriv(&a, xdot + (sim->x_off[b] - base));
+        k->deriv(&a, xdot + (sim->plan.x_off[b] - base));
     }
     /* multibody blocks of the set are solved together (eqs. 6, 7b, 9) */
     if (sc->mbs)

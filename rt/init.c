@@ -55,12 +55,12 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
 {
     uint32_t nx = 0, nd = 0, nu = 0, ny = 0, np = 0, nr = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
-        sim->set_x[s] = (uint16_t)nx;
-        sim->set_r[s] = (uint16_t)nr;
+        sim->plan.set_x[s] = (uint16_t)nx;
+        sim->plan.set_r[s] = (uint16_t)nr;
         for (uint16_t b = 0; b < sc->nblocks; b++) {
             if (sc->blocks[b].set != s)
                 continue;
-            sim->x_off[b] = (uint16_t)nx;
+            sim->plan.x_off[b] = (uint16_t)nx;
             nx += sc->blocks[b].kind->nx;
             nr += sc->blocks[b].kind->nr;
             if (nx > RT_MAX_X || nr > RT_MAX_ROOTS)
@@ -68,21 +68,21 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
                                 "RT_MAX_ROOTS", (const char *)0);
         }
     }
-    sim->set_x[sc->nsets] = (uint16_t)nx;
-    sim->set_r[sc->nsets] = (uint16_t)nr;
+    sim->plan.set_x[sc->nsets] = (uint16_t)nx;
+    sim->plan.set_r[sc->nsets] = (uint16_t)nr;
     for (uint8_t s = 0; s < sc->nsets; s++)
         if (sc->sets[s].method->implicit &&
-            sim->set_x[s + 1] - sim->set_x[s] > RT_MAX_IMPLICIT_N)
+            sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_IMPLICIT_N)
             return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
                             ": an implicit method's states exceed RT_MAX_IMPLICIT_N",
                             (const char *)0);
 
-    sim->x_off[sc->nblocks] = (uint16_t)nx;
+    sim->plan.x_off[sc->nblocks] = (uint16_t)nx;
     for (uint16_t b = 0; b <= sc->nblocks; b++) {
-        sim->d_off[b] = (uint16_t)nd;
-        sim->u_off[b] = (uint16_t)nu;
-        sim->y_off[b] = (uint16_t)ny;
-        sim->p_off[b] = (uint16_t)np;
+        sim->plan.d_off[b] = (uint16_t)nd;
+        sim->plan.u_off[b] = (uint16_t)nu;
+        sim->plan.y_off[b] = (uint16_t)ny;
+        sim->plan.p_off[b] = (uint16_t)np;
         if (b == sc->nblocks)
             break;
         const rt_kind *k = sc->blocks[b].kind;
@@ -108,17 +108,17 @@ static rt_status initial_values(const rt_scene *sc, rt_sim *sim)
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_block *bl = &sc->blocks[b];
         const rt_kind *k = bl->kind;
-        fill(sim->p + sim->p_off[b], bl->p, k->p_default, k->np);
-        fill(sim->x + sim->x_off[b], bl->x0, k->x_default, k->nx);
-        fill(sim->d + sim->d_off[b], bl->d0, k->d_default, k->nd);
+        fill(sim->state.p + sim->plan.p_off[b], bl->p, k->p_default, k->np);
+        fill(sim->state.x + sim->plan.x_off[b], bl->x0, k->x_default, k->nx);
+        fill(sim->state.d + sim->plan.d_off[b], bl->d0, k->d_default, k->nd);
         for (uint16_t j = 0; j < k->ny; j++)
-            sim->y[sim->y_off[b] + j] = 0;
-        sim->period[b] = 0;
-        if (k->type == RT_KIND_DSS && (sim->period[b] = period_ticks(sc, bl)) == 0)
+            sim->state.y[sim->plan.y_off[b] + j] = 0;
+        sim->plan.period[b] = 0;
+        if (k->type == RT_KIND_DSS && (sim->plan.period[b] = period_ticks(sc, bl)) == 0)
             return rti_fail(sim, RT_E_SCENE, "block ", bl->name,
                             ": sample period is not a positive multiple of the base tick",
                             (const char *)0);
-        if (k->check && k->check(sim->p + sim->p_off[b], k->spec) != RT_OK)
+        if (k->check && k->check(sim->state.p + sim->plan.p_off[b], k->spec) != RT_OK)
             return rti_fail(sim, RT_E_PARAM, "block ", bl->name,
                             ": parameters out of range for kind ", k->name, (const char *)0);
     }
@@ -138,28 +138,28 @@ static rt_status route_conn(const rt_scene *sc, rt_sim *sim, const rt_conn *c)
     if (c->u >= t->kind->nu)
         return rti_fail(sim, RT_E_SCENE, "connection to ", t->name,
                         ": input index out of range", (const char *)0);
-    uint16_t gi = (uint16_t)(sim->u_off[c->to] + c->u);
-    if (sim->src_kind[gi] != 0xFF)
+    uint16_t gi = (uint16_t)(sim->plan.u_off[c->to] + c->u);
+    if (sim->plan.src_kind[gi] != 0xFF)
         return rti_fail(sim, RT_E_SCENE, "input ", t->name, ".", t->kind->u_names[c->u],
                         " is driven twice", (const char *)0);
-    sim->src_kind[gi] = RT_SRC_Y;
-    sim->src[gi] = (uint16_t)(sim->y_off[c->from] + c->y);
+    sim->plan.src_kind[gi] = RT_SRC_Y;
+    sim->plan.src[gi] = (uint16_t)(sim->plan.y_off[c->from] + c->y);
     return RT_OK;
 }
 
 /* every input reads a connected output or a default value */
 static rt_status route(const rt_scene *sc, rt_sim *sim)
 {
-    uint16_t nu = sim->u_off[sc->nblocks];
+    uint16_t nu = sim->plan.u_off[sc->nblocks];
     rt_status st;
     for (uint16_t i = 0; i < nu; i++) {
-        sim->src_kind[i] = 0xFF, sim->src[i] = 0, sim->def[i] = 0, sim->u[i] = 0;
-        sim->interp[i] = 0, sim->src_set[i] = 0;
+        sim->plan.src_kind[i] = 0xFF, sim->plan.src[i] = 0, sim->plan.def[i] = 0, sim->work.u[i] = 0;
+        sim->plan.interp[i] = 0, sim->plan.src_set[i] = 0;
     }
-    for (uint16_t v = 0; v < sim->y_off[sc->nblocks]; v++) {
-        sim->xsrc[v] = 0;
+    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++) {
+        sim->plan.xsrc[v] = 0;
         for (int k = 0; k < RT_HIST; k++)
-            sim->hist_y[k][v] = 0;
+            sim->state.hist_y[k][v] = 0;
     }
     for (uint16_t c = 0; c < sc->nconns; c++)
         if ((st = route_conn(sc, sim, &sc->conns[c])) != RT_OK)
@@ -169,17 +169,17 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
         if (d->block >= sc->nblocks || d->u >= sc->blocks[d->block].kind->nu)
             return rti_fail(sim, RT_E_SCENE, "a default value names an input out of range",
                             (const char *)0);
-        uint16_t gi = (uint16_t)(sim->u_off[d->block] + d->u);
-        if (sim->src_kind[gi] != 0xFF)
+        uint16_t gi = (uint16_t)(sim->plan.u_off[d->block] + d->u);
+        if (sim->plan.src_kind[gi] != 0xFF)
             return rti_fail(sim, RT_E_SCENE, "input ", sc->blocks[d->block].name, ".",
                             sc->blocks[d->block].kind->u_names[d->u],
                             " is both connected and given a default", (const char *)0);
-        sim->src_kind[gi] = RT_SRC_DEFAULT;
-        sim->def[gi] = d->value;
+        sim->plan.src_kind[gi] = RT_SRC_DEFAULT;
+        sim->plan.def[gi] = d->value;
     }
     for (uint16_t b = 0; b < sc->nblocks; b++)
         for (uint16_t i = 0; i < sc->blocks[b].kind->nu; i++)
-            if (sim->src_kind[sim->u_off[b] + i] == 0xFF)
+            if (sim->plan.src_kind[sim->plan.u_off[b] + i] == 0xFF)
                 return rti_fail(sim, RT_E_UNCONNECTED, "input ", sc->blocks[b].name, ".",
                                 sc->blocks[b].kind->u_names[i],
                                 " is not connected and has no default value",
@@ -234,22 +234,6 @@ static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
-/* zeroes the step scratch: the graph searches just used it, and a re-used rt_sim holds
-   the last run's stages there; an implicit method may read it as an initial guess, and
-   a replay must not depend on what ran before */
-static void clear_scratch(rt_sim *sim)
-{
-    for (int i = 0; i < RT_MAX_STAGES; i++)
-        for (int j = 0; j < RT_MAX_X; j++)
-            sim->w.k[i][j] = 0;
-    for (int j = 0; j < RT_MAX_X; j++)
-        sim->x0[j] = sim->xs[j] = sim->xb[j] = 0;
-    for (int j = 0; j < RT_MAX_ROOTS; j++)
-        sim->rs[j] = 0;
-    for (int j = 0; j < RT_MAX_TORN * (RT_MAX_TORN + 4); j++)
-        sim->loop_work[j] = 0;
-}
-
 /* the number of ticks that reaches t_end, rounded to the nearest tick */
 static uint64_t tick_count(const rt_scene *sc)
 {
@@ -264,33 +248,27 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         return RT_E_ARG;
     sim->sc = sc;
     sim->err[0] = 0;
-    sim->status = RT_OK;
-    sim->tick = 0;
-    sim->nseq = 0;
-    sim->nloops = 0;
-    sim->event_iter_max = 0;
-    sim->loop_iter_max = 0;
-    sim->loop_residual = 0;
-    for (int i = 0; i <= RT_LOOP_ITER_LIMIT; i++)
-        sim->loop_hist[i] = 0;
-    sim->hash = RT_HASH_INIT;
+    /* a re-used rt_sim starts as a fresh one: no value of the last run can leak into
+       this one (a replay must not depend on what ran before) */
+    rti_zero(&sim->state, sizeof sim->state);
+    rti_zero(&sim->stats, sizeof sim->stats);
+    rti_zero(&sim->work, sizeof sim->work);
+    sim->plan.nseq = 0;
+    sim->plan.nloops = 0;
+    sim->state.hash = RT_HASH_INIT;
     for (int c = 0; c < RT_CNT_COUNT; c++)
-        sim->count[c] = 0, sim->last_block[c] = -1;
-    for (uint8_t s = 0; s < RT_MAX_SETS; s++) {
-        sim->imp[s].valid = 0, sim->imp[s].age = 0, sim->imp[s].h_factored = 0;
-        sim->istats[s] = (rt_istats){0, 0, 0, 0};
-        sim->set_tick[s] = 0, sim->hist_n[s] = 0, sim->set_xout[s] = 0;
-        sim->xset_err[s] = 0, sim->sched[s] = s;
-    }
-    sim->set_now = RT_ALL_SETS;
-    sim->t_now = 0;
+        sim->stats.last_block[c] = -1;
+    for (uint8_t s = 0; s < RT_MAX_SETS; s++)
+        sim->plan.set_xout[s] = 0, sim->plan.sched[s] = s;
+    sim->work.set_now = RT_ALL_SETS;
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK)
         return st;
-    clear_scratch(sim);
+    /* the graph searches used the integrator scratch: zero it again */
+    rti_zero(&sim->work.w, sizeof sim->work.w);
     if (sc->mbs && (st = (rt_status)sc->mbs->init(sc, sim)) != RT_OK)
         return st;
-    sim->n_ticks = tick_count(sc);
+    sim->plan.n_ticks = tick_count(sc);
     return rt_refresh(sc, sim);
 }

@@ -33,7 +33,7 @@ static int residual(const solve_ctx *c, real_t *f)
     int finite = 1;
     rti_run_calls(c->sc, sim, c->lp->seq0, c->lp->seq1, c->t, c->mode);
     for (uint16_t i = 0; i < c->n; i++) {
-        f[i] = c->w[i] - sim->y[sim->torn_src[c->lp->torn0 + i]];
+        f[i] = c->w[i] - sim->state.y[sim->plan.torn_src[c->lp->torn0 + i]];
         finite = finite && rt_isfinite(f[i]);
     }
     return finite;
@@ -71,11 +71,11 @@ static void fd_inverse(const solve_ctx *c, const real_t *f, real_t *H, real_t *J
     for (uint16_t i = 0; i < n; i++)
         for (uint16_t j = 0; j < n; j++)
             H[i * n + j] = i == j ? 1 : 0;
-    if (rti_lu(J, n, c->sim->loop_piv, PIVOT_TOL) != RT_OK) {
-        rti_count(c->sim, RT_CNT_SINGULAR, c->sim->loop_blocks[c->lp->first], RT_E_SINGULAR);
+    if (rti_lu(J, n, c->sim->work.loop_piv, PIVOT_TOL) != RT_OK) {
+        rti_count(c->sim, RT_CNT_SINGULAR, c->sim->plan.loop_blocks[c->lp->first], RT_E_SINGULAR);
         return;
     }
-    rti_lu_solve_cols(J, n, c->sim->loop_piv, H, n);
+    rti_lu_solve_cols(J, n, c->sim->work.loop_piv, H, n);
 }
 
 /* Broyden's good update of the inverse: H += (s - H y) (s^T H) / (s^T H y) */
@@ -136,31 +136,31 @@ static int newton_step(const solve_ctx *c, real_t *H, real_t *f, real_t *fn, rea
 
 static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode)
 {
-    rt_loop *lp = &sim->loops[l];
-    solve_ctx c = {sc, sim, lp, t, (rti_mode)mode, lp->ntorn, sim->torn_val + lp->torn0};
+    rt_loop *lp = &sim->plan.loops[l];
+    solve_ctx c = {sc, sim, lp, t, (rti_mode)mode, lp->ntorn, sim->state.torn_val + lp->torn0};
     uint16_t n = c.n;
-    real_t *H = sim->loop_h + lp->h0;
-    real_t *f = sim->loop_work, *fn = f + n, *s = fn + n, *scratch = s + n;
+    real_t *H = sim->state.loop_h + lp->h0;
+    real_t *f = sim->work.loop_work, *fn = f + n, *s = fn + n, *scratch = s + n;
     real_t tol = sc->loop_tol > 0 ? sc->loop_tol : DEFAULT_TOL;
     uint32_t max = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
     uint32_t it = 0;
     int ok = residual(&c, f);
     max = max > RT_LOOP_ITER_LIMIT ? RT_LOOP_ITER_LIMIT : max;
-    if (ok && scaled_norm(&c, f) > tol && !lp->h_valid) {
+    if (ok && scaled_norm(&c, f) > tol && !sim->state.loop_h_valid[l]) {
         fd_inverse(&c, f, H, scratch, fn);
-        lp->h_valid = 1;
+        sim->state.loop_h_valid[l] = 1;
         ok = residual(&c, f); /* the difference steps left the segment at w + d e_n */
     }
     while (ok && scaled_norm(&c, f) > tol && it < max) {
         ok = newton_step(&c, H, f, fn, s, scratch, tol);
         it++;
     }
-    sim->loop_hist[it]++;
-    sim->loop_iter_max = it > sim->loop_iter_max ? it : sim->loop_iter_max;
+    sim->stats.loop_hist[it]++;
+    sim->stats.loop_iter_max = it > sim->stats.loop_iter_max ? it : sim->stats.loop_iter_max;
     real_t r = ok ? scaled_norm(&c, f) : (real_t)1 / (real_t)0;
     if (r > tol) {
-        rti_count(sim, RT_CNT_NOCONV, sim->loop_blocks[lp->first], RT_E_NOCONV);
-        sim->loop_residual = r > sim->loop_residual ? r : sim->loop_residual;
+        rti_count(sim, RT_CNT_NOCONV, sim->plan.loop_blocks[lp->first], RT_E_NOCONV);
+        sim->stats.loop_residual = r > sim->stats.loop_residual ? r : sim->stats.loop_residual;
     }
 }
 

@@ -63,7 +63,7 @@ static rt_status check_joint(const rt_scene *sc, rt_sim *sim, const rt_joint *j)
 /* offsets of each MBS block within its set, and the set totals against the limits */
 static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     uint32_t mo[RT_MAX_SETS] = {0};
     for (uint8_t s = 0; s < RT_MAX_SETS; s++)
         w->nz[s] = w->nq[s] = w->nc[s] = 0;
@@ -93,7 +93,7 @@ static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
 /* joint rows follow the internal rows of their set, in joint order */
 static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     if (sc->njoints > RT_MAX_JOINTS)
         return rti_fail(sim, RT_E_CAPACITY, "joints exceed RT_MAX_JOINTS", (const char *)0);
     if (sc->njoints > 0 && !sc->joints)
@@ -119,7 +119,7 @@ static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
 /* the rows each block touches (its internal rows, then its joints' rows), ascending */
 static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     uint32_t n = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         w->to[b] = (uint16_t)n;
@@ -145,7 +145,7 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
 /* recorded MBS signals: an MBS block, a known quantity, a joint acting on that block */
 static rt_status check_recs(const rt_scene *sc, rt_sim *sim)
 {
-    sim->mbs.need_lambda = 0;
+    sim->work.mbs.need_lambda = 0;
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         const rt_rec *r = &sc->recs[i];
         if (r->what != RT_SIG_MBS)
@@ -157,7 +157,7 @@ static rt_status check_recs(const rt_scene *sc, rt_sim *sim)
             ok = r->index >= RT_MBS_SIG_JOINT && j < sc->njoints &&
                  sc->joints[j].b1 == (int16_t)r->block &&
                  (c < RT_MBS_JSIG_LAMBDA || c - RT_MBS_JSIG_LAMBDA < sc->joints[j].kind->nc);
-            sim->mbs.need_lambda = 1;
+            sim->work.mbs.need_lambda = 1;
         }
         if (!ok)
             return rti_fail(sim, RT_E_SCENE, "a recorded MBS signal of ",
@@ -179,11 +179,11 @@ static int init(const rt_scene *sc, rt_sim *sim)
     if ((st = block_tables(sc, sim)) != RT_OK || (st = joint_tables(sc, sim)) != RT_OK ||
         (st = touch_tables(sc, sim)) != RT_OK || (st = check_recs(sc, sim)) != RT_OK)
         return st;
-    sim->mbs.res_max = 0;
-    sim->mbs.projections = 0;
+    sim->work.mbs.res_max = 0;
+    sim->work.mbs.projections = 0;
     /* the index-1 formulation needs consistent initial values: project them once */
     for (uint8_t s = 0; s < sc->nsets; s++)
-        if (sim->mbs.nz[s] > 0 && (sc->stab == RT_STAB_PROJECT || sim->mbs.need_lambda))
+        if (sim->work.mbs.nz[s] > 0 && (sc->stab == RT_STAB_PROJECT || sim->work.mbs.need_lambda))
             rti_mbs_project(sc, sim, s, 0); /* also the initial multipliers, if recorded */
     return RT_OK;
 }
@@ -243,7 +243,7 @@ static real_t energy(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_t 
 static real_t reaction(const rt_scene *sc, const rt_sim *sim, uint16_t j, uint16_t c,
                        real_t t)
 {
-    const real_t *lam = sim->mbs.jlam + j * RT_MBS_JOINT_NC_MAX;
+    const real_t *lam = sim->work.mbs.jlam + j * RT_MBS_JOINT_NC_MAX;
     if (c >= RT_MBS_JSIG_LAMBDA)
         return lam[c - RT_MBS_JSIG_LAMBDA];
     rt_mbs_node n1, n2;

@@ -84,7 +84,7 @@ static void map_row(const real_t *C6, const real_t *J, uint16_t nz, real_t *Wrow
 static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_t ji,
                            real_t t, int what)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     const rt_joint *j = &sc->joints[ji];
     int jac = what & RTI_MBS_JAC;
     rt_mbs_node n1, n2;
@@ -145,7 +145,7 @@ static void mass_solve(const rt_mbs_spec *sp, const real_t *M, const uint16_t *p
 static void assemble_block(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_t b,
                            real_t t, int what)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     const rt_mbs_spec *sp = spec_of(sc, b);
     uint16_t zo = w->zo[b], ld = w->nz[set];
     real_t *M = w->M + w->mo[b];
@@ -181,7 +181,7 @@ void rti_mbs_assemble(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, in
 
 int rti_mbs_row_block(const rt_scene *sc, const rt_sim *sim, uint8_t set, uint16_t row)
 {
-    const rt_mbs_work *w = &sim->mbs;
+    const rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t j = 0; j < sc->njoints; j++) {
         const rt_joint *jt = &sc->joints[j];
         if (sc->blocks[jt->b1].set == set && row >= w->jrow[j] &&
@@ -198,7 +198,7 @@ int rti_mbs_row_block(const rt_scene *sc, const rt_sim *sim, uint8_t set, uint16
 /* a pivot of A fell below the threshold: count it with the block of that row */
 static void report_singular(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t floor_)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     uint16_t m = w->nc[set], perm[RT_MAX_MBS_C], row = 0;
     for (uint16_t i = 0; i < m; i++)
         perm[i] = i;
@@ -242,7 +242,7 @@ static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b, uint1
 
 void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     uint16_t m = w->nc[set], ld = w->nz[set];
     if (m == 0)
         return;
@@ -258,13 +258,13 @@ void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
 
 void rti_mbs_solve(rt_sim *sim, uint8_t set, real_t *v)
 {
-    rti_lu_solve(sim->mbs.A, sim->mbs.nc[set], sim->mbs.Apiv, v);
+    rti_lu_solve(sim->work.mbs.A, sim->work.mbs.nc[set], sim->work.mbs.Apiv, v);
 }
 
 void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *v,
                      real_t *dz)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     uint16_t m = w->nc[set];
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         if (!rti_mbs_in_set(sc, b, set))
@@ -282,7 +282,7 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
 
 void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     uint16_t m = w->nc[set], ld = w->nz[set];
     rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC | RTI_MBS_FORCE);
     for (uint16_t c = 0; c < ld; c++)
@@ -318,7 +318,7 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 /* q' = K z + b (eq. 6a) and z' = M^-1 (k - W^T lambda) for every MBS block of the set */
 void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_t *xdot)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     if (w->nz[set] == 0)
         return;
     rti_mbs_lambda(sc, sim, set, t);
@@ -326,7 +326,7 @@ void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_
         if (!rti_mbs_in_set(sc, b, set))
             continue;
         const rt_mbs_spec *sp = spec_of(sc, b);
-        real_t *qd = xdot + (sim->x_off[b] - sim->set_x[set]);
+        real_t *qd = xdot + (sim->plan.x_off[b] - sim->plan.set_x[set]);
         rt_args a;
         rti_args(sc, sim, b, t, 0, &a);
         sp->kin(&a, a.x + sp->nq, qd);

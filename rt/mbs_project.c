@@ -24,14 +24,14 @@ static void save_q(const rt_scene *sc, rt_sim *sim, uint8_t set)
         if (!rti_mbs_in_set(sc, b, set))
             continue;
         for (uint16_t i = 0; i < spec_of(sc, b)->nq; i++)
-            sim->mbs.qt[sim->mbs.qo[b] + i] = sim->x[sim->x_off[b] + i];
+            sim->work.mbs.qt[sim->work.mbs.qo[b] + i] = sim->state.x[sim->plan.x_off[b] + i];
     }
 }
 
 /* q += K(q~) dz, block by block: the velocity-space correction mapped to coordinates */
 static void move_q(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         if (!rti_mbs_in_set(sc, b, set))
             continue;
@@ -42,19 +42,19 @@ static void move_q(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
         a.x = w->qt + w->qo[b]; /* K at the predicted coordinates (kin reads q only) */
         sp->kin(&a, w->dz + w->zo[b], dq);
         for (uint16_t i = 0; i < sp->nq; i++)
-            sim->x[sim->x_off[b] + i] += dq[i];
+            sim->state.x[sim->plan.x_off[b] + i] += dq[i];
     }
 }
 
 /* z += dz for every MBS block of the set */
 static void move_z(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         if (!rti_mbs_in_set(sc, b, set))
             continue;
         const rt_mbs_spec *sp = spec_of(sc, b);
-        real_t *z = sim->x + sim->x_off[b] + sp->nq;
+        real_t *z = sim->state.x + sim->plan.x_off[b] + sp->nq;
         for (uint16_t c = 0; c < sp->nz; c++)
             z[c] += w->dz[w->zo[b] + c];
     }
@@ -65,13 +65,13 @@ static void normalize(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     for (uint16_t b = 0; b < sc->nblocks; b++)
         if (rti_mbs_in_set(sc, b, set) && spec_of(sc, b)->normalize)
-            spec_of(sc, b)->normalize(sim->x + sim->x_off[b]);
+            spec_of(sc, b)->normalize(sim->state.x + sim->plan.x_off[b]);
 }
 
 /* one correction: v <- A^-1 v (v = g or g'), dz = -Y v */
 static void correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *rhs)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t r = 0; r < w->nc[set]; r++)
         w->lam[r] = rhs[r];
     rti_mbs_solve(sim, set, w->lam);
@@ -82,7 +82,7 @@ static void correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *
    tolerance (the two iterations did not reach the manifold: a far-off or singular state) */
 static void check_residual(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     real_t worst = 0;
     uint16_t row = 0;
     for (uint16_t r = 0; r < w->nc[set]; r++) {
@@ -100,7 +100,7 @@ static void check_residual(const rt_scene *sc, rt_sim *sim, uint8_t set)
 /* multipliers at the step end, for recorded joint reactions: outputs give the inputs */
 static void refresh_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
-    if (!sim->mbs.need_lambda)
+    if (!sim->work.mbs.need_lambda)
         return;
     rti_outputs(sc, sim, t, RTI_IN_STEP);
     rti_mbs_lambda(sc, sim, set, t);
@@ -108,7 +108,7 @@ static void refresh_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t 
 
 void rti_mbs_project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
-    rt_mbs_work *w = &sim->mbs;
+    rt_mbs_work *w = &sim->work.mbs;
     if (w->nz[set] == 0)
         return;
     if (sc->stab != RT_STAB_PROJECT || w->nc[set] == 0) {

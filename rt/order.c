@@ -19,7 +19,7 @@
 static uint16_t block_of_y(const rt_sim *sim, uint16_t nb, uint16_t v)
 {
     uint16_t b = 0;
-    while (b + 1 < nb && sim->y_off[b + 1] <= v)
+    while (b + 1 < nb && sim->plan.y_off[b + 1] <= v)
         b++;
     return b;
 }
@@ -36,20 +36,20 @@ static int port_next(const void *ctx, uint16_t v, uint32_t *cursor)
     const graph_ctx *g = ctx;
     const rt_scene *sc = g->sc;
     uint16_t a = block_of_y(g->sim, sc->nblocks, v);
-    uint16_t ya = (uint16_t)(v - g->sim->y_off[a]);
+    uint16_t ya = (uint16_t)(v - g->sim->plan.y_off[a]);
     for (uint32_t c = *cursor >> 16; c < sc->nconns; c++) {
         const rt_conn *cn = &sc->conns[c];
         uint32_t j = (c == (*cursor >> 16)) ? (*cursor & 0xFFFFu) : 0;
         if (cn->from != a || cn->y != ya)
             continue;
         const rt_kind *k = sc->blocks[cn->to].kind;
-        uint8_t src = g->sim->src_kind[g->sim->u_off[cn->to] + cn->u];
+        uint8_t src = g->sim->plan.src_kind[g->sim->plan.u_off[cn->to] + cn->u];
         if (src == RT_SRC_TORN || src == RT_SRC_XSET)
             j = k->ny; /* a torn or cross-set input carries no algebraic edge */
         for (; j < k->ny; j++) {
             if (rti_feeds(k, (uint16_t)j, cn->u)) {
                 *cursor = (c << 16) | (j + 1);
-                return g->sim->y_off[cn->to] + (int)j;
+                return g->sim->plan.y_off[cn->to] + (int)j;
             }
         }
         *cursor = (c + 1) << 16;
@@ -92,17 +92,17 @@ static int is_cycle(rti_next_fn next, const graph_ctx *g, const uint16_t *comp, 
 static void loop_add_block(rt_sim *sim, rt_loop *l, uint16_t b)
 {
     for (uint16_t i = 0; i < l->nblocks; i++)
-        if (sim->loop_blocks[l->first + i] == b)
+        if (sim->plan.loop_blocks[l->first + i] == b)
             return;
-    sim->loop_blocks[l->first + l->nblocks++] = b;
+    sim->plan.loop_blocks[l->first + l->nblocks++] = b;
 }
 
 /* is block b on one of the actual loops recorded so far? */
 static int in_actual_loop(const rt_sim *sim, uint16_t b)
 {
-    for (uint8_t l = 0; l < sim->nloops; l++)
-        for (uint16_t i = 0; sim->loops[l].actual && i < sim->loops[l].nblocks; i++)
-            if (sim->loop_blocks[sim->loops[l].first + i] == b)
+    for (uint8_t l = 0; l < sim->plan.nloops; l++)
+        for (uint16_t i = 0; sim->plan.loops[l].actual && i < sim->plan.loops[l].nblocks; i++)
+            if (sim->plan.loop_blocks[sim->plan.loops[l].first + i] == b)
                 return 1;
     return 0;
 }
@@ -121,21 +121,20 @@ static rt_status record_loops(const rt_scene *sc, rt_sim *sim, rti_next_fn next,
                               const graph_ctx *g, uint16_t n, uint16_t ncomp, int ports,
                               uint16_t *used)
 {
-    uint16_t *comp = sim->w.scc.comp;
+    uint16_t *comp = sim->work.w.scc.comp;
     for (uint16_t id = 0; id < ncomp; id++) {
         uint16_t first = 0;
         if (!is_cycle(next, g, comp, n, id, &first) || (!ports && holds_actual(sim, comp, n, id)))
             continue;
-        if (sim->nloops >= RT_MAX_LOOPS)
+        if (sim->plan.nloops >= RT_MAX_LOOPS)
             return rti_fail(sim, RT_E_CAPACITY, "more algebraic loops than RT_MAX_LOOPS",
                             (const char *)0);
-        rt_loop *l = &sim->loops[sim->nloops++];
+        rt_loop *l = &sim->plan.loops[sim->plan.nloops++];
         l->actual = (uint8_t)ports;
         l->first = *used;
         l->nblocks = 0;
         l->seq0 = first; /* a port of the loop, where tearing starts its search */
         l->seq1 = l->torn0 = l->ntorn = l->h0 = 0;
-        l->h_valid = 0;
         for (uint16_t v = 0; v < n; v++) {
             if (comp[v] != id)
                 continue;
@@ -156,10 +155,10 @@ static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, 
     const rt_kind *k = sc->blocks[b].kind;
     uint16_t req = 0;
     for (uint16_t i = 0; i < k->nu; i++) {
-        uint16_t gi = (uint16_t)(sim->u_off[b] + i);
-        if (sim->src_kind[gi] != RT_SRC_Y || !rti_feeds(k, j, i))
+        uint16_t gi = (uint16_t)(sim->plan.u_off[b] + i);
+        if (sim->plan.src_kind[gi] != RT_SRC_Y || !rti_feeds(k, j, i))
             continue;
-        uint16_t d = sim->w.scc.done[sim->src[gi]];
+        uint16_t d = sim->work.w.scc.done[sim->plan.src[gi]];
         if (d > req)
             req = d;
     }
@@ -169,11 +168,11 @@ static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, 
 /* appends one entry to the sequence */
 static rt_status emit(rt_sim *sim, uint8_t kind, uint16_t index)
 {
-    if (sim->nseq >= RT_MAX_SEQ)
+    if (sim->plan.nseq >= RT_MAX_SEQ)
         return rti_fail(sim, RT_E_CAPACITY, "evaluation sequence exceeds RT_MAX_SEQ",
                         (const char *)0);
-    sim->seq[sim->nseq].kind = kind;
-    sim->seq[sim->nseq++].index = index;
+    sim->plan.seq[sim->plan.nseq].kind = kind;
+    sim->plan.seq[sim->plan.nseq++].index = index;
     return RT_OK;
 }
 
@@ -181,16 +180,16 @@ static rt_status emit(rt_sim *sim, uint8_t kind, uint16_t index)
    needs (and after floor, the start of a loop segment), else calls the block again */
 static rt_status place_port(const rt_scene *sc, rt_sim *sim, uint16_t v, uint16_t floor)
 {
-    rt_scc_work *w = &sim->w.scc;
+    rt_scc_work *w = &sim->work.w.scc;
     uint16_t b = block_of_y(sim, sc->nblocks, v);
-    uint16_t req = inputs_ready(sc, sim, b, (uint16_t)(v - sim->y_off[b]));
+    uint16_t req = inputs_ready(sc, sim, b, (uint16_t)(v - sim->plan.y_off[b]));
     req = req > floor ? req : floor;
     if (w->last[b] > req) {
         w->done[v] = w->last[b];
         return RT_OK;
     }
     rt_status st = emit(sim, RT_SEQ_CALL, b);
-    w->last[b] = w->done[v] = sim->nseq;
+    w->last[b] = w->done[v] = sim->plan.nseq;
     return st;
 }
 
@@ -198,16 +197,16 @@ static rt_status place_port(const rt_scene *sc, rt_sim *sim, uint16_t v, uint16_
 static rt_status place_loop(const rt_scene *sc, rt_sim *sim, uint16_t ny, uint16_t oid,
                             uint16_t nc_torn, int l)
 {
-    rt_scc_work *w = &sim->w.scc;
-    rt_loop *lp = &sim->loops[l];
+    rt_scc_work *w = &sim->work.w.scc;
+    rt_loop *lp = &sim->plan.loops[l];
     rt_status st = emit(sim, RT_SEQ_LOOP, (uint16_t)l);
-    uint16_t floor = sim->nseq;
-    lp->seq0 = sim->nseq;
+    uint16_t floor = sim->plan.nseq;
+    lp->seq0 = sim->plan.nseq;
     for (uint16_t id = nc_torn; id-- > 0 && st == RT_OK;)
         for (uint16_t v = 0; v < ny && st == RT_OK; v++)
             if (w->orig[v] == oid && w->comp[v] == id)
                 st = place_port(sc, sim, v, floor);
-    lp->seq1 = sim->nseq;
+    lp->seq1 = sim->plan.nseq;
     return st;
 }
 
@@ -215,11 +214,11 @@ static rt_status place_loop(const rt_scene *sc, rt_sim *sim, uint16_t ny, uint16
 static rt_status build_sequence(const rt_scene *sc, rt_sim *sim, uint16_t ny, uint16_t nc_orig,
                                 uint16_t nc_torn, const uint8_t *is_loop)
 {
-    rt_scc_work *w = &sim->w.scc;
+    rt_scc_work *w = &sim->work.w.scc;
     rt_status st = RT_OK;
     for (uint16_t b = 0; b < sc->nblocks; b++)
         w->last[b] = 0;
-    sim->nseq = 0;
+    sim->plan.nseq = 0;
     /* components are numbered sinks first: walk them from the highest id down */
     for (uint16_t oid = nc_orig; oid-- > 0 && st == RT_OK;) {
         int l = is_loop[oid] - 1; /* the actual loop of this component, or -1 */
@@ -237,14 +236,14 @@ static rt_status build_sequence(const rt_scene *sc, rt_sim *sim, uint16_t ny, ui
 /* marks input gi torn for loop l: its value becomes an unknown of the loop solver */
 static rt_status tear_input(rt_sim *sim, uint16_t gi, rt_loop *lp)
 {
-    if (sim->ntorn >= RT_MAX_TORN)
+    if (sim->plan.ntorn >= RT_MAX_TORN)
         return rti_fail(sim, RT_E_CAPACITY, "torn loop inputs exceed RT_MAX_TORN",
                         (const char *)0);
-    sim->torn_in[sim->ntorn] = gi;
-    sim->torn_src[sim->ntorn] = sim->src[gi];
-    sim->torn_val[sim->ntorn] = 0;
-    sim->src_kind[gi] = RT_SRC_TORN;
-    sim->src[gi] = sim->ntorn++;
+    sim->plan.torn_in[sim->plan.ntorn] = gi;
+    sim->plan.torn_src[sim->plan.ntorn] = sim->plan.src[gi];
+    sim->state.torn_val[sim->plan.ntorn] = 0;
+    sim->plan.src_kind[gi] = RT_SRC_TORN;
+    sim->plan.src[gi] = sim->plan.ntorn++;
     lp->ntorn++;
     return RT_OK;
 }
@@ -254,7 +253,7 @@ static rt_status tear_input(rt_sim *sim, uint16_t gi, rt_loop *lp)
 static rt_status tear_from(const graph_ctx *g, rt_sim *sim, uint16_t id, uint16_t root,
                            rt_loop *lp)
 {
-    rt_scc_work *w = &sim->w.scc;
+    rt_scc_work *w = &sim->work.w.scc;
     const rt_scene *sc = g->sc;
     uint16_t depth = 0;
     w->call[depth++] = root;
@@ -272,7 +271,7 @@ static rt_status tear_from(const graph_ctx *g, rt_sim *sim, uint16_t id, uint16_
             continue;
         if (w->color[s] == 1) {
             const rt_conn *cn = &sc->conns[(w->cursor[v] >> 16)];
-            rt_status st = tear_input(sim, (uint16_t)(sim->u_off[cn->to] + cn->u), lp);
+            rt_status st = tear_input(sim, (uint16_t)(sim->plan.u_off[cn->to] + cn->u), lp);
             if (st != RT_OK)
                 return st;
         } else if (w->color[s] == 0) {
@@ -288,16 +287,16 @@ static rt_status tear_from(const graph_ctx *g, rt_sim *sim, uint16_t id, uint16_
 static rt_status tear_loops(const rt_scene *sc, rt_sim *sim, const graph_ctx *g, uint16_t ny,
                             uint8_t nactual, uint8_t *is_loop)
 {
-    rt_scc_work *w = &sim->w.scc;
+    rt_scc_work *w = &sim->work.w.scc;
     uint16_t h = 0;
-    sim->ntorn = 0;
+    sim->plan.ntorn = 0;
     for (uint16_t v = 0; v < ny; v++)
         w->color[v] = 0;
     for (uint8_t l = 0; l < nactual; l++) {
-        rt_loop *lp = &sim->loops[l];
+        rt_loop *lp = &sim->plan.loops[l];
         uint16_t root = lp->seq0; /* record_loops left a port of the loop here */
         uint16_t id = w->orig[root];
-        lp->torn0 = sim->ntorn, lp->ntorn = 0, lp->h0 = h, lp->h_valid = 0;
+        lp->torn0 = sim->plan.ntorn, lp->ntorn = 0, lp->h0 = h;
         is_loop[id] = (uint8_t)(l + 1);
         rt_status st = tear_from(g, sim, id, root, lp);
         if (st != RT_OK)
@@ -311,19 +310,19 @@ static rt_status tear_loops(const rt_scene *sc, rt_sim *sim, const graph_ctx *g,
 rt_status rti_order(const rt_scene *sc, rt_sim *sim)
 {
     graph_ctx g = {sc, sim};
-    rt_scc_work *w = &sim->w.scc;
-    uint16_t ny = sim->y_off[sc->nblocks], used = 0;
+    rt_scc_work *w = &sim->work.w.scc;
+    uint16_t ny = sim->plan.y_off[sc->nblocks], used = 0;
     uint8_t is_loop[RT_MAX_NODES];
     rt_status st;
-    sim->nloops = 0;
-    sim->ntorn = 0;
+    sim->plan.nloops = 0;
+    sim->plan.ntorn = 0;
 
     /* actual loops: cycles of the port graph */
     uint16_t nc_orig = rti_scc(ny, port_next, &g, w, w->comp);
     st = record_loops(sc, sim, port_next, &g, ny, nc_orig, 1, &used);
     if (st != RT_OK)
         return st;
-    uint8_t nactual = sim->nloops;
+    uint8_t nactual = sim->plan.nloops;
     for (uint16_t v = 0; v < ny; v++)
         w->orig[v] = w->comp[v];
     for (uint16_t c = 0; c < nc_orig; c++)
@@ -335,9 +334,9 @@ rt_status rti_order(const rt_scene *sc, rt_sim *sim)
     if (st != RT_OK)
         return st;
     if (nactual > 0 && !sc->loop_solver) {
-        const rt_loop *l = &sim->loops[0];
+        const rt_loop *l = &sim->plan.loops[0];
         return rti_fail(sim, RT_E_LOOP, "actual algebraic loop through block ",
-                        sc->blocks[sim->loop_blocks[l->first]].name,
+                        sc->blocks[sim->plan.loop_blocks[l->first]].name,
                         " and the scene names no loop solver", (const char *)0);
     }
 

@@ -353,8 +353,7 @@ typedef struct rt_loop {
     /* actual loops only */
     uint16_t torn0, ntorn;     /* its torn inputs: rt_sim.torn_in[torn0 .. +ntorn] */
     uint16_t seq0, seq1;       /* its calls: rt_sim.seq[seq0 .. seq1) */
-    uint16_t h0;               /* its inverse Jacobian: rt_sim.loop_h[h0 .. +ntorn^2] */
-    uint8_t h_valid;           /* loop_h holds an estimate */
+    uint16_t h0;               /* its inverse Jacobian: rt_state.loop_h[h0 .. +ntorn^2] */
 } rt_loop;
 
 /* The solver of actual loops a scene names (rt_scene.loop_solver; rt/loop.c). */
@@ -384,14 +383,12 @@ typedef struct rt_scc_work {
 
 #define RT_ALL_SETS 0xFF
 
-/* The mutable state of one running scene. The caller owns it (static storage);
- * rt_init fills every field. Sizes are the compile-time limits of rt_config.h. */
-typedef struct rt_sim {
-    const rt_scene *sc;
-
-    /* sets: slice of x each set integrates, and its step in base ticks */
+/* The plan of a running scene: computed once by rt_init from the scene, never written
+ * during ticks (layout, routing, evaluation sequence, loops, schedule). Only rt/ reads it. */
+typedef struct rt_plan {
+    /* sets: slice of x each set integrates, and slice of r holding each set's roots */
     uint16_t set_x[RT_MAX_SETS + 1];
-    uint16_t set_r[RT_MAX_SETS + 1]; /* slice of r holding each set's root values */
+    uint16_t set_r[RT_MAX_SETS + 1];
 
     /* layout: offsets of each block's slice in the value arrays (size nblocks + 1) */
     uint16_t x_off[RT_MAX_BLOCKS + 1], d_off[RT_MAX_BLOCKS + 1];
@@ -415,37 +412,57 @@ typedef struct rt_sim {
     uint16_t ntorn;
     uint16_t torn_in[RT_MAX_TORN];   /* global input index of each torn input */
     uint16_t torn_src[RT_MAX_TORN];  /* the output that drives it (loop-closing edge) */
-    real_t torn_val[RT_MAX_TORN];    /* current value (warm start for the next solve) */
-    real_t loop_h[RT_MAX_TORN * RT_MAX_TORN]; /* inverse Jacobians, Broyden-updated */
-    uint32_t loop_hist[RT_LOOP_ITER_LIMIT + 1]; /* solves by iterations taken */
-    uint32_t loop_iter_max;          /* high-water mark of iterations per solve */
-    real_t loop_residual;            /* largest residual left by a solve that failed */
-    real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* solver scratch */
-    uint16_t loop_piv[RT_MAX_TORN];
 
-    /* multirate (rt/xset.c): schedule, set clocks and cross-set signal history */
+    /* multirate (rt/xset.c) */
     uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
-    uint64_t set_tick[RT_MAX_SETS];  /* tick each set's state belongs to */
-    uint8_t set_now;                 /* set being evaluated (RT_ALL_SETS: every set) */
-    real_t t_now;                    /* time of the evaluation under way [s] */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
     uint8_t set_xout[RT_MAX_SETS];   /* 1: the set has outputs read by other sets */
-    real_t xset_err[RT_MAX_SETS];    /* monitor: largest change of a set's cross-set
-                                        outputs against their linear extrapolation */
     uint8_t xsrc[RT_MAX_Y];          /* 1: output read by another set (keeps history) */
-    real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
-    uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
-    real_t hist_y[RT_HIST][RT_MAX_Y];/* cross-set outputs at those times */
 
-    /* values */
+    uint64_t n_ticks;                /* ticks to reach t_end */
+} rt_plan;
+
+/* The state of a running scene: everything a snapshot or a replay needs to continue
+ * bit for bit, in one struct, so that saving and restoring it is one copy. */
+typedef struct rt_state {
+    uint64_t tick;                   /* base ticks done; t = tick * dt */
+    uint64_t set_tick[RT_MAX_SETS];  /* tick each set's state belongs to */
     real_t x[RT_MAX_X];              /* continuous state */
     real_t d[RT_MAX_D];              /* discrete state */
-    real_t u[RT_MAX_U];              /* gathered inputs */
     real_t y[RT_MAX_Y];              /* outputs (DSS outputs held between hits) */
     real_t p[RT_MAX_P];              /* parameters (may be changed before the run) */
     real_t r[RT_MAX_ROOTS];          /* root values at the end of the last step */
+    real_t torn_val[RT_MAX_TORN];    /* torn inputs' values (warm start of the next solve) */
+    real_t loop_h[RT_MAX_TORN * RT_MAX_TORN]; /* inverse Jacobians, Broyden-updated */
+    uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
+    real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
+    uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
+    real_t hist_y[RT_HIST][RT_MAX_Y];/* cross-set outputs at those times */
+    rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
+    uint64_t hash;                   /* FNV-1a over recorded values */
+} rt_state;
 
+/* What a run has met: fault counters, the first fault, high-water marks and monitors.
+ * Read by applications through rt_stats_of (rt_sim.stats); written only by rt/. */
+typedef struct rt_stats {
+    rt_status status;                /* first fault met (RT_OK while clean) */
+    uint32_t count[RT_CNT_COUNT];    /* fault counters */
+    int16_t last_block[RT_CNT_COUNT];/* last offending block per counter, -1 none */
+    uint32_t event_iter_max;         /* high-water mark of event-location iterations */
+    uint32_t loop_hist[RT_LOOP_ITER_LIMIT + 1]; /* loop solves by iterations taken */
+    uint32_t loop_iter_max;          /* high-water mark of iterations per loop solve */
+    real_t loop_residual;            /* largest residual left by a loop solve that failed */
+    real_t xset_err[RT_MAX_SETS];    /* monitor: largest change of a set's cross-set
+                                        outputs against their linear extrapolation */
+    rt_istats istats[RT_MAX_SETS];   /* implicit methods' statistics per set */
+} rt_stats;
+
+/* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */
+typedef struct rt_work {
+    uint8_t set_now;                 /* set being evaluated (RT_ALL_SETS: every set) */
+    real_t t_now;                    /* time of the evaluation under way [s] */
+    real_t u[RT_MAX_U];              /* gathered inputs */
     /* integrator workspace; the graph searches of rt_init use the same storage */
     union {
         real_t k[RT_MAX_STAGES][RT_MAX_X];
@@ -453,20 +470,25 @@ typedef struct rt_sim {
     } w;
     real_t x0[RT_MAX_X];
     real_t xb[RT_MAX_X];             /* state at the right end of an event bracket */
-    rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
-    rt_istats istats[RT_MAX_SETS];   /* implicit methods' statistics per set */
-    rt_mbs_work mbs;                 /* multibody assembly workspace */
     real_t xs[RT_MAX_X];             /* saved state for event location */
     real_t rs[RT_MAX_ROOTS];         /* root values scratch */
+    real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
+    uint16_t loop_piv[RT_MAX_TORN];
+    rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
+} rt_work;
 
-    /* time and accounting */
-    uint64_t tick;                   /* base ticks done; t = tick * dt */
-    uint64_t n_ticks;                /* ticks to reach t_end */
-    uint32_t count[RT_CNT_COUNT];    /* fault counters */
-    int16_t last_block[RT_CNT_COUNT];/* last offending block per counter, -1 none */
-    uint32_t event_iter_max;         /* high-water mark of event-location iterations */
-    rt_status status;                /* first fault met (RT_OK while clean) */
-    uint64_t hash;                   /* FNV-1a over recorded values */
+/* One running scene. The caller owns it (static storage); rt_init fills every part.
+ * Sizes are the compile-time limits of rt_config.h. Who may read what:
+ *   plan   rt/ only (init writes it, ticks read it)
+ *   state  rt/; applications only to snapshot and restore it whole (rt_snapshot)
+ *   stats  rt/ writes; applications read (summaries, tests)
+ *   work   rt/ only */
+typedef struct rt_sim {
+    const rt_scene *sc;
+    rt_plan plan;
+    rt_state state;
+    rt_stats stats;
+    rt_work work;
     char err[RT_ERR_LEN];            /* what rt_init found wrong, and where */
 } rt_sim;
 
@@ -479,7 +501,7 @@ rt_status rt_init(const rt_scene *scene, rt_sim *sim);
 /* Returns the text describing the last init error ("" if none). */
 const char *rt_error_text(const rt_sim *sim);
 /* Advances the scene by one base tick. Always completes the tick; faults go to the
- * counters and to sim->status. Returns RT_E_DONE once t_end is reached. */
+ * counters and to sim->stats.status. Returns RT_E_DONE once t_end is reached. */
 rt_status rt_tick(const rt_scene *scene, rt_sim *sim);
 /* Time of the current state [s]. */
 real_t rt_time(const rt_scene *scene, const rt_sim *sim);
@@ -487,7 +509,7 @@ real_t rt_time(const rt_scene *scene, const rt_sim *sim);
 rt_status rt_refresh(const rt_scene *scene, rt_sim *sim);
 
 /* Recording: fills the nrecs recorded values at the current state and folds them into
- * sim->hash. */
+ * sim->state.hash. */
 void rt_record(const rt_scene *scene, rt_sim *sim, real_t *out);
 /* Returns the value of recorded signal i at the current state. */
 real_t rt_rec_value(const rt_scene *scene, const rt_sim *sim, uint16_t i);

@@ -267,7 +267,7 @@ int rti_mbs_in_set(const struct rt_scene *sc, uint16_t b, uint8_t set);
 void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t ji, real_t t,
                    rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2,
                    rt_joint_eval *e);
-/* Evaluates the set's MBS blocks and joints at the current state into sim->mbs. */
+/* Evaluates the set's MBS blocks and joints at the current state into sim->work.mbs. */
 void rti_mbs_assemble(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
                       int what);
 /* Forms Y = M^-1 W^T and A = W Y over the touched rows and factors A; a singular A is

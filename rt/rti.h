@@ -14,7 +14,9 @@ typedef enum {
 /* ---- text (util.c) ---- */
 /* Writes the NULL-terminated list of strings into sim->err and returns status. */
 rt_status rti_fail(rt_sim *sim, rt_status status, ...);
-/* Bumps counter c and remembers block b (-1: none); keeps the first fault in sim->status. */
+/* Sets n bytes at p to zero (freestanding memset). */
+void rti_zero(void *p, size_t n);
+/* Bumps counter c and remembers block b (-1: none); keeps the first fault in sim->stats.status. */
 void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status);
 
 /* ---- layout and routing (init.c) ---- */
@@ -22,8 +24,8 @@ void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status);
 int rti_feeds(const rt_kind *k, uint16_t j, uint16_t i);
 
 /* ---- evaluation order (order.c) ---- */
-/* Builds sim->seq and sim->loops from the port-level throughput graph; RT_E_LOOP when an
-   actual loop is found (its blocks are in sim->loops). */
+/* Builds sim->plan.seq and sim->plan.loops from the port-level throughput graph; RT_E_LOOP when an
+   actual loop is found (its blocks are in sim->plan.loops). */
 rt_status rti_order(const rt_scene *sc, rt_sim *sim);
 
 /* ---- evaluation (eval.c) ---- */
@@ -36,10 +38,10 @@ static inline void rti_args(const rt_scene *sc, const rt_sim *sim, uint16_t b, r
 {
     a->t = t;
     a->h = h;
-    a->x = sim->x + sim->x_off[b];
-    a->d = sim->d + sim->d_off[b];
-    a->u = sim->u + sim->u_off[b];
-    a->p = sim->p + sim->p_off[b];
+    a->x = sim->state.x + sim->plan.x_off[b];
+    a->d = sim->state.d + sim->plan.d_off[b];
+    a->u = sim->work.u + sim->plan.u_off[b];
+    a->p = sim->state.p + sim->plan.p_off[b];
     a->spec = sc->blocks[b].kind->spec;
 }
 /* Gathers the inputs of block b from the outputs that feed them (y = P u). */

@@ -7,15 +7,15 @@
 
 real_t rt_time(const rt_scene *sc, const rt_sim *sim)
 {
-    return (real_t)sim->tick * sc->dt;
+    return (real_t)sim->state.tick * sc->dt;
 }
 
 /* the first block whose outputs are not finite, or -1 */
 static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 {
     for (uint16_t b = 0; b < sc->nblocks; b++)
-        for (uint16_t j = sim->y_off[b]; j < sim->y_off[b + 1]; j++)
-            if (!rt_isfinite(sim->y[j]))
+        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
+            if (!rt_isfinite(sim->state.y[j]))
                 return b;
     return -1;
 }
@@ -23,32 +23,32 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 /* outputs and roots of set s at the time of its state */
 static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
-    real_t ts = (real_t)sim->set_tick[s] * sc->dt;
-    sim->set_now = s;
-    rti_outputs(sc, sim, ts, sim->set_tick[s] == sim->tick ? RTI_AT_TICK : RTI_IN_STEP);
-    rti_roots(sc, sim, s, ts, sim->r + sim->set_r[s]);
+    real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
+    sim->work.set_now = s;
+    rti_outputs(sc, sim, ts, sim->state.set_tick[s] == sim->state.tick ? RTI_AT_TICK : RTI_IN_STEP);
+    rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
 }
 
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
     for (uint8_t i = 0; i < sc->nsets; i++)
-        refresh_set(sc, sim, sim->sched[i]);
+        refresh_set(sc, sim, sim->plan.sched[i]);
     /* before the first tick the history starts afresh (parameters may have changed), and
        the sets are refreshed once more so each reads the others' initial outputs rather
        than an empty history */
-    if (sim->tick == 0 && sc->nsets > 1) {
+    if (sim->state.tick == 0 && sc->nsets > 1) {
         for (uint8_t s = 0; s < sc->nsets; s++) {
-            sim->hist_n[s] = 0;
+            sim->state.hist_n[s] = 0;
             rti_xset_push(sc, sim, s, 0);
         }
         for (uint8_t i = 0; i < sc->nsets; i++)
-            refresh_set(sc, sim, sim->sched[i]);
+            refresh_set(sc, sim, sim->plan.sched[i]);
         for (uint8_t s = 0; s < sc->nsets; s++) {
-            sim->hist_n[s] = 0;
+            sim->state.hist_n[s] = 0;
             rti_xset_push(sc, sim, s, 0);
         }
     }
-    sim->set_now = RT_ALL_SETS;
+    sim->work.set_now = RT_ALL_SETS;
     return RT_OK;
 }
 
@@ -57,48 +57,48 @@ static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
 {
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
-        if (k->type != RT_KIND_DSS || sim->tick % sim->period[b] != 0)
+        if (k->type != RT_KIND_DSS || sim->state.tick % sim->plan.period[b] != 0)
             continue;
         real_t next[RT_MAX_D];
         rt_args a;
-        sim->set_now = sc->blocks[b].set;
-        sim->t_now = t;
+        sim->work.set_now = sc->blocks[b].set;
+        sim->work.t_now = t;
         rti_gather(sim, b);
-        rti_args(sc, sim, b, t, sc->dt * (real_t)sim->period[b], &a);
+        rti_args(sc, sim, b, t, sc->dt * (real_t)sim->plan.period[b], &a);
         k->update(&a, next);
         for (uint16_t i = 0; i < k->nd; i++)
-            sim->d[sim->d_off[b] + i] = next[i];
+            sim->state.d[sim->plan.d_off[b] + i] = next[i];
     }
 }
 
 rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
 {
-    if (sim->tick >= sim->n_ticks)
+    if (sim->state.tick >= sim->plan.n_ticks)
         return RT_E_DONE;
     real_t t = rt_time(sc, sim);
     discrete_updates(sc, sim, t);
     /* fixed schedule: a set steps when the tick count is a multiple of its ratio,
        slowest first (rt/xset.c), and publishes its outputs for the other sets */
     for (uint8_t i = 0; i < sc->nsets; i++) {
-        uint8_t s = sim->sched[i];
+        uint8_t s = sim->plan.sched[i];
         uint32_t ratio = sc->sets[s].ratio;
-        if (sim->tick % ratio != 0)
+        if (sim->state.tick % ratio != 0)
             continue;
-        sim->set_now = s;
+        sim->work.set_now = s;
         rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
-        sim->set_tick[s] = sim->tick + ratio;
-        if (sim->set_xout[s]) {
-            real_t ts = (real_t)sim->set_tick[s] * sc->dt;
+        sim->state.set_tick[s] = sim->state.tick + ratio;
+        if (sim->plan.set_xout[s]) {
+            real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
             rti_outputs(sc, sim, ts, RTI_IN_STEP);
             rti_xset_push(sc, sim, s, ts);
         }
     }
-    sim->tick++;
+    sim->state.tick++;
     rt_refresh(sc, sim);
     int bad = nonfinite_output(sc, sim);
     if (bad >= 0)
         rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);
-    return sim->tick >= sim->n_ticks ? RT_E_DONE : RT_OK;
+    return sim->state.tick >= sim->plan.n_ticks ? RT_E_DONE : RT_OK;
 }
 
 real_t rt_rec_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
@@ -106,13 +106,13 @@ real_t rt_rec_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
     const rt_rec *r = &sc->recs[i];
     switch (r->what) {
     case RT_SIG_X:
-        return sim->x[sim->x_off[r->block] + r->index];
+        return sim->state.x[sim->plan.x_off[r->block] + r->index];
     case RT_SIG_D:
-        return sim->d[sim->d_off[r->block] + r->index];
+        return sim->state.d[sim->plan.d_off[r->block] + r->index];
     case RT_SIG_MBS: /* energy, residuals, reactions (rt/mbs.c) */
         return sc->mbs ? sc->mbs->signal(sc, sim, r->block, r->index) : 0;
     default:
-        return sim->y[sim->y_off[r->block] + r->index];
+        return sim->state.y[sim->plan.y_off[r->block] + r->index];
     }
 }
 
@@ -129,12 +129,12 @@ const char *rt_rec_signal(const rt_scene *sc, uint16_t i)
 
 void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
 {
-    sim->hash = rt_hash_real(sim->hash, rt_time(sc, sim));
+    sim->state.hash = rt_hash_real(sim->state.hash, rt_time(sc, sim));
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         real_t v = rt_rec_value(sc, sim, i);
         if (out)
             out[i] = v;
-        sim->hash = rt_hash_real(sim->hash, v);
+        sim->state.hash = rt_hash_real(sim->state.hash, v);
     }
 }
 
@@ -169,7 +169,7 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
     const rt_kind *k = sc->blocks[b].kind;
     int i = rt_param_index(k, name);
     if (i >= 0) {
-        real_t *p = sim->p + sim->p_off[b];
+        real_t *p = sim->state.p + sim->plan.p_off[b];
         real_t old = p[i];
         p[i] = value;
         if (k->check && k->check(p, k->spec) != RT_OK) {
@@ -179,12 +179,12 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
         return RT_OK;
     }
     /* before the first tick, initial states can be set by name too */
-    if (sim->tick == 0 && (i = name_index(k->x_names, k->nx, name)) >= 0) {
-        sim->x[sim->x_off[b] + i] = value;
+    if (sim->state.tick == 0 && (i = name_index(k->x_names, k->nx, name)) >= 0) {
+        sim->state.x[sim->plan.x_off[b] + i] = value;
         return RT_OK;
     }
-    if (sim->tick == 0 && (i = name_index(k->d_names, k->nd, name)) >= 0) {
-        sim->d[sim->d_off[b] + i] = value;
+    if (sim->state.tick == 0 && (i = name_index(k->d_names, k->nd, name)) >= 0) {
+        sim->state.d[sim->plan.d_off[b] + i] = value;
         return RT_OK;
     }
     return RT_E_ARG;

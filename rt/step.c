@@ -15,14 +15,14 @@ static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
     rti_rhs_ctx ctx = {sc, sim, s, h};
     rt_rhs f = {rti_rhs, &ctx};
     rt_iwork w;
-    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     for (int i = 0; i < RT_MAX_STAGES; i++)
-        w.k[i] = sim->w.k[i];
-    w.x0 = sim->x0;
-    w.imp = &sim->imp[s];
-    w.stats = &sim->istats[s];
+        w.k[i] = sim->work.w.k[i];
+    w.x0 = sim->work.x0;
+    w.imp = &sim->state.imp[s];
+    w.stats = &sim->stats.istats[s];
     w.cfg = &sc->sets[s].implicit;
-    rt_status st = sc->sets[s].method->step(sc->sets[s].method, &f, t, h, sim->x + x0, n, &w);
+    rt_status st = sc->sets[s].method->step(sc->sets[s].method, &f, t, h, sim->state.x + x0, n, &w);
     if (st == RT_E_NOCONV)
         rti_count(sim, RT_CNT_DEGRADED, -1, RT_E_NOCONV);
     else if (st == RT_E_SINGULAR)
@@ -63,9 +63,9 @@ static int find_crossing(const rt_scene *sc, uint8_t s, const real_t *ra,
 static void trial(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, real_t th,
                   real_t *r)
 {
-    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     for (uint16_t i = 0; i < n; i++)
-        sim->x[x0 + i] = sim->xs[i];
+        sim->state.x[x0 + i] = sim->work.xs[i];
     integrate(sc, sim, s, t, th * h);
     rti_outputs(sc, sim, t + th * h, RTI_IN_STEP);
     rti_roots(sc, sim, s, t + th * h, r);
@@ -81,7 +81,7 @@ typedef struct bracket {
 static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, bracket *k,
                    const real_t *r_start)
 {
-    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     int side = 0;
     uint32_t it = 0;
     /* rb == 0: the right end sits exactly on the root, nothing left to narrow */
@@ -93,24 +93,24 @@ static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
            root, the next trial lands on the other side and the bracket collapses */
         real_t guard = (real_t)0.5 * RT_EVENT_TTOL;
         th = th < k->a + guard ? k->a + guard : th > k->b - guard ? k->b - guard : th;
-        trial(sc, sim, s, t, h, th, sim->rs);
+        trial(sc, sim, s, t, h, th, sim->work.rs);
         uint16_t blk, which;
         /* an earlier crossing of any root in [a, th] takes over the bracket */
-        int c = find_crossing(sc, s, r_start, sim->rs, &blk, &which);
+        int c = find_crossing(sc, s, r_start, sim->work.rs, &blk, &which);
         if (c >= 0) {
-            k->root = c, k->b = th, k->rb = sim->rs[c];
+            k->root = c, k->b = th, k->rb = sim->work.rs[c];
             for (uint16_t i = 0; i < n; i++)
-                sim->xb[i] = sim->x[x0 + i];
+                sim->work.xb[i] = sim->state.x[x0 + i];
             k->ra = side == -1 ? k->ra * (real_t)0.5 : k->ra; /* Illinois */
             side = -1;
         } else {
-            k->a = th, k->ra = sim->rs[k->root];
+            k->a = th, k->ra = sim->work.rs[k->root];
             k->rb = side == 1 ? k->rb * (real_t)0.5 : k->rb;
             side = 1;
         }
     }
-    if (it > sim->event_iter_max)
-        sim->event_iter_max = it;
+    if (it > sim->stats.event_iter_max)
+        sim->stats.event_iter_max = it;
     if (k->b - k->a > RT_EVENT_TTOL && k->rb != 0)
         rti_count(sim, RT_CNT_EVENT_NOLOC, -1, RT_E_NOCONV);
 }
@@ -118,7 +118,7 @@ static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
 /* runs the event handler of the located root at time te with the state in xb */
 static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, int root)
 {
-    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     uint16_t blk = 0, which = 0, m = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
@@ -131,40 +131,40 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, int root
         m = (uint16_t)(m + k->nr);
     }
     for (uint16_t i = 0; i < n; i++)
-        sim->x[x0 + i] = sim->xb[i];
+        sim->state.x[x0 + i] = sim->work.xb[i];
     rti_outputs(sc, sim, te, RTI_IN_STEP);
     rt_args a;
     rti_gather(sim, blk);
     rti_args(sc, sim, blk, te, 0, &a);
-    sc->blocks[blk].kind->event(&a, which, sim->x + sim->x_off[blk],
-                                sim->d + sim->d_off[blk]);
+    sc->blocks[blk].kind->event(&a, which, sim->state.x + sim->plan.x_off[blk],
+                                sim->state.d + sim->plan.d_off[blk]);
     rti_count(sim, RT_CNT_EVENTS, blk, RT_OK);
 }
 
 /* sub-steps from t0 to t + h, locating and firing events on the way */
 static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
-    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
-    uint16_t nr = (uint16_t)(sim->set_r[s + 1] - sim->set_r[s]);
-    real_t *r = sim->r + sim->set_r[s];
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]);
+    real_t *r = sim->state.r + sim->plan.set_r[s];
     real_t t0 = t, span = h;
     for (int ev = 0;; ev++) {
         for (uint16_t i = 0; i < n; i++)
-            sim->xs[i] = sim->x[x0 + i];
+            sim->work.xs[i] = sim->state.x[x0 + i];
         integrate(sc, sim, s, t0, span);
         rti_outputs(sc, sim, t0 + span, RTI_IN_STEP);
-        rti_roots(sc, sim, s, t0 + span, sim->rs);
+        rti_roots(sc, sim, s, t0 + span, sim->work.rs);
         uint16_t blk, which;
-        int c = find_crossing(sc, s, r, sim->rs, &blk, &which);
+        int c = find_crossing(sc, s, r, sim->work.rs, &blk, &which);
         if (c < 0)
             break;
         if (ev >= RT_EVENTS_PER_STEP_MAX) {
             rti_count(sim, RT_CNT_EVENT_LIMIT, blk, RT_E_EVENT);
             break;
         }
-        bracket k = {0, 1, r[c], sim->rs[c], c};
+        bracket k = {0, 1, r[c], sim->work.rs[c], c};
         for (uint16_t i = 0; i < n; i++)
-            sim->xb[i] = sim->x[x0 + i];
+            sim->work.xb[i] = sim->state.x[x0 + i];
         locate(sc, sim, s, t0, span, &k, r);
         real_t te = t0 + k.b * span;
         fire(sc, sim, s, te, k.root);
@@ -177,7 +177,7 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
             break;
     }
     for (uint16_t i = 0; i < nr; i++)
-        r[i] = sim->rs[i];
+        r[i] = sim->work.rs[i];
 }
 
 /* the first block of the set holding a non-finite state, or -1 */
@@ -186,8 +186,8 @@ static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         if (sc->blocks[b].set != s)
             continue;
-        for (uint16_t i = sim->x_off[b]; i < sim->x_off[b] + sc->blocks[b].kind->nx; i++)
-            if (!rt_isfinite(sim->x[i]))
+        for (uint16_t i = sim->plan.x_off[b]; i < sim->plan.x_off[b] + sc->blocks[b].kind->nx; i++)
+            if (!rt_isfinite(sim->state.x[i]))
                 return b;
     }
     return -1;
@@ -195,12 +195,12 @@ static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 
 void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
-    uint16_t x0 = sim->set_x[s], n = (uint16_t)(sim->set_x[s + 1] - x0);
-    if (sim->set_r[s + 1] > sim->set_r[s]) {
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
         step_with_events(sc, sim, s, t, h);
     } else {
         for (uint16_t i = 0; i < n; i++)
-            sim->xs[i] = sim->x[x0 + i];
+            sim->work.xs[i] = sim->state.x[x0 + i];
         integrate(sc, sim, s, t, h);
     }
     /* a non-finite state is not propagated: the set keeps its state from before the step
@@ -208,7 +208,7 @@ void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h
     int bad = nonfinite_block(sc, sim, s);
     if (bad >= 0) {
         for (uint16_t i = 0; i < n; i++)
-            sim->x[x0 + i] = sim->xs[i];
+            sim->state.x[x0 + i] = sim->work.xs[i];
         rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);
     }
 }

@@ -33,6 +33,13 @@ int rt_streq(const char *a, const char *b)
     return *a == *b;
 }
 
+void rti_zero(void *p, size_t n)
+{
+    unsigned char *b = p;
+    while (n--)
+        *b++ = 0;
+}
+
 rt_status rti_fail(rt_sim *sim, rt_status status, ...)
 {
     va_list ap;
@@ -53,10 +60,10 @@ const char *rt_error_text(const rt_sim *sim)
 
 void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status)
 {
-    sim->count[c]++;
-    sim->last_block[c] = (int16_t)b;
-    if (sim->status == RT_OK)
-        sim->status = status;
+    sim->stats.count[c]++;
+    sim->stats.last_block[c] = (int16_t)b;
+    if (sim->stats.status == RT_OK)
+        sim->stats.status = status;
 }
 
 /* FNV-1a over the bytes of the value's bit pattern, least significant byte first, so the

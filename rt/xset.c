@@ -21,19 +21,19 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
                             ": unknown interpolation scheme", (const char *)0);
         if (sf == st)
             continue;
-        uint16_t gi = (uint16_t)(sim->u_off[cn->to] + cn->u);
-        sim->src_kind[gi] = RT_SRC_XSET;
-        sim->src_set[gi] = sf;
-        sim->interp[gi] = scheme ? scheme : RT_INTERP_HOLD;
-        sim->xsrc[sim->src[gi]] = 1;
-        sim->set_xout[sf] = 1;
+        uint16_t gi = (uint16_t)(sim->plan.u_off[cn->to] + cn->u);
+        sim->plan.src_kind[gi] = RT_SRC_XSET;
+        sim->plan.src_set[gi] = sf;
+        sim->plan.interp[gi] = scheme ? scheme : RT_INTERP_HOLD;
+        sim->plan.xsrc[sim->plan.src[gi]] = 1;
+        sim->plan.set_xout[sf] = 1;
     }
     /* schedule: by ratio, largest first; equal ratios keep their scene order */
     for (uint8_t i = 0; i < sc->nsets && i < RT_MAX_SETS; i++) { /* init checked nsets */
         uint8_t j = i;
-        for (; j > 0 && sc->sets[sim->sched[j - 1]].ratio < sc->sets[i].ratio; j--)
-            sim->sched[j] = sim->sched[j - 1];
-        sim->sched[j] = i;
+        for (; j > 0 && sc->sets[sim->plan.sched[j - 1]].ratio < sc->sets[i].ratio; j--)
+            sim->plan.sched[j] = sim->plan.sched[j - 1];
+        sim->plan.sched[j] = i;
     }
     return RT_OK;
 }
@@ -41,38 +41,38 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
 /* history slot 0 := the outputs of set s now; older points move down */
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
-    if (!sim->set_xout[s])
+    if (!sim->plan.set_xout[s])
         return;
-    real_t *T = sim->hist_t[s];
+    real_t *T = sim->state.hist_t[s];
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         if (sc->blocks[b].set != s)
             continue;
-        for (uint16_t v = sim->y_off[b]; v < sim->y_off[b + 1]; v++) {
-            if (!sim->xsrc[v])
+        for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1]; v++) {
+            if (!sim->plan.xsrc[v])
                 continue;
             /* monitor: how far the new point is from the line through the last two */
-            if (sim->hist_n[s] >= 2) {
-                real_t e = sim->hist_y[0][v] + (sim->hist_y[0][v] - sim->hist_y[1][v]) *
-                                                   (t - T[0]) / (T[0] - T[1]) - sim->y[v];
+            if (sim->state.hist_n[s] >= 2) {
+                real_t e = sim->state.hist_y[0][v] + (sim->state.hist_y[0][v] - sim->state.hist_y[1][v]) *
+                                                   (t - T[0]) / (T[0] - T[1]) - sim->state.y[v];
                 e = rt_fabs(e);
-                sim->xset_err[s] = e > sim->xset_err[s] ? e : sim->xset_err[s];
+                sim->stats.xset_err[s] = e > sim->stats.xset_err[s] ? e : sim->stats.xset_err[s];
             }
             for (int k = RT_HIST - 1; k > 0; k--)
-                sim->hist_y[k][v] = sim->hist_y[k - 1][v];
-            sim->hist_y[0][v] = sim->y[v];
+                sim->state.hist_y[k][v] = sim->state.hist_y[k - 1][v];
+            sim->state.hist_y[0][v] = sim->state.y[v];
         }
     }
     for (int k = RT_HIST - 1; k > 0; k--)
         T[k] = T[k - 1];
     T[0] = t;
-    sim->hist_n[s] = (uint8_t)(sim->hist_n[s] < RT_HIST ? sim->hist_n[s] + 1 : RT_HIST);
+    sim->state.hist_n[s] = (uint8_t)(sim->state.hist_n[s] < RT_HIST ? sim->state.hist_n[s] + 1 : RT_HIST);
 }
 
 /* the line through history points a and b of output v, at time t */
 static real_t line(const rt_sim *sim, const real_t *T, uint16_t v, int a, int b, real_t t)
 {
-    return sim->hist_y[b][v] +
-           (sim->hist_y[a][v] - sim->hist_y[b][v]) * (t - T[b]) / (T[a] - T[b]);
+    return sim->state.hist_y[b][v] +
+           (sim->state.hist_y[a][v] - sim->state.hist_y[b][v]) * (t - T[b]) / (T[a] - T[b]);
 }
 
 /* the parabola through the three points, at time t (Lagrange form): cubic Hermite with
@@ -82,18 +82,18 @@ static real_t parabola(const rt_sim *sim, const real_t *T, uint16_t v, real_t t)
     real_t l0 = (t - T[1]) * (t - T[2]) / ((T[0] - T[1]) * (T[0] - T[2]));
     real_t l1 = (t - T[0]) * (t - T[2]) / ((T[1] - T[0]) * (T[1] - T[2]));
     real_t l2 = (t - T[0]) * (t - T[1]) / ((T[2] - T[0]) * (T[2] - T[1]));
-    return l0 * sim->hist_y[0][v] + l1 * sim->hist_y[1][v] + l2 * sim->hist_y[2][v];
+    return l0 * sim->state.hist_y[0][v] + l1 * sim->state.hist_y[1][v] + l2 * sim->state.hist_y[2][v];
 }
 
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t)
 {
-    const real_t *T = sim->hist_t[q];
-    int n = sim->hist_n[q], k = 0;
+    const real_t *T = sim->state.hist_t[q];
+    int n = sim->state.hist_n[q], k = 0;
     /* the newest point at or before t (the source may have stepped past t already) */
     while (k + 1 < n && T[k] > t)
         k++;
     int bracket = k > 0 && T[k] <= t; /* points k and k - 1 enclose t */
-    real_t extrap = k + 1 < n ? line(sim, T, v, k, k + 1, t) : sim->hist_y[k][v];
+    real_t extrap = k + 1 < n ? line(sim, T, v, k, k + 1, t) : sim->state.hist_y[k][v];
     switch (scheme) {
     case RT_INTERP_EXTRAP:
         return extrap;
@@ -104,6 +104,6 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
             return parabola(sim, T, v, t);
         return bracket ? line(sim, T, v, k - 1, k, t) : extrap;
     default:
-        return sim->hist_y[k][v];
+        return sim->state.hist_y[k][v];
     }
 }

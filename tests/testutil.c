@@ -20,7 +20,7 @@ rt_status tu_run_to(const rt_scene *sc, real_t t)
 {
     uint64_t n = (uint64_t)(t / sc->dt + (real_t)0.5);
     rt_status st = RT_OK;
-    while (tu_sim.tick < n && st == RT_OK)
+    while (tu_sim.state.tick < n && st == RT_OK)
         st = rt_tick(sc, &tu_sim);
     return st;
 }
@@ -28,5 +28,5 @@ rt_status tu_run_to(const rt_scene *sc, real_t t)
 real_t tu_y(const rt_scene *sc, const char *block, uint16_t j)
 {
     int b = rt_block_index(sc, block);
-    return b < 0 ? (real_t)0 / (real_t)0 : tu_sim.y[tu_sim.y_off[b] + j];
+    return b < 0 ? (real_t)0 / (real_t)0 : tu_sim.state.y[tu_sim.plan.y_off[b] + j];
 }

@@ -51,16 +51,16 @@ int app_main(void)
         (void)port_cycles(); /* marker: the plugin counts instructions between calls */
         st = rt_tick(sc, &sim);
         rt_record(sc, &sim, 0);
-    } while (st != RT_E_DONE && sim.tick < FOOT_TICKS);
+    } while (st != RT_E_DONE && sim.state.tick < FOOT_TICKS);
     (void)port_cycles();
     th_put("scene ");
     th_put(sc->name);
     th_put(" ticks ");
-    th_put_int((long long)sim.tick);
+    th_put_int((long long)sim.state.tick);
     th_put(" hash ");
-    th_put_hex64(sim.hash);
+    th_put_hex64(sim.state.hash);
     th_put(" stack ");
     th_put_int(high_water());
     th_put("\n");
-    return sim.status == RT_OK ? 0 : 1;
+    return sim.stats.status == RT_OK ? 0 : 1;
 }

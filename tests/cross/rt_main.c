@@ -40,15 +40,15 @@ int app_main(void)
     th_put("rt scene ");
     th_put(sc->name);
     th_put(" ticks ");
-    th_put_int((long long)sim.tick);
+    th_put_int((long long)sim.state.tick);
     th_put(" timer ");
     th_put_int(timer_ticks);
     th_put(" overruns ");
     th_put_int(overruns);
     th_put(" hash ");
-    th_put_hex64(sim.hash);
+    th_put_hex64(sim.state.hash);
     th_put("\n");
     /* overruns are judged by the caller: zero is required only where the port's time is
        virtual and deterministic (bare metal under QEMU -icount), not on a shared host */
-    return sim.status == RT_OK ? 0 : 1;
+    return sim.stats.status == RT_OK ? 0 : 1;
 }

@@ -28,16 +28,16 @@ static void run_scene(const rt_scene *sc)
     do {
         t = rt_tick(sc, &sim);
         rt_record(sc, &sim, 0);
-    } while (t != RT_E_DONE && sim.tick < CROSS_TICKS);
+    } while (t != RT_E_DONE && sim.state.tick < CROSS_TICKS);
     th_put(" ticks ");
-    th_put_int((long long)sim.tick);
+    th_put_int((long long)sim.state.tick);
     th_put(" status ");
-    if (sim.status == RT_OK) /* one word, so scripts can split the line */
+    if (sim.stats.status == RT_OK) /* one word, so scripts can split the line */
         th_put("ok");
     else
-        th_put("fault"), th_put_int(sim.status);
+        th_put("fault"), th_put_int(sim.stats.status);
     th_put(" hash ");
-    th_put_hex64(sim.hash);
+    th_put_hex64(sim.state.hash);
     th_put("\n");
 }
 

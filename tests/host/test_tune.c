@@ -55,18 +55,18 @@ static double rerun(const uint32_t *r)
         return 1e300;
     uint32_t sync = r[0] > r[1] ? r[0] : r[1];
     double e = 0;
-    while (rt_tick(&sc, &tu_sim) == RT_OK || tu_sim.tick == tu_sim.n_ticks) {
-        if (tu_sim.tick % sync == 0) {
+    while (rt_tick(&sc, &tu_sim) == RT_OK || tu_sim.state.tick == tu_sim.plan.n_ticks) {
+        if (tu_sim.state.tick % sync == 0) {
             double t = (double)rt_time(&sc, &tu_sim);
             for (uint16_t i = 0; i < 2; i++) {
                 double d = fabs((double)rt_rec_value(&sc, &tu_sim, i) - exact(i, t));
                 e = d > e || d != d ? d : e;
             }
         }
-        if (tu_sim.tick == tu_sim.n_ticks)
+        if (tu_sim.state.tick == tu_sim.plan.n_ticks)
             break;
     }
-    TH_CHECK(tu_sim.status == RT_OK);
+    TH_CHECK(tu_sim.stats.status == RT_OK);
     return e;
 }
 

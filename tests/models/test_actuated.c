@@ -57,14 +57,14 @@ static void test_servo_step(void)
             return;
         double ey = 0, ed = 0, y, yd;
         const real_t *p = bl[1].p;
-        while (rt_tick(&sc, &tu_sim) == RT_OK || tu_sim.tick == tu_sim.n_ticks) {
+        while (rt_tick(&sc, &tu_sim) == RT_OK || tu_sim.state.tick == tu_sim.plan.n_ticks) {
             servo_exact((double)p[0], (double)p[1], (double)p[2], (double)rt_time(&sc, &tu_sim),
                         &y, &yd);
             ey = absd((double)tu_y(&sc, "S", MDL_SERVO2_Y) - y) > ey
                      ? absd((double)tu_y(&sc, "S", MDL_SERVO2_Y) - y) : ey;
             ed = absd((double)tu_y(&sc, "S", MDL_SERVO2_YD) - yd) > ed
                      ? absd((double)tu_y(&sc, "S", MDL_SERVO2_YD) - yd) : ed;
-            if (tu_sim.tick == tu_sim.n_ticks)
+            if (tu_sim.state.tick == tu_sim.plan.n_ticks)
                 break;
         }
         th_note(v ? "servo2 zeta 0.1: largest |y - exact|" : "servo2 zeta 0.7: |y - exact|", ey);
@@ -91,7 +91,7 @@ static void test_servo_stiff(void)
         return;
     tu_run_to(&sc, (real_t)0.02);
     TH_NEAR(tu_y(&sc, "S", MDL_SERVO2_Y), 3, RT_REAL_IS_FLOAT ? 1e-4 : 1e-9);
-    TH_CHECK(tu_sim.status == RT_OK && tu_sim.count[RT_CNT_DEGRADED] == 0);
+    TH_CHECK(tu_sim.stats.status == RT_OK && tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
 }
 
 /* ------------------------------------------------------------------ arm_pd, arm_motor */
@@ -193,7 +193,7 @@ static double link_error(void)
 {
     double e = 0, px = 0, py = 0, pz = 0;
     for (int b = 0; b < 10; b++) {
-        const real_t *y = tu_sim.y + tu_sim.y_off[b];
+        const real_t *y = tu_sim.state.y + tu_sim.plan.y_off[b];
         double dx = (double)y[0] - px, dy = (double)y[1] - py, dz = (double)y[2] - pz;
         double l = (double)rt_sqrt((real_t)(dx * dx + dy * dy + dz * dz));
         e = absd(l - 1) > e ? absd(l - 1) : e;
@@ -228,30 +228,30 @@ static void run_scene(const rt_scene *sc, const notes *n, double *pos)
     double links = 0, track = 0, hold = 0;
     for (uint8_t s = 0; s < sc->nsets; s++)
         TH_CHECK(end % sc->sets[s].ratio == 0); /* every set at the end time */
-    while (tu_sim.tick < end && rt_tick(sc, &tu_sim) == RT_OK) {
+    while (tu_sim.state.tick < end && rt_tick(sc, &tu_sim) == RT_OK) {
         real_t t = rt_time(sc, &tu_sim);
-        const real_t *y = tu_sim.y + tu_sim.y_off[th];
+        const real_t *y = tu_sim.state.y + tu_sim.plan.y_off[th];
         double e = absd((double)(y[MDL_ARM_PD_Y_THETA] - y[MDL_ARM_PD_Y_THR]));
         track = e > track ? e : track;
         if (t >= (real_t)6.5)
             hold = absd((double)y[MDL_ARM_PD_Y_THETA]) > hold ? absd((double)y[MDL_ARM_PD_Y_THETA])
                                                               : hold;
-        if (tu_sim.tick % 500 == 0)
+        if (tu_sim.state.tick % 500 == 0)
             links = link_error() > links ? link_error() : links;
     }
     links = link_error() > links ? link_error() : links;
     th_note(n->links, links);
     th_note(n->track, track);
     th_note(n->hold, hold);
-    TH_CHECK(tu_sim.tick == end && tu_sim.status == RT_OK);
-    TH_CHECK(tu_sim.count[RT_CNT_DEGRADED] == 0 && tu_sim.count[RT_CNT_NAN] == 0);
+    TH_CHECK(tu_sim.state.tick == end && tu_sim.stats.status == RT_OK);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.count[RT_CNT_NAN] == 0);
     TH_CHECK(links < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
-    TH_CHECK(tu_sim.mbs.res_max < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
+    TH_CHECK(tu_sim.work.mbs.res_max < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
     TH_CHECK(track < 0.02); /* about 1 deg */
     TH_CHECK(hold < 0.005); /* horizontal within 0.3 deg (0 when the run ends before) */
     for (int b = 0; b < 10; b++)
         for (int k = 0; k < 3; k++)
-            pos[3 * b + k] = (double)tu_sim.y[tu_sim.y_off[b] + k];
+            pos[3 * b + k] = (double)tu_sim.state.y[tu_sim.plan.y_off[b] + k];
 }
 
 /* both scenes: clean, arm raised; they agree within the benchmark's 1e-4 m */

@@ -51,12 +51,12 @@ static void test_against_direct(void)
     double worst = 0, wmax = 0;
     while (rt_tick(sc, &tu_sim) == RT_OK) {
         rt_tick(&dsc, &ref);
-        double e1 = (double)tu_sim.x[tu_sim.x_off[r1] + 1] - (double)ref.x[2];
-        double e2 = (double)tu_sim.x[tu_sim.x_off[r2] + 1] - (double)ref.x[4];
+        double e1 = (double)tu_sim.state.x[tu_sim.plan.x_off[r1] + 1] - (double)ref.state.x[2];
+        double e2 = (double)tu_sim.state.x[tu_sim.plan.x_off[r2] + 1] - (double)ref.state.x[4];
         e1 = e1 < 0 ? -e1 : e1, e2 = e2 < 0 ? -e2 : e2;
         worst = e1 > worst ? e1 : worst;
         worst = e2 > worst ? e2 : worst;
-        double w = (double)ref.x[2];
+        double w = (double)ref.state.x[2];
         wmax = w > wmax ? w : wmax;
     }
     th_note("worst speed difference [rad/s]", worst);
@@ -64,10 +64,10 @@ static void test_against_direct(void)
     TH_CHECK(wmax > 1); /* the drive did turn */
     TH_CHECK(worst < (RT_REAL_IS_FLOAT ? 1e-3 : 1e-9) * wmax);
     /* the actual loop was solved in one iteration at every evaluation after the first */
-    th_note("most iterations in one solve", tu_sim.loop_iter_max);
-    th_note("solves taking 2 iterations", tu_sim.loop_hist[2]);
-    TH_CHECK(tu_sim.loop_iter_max == 1 && tu_sim.loop_hist[1] > 0);
-    TH_CHECK(tu_sim.count[RT_CNT_NOCONV] == 0 && tu_sim.status == RT_OK);
+    th_note("most iterations in one solve", tu_sim.stats.loop_iter_max);
+    th_note("solves taking 2 iterations", tu_sim.stats.loop_hist[2]);
+    TH_CHECK(tu_sim.stats.loop_iter_max == 1 && tu_sim.stats.loop_hist[1] > 0);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_NOCONV] == 0 && tu_sim.stats.status == RT_OK);
 }
 
 /* one potential loop (the current loop) and one actual loop (the drive train) */
@@ -77,15 +77,15 @@ static void test_loop_classes(void)
     if (!tu_init(sc))
         return;
     int potential = -1, actual = -1;
-    for (int l = 0; l < tu_sim.nloops; l++)
-        *(tu_sim.loops[l].actual ? &actual : &potential) = l;
-    TH_CHECK(tu_sim.nloops == 2 && potential >= 0 && actual >= 0);
+    for (int l = 0; l < tu_sim.plan.nloops; l++)
+        *(tu_sim.plan.loops[l].actual ? &actual : &potential) = l;
+    TH_CHECK(tu_sim.plan.nloops == 2 && potential >= 0 && actual >= 0);
     if (potential < 0 || actual < 0)
         return;
-    const rt_loop *p = &tu_sim.loops[potential], *a = &tu_sim.loops[actual];
+    const rt_loop *p = &tu_sim.plan.loops[potential], *a = &tu_sim.plan.loops[actual];
     TH_CHECK(p->nblocks == 2 && a->nblocks == 3 && a->ntorn >= 1);
     for (int i = 0; i < a->nblocks; i++) {
-        const char *n = sc->blocks[tu_sim.loop_blocks[a->first + i]].name;
+        const char *n = sc->blocks[tu_sim.plan.loop_blocks[a->first + i]].name;
         TH_CHECK(rt_streq(n, "P1") || rt_streq(n, "P2") || rt_streq(n, "Belt"));
     }
 }

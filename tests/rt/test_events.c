@@ -24,11 +24,11 @@ static void test_ball_impacts(void)
     double tol = RT_REAL_IS_FLOAT ? 2e-4 : 1e-10, worst = 0;
     int seen = 0;
     while (rt_tick(sc, &tu_sim) == RT_OK) {
-        int n = (int)tu_sim.d[MDL_BALL_D_N];
+        int n = (int)tu_sim.state.d[MDL_BALL_D_N];
         if (n == seen)
             continue;
         TH_CHECK(n == seen + 1); /* one impact per step at most at this step size */
-        double err = (double)tu_sim.d[MDL_BALL_D_T] - impact_time(seen, 1, 9.81, 0.8);
+        double err = (double)tu_sim.state.d[MDL_BALL_D_T] - impact_time(seen, 1, 9.81, 0.8);
         err = err < 0 ? -err : err;
         worst = err > worst ? err : worst;
         seen = n;
@@ -40,9 +40,9 @@ static void test_ball_impacts(void)
     th_note("worst impact time error [s]", worst);
     TH_CHECK(expect == 9 && seen == expect);
     TH_CHECK(worst <= tol);
-    TH_CHECK(tu_sim.count[RT_CNT_EVENTS] == (uint32_t)expect && tu_sim.status == RT_OK);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_EVENTS] == (uint32_t)expect && tu_sim.stats.status == RT_OK);
     /* the guarded Illinois iteration needs a handful of re-steps, not dozens */
-    TH_CHECK(tu_sim.event_iter_max > 0 && tu_sim.event_iter_max <= 8);
+    TH_CHECK(tu_sim.stats.event_iter_max > 0 && tu_sim.stats.event_iter_max <= 8);
 }
 
 /* a sawtooth whose root fires every 0.2 ms: five events in a 1 ms step exceed the bound
@@ -73,11 +73,11 @@ static void test_event_bound(void)
         return;
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
-    TH_CHECK(tu_sim.tick == 10);
-    TH_CHECK(tu_sim.count[RT_CNT_EVENT_LIMIT] > 0);
-    TH_CHECK(tu_sim.status == RT_E_EVENT);
-    TH_CHECK(tu_sim.count[RT_CNT_EVENTS] <= 10 * RT_EVENTS_PER_STEP_MAX);
-    TH_CHECK(rt_isfinite(tu_sim.x[0]));
+    TH_CHECK(tu_sim.state.tick == 10);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_EVENT_LIMIT] > 0);
+    TH_CHECK(tu_sim.stats.status == RT_E_EVENT);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_EVENTS] <= 10 * RT_EVENTS_PER_STEP_MAX);
+    TH_CHECK(rt_isfinite(tu_sim.state.x[0]));
 }
 
 const th_test th_event_tests[] = {

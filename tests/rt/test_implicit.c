@@ -138,12 +138,12 @@ static void test_dahlquist(void)
         const rt_integrator *m = methods[i];
         double r1 = 0, r2 = 0, x100 = 0;
         if (run(&dahl, lam6, one, m, cfg, (real_t)1e-3, (real_t)1e-3))
-            r1 = (double)tu_sim.x[0];
-        TH_CHECK(tu_sim.count[RT_CNT_DEGRADED] == 0);
+            r1 = (double)tu_sim.state.x[0];
+        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
         if (run(&dahl, lam6, one, m, cfg, (real_t)1e-3, (real_t)0.1))
-            x100 = (double)tu_sim.x[0];
+            x100 = (double)tu_sim.state.x[0];
         if (run(&dahl, lam12, one, m, cfg, (real_t)1e-3, (real_t)1e-3))
-            r2 = (double)tu_sim.x[0];
+            r2 = (double)tu_sim.state.x[0];
         th_put("  ");
         th_put(m->name);
         th_note("R(-1000) =", r1);
@@ -174,8 +174,8 @@ static double growth_error(const rt_integrator *m, rt_implicit_cfg cfg, real_t h
     static const real_t one[] = {1};
     if (!run(&growth, 0, one, m, cfg, h, 2))
         return 1e30;
-    TH_CHECK(tu_sim.count[RT_CNT_DEGRADED] == 0);
-    return dabs((double)tu_sim.x[0] - (double)rt_exp(rt_sin(rt_time(&scene, &tu_sim))));
+    TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+    return dabs((double)tu_sim.state.x[0] - (double)rt_exp(rt_sin(rt_time(&scene, &tu_sim))));
 }
 
 typedef struct order_case {
@@ -253,12 +253,12 @@ static double stiff_error(const rt_integrator *m, real_t h)
         return 1e30;
     stiff_exact((double)rt_time(&scene, &tu_sim), x0, ex);
     for (int i = 0; i < 3; i++) {
-        double d = dabs((double)tu_sim.x[i] - ex[i]);
+        double d = dabs((double)tu_sim.state.x[i] - ex[i]);
         e = d > e ? d : e;
     }
     /* linear: one Jacobian for the run, a few iterations per stage, never degraded */
-    TH_CHECK(tu_sim.istats[0].jac_evals == 1 && tu_sim.istats[0].degraded == 0);
-    TH_CHECK(tu_sim.istats[0].newton_iter_max <= 4u * m->stages);
+    TH_CHECK(tu_sim.stats.istats[0].jac_evals == 1 && tu_sim.stats.istats[0].degraded == 0);
+    TH_CHECK(tu_sim.stats.istats[0].newton_iter_max <= 4u * m->stages);
     return e;
 }
 
@@ -302,28 +302,28 @@ static void test_degraded(void)
         if (m == &rt_ros2)
             continue; /* no Newton iteration: never degraded by construction */
         TH_CHECK(run(&cubic, p, zero, m, bad, (real_t)0.01, 3));
-        const rt_istats *s = &tu_sim.istats[0];
+        const rt_istats *s = &tu_sim.stats.istats[0];
         th_put("  ");
         th_put(m->name);
         th_note("degraded steps of 300 with a frozen Jacobian", s->degraded);
         TH_CHECK(s->degraded > 0 && s->jac_evals > 1 && s->jac_evals <= s->degraded + 1);
-        TH_CHECK(tu_sim.count[RT_CNT_DEGRADED] == s->degraded);
-        TH_CHECK(tu_sim.status == RT_E_NOCONV && tu_sim.count[RT_CNT_NAN] == 0);
+        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == s->degraded);
+        TH_CHECK(tu_sim.stats.status == RT_E_NOCONV && tu_sim.stats.count[RT_CNT_NAN] == 0);
         TH_CHECK(s->newton_iter_max <= 2u * m->stages);
         TH_CHECK(s->last_residual > (FLT ? 1e-5 : 1e-8) && rt_isfinite(s->last_residual));
-        double x_bad = (double)tu_sim.x[0];
+        double x_bad = (double)tu_sim.state.x[0];
 
         TH_CHECK(run(&cubic, p, zero, m, good, (real_t)0.01, 3));
-        TH_CHECK(s->degraded == 0 && tu_sim.count[RT_CNT_DEGRADED] == 0);
+        TH_CHECK(s->degraded == 0 && tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
         TH_CHECK(s->jac_evals == 300 && s->newton_iter_max <= 8u * m->stages);
         TH_CHECK(s->last_residual <= (FLT ? 1e-5 : 1e-8));
-        th_note("|x(3) - converged x(3)|", dabs(x_bad - (double)tu_sim.x[0]));
-        TH_CHECK(rt_isfinite((real_t)x_bad) && dabs(x_bad - (double)tu_sim.x[0]) < 1e-2);
+        th_note("|x(3) - converged x(3)|", dabs(x_bad - (double)tu_sim.state.x[0]));
+        TH_CHECK(rt_isfinite((real_t)x_bad) && dabs(x_bad - (double)tu_sim.state.x[0]) < 1e-2);
     }
     /* one iteration cannot show convergence: every Newton step counts */
     TH_CHECK(run(&cubic, p, zero, &rt_sdirk2, (rt_implicit_cfg){.newton_max = 1},
                  (real_t)0.01, 1));
-    TH_CHECK(tu_sim.istats[0].degraded == 100 && rt_isfinite(tu_sim.x[0]));
+    TH_CHECK(tu_sim.stats.istats[0].degraded == 100 && rt_isfinite(tu_sim.state.x[0]));
 }
 
 /* ------------------------------------------------------------------ Jacobian reuse */
@@ -337,13 +337,13 @@ static void test_jac_reuse(void)
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
         TH_CHECK(run(&cubic, p, zero, m, (rt_implicit_cfg){.newton_max = 8}, (real_t)0.01, 3));
-        double x1 = (double)tu_sim.x[0];
-        uint32_t j1 = tu_sim.istats[0].jac_evals, it1 = tu_sim.istats[0].newton_iter_max;
-        TH_CHECK(tu_sim.istats[0].degraded == 0);
+        double x1 = (double)tu_sim.state.x[0];
+        uint32_t j1 = tu_sim.stats.istats[0].jac_evals, it1 = tu_sim.stats.istats[0].newton_iter_max;
+        TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
         TH_CHECK(run(&cubic, p, zero, m, (rt_implicit_cfg){.newton_max = 8, .jac_every = 10},
                      (real_t)0.01, 3));
-        double x10 = (double)tu_sim.x[0];
-        uint32_t j10 = tu_sim.istats[0].jac_evals, it10 = tu_sim.istats[0].newton_iter_max;
+        double x10 = (double)tu_sim.state.x[0];
+        uint32_t j10 = tu_sim.stats.istats[0].jac_evals, it10 = tu_sim.stats.istats[0].newton_iter_max;
         th_put("  ");
         th_put(m->name);
         th_note("jac_evals every step", j1);
@@ -351,7 +351,7 @@ static void test_jac_reuse(void)
         th_note("Newton iterations per step, max", it10 > it1 ? it10 : it1);
         th_note("|x(3) difference|", dabs(x1 - x10));
         TH_CHECK(j1 == 300 && j10 == 30);
-        TH_CHECK(tu_sim.istats[0].degraded == 0);
+        TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
         TH_CHECK(dabs(x1 - x10) < (m == &rt_ros2 ? 1e-3 : FLT ? 1e-4 : 1e-8));
     }
 }
@@ -377,13 +377,13 @@ static rt_iwork direct_work(const rt_implicit_cfg *cfg)
 {
     rt_iwork w;
     for (int i = 0; i < RT_MAX_STAGES; i++)
-        w.k[i] = tu_sim.w.k[i];
-    w.x0 = tu_sim.x0;
-    w.imp = &tu_sim.imp[0];
-    w.stats = &tu_sim.istats[0];
+        w.k[i] = tu_sim.work.w.k[i];
+    w.x0 = tu_sim.work.x0;
+    w.imp = &tu_sim.state.imp[0];
+    w.stats = &tu_sim.stats.istats[0];
     w.cfg = cfg;
-    tu_sim.imp[0].valid = 0, tu_sim.imp[0].age = 0;
-    tu_sim.istats[0] = (rt_istats){0, 0, 0, 0};
+    tu_sim.state.imp[0].valid = 0, tu_sim.state.imp[0].age = 0;
+    tu_sim.stats.istats[0] = (rt_istats){0, 0, 0, 0};
     return w;
 }
 
@@ -398,16 +398,16 @@ static void test_singular(void)
     rt_rhs f = {diag_eval, &c};
     rt_iwork w = direct_work(&cfg);
     rt_status st = rt_beuler.step(&rt_beuler, &f, 0, h, x, 2, &w);
-    TH_CHECK(st == RT_E_SINGULAR && tu_sim.imp[0].valid == 0);
+    TH_CHECK(st == RT_E_SINGULAR && tu_sim.state.imp[0].valid == 0);
     TH_CHECK(x[0] == 0);
     TH_NEAR(x[1], 1 / (1 + h), FLT ? 1e-6 : 1e-14);
 
     x[0] = 1, x[1] = 1;
     w = direct_work(&cfg);
     st = rt_beuler.step(&rt_beuler, &f, 0, h, x, 2, &w);
-    TH_CHECK(st == RT_E_NOCONV && tu_sim.istats[0].degraded == 1);
+    TH_CHECK(st == RT_E_NOCONV && tu_sim.stats.istats[0].degraded == 1);
     TH_CHECK(rt_isfinite(x[0]) && rt_isfinite(x[1]));
-    TH_CHECK(rt_isfinite(tu_sim.istats[0].last_residual));
+    TH_CHECK(rt_isfinite(tu_sim.stats.istats[0].last_residual));
 }
 
 /* ------------------------------------------------------------------ multibody set */
@@ -433,7 +433,7 @@ static int pend_init(const rt_scene *sc, rt_sim *sim)
 
 static void pend_accel(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *xdot)
 {
-    const real_t *q = sim->x + sim->set_x[s];
+    const real_t *q = sim->state.x + sim->plan.set_x[s];
     real_t g = (real_t)9.81, rr = q[0] * q[0] + q[1] * q[1];
     real_t lam = (-g * q[1] + q[2] * q[2] + q[3] * q[3]) / rr;
     (void)sc, (void)t;
@@ -443,7 +443,7 @@ static void pend_accel(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, rea
 
 static void pend_project(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
-    real_t *q = sim->x + sim->set_x[s];
+    real_t *q = sim->state.x + sim->plan.set_x[s];
     real_t r = rt_sqrt(q[0] * q[0] + q[1] * q[1]);
     (void)sc, (void)t;
     q[0] /= r, q[1] /= r;
@@ -465,15 +465,15 @@ static void test_multibody(void)
     scene.mbs = &pend_ops;
     TH_CHECK(tu_init(&scene) && tu_run_to(&scene, 1) == RT_E_DONE);
     for (int i = 0; i < 4; i++)
-        ref[i] = tu_sim.x[i];
+        ref[i] = tu_sim.state.x[i];
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
         build(&pend, 0, x0, m, (rt_implicit_cfg){0}, (real_t)1e-3, 1);
         scene.mbs = &pend_ops;
         TH_CHECK(tu_init(&scene) && tu_run_to(&scene, 1) == RT_E_DONE);
-        double e = 0, c = (double)(tu_sim.x[0] * tu_sim.x[0] + tu_sim.x[1] * tu_sim.x[1]);
+        double e = 0, c = (double)(tu_sim.state.x[0] * tu_sim.state.x[0] + tu_sim.state.x[1] * tu_sim.state.x[1]);
         for (int k = 0; k < 4; k++) {
-            double d = dabs((double)(tu_sim.x[k] - ref[k]));
+            double d = dabs((double)(tu_sim.state.x[k] - ref[k]));
             e = d > e ? d : e;
         }
         th_put("  ");
@@ -481,7 +481,7 @@ static void test_multibody(void)
         th_note("pendulum state error at 1 s", e);
         TH_CHECK(e < tol[i] + (FLT ? 1e-3 : 0));
         TH_NEAR(c, 1, FLT ? 1e-6 : 1e-14);
-        TH_CHECK(tu_sim.count[RT_CNT_DEGRADED] == 0 && tu_sim.istats[0].jac_evals == 1000);
+        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.istats[0].jac_evals == 1000);
     }
 }
 
@@ -492,7 +492,7 @@ static double chain_residual(void)
     for (int k = 0; k < 10; k++) {
         double d2 = 0;
         for (int c = 0; c < 3; c++) {
-            double a = (double)tu_sim.x[6 * k + c], b = k ? (double)tu_sim.x[6 * k - 6 + c] : 0;
+            double a = (double)tu_sim.state.x[6 * k + c], b = k ? (double)tu_sim.state.x[6 * k - 6 + c] : 0;
             d2 += (a - b) * (a - b);
         }
         double r = dabs((double)rt_sqrt((real_t)d2) - 1);
@@ -513,24 +513,24 @@ static void test_pendulum10(void)
     real_t ref[60];
     if (!tu_init(&sc) || !TH_CHECK(tu_run_to(&sc, sc.t_end) == RT_E_DONE))
         return;
-    uint16_t n = tu_sim.set_x[1];
+    uint16_t n = tu_sim.plan.set_x[1];
     if (!TH_CHECK(n == 60))
         return;
     for (uint16_t i = 0; i < n; i++)
-        ref[i] = tu_sim.x[i];
+        ref[i] = tu_sim.state.x[i];
     s.method = &rt_sdirk2, s.implicit = (rt_implicit_cfg){.jac_every = 10};
     if (!tu_init(&sc) || !TH_CHECK(tu_run_to(&sc, sc.t_end) == RT_E_DONE))
         return;
     double e = 0;
     for (uint16_t i = 0; i < n; i++) {
-        double d = dabs((double)(tu_sim.x[i] - ref[i]));
+        double d = dabs((double)(tu_sim.state.x[i] - ref[i]));
         e = d > e ? d : e;
     }
     th_note("pendulum10, sdirk2 vs dopri5 at 0.5 s, largest state difference", e);
     th_note("largest constraint residual [m]", chain_residual());
-    th_note("Newton iterations per step, max", tu_sim.istats[0].newton_iter_max);
+    th_note("Newton iterations per step, max", tu_sim.stats.istats[0].newton_iter_max);
     TH_CHECK(e < 1e-4 && chain_residual() < (FLT ? 1e-5 : 1e-12));
-    TH_CHECK(tu_sim.istats[0].degraded == 0 && tu_sim.istats[0].jac_evals == 50);
+    TH_CHECK(tu_sim.stats.istats[0].degraded == 0 && tu_sim.stats.istats[0].jac_evals == 50);
 }
 
 /* ------------------------------------------------------------------ state events */
@@ -544,18 +544,18 @@ static void test_events(void)
     rt_implicit_cfg cfg = {.jac_every = 60000};
     double n_ref = 0, t_ref = 0;
     if (run(&mdl_ball_kind, 0, 0, &rt_rk4, cfg, (real_t)1e-3, (real_t)3.5))
-        n_ref = (double)tu_sim.d[MDL_BALL_D_N], t_ref = (double)tu_sim.d[MDL_BALL_D_T];
+        n_ref = (double)tu_sim.state.d[MDL_BALL_D_N], t_ref = (double)tu_sim.state.d[MDL_BALL_D_T];
     TH_CHECK(n_ref >= 5);
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
         TH_CHECK(run(&mdl_ball_kind, 0, 0, m, cfg, (real_t)1e-3, (real_t)3.5));
-        double n = (double)tu_sim.d[MDL_BALL_D_N], t = (double)tu_sim.d[MDL_BALL_D_T];
+        double n = (double)tu_sim.state.d[MDL_BALL_D_N], t = (double)tu_sim.state.d[MDL_BALL_D_T];
         th_put("  ");
         th_put(m->name);
         th_note("impacts", n);
         th_note("last impact time - RK4's [s]", t - t_ref);
-        TH_CHECK(tu_sim.count[RT_CNT_EVENTS] == (uint32_t)n && tu_sim.istats[0].jac_evals == 1);
-        TH_CHECK(tu_sim.count[RT_CNT_DEGRADED] == 0 && tu_sim.count[RT_CNT_EVENT_NOLOC] == 0);
+        TH_CHECK(tu_sim.stats.count[RT_CNT_EVENTS] == (uint32_t)n && tu_sim.stats.istats[0].jac_evals == 1);
+        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.count[RT_CNT_EVENT_NOLOC] == 0);
         if (m->order >= 2)
             TH_CHECK(n == n_ref && dabs(t - t_ref) < (FLT ? 1e-4 : 1e-12));
         else
@@ -574,14 +574,14 @@ static void test_replay(void)
         real_t x;
         rt_istats s;
         TH_CHECK(run(&cubic, p, zero, methods[i], cfg, (real_t)0.01, 2));
-        x = tu_sim.x[0], s = tu_sim.istats[0];
+        x = tu_sim.state.x[0], s = tu_sim.stats.istats[0];
         TH_CHECK(run(&cubic, p, zero, methods[i], cfg, (real_t)0.01, 2));
-        TH_CHECK(rt_hash_real(0, x) == rt_hash_real(0, tu_sim.x[0]));
-        TH_CHECK(s.degraded == tu_sim.istats[0].degraded &&
-                 s.jac_evals == tu_sim.istats[0].jac_evals &&
-                 s.newton_iter_max == tu_sim.istats[0].newton_iter_max &&
+        TH_CHECK(rt_hash_real(0, x) == rt_hash_real(0, tu_sim.state.x[0]));
+        TH_CHECK(s.degraded == tu_sim.stats.istats[0].degraded &&
+                 s.jac_evals == tu_sim.stats.istats[0].jac_evals &&
+                 s.newton_iter_max == tu_sim.stats.istats[0].newton_iter_max &&
                  rt_hash_real(0, s.last_residual) ==
-                     rt_hash_real(0, tu_sim.istats[0].last_residual));
+                     rt_hash_real(0, tu_sim.stats.istats[0].last_residual));
     }
 }
 

@@ -23,7 +23,7 @@ static double error_at(const rt_integrator *m, real_t h, real_t t_end)
         return 1e30;
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
-    double e = (double)tu_sim.x[0] - (double)rt_exp(rt_sin(rt_time(&sc, &tu_sim)));
+    double e = (double)tu_sim.state.x[0] - (double)rt_exp(rt_sin(rt_time(&sc, &tu_sim)));
     return e < 0 ? -e : e;
 }
 

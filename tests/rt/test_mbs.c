@@ -151,8 +151,8 @@ static void test_period(void)
         return;
     double cross[8] = {0}, vmax = 0, tens = 0;
     int n = 0;
-    const real_t *x = tu_sim.x;
-    while (tu_sim.tick < tu_sim.n_ticks) {
+    const real_t *x = tu_sim.state.x;
+    while (tu_sim.state.tick < tu_sim.plan.n_ticks) {
         double t0 = (double)rt_time(&sc, &tu_sim), x0 = (double)x[0], v0 = (double)x[3];
         rt_tick(&sc, &tu_sim);
         double h = (double)rt_time(&sc, &tu_sim) - t0;
@@ -173,7 +173,7 @@ static void test_period(void)
     /* speed at the bottom sqrt(2 g l), sampled within half a tick of it */
     TH_NEAR(vmax, 4.429446918, RT_REAL_IS_FLOAT ? 1e-4 : 1e-5);
     TH_CHECK(tens < (RT_REAL_IS_FLOAT ? 2e-3 : 1e-8));
-    TH_CHECK(tu_sim.status == RT_OK);
+    TH_CHECK(tu_sim.stats.status == RT_OK);
 }
 
 /* the redundant rod: W M^-1 W^T is singular; counted, and the deterministic fallback
@@ -186,18 +186,18 @@ static void test_redundant(void)
         return;
     tu_run_to(&sc, 1);
     for (int i = 0; i < 6; i++)
-        ref[i] = tu_sim.x[i];
+        ref[i] = tu_sim.state.x[i];
     sc = pendulum(&rt_rk4, (real_t)1e-3, 1, RT_STAB_PROJECT, 2);
     if (!tu_init(&sc))
         return;
     tu_run_to(&sc, 1);
     double d = 0;
     for (int i = 0; i < 6; i++)
-        d = absd((double)(tu_sim.x[i] - ref[i])) > d ? absd((double)(tu_sim.x[i] - ref[i])) : d;
-    th_note("redundant rod: singular solves", tu_sim.count[RT_CNT_SINGULAR]);
+        d = absd((double)(tu_sim.state.x[i] - ref[i])) > d ? absd((double)(tu_sim.state.x[i] - ref[i])) : d;
+    th_note("redundant rod: singular solves", tu_sim.stats.count[RT_CNT_SINGULAR]);
     th_note("redundant rod: |x - x_single|", d);
-    TH_CHECK(tu_sim.count[RT_CNT_SINGULAR] > 0 && tu_sim.status == RT_E_SINGULAR);
-    TH_CHECK(tu_sim.last_block[RT_CNT_SINGULAR] == 0 && tu_sim.count[RT_CNT_NAN] == 0);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] > 0 && tu_sim.stats.status == RT_E_SINGULAR);
+    TH_CHECK(tu_sim.stats.last_block[RT_CNT_SINGULAR] == 0 && tu_sim.stats.count[RT_CNT_NAN] == 0);
     TH_CHECK(d < (RT_REAL_IS_FLOAT ? 1e-4 : 1e-12));
 }
 
@@ -226,12 +226,12 @@ static drift run_drift(const rt_scene *sc, uint64_t steps)
     drift d = {0, 0, 0};
     if (!tu_init(sc))
         return (drift){1, 1, 1};
-    double e0 = p1_energy(tu_sim.x);
+    double e0 = p1_energy(tu_sim.state.x);
     for (uint64_t k = 0; k < steps; k++) {
         rt_tick(sc, &tu_sim);
         if (k % 64 != 63 && k + 1 != steps)
             continue;
-        const real_t *x = tu_sim.x;
+        const real_t *x = tu_sim.state.x;
         double rv = (double)(x[0] * x[3] + x[1] * x[4] + x[2] * x[5]);
         d.res = rt_fmax((real_t)d.res, (real_t)absd(p1_residual(x)));
         d.resv = rt_fmax((real_t)d.resv, (real_t)absd(rv));
@@ -246,7 +246,7 @@ static void test_drift_10s(void)
 {
     rt_scene sc = pendulum(&rt_rk4, (real_t)1e-3, 10, RT_STAB_PROJECT, 1);
     drift on = run_drift(&sc, 10000);
-    TH_CHECK(tu_sim.mbs.projections == 10001); /* every step, and the initial state */
+    TH_CHECK(tu_sim.work.mbs.projections == 10001); /* every step, and the initial state */
     sc.stab = RT_STAB_NONE;
     drift off = run_drift(&sc, 10000);
     sc.stab = RT_STAB_BAUMGARTE;
@@ -289,7 +289,7 @@ static void test_drift_long(void)
     real_t h = (real_t)0.01;
     rt_scene sc = pendulum(&rt_dopri5, h, h * (real_t)TEST_MBS_LONG_STEPS, RT_STAB_PROJECT, 1);
     drift on = run_drift(&sc, TEST_MBS_LONG_STEPS);
-    TH_CHECK(tu_sim.count[RT_CNT_DEGRADED] == 0 && tu_sim.status == RT_OK);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.status == RT_OK);
     sc.stab = RT_STAB_NONE;
     drift off = run_drift(&sc, TEST_MBS_LONG_STEPS);
     th_note("steps", TEST_MBS_LONG_STEPS);
@@ -345,8 +345,8 @@ static chain double_chain(void)
 static void dp_positions(int dumbbell, double *p)
 {
     for (int i = 0; i < 3; i++) {
-        p[i] = (double)tu_sim.x[i];
-        p[3 + i] = (double)tu_sim.x[dumbbell ? 3 + i : 6 + i];
+        p[i] = (double)tu_sim.state.x[i];
+        p[3 + i] = (double)tu_sim.state.x[dumbbell ? 3 + i : 6 + i];
     }
 }
 
@@ -381,7 +381,7 @@ static void test_double_pendulum(void)
     th_note("double pendulum, one dumbbell block: worst position error [m]", e1);
     double tol = RT_REAL_IS_FLOAT ? 2e-3 : 1e-8;
     TH_CHECK(e2 < tol && e1 < tol);
-    TH_CHECK(tu_sim.status == RT_OK);
+    TH_CHECK(tu_sim.stats.status == RT_OK);
 }
 
 /* the order of each method survives the projection (double pendulum, largest error over
@@ -437,11 +437,11 @@ static void test_straight_chain(void)
             ;
         int finite = 1;
         for (int i = 0; i < 12; i++)
-            finite = finite && rt_isfinite(tu_sim.x[i]);
-        th_note("straightened chain: singular solves", tu_sim.count[RT_CNT_SINGULAR]);
-        TH_CHECK(tu_sim.tick == 500 && finite && tu_sim.count[RT_CNT_NAN] == 0);
-        TH_CHECK(tu_sim.count[RT_CNT_SINGULAR] > 0 && tu_sim.status == RT_E_SINGULAR);
-        TH_CHECK(tu_sim.last_block[RT_CNT_SINGULAR] >= 0);
+            finite = finite && rt_isfinite(tu_sim.state.x[i]);
+        th_note("straightened chain: singular solves", tu_sim.stats.count[RT_CNT_SINGULAR]);
+        TH_CHECK(tu_sim.state.tick == 500 && finite && tu_sim.stats.count[RT_CNT_NAN] == 0);
+        TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] > 0 && tu_sim.stats.status == RT_E_SINGULAR);
+        TH_CHECK(tu_sim.stats.last_block[RT_CNT_SINGULAR] >= 0);
     }
 }
 
@@ -461,14 +461,14 @@ static void test_force_input(void)
         return;
     tu_run_to(&sc, 1);
     for (int i = 0; i < 6; i++)
-        ref[i] = tu_sim.x[i];
+        ref[i] = tu_sim.state.x[i];
     sc.blocks = blocks;
     sc.defaults = defs, sc.ndefaults = 3;
     if (!tu_init(&sc))
         return;
     tu_run_to(&sc, 1);
     for (int i = 0; i < 6; i++)
-        TH_NEAR(tu_sim.x[i], ref[i], RT_REAL_IS_FLOAT ? 1e-5 : 1e-13);
+        TH_NEAR(tu_sim.state.x[i], ref[i], RT_REAL_IS_FLOAT ? 1e-5 : 1e-13);
 }
 
 /* the recorded MBS signals: names, and values that agree with the state */
@@ -482,7 +482,7 @@ static void test_signals(void)
     TH_CHECK(rt_streq(rt_rec_signal(&sc, REC_RES), "residual"));
     TH_CHECK(rt_streq(rt_rec_signal(&sc, REC_LAMBDA), "lambda1"));
     TH_CHECK(rt_streq(rt_rec_signal(&sc, REC_FZ), "fz"));
-    const real_t *x = tu_sim.x;
+    const real_t *x = tu_sim.state.x;
     double tol = RT_REAL_IS_FLOAT ? 1e-5 : 1e-13;
     TH_NEAR(rt_rec_value(&sc, &tu_sim, REC_E), p1_energy(x), tol);
     TH_NEAR(rt_rec_value(&sc, &tu_sim, REC_RES), absd(p1_residual(x)), tol);
@@ -501,7 +501,7 @@ static void test_signals(void)
     TH_NEAR(rt_rec_value(&sc, &tu_sim, REC_FZ), G, tol * 10);
     tu_run_to(&sc, (real_t)0.1);
     TH_NEAR(rt_rec_value(&sc, &tu_sim, REC_FZ), G, tol * 10);
-    TH_NEAR(tu_sim.x[2], -1, tol);
+    TH_NEAR(tu_sim.state.x[2], -1, tol);
 }
 
 /* ------------------------------------------------------------------ init checks */

@@ -65,10 +65,10 @@ static void test_compound_pendulum(void)
     rt_scene sc = body_scene(b, j, 1, (real_t)1e-3, (real_t)3.2); /* 3 crossings */
     if (!tu_init(&sc))
         return;
-    const real_t *x = tu_sim.x;
+    const real_t *x = tu_sim.state.x;
     double cross[8] = {0}, qerr = 0, yoff = 0;
     int n = 0;
-    while (tu_sim.tick < tu_sim.n_ticks) {
+    while (tu_sim.state.tick < tu_sim.plan.n_ticks) {
         double t0 = (double)rt_time(&sc, &tu_sim), x0 = (double)x[X], v0 = (double)x[V];
         rt_tick(&sc, &tu_sim);
         double h = (double)sc.dt, x1 = (double)x[X], v1 = (double)x[V];
@@ -96,7 +96,7 @@ static void test_compound_pendulum(void)
     th_note("|quaternion| - 1", qerr);
     TH_NEAR(period, 2.367841948, RT_REAL_IS_FLOAT ? 5e-4 : 2e-9);
     TH_CHECK(qerr < (RT_REAL_IS_FLOAT ? 1e-6 : 1e-14) && yoff < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-13));
-    TH_CHECK(tu_sim.status == RT_OK);
+    TH_CHECK(tu_sim.stats.status == RT_OK);
 }
 
 /* ------------------------------------------------------------------ heavy top */
@@ -142,23 +142,23 @@ static void test_heavy_top(void)
     if (!tu_init(&sc))
         return;
     double E0, L0, E, L, dE = 0, dL = 0, dw = 0, qerr = 0;
-    top_invariants(tu_sim.x, &E0, &L0);
+    top_invariants(tu_sim.state.x, &E0, &L0);
     while (rt_tick(&sc, &tu_sim) == RT_OK) {
-        top_invariants(tu_sim.x, &E, &L);
+        top_invariants(tu_sim.state.x, &E, &L);
         dE = absd(E - E0) > dE ? absd(E - E0) : dE;
         dL = absd(L - L0) > dL ? absd(L - L0) : dL;
-        dw = absd((double)tu_sim.x[W + 2] - 50) > dw ? absd((double)tu_sim.x[W + 2] - 50) : dw;
-        qerr = quat_norm_err(tu_sim.x) > qerr ? quat_norm_err(tu_sim.x) : qerr;
+        dw = absd((double)tu_sim.state.x[W + 2] - 50) > dw ? absd((double)tu_sim.state.x[W + 2] - 50) : dw;
+        qerr = quat_norm_err(tu_sim.state.x) > qerr ? quat_norm_err(tu_sim.state.x) : qerr;
     }
     th_note("heavy top: |E - E0| [J]", dE);
     th_note("heavy top: |Lz - Lz0| [N m s]", dL);
     th_note("heavy top: |w3 - 50| [rad/s]", dw);
     th_note("heavy top: |quaternion| - 1", qerr);
     /* the figure axis moved: the top precesses and nutates */
-    TH_CHECK(absd((double)tu_sim.x[X] - (double)x0[X]) > 1e-3);
+    TH_CHECK(absd((double)tu_sim.state.x[X] - (double)x0[X]) > 1e-3);
     double rel = RT_REAL_IS_FLOAT ? 1e-3 : 1e-8;
     TH_CHECK(dE < rel * absd(E0) && dL < rel * absd(L0) && dw < rel * 50);
-    TH_CHECK(qerr < (RT_REAL_IS_FLOAT ? 1e-6 : 1e-14) && tu_sim.status == RT_OK);
+    TH_CHECK(qerr < (RT_REAL_IS_FLOAT ? 1e-6 : 1e-14) && tu_sim.stats.status == RT_OK);
 }
 
 /* ------------------------------------------------------------------ torque-free body */
@@ -178,7 +178,7 @@ static void test_free_tumble(void)
         return;
     double L0[3], E0 = 0, dL = 0, dE = 0, wmin = 2;
     for (int k = 0;; k++) {
-        const real_t *x = tu_sim.x;
+        const real_t *x = tu_sim.state.x;
         double R[9], Jw[3] = {(double)x[W], 2 * (double)x[W + 1], 3 * (double)x[W + 2]};
         double E = 0.5 * ((double)x[W] * Jw[0] + (double)x[W + 1] * Jw[1] +
                           (double)x[W + 2] * Jw[2]);
@@ -200,8 +200,8 @@ static void test_free_tumble(void)
     TH_CHECK(wmin < -1); /* it flipped */
     double tol = RT_REAL_IS_FLOAT ? 1e-3 : 1e-8;
     TH_CHECK(dE < tol * E0 && dL < tol * 4);
-    TH_NEAR(tu_sim.x[X], 3, RT_REAL_IS_FLOAT ? 3e-4 : 1e-12); /* 0.3 m/s for 10 s */
-    TH_CHECK(quat_norm_err(tu_sim.x) < (RT_REAL_IS_FLOAT ? 1e-6 : 1e-14));
+    TH_NEAR(tu_sim.state.x[X], 3, RT_REAL_IS_FLOAT ? 3e-4 : 1e-12); /* 0.3 m/s for 10 s */
+    TH_CHECK(quat_norm_err(tu_sim.state.x) < (RT_REAL_IS_FLOAT ? 1e-6 : 1e-14));
 }
 
 /* ------------------------------------------------------------------ fixed joint */
@@ -228,13 +228,13 @@ static void test_fixed(void)
         ;
     double tol = RT_REAL_IS_FLOAT ? 1e-4 : 1e-11;
     for (int i = 0; i < 13; i++)
-        TH_NEAR(tu_sim.x[i], cp_x0[i], tol);
+        TH_NEAR(tu_sim.state.x[i], cp_x0[i], tol);
     TH_NEAR(rt_rec_value(&sc, &tu_sim, 0), 0, tol * 10);
     TH_NEAR(rt_rec_value(&sc, &tu_sim, 1), G, tol * 10);
     /* gravity's moment about the node: (0.5, 0, 0) x (0, 0, -m g) = (0, 0.5 m g, 0) */
     TH_NEAR(rt_rec_value(&sc, &tu_sim, 2), -0.5 * G, tol * 10);
     TH_CHECK(rt_rec_value(&sc, &tu_sim, 3) < tol);
-    TH_CHECK(rt_streq(rt_rec_signal(&sc, 2), "my") && tu_sim.status == RT_OK);
+    TH_CHECK(rt_streq(rt_rec_signal(&sc, 2), "my") && tu_sim.stats.status == RT_OK);
 }
 
 /* ------------------------------------------------------------------ inputs */
@@ -253,10 +253,10 @@ static void test_torque_input(void)
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
     double tol = RT_REAL_IS_FLOAT ? 1e-5 : 1e-12;
-    TH_NEAR(tu_sim.x[W + 2], 0.5, tol);
-    TH_NEAR(tu_sim.x[X], 0.25, tol);
+    TH_NEAR(tu_sim.state.x[W + 2], 0.5, tol);
+    TH_NEAR(tu_sim.state.x[X], 0.25, tol);
     /* turned by w t^2 / 2 = 0.25 rad about z: p = (cos 0.125, 0, 0, sin 0.125) */
-    TH_NEAR(tu_sim.x[P + 3], rt_sin((real_t)0.125), RT_REAL_IS_FLOAT ? 1e-5 : 1e-11);
+    TH_NEAR(tu_sim.state.x[P + 3], rt_sin((real_t)0.125), RT_REAL_IS_FLOAT ? 1e-5 : 1e-11);
 }
 
 const th_test th_mbs_body_tests[] = {

@@ -33,7 +33,7 @@ static void test_pendulum10_accuracy(void)
     TH_NEAR(rt_time(sc, &tu_sim), 2, 1e-9);
     double worst = 0;
     for (int b = 0; b < 10; b++) {
-        const real_t *y = tu_sim.y + tu_sim.y_off[b];
+        const real_t *y = tu_sim.state.y + tu_sim.plan.y_off[b];
         double e = absd((double)y[0] - ref_2s[b][0]) + absd((double)y[1]) +
                    absd((double)y[2] - ref_2s[b][1]);
         worst = e > worst ? e : worst;
@@ -65,8 +65,8 @@ static void test_pendulum10_run(void)
     }
     th_note("10 s: largest |g| after a step [m]", res);
     th_note("10 s: largest |E - E0| [J]", de);
-    th_note("10 s: largest |g| right after a projection [m]", (double)tu_sim.mbs.res_max);
-    TH_CHECK(tu_sim.tick == tu_sim.n_ticks && tu_sim.status == RT_OK);
+    th_note("10 s: largest |g| right after a projection [m]", (double)tu_sim.work.mbs.res_max);
+    TH_CHECK(tu_sim.state.tick == tu_sim.plan.n_ticks && tu_sim.stats.status == RT_OK);
     TH_CHECK(res < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-13));
     /* the chain exchanges some 540 J between potential and kinetic energy */
     TH_CHECK(de < (RT_REAL_IS_FLOAT ? 1e-1 : 5e-3));

@@ -24,10 +24,10 @@ static void test_chain_order(void)
     static const rt_scene sc = SCENE(bl, cn);
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.nseq == 3);
-    TH_CHECK(tu_sim.seq[0].index == 2 && tu_sim.seq[1].index == 1 && tu_sim.seq[2].index == 0);
+    TH_CHECK(tu_sim.plan.nseq == 3);
+    TH_CHECK(tu_sim.plan.seq[0].index == 2 && tu_sim.plan.seq[1].index == 1 && tu_sim.plan.seq[2].index == 0);
     TH_NEAR(tu_y(&sc, "G2", 0), 30, 0); /* 3 * 2 * 5 */
-    TH_CHECK(tu_sim.nloops == 0);
+    TH_CHECK(tu_sim.plan.nloops == 0);
 }
 
 /* P (pt1, no throughput) -> G (gain) -> P: a potential loop, solved by ordering P, G */
@@ -42,13 +42,13 @@ static void test_potential_loop(void)
     static const rt_scene sc = SCENE(bl, cn);
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.nloops == 1 && tu_sim.loops[0].actual == 0 && tu_sim.loops[0].nblocks == 2);
-    TH_CHECK(tu_sim.nseq == 2 && tu_sim.seq[0].index == 1 && tu_sim.seq[1].index == 0);
+    TH_CHECK(tu_sim.plan.nloops == 1 && tu_sim.plan.loops[0].actual == 0 && tu_sim.plan.loops[0].nblocks == 2);
+    TH_CHECK(tu_sim.plan.nseq == 2 && tu_sim.plan.seq[0].index == 1 && tu_sim.plan.seq[1].index == 0);
     /* y' = (-y - y) / 1 from y(0) = 0.5: y = 0.5 exp(-2t) */
-    tu_sim.x[0] = (real_t)0.5;
+    tu_sim.state.x[0] = (real_t)0.5;
     rt_refresh(&sc, &tu_sim);
     tu_run_to(&sc, (real_t)0.1);
-    TH_NEAR(tu_sim.x[0], 0.5 * (double)rt_exp((real_t)-0.2), 1e-6);
+    TH_NEAR(tu_sim.state.x[0], 0.5 * (double)rt_exp((real_t)-0.2), 1e-6);
 }
 
 /* G -> S.u1, Src -> S.u2, S -> G: every block on the cycle has throughput: actual */
@@ -63,12 +63,12 @@ static void test_actual_loop(void)
     static const rt_scene sc = SCENE(bl, cn);
     TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_LOOP);
     int actual = -1;
-    for (int l = 0; l < tu_sim.nloops; l++)
-        if (tu_sim.loops[l].actual)
+    for (int l = 0; l < tu_sim.plan.nloops; l++)
+        if (tu_sim.plan.loops[l].actual)
             actual = l;
     TH_CHECK(actual >= 0);
     if (actual >= 0)
-        TH_CHECK(tu_sim.loops[actual].nblocks == 2);
+        TH_CHECK(tu_sim.plan.loops[actual].nblocks == 2);
     TH_CHECK(tu_sim.err[0] != 0);
 }
 
@@ -100,8 +100,8 @@ static void test_port_level(void)
     sc.defaults = df, sc.ndefaults = 1;
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.nloops == 1 && tu_sim.loops[0].actual == 0);
-    TH_CHECK(tu_sim.nseq == 3);
+    TH_CHECK(tu_sim.plan.nloops == 1 && tu_sim.plan.loops[0].actual == 0);
+    TH_CHECK(tu_sim.plan.nseq == 3);
     TH_NEAR(tu_y(&sc, "G", 0), 15, 0);
     TH_NEAR(tu_y(&sc, "T", 0), 30, 0);
 }

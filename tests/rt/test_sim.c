@@ -16,7 +16,7 @@ static uint64_t run_hash(int nudge)
     if (nudge) {
         union { real_t r; uint64_t u; } w;
         w.u = 0;
-        w.r = tu_sim.p[0];
+        w.r = tu_sim.state.p[0];
         w.u ^= 1; /* the least significant mantissa bit */
         TH_CHECK(rt_set_param(&short_sc, &tu_sim, "Osc", "omega", w.r) == RT_OK);
         rt_refresh(&short_sc, &tu_sim);
@@ -25,7 +25,7 @@ static uint64_t run_hash(int nudge)
     while (rt_tick(&short_sc, &tu_sim) == RT_OK)
         rt_record(&short_sc, &tu_sim, 0);
     rt_record(&short_sc, &tu_sim, 0);
-    return tu_sim.hash;
+    return tu_sim.state.hash;
 }
 
 static void test_hash_determinism(void)
@@ -52,11 +52,11 @@ static void test_integer_time(void)
                    .nblocks = 1, .sets = set, .nsets = 1};
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.n_ticks == 1000000);
-    tu_sim.tick = 999999;
+    TH_CHECK(tu_sim.plan.n_ticks == 1000000);
+    tu_sim.state.tick = 999999;
     TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE);
     TH_CHECK(rt_time(&sc, &tu_sim) == (real_t)1000000 * (real_t)1e-3);
-    TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE && tu_sim.tick == 1000000);
+    TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE && tu_sim.state.tick == 1000000);
 }
 
 static void test_set_param(void)
@@ -66,11 +66,11 @@ static void test_set_param(void)
         return;
     TH_CHECK(rt_set_param(sc, &tu_sim, "Plant", "T", (real_t)0.25) == RT_OK);
     TH_CHECK(rt_set_param(sc, &tu_sim, "Plant", "T", -1) == RT_E_PARAM);
-    TH_NEAR(tu_sim.p[tu_sim.p_off[2] + 1], 0.25, 0); /* the bad value was not kept */
+    TH_NEAR(tu_sim.state.p[tu_sim.plan.p_off[2] + 1], 0.25, 0); /* the bad value was not kept */
     TH_CHECK(rt_set_param(sc, &tu_sim, "Plant", "nope", 1) == RT_E_ARG);
     TH_CHECK(rt_set_param(sc, &tu_sim, "Nobody", "T", 1) == RT_E_ARG);
     TH_CHECK(rt_set_param(sc, &tu_sim, "Plant", "y", 2) == RT_OK); /* initial state */
-    TH_NEAR(tu_sim.x[0], 2, 0);
+    TH_NEAR(tu_sim.state.x[0], 2, 0);
 }
 
 /* an LSS oscillator x' = v, v' = -w^2 x gives cos(w t) like the NSS one */
@@ -98,7 +98,7 @@ static void test_lss(void)
     /* x(2.25) = cos(4.5 pi) = 0, v(2.25) = -2 pi sin(4.5 pi) = -2 pi */
     double tol = RT_REAL_IS_FLOAT ? 2e-3 : 1e-9;
     TH_NEAR(tu_y(&sc, "L", 0), 0, tol);
-    TH_NEAR(tu_sim.x[1], -2 * RT_PI, tol * 10);
+    TH_NEAR(tu_sim.state.x[1], -2 * RT_PI, tol * 10);
 }
 
 /* a derivative that turns NaN at t > 0.5: the tick completes, the state is held, the
@@ -126,11 +126,11 @@ static void test_nan_contained(void)
         return;
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
-    TH_CHECK(tu_sim.tick == 100);
-    TH_CHECK(tu_sim.status == RT_E_NAN && tu_sim.count[RT_CNT_NAN] > 0);
-    TH_CHECK(tu_sim.last_block[RT_CNT_NAN] == 1);
-    TH_CHECK(rt_isfinite(tu_sim.x[0]) && rt_isfinite(tu_sim.x[2]));
-    TH_NEAR(tu_sim.x[2], 0.5, 0.02); /* held near where it went bad */
+    TH_CHECK(tu_sim.state.tick == 100);
+    TH_CHECK(tu_sim.stats.status == RT_E_NAN && tu_sim.stats.count[RT_CNT_NAN] > 0);
+    TH_CHECK(tu_sim.stats.last_block[RT_CNT_NAN] == 1);
+    TH_CHECK(rt_isfinite(tu_sim.state.x[0]) && rt_isfinite(tu_sim.state.x[2]));
+    TH_NEAR(tu_sim.state.x[2], 0.5, 0.02); /* held near where it went bad */
 }
 
 /* every status and counter has a name, and out-of-range values are safe */
@@ -162,7 +162,7 @@ static uint64_t short_run(const rt_scene *base, const rt_integrator *m)
     while (rt_tick(&sc, &tu_sim) != RT_E_DONE)
         rt_record(&sc, &tu_sim, 0);
     rt_record(&sc, &tu_sim, 0);
-    return tu_sim.hash;
+    return tu_sim.state.hash;
 }
 
 /* a replay does not depend on what the simulator ran before: rt_init leaves nothing of

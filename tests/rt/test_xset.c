@@ -32,7 +32,7 @@ static double comm_error(uint32_t m, uint8_t scheme, real_t t_end)
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
     real_t t = rt_time(&sc, &tu_sim);
-    double e = (double)tu_sim.x[tu_sim.x_off[ROT] + 1] - (1 - (double)rt_cos(t));
+    double e = (double)tu_sim.state.x[tu_sim.plan.x_off[ROT] + 1] - (1 - (double)rt_cos(t));
     return e < 0 ? -e : e;
 }
 
@@ -74,14 +74,14 @@ static void test_schedule(void)
                    .nblocks = 2, .conns = cn, .nconns = 1, .sets = sets, .nsets = 2};
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.sched[0] == 1 && tu_sim.sched[1] == 0);
-    TH_CHECK(tu_sim.src_kind[tu_sim.u_off[ROT]] == RT_SRC_XSET);
+    TH_CHECK(tu_sim.plan.sched[0] == 1 && tu_sim.plan.sched[1] == 0);
+    TH_CHECK(tu_sim.plan.src_kind[tu_sim.plan.u_off[ROT]] == RT_SRC_XSET);
     int ok = 1;
     for (uint64_t k = 0; k < 30; k++) {
         rt_tick(&sc, &tu_sim);
         /* after tick k each set is at the first multiple of its ratio above k */
-        ok &= tu_sim.set_tick[0] == (k / 2 + 1) * 2;
-        ok &= tu_sim.set_tick[1] == (k / 6 + 1) * 6;
+        ok &= tu_sim.state.set_tick[0] == (k / 2 + 1) * 2;
+        ok &= tu_sim.state.set_tick[1] == (k / 6 + 1) * 6;
     }
     TH_CHECK(ok);
 }
@@ -103,7 +103,7 @@ static void test_no_loop_across_sets(void)
     rt_scene sc = {.name = "noloop", .dt = (real_t)1e-2, .t_end = (real_t)0.1, .blocks = bl,
                    .nblocks = 2, .conns = cn, .nconns = 2, .sets = sets, .nsets = 2};
     TH_CHECK(rt_init(&sc, &tu_sim) == RT_OK);
-    TH_CHECK(tu_sim.nloops == 0 && tu_sim.ntorn == 0);
+    TH_CHECK(tu_sim.plan.nloops == 0 && tu_sim.plan.ntorn == 0);
 }
 
 const th_test th_xset_tests[] = {

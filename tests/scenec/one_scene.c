@@ -18,6 +18,6 @@ int main(void)
     while (rt_tick(sc, &sim) != RT_E_DONE)
         rt_record(sc, &sim, NULL);
     rt_record(sc, &sim, NULL);
-    printf("%s %016llx\n", sc->name, (unsigned long long)sim.hash);
+    printf("%s %016llx\n", sc->name, (unsigned long long)sim.state.hash);
     return 0;
 }

@@ -19,8 +19,8 @@ static void run(const rt_scene *sc)
             rt_record(sc, &sim, NULL);
         rt_record(sc, &sim, NULL);
     }
-    printf("%s %016llx %s\n", sc->name, (unsigned long long)sim.hash,
-           rt_status_name(st != RT_OK ? st : sim.status));
+    printf("%s %016llx %s\n", sc->name, (unsigned long long)sim.state.hash,
+           rt_status_name(st != RT_OK ? st : sim.stats.status));
 }
 
 int main(void)

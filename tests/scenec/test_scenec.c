@@ -32,7 +32,7 @@ static double eval(const char *expr, double a, double b)
              "    states (s = 0.5) by { y[0] = %s; der(s) = 0; }\n"
              "load system (X) of type (E); X.a = %.17g; X.b = %.17g;\n", expr, a, b);
     scn_ctx *c = compile(text);
-    double v = c->err ? -999 : (double)c->sim->y[0];
+    double v = c->err ? -999 : (double)c->sim->state.y[0];
     scn_free(c);
     return v;
 }
@@ -96,7 +96,7 @@ static void test_define_kinds(void)
         " C = [2]; D = [0.5]; }\n"
         "load system (s) of type (S); load system (n) of type (N);\n"
         "load system (d) of type (D); load system (l) of type (L);\n"
-        "s.m1 = 1; s.m2 = 2; connect(s.d, n.f); connect(n.x, d.u); connect(d.c, l.u);\n");
+        "s.m1 = 1; s.m2 = 2; connect(s.state.d, n.f); connect(n.x, d.u); connect(d.c, l.u);\n");
     TH_CHECK(!c->err);
     if (!c->err) {
         const rt_block *b = c->image.blocks;
@@ -123,7 +123,7 @@ static void test_dss_runs(void)
         rt_init(&c->image, sim);
         while (rt_tick(&c->image, sim) != RT_E_DONE)
             ;
-        TH_NEAR(sim->d[0], 0.1, 10 * RT_EPS); /* ten hits of 0.01 each */
+        TH_NEAR(sim->state.d[0], 0.1, 10 * RT_EPS); /* ten hits of 0.01 each */
     }
     scn_free(c);
 }

@@ -135,10 +135,10 @@ static double run(const rt_integrator *m, long n, int project, double *secs, uns
     while (rt_tick(&sc, &sim) == RT_OK)
         ;
     *secs = now_s() - t0;
-    *status = (unsigned)sim.status;
+    *status = (unsigned)sim.stats.status;
     double worst = 0;
     for (int b = 0; b < NB; b++) {
-        const real_t *y = sim.y + sim.y_off[b];
+        const real_t *y = sim.state.y + sim.plan.y_off[b];
         double e[3] = {(double)y[0] - ref_xz[2 * b], (double)y[1],
                        (double)y[2] - ref_xz[2 * b + 1]};
         for (int i = 0; i < 3; i++)

@@ -111,7 +111,7 @@ static void positions(double *p)
 {
     for (int b = 0; b < NB; b++)
         for (int k = 0; k < 3; k++)
-            p[3 * b + k] = (double)sim.y[sim.y_off[b] + k];
+            p[3 * b + k] = (double)sim.state.y[sim.plan.y_off[b] + k];
 }
 
 /* runs c to 10 s; positions into p (if not NULL), returns the CPU time */
@@ -127,16 +127,16 @@ static double run(const config *c, double *p, int *clean)
     uint64_t every = (uint64_t)(T_SAMPLE / c->h + 0.5);
     for (rt_status st = RT_OK; st == RT_OK;) {
         st = rt_tick(&sc, &sim);
-        if (p && sim.tick % every == 0 && sim.tick / every <= NSAMPLE)
-            positions(run_pos[sim.tick / every - 1]);
+        if (p && sim.state.tick % every == 0 && sim.state.tick / every <= NSAMPLE)
+            positions(run_pos[sim.state.tick / every - 1]);
     }
     double secs = cpu_s() - t0;
     if (p)
         positions(p);
     if (clean) {
-        *clean = sim.status == RT_OK;
+        *clean = sim.stats.status == RT_OK;
         for (int k = 0; k < RT_CNT_COUNT; k++)
-            *clean = *clean && (k == RT_CNT_EVENTS || sim.count[k] == 0);
+            *clean = *clean && (k == RT_CNT_EVENTS || sim.stats.count[k] == 0);
     }
     return secs;
 }
@@ -395,7 +395,7 @@ static void check_scenes(FILE *f)
         double secs = cpu_s() - t0;
         positions(p);
         fprintf(f, "scene %s as declared: error %.2e m, %.4g s host CPU, status %s\n",
-                sc[i]->name, max_diff(p, ref_pos), secs, rt_status_name(sim.status));
+                sc[i]->name, max_diff(p, ref_pos), secs, rt_status_name(sim.stats.status));
     }
 }
 

@@ -136,57 +136,57 @@ static void info_schedule(const rt_scene *sc, const rt_sim *s)
         period = period / gcd(period, sc->sets[i].ratio) * sc->sets[i].ratio;
     printf("schedule: slowest first:");
     for (uint8_t i = 0; i < sc->nsets; i++)
-        printf(" %s", sc->sets[s->sched[i]].name);
+        printf(" %s", sc->sets[s->plan.sched[i]].name);
     printf("; period %u ticks\n", (unsigned)period);
     for (uint32_t k = 0; k < period && k < 24; k++) {
         printf("  tick %2u:", (unsigned)k);
         for (uint8_t i = 0; i < sc->nsets; i++)
-            if (k % sc->sets[s->sched[i]].ratio == 0)
-                printf(" %s", sc->sets[s->sched[i]].name);
+            if (k % sc->sets[s->plan.sched[i]].ratio == 0)
+                printf(" %s", sc->sets[s->plan.sched[i]].name);
         putchar('\n');
     }
     for (uint16_t c = 0; c < sc->nconns; c++) {
         const rt_conn *cn = &sc->conns[c];
-        uint16_t gi = (uint16_t)(s->u_off[cn->to] + cn->u);
-        if (s->src_kind[gi] != RT_SRC_XSET)
+        uint16_t gi = (uint16_t)(s->plan.u_off[cn->to] + cn->u);
+        if (s->plan.src_kind[gi] != RT_SRC_XSET)
             continue;
         printf("  across sets: %s.%s -> %s.%s by %s\n", sc->blocks[cn->from].name,
                sc->blocks[cn->from].kind->y_names[cn->y], sc->blocks[cn->to].name,
-               sc->blocks[cn->to].kind->u_names[cn->u], interp_name(s->interp[gi]));
+               sc->blocks[cn->to].kind->u_names[cn->u], interp_name(s->plan.interp[gi]));
     }
 }
 
 /* a torn input as "From.y -> To.u" */
 static void print_torn(const rt_scene *sc, const rt_sim *s, uint16_t k)
 {
-    uint16_t gi = s->torn_in[k], src = s->torn_src[k], b = 0, f = 0;
-    while (b + 1 < sc->nblocks && s->u_off[b + 1] <= gi)
+    uint16_t gi = s->plan.torn_in[k], src = s->plan.torn_src[k], b = 0, f = 0;
+    while (b + 1 < sc->nblocks && s->plan.u_off[b + 1] <= gi)
         b++;
-    while (f + 1 < sc->nblocks && s->y_off[f + 1] <= src)
+    while (f + 1 < sc->nblocks && s->plan.y_off[f + 1] <= src)
         f++;
-    printf(" %s.%s -> %s.%s;", sc->blocks[f].name, sc->blocks[f].kind->y_names[src - s->y_off[f]],
-           sc->blocks[b].name, sc->blocks[b].kind->u_names[gi - s->u_off[b]]);
+    printf(" %s.%s -> %s.%s;", sc->blocks[f].name, sc->blocks[f].kind->y_names[src - s->plan.y_off[f]],
+           sc->blocks[b].name, sc->blocks[b].kind->u_names[gi - s->plan.u_off[b]]);
 }
 
 static void info_order(const rt_scene *sc, const rt_sim *s)
 {
     printf("evaluation order:");
-    for (uint16_t i = 0; i < s->nseq; i++) {
-        const rt_seq_step *st = &s->seq[i];
+    for (uint16_t i = 0; i < s->plan.nseq; i++) {
+        const rt_seq_step *st = &s->plan.seq[i];
         if (st->kind == RT_SEQ_LOOP)
             printf(" [loop %u:", (unsigned)st->index);
         else
             printf(" %s", sc->blocks[st->index].name);
-        for (uint8_t l = 0; l < s->nloops; l++)
-            if (s->loops[l].actual && s->loops[l].seq1 == i + 1)
+        for (uint8_t l = 0; l < s->plan.nloops; l++)
+            if (s->plan.loops[l].actual && s->plan.loops[l].seq1 == i + 1)
                 printf(" ]");
     }
-    printf("\nloops: %u\n", s->nloops);
-    for (uint8_t l = 0; l < s->nloops; l++) {
-        const rt_loop *lp = &s->loops[l];
+    printf("\nloops: %u\n", s->plan.nloops);
+    for (uint8_t l = 0; l < s->plan.nloops; l++) {
+        const rt_loop *lp = &s->plan.loops[l];
         printf("  %u %s:", (unsigned)l, lp->actual ? "actual" : "potential");
         for (uint16_t i = 0; i < lp->nblocks; i++)
-            printf(" %s", sc->blocks[s->loop_blocks[lp->first + i]].name);
+            printf(" %s", sc->blocks[s->plan.loop_blocks[lp->first + i]].name);
         if (lp->actual) {
             printf("; torn:");
             for (uint16_t k = lp->torn0; k < lp->torn0 + lp->ntorn; k++)
@@ -244,26 +244,26 @@ static int apply_set(const rt_scene *sc, const char *arg)
 static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, double wall)
 {
     fprintf(f, "scene: %s\nticks: %llu\nsim_time: %.17g\nwall_s: %.6f\n", sc->name,
-            (unsigned long long)s->tick, (double)rt_time(sc, s), wall);
-    fprintf(f, "status: %s\n", s->status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
-                                                  : rt_status_name(s->status));
+            (unsigned long long)s->state.tick, (double)rt_time(sc, s), wall);
+    fprintf(f, "status: %s\n", s->stats.status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
+                                                  : rt_status_name(s->stats.status));
     for (int c = 0; c < RT_CNT_COUNT; c++) {
-        fprintf(f, "%s: %u", rt_counter_key((rt_counter)c), (unsigned)s->count[c]);
-        if (s->last_block[c] >= 0 && c != RT_CNT_EVENTS)
-            fprintf(f, " (last %s)", sc->blocks[s->last_block[c]].name);
+        fprintf(f, "%s: %u", rt_counter_key((rt_counter)c), (unsigned)s->stats.count[c]);
+        if (s->stats.last_block[c] >= 0 && c != RT_CNT_EVENTS)
+            fprintf(f, " (last %s)", sc->blocks[s->stats.last_block[c]].name);
         fputc('\n', f);
     }
-    fprintf(f, "event_iter_max: %u\n", (unsigned)s->event_iter_max);
+    fprintf(f, "event_iter_max: %u\n", (unsigned)s->stats.event_iter_max);
     for (uint8_t k = 0; k < sc->nsets; k++)
-        if (s->set_xout[k])
-            fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)s->xset_err[k]);
-    if (s->ntorn > 0) {
-        fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)s->loop_iter_max);
-        for (uint32_t i = 0; i <= s->loop_iter_max; i++)
-            fprintf(f, " %u", (unsigned)s->loop_hist[i]);
-        fprintf(f, "\nloop_residual: %g\n", (double)s->loop_residual);
+        if (s->plan.set_xout[k])
+            fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_err[k]);
+    if (s->plan.ntorn > 0) {
+        fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)s->stats.loop_iter_max);
+        for (uint32_t i = 0; i <= s->stats.loop_iter_max; i++)
+            fprintf(f, " %u", (unsigned)s->stats.loop_hist[i]);
+        fprintf(f, "\nloop_residual: %g\n", (double)s->stats.loop_residual);
     }
-    fprintf(f, "hash: %016llx\n", (unsigned long long)s->hash);
+    fprintf(f, "hash: %016llx\n", (unsigned long long)s->state.hash);
 }
 
 typedef struct run_args {
@@ -334,7 +334,7 @@ static int cmd_run(int argc, char **argv)
     if (csv && !to_stdout && fclose(csv) != 0)
         return fail("error writing the CSV file", a.csv);
     summary(to_stdout ? stderr : stdout, &sc, &sim, st, r.wall_s);
-    return sim.status == RT_OK ? 0 : 1;
+    return sim.stats.status == RT_OK ? 0 : 1;
 }
 
 static unsigned at_least_1(unsigned n) { return n ? n : 1; }
@@ -351,23 +351,23 @@ static int cmd_sizes(const char *name)
         return fail(rt_status_name(st), rt_error_text(&sim));
     unsigned implicit = 1;
     for (uint8_t s = 0; s < sc->nsets; s++)
-        if (sc->sets[s].method->implicit && (unsigned)(sim.set_x[s + 1] - sim.set_x[s]) > implicit)
-            implicit = sim.set_x[s + 1] - sim.set_x[s];
+        if (sc->sets[s].method->implicit && (unsigned)(sim.plan.set_x[s + 1] - sim.plan.set_x[s]) > implicit)
+            implicit = sim.plan.set_x[s + 1] - sim.plan.set_x[s];
     uint16_t nb = sc->nblocks;
     printf("-DRT_MAX_BLOCKS=%u -DRT_MAX_X=%u -DRT_MAX_D=%u -DRT_MAX_U=%u -DRT_MAX_Y=%u "
            "-DRT_MAX_P=%u -DRT_MAX_ROOTS=%u -DRT_MAX_SETS=%u -DRT_MAX_REC=%u "
            "-DRT_MAX_LOOPS=%u -DRT_MAX_TORN=%u -DRT_MAX_IMPLICIT_N=%u",
-           at_least_1(nb), at_least_1(sim.x_off[nb]), at_least_1(sim.d_off[nb]),
-           at_least_1(sim.u_off[nb]), at_least_1(sim.y_off[nb]), at_least_1(sim.p_off[nb]),
-           at_least_1(sim.set_r[sc->nsets]), at_least_1(sc->nsets), at_least_1(sc->nrecs),
-           at_least_1(sim.nloops), at_least_1(sim.ntorn), implicit);
+           at_least_1(nb), at_least_1(sim.plan.x_off[nb]), at_least_1(sim.plan.d_off[nb]),
+           at_least_1(sim.plan.u_off[nb]), at_least_1(sim.plan.y_off[nb]), at_least_1(sim.plan.p_off[nb]),
+           at_least_1(sim.plan.set_r[sc->nsets]), at_least_1(sc->nsets), at_least_1(sc->nrecs),
+           at_least_1(sim.plan.nloops), at_least_1(sim.plan.ntorn), implicit);
     /* multibody workspace: per set, the largest velocities, coordinates, constraint rows;
        per block, the largest velocity count */
     unsigned nz = 1, nq = 1, nc = 1, bz = 1;
     for (uint8_t s = 0; sc->mbs && s < sc->nsets; s++) {
-        nz = sim.mbs.nz[s] > nz ? sim.mbs.nz[s] : nz;
-        nq = sim.mbs.nq[s] > nq ? sim.mbs.nq[s] : nq;
-        nc = sim.mbs.nc[s] > nc ? sim.mbs.nc[s] : nc;
+        nz = sim.work.mbs.nz[s] > nz ? sim.work.mbs.nz[s] : nz;
+        nq = sim.work.mbs.nq[s] > nq ? sim.work.mbs.nq[s] : nq;
+        nc = sim.work.mbs.nc[s] > nc ? sim.work.mbs.nc[s] : nc;
     }
     for (uint16_t b = 0; b < nb; b++) {
         const rt_kind *k = sc->blocks[b].kind;

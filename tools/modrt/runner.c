@@ -45,7 +45,7 @@ static void record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
 static rt_status tick_and_record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
 {
     rt_status st = rt_tick(sc, sim);
-    if (sim->tick % o->every == 0 || st == RT_E_DONE)
+    if (sim->state.tick % o->every == 0 || st == RT_E_DONE)
         record(sc, sim, o);
     return st;
 }
@@ -80,13 +80,13 @@ rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port
         rt_scene_now = sc, rt_sim_now = sim, rt_opts_now = o, rt_last = RT_OK;
         rt_overruns = 0;
         uint32_t us = (uint32_t)(sc->dt * 1e6 + 0.5);
-        if (sim->tick < sim->n_ticks && port_timer_start(us, on_tick) == 0) {
+        if (sim->state.tick < sim->plan.n_ticks && port_timer_start(us, on_tick) == 0) {
             while (rt_last != RT_E_DONE)
                 port_timer_wait();
             port_timer_stop();
         }
         st = RT_E_DONE;
-        sim->count[RT_CNT_OVERRUN] += (uint32_t)rt_overruns;
+        sim->stats.count[RT_CNT_OVERRUN] += (uint32_t)rt_overruns;
     }
     r->wall_s = now_s() - t0;
     r->overruns = o->realtime ? rt_overruns : 0;

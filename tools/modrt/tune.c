@@ -159,11 +159,11 @@ static void account(tune_sched *m, double t0)
         m->ratio[s] = T.sets[s].ratio;
         m->evals[s] = (double)nevals[s] / (double)sc->t_end;
         m->cost += m->evals[s] * T.w[s];
-        m->xset_err[s] = (double)sim.xset_err[s];
+        m->xset_err[s] = (double)sim.stats.xset_err[s];
     }
-    m->clean = sim.status == RT_OK;
+    m->clean = sim.stats.status == RT_OK;
     for (unsigned i = 0; i < sizeof faults / sizeof faults[0]; i++)
-        m->clean = m->clean && sim.count[faults[i]] == 0;
+        m->clean = m->clean && sim.stats.count[faults[i]] == 0;
 }
 
 typedef enum { RUN_REF, RUN_FULL, RUN_CUT } run_mode;
@@ -184,8 +184,8 @@ static rt_status run(const uint32_t *ratio, uint32_t div, run_mode mode, tune_sc
         every = ratio[s] > every ? ratio[s] : every; /* powers of two: a multiple of grid */
     for (rt_status ts = RT_OK; ts == RT_OK;) {
         ts = rt_tick(&T.work, &sim);
-        uint64_t j = sim.tick / grid - 1;
-        if (sim.tick % every != 0 || j >= T.nsamp)
+        uint64_t j = sim.state.tick / grid - 1;
+        if (sim.state.tick % every != 0 || j >= T.nsamp)
             continue;
         if (mode == RUN_REF) {
             for (uint16_t i = 0; i < T.nsig; i++)
@@ -231,10 +231,10 @@ static rt_status setup(const rt_scene *sc, const tune_opts *o)
     if (st != RT_OK)
         return st;
     for (uint8_t s = 0; s < sc->nsets; s++) {
-        unsigned n = (unsigned)(sim.set_x[s + 1] - sim.set_x[s]);
+        unsigned n = (unsigned)(sim.plan.set_x[s + 1] - sim.plan.set_x[s]);
         T.w[s] = n ? (double)n : 1;
     }
-    T.n_ticks = sim.n_ticks;
+    T.n_ticks = sim.plan.n_ticks;
     return RT_OK;
 }
 

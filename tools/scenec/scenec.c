@@ -144,9 +144,9 @@ static int cmd_run(const opts *o)
         rt_record(sc, sim, NULL);
     }
     printf("scene: %s\nticks: %llu\nstatus: %s\nhash: %016llx\n", sc->name,
-           (unsigned long long)sim->tick, rt_status_name(st != RT_OK ? st : sim->status),
-           (unsigned long long)sim->hash);
-    int rc = st != RT_OK || sim->status != RT_OK;
+           (unsigned long long)sim->state.tick, rt_status_name(st != RT_OK ? st : sim->stats.status),
+           (unsigned long long)sim->state.hash);
+    int rc = st != RT_OK || sim->stats.status != RT_OK;
     scn_free(c);
     return rc;
 }
