@@ -111,7 +111,7 @@ test: check-freestanding
 
 # ---- cross targets (ports/targets.mk: compilers, flags, QEMU commands) ----
 include ports/targets.mk
-CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS) -MMD -MP
+CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS) -DRT_KIND_DOCS=0 -MMD -MP
 CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tests/registry.c \
                    $(wildcard tests/rt/*.c tests/models/*.c)
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c

@@ -66,14 +66,23 @@ const char *rt_counter_key(rt_counter c);
 
 /* ------------------------------------------------------------------ block kinds */
 
-/* The paper's classification (section 2). */
+/* The paper's classification (section 2); declared once, expanded into the enum and
+ * the names `modrt info` and docs/blocks.md print (rt_kind_type_name). */
+#define RT_KIND_TYPE_LIST(X)                                                     \
+    X(RT_KIND_OUTPUT, "output") /* y = g(u,p,t)                           eq. (1) */ \
+    X(RT_KIND_NSS, "nss")       /* x' = f(x,u,p,t), y = g(x,u,p,t)        eq. (3) */ \
+    X(RT_KIND_LSS, "lss")       /* x' = A x + B u, y = C x + D u          eq. (4) */ \
+    X(RT_KIND_DSS, "dss")       /* x[k+1] = f(x[k],u[k],p), y held over k  eq. (5) */ \
+    X(RT_KIND_MBS, "mbs")       /* q' = K z + b, M z' = k - (GK)^T lambda  eq. (6) */
+
 typedef enum {
-    RT_KIND_OUTPUT = 0, /* y = g(u,p,t)                              eq. (1) */
-    RT_KIND_NSS,        /* x' = f(x,u,p,t), y = g(x,u,p,t)           eq. (3) */
-    RT_KIND_LSS,        /* x' = A x + B u, y = C x + D u             eq. (4) */
-    RT_KIND_DSS,        /* x[k+1] = f(x[k],u[k],p), y held over k     eq. (5) */
-    RT_KIND_MBS         /* q' = K z + b, M z' = k - (GK)^T lambda    eq. (6) */
+#define RT_X_ENUM(id, name) id,
+    RT_KIND_TYPE_LIST(RT_X_ENUM)
+#undef RT_X_ENUM
+    RT_KIND_TYPE_COUNT
 } rt_kind_type;
+/* Returns the short name of a kind type ("?" if out of range). */
+const char *rt_kind_type_name(rt_kind_type t);
 
 /* How a kind's outputs depend directly on its inputs (its throughputs). */
 typedef enum {
@@ -130,7 +139,20 @@ typedef struct rt_kind {
        crossing; may change x and d in place. NULL iff nr == 0. */
     void (*event)(const rt_args *a, uint16_t which, real_t *x, real_t *d);
     const void *spec;           /* type-specific part (LSS matrices, MBS description) */
+    /* Reference text (`modrt info KIND`, docs/blocks.md), compiled in only where
+       RT_KIND_DOCS is 1 (hosts): write both through RT_DOC(...) so images drop them. */
+    const char *doc;            /* what it computes: equations and meaning; NULL: none */
+    const char *units;          /* units of inputs, outputs, states, discrete states and
+                                   parameters in that order, separated by spaces ("-":
+                                   dimensionless); NULL: not given */
 } rt_kind;
+
+/* A reference text of a kind: kept on hosts, dropped from embedded images. */
+#if RT_KIND_DOCS
+#define RT_DOC(text) text
+#else
+#define RT_DOC(text) ((const char *)0)
+#endif
 
 /* Type-specific part of a linear state-space kind: its sizes (equal to the kind's) and
  * row-major A (nx*nx), B (nx*nu; NULL: zero), C (ny*nx), D (ny*nu; NULL: zero).
@@ -236,15 +258,24 @@ typedef struct rt_block {
  * Interpolation needs the source set to have stepped first: the schedule runs the
  * slowest set first, so a fast set interpolates a slow one and a slow set extrapolates
  * a fast one (an interpolating scheme falls back to extrapolation there). */
+#define RT_INTERP_LIST(X)                                                        \
+    X(RT_INTERP_SET, "set")           /* on a connection: the destination set's scheme */ \
+    X(RT_INTERP_HOLD, "hold")         /* the value at the last communication point */     \
+    X(RT_INTERP_EXTRAP, "extrapolate")/* linear extrapolation from the last two points */ \
+    X(RT_INTERP_LINEAR, "linear")     /* linear interpolation between the points around t */ \
+    X(RT_INTERP_HERMITE, "hermite")   /* cubic Hermite on the points around t, slopes from \
+                                         the parabola through the last three points */
+
 typedef enum {
-    RT_INTERP_SET = 0,     /* on a connection: the destination set's scheme */
-    RT_INTERP_HOLD,        /* the value at the last communication point */
-    RT_INTERP_EXTRAP,      /* linear extrapolation from the last two points */
-    RT_INTERP_LINEAR,      /* linear interpolation between the points around t */
-    RT_INTERP_HERMITE,     /* cubic Hermite on the points around t, slopes from the
-                              parabola through the last three points */
+#define RT_X_ENUM(id, name) id,
+    RT_INTERP_LIST(RT_X_ENUM)
+#undef RT_X_ENUM
     RT_INTERP_COUNT
 } rt_interp;
+/* The scene language's name of an interpolation scheme ("?" if out of range), and the
+   scheme of a name (-1 if none). */
+const char *rt_interp_name(rt_interp i);
+int rt_interp_find(const char *name);
 
 /* One connection of the incidence y = P u (eq. 2): output port -> input port. */
 typedef struct rt_conn {
@@ -308,12 +339,22 @@ typedef struct rt_scene {
     real_t loop_tol;       /* residual tolerance of torn inputs (0: default) */
 } rt_scene;
 
-/* Post-stabilization of multibody sets. */
+/* Post-stabilization of multibody sets; declared once (rt_stab_name, rt_stab_find). */
+#define RT_STAB_LIST(X)                                                          \
+    X(RT_STAB_PROJECT, "project")   /* two-iteration position and direct velocity   \
+                                       projection (eq. 10) */                       \
+    X(RT_STAB_NONE, "none")         /* none: shows the drift */                     \
+    X(RT_STAB_BAUMGARTE, "baumgarte") /* Baumgarte terms in the acceleration        \
+                                         constraint, no projection */
+
 typedef enum {
-    RT_STAB_PROJECT = 0, /* two-iteration position and direct velocity projection (eq. 10) */
-    RT_STAB_NONE,        /* none: shows the drift */
-    RT_STAB_BAUMGARTE    /* Baumgarte terms in the acceleration constraint, no projection */
+#define RT_X_ENUM(id, name) id,
+    RT_STAB_LIST(RT_X_ENUM)
+#undef RT_X_ENUM
+    RT_STAB_COUNT
 } rt_stab;
+const char *rt_stab_name(rt_stab s);
+int rt_stab_find(const char *name);
 
 /* Registry row of a scene; registries end with {NULL, NULL}. */
 typedef struct rt_scene_entry {

@@ -50,6 +50,12 @@ typedef double real_t;
 #define RT_MAX_LOOPS 8 /* potential + actual algebraic loops reported */
 #endif
 
+/* 1: kinds carry their reference text (RT_DOC in rt.h) for `modrt info KIND`; embedded
+   images build with 0 and keep no such strings in flash */
+#ifndef RT_KIND_DOCS
+#define RT_KIND_DOCS 1
+#endif
+
 #ifndef RT_ERR_LEN
 #define RT_ERR_LEN 128 /* characters of an init error description */
 #endif

@@ -33,6 +33,47 @@ int rt_streq(const char *a, const char *b)
     return *a == *b;
 }
 
+/* ------------------------------------------------------------------ name lists */
+
+#define RT_X_NAME(id, name) name,
+static const char *const kind_type_names[] = {RT_KIND_TYPE_LIST(RT_X_NAME)};
+static const char *const interp_names[] = {RT_INTERP_LIST(RT_X_NAME)};
+static const char *const stab_names[] = {RT_STAB_LIST(RT_X_NAME)};
+#undef RT_X_NAME
+
+static int find_name(const char *const *names, int n, const char *name)
+{
+    for (int i = 0; i < n; i++)
+        if (rt_streq(names[i], name))
+            return i;
+    return -1;
+}
+
+const char *rt_kind_type_name(rt_kind_type t)
+{
+    return (unsigned)t < RT_KIND_TYPE_COUNT ? kind_type_names[t] : "?";
+}
+
+const char *rt_interp_name(rt_interp i)
+{
+    return (unsigned)i < RT_INTERP_COUNT ? interp_names[i] : "?";
+}
+
+int rt_interp_find(const char *name)
+{
+    return find_name(interp_names, RT_INTERP_COUNT, name);
+}
+
+const char *rt_stab_name(rt_stab s)
+{
+    return (unsigned)s < RT_STAB_COUNT ? stab_names[s] : "?";
+}
+
+int rt_stab_find(const char *name)
+{
+    return find_name(stab_names, RT_STAB_COUNT, name);
+}
+
 void rti_zero(void *p, size_t n)
 {
     unsigned char *b = p;

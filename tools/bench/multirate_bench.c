@@ -187,8 +187,7 @@ static row measure(const config *c, int reps)
 
 static const char *interp_name(uint8_t i)
 {
-    static const char *const names[] = {"set", "hold", "extrap", "linear", "hermite"};
-    return i < RT_INTERP_COUNT ? names[i] : "?";
+    return rt_interp_name((rt_interp)i);
 }
 
 /* the series a row belongs to, e.g. "single sdirk2 J64" or "multirate rk4+beuler" */

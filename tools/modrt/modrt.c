@@ -1,60 +1,23 @@
-/* modrt.c - the host command line: list, describe and run the registered scenes, or a
- * scene file (FILE.scn, compiled in host memory by tools/scenec), on the POSIX port.
- * Every bad argument ends in one line on stderr and exit status 2; a run that met faults
- * exits with status 1 after its summary. */
+/* modrt.c - the host command line: list and describe the registered scenes and kinds,
+ * run a scene or a scene file (FILE.scn, compiled in host memory by tools/scenec) on the
+ * POSIX port, size a per-scene build, tune a multirate schedule. The conventions (GNU-style
+ * options, --help per subcommand, exit codes 0 ok / 1 faults counted / 2 usage) are in
+ * cli.h; each subcommand is a row of the table at the end of this file. */
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
+#include "info.h"
 #include "models.h"
 #include "runner.h"
-#include "scn_host.h"
 #include "tune.h"
+#include "version.h"
 
 #define MAX_SETS_ARGS 32 /* --set options on one command line */
 
 static rt_sim sim; /* the caller owns the runtime's storage */
-
-static int usage(void)
-{
-    fputs("modrt: usage: modrt list | info SCENE | sizes SCENE | run SCENE [--t-end S] [--csv FILE|-] "
-          "[--every N] [--set BLOCK.PARAM=VALUE]... [--realtime]\n",
-          stderr);
-    return 2;
-}
-
-static int fail(const char *what, const char *detail)
-{
-    fprintf(stderr, "modrt: %s%s%s\n", what, detail ? ": " : "", detail ? detail : "");
-    return 2;
-}
-
-static const rt_scene *find_scene(const char *name)
-{
-    if (scn_host_is_file(name)) /* a scene file: compiled in host memory, defines on the VM */
-        return scn_host_load(name);
-    for (const rt_scene_entry *e = mdl_scenes; e->name; e++)
-        if (strcmp(e->name, name) == 0)
-            return e->scene;
-    return NULL;
-}
-
-/* the scene compiler has already said what is wrong with a scene file */
-static int no_scene(const char *name)
-{
-    return scn_host_is_file(name) ? 2 : fail("unknown scene", name);
-}
-
-/* a whole string as a finite number */
-static int parse_real(const char *s, double *v)
-{
-    char *end;
-    errno = 0;
-    *v = strtod(s, &end);
-    return *s && !*end && errno == 0 && *v == *v && *v - *v == 0;
-}
 
 static int cmd_list(void)
 {

@@ -9,12 +9,11 @@
 
 #include "models.h"
 
-/* in the order of rt_interp; "set" (RT_INTERP_SET) is what a connection without a
-   clause gets, so it is not written in a scene */
-const char *const scn_interp_key[RT_INTERP_COUNT] = {
-    [RT_INTERP_SET] = "set", [RT_INTERP_HOLD] = "hold", [RT_INTERP_EXTRAP] = "extrapolate",
-    [RT_INTERP_LINEAR] = "linear", [RT_INTERP_HERMITE] = "hermite",
-};
+/* in the order of rt_interp, from its one list in rt/rt.h; "set" (RT_INTERP_SET) is what a
+   connection without a clause gets, so it is not written in a scene */
+#define SCN_X_NAME(id, name) name,
+const char *const scn_interp_key[RT_INTERP_COUNT] = {RT_INTERP_LIST(SCN_X_NAME)};
+#undef SCN_X_NAME
 
 /* ------------------------------------------------------------------ look-ups */
 

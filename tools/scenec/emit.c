@@ -478,7 +478,9 @@ static void joints(FILE *f, const scn_scene *s)
 
 static void scene(FILE *f, const scn_ctx *c)
 {
-    static const char *const stab[] = {"RT_STAB_PROJECT", "RT_STAB_NONE", "RT_STAB_BAUMGARTE"};
+#define SCN_X_ID(id, name) #id,
+    static const char *const stab[] = {RT_STAB_LIST(SCN_X_ID)};
+#undef SCN_X_ID
     const scn_scene *s = &c->sc;
     const rt_scene *im = &c->image;
     fprintf(f, "\nconst rt_scene " SCN_SYMBOL_PREFIX "%s = {\n    .name = \"%s\",\n    .doc = \"",

@@ -341,11 +341,9 @@ static void options(scn_ctx *c)
     if (!mbs)
         scn_fail(c, s->stab.pos, s->stab.s, "stabilization applies to multibody scenes only",
                  "no stabilization statement without multibody systems");
-    else if (!strcmp(s->stab.s, "none"))
-        s->stab_kind = RT_STAB_NONE;
-    else if (!strcmp(s->stab.s, "baumgarte"))
-        s->stab_kind = RT_STAB_BAUMGARTE;
-    else if (strcmp(s->stab.s, "project") != 0)
+    else if (rt_stab_find(s->stab.s) >= 0)
+        s->stab_kind = (uint8_t)rt_stab_find(s->stab.s);
+    else
         scn_fail(c, s->stab.pos, s->stab.s, "unknown stabilization", "project, none or baumgarte");
     if (!c->err && s->stab_kind != RT_STAB_BAUMGARTE && (s->alpha != 0 || s->beta != 0))
         scn_fail(c, s->stab.pos, s->stab.s, "alpha and beta apply to baumgarte only",
