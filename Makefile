@@ -39,7 +39,8 @@ RT_SRCS     := $(wildcard rt/*.c)
 # the library scenes are compiled from models/scenes/*.scn by scenec (tools/scenec/)
 MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
                $(patsubst models/scenes/%.scn,build/gen/scenes/%.c,$(wildcard models/scenes/*.scn))
-POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c
+POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/modrt/cli.c \
+               tools/modrt/info.c
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
 
@@ -77,6 +78,16 @@ $(O)/obj/%.o: %.c
 
 $(O)/modrt: $(call obj,tools/modrt/modrt.c $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -o $@
+
+# the version `modrt --version` prints: the git description, rewritten only when it changes
+$(call obj,tools/modrt/modrt.c): build/gen/version.h
+$(call obj,tools/modrt/modrt.c): CINC += -Ibuild/gen
+build/gen/version.h: FORCE
+	@mkdir -p $(dir $@)
+	@v=$$(git describe --always --dirty 2>/dev/null || echo unknown); \
+	 echo "#define MODRT_VERSION \"$$v\"" > $@.tmp; \
+	 cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
+FORCE:
 
 $(O)/svgplot: tools/svgplot.c
 	@mkdir -p $(dir $@)

@@ -69,14 +69,47 @@ $M run pi_loop --set Plant.T=0.25 --set PI.Kp=1.5 >/dev/null && ok || bad "--set
 # the offline tuner picks the declared schedule of the actuated pendulum at 1e-4 m
 $M tune pendulum10_actuated --tol 1e-4 | grep -q '^schedule: chain=16 servo=1$' && ok || bad "tune"
 
+# conventions: usage on stderr with exit 2 without a command; --help on stdout, exit 0,
+# for the program and every subcommand; --version; options before or after the scene,
+# with --opt=value
+$M >/dev/null 2>"$T/err"; [ $? -eq 2 ] && grep -q '^usage: modrt COMMAND' "$T/err" && ok || bad "no args"
+for c in "" list kinds info run tune sizes docs-blocks; do
+    $M $c --help >"$T/out" 2>"$T/err"; rc=$?
+    [ $rc -eq 0 ] && [ ! -s "$T/err" ] && grep -q "^usage: modrt" "$T/out" && ok || bad "help of '$c' (exit $rc)"
+done
+$M -h | grep -q '^  run ' && ok || bad "-h lists run"
+$M --help | grep -q '^  tune ' && ok || bad "--help lists tune"
+$M --version | grep -qE '^modrt [0-9a-z.-]+ \((double|float)\)$' && ok || bad "--version: $($M --version)"
+[ "$($M run --t-end=0.5 --every 10 oscillator | hash_of)" = "$($M run oscillator --t-end 0.5 --every=10 | hash_of)" ] \
+    && ok || bad "option order or --opt=value changed the run"
+$M run oscillator -- --t-end >/dev/null 2>&1; [ $? -eq 2 ] && ok || bad "-- ends the options"
+
+# the block reference: every kind listed, each with units for every port, state, parameter
+$M kinds >"$T/kinds"
+[ "$(wc -l <"$T/kinds")" -ge 20 ] && ok || bad "kinds lists $(wc -l <"$T/kinds")"
+$M info pt1 >"$T/kind" && grep -q '^kind: pt1$' "$T/kind" && grep -q '^  T  *\[s\]  default 1$' "$T/kind" \
+    && ok || bad "info pt1: $(cat "$T/kind")"
+$M info pi_loop | grep -q '^  PI  *pi  *dss  *set main' && ok || bad "info shows set names"
+$M info pi_loop | grep -q 'Kp=0.8 Ki=3$' && ok || bad "info shows parameter values"
+if command -v python3 >/dev/null; then
+    $M info pi_loop --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["blocks"][1]["parameters"]["Kp"] == 0.8 and d["sets"][0]["name"] == "main"' \
+        && ok || bad "info --json"
+    $M info pt1 --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert [p["unit"] for p in d["parameters"]] == ["-", "s"]' \
+        && ok || bad "info KIND --json"
+fi
+
 # bad input: one clear line, exit 2, nothing crashes
 expect_err "tune without tol" 2 "tune needs --tol" $M tune oscillator
-expect_err "no args" 2 "usage" $M
-expect_err "unknown command" 2 "usage" $M frobnicate
-expect_err "unknown scene" 2 "unknown scene: nope" $M run nope
+expect_err "unknown command" 2 "unknown command (modrt --help lists them): frobnicate" $M frobnicate
+expect_err "unknown scene" 2 "unknown scene (modrt list names them): nope" $M run nope
 expect_err "unknown info" 2 "unknown scene" $M info nope
-expect_err "unknown option" 2 "unknown or incomplete option: --fast" $M run oscillator --fast
-expect_err "missing value" 2 "incomplete option: --t-end" $M run oscillator --t-end
+expect_err "unknown option" 2 "run: unknown option (modrt run --help lists them): --fast" $M run oscillator --fast
+expect_err "missing value" 2 "option needs a value (--t-end=S): --t-end" $M run oscillator --t-end
+expect_err "flag with value" 2 "option takes no value: --realtime=1" $M run oscillator --realtime=1
+expect_err "short option" 2 "options are long" $M run oscillator -x
+expect_err "missing scene" 2 "run needs SCENE" $M run
+expect_err "extra argument" 2 "run: unexpected argument: more" $M run oscillator more
+expect_err "tune bad tol" 2 "tol expects a tolerance > 0" $M tune oscillator --tol=-1
 expect_err "bad t-end" 2 "t-end expects" $M run oscillator --t-end -3
 expect_err "nan t-end" 2 "t-end expects" $M run oscillator --t-end nan
 expect_err "bad every" 2 "every expects" $M run oscillator --every 1.5

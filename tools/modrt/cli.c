@@ -62,11 +62,11 @@ static void help(const cli_cmd *c)
         printf("\n%s\n", c->help);
     printf("\noptions:\n");
     for (const cli_opt *o = c->opts; o && o->name; o++) {
-        char lhs[64];
+        char lhs[80];
         snprintf(lhs, sizeof lhs, "--%s%s%s", o->name, o->arg ? "=" : "", o->arg ? o->arg : "");
-        printf("  %-26s %s\n", lhs, o->help);
+        printf("  %-24s %s\n", lhs, o->help);
     }
-    printf("  %-26s %s\n", "-h, --help", "this text");
+    printf("  %-24s %s\n", "-h, --help", "this text");
 }
 
 static const cli_opt *find_opt(const cli_cmd *c, const char *name, size_t len)

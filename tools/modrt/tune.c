@@ -23,6 +23,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "cli.h"
 #include "tune.h"
 
 #define DEFAULT_DOUBLINGS 6 /* candidate ratios up to 64 r_min */
@@ -379,51 +380,58 @@ rt_status tune_measure(const rt_scene *sc, const uint32_t *ratio, tune_sched *ou
 
 /* ------------------------------------------------------------------ command line */
 
-static int fail(const char *what, const char *detail)
+tune_cli_args tune_cli_ctx;
+
+static int opt_tol(void *ctx, const char *v)
 {
-    fprintf(stderr, "modrt: %s%s%s\n", what, detail ? ": " : "", detail ? detail : "");
-    return 2;
+    double x;
+    if (!cli_real(v, &x) || !(x > 0))
+        return cli_fail("--tol expects a tolerance > 0, got", v);
+    ((tune_cli_args *)ctx)->o.tol = x;
+    return CLI_OK;
 }
 
-/* a whole string as a finite number */
-static int number(const char *s, double *v)
+static int opt_only(void *ctx, const char *v)
 {
-    char *end;
-    *v = strtod(s, &end);
-    return *s && !*end && *v == *v && *v - *v == 0;
+    ((tune_cli_args *)ctx)->o.only = v;
+    return CLI_OK;
 }
 
-static int parse(int argc, char **argv, tune_opts *o, int *verbose)
+static int opt_doublings(void *ctx, const char *v)
 {
-    double v;
-    for (int i = 3; i < argc; i++) {
-        const char *a = argv[i];
-        int more = i + 1 < argc;
-        if (strcmp(a, "--verbose") == 0) {
-            *verbose = 1;
-        } else if (strcmp(a, "--tol") == 0 && more) {
-            if (!number(argv[++i], &v) || !(v > 0))
-                return fail("--tol expects a tolerance > 0, got", argv[i]);
-            o->tol = v;
-        } else if (strcmp(a, "--only") == 0 && more) {
-            o->only = argv[++i];
-        } else if (strcmp(a, "--doublings") == 0 && more) {
-            if (!number(argv[++i], &v) || v < 1 || v > TUNE_DOUBLINGS_MAX || v != (int)v)
-                return fail("--doublings expects a whole number from 1 to 12, got", argv[i]);
-            o->doublings = (unsigned)v;
-        } else if (strcmp(a, "--ref-div") == 0 && more) {
-            if (!number(argv[++i], &v) || v < 2 || v > 1024 || v != (int)v ||
-                ((int)v & ((int)v - 1)) != 0)
-                return fail("--ref-div expects a power of two from 2 to 1024, got", argv[i]);
-            o->ref_div = (unsigned)v;
-        } else {
-            return fail("unknown or incomplete option", a);
-        }
-    }
-    if (!(o->tol > 0))
-        return fail("tune needs --tol E", NULL);
-    return 0;
+    unsigned long n;
+    if (!cli_uint(v, 1, TUNE_DOUBLINGS_MAX, &n))
+        return cli_fail("--doublings expects a whole number from 1 to 12, got", v);
+    ((tune_cli_args *)ctx)->o.doublings = (unsigned)n;
+    return CLI_OK;
 }
+
+static int opt_ref_div(void *ctx, const char *v)
+{
+    unsigned long n;
+    if (!cli_uint(v, 2, TUNE_REF_DIV_MAX, &n) || (n & (n - 1)) != 0)
+        return cli_fail("--ref-div expects a power of two from 2 to 1024, got", v);
+    ((tune_cli_args *)ctx)->o.ref_div = (unsigned)n;
+    return CLI_OK;
+}
+
+static int opt_verbose(void *ctx, const char *v)
+{
+    (void)v;
+    ((tune_cli_args *)ctx)->verbose = 1;
+    return CLI_OK;
+}
+
+const cli_opt tune_cli_opts[] = {
+    {"tol", "E", "largest accepted |y - y_ref| over the compared signals (required)", opt_tol},
+    {"only", "P,...", "compare only recorded signals starting with these prefixes", opt_only},
+    {"doublings", "K", "candidate ratios r_min * 2^0..K (default 6, at most 12)",
+     opt_doublings},
+    {"ref-div", "N", "the reference steps at the base tick / N (power of two, default 4)",
+     opt_ref_div},
+    {"verbose", NULL, "print every schedule run", opt_verbose},
+    {NULL, NULL, NULL, NULL},
+};
 
 static void print_sched(const char *what, const tune_sched *m)
 {
@@ -464,21 +472,24 @@ static void print_details(const rt_scene *sc, const tune_result *r)
     putchar('\n');
 }
 
-int tune_main(const rt_scene *sc, int argc, char **argv)
+int tune_cli_run(void *ctx, int npos, char **pos)
 {
-    tune_opts o = {0};
-    int verbose = 0;
+    const tune_cli_args *a = ctx;
+    tune_opts o = a->o;
+    const rt_scene *sc = cli_scene(pos[0]);
+    (void)npos;
     if (!sc)
-        return fail("unknown scene", argc > 2 ? argv[2] : NULL);
-    if (parse(argc, argv, &o, &verbose))
-        return 2;
+        return CLI_USAGE;
+    if (!(o.tol > 0))
+        return cli_fail("tune needs --tol E", NULL);
+    int verbose = a->verbose;
     static tune_result r;
     rt_status st = tune_scene(sc, &o, &r, verbose ? stdout : NULL);
     if (st == RT_E_ARG)
-        return fail(T.nsig == 0 ? "--only selects no recorded signal" : "end time shorter "
+        return cli_fail(T.nsig == 0 ? "--only selects no recorded signal" : "end time shorter "
                     "than one step of the finest candidate", o.only);
     if (st != RT_OK)
-        return fail(rt_status_name(st), rt_error_text(&sim));
+        return cli_fail(rt_status_name(st), rt_error_text(&sim));
     printf("scene: %s\ntolerance: %g on %u of %u recorded signals%s%s\n", sc->name, o.tol,
            (unsigned)r.nsig, (unsigned)sc->nrecs, o.only ? " starting with " : "",
            o.only ? o.only : "");

@@ -11,6 +11,7 @@
 
 #define TUNE_SAMPLES_MAX 4096 /* comparison instants kept from the reference */
 #define TUNE_DOUBLINGS_MAX 12 /* candidate ratios go up to r_min * 2^12 */
+#define TUNE_REF_DIV_MAX 1024 /* finest reference: base tick / 1024 */
 #define TUNE_CANDIDATES_MAX 32768 /* schedules enumerated (doublings shrink to fit) */
 
 /* What to tune for (zeros select the defaults). */
@@ -65,8 +66,14 @@ rt_status tune_scene(const rt_scene *sc, const tune_opts *o, tune_result *r, FIL
 rt_status tune_measure(const rt_scene *sc, const uint32_t *ratio, tune_sched *out);
 
 /* `modrt tune SCENE --tol E [--only P,...] [--doublings K] [--ref-div N] [--verbose]`:
-   sc is the scene named by argv[2] (NULL: unknown). Prints the cheapest schedule; exit
-   status 0, 1 when no candidate meets the tolerance, 2 for bad arguments. */
-int tune_main(const rt_scene *sc, int argc, char **argv);
+   the options fill tune_cli_ctx; tune_cli_run prints the cheapest schedule and returns
+   the exit status: 0, 1 when no candidate meets the tolerance, 2 for bad arguments. */
+typedef struct tune_cli_args {
+    tune_opts o;
+    int verbose;
+} tune_cli_args;
+extern tune_cli_args tune_cli_ctx;
+extern const struct cli_opt tune_cli_opts[];
+int tune_cli_run(void *ctx, int npos, char **pos);
 
 #endif /* PORT_TUNE_H */

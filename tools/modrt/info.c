@@ -1,0 +1,414 @@
+/* info.c - `modrt info SCENE|KIND`, `modrt kinds` and the block reference docs/blocks.md,
+ * all printed from the const tables (rt_scene, rt_kind) and an initialised rt_sim. */
+#include <string.h>
+
+#include "cli.h"
+#include "info.h"
+#include "models.h"
+
+/* ------------------------------------------------------------------ small helpers */
+
+const rt_kind *info_find_kind(const char *name)
+{
+    for (const mdl_entry *e = mdl_kinds; e->name; e++)
+        if (strcmp(e->name, name) == 0)
+            return e->kind;
+    return NULL;
+}
+
+/* the shortest round-trip text of v */
+static const char *num(char *buf, double v)
+{
+    return cli_fmt(buf, 32, v);
+}
+
+/* a JSON string (names and reference text are ASCII or UTF-8) */
+static void jstr(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; s && *s; s++) {
+        if (*s == '"' || *s == '\\')
+            fprintf(f, "\\%c", *s);
+        else if (*s == '\n')
+            fputs("\\n", f);
+        else if ((unsigned char)*s < 0x20)
+            fprintf(f, "\\u%04x", (unsigned)(unsigned char)*s);
+        else
+            fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* unit number i of a kind's units string into buf ("" when the kind gives none) */
+static const char *unit(const rt_kind *k, unsigned i, char *buf, size_t n)
+{
+    const char *s = k->units;
+    buf[0] = 0;
+    while (s && *s && i > 0) { /* skip i tokens */
+        while (*s && *s != ' ')
+            s++;
+        while (*s == ' ')
+            s++;
+        i--;
+    }
+    size_t len = 0;
+    while (s && s[len] && s[len] != ' ' && len + 1 < n)
+        len++;
+    if (s)
+        memcpy(buf, s, len), buf[len] = 0;
+    return buf;
+}
+
+static const char *feed_name(rt_feed f)
+{
+    static const char *const names[] = {"none", "all", "table"};
+    return (unsigned)f < 3 ? names[f] : "?";
+}
+
+/* ------------------------------------------------------------------ kinds */
+
+/* the ports and values of one group: inputs, outputs, states, discrete states, params */
+typedef struct group {
+    const char *title;
+    uint16_t n;
+    const char *const *names;
+    const real_t *defaults; /* NULL: none shown (ports), or all zero (states) */
+    int has_default;
+} group;
+
+static void kind_groups(const rt_kind *k, group g[5])
+{
+    g[0] = (group){"inputs", k->nu, k->u_names, NULL, 0};
+    g[1] = (group){"outputs", k->ny, k->y_names, NULL, 0};
+    g[2] = (group){"states", k->nx, k->x_names, k->x_default, 1};
+    g[3] = (group){"discrete states", k->nd, k->d_names, k->d_default, 1};
+    g[4] = (group){"parameters", k->np, k->p_names, k->p_default, 1};
+}
+
+static void kind_text(FILE *f, const rt_kind *k)
+{
+    group g[5];
+    char b[32], u[32];
+    unsigned ui = 0;
+    kind_groups(k, g);
+    fprintf(f, "kind: %s\ntype: %s\nthroughput: %s\nroots: %u\n", k->name,
+            rt_kind_type_name(k->type), feed_name(k->feed), k->nr);
+    if (k->doc)
+        fprintf(f, "%s\n", k->doc);
+    for (int i = 0; i < 5; i++) {
+        fprintf(f, "%s: %u\n", g[i].title, g[i].n);
+        for (uint16_t j = 0; j < g[i].n; j++, ui++) {
+            const char *name = g[i].names ? g[i].names[j] : "?";
+            fprintf(f, "  %-14s [%s]", name, unit(k, ui, u, sizeof u)[0] ? u : "?");
+            if (g[i].has_default)
+                fprintf(f, "  default %s", num(b, g[i].defaults ? (double)g[i].defaults[j] : 0));
+            fputc('\n', f);
+        }
+    }
+}
+
+static void kind_json(FILE *f, const rt_kind *k)
+{
+    group g[5];
+    char b[32], u[32];
+    unsigned ui = 0;
+    static const char *const keys[] = {"inputs", "outputs", "states", "dstates", "parameters"};
+    kind_groups(k, g);
+    fputs("{\"kind\": ", f);
+    jstr(f, k->name);
+    fprintf(f, ", \"type\": \"%s\", \"throughput\": \"%s\", \"roots\": %u, \"doc\": ",
+            rt_kind_type_name(k->type), feed_name(k->feed), k->nr);
+    jstr(f, k->doc);
+    for (int i = 0; i < 5; i++) {
+        fprintf(f, ", \"%s\": [", keys[i]);
+        for (uint16_t j = 0; j < g[i].n; j++, ui++) {
+            fputs(j ? ", {\"name\": " : "{\"name\": ", f);
+            jstr(f, g[i].names ? g[i].names[j] : "?");
+            fputs(", \"unit\": ", f);
+            jstr(f, unit(k, ui, u, sizeof u));
+            if (g[i].has_default)
+                fprintf(f, ", \"default\": %s",
+                        num(b, g[i].defaults ? (double)g[i].defaults[j] : 0));
+            fputc('}', f);
+        }
+        fputc(']', f);
+    }
+    fputs("}\n", f);
+}
+
+void info_kind(FILE *f, const rt_kind *k, int json)
+{
+    if (json)
+        kind_json(f, k);
+    else
+        kind_text(f, k);
+}
+
+/* the first sentence (up to the first newline) of a kind's text, for listings */
+static void first_line(FILE *f, const char *doc)
+{
+    size_t n = doc ? strcspn(doc, "\n") : 0;
+    fprintf(f, "%.*s", (int)n, doc ? doc : "");
+}
+
+void info_kinds(FILE *f)
+{
+    for (const mdl_entry *e = mdl_kinds; e->name; e++) {
+        fprintf(f, "%-16s %-6s ", e->name, rt_kind_type_name(e->kind->type));
+        first_line(f, e->kind->doc);
+        fputc('\n', f);
+    }
+}
+
+void info_blocks_md(FILE *f)
+{
+    fputs("# Block reference\n\nGenerated by `modrt docs-blocks` from the kinds' const tables "
+          "(`models/*.c`, fields `doc` and `units`), so it cannot drift from the code. "
+          "`modrt info KIND` prints the same for one kind; `modrt kinds` lists them.\n\n"
+          "| kind | type | what |\n|---|---|---|\n", f);
+    for (const mdl_entry *e = mdl_kinds; e->name; e++) {
+        fprintf(f, "| [`%s`](#%s) | %s | ", e->name, e->name, rt_kind_type_name(e->kind->type));
+        first_line(f, e->kind->doc);
+        fputs(" |\n", f);
+    }
+    for (const mdl_entry *e = mdl_kinds; e->name; e++) {
+        fprintf(f, "\n## %s\n\n```\n", e->name);
+        kind_text(f, e->kind);
+        fputs("```\n", f);
+    }
+}
+
+/* ------------------------------------------------------------------ scenes */
+
+/* parameter p of block b as the scene gives it (its value, or the kind's default) */
+static double param(const rt_block *bl, uint16_t p)
+{
+    const real_t *v = bl->p ? bl->p : bl->kind->p_default;
+    return v ? (double)v[p] : 0;
+}
+
+static void scene_blocks(FILE *f, const rt_scene *sc)
+{
+    char b[32];
+    fprintf(f, "blocks: %u\n", sc->nblocks);
+    for (uint16_t i = 0; i < sc->nblocks; i++) {
+        const rt_block *bl = &sc->blocks[i];
+        const rt_kind *k = bl->kind;
+        fprintf(f, "  %-10s %-12s %-6s set %s  nu %u ny %u nx %u nd %u np %u nr %u",
+                bl->name, k->name, rt_kind_type_name(k->type), sc->sets[bl->set].name, k->nu,
+                k->ny, k->nx, k->nd, k->np, k->nr);
+        if (k->type == RT_KIND_DSS)
+            fprintf(f, "  period %s s", num(b, (double)bl->ts));
+        fputc('\n', f);
+        if (k->np == 0)
+            continue;
+        fputs("             ", f);
+        for (uint16_t p = 0; p < k->np; p++)
+            fprintf(f, " %s=%s", k->p_names[p], num(b, param(bl, p)));
+        fputc('\n', f);
+    }
+}
+
+static void scene_wiring(FILE *f, const rt_scene *sc)
+{
+    char b[32];
+    fprintf(f, "connections: %u\n", sc->nconns);
+    for (uint16_t c = 0; c < sc->nconns; c++) {
+        const rt_conn *cn = &sc->conns[c];
+        const rt_block *from = &sc->blocks[cn->from], *to = &sc->blocks[cn->to];
+        fprintf(f, "  %s.%s -> %s.%s\n", from->name, from->kind->y_names[cn->y], to->name,
+                to->kind->u_names[cn->u]);
+    }
+    for (uint16_t j = 0; j < sc->njoints; j++) {
+        const rt_joint *jt = &sc->joints[j];
+        fprintf(f, "  joint %s: %s -- %s\n", jt->name, sc->blocks[jt->b1].name,
+                jt->b2 >= 0 ? sc->blocks[jt->b2].name : "inertial point");
+    }
+    for (uint16_t i = 0; i < sc->ndefaults; i++) {
+        const rt_default *d = &sc->defaults[i];
+        fprintf(f, "  %s -> %s.%s\n", num(b, (double)d->value), sc->blocks[d->block].name,
+                sc->blocks[d->block].kind->u_names[d->u]);
+    }
+    fprintf(f, "sets: %u\n", sc->nsets);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        fprintf(f, "  %-10s %-8s step %s s (%u ticks of %s s)\n", sc->sets[s].name,
+                sc->sets[s].method->name, num(b, (double)(sc->dt * (real_t)sc->sets[s].ratio)),
+                (unsigned)sc->sets[s].ratio, num(b + 16, (double)sc->dt));
+}
+
+static uint32_t gcd(uint32_t a, uint32_t b)
+{
+    while (b) {
+        uint32_t r = a % b;
+        a = b, b = r;
+    }
+    return a;
+}
+
+#define INFO_SCHED_TICKS 24 /* ticks of the schedule's period shown */
+
+/* the fixed schedule: step order within a tick, which sets step at which tick over one
+   period of the ratios, and the signals that cross sets with their reconstruction */
+static void scene_schedule(FILE *f, const rt_scene *sc, const rt_sim *s)
+{
+    uint32_t period = 1; /* least common multiple of the ratios */
+    for (uint8_t i = 0; i < sc->nsets; i++)
+        period = period / gcd(period, sc->sets[i].ratio) * sc->sets[i].ratio;
+    fprintf(f, "schedule: slowest first:");
+    for (uint8_t i = 0; i < sc->nsets; i++)
+        fprintf(f, " %s", sc->sets[s->plan.sched[i]].name);
+    fprintf(f, "; period %u ticks\n", (unsigned)period);
+    for (uint32_t k = 0; k < period && k < INFO_SCHED_TICKS; k++) {
+        fprintf(f, "  tick %2u:", (unsigned)k);
+        for (uint8_t i = 0; i < sc->nsets; i++)
+            if (k % sc->sets[s->plan.sched[i]].ratio == 0)
+                fprintf(f, " %s", sc->sets[s->plan.sched[i]].name);
+        fputc('\n', f);
+    }
+    for (uint16_t c = 0; c < sc->nconns; c++) {
+        const rt_conn *cn = &sc->conns[c];
+        uint16_t gi = (uint16_t)(s->plan.u_off[cn->to] + cn->u);
+        if (s->plan.src_kind[gi] != RT_SRC_XSET)
+            continue;
+        fprintf(f, "  across sets: %s.%s -> %s.%s by %s\n", sc->blocks[cn->from].name,
+                sc->blocks[cn->from].kind->y_names[cn->y], sc->blocks[cn->to].name,
+                sc->blocks[cn->to].kind->u_names[cn->u],
+                rt_interp_name((rt_interp)s->plan.interp[gi]));
+    }
+}
+
+/* a torn input as "From.y -> To.u" */
+static void print_torn(FILE *f, const rt_scene *sc, const rt_sim *s, uint16_t k)
+{
+    uint16_t gi = s->plan.torn_in[k], src = s->plan.torn_src[k], b = 0, from = 0;
+    while (b + 1 < sc->nblocks && s->plan.u_off[b + 1] <= gi)
+        b++;
+    while (from + 1 < sc->nblocks && s->plan.y_off[from + 1] <= src)
+        from++;
+    fprintf(f, " %s.%s -> %s.%s;", sc->blocks[from].name,
+            sc->blocks[from].kind->y_names[src - s->plan.y_off[from]], sc->blocks[b].name,
+            sc->blocks[b].kind->u_names[gi - s->plan.u_off[b]]);
+}
+
+static void scene_order(FILE *f, const rt_scene *sc, const rt_sim *s)
+{
+    fprintf(f, "evaluation order:");
+    for (uint16_t i = 0; i < s->plan.nseq; i++) {
+        const rt_seq_step *st = &s->plan.seq[i];
+        if (st->kind == RT_SEQ_LOOP)
+            fprintf(f, " [loop %u:", (unsigned)st->index);
+        else
+            fprintf(f, " %s", sc->blocks[st->index].name);
+        for (uint8_t l = 0; l < s->plan.nloops; l++)
+            if (s->plan.loops[l].actual && s->plan.loops[l].seq1 == i + 1)
+                fprintf(f, " ]");
+    }
+    fprintf(f, "\nloops: %u\n", s->plan.nloops);
+    for (uint8_t l = 0; l < s->plan.nloops; l++) {
+        const rt_loop *lp = &s->plan.loops[l];
+        fprintf(f, "  %u %s:", (unsigned)l, lp->actual ? "actual" : "potential");
+        for (uint16_t i = 0; i < lp->nblocks; i++)
+            fprintf(f, " %s", sc->blocks[s->plan.loop_blocks[lp->first + i]].name);
+        if (lp->actual) {
+            fprintf(f, "; torn:");
+            for (uint16_t k = lp->torn0; k < lp->torn0 + lp->ntorn; k++)
+                print_torn(f, sc, s, k);
+        } else {
+            fprintf(f, "; solved by ordering");
+        }
+        fputc('\n', f);
+    }
+}
+
+static void scene_text(FILE *f, const rt_scene *sc, const rt_sim *sim, rt_status init)
+{
+    char b[32], e[32];
+    fprintf(f, "scene: %s\n%s\nbase tick: %s s\nend time: %s s\n", sc->name,
+            sc->doc ? sc->doc : "", num(b, (double)sc->dt), num(e, (double)sc->t_end));
+    scene_blocks(f, sc);
+    scene_wiring(f, sc);
+    if (init == RT_OK) { /* the plan exists only after a successful init */
+        scene_schedule(f, sc, sim);
+        scene_order(f, sc, sim);
+    }
+    fprintf(f, "recorded:");
+    for (uint16_t i = 0; i < sc->nrecs; i++)
+        fprintf(f, " %s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
+    fprintf(f, "\ninit: %s%s%s\n", rt_status_name(init), init ? ": " : "",
+            init ? rt_error_text(sim) : "");
+}
+
+static void json_blocks(FILE *f, const rt_scene *sc)
+{
+    char b[32];
+    fputs(", \"blocks\": [", f);
+    for (uint16_t i = 0; i < sc->nblocks; i++) {
+        const rt_block *bl = &sc->blocks[i];
+        fputs(i ? ", {\"name\": " : "{\"name\": ", f);
+        jstr(f, bl->name);
+        fputs(", \"kind\": ", f);
+        jstr(f, bl->kind->name);
+        fprintf(f, ", \"type\": \"%s\", \"set\": ", rt_kind_type_name(bl->kind->type));
+        jstr(f, sc->sets[bl->set].name);
+        if (bl->kind->type == RT_KIND_DSS)
+            fprintf(f, ", \"period\": %s", num(b, (double)bl->ts));
+        fputs(", \"parameters\": {", f);
+        for (uint16_t p = 0; p < bl->kind->np; p++) {
+            fputs(p ? ", " : "", f);
+            jstr(f, bl->kind->p_names[p]);
+            fprintf(f, ": %s", num(b, param(bl, p)));
+        }
+        fputs("}}", f);
+    }
+    fputc(']', f);
+}
+
+static void json_sets_wiring(FILE *f, const rt_scene *sc)
+{
+    char b[32];
+    fputs(", \"sets\": [", f);
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        fputs(s ? ", {\"name\": " : "{\"name\": ", f);
+        jstr(f, sc->sets[s].name);
+        fputs(", \"method\": ", f);
+        jstr(f, sc->sets[s].method->name);
+        fprintf(f, ", \"step\": %s, \"ratio\": %u}",
+                num(b, (double)(sc->dt * (real_t)sc->sets[s].ratio)), (unsigned)sc->sets[s].ratio);
+    }
+    fputs("], \"connections\": [", f);
+    for (uint16_t c = 0; c < sc->nconns; c++) {
+        const rt_conn *cn = &sc->conns[c];
+        fprintf(f, "%s[\"%s.%s\", \"%s.%s\"]", c ? ", " : "", sc->blocks[cn->from].name,
+                sc->blocks[cn->from].kind->y_names[cn->y], sc->blocks[cn->to].name,
+                sc->blocks[cn->to].kind->u_names[cn->u]);
+    }
+    fputs("], \"recorded\": [", f);
+    for (uint16_t i = 0; i < sc->nrecs; i++)
+        fprintf(f, "%s\"%s.%s\"", i ? ", " : "", sc->blocks[sc->recs[i].block].name,
+                rt_rec_signal(sc, i));
+    fputc(']', f);
+}
+
+static void scene_json(FILE *f, const rt_scene *sc, const rt_sim *sim, rt_status init)
+{
+    char b[32];
+    fputs("{\"scene\": ", f);
+    jstr(f, sc->name);
+    fputs(", \"doc\": ", f);
+    jstr(f, sc->doc);
+    fprintf(f, ", \"base_tick\": %s", num(b, (double)sc->dt));
+    fprintf(f, ", \"end_time\": %s", num(b, (double)sc->t_end));
+    json_blocks(f, sc);
+    json_sets_wiring(f, sc);
+    fprintf(f, ", \"loops\": %u, \"init\": ", init == RT_OK ? (unsigned)sim->plan.nloops : 0u);
+    jstr(f, init ? rt_error_text(sim) : "ok");
+    fputs("}\n", f);
+}
+
+void info_scene(FILE *f, const rt_scene *sc, const rt_sim *sim, rt_status init, int json)
+{
+    if (json)
+        scene_json(f, sc, sim, init);
+    else
+        scene_text(f, sc, sim, init);
+}
