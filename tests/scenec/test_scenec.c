@@ -96,7 +96,7 @@ static void test_define_kinds(void)
         " C = [2]; D = [0.5]; }\n"
         "load system (s) of type (S); load system (n) of type (N);\n"
         "load system (d) of type (D); load system (l) of type (L);\n"
-        "s.m1 = 1; s.m2 = 2; connect(s.state.d, n.f); connect(n.x, d.u); connect(d.c, l.u);\n");
+        "s.m1 = 1; s.m2 = 2; connect(s.d, n.f); connect(n.x, d.u); connect(d.c, l.u);\n");
     TH_CHECK(!c->err);
     if (!c->err) {
         const rt_block *b = c->image.blocks;

@@ -7,6 +7,7 @@
 
 #include <stdio.h>
 
+#include "cli.h"
 #include "rt.h"
 
 #define TUNE_SAMPLES_MAX 4096 /* comparison instants kept from the reference */
@@ -73,7 +74,7 @@ typedef struct tune_cli_args {
     int verbose;
 } tune_cli_args;
 extern tune_cli_args tune_cli_ctx;
-extern const struct cli_opt tune_cli_opts[];
+extern const cli_opt tune_cli_opts[];
 int tune_cli_run(void *ctx, int npos, char **pos);
 
 #endif /* PORT_TUNE_H */
