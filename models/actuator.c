@@ -55,6 +55,12 @@ const rt_kind mdl_servo2_kind = {
     .p_default = servo_p_default,
     .feed = RT_FEED_NONE,
     .check = servo_check, .output = servo_output, .deriv = servo_deriv,
+    .doc = RT_DOC(
+        "Servo y'' + 2 zeta omega y' + omega^2 y = omega^2 k u (eq. (3)), states y and\n"
+        "w = y'/omega: y' = omega w, w' = omega (k u - y) - 2 zeta omega w.\n"
+        "Outputs y and y'. omega: natural frequency, > 0; zeta: damping ratio, > 0;\n"
+        "k: gain; all finite. Units as in the actuated scenes (a torque); any unit works."),
+    .units = RT_DOC("N*m N*m N*m/s N*m N*m rad/s - -"),
 };
 
 /* ------------------------------------------------------------------ arm_pd */
@@ -134,6 +140,13 @@ const rt_kind mdl_arm_pd_kind = {
     .p_default = pd_p_default, .d_default = pd_d_default,
     .feed = RT_FEED_NONE,
     .check = pd_check, .output = pd_output, .update = pd_update,
+    .doc = RT_DOC(
+        "Digital arm controller (DSS, eq. (5)), sample period h: theta = atan2(z, x),\n"
+        "w = (theta - thp)/h (0 at the first sample), c = j thr'' + m_g cos(theta)\n"
+        "+ kp (thr - theta) + kd (thr' - w), applied a sample later and held (output u).\n"
+        "Reference thr from th0 to th1: S(s) = 10 s^3 - 15 s^4 + 6 s^5, s = (t - t0)/T\n"
+        "in [0, 1]. kp, kd: PD gains; j: arm inertia; m_g: static moment; T > 0; finite."),
+    .units = RT_DOC("m m N*m rad rad N*m rad - rad rad s s N*m/rad N*m*s/rad kg*m^2 N*m"),
 };
 
 /* ------------------------------------------------------------------ arm_motor */
@@ -159,4 +172,9 @@ const rt_kind mdl_arm_motor_kind = {
     .u_names = mot_u, .y_names = mot_y,
     .feed = RT_FEED_ALL,
     .output = mot_output,
+    .doc = RT_DOC(
+        "Motor at the origin turning a massless arm to the point (x, z), output only with\n"
+        "throughput (eq. (1)): force f = tau / (x^2 + z^2) (-z, 0, x), perpendicular to\n"
+        "the arm, of moment tau about -y (f = 0 at the origin). No parameters."),
+    .units = RT_DOC("N*m m m N N N"),
 };

@@ -47,4 +47,10 @@ const rt_kind mdl_ball_kind = {
     .p_default = p_default, .x_default = x_default, .root_dir = root_dir,
     .feed = RT_FEED_NONE,
     .check = check, .output = output, .deriv = deriv, .roots = roots, .event = event,
+    .doc = RT_DOC(
+        "Ball bouncing on the ground (eq. (3) with one state event): h' = v, v' = -g.\n"
+        "Root h falls through 0 at an impact, where v <- -e v; the discrete states count\n"
+        "the impacts (n) and hold the time of the last one (t_hit). Outputs h and v.\n"
+        "g: gravity, > 0; e: coefficient of restitution, 0 <= e <= 1."),
+    .units = RT_DOC("m m/s m m/s - s m/s^2 -"),
 };

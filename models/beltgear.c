@@ -30,6 +30,12 @@ const rt_kind mdl_pulley_kind = {
     .nu = 2, .ny = 1, .np = 3,
     .u_names = pul_u, .y_names = pul_y, .p_names = pul_p, .p_default = pul_def,
     .feed = RT_FEED_ALL, .check = pul_check, .output = pul_out,
+    .doc = RT_DOC(
+        "Pulley of the belt gear (Fig. 6), output only with throughput (eq. (1)):\n"
+        "angular acceleration a = (M + s r F) / J from drive torque M and belt force F.\n"
+        "J: moment of inertia, > 0; r: radius, > 0; s: +1 or -1, the side the belt force\n"
+        "acts on."),
+    .units = RT_DOC("N*m N rad/s^2 kg*m^2 m -"),
 };
 
 /* ---- rotor: input a; states and outputs phi [rad], omega [rad/s] */
@@ -53,6 +59,10 @@ const rt_kind mdl_rotor_kind = {
     .nu = 1, .ny = 2, .nx = 2,
     .u_names = rot_u, .y_names = rot_x, .x_names = rot_x,
     .feed = RT_FEED_NONE, .output = rot_out, .deriv = rot_deriv,
+    .doc = RT_DOC(
+        "Rotor of the belt gear (Fig. 6, eq. (3)): integrates the angular acceleration a,\n"
+        "phi' = omega, omega' = a; outputs phi and omega (no throughput). No parameters."),
+    .units = RT_DOC("rad/s^2 rad rad/s rad rad/s"),
 };
 
 /* ---- belt: inputs phi1, omega1, phi2, omega2, a1, a2; output F [N];
@@ -82,4 +92,10 @@ const rt_kind mdl_belt_kind = {
     .u_names = belt_u, .y_names = belt_y, .p_names = belt_p, .p_default = belt_def,
     .feed = RT_FEED_TABLE, .feed_table = belt_feed,
     .check = belt_check, .output = belt_out,
+    .doc = RT_DOC(
+        "Elastic belt of the belt gear (Fig. 6), output only (eq. (1)): force difference\n"
+        "F = F_t - F_s = 2 (k D + c D') + m (r1 a1 - r2 a2), D = r1 phi1 - r2 phi2;\n"
+        "throughput only from a1, a2 (the belt inertia closes the algebraic loop).\n"
+        "k: stiffness, >= 0; c: damping, >= 0; m: belt mass, >= 0; r1, r2: radii, > 0."),
+    .units = RT_DOC("rad rad/s rad rad/s rad/s^2 rad/s^2 N N/m N*s/m kg m m"),
 };

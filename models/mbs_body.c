@@ -216,10 +216,32 @@ const rt_kind mdl_mbs_body_kind = {
     .y_names = y_names, .x_names = x_names, .p_names = p_names, .p_default = p_default,
     .x_default = x_default, .feed = RT_FEED_NONE, .check = check, .output = output,
     .spec = &spec,
+    .doc = RT_DOC(
+        "Spatial rigid body (eq. (6)): q = [r, p], p = (p0, p1, p2, p3) a unit quaternion\n"
+        "(scalar first) of the body-to-inertial rotation R(p); z = [v inertial, w body].\n"
+        "r' = v, p' = 1/2 p (x) (0, w) (6a); m v' = m g, J w' = -w x J w (6b).\n"
+        "Nodes cm, n1, n2 [r|S], S = R, at body offsets 0, (n1x n1y n1z), (n2x n2y n2z).\n"
+        "m > 0; J (Jxx Jyy Jzz Jxy Jyz Jxz, about cm, body frame) positive definite; all\n"
+        "finite. Outputs: cm position and velocity, w, n1 and n2 position and velocity."),
+    .units = RT_DOC(
+        "m m m m/s m/s m/s rad/s rad/s rad/s m m m m/s m/s m/s m m m m/s m/s m/s m m m - - "
+        "- - m/s m/s m/s rad/s rad/s rad/s kg kg*m^2 kg*m^2 kg*m^2 kg*m^2 kg*m^2 kg*m^2 "
+        "m/s^2 m/s^2 m/s^2 m m m m m m"),
 };
 const rt_kind mdl_mbs_bodyf_kind = {
     .name = "mbs_bodyf", .type = RT_KIND_MBS, .nu = 6, .ny = 21, .nx = 13, .np = NP,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default, .feed = RT_FEED_NONE, .check = check,
     .output = output, .spec = &spec_u,
+    .doc = RT_DOC(
+        "Spatial rigid body with inputs (eq. (6)): q = [r, p], p a unit quaternion\n"
+        "(scalar first) of R(p); z = [v inertial, w body]. r' = v, p' = 1/2 p (x) (0, w);\n"
+        "m v' = m g + f (f inertial, at cm), J w' = -w x J w + tau (tau in body frame).\n"
+        "Nodes cm, n1, n2 [r|S] at body offsets 0, n1, n2, S = R. m > 0; J (Jxx Jyy Jzz\n"
+        "Jxy Jyz Jxz, about cm, body frame) positive definite; all finite.\n"
+        "Outputs: cm position and velocity, w, n1 and n2 position and velocity."),
+    .units = RT_DOC(
+        "N N N N*m N*m N*m m m m m/s m/s m/s rad/s rad/s rad/s m m m m/s m/s m/s m m m m/s "
+        "m/s m/s m m m - - - - m/s m/s m/s rad/s rad/s rad/s kg kg*m^2 kg*m^2 kg*m^2 "
+        "kg*m^2 kg*m^2 kg*m^2 m/s^2 m/s^2 m/s^2 m m m m m m"),
 };

@@ -104,4 +104,12 @@ const rt_kind mdl_mbs_dumbbell_kind = {
     .name = "mbs_dumbbell", .type = RT_KIND_MBS, .ny = 6, .nx = 12, .np = NP,
     .y_names = x_names, .x_names = x_names, .p_names = p_names, .p_default = p_default,
     .feed = RT_FEED_NONE, .check = check, .output = output, .spec = &spec,
+    .doc = RT_DOC(
+        "Two mass points joined by a massless rod: eq. (6) with one internal constraint\n"
+        "g = |r1 - r2| - l = 0 (6c), the spherical difference joint of eq. (8).\n"
+        "q = [r1, r2], z = [v1, v2]; q' = z, mi vi' = mi g + rod force.\n"
+        "Nodes p1, p2 [r|S] at the points, S = I. Outputs both positions.\n"
+        "m1, m2: masses, > 0; l: rod length, > 0; gx, gy, gz: gravity; all finite."),
+    .units = RT_DOC(
+        "m m m m m m m m m m m m m/s m/s m/s m/s m/s m/s kg kg m m/s^2 m/s^2 m/s^2"),
 };

@@ -93,10 +93,23 @@ const rt_kind mdl_mbs_point_kind = {
     .name = "mbs_point", .type = RT_KIND_MBS, .ny = 6, .nx = 6, .np = 4,
     .y_names = x_names, .x_names = x_names, .p_names = p_names, .p_default = p_default,
     .feed = RT_FEED_NONE, .check = check, .output = output, .spec = &spec,
+    .doc = RT_DOC(
+        "Mass point as a multibody module (eq. (6): K = I, b = 0, M = m I, no internal\n"
+        "constraints): coordinates q = r = (x, y, z), velocities z = v = (vx, vy, vz);\n"
+        "q' = v, m v' = m g. One node c [r|S] at the point, S = I.\n"
+        "Outputs position and velocity. m: mass, > 0; gx, gy, gz: gravity; all finite."),
+    .units = RT_DOC("m m m m/s m/s m/s m m m m/s m/s m/s kg m/s^2 m/s^2 m/s^2"),
 };
 const rt_kind mdl_mbs_pointf_kind = {
     .name = "mbs_pointf", .type = RT_KIND_MBS, .nu = 3, .ny = 6, .nx = 6, .np = 4,
     .u_names = u_names, .y_names = x_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .feed = RT_FEED_NONE, .check = check, .output = output,
     .spec = &spec_u,
+    .doc = RT_DOC(
+        "Mass point with an applied force as a multibody module (eq. (6): K = I, b = 0,\n"
+        "M = m I, no internal constraints): coordinates q = r = (x, y, z), velocities\n"
+        "z = v = (vx, vy, vz); q' = v, m v' = m g + f, f = (fx, fy, fz) inertial.\n"
+        "One node c [r|S] at the point, S = I. Outputs position and velocity.\n"
+        "m: mass, > 0; gx, gy, gz: gravity; all finite."),
+    .units = RT_DOC("N N N m m m m/s m/s m/s m m m m/s m/s m/s kg m/s^2 m/s^2 m/s^2"),
 };

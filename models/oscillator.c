@@ -27,4 +27,10 @@ const rt_kind mdl_oscillator_kind = {
     .p_default = p_default, .x_default = x_default,
     .feed = RT_FEED_NONE,
     .output = output, .deriv = deriv,
+    .doc = RT_DOC(
+        "Harmonic oscillator x'' = -omega^2 x in nonlinear state space (eq. (3)):\n"
+        "x' = v, v' = -omega^2 x; outputs the states x and v (no throughput).\n"
+        "omega: angular eigenfrequency; any value is accepted (no check; only omega^2\n"
+        "enters, so its sign does not matter)."),
+    .units = RT_DOC("m m/s m m/s rad/s"),
 };

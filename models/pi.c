@@ -28,4 +28,10 @@ const rt_kind mdl_pi_kind = {
     .p_default = p_default,
     .feed = RT_FEED_ALL,
     .output = output, .update = update,
+    .doc = RT_DOC(
+        "Sampled PI controller (DSS, eq. (5)) with sample period Ts (the block's step):\n"
+        "e[k] = r[k] - m[k], c[k] = Kp e[k] + I[k], I[k+1] = I[k] + Ki Ts e[k].\n"
+        "c is held between samples and depends directly on r and m (throughput).\n"
+        "Kp: proportional gain; Ki: integral gain; any values (no check)."),
+    .units = RT_DOC("- - - - - 1/s"),
 };

@@ -27,4 +27,9 @@ const rt_kind mdl_pt1_kind = {
     .p_default = p_default,
     .feed = RT_FEED_NONE,
     .check = check, .output = output, .deriv = deriv,
+    .doc = RT_DOC(
+        "First-order lag T y' = K u - y (eq. (3)); state and output y (no throughput).\n"
+        "K: static gain, finite; T: time constant, finite and > 0.\n"
+        "Signals carry the scene's unit (y in K times the unit of u)."),
+    .units = RT_DOC("- - - - s"),
 };

@@ -34,4 +34,9 @@ const rt_kind mdl_vanderpol_kind = {
     .p_default = p_default, .x_default = x_default,
     .feed = RT_FEED_NONE,
     .check = check, .output = output, .deriv = deriv,
+    .doc = RT_DOC(
+        "Van der Pol oscillator x'' = mu (1 - x^2) x' - x (eq. (3)) in time scaled to\n"
+        "the natural frequency 1 rad/s: x' = v, v' = mu (1 - x^2) v - x; outputs x, v.\n"
+        "mu: damping, finite and >= 0 (mu < 0 makes the limit cycle repelling)."),
+    .units = RT_DOC("- 1/s - 1/s -"),
 };

@@ -6,5 +6,6 @@ void test_rmath_libm(void);
 static const th_test rmath_libm_tests[] = {{"rmath_libm", test_rmath_libm}, {0, 0}};
 
 extern const th_test th_tune_tests[];
+extern const th_test th_kinds_doc_tests[];
 
-const th_test *const th_host[] = {rmath_libm_tests, th_tune_tests, 0};
+const th_test *const th_host[] = {rmath_libm_tests, th_tune_tests, th_kinds_doc_tests, 0};
