@@ -1,20 +1,28 @@
 # modrt - one flat Makefile. User settings first; `make help` lists the targets.
 #
 #   REAL=double|float   scalar type of the runtime (real_t)
-#   O=DIR               output directory (default build/host, build/host-float for REAL=float)
 #   SAN=1               build with AddressSanitizer and UndefinedBehaviorSanitizer
+#   O=DIR               output directory; by default keyed by everything that changes the
+#                       object code: build/host, build/host-float, build/host-san, ...
+#                       (cross targets: build/<target>, build/<target>-float)
 #   CC=...              host compiler
+#   V=1                 show every command (default: one line per step and test suite)
 
 REAL ?= double
 SAN ?= 0
 CC ?= gcc
+V ?= 0
 # parallel jobs of the sub-makes `make test` runs
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-ifeq ($(REAL),float)
-O ?= build/host-float
+XSUF := $(if $(filter float,$(REAL)),-float)
+O ?= build/host$(XSUF)$(if $(filter 1,$(SAN)),-san)
+ifeq ($(V),1)
+Q :=
 else
-O ?= build/host
+Q := @
 endif
+
+.DEFAULT_GOAL := all
 
 # ---- flags: the same everywhere, so every target computes the same bits ----
 CSTD     := -std=c11 -Wall -Wextra -Werror -ffp-contract=off -fno-math-errno
@@ -31,8 +39,12 @@ COPT     := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-san
 LDSAN    := -fsanitize=address,undefined
 endif
 CFLAGS_ALL = $(CSTD) $(COPT) $(CINC) $(CDEFS) -MMD -MP
-# rt/ and models/ are freestanding: no libc, no libm, no builtins that call them
-CFLAGS_FREE = $(CFLAGS_ALL) -ffreestanding
+# rt/ and models/ are freestanding: no libc, no libm, no builtins that call them; each
+# layer sees only the headers it may include (rt/ its own, models/ rt/ and its own), so
+# a wrong include fails the build (docs/architecture.md, "Layers")
+CFLAGS_LAYER = $(CSTD) $(COPT) $(CDEFS) -MMD -MP -ffreestanding
+CFLAGS_RT = $(CFLAGS_LAYER) -Irt
+CFLAGS_MODELS = $(CFLAGS_LAYER) -Irt -Imodels
 
 # ---- sources ----
 RT_SRCS     := $(wildcard rt/*.c)
@@ -55,29 +67,44 @@ include tools/scenec/scenec.mk
         $(addprefix cross-test-,$(CROSS_TARGETS)) $(addprefix check-target-,$(CROSS_TARGETS)) \
         foot-elf
 
-all: $(O)/modrt $(O)/svgplot
+all: $(O)/modrt $(O)/svgplot $(SCENEC)
 
 help:
-	@echo "make            build the CLI and tools into $(O)/"
-	@echo "make demo       run the demo scene, write its trace and an SVG plot"
-	@echo "make test       every test: freestanding check, unit tests (plain, sanitized,"
-	@echo "                float), CLI checks, cross tests where toolchains exist"
-	@echo "make bench      work-precision and cost figures"
-	@echo "make clean      remove build/"
+	@echo "make              build the CLI (modrt), the scene compiler (scenec) and svgplot"
+	@echo "                  into $(O)/"
+	@echo "make demo         run the demo scene, write its trace and SVG plots into build/demo/"
+	@echo "make test         every test suite, one line each, ending in 'N passed, N failed'"
+	@echo "                  (V=1: every command and all output; logs in build/test-logs/)"
+	@echo "make bench        benchmarks: figures into build/bench/ (make docs: into docs/)"
+	@echo "make docs         refresh the committed figures and references under docs/"
+	@echo "make cross-test   every cross target under QEMU (cross-test-<t>: one; targets:"
+	@echo "                  $(CROSS_TARGETS))"
+	@echo "make footprint    flash, RAM and instructions per tick of every scene on every target"
+	@echo "make fuzz         the scene-language fuzzer for $(FUZZ_TIME) s"
+	@echo "make deps         install what the targets need (tools/install-deps.sh)"
+	@echo "make clean        remove build/"
+	@echo "settings: REAL=double|float SAN=1 O=DIR V=1 CC=..."
+
+# what a target needs that make cannot build: installed through tools/install-deps.sh
+# when this user can (root or sudo), otherwise one line names the command to run
+deps:
+	@sh tools/install-deps.sh --auto all
+deps-host:
+	@sh tools/install-deps.sh --auto host
 
 # rt/ and models/ build freestanding; ports, tests and tools build hosted
 $(O)/obj/rt/%.o: rt/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_FREE) -c $< -o $@
+	$(Q)$(CC) $(CFLAGS_RT) -c $< -o $@
 $(O)/obj/models/%.o: models/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_FREE) -c $< -o $@
+	$(Q)$(CC) $(CFLAGS_MODELS) -c $< -o $@
 $(O)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -c $< -o $@
+	$(Q)$(CC) $(CFLAGS_ALL) -c $< -o $@
 
 $(O)/modrt: $(call obj,tools/modrt/modrt.c $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
-	$(CC) $(LDSAN) $^ -o $@
+	$(Q)$(CC) $(LDSAN) $^ -o $@
 
 # the version `modrt --version` prints: the git description, rewritten only when it changes
 $(call obj,tools/modrt/modrt.c): build/gen/version.h
@@ -91,10 +118,10 @@ FORCE:
 
 $(O)/svgplot: tools/svgplot.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CSTD) -O2 $< -lm -o $@
+	$(Q)$(CC) $(CSTD) -O2 $< -lm -o $@
 
 $(O)/tests: $(call obj,$(TEST_SRCS) $(HOST_TEST_SRCS) $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
-	$(CC) $(LDSAN) $^ -lm -o $@
+	$(Q)$(CC) $(LDSAN) $^ -lm -o $@
 
 # ---- tests ----
 unit: $(O)/tests
@@ -110,15 +137,27 @@ check-freestanding: $(RT_OBJS) $(MODEL_OBJS)
 	if [ -n "$$bad" ]; then echo "check-freestanding: rt/ or models/ call outside themselves:"; \
 	  echo "$$bad"; exit 1; fi; echo "check-freestanding: ok ($(words $^) objects, no libc or libm)"
 
-test: check-freestanding
+# every suite is a make target; `make test` runs them one after another, one line each,
+# and ends with the grand total (tools/run-suites.sh). Other makefiles add theirs to
+# TEST_SUITES.
+TEST_SUITES = check-freestanding test-unit test-san test-float test-cli test-scenec \
+               test-fuzz $(addprefix cross-test-,$(CROSS_TARGETS))
+test: deps
+	@V=$(V) sh tools/run-suites.sh "$(MAKE) JOBS=$(JOBS) V=$(V)" $(TEST_SUITES)
+test-unit:
 	$(MAKE) --no-print-directory -j$(JOBS) unit
-	$(MAKE) --no-print-directory -j$(JOBS) O=build/host-san SAN=1 unit
+test-san:
+	$(MAKE) --no-print-directory -j$(JOBS) SAN=1 unit
+test-float:
 	$(MAKE) --no-print-directory -j$(JOBS) REAL=float unit
+test-cli:
 	$(MAKE) --no-print-directory -j$(JOBS) all
 	sh tests/cli.sh $(O)
+test-scenec:
 	$(MAKE) --no-print-directory -j$(JOBS) scenec-test
+test-fuzz:
 	$(MAKE) --no-print-directory fuzz-short
-	$(MAKE) --no-print-directory -j$(JOBS) cross-test
+.PHONY: deps deps-host test-unit test-san test-float test-cli test-scenec test-fuzz docs FORCE
 
 # ---- cross targets (ports/targets.mk: compilers, flags, QEMU commands) ----
 include ports/targets.mk
@@ -128,7 +167,7 @@ CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tes
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := tests/cross/rt_main.c tests/harness.c
 CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
-cobj = $(patsubst %,build/$(1)/obj/%.o,$(basename $(2)))
+cobj = $(patsubst %,build/$(1)$(XSUF)/obj/%.o,$(basename $(2)))
 
 # the host's binary64 results are the reference for every target's arithmetic
 $(O)/softfloat: $(call obj,$(CROSS_SOFTFLOAT_SRCS) ports/posix/app_main.c ports/posix/port.c)
@@ -140,56 +179,56 @@ $(O)/scenes: $(call obj,tests/cross/scenes_main.c tests/harness.c ports/posix/ap
 	$(CC) $(LDSAN) $^ -o $@
 
 define CROSS_RULES
-build/$(1)/obj/%.o: %.c
+build/$(1)$(XSUF)/obj/%.o: %.c
 	@mkdir -p $$(dir $$@)
-	$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) -c $$< -o $$@
-build/$(1)/obj/%.o: %.S
+	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) -c $$< -o $$@
+build/$(1)$(XSUF)/obj/%.o: %.S
 	@mkdir -p $$(dir $$@)
-	$$(TARGET_CC_$(1)) $$(TARGET_CFLAGS_$(1)) -c $$< -o $$@
-build/$(1)/tests.elf: $$(call cobj,$(1),$$(CROSS_TEST_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
+	$(Q)$$(TARGET_CC_$(1)) $$(TARGET_CFLAGS_$(1)) -c $$< -o $$@
+build/$(1)$(XSUF)/tests.elf: $$(call cobj,$(1),$$(CROSS_TEST_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
                       $$(TARGET_PORT_SRCS_$(1)))
-	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
-build/$(1)/scenes.elf: $$(call cobj,$(1),$$(CROSS_SCENE_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
+	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+build/$(1)$(XSUF)/scenes.elf: $$(call cobj,$(1),$$(CROSS_SCENE_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
                        $$(TARGET_PORT_SRCS_$(1)))
-	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
-build/$(1)/rt.elf: $$(call cobj,$(1),$$(CROSS_RT_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
+	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+build/$(1)$(XSUF)/rt.elf: $$(call cobj,$(1),$$(CROSS_RT_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
                    $$(TARGET_PORT_SRCS_$(1)))
-	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
-build/$(1)/softfloat.elf: $$(call cobj,$(1),$$(CROSS_SOFTFLOAT_SRCS) $$(TARGET_PORT_SRCS_$(1)))
-	$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
-cross-test-$(1): build/$(1)/tests.elf build/$(1)/scenes.elf build/$(1)/rt.elf \
-                 build/host/scenes.log build/$(1)/softfloat.elf build/host/softfloat.log
-	@$$(TARGET_RUN_$(1)) build/$(1)/softfloat.elf > build/$(1)/softfloat.log 2>&1 || \
-	  { cat build/$(1)/softfloat.log; echo "cross-test $(1): softfloat test failed"; exit 1; }
-	@if diff build/host/softfloat.log build/$(1)/softfloat.log; then \
-	  echo "cross-test $(1): $$$$(grep -c hash build/$(1)/softfloat.log) binary64 result hashes equal the host's"; \
+	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+build/$(1)$(XSUF)/softfloat.elf: $$(call cobj,$(1),$$(CROSS_SOFTFLOAT_SRCS) $$(TARGET_PORT_SRCS_$(1)))
+	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+cross-test-$(1): build/$(1)$(XSUF)/tests.elf build/$(1)$(XSUF)/scenes.elf build/$(1)$(XSUF)/rt.elf \
+                 $(O)/scenes.log build/$(1)$(XSUF)/softfloat.elf $(O)/softfloat.log
+	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/softfloat.elf > build/$(1)$(XSUF)/softfloat.log 2>&1 || \
+	  { cat build/$(1)$(XSUF)/softfloat.log; echo "cross-test $(1): softfloat test failed"; exit 1; }
+	@if diff $(O)/softfloat.log build/$(1)$(XSUF)/softfloat.log; then \
+	  echo "cross-test $(1): binary64 result hashes equal to the host's: $$$$(grep -c hash build/$(1)$(XSUF)/softfloat.log) passed, 0 failed"; \
 	else echo "cross-test $(1): binary64 result hashes differ from the host's"; exit 1; fi
 	@echo "cross-test $(1): unit tests"
-	@$$(TARGET_RUN_$(1)) build/$(1)/tests.elf > build/$(1)/tests.log 2>&1 || \
-	  { grep -E 'FAIL|passed' build/$(1)/tests.log; echo "cross-test $(1): unit tests failed"; exit 1; }
-	@tail -1 build/$(1)/tests.log
-	@$$(TARGET_RUN_$(1)) build/$(1)/scenes.elf > build/$(1)/scenes.log 2>&1 || \
-	  { cat build/$(1)/scenes.log; echo "cross-test $(1): scene image failed"; exit 1; }
-	@if diff build/host/scenes.log build/$(1)/scenes.log; then \
-	  echo "cross-test $(1): $$$$(wc -l < build/$(1)/scenes.log) scene hashes equal the host's"; \
+	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/tests.elf > build/$(1)$(XSUF)/tests.log 2>&1 || \
+	  { grep -E 'FAIL|passed' build/$(1)$(XSUF)/tests.log; echo "cross-test $(1): unit tests failed"; exit 1; }
+	@echo "cross-test $(1): unit tests: $$$$(tail -1 build/$(1)$(XSUF)/tests.log)"
+	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/scenes.elf > build/$(1)$(XSUF)/scenes.log 2>&1 || \
+	  { cat build/$(1)$(XSUF)/scenes.log; echo "cross-test $(1): scene image failed"; exit 1; }
+	@if diff $(O)/scenes.log build/$(1)$(XSUF)/scenes.log; then \
+	  echo "cross-test $(1): scene hashes equal to the host's: $$$$(wc -l < build/$(1)$(XSUF)/scenes.log) passed, 0 failed"; \
 	else echo "cross-test $(1): scene hashes differ from the host's"; exit 1; fi
-	@$$(TARGET_RUN_$(1)) build/$(1)/rt.elf > build/$(1)/rt.log 2>&1 || \
-	  { cat build/$(1)/rt.log; echo "cross-test $(1): timer-paced run failed"; exit 1; }
-	@h=$$$$(sed -n 's/.* hash //p' build/$(1)/rt.log); \
-	if [ "$$$$h" = "$$$$(build/host/modrt run pi_loop | sed -n 's/^hash: //p')" ]; then \
-	  echo "cross-test $(1): timer-paced pi_loop: $$$$(sed 's/^rt scene pi_loop //' build/$(1)/rt.log)"; \
-	else cat build/$(1)/rt.log; echo "cross-test $(1): timer-paced hash differs"; exit 1; fi
-	@if [ "$$(TARGET_VTIME_$(1))" = 1 ] && ! grep -q ' overruns 0 ' build/$(1)/rt.log; then \
+	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/rt.elf > build/$(1)$(XSUF)/rt.log 2>&1 || \
+	  { cat build/$(1)$(XSUF)/rt.log; echo "cross-test $(1): timer-paced run failed"; exit 1; }
+	@h=$$$$(sed -n 's/.* hash //p' build/$(1)$(XSUF)/rt.log); \
+	if [ "$$$$h" = "$$$$($(O)/modrt run pi_loop | sed -n 's/^hash: //p')" ]; then \
+	  echo "cross-test $(1): timer-paced pi_loop: $$$$(sed 's/^rt scene pi_loop //' build/$(1)$(XSUF)/rt.log)"; \
+	else cat build/$(1)$(XSUF)/rt.log; echo "cross-test $(1): timer-paced hash differs"; exit 1; fi
+	@if [ "$$(TARGET_VTIME_$(1))" = 1 ] && ! grep -q ' overruns 0 ' build/$(1)$(XSUF)/rt.log; then \
 	  echo "cross-test $(1): overruns in deterministic virtual time"; exit 1; fi
 endef
 $(foreach t,$(CROSS_TARGETS),$(eval $(call CROSS_RULES,$(t))))
 
-build/host/softfloat.log: build/host/softfloat
-	build/host/softfloat > $@
+$(O)/softfloat.log: $(O)/softfloat
+	$(O)/softfloat > $@
 
-build/host/scenes.log: build/host/scenes build/host/modrt
-	build/host/scenes > $@
-	@sh tests/cross/check_host.sh build/host/modrt $@
+$(O)/scenes.log: $(O)/scenes $(O)/modrt
+	$(O)/scenes > $@
+	@sh tests/cross/check_host.sh $(O)/modrt $@
 
 # every target whose toolchain and emulator are installed; the others are named
 cross-test:
@@ -231,17 +270,30 @@ $(O)/mbs_bench: $(call obj,tools/bench/mbs_bench.c tools/bench/bench_doc.c) $(RT
 $(O)/multirate_bench: $(call obj,tools/bench/multirate_bench.c tools/bench/bench_doc.c) \
                      $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
+# benchmarks write into build/bench/ only (documents are spliced into copies there);
+# `make docs` runs them and copies the figures over the committed ones in docs/
+BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
 bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot
 	@mkdir -p build/bench
-	$(O)/mbs_bench --csv build/bench/mbs.csv --doc docs/mbs.md
+	@cp docs/mbs.md docs/multirate.md build/bench/
+	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md
 	$(O)/svgplot --xy --logx --logy -t "pendulum10: position error at 2 s against host CPU time" \
 	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
-	    -o docs/mbs_bench.svg build/bench/mbs.csv
-	$(O)/multirate_bench --csv build/bench/multirate.csv --doc docs/multirate.md
+	    -o build/bench/mbs_bench.svg build/bench/mbs.csv
+	$(O)/multirate_bench --csv build/bench/multirate.csv --doc build/bench/multirate.md
 	$(O)/svgplot --xy --logx --logy \
 	    -t "pendulum10_actuated: position error at 10 s against host CPU time" \
 	    -x "host CPU s per run of 10 s" -y "largest position error at 10 s [m]" \
-	    -o docs/multirate_bench.svg build/bench/multirate.csv
+	    -o build/bench/multirate_bench.svg build/bench/multirate.csv
+	@echo "bench: figures in build/bench/ (make docs copies them into docs/)"
+
+# the committed references and figures: the block reference from the kinds' tables, and
+# the benchmark figures
+docs: bench docs/blocks.md
+	cp $(addprefix build/bench/,$(BENCH_DOCS)) docs/
+	@echo "docs: refreshed docs/blocks.md and $(BENCH_DOCS)"
+docs/blocks.md: $(O)/modrt
+	$(O)/modrt docs-blocks > $@
 
 # ---- demo ----
 # the paper's first example: the 10-body pendulum; plot the tip, the middle, the first body

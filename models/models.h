@@ -20,8 +20,6 @@ enum { MDL_PT1_Y = 0 };
 
 /* sampled PI controller (DSS): inputs r (reference), m (measurement); output c */
 extern const rt_kind mdl_pi_kind;
-enum { MDL_PI_U_R = 0, MDL_PI_U_M };
-enum { MDL_PI_Y_C = 0 };
 
 /* step source y = y0 for t < t0, y1 after (OUTPUT) */
 extern const rt_kind mdl_step_kind;
@@ -48,11 +46,9 @@ extern const rt_kind mdl_pulley_kind, mdl_rotor_kind, mdl_belt_kind;
 /* multibody modules (MBS, eq. 6; services rt/mbs.c, nodes and joints rt_mbs.h):
    mass point, states x y z vx vy vz, node "c" (mbs_pointf: force inputs fx fy fz) */
 extern const rt_kind mdl_mbs_point_kind, mdl_mbs_pointf_kind;
-enum { MDL_MBS_POINT_X = 0, MDL_MBS_POINT_Y, MDL_MBS_POINT_Z };
 /* spatial rigid body with a unit quaternion, nodes "cm", "n1", "n2"
    (mbs_bodyf: inputs force fx fy fz, body torque tx ty tz) */
 extern const rt_kind mdl_mbs_body_kind, mdl_mbs_bodyf_kind;
-enum { MDL_MBS_BODY_P_N1 = 10, MDL_MBS_BODY_P_N2 = 13 };     /* node offsets (parameters) */
 enum { MDL_MBS_BODY_Y_N1 = 9, MDL_MBS_BODY_Y_N2 = 15 };      /* node x y z vx vy vz (outputs) */
 /* two mass points joined by an internal rod (an internal constraint), nodes "p1", "p2" */
 extern const rt_kind mdl_mbs_dumbbell_kind;
@@ -73,8 +69,6 @@ extern const rt_scene_entry mdl_scenes[];
    u, theta, thr); motor turning the arm (OUTPUT; inputs tau x z, outputs fx fy fz) */
 extern const rt_kind mdl_servo2_kind, mdl_arm_pd_kind, mdl_arm_motor_kind;
 enum { MDL_SERVO2_Y = 0, MDL_SERVO2_YD };
-enum { MDL_ARM_PD_U_X = 0, MDL_ARM_PD_U_Z };
 enum { MDL_ARM_PD_Y_U = 0, MDL_ARM_PD_Y_THETA, MDL_ARM_PD_Y_THR };
-enum { MDL_ARM_MOTOR_U_TAU = 0, MDL_ARM_MOTOR_U_X, MDL_ARM_MOTOR_U_Z };
 
 #endif /* MDL_MODELS_H */

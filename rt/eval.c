@@ -5,11 +5,13 @@
  * rt_init computed. */
 #include "rti.h"
 
-void rti_gather(rt_sim *sim, uint16_t b)
+RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b)
 {
-    /* pointers and a size_t index: with a uint16_t index into several arrays of the
-       struct, GCC 12's AArch64 ivopts built addresses from -7 * sim, a later pass took
-       them for NULL dereferences and deleted every call of this function as pure */
+    /* GCC 12 on AArch64 (-O2): ivopts builds the addresses of this loop from -7 * sim,
+       the pure-const pass then takes them for NULL dereferences and deletes every call of
+       this function as having no effect (every scene's inputs stay 0). Pointers and a
+       size_t index avoided it for one layout of rt_sim, not for the next; RTI_NOIPA keeps
+       the interprocedural passes away from it for good (see the cross tests). */
     const uint8_t *kind = sim->plan.src_kind;
     const uint16_t *src = sim->plan.src;
     real_t *u = sim->work.u;
@@ -106,6 +108,7 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     uint16_t base = sim->plan.set_x[c->set];
 
     sim->work.set_now = c->set;
+    sim->stats.rhs_evals[c->set]++;
     rti_outputs(sc, sim, t, RTI_IN_STEP);
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;

@@ -4,18 +4,6 @@
  * All of this runs once, before the first tick; nothing here is on the tick path. */
 #include "rti.h"
 
-int rti_feeds(const rt_kind *k, uint16_t j, uint16_t i)
-{
-    switch (k->feed) {
-    case RT_FEED_ALL:
-        return 1;
-    case RT_FEED_TABLE:
-        return k->feed_table[j * k->nu + i] != 0;
-    default:
-        return 0;
-    }
-}
-
 /* the services a kind must provide for its sizes and type */
 static rt_status check_kind(rt_sim *sim, const rt_block *b)
 {
@@ -47,7 +35,7 @@ static uint32_t period_ticks(const rt_scene *sc, const rt_block *b)
     real_t r = b->ts / sc->dt;
     uint32_t n = (uint32_t)(r + (real_t)0.5);
     real_t err = rt_fabs((real_t)n * sc->dt - b->ts);
-    return (n > 0 && err <= (real_t)1e-6 * b->ts) ? n : 0;
+    return (n > 0 && err <= (real_t)RT_TICK_MATCH_REL * b->ts) ? n : 0;
 }
 
 /* offsets of every block's slices; continuous states grouped by set */
@@ -139,7 +127,7 @@ static rt_status route_conn(const rt_scene *sc, rt_sim *sim, const rt_conn *c)
         return rti_fail(sim, RT_E_SCENE, "connection to ", t->name,
                         ": input index out of range", (const char *)0);
     uint16_t gi = (uint16_t)(sim->plan.u_off[c->to] + c->u);
-    if (sim->plan.src_kind[gi] != 0xFF)
+    if (sim->plan.src_kind[gi] != RTI_SRC_UNSET)
         return rti_fail(sim, RT_E_SCENE, "input ", t->name, ".", t->kind->u_names[c->u],
                         " is driven twice", (const char *)0);
     sim->plan.src_kind[gi] = RT_SRC_Y;
@@ -153,7 +141,7 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
     uint16_t nu = sim->plan.u_off[sc->nblocks];
     rt_status st;
     for (uint16_t i = 0; i < nu; i++) {
-        sim->plan.src_kind[i] = 0xFF, sim->plan.src[i] = 0, sim->plan.def[i] = 0, sim->work.u[i] = 0;
+        sim->plan.src_kind[i] = RTI_SRC_UNSET, sim->plan.src[i] = 0, sim->plan.def[i] = 0, sim->work.u[i] = 0;
         sim->plan.interp[i] = 0, sim->plan.src_set[i] = 0;
     }
     for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++) {
@@ -170,7 +158,7 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
             return rti_fail(sim, RT_E_SCENE, "a default value names an input out of range",
                             (const char *)0);
         uint16_t gi = (uint16_t)(sim->plan.u_off[d->block] + d->u);
-        if (sim->plan.src_kind[gi] != 0xFF)
+        if (sim->plan.src_kind[gi] != RTI_SRC_UNSET)
             return rti_fail(sim, RT_E_SCENE, "input ", sc->blocks[d->block].name, ".",
                             sc->blocks[d->block].kind->u_names[d->u],
                             " is both connected and given a default", (const char *)0);
@@ -179,7 +167,7 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
     }
     for (uint16_t b = 0; b < sc->nblocks; b++)
         for (uint16_t i = 0; i < sc->blocks[b].kind->nu; i++)
-            if (sim->plan.src_kind[sim->plan.u_off[b] + i] == 0xFF)
+            if (sim->plan.src_kind[sim->plan.u_off[b] + i] == RTI_SRC_UNSET)
                 return rti_fail(sim, RT_E_UNCONNECTED, "input ", sc->blocks[b].name, ".",
                                 sc->blocks[b].kind->u_names[i],
                                 " is not connected and has no default value",

@@ -11,10 +11,10 @@
 #include "linalg.h"
 #include "rti.h"
 
-#define DEFAULT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-5 : (real_t)1e-10)
+#define DEFAULT_TOL ((real_t)RT_LOOP_TOL)
 #define SQRT_EPS (RT_REAL_IS_FLOAT ? (real_t)3.4526698e-04 : (real_t)1.4901161193847656e-08)
 #define QUART_EPS (RT_REAL_IS_FLOAT ? (real_t)1.8581361e-02 : (real_t)1.2207031250e-04)
-#define PIVOT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-6 : (real_t)1e-13)
+#define PIVOT_TOL ((real_t)RT_LOOP_PIVOT_TOL)
 
 typedef struct solve_ctx {
     const rt_scene *sc;

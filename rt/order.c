@@ -29,17 +29,35 @@ typedef struct graph_ctx {
     const rt_sim *sim;
 } graph_ctx;
 
+/* 1 if output j of kind k depends directly on its input i (a throughput) */
+static int feeds(const rt_kind *k, uint16_t j, uint16_t i)
+{
+    switch (k->feed) {
+    case RT_FEED_ALL:
+        return 1;
+    case RT_FEED_TABLE:
+        return k->feed_table[j * k->nu + i] != 0;
+    default:
+        return 0;
+    }
+}
+
+/* the successor cursor of the port graph packs the connection being scanned (high bits)
+   and the next output of its destination to try (low bits) */
+#define CURSOR_CONN_SHIFT 16
+#define CURSOR_OUT_MASK 0xFFFFu
+
 /* port graph: successors of output v are the outputs of each block it feeds that depend
-   on the fed input; cursor = (connection << 16) | next output to try */
+   on the fed input */
 static int port_next(const void *ctx, uint16_t v, uint32_t *cursor)
 {
     const graph_ctx *g = ctx;
     const rt_scene *sc = g->sc;
     uint16_t a = block_of_y(g->sim, sc->nblocks, v);
     uint16_t ya = (uint16_t)(v - g->sim->plan.y_off[a]);
-    for (uint32_t c = *cursor >> 16; c < sc->nconns; c++) {
+    for (uint32_t c = *cursor >> CURSOR_CONN_SHIFT; c < sc->nconns; c++) {
         const rt_conn *cn = &sc->conns[c];
-        uint32_t j = (c == (*cursor >> 16)) ? (*cursor & 0xFFFFu) : 0;
+        uint32_t j = (c == (*cursor >> CURSOR_CONN_SHIFT)) ? (*cursor & CURSOR_OUT_MASK) : 0;
         if (cn->from != a || cn->y != ya)
             continue;
         const rt_kind *k = sc->blocks[cn->to].kind;
@@ -47,14 +65,14 @@ static int port_next(const void *ctx, uint16_t v, uint32_t *cursor)
         if (src == RT_SRC_TORN || src == RT_SRC_XSET)
             j = k->ny; /* a torn or cross-set input carries no algebraic edge */
         for (; j < k->ny; j++) {
-            if (rti_feeds(k, (uint16_t)j, cn->u)) {
-                *cursor = (c << 16) | (j + 1);
+            if (feeds(k, (uint16_t)j, cn->u)) {
+                *cursor = (c << CURSOR_CONN_SHIFT) | (j + 1);
                 return g->sim->plan.y_off[cn->to] + (int)j;
             }
         }
-        *cursor = (c + 1) << 16;
+        *cursor = (c + 1) << CURSOR_CONN_SHIFT;
     }
-    *cursor = (uint32_t)sc->nconns << 16;
+    *cursor = (uint32_t)sc->nconns << CURSOR_CONN_SHIFT;
     return -1;
 }
 
@@ -156,7 +174,7 @@ static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, 
     uint16_t req = 0;
     for (uint16_t i = 0; i < k->nu; i++) {
         uint16_t gi = (uint16_t)(sim->plan.u_off[b] + i);
-        if (sim->plan.src_kind[gi] != RT_SRC_Y || !rti_feeds(k, j, i))
+        if (sim->plan.src_kind[gi] != RT_SRC_Y || !feeds(k, j, i))
             continue;
         uint16_t d = sim->work.w.scc.done[sim->plan.src[gi]];
         if (d > req)
@@ -270,7 +288,7 @@ static rt_status tear_from(const graph_ctx *g, rt_sim *sim, uint16_t id, uint16_
         if (w->orig[s] != id)
             continue;
         if (w->color[s] == 1) {
-            const rt_conn *cn = &sc->conns[(w->cursor[v] >> 16)];
+            const rt_conn *cn = &sc->conns[(w->cursor[v] >> CURSOR_CONN_SHIFT)];
             rt_status st = tear_input(sim, (uint16_t)(sim->plan.u_off[cn->to] + cn->u), lp);
             if (st != RT_OK)
                 return st;

@@ -497,6 +497,8 @@ typedef struct rt_stats {
     real_t xset_err[RT_MAX_SETS];    /* monitor: largest change of a set's cross-set
                                         outputs against their linear extrapolation */
     rt_istats istats[RT_MAX_SETS];   /* implicit methods' statistics per set */
+    uint64_t rhs_evals[RT_MAX_SETS]; /* right-hand-side evaluations of each set (the cost
+                                        measure of `modrt tune` and the benchmarks) */
 } rt_stats;
 
 /* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */
@@ -563,6 +565,43 @@ int rt_param_index(const rt_kind *kind, const char *name);
 /* Sets parameter `name` of block `block` before or between ticks; RT_E_ARG if unknown. */
 rt_status rt_set_param(const rt_scene *scene, rt_sim *sim, const char *block,
                        const char *name, real_t value);
+
+/* ------------------------------------------------------------------ describing a scene */
+
+/* What rt_init decided, for tools that print or size a scene (rt/describe.c). Read
+   through these, never through rt_sim.plan. Valid after a successful rt_init. */
+/* The i-th set in step order within a tick (slowest first). */
+uint8_t rt_set_at(const rt_sim *sim, uint8_t i);
+/* Continuous states a set integrates. */
+uint16_t rt_set_nx(const rt_sim *sim, uint8_t set);
+/* 1 if other sets read outputs of this set (it keeps a history and a monitor). */
+int rt_set_is_source(const rt_sim *sim, uint8_t set);
+/* Base ticks to the end time. */
+uint64_t rt_tick_count(const rt_sim *sim);
+/* Where input u of block reads its value from, and (RT_SRC_XSET) how it is rebuilt. */
+rt_src_kind rt_input_source(const rt_sim *sim, uint16_t block, uint16_t u, rt_interp *interp);
+/* The evaluation sequence (rt/order.c): its length and entries. */
+uint16_t rt_seq_count(const rt_sim *sim);
+rt_seq_step rt_seq_at(const rt_sim *sim, uint16_t i);
+/* The loops found: their number, each loop, and its i-th block. */
+uint8_t rt_loop_count(const rt_sim *sim);
+const rt_loop *rt_loop_at(const rt_sim *sim, uint8_t l);
+uint16_t rt_loop_block(const rt_sim *sim, uint8_t l, uint16_t i);
+/* Torn inputs of actual loops: their number, and torn input k as the edge it cuts. */
+typedef struct rt_torn {
+    uint16_t from, y;      /* the output that drives it: block, output index */
+    uint16_t to, u;        /* the torn input: block, input index */
+} rt_torn;
+uint16_t rt_torn_count(const rt_sim *sim);
+rt_torn rt_torn_at(const rt_scene *scene, const rt_sim *sim, uint16_t k);
+/* The exact sizes of this scene: what its per-scene build's limits must hold. */
+typedef struct rt_sizes {
+    uint16_t blocks, x, d, u, y, p, roots, sets, recs, loops, torn;
+    uint16_t implicit_n;   /* states of the largest set with an implicit method */
+    uint16_t mbs_z, mbs_q, mbs_c; /* largest multibody set: velocities, coordinates, rows */
+    uint16_t mbs_bz;       /* velocities of the largest multibody block */
+} rt_sizes;
+void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 
 /* Trace hash: FNV-1a 64 over the IEEE bit pattern of each value, little-endian. */
 #define RT_HASH_INIT 0xcbf29ce484222325ull

@@ -50,6 +50,22 @@ typedef double real_t;
 #define RT_MAX_LOOPS 8 /* potential + actual algebraic loops reported */
 #endif
 
+/* ------------------------------------------------------------------ tolerances */
+
+/* a DSS sample period (and any time the scene compiler turns into ticks) is a whole
+   number of base ticks when it is within this fraction of the period of one */
+#ifndef RT_TICK_MATCH_REL
+#define RT_TICK_MATCH_REL 1e-6
+#endif
+/* torn loops (rt/loop.c): residual tolerance of the torn inputs when the scene gives
+   none (scaled norm), and the pivot threshold of the inverse-Jacobian initialisation */
+#ifndef RT_LOOP_TOL
+#define RT_LOOP_TOL (RT_REAL_IS_FLOAT ? 1e-5 : 1e-10)
+#endif
+#ifndef RT_LOOP_PIVOT_TOL
+#define RT_LOOP_PIVOT_TOL (RT_REAL_IS_FLOAT ? 1e-6 : 1e-13)
+#endif
+
 /* 1: kinds carry their reference text (RT_DOC in rt.h) for `modrt info KIND`; embedded
    images build with 0 and keep no such strings in flash */
 #ifndef RT_KIND_DOCS

@@ -11,6 +11,17 @@ typedef enum {
     RTI_IN_STEP      /* inside a set step: DSS outputs are held, not called */
 } rti_mode;
 
+/* src_kind of an input not routed yet (rt_init's routing fills every input) */
+#define RTI_SRC_UNSET 0xFF
+
+/* keeps GCC's interprocedural passes (inlining, pure/const discovery) away from a
+   function; see rti_gather for the miscompilation it prevents */
+#if defined(__GNUC__) && !defined(__clang__)
+#define RTI_NOIPA __attribute__((noipa))
+#else
+#define RTI_NOIPA
+#endif
+
 /* ---- text (util.c) ---- */
 /* Writes the NULL-terminated list of strings into sim->err and returns status. */
 rt_status rti_fail(rt_sim *sim, rt_status status, ...);
@@ -18,10 +29,6 @@ rt_status rti_fail(rt_sim *sim, rt_status status, ...);
 void rti_zero(void *p, size_t n);
 /* Bumps counter c and remembers block b (-1: none); keeps the first fault in sim->stats.status. */
 void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status);
-
-/* ---- layout and routing (init.c) ---- */
-/* Output index `j` of block `b` depends directly on its input `i`. */
-int rti_feeds(const rt_kind *k, uint16_t j, uint16_t i);
 
 /* ---- evaluation order (order.c) ---- */
 /* Builds sim->plan.seq and sim->plan.loops from the port-level throughput graph; RT_E_LOOP when an

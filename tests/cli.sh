@@ -89,6 +89,8 @@ $M kinds >"$T/kinds"
 [ "$(wc -l <"$T/kinds")" -ge 20 ] && ok || bad "kinds lists $(wc -l <"$T/kinds")"
 $M info pt1 >"$T/kind" && grep -q '^kind: pt1$' "$T/kind" && grep -q '^  T  *\[s\]  default 1$' "$T/kind" \
     && ok || bad "info pt1: $(cat "$T/kind")"
+# docs/blocks.md is generated from the same tables: it must be current (make docs)
+$M docs-blocks | cmp -s - docs/blocks.md && ok || bad "docs/blocks.md is stale: run make docs"
 $M info pi_loop | grep -q '^  PI  *pi  *dss  *set main' && ok || bad "info shows set names"
 $M info pi_loop | grep -q 'Kp=0.8 Ki=3$' && ok || bad "info shows parameter values"
 if command -v python3 >/dev/null; then

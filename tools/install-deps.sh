@@ -1,30 +1,59 @@
 #!/bin/sh
-# install-deps.sh - installs, from Debian's packages, everything `make test`, `make demo`
-# and `make cross-test` use: the host compiler, the cross compilers and QEMU. Skips what is
-# already there; needs root (or sudo) for apt-get.
+# install-deps.sh - installs, from Debian's packages, everything the make targets use: the
+# host compiler, the cross compilers, QEMU, clang's libFuzzer, valgrind, python3. Skips
+# what is already there. Needs root (or sudo) for apt-get.
+#
+#   sh tools/install-deps.sh            install what is missing (all groups)
+#   sh tools/install-deps.sh --auto G   what the Makefile calls before a target that needs
+#                                       group G (host | all): installs when it can (root,
+#                                       or sudo without a password), otherwise prints one
+#                                       line naming the command to run and fails
 set -eu
+auto=0 group=all
+if [ "${1:-}" = "--auto" ]; then auto=1; group=${2:-all}; fi
 need=""
 have() { command -v "$1" >/dev/null 2>&1; }
 have gcc                     || need="$need gcc libc6-dev"
 have make                    || need="$need make"
-have arm-none-eabi-gcc       || need="$need gcc-arm-none-eabi"
-[ -d /usr/lib/arm-none-eabi/newlib ] || need="$need libnewlib-arm-none-eabi"
-have riscv64-unknown-elf-gcc || need="$need gcc-riscv64-unknown-elf"
-have qemu-system-arm         || need="$need qemu-system-arm"
-have qemu-system-riscv64     || need="$need qemu-system-misc"
-have qemu-aarch64            || need="$need qemu-user"
-have aarch64-linux-gnu-gcc   || need="$need gcc-aarch64-linux-gnu libc6-dev-arm64-cross"
-# libFuzzer for the scene-language fuzz target (tests/scenec/fuzz.sh falls back to its
-# own random mutator without it)
-have clang                   || need="$need clang"
-ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1 || \
-    need="$need libclang-rt-dev"
+have git                     || need="$need git"
+have python3                 || need="$need python3"
+if [ "$group" = all ]; then
+    have arm-none-eabi-gcc       || need="$need gcc-arm-none-eabi"
+    [ -d /usr/lib/arm-none-eabi/newlib ] || need="$need libnewlib-arm-none-eabi"
+    have riscv64-unknown-elf-gcc || need="$need gcc-riscv64-unknown-elf"
+    have qemu-system-arm         || need="$need qemu-system-arm"
+    have qemu-system-riscv64     || need="$need qemu-system-misc"
+    have qemu-aarch64            || need="$need qemu-user"
+    have aarch64-linux-gnu-gcc   || need="$need gcc-aarch64-linux-gnu libc6-dev-arm64-cross"
+    # libFuzzer for the fuzz targets
+    have clang                   || need="$need clang"
+    ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1 || \
+        need="$need libclang-rt-dev"
+    # callgrind: deterministic instruction counts of the benchmarks
+    have valgrind                || need="$need valgrind"
+fi
 if [ -z "$need" ]; then
-    echo "install-deps: everything is installed"
+    [ "$auto" -eq 1 ] || echo "install-deps: everything is installed"
     exit 0
 fi
 SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO=sudo
+if [ "$(id -u)" -ne 0 ]; then
+    if have sudo && sudo -n true 2>/dev/null; then
+        SUDO=sudo
+    elif [ "$auto" -eq 1 ]; then
+        echo "make: missing tools ($(echo $need)); install them with: sudo sh tools/install-deps.sh" >&2
+        exit 1
+    else
+        SUDO=sudo
+    fi
+fi
 echo "install-deps: installing$need"
 $SUDO apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $need
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $need \
+    >/tmp/install-deps.$$.log 2>&1 || {
+    tail -20 /tmp/install-deps.$$.log >&2
+    echo "install-deps: apt-get install failed (log above); run: sudo sh tools/install-deps.sh" >&2
+    exit 1
+}
+rm -f /tmp/install-deps.$$.log
+echo "install-deps: done"

@@ -256,59 +256,54 @@ static void scene_schedule(FILE *f, const rt_scene *sc, const rt_sim *s)
         period = period / gcd(period, sc->sets[i].ratio) * sc->sets[i].ratio;
     fprintf(f, "schedule: slowest first:");
     for (uint8_t i = 0; i < sc->nsets; i++)
-        fprintf(f, " %s", sc->sets[s->plan.sched[i]].name);
+        fprintf(f, " %s", sc->sets[rt_set_at(s, i)].name);
     fprintf(f, "; period %u ticks\n", (unsigned)period);
     for (uint32_t k = 0; k < period && k < INFO_SCHED_TICKS; k++) {
         fprintf(f, "  tick %2u:", (unsigned)k);
         for (uint8_t i = 0; i < sc->nsets; i++)
-            if (k % sc->sets[s->plan.sched[i]].ratio == 0)
-                fprintf(f, " %s", sc->sets[s->plan.sched[i]].name);
+            if (k % sc->sets[rt_set_at(s, i)].ratio == 0)
+                fprintf(f, " %s", sc->sets[rt_set_at(s, i)].name);
         fputc('\n', f);
     }
     for (uint16_t c = 0; c < sc->nconns; c++) {
         const rt_conn *cn = &sc->conns[c];
-        uint16_t gi = (uint16_t)(s->plan.u_off[cn->to] + cn->u);
-        if (s->plan.src_kind[gi] != RT_SRC_XSET)
+        rt_interp how;
+        if (rt_input_source(s, cn->to, cn->u, &how) != RT_SRC_XSET)
             continue;
         fprintf(f, "  across sets: %s.%s -> %s.%s by %s\n", sc->blocks[cn->from].name,
                 sc->blocks[cn->from].kind->y_names[cn->y], sc->blocks[cn->to].name,
                 sc->blocks[cn->to].kind->u_names[cn->u],
-                rt_interp_name((rt_interp)s->plan.interp[gi]));
+                rt_interp_name(how));
     }
 }
 
 /* a torn input as "From.y -> To.u" */
 static void print_torn(FILE *f, const rt_scene *sc, const rt_sim *s, uint16_t k)
 {
-    uint16_t gi = s->plan.torn_in[k], src = s->plan.torn_src[k], b = 0, from = 0;
-    while (b + 1 < sc->nblocks && s->plan.u_off[b + 1] <= gi)
-        b++;
-    while (from + 1 < sc->nblocks && s->plan.y_off[from + 1] <= src)
-        from++;
-    fprintf(f, " %s.%s -> %s.%s;", sc->blocks[from].name,
-            sc->blocks[from].kind->y_names[src - s->plan.y_off[from]], sc->blocks[b].name,
-            sc->blocks[b].kind->u_names[gi - s->plan.u_off[b]]);
+    rt_torn e = rt_torn_at(sc, s, k);
+    fprintf(f, " %s.%s -> %s.%s;", sc->blocks[e.from].name, sc->blocks[e.from].kind->y_names[e.y],
+            sc->blocks[e.to].name, sc->blocks[e.to].kind->u_names[e.u]);
 }
 
 static void scene_order(FILE *f, const rt_scene *sc, const rt_sim *s)
 {
     fprintf(f, "evaluation order:");
-    for (uint16_t i = 0; i < s->plan.nseq; i++) {
-        const rt_seq_step *st = &s->plan.seq[i];
-        if (st->kind == RT_SEQ_LOOP)
-            fprintf(f, " [loop %u:", (unsigned)st->index);
+    for (uint16_t i = 0; i < rt_seq_count(s); i++) {
+        rt_seq_step st = rt_seq_at(s, i);
+        if (st.kind == RT_SEQ_LOOP)
+            fprintf(f, " [loop %u:", (unsigned)st.index);
         else
-            fprintf(f, " %s", sc->blocks[st->index].name);
-        for (uint8_t l = 0; l < s->plan.nloops; l++)
-            if (s->plan.loops[l].actual && s->plan.loops[l].seq1 == i + 1)
+            fprintf(f, " %s", sc->blocks[st.index].name);
+        for (uint8_t l = 0; l < rt_loop_count(s); l++)
+            if (rt_loop_at(s, l)->actual && rt_loop_at(s, l)->seq1 == i + 1)
                 fprintf(f, " ]");
     }
-    fprintf(f, "\nloops: %u\n", s->plan.nloops);
-    for (uint8_t l = 0; l < s->plan.nloops; l++) {
-        const rt_loop *lp = &s->plan.loops[l];
+    fprintf(f, "\nloops: %u\n", rt_loop_count(s));
+    for (uint8_t l = 0; l < rt_loop_count(s); l++) {
+        const rt_loop *lp = rt_loop_at(s, l);
         fprintf(f, "  %u %s:", (unsigned)l, lp->actual ? "actual" : "potential");
         for (uint16_t i = 0; i < lp->nblocks; i++)
-            fprintf(f, " %s", sc->blocks[s->plan.loop_blocks[lp->first + i]].name);
+            fprintf(f, " %s", sc->blocks[rt_loop_block(s, l, i)].name);
         if (lp->actual) {
             fprintf(f, "; torn:");
             for (uint16_t k = lp->torn0; k < lp->torn0 + lp->ntorn; k++)
@@ -400,7 +395,7 @@ static void scene_json(FILE *f, const rt_scene *sc, const rt_sim *sim, rt_status
     fprintf(f, ", \"end_time\": %s", num(b, (double)sc->t_end));
     json_blocks(f, sc);
     json_sets_wiring(f, sc);
-    fprintf(f, ", \"loops\": %u, \"init\": ", init == RT_OK ? (unsigned)sim->plan.nloops : 0u);
+    fprintf(f, ", \"loops\": %u, \"init\": ", init == RT_OK ? (unsigned)rt_loop_count(sim) : 0u);
     jstr(f, init ? rt_error_text(sim) : "ok");
     fputs("}\n", f);
 }

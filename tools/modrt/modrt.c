@@ -119,9 +119,9 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     }
     fprintf(f, "event_iter_max: %u\n", (unsigned)s->stats.event_iter_max);
     for (uint8_t k = 0; k < sc->nsets; k++)
-        if (s->plan.set_xout[k])
+        if (rt_set_is_source(s, k))
             fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_err[k]);
-    if (s->plan.ntorn > 0) {
+    if (rt_torn_count(s) > 0) {
         fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)s->stats.loop_iter_max);
         for (uint32_t i = 0; i <= s->stats.loop_iter_max; i++)
             fprintf(f, " %u", (unsigned)s->stats.loop_hist[i]);
@@ -236,35 +236,18 @@ static int cmd_sizes(void *ctx, int npos, char **pos)
     rt_status st = rt_init(sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
-    unsigned implicit = 1;
-    for (uint8_t s = 0; s < sc->nsets; s++)
-        if (sc->sets[s].method->implicit && (unsigned)(sim.plan.set_x[s + 1] - sim.plan.set_x[s]) > implicit)
-            implicit = sim.plan.set_x[s + 1] - sim.plan.set_x[s];
-    uint16_t nb = sc->nblocks;
+    rt_sizes z;
+    rt_sizes_of(sc, &sim, &z);
     printf("-DRT_MAX_BLOCKS=%u -DRT_MAX_X=%u -DRT_MAX_D=%u -DRT_MAX_U=%u -DRT_MAX_Y=%u "
            "-DRT_MAX_P=%u -DRT_MAX_ROOTS=%u -DRT_MAX_SETS=%u -DRT_MAX_REC=%u "
            "-DRT_MAX_LOOPS=%u -DRT_MAX_TORN=%u -DRT_MAX_IMPLICIT_N=%u",
-           at_least_1(nb), at_least_1(sim.plan.x_off[nb]), at_least_1(sim.plan.d_off[nb]),
-           at_least_1(sim.plan.u_off[nb]), at_least_1(sim.plan.y_off[nb]), at_least_1(sim.plan.p_off[nb]),
-           at_least_1(sim.plan.set_r[sc->nsets]), at_least_1(sc->nsets), at_least_1(sc->nrecs),
-           at_least_1(sim.plan.nloops), at_least_1(sim.plan.ntorn), implicit);
-    /* multibody workspace: per set, the largest velocities, coordinates, constraint rows;
-       per block, the largest velocity count */
-    unsigned nz = 1, nq = 1, nc = 1, bz = 1;
-    for (uint8_t s = 0; sc->mbs && s < sc->nsets; s++) {
-        nz = sim.work.mbs.nz[s] > nz ? sim.work.mbs.nz[s] : nz;
-        nq = sim.work.mbs.nq[s] > nq ? sim.work.mbs.nq[s] : nq;
-        nc = sim.work.mbs.nc[s] > nc ? sim.work.mbs.nc[s] : nc;
-    }
-    for (uint16_t b = 0; b < nb; b++) {
-        const rt_kind *k = sc->blocks[b].kind;
-        if (k->type == RT_KIND_MBS) {
-            const rt_mbs_spec *m = k->spec;
-            bz = m->nz > bz ? m->nz : bz;
-        }
-    }
+           at_least_1(z.blocks), at_least_1(z.x), at_least_1(z.d), at_least_1(z.u),
+           at_least_1(z.y), at_least_1(z.p), at_least_1(z.roots), at_least_1(z.sets),
+           at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
+           at_least_1(z.implicit_n));
     printf(" -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
-           "-DRT_MAX_MBS_BZ=%u\n", at_least_1(sc->njoints), nz, nq, nc, bz);
+           "-DRT_MAX_MBS_BZ=%u\n", at_least_1(sc->njoints), at_least_1(z.mbs_z),
+           at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz));
     return 0;
 }
 

@@ -14,7 +14,7 @@
  *    bound of the next candidate reaches the cheapest measured cost within tolerance, so
  *    the result is the cheapest candidate by measured cost, not by the bound.
  * Cost: right-hand-side evaluations times the states of the set, summed over sets, per
- * simulated second (each set's method is wrapped in a counting one). Deterministic, unlike
+ * simulated second (rt_stats.rhs_evals, counted by the runtime). Deterministic, unlike
  * host time, which is printed beside it.
  *
  * Host only: libc and the POSIX CPU clock; no libm (modrt links without it). */
@@ -33,39 +33,6 @@
 #define INF_ERR 1e300       /* the error of a run that produced a non-finite value */
 
 static rt_sim sim; /* the runtime's storage, owned here */
-
-/* ------------------------------------------------------------------ counting methods */
-
-/* a set's method wrapped so that every right-hand-side evaluation is counted */
-typedef struct wrap_tab {
-    const rt_integrator *inner;
-    uint8_t set;
-} wrap_tab;
-
-typedef struct count_ctx {
-    const rt_rhs *f;
-    uint64_t *n;
-} count_ctx;
-
-static wrap_tab wtab[RT_MAX_SETS];
-static rt_integrator wrap[RT_MAX_SETS];
-static uint64_t nevals[RT_MAX_SETS];
-
-static rt_status count_eval(void *ctx, real_t t, real_t *xdot)
-{
-    count_ctx *c = ctx;
-    (*c->n)++;
-    return c->f->eval(c->f->ctx, t, xdot);
-}
-
-static rt_status wrap_step(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
-                           real_t *x, uint16_t n, const rt_iwork *w)
-{
-    const wrap_tab *wt = m->tab;
-    count_ctx c = {f, &nevals[wt->set]};
-    rt_rhs g = {count_eval, &c};
-    return wt->inner->step(wt->inner, &g, t, h, x, n, w);
-}
 
 /* ------------------------------------------------------------------ tuning state */
 
@@ -114,22 +81,15 @@ static int selected(const char *name, const char *list)
     return 0;
 }
 
-/* the work scene: sc with ratio[] on the base tick divided by div, methods counted */
+/* the work scene: sc with ratio[] on the base tick divided by div */
 static void configure(const uint32_t *ratio, uint32_t div)
 {
     const rt_scene *sc = T.sc;
     T.work = *sc;
     T.work.dt = sc->dt / (real_t)div;
     for (uint8_t s = 0; s < sc->nsets; s++) {
-        const rt_integrator *in = sc->sets[s].method;
-        wtab[s] = (wrap_tab){in, s};
-        wrap[s] = (rt_integrator){.name = in->name, .order = in->order, .stages = in->stages,
-                                  .implicit = in->implicit, .step = wrap_step,
-                                  .tab = &wtab[s]};
         T.sets[s] = sc->sets[s];
-        T.sets[s].method = &wrap[s];
         T.sets[s].ratio = ratio[s];
-        nevals[s] = 0;
     }
     T.work.sets = T.sets;
 }
@@ -158,7 +118,7 @@ static void account(tune_sched *m, double t0)
     m->cost = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
         m->ratio[s] = T.sets[s].ratio;
-        m->evals[s] = (double)nevals[s] / (double)sc->t_end;
+        m->evals[s] = (double)sim.stats.rhs_evals[s] / (double)sc->t_end; /* counted by rt/ */
         m->cost += m->evals[s] * T.w[s];
         m->xset_err[s] = (double)sim.stats.xset_err[s];
     }
@@ -232,10 +192,10 @@ static rt_status setup(const rt_scene *sc, const tune_opts *o)
     if (st != RT_OK)
         return st;
     for (uint8_t s = 0; s < sc->nsets; s++) {
-        unsigned n = (unsigned)(sim.plan.set_x[s + 1] - sim.plan.set_x[s]);
+        unsigned n = rt_set_nx(&sim, s);
         T.w[s] = n ? (double)n : 1;
     }
-    T.n_ticks = sim.plan.n_ticks;
+    T.n_ticks = rt_tick_count(&sim);
     return RT_OK;
 }
 

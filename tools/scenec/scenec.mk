@@ -1,6 +1,6 @@
 # scenec.mk - the scene compiler (tools/scenec/, docs/scene-language.md) and the scenes it
 # compiles. Included by the top-level Makefile after its sources section; uses its CC,
-# CSTD, CFLAGS_ALL, CFLAGS_FREE, O, RT_OBJS, MODEL_OBJS and obj.
+# CSTD, CFLAGS_ALL, CFLAGS_MODELS, O, RT_OBJS, MODEL_OBJS and obj.
 #
 #   make scenec        build/host/scenec, the compiler (always a double build: the C it
 #                      writes holds the kinds' defaults as printed doubles)
@@ -69,7 +69,7 @@ $(SCN_TGEN)/registry.c: $(SCN_TFILES) $(SCENEC)
 # generated scenes are model code: freestanding like models/
 $(O)/obj/build/gen/%.o: build/gen/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_FREE) -c $< -o $@
+	$(Q)$(CC) $(CFLAGS_MODELS) -c $< -o $@
 
 # ---- tests ----
 # every compiled scene (library and language tests) run as `modrt run` does

@@ -234,7 +234,7 @@ static void period(scn_ctx *c, scn_block *b)
     if (!(b->ts > 0))
         scn_fail(c, b->name.pos, b->name.s, "sample period missing",
                  "period (<time>) in its load statement or its define");
-    else if (!ticks_of(b->ts, s->dt, 1e-6))
+    else if (!ticks_of(b->ts, s->dt, RT_TICK_MATCH_REL))
         scn_fail(c, at, scn_fmt(c, "%g s", b->ts), "sample period is not a whole multiple of the "
                                                  "base tick",
                  scn_fmt(c, "a multiple of %g s", s->dt));

@@ -1,0 +1,108 @@
+/* describe.c - what rt_init decided, for tools that print or size a scene (`modrt info`,
+ * `modrt sizes`, the tuner, the scene compiler): read-only accessors, so that nothing
+ * outside rt/ reads rt_sim.plan, whose layout is the runtime's own business. */
+#include "rti.h"
+
+uint8_t rt_set_at(const rt_sim *sim, uint8_t i)
+{
+    return sim->plan.sched[i];
+}
+
+uint16_t rt_set_nx(const rt_sim *sim, uint8_t set)
+{
+    return (uint16_t)(sim->plan.set_x[set + 1] - sim->plan.set_x[set]);
+}
+
+int rt_set_is_source(const rt_sim *sim, uint8_t set)
+{
+    return sim->plan.set_xout[set] != 0;
+}
+
+uint64_t rt_tick_count(const rt_sim *sim)
+{
+    return sim->plan.n_ticks;
+}
+
+rt_src_kind rt_input_source(const rt_sim *sim, uint16_t block, uint16_t u, rt_interp *interp)
+{
+    uint16_t gi = (uint16_t)(sim->plan.u_off[block] + u);
+    if (interp)
+        *interp = (rt_interp)sim->plan.interp[gi];
+    return (rt_src_kind)sim->plan.src_kind[gi];
+}
+
+uint16_t rt_seq_count(const rt_sim *sim)
+{
+    return sim->plan.nseq;
+}
+
+rt_seq_step rt_seq_at(const rt_sim *sim, uint16_t i)
+{
+    return sim->plan.seq[i];
+}
+
+uint8_t rt_loop_count(const rt_sim *sim)
+{
+    return sim->plan.nloops;
+}
+
+const rt_loop *rt_loop_at(const rt_sim *sim, uint8_t l)
+{
+    return &sim->plan.loops[l];
+}
+
+uint16_t rt_loop_block(const rt_sim *sim, uint8_t l, uint16_t i)
+{
+    return sim->plan.loop_blocks[sim->plan.loops[l].first + i];
+}
+
+uint16_t rt_torn_count(const rt_sim *sim)
+{
+    return sim->plan.ntorn;
+}
+
+/* the block whose slice of off[] (size nblocks + 1) holds global index gi */
+static uint16_t owner(const uint16_t *off, uint16_t nblocks, uint16_t gi)
+{
+    uint16_t b = 0;
+    while (b + 1 < nblocks && off[b + 1] <= gi)
+        b++;
+    return b;
+}
+
+rt_torn rt_torn_at(const rt_scene *sc, const rt_sim *sim, uint16_t k)
+{
+    uint16_t gi = sim->plan.torn_in[k], src = sim->plan.torn_src[k];
+    uint16_t to = owner(sim->plan.u_off, sc->nblocks, gi);
+    uint16_t from = owner(sim->plan.y_off, sc->nblocks, src);
+    return (rt_torn){from, (uint16_t)(src - sim->plan.y_off[from]), to,
+                     (uint16_t)(gi - sim->plan.u_off[to])};
+}
+
+void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
+{
+    uint16_t nb = sc->nblocks;
+    z->blocks = nb;
+    z->x = sim->plan.x_off[nb], z->d = sim->plan.d_off[nb];
+    z->u = sim->plan.u_off[nb], z->y = sim->plan.y_off[nb], z->p = sim->plan.p_off[nb];
+    z->roots = sim->plan.set_r[sc->nsets];
+    z->sets = sc->nsets, z->recs = sc->nrecs;
+    z->loops = sim->plan.nloops, z->torn = sim->plan.ntorn;
+    z->implicit_n = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (sc->sets[s].method->implicit && rt_set_nx(sim, s) > z->implicit_n)
+            z->implicit_n = rt_set_nx(sim, s);
+    z->mbs_z = z->mbs_q = z->mbs_c = z->mbs_bz = 0;
+    for (uint16_t b = 0; b < nb; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        const rt_mbs_spec *m = k->spec;
+        if (k->type == RT_KIND_MBS && m->nz > z->mbs_bz)
+            z->mbs_bz = m->nz;
+    }
+    for (uint8_t s = 0; sc->mbs && s < sc->nsets; s++) {
+        const rt_mbs_work *m = &sim->work.mbs;
+        z->mbs_z = m->nz[s] > z->mbs_z ? m->nz[s] : z->mbs_z;
+        z->mbs_q = m->nq[s] > z->mbs_q ? m->nq[s] : z->mbs_q;
+        z->mbs_c = m->nc[s] > z->mbs_c ? m->nc[s] : z->mbs_c;
+    }
+}
