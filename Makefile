@@ -231,7 +231,7 @@ $(O)/scenes.log: $(O)/scenes $(O)/modrt
 	@sh tests/cross/check_host.sh $(O)/modrt $@
 
 # every target whose toolchain and emulator are installed; the others are named
-cross-test:
+cross-test: deps
 	@ran=""; skipped=""; \
 	for t in $(CROSS_TARGETS); do \
 	  if $(MAKE) --no-print-directory -s check-target-$$t 2>/dev/null; then \
@@ -246,7 +246,7 @@ FOOT_TARGETS := m3 m4f m7 rv32 rv64
 FOOT_SRCS = tests/cross/footprint_main.c tests/harness.c \
             $(filter-out rt/registry.c,$(RT_SRCS)) \
             $(filter-out models/registry.c models/scenes/% build/gen/%,$(MODEL_SRCS))
-footprint: build/host/modrt $(INSN_COUNT_SO) scenes
+footprint: deps build/host/modrt $(INSN_COUNT_SO) scenes
 	sh tools/footprint.sh "$(FOOT_TARGETS)" > docs/footprint.md
 	@echo "footprint: wrote docs/footprint.md"
 # one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes)
@@ -299,7 +299,7 @@ docs/blocks.md: $(O)/modrt
 # the paper's first example: the 10-body pendulum; plot the tip, the middle, the first body
 DEMO_SCENE ?= pendulum10
 DEMO_COLS ?= B1.x,B1.z,B5.x,B5.z,B10.x,B10.z
-demo: $(O)/modrt $(O)/svgplot
+demo: deps-host $(O)/modrt $(O)/svgplot
 	@mkdir -p build/demo
 	$(O)/modrt run $(DEMO_SCENE) --csv build/demo/$(DEMO_SCENE).csv
 	$(O)/svgplot -t "$(DEMO_SCENE)" $(if $(DEMO_COLS),-c $(DEMO_COLS)) \

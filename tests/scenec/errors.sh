@@ -8,12 +8,10 @@ set -u
 SCENEC=$1 M=$2
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0 fail=0 modrt_ok=1
+pass=0 fail=0
 ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL errors: $*"; }
 
-# does this modrt read scene files yet (the patch of tools/modrt/modrt.c)?
-"$M" run tests/scenec/errors/syntax.scn 2>&1 | grep -q "unknown scene" && modrt_ok=0
 for f in tests/scenec/errors/*.scn; do
     want=$(sed -n 's|^// expect: ||p' "$f" | head -1)
     "$SCENEC" --check "$f" > "$T/out" 2> "$T/err"; rc=$?
@@ -21,13 +19,11 @@ for f in tests/scenec/errors/*.scn; do
     case $want in *...) prefix=${want%...}; [ "${got#"$prefix"}" != "$got" ] && got=$want;; esac
     if [ "$rc" -eq 1 ] && [ "$got" = "$want" ] && [ ! -s "$T/out" ]; then ok; else
         bad "$f (exit $rc)"; echo "  want: $want"; echo "  got:  $got"; fi
-    [ "$modrt_ok" -eq 1 ] || continue
     "$M" run "$f" > "$T/out" 2> "$T/err"; rc=$?
     got=$(cat "$T/err")
     case $want in *...) prefix=${want%...}; [ "${got#"modrt: $prefix"}" != "$got" ] && got="modrt: $want";; esac
     [ "$rc" -eq 2 ] && [ "$got" = "modrt: $want" ] && ok || \
         bad "$f: modrt run (exit $rc): $(cat "$T/err")"
 done
-[ "$modrt_ok" -eq 1 ] || echo "errors: modrt does not read scene files yet; checked scenec only"
 echo "errors: $(ls tests/scenec/errors/*.scn | wc -l) error kinds; $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

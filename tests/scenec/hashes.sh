@@ -8,7 +8,7 @@ set -u
 SCENEC=$1 M=$2 RUN=$3 REAL=${REAL:-double}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-pass=0 fail=0 skipped=""
+pass=0 fail=0
 ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL hashes: $*"; }
 hash_of() { sed -n 's/^hash: //p'; }
@@ -28,15 +28,11 @@ for f in models/scenes/*.scn tests/scenec/scenes/*.scn; do
         [ "$hs" = "$hc" ] && ok || bad "$f: scenec --run $hs, compiled $hc"
         line="$line = scenec --run $hs"
     fi
-    # modrt reads scene files once tools/modrt/modrt.c has the patch
+    # modrt reads scene files through the same compiler and the bytecode VM
     "$M" run "$f" > "$T/modrt" 2> "$T/err"
-    if grep -q "unknown scene" "$T/err"; then
-        skipped="$skipped $f"
-    else
-        hm=$(hash_of < "$T/modrt")
-        [ "$hm" = "$hc" ] && ok || bad "$f: modrt run FILE.scn $hm, compiled $hc"
-        line="$line = modrt run FILE.scn $hm"
-    fi
+    hm=$(hash_of < "$T/modrt")
+    [ "$hm" = "$hc" ] && ok || bad "$f: modrt run FILE.scn $hm, compiled $hc"
+    line="$line = modrt run FILE.scn $hm"
     case $f in models/scenes/*)
         hn=$("$M" run "$name" | hash_of)
         [ "$hn" = "$hc" ] && ok || bad "$f: modrt run $name $hn, compiled $hc"
@@ -44,6 +40,5 @@ for f in models/scenes/*.scn tests/scenec/scenes/*.scn; do
     esac
     echo "hashes ($REAL): $line"
 done
-[ -z "$skipped" ] || echo "hashes: modrt does not read scene files yet; skipped:$skipped"
 echo "hashes ($REAL): $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -75,11 +75,11 @@ $(O)/obj/build/gen/%.o: build/gen/%.c
 # every compiled scene (library and language tests) run as `modrt run` does
 $(O)/scenec-run: $(call obj,tests/scenec/run_compiled.c $(SCN_GEN_SRCS) $(SCN_TGEN_SRCS)) \
                  $(RT_OBJS) $(SCN_MODEL_OBJS)
-	$(CC) $(LDSAN) $^ -o $@
+	$(Q)$(CC) $(LDSAN) $^ -o $@
 # the language's own tests (expressions, defines, error texts) on the in-house harness
 $(O)/scenec-tests: $(call obj,tests/scenec/test_scenec.c tests/harness.c ports/posix/port.c) \
                    $(SCN_LIB_OBJS) $(RT_OBJS) $(SCN_MODEL_OBJS)
-	$(CC) $(LDSAN) $^ -o $@
+	$(Q)$(CC) $(LDSAN) $^ -o $@
 
 scenec-test: $(SCENEC) $(O)/modrt $(O)/scenec-run $(O)/scenec-tests \
              $(call obj,$(SCN_GEN_SRCS))
@@ -104,7 +104,7 @@ build/fuzz/scenec-fuzz: $(SCN_FUZZ_SRCS) tests/scenec/fuzz_main.c $(wildcard $(S
 	  $(CC) $(SCN_FUZZ_FLAGS) -fsanitize=address,undefined -fno-sanitize-recover=all \
 	    $(SCN_FUZZ_SRCS) tests/scenec/fuzz_main.c -o $@; \
 	fi
-fuzz: build/fuzz/scenec-fuzz
+fuzz: deps build/fuzz/scenec-fuzz
 	sh tests/scenec/fuzz.sh build/fuzz/scenec-fuzz $(FUZZ_TIME)
 fuzz-short: build/fuzz/scenec-fuzz
 	sh tests/scenec/fuzz.sh build/fuzz/scenec-fuzz 10
