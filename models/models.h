@@ -20,6 +20,8 @@ enum { MDL_PT1_Y = 0 };
 
 /* sampled PI controller (DSS): inputs r (reference), m (measurement); output c */
 extern const rt_kind mdl_pi_kind;
+enum { MDL_PI_U_R = 0, MDL_PI_U_M };
+enum { MDL_PI_Y_C = 0 };
 
 /* step source y = y0 for t < t0, y1 after (OUTPUT) */
 extern const rt_kind mdl_step_kind;
