@@ -130,6 +130,42 @@ static void fixed_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node
     perpendicular(n1, n2, 0, 1, 5, e);
 }
 
+/* ---- prismatic joint: S1 = S2 and node 2 on the z axis of node 1 (translation along
+   it free). With a = S1 e_i (i = x, y) and d = r2 - r1: g = a . d,
+   g' = -a . v1 + (a x d) . w1 + a . v2, c = w1 . ((w1 x a) x d + a x d') + (w1 x a) . d' ---- */
+static void slide_row(const rt_mbs_node *n1, const rt_mbs_node *n2, int ia, int k,
+                      rt_joint_eval *e)
+{
+    real_t a[3], d[3], dd[3], ad[3], axd[3], t1[3], t2[3];
+    axis(n1->S, ia, a);
+    for (int i = 0; i < 3; i++)
+        d[i] = n2->r[i] - n1->r[i], dd[i] = n2->v[i] - n1->v[i];
+    cross3(n1->w, a, ad);
+    cross3(a, d, axd);
+    cross3(ad, d, t1);
+    cross3(a, dd, t2);
+    e->g[k] = dot3(a, d);
+    for (int i = 0; i < 3; i++) {
+        e->C[k][i] = -a[i];
+        e->C[k][3 + i] = axd[i];
+        e->C[k][6 + i] = a[i];
+        t1[i] += t2[i];
+    }
+    e->c[k] = dot3(n1->w, t1) + dot3(ad, dd);
+}
+
+static void prismatic_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
+                           rt_joint_eval *e)
+{
+    (void)p;
+    clear(e, 5);
+    slide_row(n1, n2, 0, 0, e);
+    slide_row(n1, n2, 1, 1, e);
+    perpendicular(n1, n2, 1, 2, 2, e);
+    perpendicular(n1, n2, 2, 0, 3, e);
+    perpendicular(n1, n2, 0, 1, 4, e);
+}
+
 static const char *const sphdiff_p[] = {"l"};
 
 const rt_joint_kind rt_joint_sphdiff = {
@@ -146,10 +182,15 @@ const rt_joint_kind rt_joint_fixed = {
     .name = "fixed", .nc = 6, .eval = fixed_eval,
 };
 
+const rt_joint_kind rt_joint_prismatic = {
+    .name = "prismatic", .nc = 5, .eval = prismatic_eval,
+};
+
 const rt_joint_entry rt_joint_kinds[] = {
     {"sphdiff", &rt_joint_sphdiff},
     {"spherical", &rt_joint_spherical},
     {"revolute", &rt_joint_revolute},
     {"fixed", &rt_joint_fixed},
+    {"prismatic", &rt_joint_prismatic},
     {0, 0},
 };

@@ -139,6 +139,7 @@ extern const rt_joint_kind rt_joint_sphdiff;   /* |r1 - r2| - l = 0 (eq. 8); p =
 extern const rt_joint_kind rt_joint_spherical; /* r1 - r2 = 0 */
 extern const rt_joint_kind rt_joint_revolute;  /* r1 = r2, node z axes parallel */
 extern const rt_joint_kind rt_joint_fixed;     /* r1 = r2, S1 = S2 (a fixed anchor) */
+extern const rt_joint_kind rt_joint_prismatic; /* S1 = S2, r2 on node 1's z axis */
 
 /* Registry row of a joint kind; the registry rt_joint_kinds ends with {NULL, NULL}. */
 typedef struct rt_joint_entry {

@@ -2,7 +2,8 @@
  * runtime: a compound pendulum on a revolute joint against the simple pendulum's period,
  * a heavy symmetric top on a spherical joint (energy, vertical angular momentum and spin
  * conserved), a torque-free tumbling body (energy and inertial angular momentum), a body
- * clamped by a fixed joint (at rest, reactions m g and its moment), and torque inputs. */
+ * clamped by a fixed joint (at rest, reactions m g and its moment), a body sliding on a
+ * tilted prismatic joint (analytic position and normal reaction), and torque inputs. */
 #include "models.h"
 #include "testutil.h"
 
@@ -237,6 +238,50 @@ static void test_fixed(void)
     TH_CHECK(rt_streq(rt_rec_signal(&sc, 2), "my") && tu_sim.stats.status == RT_OK);
 }
 
+/* ------------------------------------------------------------------ prismatic joint */
+
+/* the same body on a prismatic joint to an anchor at the origin whose z axis is tilted by
+   al from the vertical about y, u = (sin al, 0, cos al); node n1 starts at the anchor. The
+   body keeps its orientation and slides down the axis: s(t) = -g cos(al) t^2 / 2 along u;
+   the reaction is normal to u with magnitude m g sin(al). */
+#define PR_AL 0.6
+static void test_prismatic(void)
+{
+    double ca = (double)rt_cos((real_t)PR_AL), sa = (double)rt_sin((real_t)PR_AL);
+    static real_t S[9], x0[13];
+    const real_t Sv[9] = {(real_t)ca, 0, (real_t)sa, 0, 1, 0, (real_t)-sa, 0, (real_t)ca};
+    const real_t xv[13] = {(real_t)(0.5 * ca), 0, (real_t)(-0.5 * sa), rt_cos((real_t)(PR_AL / 2)),
+                           0, rt_sin((real_t)(PR_AL / 2)), 0, 0, 0, 0, 0, 0, 0};
+    for (int i = 0; i < 9; i++)
+        S[i] = Sv[i];
+    for (int i = 0; i < 13; i++)
+        x0[i] = xv[i];
+    const rt_block b[] = {{.name = "Slider", .kind = &mdl_mbs_body_kind, .p = cp_p, .x0 = x0}};
+    const rt_joint j[] = {{.name = "slide", .kind = &rt_joint_prismatic, .b1 = 0, .n1 = 1,
+                           .b2 = -1, .at_S = S}};
+    static const rt_rec recs[] = {
+        {0, RT_SIG_MBS, RT_MBS_SIG_JOINT_AT(0, RT_MBS_JSIG_FX)},
+        {0, RT_SIG_MBS, RT_MBS_SIG_JOINT_AT(0, RT_MBS_JSIG_FZ)},
+    };
+    rt_scene sc = body_scene(b, j, 1, (real_t)1e-3, 1);
+    sc.recs = recs, sc.nrecs = 2;
+    if (!tu_init(&sc))
+        return;
+    while (rt_tick(&sc, &tu_sim) == RT_OK)
+        ;
+    double s = -G * ca / 2, tol = RT_REAL_IS_FLOAT ? 1e-4 : 1e-10;
+    TH_NEAR(tu_sim.state.x[X], 0.5 * ca + s * sa, tol);
+    TH_NEAR(tu_sim.state.x[X + 1], 0, tol);
+    TH_NEAR(tu_sim.state.x[X + 2], -0.5 * sa + s * ca, tol);
+    TH_NEAR(tu_sim.state.x[V], -G * ca * sa, tol);
+    for (int i = 0; i < 4; i++) /* orientation unchanged */
+        TH_NEAR(tu_sim.state.x[P + i], xv[3 + i], tol);
+    double fx = (double)rt_rec_value(&sc, &tu_sim, 0), fz = (double)rt_rec_value(&sc, &tu_sim, 1);
+    TH_NEAR(absd(fx * sa + fz * ca), 0, tol * 10);      /* normal to the axis */
+    TH_NEAR(rt_sqrt((real_t)(fx * fx + fz * fz)), G * sa, tol * 10); /* m g sin(al) */
+    TH_CHECK(tu_sim.stats.status == RT_OK);
+}
+
 /* ------------------------------------------------------------------ inputs */
 
 /* a body-frame torque about z on a free body: w_z = tau t / Jzz; a force: x = F t^2/2m */
@@ -264,6 +309,7 @@ const th_test th_mbs_body_tests[] = {
     {"mbs_body_heavy_top", test_heavy_top},
     {"mbs_body_free_tumble", test_free_tumble},
     {"mbs_body_fixed", test_fixed},
+    {"mbs_body_prismatic", test_prismatic},
     {"mbs_body_torque_input", test_torque_input},
     {0, 0},
 };
