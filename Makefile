@@ -65,7 +65,7 @@ include tools/scenec/scenec.mk
 
 .PHONY: all help test unit demo bench check-freestanding cross-test footprint clean \
         $(addprefix cross-test-,$(CROSS_TARGETS)) $(addprefix check-target-,$(CROSS_TARGETS)) \
-        foot-elf
+        foot-elf image
 
 all: $(O)/modrt $(O)/svgplot $(SCENEC)
 
@@ -80,6 +80,8 @@ help:
 	@echo "make cross-test   every cross target under QEMU (cross-test-<t>: one; targets:"
 	@echo "                  $(CROSS_TARGETS))"
 	@echo "make footprint    flash, RAM and instructions per tick of every scene on every target"
+	@echo "make image TARGET=<t> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
+	@echo "                  a firmware image of one scene (docs/porting.md)"
 	@echo "make fuzz         the scene-language fuzzer for $(FUZZ_TIME) s"
 	@echo "make deps         install what the targets need (tools/install-deps.sh)"
 	@echo "make clean        remove build/"
@@ -165,7 +167,7 @@ CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS)
 CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tests/registry.c \
                    $(wildcard tests/rt/*.c tests/models/*.c)
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
-CROSS_RT_SRCS := tests/cross/rt_main.c tests/harness.c
+CROSS_RT_SRCS := ports/common/image_main.c
 CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 cobj = $(patsubst %,build/$(1)$(XSUF)/obj/%.o,$(basename $(2)))
 
@@ -214,7 +216,7 @@ cross-test-$(1): build/$(1)$(XSUF)/tests.elf build/$(1)$(XSUF)/scenes.elf build/
 	else echo "cross-test $(1): scene hashes differ from the host's"; exit 1; fi
 	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/rt.elf > build/$(1)$(XSUF)/rt.log 2>&1 || \
 	  { cat build/$(1)$(XSUF)/rt.log; echo "cross-test $(1): timer-paced run failed"; exit 1; }
-	@h=$$$$(sed -n 's/.* hash //p' build/$(1)$(XSUF)/rt.log); \
+	@h=$$$$(sed -n 's/.* hash \([0-9a-f]*\).*/\1/p' build/$(1)$(XSUF)/rt.log); \
 	if [ "$$$$h" = "$$$$($(O)/modrt run pi_loop | sed -n 's/^hash: //p')" ]; then \
 	  echo "cross-test $(1): timer-paced pi_loop: $$$$(sed 's/^rt scene pi_loop //' build/$(1)$(XSUF)/rt.log)"; \
 	else cat build/$(1)$(XSUF)/rt.log; echo "cross-test $(1): timer-paced hash differs"; exit 1; fi
@@ -252,6 +254,7 @@ footprint: deps build/host/modrt $(INSN_COUNT_SO) scenes
 # one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes)
 FOOT_TICKS ?= 1000
 foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
+	@[ -n "$(T)" ] && [ -n "$(S)" ] || { echo "usage: make foot-elf T=<target> S=<scene>" >&2; exit 2; }
 	@mkdir -p build/foot/$(T)
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
 	  $(shell build/host/modrt sizes $(S)) \
@@ -260,6 +263,14 @@ foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 	@mkdir -p $(dir $@)
 	$(INSN_COUNT_CC) $(INSN_COUNT_CFLAGS) -o $@ $<
+# ---- image: one scene file on one target (docs/porting.md) ----
+# make image TARGET=m4f SCENE=path/to/my.scn [CONSOLE=semihost|uart|itm|none] [IMAGE_CFLAGS=...]
+image: deps build/host/modrt $(SCENEC)
+	@sh tools/image.sh "$(TARGET)" "$(SCENE)" "$(CONSOLE)" "$(IMAGE_CFLAGS)"
+TEST_SUITES += test-image
+test-image: deps build/host/modrt $(SCENEC)
+	@sh tests/image.sh
+
 # prints a make variable (used by tools/footprint.sh)
 print-%:
 	@echo '$($*)'

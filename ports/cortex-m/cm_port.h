@@ -34,6 +34,39 @@
 #define CM_DUALTIMER_CTRL_EN     (1u << 7)
 #define CM_DUALTIMER_CTRL_32BIT  (1u << 1)
 
+/* Consoles (port_write), chosen at build time with -DCM_CONSOLE=...: semihosting needs a
+   debugger or QEMU (without one the bkpt faults); a board without one uses the UART, the
+   ITM (SWO trace pin), or nothing. CM_EXIT_SEMIHOST 1: port_exit reports the exit code
+   to the debugger / QEMU; 0: port_exit parks the core (interrupts off, WFI). */
+#define CM_CONSOLE_NONE     0
+#define CM_CONSOLE_SEMIHOST 1
+#define CM_CONSOLE_UART     2
+#define CM_CONSOLE_ITM      3
+#ifndef CM_CONSOLE
+#define CM_CONSOLE CM_CONSOLE_SEMIHOST
+#endif
+#ifndef CM_EXIT_SEMIHOST
+#define CM_EXIT_SEMIHOST (CM_CONSOLE == CM_CONSOLE_SEMIHOST)
+#endif
+
+/* CMSDK APB UART (MPS2 UART0 at 0x40004000; another board: -DCM_UART_BASE=...). */
+#ifndef CM_UART_BASE
+#define CM_UART_BASE 0x40004000u
+#endif
+#ifndef CM_UART_BAUD
+#define CM_UART_BAUD 115200u
+#endif
+#define CM_UART_DATA    CM_REG(CM_UART_BASE + 0x00u)
+#define CM_UART_STATE   CM_REG(CM_UART_BASE + 0x04u) /* bit 0: transmit buffer full */
+#define CM_UART_CTRL    CM_REG(CM_UART_BASE + 0x08u) /* bit 0: transmit enable */
+#define CM_UART_BAUDDIV CM_REG(CM_UART_BASE + 0x10u)
+
+/* ITM stimulus port 0 (ARMv7-M), as written by CMSIS ITM_SendChar: only when the
+   debugger enabled the ITM (TCR.ITMENA) and the port (TER bit 0), else dropped. */
+#define CM_ITM_PORT0 CM_REG(0xE0000000u)
+#define CM_ITM_TER   CM_REG(0xE0000E00u)
+#define CM_ITM_TCR   CM_REG(0xE0000E80u)
+
 /* Semihosting (ARM "bkpt 0xab" on M-profile). */
 #define CM_SYS_WRITE0        0x04u
 #define CM_SYS_EXIT          0x18u
@@ -44,7 +77,7 @@
 void cm_port_init(void);
 /* port.c: the SysTick exception handler (referenced by the vector table). */
 void SysTick_Handler(void);
-/* port.c: writes "label0xXXXXXXXX" through semihosting (used by the fault reports). */
+/* port.c: writes "label0xXXXXXXXX" to the console (used by the fault reports). */
 void cm_write_hex(const char *label, uint32_t v);
 
 #endif /* CM_PORT_H */

@@ -1,11 +1,14 @@
 /* port.c - the Cortex-M bare-metal port (MPS2 AN385 M3 / AN386 M4F / AN500 M7, real boards
  * or QEMU mps2-an385/-an386/-an500): implements ports/port.h.
  *
- * Console and exit: ARM semihosting (bkpt 0xab). port_write uses SYS_WRITE0, port_exit
- * uses SYS_EXIT_EXTENDED {ADP_Stopped_ApplicationExit, code}, so QEMU exits with the
- * code. Run QEMU with -semihosting-config enable=on,target=native,chardev=... (see
- * ports/targets.mk); without semihosting the bkpt faults and the fault handler locks up,
- * so always run under timeout.
+ * Console and exit (cm_port.h, -DCM_CONSOLE=...): by default ARM semihosting (bkpt 0xab):
+ * port_write uses SYS_WRITE0, port_exit uses SYS_EXIT_EXTENDED {ADP_Stopped_ApplicationExit,
+ * code}, so QEMU exits with the code. Run QEMU with -semihosting-config
+ * enable=on,target=native,chardev=... (see ports/targets.mk); without a debugger the bkpt
+ * faults and the fault handler locks up, so always run under timeout. A board without a
+ * debugger builds with CM_CONSOLE_UART (polled CMSDK UART), CM_CONSOLE_ITM (stimulus port
+ * 0, SWO) or CM_CONSOLE_NONE; then no bkpt is linked unless CM_EXIT_SEMIHOST=1 asks for
+ * it (the cross tests use UART output with a semihosting exit).
  *
  * Time source for port_cycles: timer 1 of the CMSDK APB dual timer at 0x40002000, free
  * running, 32-bit, prescale 1, clocked by the 25 MHz SYSCLK; wrap-arounds are counted in
@@ -50,6 +53,7 @@
 
 /* ------------------------------------------------------------------ semihosting */
 
+#if CM_CONSOLE == CM_CONSOLE_SEMIHOST || CM_EXIT_SEMIHOST
 static uintptr_t cm_semihost(uintptr_t op, const void *arg)
 {
     register uintptr_t r0 __asm__("r0") = op;
@@ -57,14 +61,48 @@ static uintptr_t cm_semihost(uintptr_t op, const void *arg)
     __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
     return r0;
 }
+#endif
+
+/* ------------------------------------------------------------------ console */
+
+#if CM_CONSOLE == CM_CONSOLE_UART
+static void cm_console_init(void)
+{
+    CM_UART_BAUDDIV = CM_SYSCLK_HZ / CM_UART_BAUD;
+    CM_UART_CTRL = 1u; /* transmit only, polled */
+}
+static void cm_console_putc(char ch)
+{
+    while (CM_UART_STATE & 1u) {
+    }
+    CM_UART_DATA = (uint32_t)(unsigned char)ch;
+}
+#elif CM_CONSOLE == CM_CONSOLE_ITM
+static void cm_console_init(void) {}
+static void cm_console_putc(char ch)
+{
+    if ((CM_ITM_TCR & 1u) == 0 || (CM_ITM_TER & 1u) == 0) return; /* no trace probe */
+    while ((CM_ITM_PORT0 & 1u) == 0) {
+    }
+    *(volatile uint8_t *)(uintptr_t)0xE0000000u = (uint8_t)ch;
+}
+#else
+static void cm_console_init(void) {}
+#endif
 
 void port_write(const char *s)
 {
-    if (s && *s) cm_semihost(CM_SYS_WRITE0, s);
+    if (!s || !*s) return;
+#if CM_CONSOLE == CM_CONSOLE_SEMIHOST
+    cm_semihost(CM_SYS_WRITE0, s);
+#elif CM_CONSOLE == CM_CONSOLE_UART || CM_CONSOLE == CM_CONSOLE_ITM
+    while (*s) cm_console_putc(*s++);
+#endif
 }
 
 void port_exit(int code)
 {
+#if CM_EXIT_SEMIHOST
     /* Shell exit statuses are 8 bits: never let a failure wrap to 0. */
     uint32_t c = (uint32_t)code & 0xFFu;
     if (code != 0 && c == 0) c = 1;
@@ -72,6 +110,9 @@ void port_exit(int code)
     cm_semihost(CM_SYS_EXIT_EXTENDED, block);
     /* Host without SYS_EXIT_EXTENDED: plain SYS_EXIT (status 0 or 1 only). */
     cm_semihost(CM_SYS_EXIT, (const void *)(uintptr_t)(c == 0 ? CM_ADP_STOPPED_APPLICATION_EXIT : 0x20023u /* RunTimeErrorUnknown */));
+#else
+    (void)code; /* nowhere to report it: the application printed its status */
+#endif
     for (;;) __asm__ volatile("cpsid i\n\twfi");
 }
 
@@ -93,6 +134,7 @@ static uint64_t cm_cyc_high;  /* wrap-arounds << 32 */
 
 void cm_port_init(void)
 {
+    cm_console_init();
     CM_DUALTIMER1_CTRL = 0; /* stop; free-running mode, interrupt disabled */
     CM_DUALTIMER1_LOAD = 0xFFFFFFFFu;
     CM_DUALTIMER1_CTRL = CM_DUALTIMER_CTRL_EN | CM_DUALTIMER_CTRL_32BIT;

@@ -1,0 +1,54 @@
+#!/bin/sh
+# image.sh - tests of `make image` (tools/image.sh, docs/porting.md): a missing or wrong
+# argument stops with one line and exit 2; a scene file outside the library builds for a
+# RISC-V target and a library scene for Cortex-M with the UART console, and both images,
+# run under QEMU, print the trace hash `modrt run` gives on the host; a CONSOLE=none image
+# links no semihosting call (no bkpt), so it cannot lock up on a board without a debugger.
+set -u
+M=build/host/modrt
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL image: $*"; }
+
+# usage errors: exit 2, one line naming what is missing
+for args in "" "TARGET=m3" "TARGET=nosuch SCENE=pi_loop" "TARGET=m3 SCENE=no/such.scn" \
+            "TARGET=rv32 SCENE=pi_loop CONSOLE=uart" "TARGET=m3 SCENE=pi_loop CONSOLE=lcd"; do
+    # shellcheck disable=SC2086
+    out=$(make -s image $args 2>&1 >/dev/null); rc=$?
+    if [ $rc -ne 0 ] && [ "$(echo "$out" | grep -c '^make image: ')" = 1 ]; then ok
+    else bad "make image $args: exit $rc, '$out'"; fi
+done
+out=$(make -s foot-elf 2>&1); rc=$?
+if [ $rc -ne 0 ] && echo "$out" | grep -q '^usage: make foot-elf'; then ok; else bad "foot-elf without arguments: exit $rc"; fi
+
+# hash of the image's one line against the host's run of the same scene
+run_check() { # target elf scene-or-file qemu-command...
+    t=$1 elf=$2 s=$3; shift 3
+    want=$($M run "$s" | sed -n 's/^hash: //p')
+    got=$("$@" "$elf" 2>&1 | sed -n 's/^rt scene .* hash \([0-9a-f]*\) status ok$/\1/p')
+    if [ -n "$want" ] && [ "$got" = "$want" ]; then ok; echo "image: $t $s: hash $got = host"
+    else bad "$t $s: image hash '$got', host '$want'"; fi
+}
+
+f=tests/scenec/scenes/lang_sets.scn
+if make -s image TARGET=rv32 SCENE=$f >/dev/null; then
+    run_check rv32 build/image/rv32/lang_sets.elf $f timeout 60 qemu-system-riscv32 -M virt \
+        -bios none -display none -monitor none -serial stdio -icount shift=0,sleep=off -kernel
+else bad "rv32 image of $f did not build"; fi
+
+if make -s image TARGET=m3 SCENE=pi_loop CONSOLE=uart IMAGE_CFLAGS=-DCM_EXIT_SEMIHOST=1 >/dev/null; then
+    run_check m3 build/image/m3/pi_loop.elf pi_loop timeout 60 qemu-system-arm -M mps2-an385 \
+        -display none -monitor none -serial stdio -semihosting-config enable=on,target=native \
+        -icount shift=0,sleep=off -kernel
+else bad "m3 UART image did not build"; fi
+
+if make -s image TARGET=m7 SCENE=pi_loop CONSOLE=none >/dev/null; then
+    n=$(arm-none-eabi-objdump -d build/image/m7/pi_loop.elf | grep -c 'bkpt')
+    if [ "$n" = 0 ]; then ok; else bad "CONSOLE=none image has $n bkpt instructions"; fi
+else bad "m7 CONSOLE=none image did not build"; fi
+if make -s image TARGET=m7 SCENE=pi_loop >/dev/null &&
+   [ "$(arm-none-eabi-objdump -d build/image/m7/pi_loop.elf | grep -c 'bkpt')" -gt 0 ]; then ok
+else bad "the default (semihosting) image has no bkpt: the check above cannot fail"; fi
+
+echo "image: $pass passed, $fail failed"
+[ $fail -eq 0 ]

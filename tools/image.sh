@@ -1,0 +1,55 @@
+#!/bin/sh
+# image.sh - `make image`: builds a per-scene firmware image for one cross target from any
+# scene file (or library scene name): scenec compiles the scene to C, `modrt sizes` gives
+# its exact limits, and the image links ports/common/image_main.c, the runtime and the
+# models without registries (unused kinds are dropped by --gc-sections). docs/porting.md
+# explains the pieces. Usage (through make, which passes its variables):
+#   sh tools/image.sh TARGET SCENE CONSOLE EXTRA_CFLAGS
+set -u
+target=$1 scene=$2 console=$3 extra=$4
+targets=$(make -s print-CROSS_TARGETS)
+fail() { echo "make image: $*" >&2; exit 2; }
+
+[ -n "$target" ] || fail "TARGET is missing; usage: make image TARGET=<$(echo $targets | tr ' ' '|')> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
+[ -n "$scene" ] || fail "SCENE is missing; usage: make image TARGET=$target SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
+case " $targets " in *" $target "*) ;; *) fail "unknown TARGET '$target'; expected one of: $targets" ;; esac
+case "$scene" in
+*.scn) [ -r "$scene" ] || fail "SCENE '$scene': cannot read the file" ;;
+*) [ -r "models/scenes/$scene.scn" ] || fail "SCENE '$scene' is neither a .scn file nor a library scene (modrt list)"
+   scene=models/scenes/$scene.scn ;;
+esac
+case "$target" in
+m3 | m4f | m7)
+    case "${console:-semihost}" in
+    semihost) cdef=-DCM_CONSOLE=CM_CONSOLE_SEMIHOST ;;
+    uart) cdef=-DCM_CONSOLE=CM_CONSOLE_UART ;;
+    itm) cdef=-DCM_CONSOLE=CM_CONSOLE_ITM ;;
+    none) cdef=-DCM_CONSOLE=CM_CONSOLE_NONE ;;
+    *) fail "unknown CONSOLE '$console'; expected semihost, uart, itm or none" ;;
+    esac ;;
+*) [ -z "$console" ] || fail "CONSOLE applies to the Cortex-M targets only (the $target port has one console)"
+   cdef= ;;
+esac
+make -s "check-target-$target" 2>/dev/null || fail "the $target toolchain or QEMU is missing: run sh tools/install-deps.sh"
+
+name=$(basename "$scene" .scn)
+dir=build/image/$target
+mkdir -p "$dir"
+build/host/scenec -o "$dir/$name.c" "$scene" || fail "scenec could not compile $scene (see above)"
+sym=$(sed -n 's/^const rt_scene \(mdl_scene_[A-Za-z0-9_]*\) = {$/\1/p' "$dir/$name.c" | head -1)
+[ -n "$sym" ] || fail "no scene table in $dir/$name.c"
+sizes=$(build/host/modrt sizes "$scene") || fail "modrt sizes $scene failed (see above)"
+
+cc=$(make -s "print-TARGET_CC_$target")
+cflags="$(make -s print-CSTD) -O2 -ffunction-sections -fdata-sections $(make -s print-CINC) \
+ $(make -s print-CDEFS) -DRT_KIND_DOCS=0 $(make -s "print-TARGET_CFLAGS_$target")"
+ldflags=$(make -s "print-TARGET_LDFLAGS_$target")
+ports=$(make -s "print-TARGET_PORT_SRCS_$target")
+rt=$(ls rt/*.c | grep -v '^rt/registry.c$')
+models=$(ls models/*.c | grep -v '^models/registry.c$')
+# shellcheck disable=SC2086 # the flag lists are meant to split
+$cc $cflags $cdef $sizes -DRT_SCENE="$sym" $extra ports/common/image_main.c "$dir/$name.c" \
+    $rt $models $ports $ldflags -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
+size=$(make -s "print-TARGET_SIZE_$target")
+echo "image: $dir/$name.elf (scene $sym, target $target${console:+, console $console})"
+$size "$dir/$name.elf" | tail -1 | awk '{printf "image: flash %d bytes, RAM %d bytes\n", $1 + $2, $2 + $3}'
