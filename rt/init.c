@@ -106,6 +106,10 @@ static rt_status initial_values(const rt_scene *sc, rt_sim *sim)
             return rti_fail(sim, RT_E_SCENE, "block ", bl->name,
                             ": sample period is not a positive multiple of the base tick",
                             (const char *)0);
+        if (k->type == RT_KIND_DSS && sim->plan.period[b] % sc->sets[bl->set].ratio != 0)
+            return rti_fail(sim, RT_E_SCENE, "block ", bl->name,
+                            ": sample period is not a whole multiple of its set's step",
+                            (const char *)0);
         if (k->check && k->check(sim->state.p + sim->plan.p_off[b], k->spec) != RT_OK)
             return rti_fail(sim, RT_E_PARAM, "block ", bl->name,
                             ": parameters out of range for kind ", k->name, (const char *)0);

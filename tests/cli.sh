@@ -110,6 +110,7 @@ expect_err "missing value" 2 "option needs a value (--t-end=S): --t-end" $M run 
 expect_err "flag with value" 2 "option takes no value: --realtime=1" $M run oscillator --realtime=1
 expect_err "short option" 2 "options are long" $M run oscillator -x
 expect_err "missing scene" 2 "run needs SCENE" $M run
+expect_err "missing scene file" 2 "/nonexistent/x.scn: error: cannot read the scene file: No such file or directory" $M run /nonexistent/x.scn
 expect_err "extra argument" 2 "run: unexpected argument: more" $M run oscillator more
 expect_err "tune bad tol" 2 "tol expects a tolerance > 0" $M tune oscillator --tol=-1
 expect_err "bad t-end" 2 "t-end expects" $M run oscillator --t-end -3

@@ -134,7 +134,8 @@ static void test_routing_errors(void)
     TH_CHECK(rt_init(&sc3, &tu_sim) == RT_E_SCENE);
 }
 
-/* a DSS period that is not a multiple of the base tick, a bad set index, a bad parameter */
+/* a DSS period that is not a multiple of the base tick or of its set's step, a bad set
+   index, a bad parameter */
 static void test_scene_errors(void)
 {
     static const rt_block bad_ts[] = {{.name = "C", .kind = &mdl_pi_kind, .ts = (real_t)0.015}};
@@ -144,6 +145,18 @@ static void test_scene_errors(void)
     sc.nconns = 0, sc.defaults = df, sc.ndefaults = 2;
     TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_SCENE);
     TH_CHECK(th_has(rt_error_text(&tu_sim), "sample period"));
+
+    /* 30 ms is 3 ticks, but its set steps every 2 ticks: a sample would fall between */
+    static const rt_block odd_ts[] = {{.name = "C", .kind = &mdl_pi_kind, .ts = (real_t)0.03}};
+    static const rt_set two_ticks[] = {{.name = "s", .method = &rt_rk4, .ratio = 2}};
+    rt_scene sc4 = SCENE(odd_ts, nc);
+    sc4.nconns = 0, sc4.defaults = df, sc4.ndefaults = 2, sc4.sets = two_ticks;
+    TH_CHECK(rt_init(&sc4, &tu_sim) == RT_E_SCENE);
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "its set's step"));
+    static const rt_block even_ts[] = {{.name = "C", .kind = &mdl_pi_kind, .ts = (real_t)0.04}};
+    rt_scene sc5 = SCENE(even_ts, nc);
+    sc5.nconns = 0, sc5.defaults = df, sc5.ndefaults = 2, sc5.sets = two_ticks;
+    TH_CHECK(rt_init(&sc5, &tu_sim) == RT_OK);
 
     static const rt_block bad_set[] = {{.name = "O", .kind = &mdl_oscillator_kind, .set = 3}};
     rt_scene sc2 = SCENE(bad_set, nc);

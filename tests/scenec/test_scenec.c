@@ -153,6 +153,16 @@ static void test_times_and_sets(void)
     c = compile("base tick (10 ms); end time (1 s); load system (O) of type (oscillator);");
     TH_CHECK(!c->err && c->image.dt == (real_t)0.01 && strcmp(c->image.name, "t") == 0);
     scn_free(c);
+    /* functions in constant expressions: 2 sqrt(4) + 4 atan2(1, 1) = 4 + pi, and sin(0.1)
+       against the correctly rounded value */
+    c = compile("base tick (10 ms); end time (1 s); load system (O, P) of type (oscillator);"
+                "O.omega = 2 * sqrt(4) + 4 * atan2(1, 1); P.omega = sin(0.1);");
+    TH_CHECK(!c->err);
+    if (!c->err) {
+        TH_NEAR(c->image.blocks[0].p[0], 7.141592653589793, 1e-15);
+        TH_NEAR(c->image.blocks[1].p[0], 0.09983341664682815, 1e-16);
+    }
+    scn_free(c);
 }
 
 /* includes never reach the file system in the sandbox (the fuzzer's mode) */

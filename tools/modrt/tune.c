@@ -254,6 +254,22 @@ static double bound(const uint32_t *ratio)
     return b / (double)T.sc->t_end;
 }
 
+/* a set cannot step past a sample of its discrete blocks (rt_init refuses it): a
+   candidate is admissible when every DSS period is a whole number of its set's steps */
+static int admissible(const uint32_t *ratio)
+{
+    const rt_scene *sc = T.sc;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_block *bl = &sc->blocks[b];
+        if (bl->kind->type != RT_KIND_DSS)
+            continue;
+        uint64_t n = (uint64_t)((double)bl->ts / (double)sc->dt + 0.5);
+        if (n % ratio[bl->set] != 0)
+            return 0;
+    }
+    return 1;
+}
+
 static int by_bound(const void *a, const void *b)
 {
     uint32_t i = *(const uint32_t *)a, j = *(const uint32_t *)b;
@@ -318,6 +334,8 @@ rt_status tune_scene(const rt_scene *sc, const tune_opts *o, tune_result *r, FIL
             break;
         tune_sched m;
         decode(cand[c], r, ratio);
+        if (!admissible(ratio))
+            continue;
         if ((st = run(ratio, 1, RUN_CUT, &m)) != RT_OK)
             return st;
         r->nrun++;

@@ -85,10 +85,38 @@ static int enter(scn_ctx *c)
 
 static double c_sum(scn_ctx *c);
 
+static const scn_fn *find_fn(const char *name)
+{
+    for (const scn_fn *f = scn_fns; f->name; f++)
+        if (strcmp(f->name, name) == 0)
+            return f;
+    return 0;
+}
+
+/* fn(a) or fn(a, b) with constant arguments, evaluated by the same rt_ function the VM
+   and the generated C call, so a constant means the same everywhere */
+static double c_call(scn_ctx *c, const scn_fn *f)
+{
+    double a[2] = {0, 0};
+    scn_next(c);
+    scn_expect_op(c, "(");
+    for (int i = 0; i < f->nargs && !c->err; i++) {
+        if (i)
+            scn_expect_op(c, ",");
+        a[i] = c_sum(c);
+    }
+    scn_expect_op(c, ")");
+    return f->nargs == 1 ? (double)f->f1((real_t)a[0]) : (double)f->f2((real_t)a[0], (real_t)a[1]);
+}
+
 static double c_primary(scn_ctx *c)
 {
     double v = 0;
-    if (c->tok.kind == SCN_T_NUM) {
+    const scn_fn *f = c->tok.kind == SCN_T_ID ? find_fn(c->tok.s) : 0;
+    if (f && enter(c)) {
+        v = c_call(c, f);
+        c->edepth--;
+    } else if (c->tok.kind == SCN_T_NUM) {
         v = c->tok.num;
         scn_next(c);
     } else if (scn_is_word(c, "pi")) {
@@ -101,7 +129,8 @@ static double c_primary(scn_ctx *c)
         c->edepth--;
     } else if (!c->err) {
         scn_fail_tok(c, "not a constant",
-                     "a number, pi, + - * / or parentheses (a constant expression)");
+                     "a number, pi, + - * /, parentheses or a function such as sin( ) (a "
+                     "constant expression)");
     }
     return v;
 }

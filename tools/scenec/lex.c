@@ -176,11 +176,17 @@ int scn_open_main(scn_ctx *c, const char *path, const char *text, size_t len)
     scn_pos at = {0, 1, 1};
     c->depth = 0;
     if (!text) {
+        errno = 0;
         int r = read_file(c, path, &text, &len);
-        if (r < 0) {
+        if (r == -1) { /* no position in a file that was never read: the system's reason */
+            c->err = 1;
+            snprintf(c->msg, sizeof c->msg, "%s: error: cannot read the scene file: %s", path,
+                     errno ? strerror(errno) : "read error");
+            return -1;
+        }
+        if (r == -2) {
             c->files[0].path = path, c->nfiles = 1; /* for the message */
-            scn_fail(c, at, path, r == -2 ? "scene file too large" : "cannot read the scene file",
-                     r == -2 ? scn_fmt(c, "at most %u bytes", SCN_MAX_SRC) : "a readable file");
+            scn_fail(c, at, path, "scene file too large", scn_fmt(c, "at most %u bytes", SCN_MAX_SRC));
             return -1;
         }
     } else if (len > SCN_MAX_SRC) {

@@ -238,6 +238,12 @@ static void period(scn_ctx *c, scn_block *b)
         scn_fail(c, at, scn_fmt(c, "%g s", b->ts), "sample period is not a whole multiple of the "
                                                  "base tick",
                  scn_fmt(c, "a multiple of %g s", s->dt));
+    else if (b->set >= 0 && ticks_of(b->ts, s->dt, RT_TICK_MATCH_REL) % s->set[b->set].ratio)
+        /* the set only runs every ratio ticks: a sample between its steps would be missed */
+        scn_fail(c, at, scn_fmt(c, "%g s", b->ts), "sample period is not a whole multiple of "
+                                                 "its set's step",
+                 scn_fmt(c, "a multiple of %g s (the step of set %s)",
+                         s->set[b->set].ratio * s->dt, s->set[b->set].name.s));
 }
 
 static void param_range(scn_ctx *c, const scn_block *b)
