@@ -155,6 +155,7 @@ test-float:
 test-cli:
 	$(MAKE) --no-print-directory -j$(JOBS) all
 	sh tests/cli.sh $(O)
+	sh tests/readme.sh
 test-scenec:
 	$(MAKE) --no-print-directory -j$(JOBS) scenec-test
 test-fuzz:
