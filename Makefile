@@ -310,12 +310,21 @@ docs/blocks.md: $(O)/modrt
 # ---- demo ----
 # the paper's first example: the 10-body pendulum; plot the tip, the middle, the first body
 DEMO_SCENE ?= pendulum10
-DEMO_COLS ?= B1.x,B1.z,B5.x,B5.z,B10.x,B10.z
+DEMO_COLS ?= B1.x=bob 1 horizontal,B1.z=bob 1 vertical,B5.x=bob 5 horizontal,B5.z=bob 5 vertical,B10.x=bob 10 horizontal,B10.z=bob 10 vertical
+DEMO_YLABEL ?= position [m]
+DEMO_PLOT = $(O)/svgplot -o build/demo/$(DEMO_SCENE)
 demo: deps-host $(O)/modrt $(O)/svgplot
 	@mkdir -p build/demo
 	$(O)/modrt run $(DEMO_SCENE) --csv build/demo/$(DEMO_SCENE).csv
-	$(O)/svgplot -t "$(DEMO_SCENE)" $(if $(DEMO_COLS),-c $(DEMO_COLS)) \
-	    -o build/demo/$(DEMO_SCENE).svg build/demo/$(DEMO_SCENE).csv
+	$(DEMO_PLOT).svg -t "$(DEMO_SCENE)" $(if $(DEMO_COLS),-c "$(DEMO_COLS)") -y "$(DEMO_YLABEL)" \
+	    build/demo/$(DEMO_SCENE).csv
+ifeq ($(DEMO_SCENE),pendulum10)
+	$(DEMO_PLOT)-energy.svg -t "pendulum10: energy (conserved: the chain is passive)" \
+	    -c "B1.energy=total energy of the chain" -y "energy [J]" build/demo/pendulum10.csv
+	$(DEMO_PLOT)-residual.svg -t "pendulum10: constraint residual after projection" \
+	    -c "B1.residual=largest joint violation" -y "residual [m]" build/demo/pendulum10.csv
+	@echo "demo: energy and residual plots build/demo/pendulum10-energy.svg, -residual.svg"
+endif
 	@echo "demo: trace build/demo/$(DEMO_SCENE).csv, plot build/demo/$(DEMO_SCENE).svg"
 
 clean:

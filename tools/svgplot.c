@@ -691,7 +691,8 @@ static void usage(FILE *f)
     fputs("usage: svgplot [-o OUT.svg] [-t TITLE] [-c COLS] [-x XLABEL] [-y YLABEL] [-W WIDTH] [-H HEIGHT] TRACE.csv\n"
           "       svgplot --xy [--logx] [--logy] [-c SERIES] [-x XLABEL] [-y YLABEL] [-o OUT.svg] [-t TITLE]\n"
           "               [-W WIDTH] [-H HEIGHT] TABLE.csv\n"
-          "Trace mode: header 't,NAME,...'; plots every column (or the comma-separated -c names) against t.\n"
+          "Trace mode: header 't,NAME,...'; plots every column (or the comma-separated -c names) against t;\n"
+          "  -c NAME=LABEL,... gives a series its legend text.\n"
           "XY mode: header 'series,x,y'; one marked curve per series, in order of first appearance.\n"
           "Writes SVG to stdout unless -o is given. Empty fields, nan and inf are gaps.\n",
           f);
@@ -810,6 +811,7 @@ struct trace {
     int ncols;
     char colname[MAX_COLS][MAX_NAME + 1];
     int nsel, sel[MAX_SERIES];   /* plotted column indices */
+    const char *label[MAX_SERIES]; /* legend text from -c NAME=LABEL, or NULL */
     long nrows, bad_t, nonmono_line;
     struct ranges r;
     long nfinite[MAX_SERIES];
@@ -852,6 +854,9 @@ static void trace_select(struct trace *tr, const struct opts *o)
     }
     tr->nsel = split_names(o->cols, buf, sizeof buf, names);
     for (int i = 0; i < tr->nsel; i++) {
+        char *eq = strchr(names[i], '=');
+        tr->label[i] = eq ? eq + 1 : NULL; /* NAME=LABEL: the legend says what it means */
+        if (eq) *eq = 0;
         tr->sel[i] = find_col(tr, names[i]);
         if (tr->sel[i] < 0) die_unknown_col(tr, o->in, names[i]);
     }
@@ -993,7 +998,7 @@ static void run_trace(const struct opts *o)
     struct plot p = {.W = o->width, .H = o->height, .title = o->title, .n = tr->nsel};
     p.xlabel = o->xlabel ? o->xlabel : !strcmp(tr->colname[0], "t") ? "t [s]" : tr->colname[0];
     p.ylabel = o->ylabel ? o->ylabel : "";
-    for (int s = 0; s < tr->nsel; s++) p.name[s] = tr->colname[tr->sel[s]];
+    for (int s = 0; s < tr->nsel; s++) p.name[s] = tr->label[s] ? tr->label[s] : tr->colname[tr->sel[s]];
     layout_y(&p, &tr->r, 0, PAD_TRACE_Y);
     layout_x(&p, &tr->r, 0, 0.0);
 
