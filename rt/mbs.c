@@ -3,7 +3,7 @@
  * tables of rt_mbs_work, the initial projection) and the recordable MBS signals (energy,
  * constraint residuals, joint reactions). The solve is in rt/mbs_asm.c, the projection in
  * rt/mbs_project.c, the joint kinds in rt/joints.c. */
-#include "rti.h"
+#include "rti_mbs.h"
 
 static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
 {
@@ -276,13 +276,13 @@ static real_t signal(const rt_scene *sc, const rt_sim *sim, uint16_t block, uint
     }
 }
 
-static const char *const set_names[RT_MBS_SIG_NSET] = {
-    "energy", "kinetic", "potential", "residual", "residual_v",
-};
+#define SIG_NAME(e, name, meaning) name,
+static const char *const set_names[RT_MBS_SIG_NSET] = {RT_MBS_SIG_LIST(SIG_NAME)};
 static const char *const joint_names[RT_MBS_JSIG_COUNT] = {
-    "fx", "fy", "fz", "mx", "my", "mz",
+    RT_MBS_JSIG_LIST(SIG_NAME)
     "lambda1", "lambda2", "lambda3", "lambda4", "lambda5", "lambda6",
 };
+#undef SIG_NAME
 
 static const char *signal_name(const rt_scene *sc, uint16_t block, uint16_t index)
 {

@@ -7,7 +7,7 @@
  * plus one dense LU of A (its size is the number of constraints). Loops run in a fixed
  * order, so the same state gives the same bits on every target. */
 #include "linalg.h"
-#include "rti.h"
+#include "rti_mbs.h"
 
 static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
 {

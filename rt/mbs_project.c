@@ -10,7 +10,7 @@
  *
  * From consistent values g(q~) = O(h^(p+1)); Newton is quadratic, so two iterations leave
  * O(h^(4(p+1))), roundoff for any practical step, at a fixed cost per step. */
-#include "rti.h"
+#include "rti_mbs.h"
 
 static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
 {

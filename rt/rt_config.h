@@ -103,6 +103,25 @@ typedef double real_t;
 #ifndef RT_MAX_JOINTS
 #define RT_MAX_JOINTS 32 /* joints of a scene */
 #endif
+#ifndef RT_MAX_MBS_BZ
+#define RT_MAX_MBS_BZ 16 /* generalized velocities of one MBS block (node Jacobians, M) */
+#endif
+#ifndef RT_MBS_PIVOT_TOL
+/* pivot threshold of the factorizations of M and W M^-1 W^T, relative to the largest
+   entry: a well-posed chain of ten links has relative pivots near 1e-2, a redundant or
+   straightened chain near the unit roundoff */
+#define RT_MBS_PIVOT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-5 : (real_t)1e-10)
+#endif
+#ifndef RT_MBS_RES_TOL
+/* largest |g| accepted after the two projection iterations; above it the step is counted
+   as degraded (RT_CNT_DEGRADED) [m or 1] */
+#define RT_MBS_RES_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-4 : (real_t)1e-9)
+#endif
+#ifndef RT_MBS_LEN_MIN
+/* a spherical difference joint whose nodes are closer than this has no direction;
+   its direction falls back to +x deterministically [m] */
+#define RT_MBS_LEN_MIN (RT_REAL_IS_FLOAT ? (real_t)1e-15 : (real_t)1e-100)
+#endif
 
 /* ---- implicit integrators and algebraic loops ---- */
 #ifndef RT_MAX_IMPLICIT_N

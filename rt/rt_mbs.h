@@ -24,27 +24,9 @@ struct rt_scene;
 struct rt_sim;
 struct rt_args;
 
-/* ------------------------------------------------------------------ limits */
+/* ------------------------------------------------------------------ limits
+   (the tunable ones, RT_MAX_MBS_* and RT_MBS_*_TOL, are in rt_config.h) */
 
-#ifndef RT_MAX_MBS_BZ
-#define RT_MAX_MBS_BZ 16 /* generalized velocities of one MBS block (node Jacobians, M) */
-#endif
-#ifndef RT_MBS_PIVOT_TOL
-/* pivot threshold of the factorizations of M and W M^-1 W^T, relative to the largest
-   entry: a well-posed chain of ten links has relative pivots near 1e-2, a redundant or
-   straightened chain near the unit roundoff */
-#define RT_MBS_PIVOT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-5 : (real_t)1e-10)
-#endif
-#ifndef RT_MBS_RES_TOL
-/* largest |g| accepted after the two projection iterations; above it the step is counted
-   as degraded (RT_CNT_DEGRADED) [m or 1] */
-#define RT_MBS_RES_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-4 : (real_t)1e-9)
-#endif
-#ifndef RT_MBS_LEN_MIN
-/* a spherical difference joint whose nodes are closer than this has no direction;
-   its direction falls back to +x deterministically [m] */
-#define RT_MBS_LEN_MIN (RT_REAL_IS_FLOAT ? (real_t)1e-15 : (real_t)1e-100)
-#endif
 #define RT_MBS_JOINT_NC_MAX 6 /* constraint equations of one joint (the fixed joint has 6) */
 /* touched (block, constraint row) pairs over all sets: each row touches one or two blocks */
 #define RT_MBS_MAX_TOUCH (2 * RT_MAX_MBS_C * RT_MAX_SETS)
@@ -167,22 +149,33 @@ typedef struct rt_joint {
  * RT_MBS_SIG_JOINT the quantity belongs to the set of `block` (any MBS block of it) and
  * is computed from the current state. Joint signals have index RT_MBS_SIG_JOINT_AT(j, c)
  * and block = the joint's b1 (the block the reaction acts on). */
+/* The set signals, declared once: X(ENUM, name, meaning). */
+#define RT_MBS_SIG_LIST(X)                                                                 \
+    X(RT_MBS_SIG_ENERGY, "energy", "kinetic + potential energy of the set [J]")            \
+    X(RT_MBS_SIG_KINETIC, "kinetic", "kinetic energy of the set [J]")                     \
+    X(RT_MBS_SIG_POTENTIAL, "potential", "potential energy of the set [J]")               \
+    X(RT_MBS_SIG_RESIDUAL, "residual", "largest |g| of the set's constraints [m or 1]")   \
+    X(RT_MBS_SIG_RESIDUAL_V, "residual_v", "largest |g'| [m/s or 1/s]")
+#define RT_MBS_SIG_ENUM(e, name, meaning) e,
 enum {
-    RT_MBS_SIG_ENERGY = 0, /* "energy": kinetic + potential energy of the set [J] */
-    RT_MBS_SIG_KINETIC,    /* "kinetic" [J] */
-    RT_MBS_SIG_POTENTIAL,  /* "potential" [J] */
-    RT_MBS_SIG_RESIDUAL,   /* "residual": largest |g| of the set's constraints [m or 1] */
-    RT_MBS_SIG_RESIDUAL_V, /* "residual_v": largest |g'| [m/s or 1/s] */
+    RT_MBS_SIG_LIST(RT_MBS_SIG_ENUM)
     RT_MBS_SIG_NSET,       /* (count) */
     RT_MBS_SIG_JOINT = 16  /* first joint signal */
 };
 /* components of a joint signal: reaction force (inertial frame) and torque on node 1
    from the last index-1 solve (refreshed at the step end when a scene records them), and
-   the multipliers lambda of the joint's rows (the tension for a spherical difference) */
+   the multipliers lambda of the joint's rows (the tension for a spherical difference),
+   "lambda1".. per row. Declared once: X(ENUM, name, meaning). */
+#define RT_MBS_JSIG_LIST(X)                                                                \
+    X(RT_MBS_JSIG_FX, "fx", "reaction force on node 1, x [N]")                           \
+    X(RT_MBS_JSIG_FY, "fy", "reaction force on node 1, y [N]")                           \
+    X(RT_MBS_JSIG_FZ, "fz", "reaction force on node 1, z [N]")                           \
+    X(RT_MBS_JSIG_MX, "mx", "reaction torque on node 1, x [N m]")                        \
+    X(RT_MBS_JSIG_MY, "my", "reaction torque on node 1, y [N m]")                        \
+    X(RT_MBS_JSIG_MZ, "mz", "reaction torque on node 1, z [N m]")
 enum {
-    RT_MBS_JSIG_FX = 0, RT_MBS_JSIG_FY, RT_MBS_JSIG_FZ, /* "fx" "fy" "fz" [N] */
-    RT_MBS_JSIG_MX, RT_MBS_JSIG_MY, RT_MBS_JSIG_MZ,     /* "mx" "my" "mz" [N m] */
-    RT_MBS_JSIG_LAMBDA,                                 /* "lambda1".. per row */
+    RT_MBS_JSIG_LIST(RT_MBS_SIG_ENUM)
+    RT_MBS_JSIG_LAMBDA, /* first multiplier */
     RT_MBS_JSIG_COUNT = RT_MBS_JSIG_LAMBDA + RT_MBS_JOINT_NC_MAX
 };
 #define RT_MBS_SIG_JOINT_AT(j, c) ((uint16_t)(RT_MBS_SIG_JOINT + (j) * RT_MBS_JSIG_COUNT + (c)))
@@ -253,41 +246,5 @@ typedef struct rt_mbs_ops {
 
 /* The services of rt/mbs.c. */
 extern const rt_mbs_ops rt_mbs;
-
-/* ------------------------------------------------------------------ internal */
-
-/* Shared by rt/mbs*.c only (rt/mbs_asm.c defines them). What rti_mbs_assemble evaluates: */
-enum {
-    RTI_MBS_G = 0,     /* g and g' only */
-    RTI_MBS_JAC = 1,   /* also M (factored), W and gam */
-    RTI_MBS_FORCE = 2  /* also the free accelerations M^-1 k (needs RTI_MBS_JAC) */
-};
-/* Is block b an MBS block of set `set`? */
-int rti_mbs_in_set(const struct rt_scene *sc, uint16_t b, uint8_t set);
-/* Evaluates joint ji: its nodes (Jacobians into J1, J2 unless NULL) and its kind. */
-void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t ji, real_t t,
-                   rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2,
-                   rt_joint_eval *e);
-/* Evaluates the set's MBS blocks and joints at the current state into sim->work.mbs. */
-void rti_mbs_assemble(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
-                      int what);
-/* Forms Y = M^-1 W^T and A = W Y over the touched rows and factors A; a singular A is
-   counted (RT_CNT_SINGULAR) with the block of the offending row. */
-void rti_mbs_schur(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set);
-/* v (nc values) <- A^-1 v with the factors of rti_mbs_schur. */
-void rti_mbs_solve(struct rt_sim *sim, uint8_t set, real_t *v);
-/* dz = -Y v: the velocity-space correction of multipliers v. */
-void rti_mbs_correct(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set,
-                     const real_t *v, real_t *dz);
-/* The block owning constraint row `row` of the set (a joint's b1), or -1. */
-int rti_mbs_row_block(const struct rt_scene *sc, const struct rt_sim *sim, uint8_t set,
-                      uint16_t row);
-/* The index-1 solve at the current state: lambda into lam and jlam, and
-   z' = a + dz (free accelerations plus constraint part). */
-void rti_mbs_lambda(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
-/* The accel service (see rt_mbs_ops) and the project service (rt/mbs_project.c). */
-void rti_mbs_accel(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
-                   real_t *xdot);
-void rti_mbs_project(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
 
 #endif /* RT_MBS_H */

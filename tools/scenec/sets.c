@@ -274,6 +274,15 @@ static const char *mbs_signal(uint16_t index)
     return rt_mbs.signal_name(&none, 0, index);
 }
 
+/* "a, b or c": the names of MBS signals first .. first + n - 1 (rt/mbs.c's list) */
+static const char *mbs_names(scn_ctx *c, uint16_t first, uint16_t n)
+{
+    const char *names[RT_MBS_JSIG_COUNT + RT_MBS_SIG_NSET];
+    for (uint16_t i = 0; i < n; i++)
+        names[i] = mbs_signal((uint16_t)(first + i));
+    return scn_list(c, names, n, n);
+}
+
 static int joint_signal(scn_ctx *c, scn_rec *r, int j)
 {
     const scn_joint *jt = &c->sc.jnt[j];
@@ -323,9 +332,10 @@ static void record(scn_ctx *c, scn_rec *r)
     const char *what = b >= 0 ? scn_kind_desc(c, &s->blk[b])
                               : scn_fmt(c, "joint %s (%s)", s->jnt[j].name.s, s->jnt[j].kind->name);
     scn_fail(c, r->sig.port.pos, r->sig.port.s, scn_fmt(c, "unknown signal of %s", what),
-             b >= 0 ? "one of its outputs, states or discrete states (or energy, kinetic, "
-                      "potential, residual, residual_v of a multibody system)"
-                    : "fx, fy, fz, mx, my, mz or lambda1.. of its constraint rows");
+             b >= 0 ? scn_fmt(c, "one of its outputs, states or discrete states (or %s of a "
+                                 "multibody system)", mbs_names(c, 0, RT_MBS_SIG_NSET))
+                    : scn_fmt(c, "%s or lambda1.. of its constraint rows",
+                              mbs_names(c, RT_MBS_SIG_JOINT, RT_MBS_JSIG_LAMBDA)));
 }
 
 /* ------------------------------------------------------------------ options */

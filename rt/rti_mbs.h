@@ -1,0 +1,43 @@
+/* rti_mbs.h - internal to rt/mbs*.c: the steps of the multibody services (assembly,
+ * Schur complement, index-1 solve, projection) that rt/mbs.c, rt/mbs_asm.c and
+ * rt/mbs_project.c share. Applications and models see rt_mbs.h (through rt.h) only. */
+#ifndef RTI_MBS_H
+#define RTI_MBS_H
+
+#include "rti.h"
+
+/* What rti_mbs_assemble evaluates (rt/mbs_asm.c defines the functions below): */
+enum {
+    RTI_MBS_G = 0,     /* g and g' only */
+    RTI_MBS_JAC = 1,   /* also M (factored), W and gam */
+    RTI_MBS_FORCE = 2  /* also the free accelerations M^-1 k (needs RTI_MBS_JAC) */
+};
+/* Is block b an MBS block of set `set`? */
+int rti_mbs_in_set(const struct rt_scene *sc, uint16_t b, uint8_t set);
+/* Evaluates joint ji: its nodes (Jacobians into J1, J2 unless NULL) and its kind. */
+void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t ji, real_t t,
+                   rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2,
+                   rt_joint_eval *e);
+/* Evaluates the set's MBS blocks and joints at the current state into sim->work.mbs. */
+void rti_mbs_assemble(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
+                      int what);
+/* Forms Y = M^-1 W^T and A = W Y over the touched rows and factors A; a singular A is
+   counted (RT_CNT_SINGULAR) with the block of the offending row. */
+void rti_mbs_schur(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set);
+/* v (nc values) <- A^-1 v with the factors of rti_mbs_schur. */
+void rti_mbs_solve(struct rt_sim *sim, uint8_t set, real_t *v);
+/* dz = -Y v: the velocity-space correction of multipliers v. */
+void rti_mbs_correct(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set,
+                     const real_t *v, real_t *dz);
+/* The block owning constraint row `row` of the set (a joint's b1), or -1. */
+int rti_mbs_row_block(const struct rt_scene *sc, const struct rt_sim *sim, uint8_t set,
+                      uint16_t row);
+/* The index-1 solve at the current state: lambda into lam and jlam, and
+   z' = a + dz (free accelerations plus constraint part). */
+void rti_mbs_lambda(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+/* The accel service (see rt_mbs_ops) and the project service (rt/mbs_project.c). */
+void rti_mbs_accel(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
+                   real_t *xdot);
+void rti_mbs_project(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+
+#endif /* RTI_MBS_H */
