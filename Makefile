@@ -52,7 +52,7 @@ RT_SRCS     := $(wildcard rt/*.c)
 MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
                $(patsubst models/scenes/%.scn,build/gen/scenes/%.c,$(wildcard models/scenes/*.scn))
 POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/modrt/cli.c \
-               tools/modrt/info.c
+               tools/modrt/info.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
 
@@ -106,7 +106,7 @@ $(O)/obj/%.o: %.c
 	$(Q)$(CC) $(CFLAGS_ALL) -c $< -o $@
 
 $(O)/modrt: $(call obj,tools/modrt/modrt.c $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
-	$(Q)$(CC) $(LDSAN) $^ -o $@
+	$(Q)$(CC) $(LDSAN) $^ -lpthread -o $@
 
 # the version `modrt --version` prints: the git description, rewritten only when it changes
 $(call obj,tools/modrt/modrt.c): build/gen/version.h
@@ -123,7 +123,7 @@ $(O)/svgplot: tools/svgplot.c
 	$(Q)$(CC) $(CSTD) -O2 $< -lm -o $@
 
 $(O)/tests: $(call obj,$(TEST_SRCS) $(HOST_TEST_SRCS) $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
-	$(Q)$(CC) $(LDSAN) $^ -lm -o $@
+	$(Q)$(CC) $(LDSAN) $^ -lpthread -lm -o $@
 
 # ---- tests ----
 unit: $(O)/tests
@@ -329,5 +329,7 @@ endif
 
 clean:
 	rm -rf build
+
+include tests/link/link.mk
 
 -include $(shell find build -name '*.d' 2>/dev/null)

@@ -31,6 +31,7 @@
     X(RT_E_SINGULAR, "singular or near-singular matrix")                         \
     X(RT_E_EVENT, "too many state events in one step")                           \
     X(RT_E_OVERRUN, "tick deadline overrun")                                     \
+    X(RT_E_LINK, "controller link lost (an import with policy stop)")            \
     X(RT_E_DONE, "end time reached")
 
 typedef enum {
@@ -308,6 +309,40 @@ typedef struct rt_rec {
     uint16_t index;        /* output, state or discrete-state index */
 } rt_rec;
 
+/* What happens to an imported value that did not arrive in time (docs/link.md); declared
+   once (rt_link_policy_name, rt_link_policy_find). */
+#define RT_LINK_POLICY_LIST(X)                                                   \
+    X(RT_LINK_HOLD, "hold")       /* keep the last value received */             \
+    X(RT_LINK_DEFAULT, "default") /* fall back to the declared default */        \
+    X(RT_LINK_STOP, "stop")       /* end the run (status RT_E_LINK) */
+
+typedef enum {
+#define RT_X_ENUM_P(id, name) id,
+    RT_LINK_POLICY_LIST(RT_X_ENUM_P)
+#undef RT_X_ENUM_P
+    RT_LINK_POLICY_COUNT
+} rt_link_policy;
+const char *rt_link_policy_name(int policy);
+int rt_link_policy_find(const char *name); /* -1 when unknown */
+
+/* The scene's link to an external controller (scene language: export ... to (C);
+ * import ... from (C);). The runtime does no I/O: an application (tools/modrt/link.c on
+ * POSIX, a UART or CAN driver on a board) reads the exports and writes the imports
+ * between ticks through rt_link_export / rt_link_apply, every `period` base ticks. The
+ * imports are the discrete states (and held outputs) of a DSS block, `block`, so they
+ * are part of the simulation state like any sampled signal. */
+typedef struct rt_link {
+    const char *name;             /* the controller's name in the scene */
+    uint32_t period;              /* exchange every period base ticks (>= 1) */
+    const rt_rec *exp;            /* exported signals, read like recorded ones */
+    uint16_t nexp;
+    uint16_t block;               /* the import block (DSS, nd = ny = nimp) */
+    uint16_t nimp;
+    const real_t *def;            /* nimp defaults (also the initial values) */
+    const uint8_t *policy;        /* nimp rt_link_policy values */
+    uint32_t id;                  /* hash of the scene name and the link layout (names) */
+} rt_link;
+
 /* A scene: one experiment, const data (what the scene compiler generates). */
 typedef struct rt_scene {
     const char *name;
@@ -337,6 +372,7 @@ typedef struct rt_scene {
     const struct rt_loop_ops *loop_solver;
     uint8_t loop_iter_max; /* Broyden iterations per loop evaluation (0: default) */
     real_t loop_tol;       /* residual tolerance of torn inputs (0: default) */
+    const rt_link *link;   /* the external controller's signals; NULL: none */
 } rt_scene;
 
 /* Post-stabilization of multibody sets; declared once (rt_stab_name, rt_stab_find). */
@@ -558,6 +594,19 @@ void rt_record(const rt_scene *scene, rt_sim *sim, real_t *out);
 real_t rt_rec_value(const rt_scene *scene, const rt_sim *sim, uint16_t i);
 /* Name parts of recorded signal i: block name and signal name. */
 const char *rt_rec_signal(const rt_scene *scene, uint16_t i);
+
+/* The controller link (rt/link.c; the I/O is the application's). rt_link_due: the
+ * current tick is an exchange tick. rt_link_export: exported signal i at the current
+ * state. rt_link_apply: the nimp imported values take effect from the current tick on
+ * (written into the import block's discrete states and held outputs). */
+int rt_link_due(const rt_scene *scene, const rt_sim *sim);
+real_t rt_link_export(const rt_scene *scene, const rt_sim *sim, uint16_t i);
+void rt_link_apply(const rt_scene *scene, rt_sim *sim, const real_t *v);
+
+/* Snapshots: the state part of rt_sim is everything a run needs to continue; one copy
+ * out and one copy in (the plan must be the same scene's: restore after rt_init of it). */
+void rt_snapshot(const rt_sim *sim, rt_state *out);
+void rt_restore(rt_sim *sim, const rt_state *in);
 
 /* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */
 int rt_block_index(const rt_scene *scene, const char *name);

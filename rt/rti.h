@@ -27,6 +27,10 @@ typedef enum {
 rt_status rti_fail(rt_sim *sim, rt_status status, ...);
 /* Sets n bytes at p to zero (freestanding memset). */
 void rti_zero(void *p, size_t n);
+/* the value of a signal reference (recorded or exported) at the current state (sim.c) */
+real_t rti_sig_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r);
+/* checks the scene's controller link (link.c), at init */
+rt_status rti_link_check(const rt_scene *sc, rt_sim *sim);
 /* Bumps counter c and remembers block b (-1: none); keeps the first fault in sim->stats.status. */
 void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status);
 

@@ -101,9 +101,8 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
     return sim->state.tick >= sim->plan.n_ticks ? RT_E_DONE : RT_OK;
 }
 
-real_t rt_rec_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
+real_t rti_sig_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r)
 {
-    const rt_rec *r = &sc->recs[i];
     switch (r->what) {
     case RT_SIG_X:
         return sim->state.x[sim->plan.x_off[r->block] + r->index];
@@ -114,6 +113,11 @@ real_t rt_rec_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
     default:
         return sim->state.y[sim->plan.y_off[r->block] + r->index];
     }
+}
+
+real_t rt_rec_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
+{
+    return rti_sig_value(sc, sim, &sc->recs[i]);
 }
 
 const char *rt_rec_signal(const rt_scene *sc, uint16_t i)

@@ -39,6 +39,7 @@ int rt_streq(const char *a, const char *b)
 static const char *const kind_type_names[] = {RT_KIND_TYPE_LIST(RT_X_NAME)};
 static const char *const interp_names[] = {RT_INTERP_LIST(RT_X_NAME)};
 static const char *const stab_names[] = {RT_STAB_LIST(RT_X_NAME)};
+static const char *const policy_names[] = {RT_LINK_POLICY_LIST(RT_X_NAME)};
 #undef RT_X_NAME
 
 static int find_name(const char *const *names, int n, const char *name)
@@ -72,6 +73,16 @@ const char *rt_stab_name(rt_stab s)
 int rt_stab_find(const char *name)
 {
     return find_name(stab_names, RT_STAB_COUNT, name);
+}
+
+const char *rt_link_policy_name(int p)
+{
+    return (unsigned)p < RT_LINK_POLICY_COUNT ? policy_names[p] : "?";
+}
+
+int rt_link_policy_find(const char *name)
+{
+    return find_name(policy_names, RT_LINK_POLICY_COUNT, name);
 }
 
 void rti_zero(void *p, size_t n)

@@ -315,6 +315,27 @@ static void scene_order(FILE *f, const rt_scene *sc, const rt_sim *s)
     }
 }
 
+/* the controller link: what is sent and received, how often, and its identity */
+static void scene_link(FILE *f, const rt_scene *sc)
+{
+    const rt_link *l = sc->link;
+    if (!l)
+        return;
+    fprintf(f, "link: controller %s, every %u ticks, id 0x%08x (docs/link.md)\n  exports:",
+            l->name, (unsigned)l->period, (unsigned)l->id);
+    for (uint16_t i = 0; i < l->nexp; i++) /* an export reads like a recorded signal */
+        fprintf(f, " %s.%s", sc->blocks[l->exp[i].block].name,
+                l->exp[i].what == RT_SIG_Y ? sc->blocks[l->exp[i].block].kind->y_names[l->exp[i].index]
+                : l->exp[i].what == RT_SIG_X ? sc->blocks[l->exp[i].block].kind->x_names[l->exp[i].index]
+                : l->exp[i].what == RT_SIG_D ? sc->blocks[l->exp[i].block].kind->d_names[l->exp[i].index]
+                                             : "(multibody)");
+    fprintf(f, "\n  imports:");
+    for (uint16_t i = 0; i < l->nimp; i++)
+        fprintf(f, " %s.%s = %.17g %s", l->name, sc->blocks[l->block].kind->y_names[i],
+                (double)l->def[i], rt_link_policy_name(l->policy[i]));
+    fputc('\n', f);
+}
+
 static void scene_text(FILE *f, const rt_scene *sc, const rt_sim *sim, rt_status init)
 {
     char b[32], e[32];
@@ -326,6 +347,7 @@ static void scene_text(FILE *f, const rt_scene *sc, const rt_sim *sim, rt_status
         scene_schedule(f, sc, sim);
         scene_order(f, sc, sim);
     }
+    scene_link(f, sc);
     fprintf(f, "recorded:");
     for (uint16_t i = 0; i < sc->nrecs; i++)
         fprintf(f, " %s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));

@@ -10,7 +10,9 @@
 
 #include "cli.h"
 #include "info.h"
+#include "link.h"
 #include "models.h"
+#include "mrlog.h"
 #include "scn_host.h"
 #include "runner.h"
 #include "tune.h"
@@ -139,6 +141,8 @@ typedef struct run_args {
     unsigned every;
     const char *sets[MAX_SETS_ARGS];
     int nsets;
+    const char *link, *record;
+    double link_timeout;
 } run_args;
 
 static int opt_t_end(void *ctx, const char *v)
@@ -181,6 +185,28 @@ static int opt_realtime(void *ctx, const char *v)
     return CLI_OK;
 }
 
+static int opt_link(void *ctx, const char *v)
+{
+    if (strcmp(v, "none") != 0 && strncmp(v, "udp:", 4) != 0)
+        return cli_fail("--link expects udp:HOST:PORT or none, got", v);
+    ((run_args *)ctx)->link = v;
+    return CLI_OK;
+}
+
+static int opt_link_timeout(void *ctx, const char *v)
+{
+    run_args *a = ctx;
+    if (!cli_real(v, &a->link_timeout) || !(a->link_timeout > 0 && a->link_timeout <= 3600))
+        return cli_fail("--link-timeout expects seconds in (0, 3600], got", v);
+    return CLI_OK;
+}
+
+static int opt_record(void *ctx, const char *v)
+{
+    ((run_args *)ctx)->record = v;
+    return CLI_OK;
+}
+
 static const cli_opt run_opts[] = {
     {"t-end", "S", "end time [s] instead of the scene's", opt_t_end},
     {"csv", "FILE", "write the recorded signals as CSV to FILE (- : stdout, summary to stderr)",
@@ -189,8 +215,71 @@ static const cli_opt run_opts[] = {
     {"set", "BLOCK.PARAM=VALUE", "set parameter (or initial state) P of block B to V; repeatable", opt_set},
     {"realtime", NULL, "pace the ticks by the wall clock (default: simulated clock)",
      opt_realtime},
+    {"link", "udp:HOST:PORT|none", "exchange the scene's export/import signals with a "
+     "controller (docs/link.md); lock-step, or soft real time with --realtime", opt_link},
+    {"link-timeout", "S", "lock-step: wait at most S seconds per exchange (default 1)",
+     opt_link_timeout},
+    {"record", "FILE", "write every imported vector and its tick to a replay log "
+     "(modrt replay FILE)", opt_record},
     {NULL, NULL, NULL, NULL},
 };
+
+/* the replay log's header of this run */
+static int record_header(const run_args *a, const char *scene, const rt_scene *sc,
+                         mrl_header *h)
+{
+    memset(h, 0, sizeof *h);
+    if (strlen(scene) > MRL_SCENE_LEN || a->nsets > MRL_MAX_SETS)
+        return cli_fail("--record: scene path or --set list too long for the log", scene);
+    strcpy(h->scene, scene);
+    h->id = sc->link ? sc->link->id : 0, h->nimp = sc->link ? sc->link->nimp : 0;
+    h->real_size = (uint8_t)sizeof(real_t), h->realtime = (uint8_t)a->realtime;
+    h->t_end = (double)sc->t_end, h->every = a->every, h->nsets = (uint16_t)a->nsets;
+    for (int i = 0; i < a->nsets; i++) {
+        if (strlen(a->sets[i]) > MRL_SET_LEN)
+            return cli_fail("--record: --set option too long for the log", a->sets[i]);
+        strcpy(h->sets[i], a->sets[i]);
+    }
+    return 0;
+}
+
+/* the inputs of a run: the controller link (and the log it writes), or nothing */
+static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc,
+                        port_run_opts *o, mrl_writer **rec)
+{
+    char err[512];
+    mrl_header h;
+    *rec = NULL;
+    if (a->record) {
+        if (record_header(a, scene, sc, &h))
+            return CLI_USAGE;
+        if (!(*rec = mrl_create(a->record, &h, err, sizeof err)))
+            return cli_fail("--record", err);
+    }
+    if (!a->link || strcmp(a->link, "none") == 0)
+        return CLI_OK;
+    if (link_open(a->link, sc, a->realtime, a->link_timeout > 0 ? a->link_timeout : 1, *rec,
+                  err, sizeof err) != 0)
+        return cli_fail("--link", err);
+    o->exchange = link_exchange;
+    return CLI_OK;
+}
+
+/* closes the link and the log; prints the link's counts; 1 if they show a fault */
+static int stop_inputs(const run_args *a, FILE *f, mrl_writer *rec)
+{
+    char err[512];
+    int bad = 0;
+    if (a->link && strcmp(a->link, "none") != 0) {
+        link_counts c;
+        link_close(&c);
+        link_print(f, &c);
+        bad = c.bad > 0 || c.missing > 0;
+    }
+    if (rec && mrl_finish(rec, err, sizeof err) != 0)
+        bad = cli_fail("--record", err) != 0;
+    return bad;
+}
 
 static int cmd_run(void *ctx, int npos, char **pos)
 {
@@ -214,9 +303,92 @@ static int cmd_run(void *ctx, int npos, char **pos)
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : fopen(a->csv, "w")))
         return cli_fail("cannot write the CSV file", a->csv);
-    port_run_opts o = {csv, a->every, a->realtime};
+    port_run_opts o = {csv, a->every, a->realtime, NULL, NULL};
     port_run_result r;
+    mrl_writer *rec;
+    int rc = start_inputs(a, pos[0], &sc, &o, &rec);
+    if (rc != CLI_OK)
+        return rc;
     st = port_run(&sc, &sim, &o, &r);
+    if (csv && !to_stdout && fclose(csv) != 0)
+        return cli_fail("error writing the CSV file", a->csv);
+    FILE *out = to_stdout ? stderr : stdout;
+    summary(out, &sc, &sim, st, r.wall_s);
+    int link_bad = stop_inputs(a, out, rec);
+    return sim.stats.status == RT_OK && !link_bad ? CLI_OK : CLI_FAULTS;
+}
+
+/* ------------------------------------------------------------------ replay */
+
+typedef struct replay_args {
+    const char *csv;
+} replay_args;
+
+static int opt_replay_csv(void *ctx, const char *v)
+{
+    ((replay_args *)ctx)->csv = v;
+    return CLI_OK;
+}
+
+static const cli_opt replay_opts[] = {
+    {"csv", "FILE", "write the recorded signals as CSV to FILE (- : stdout, summary to stderr)",
+     opt_replay_csv},
+    {NULL, NULL, NULL, NULL},
+};
+
+/* the scene of the log, initialised as the live run was */
+static int replay_scene(const mrl_header *h, rt_scene *sc, const char *path)
+{
+    char what[600];
+    const rt_scene *base = cli_scene(h->scene);
+    if (!base)
+        return CLI_USAGE;
+    *sc = *base;
+    sc->t_end = (real_t)h->t_end;
+    if (h->real_size != sizeof(real_t))
+        return cli_fail(path, h->real_size == 4 ? "was recorded by a float build; this is a "
+                                                  "double build"
+                                                : "was recorded by a double build; this is a "
+                                                  "float build");
+    uint32_t id = sc->link ? sc->link->id : 0;
+    uint16_t nimp = sc->link ? sc->link->nimp : 0;
+    if (id != h->id || nimp != h->nimp) {
+        snprintf(what, sizeof what, "link layout 0x%08x with %u imports, but scene %s has "
+                 "0x%08x with %u: another scene or another version of it",
+                 (unsigned)h->id, (unsigned)h->nimp, h->scene, (unsigned)id, (unsigned)nimp);
+        return cli_fail(path, what);
+    }
+    rt_status st = rt_init(sc, &sim);
+    if (st != RT_OK)
+        return cli_fail(rt_status_name(st), rt_error_text(&sim));
+    for (uint16_t i = 0; i < h->nsets; i++)
+        if (apply_set(sc, h->sets[i]))
+            return CLI_USAGE;
+    if (h->nsets > 0)
+        rt_refresh(sc, &sim);
+    return CLI_OK;
+}
+
+static int cmd_replay(void *ctx, int npos, char **pos)
+{
+    static mrl_header h;
+    const replay_args *a = ctx;
+    char err[600];
+    rt_scene sc;
+    (void)npos;
+    if (mrl_open(pos[0], &h, err, sizeof err) != 0)
+        return cli_fail("replay", err);
+    int rc = replay_scene(&h, &sc, pos[0]);
+    if (rc != CLI_OK)
+        return mrl_close(), rc;
+    FILE *csv = NULL;
+    int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
+    if (a->csv && !(csv = to_stdout ? stdout : fopen(a->csv, "w")))
+        return mrl_close(), cli_fail("cannot write the CSV file", a->csv);
+    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL};
+    port_run_result r;
+    rt_status st = port_run(&sc, &sim, &o, &r);
+    mrl_close();
     if (csv && !to_stdout && fclose(csv) != 0)
         return cli_fail("error writing the CSV file", a->csv);
     summary(to_stdout ? stderr : stdout, &sc, &sim, st, r.wall_s);
@@ -255,6 +427,7 @@ static int cmd_sizes(void *ctx, int npos, char **pos)
 
 static info_args info_ctx;
 static run_args run_ctx = {.every = 1};
+static replay_args replay_ctx;
 static const cli_opt info_opts[] = {
     {"json", NULL, "print JSON (one object) for scripts", opt_json},
     {NULL, NULL, NULL, NULL},
@@ -272,6 +445,11 @@ static const cli_cmd commands[] = {
      "The summary's hash is a 64-bit FNV-1a over the bit patterns of every recorded value:\n"
      "the same scene gives the same hash on every run and every target.",
      run_opts, 1, 1, &run_ctx, cmd_run},
+    {"replay", "FILE.mrl", "re-run a recorded live run from its log, without the controller",
+     "Applies every recorded import at its tick on the simulated clock: the summary and its\n"
+     "hash equal the live run's bit for bit. A corrupt, truncated or mismatched log is\n"
+     "refused with one line saying what and where (docs/link.md).",
+     replay_opts, 1, 1, &replay_ctx, cmd_replay},
     {"tune", "SCENE|FILE.scn", "find the cheapest fixed multirate schedule within a tolerance",
      "Runs a fine reference, then candidate schedules (nested power-of-two step ratios),\n"
      "and prints the cheapest that stays within --tol of it (docs/multirate.md).",

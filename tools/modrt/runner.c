@@ -41,14 +41,29 @@ static void record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
         port_csv_row(o->csv, sc, sim, vals);
 }
 
-/* one tick and its recording; the unit of work of both clocks */
+
+static int running(rt_status st) { return st != RT_E_DONE && st != RT_E_LINK; }
+
+/* the inputs from outside at this tick; RT_E_LINK (also the run's status) ends the run */
+static rt_status exchange(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, rt_status st)
+{
+    /* the last tick too: a sampled controller samples at the end time as well */
+    if (!o->exchange || !o->exchange(o->xctx, sc, sim))
+        return st;
+    if (sim->stats.status == RT_OK)
+        sim->stats.status = RT_E_LINK;
+    return RT_E_LINK;
+}
+
+/* one tick, the exchange, and the recording; the unit of work of both clocks */
 static rt_status tick_and_record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
 {
-    rt_status st = rt_tick(sc, sim);
-    if (sim->state.tick % o->every == 0 || st == RT_E_DONE)
+    rt_status st = exchange(sc, sim, o, rt_tick(sc, sim));
+    if (sim->state.tick % o->every == 0 || !running(st))
         record(sc, sim, o);
     return st;
 }
+
 
 /* the real-time clock calls this from port_timer_wait */
 static const rt_scene *rt_scene_now;
@@ -59,7 +74,7 @@ static uint64_t rt_overruns;
 
 static void on_tick(void)
 {
-    if (rt_last == RT_E_DONE)
+    if (!running(rt_last))
         return;
     rt_last = tick_and_record(rt_scene_now, rt_sim_now, rt_opts_now);
     if (port_timer_late())
@@ -71,21 +86,23 @@ rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port
     rt_status st = RT_OK;
     if (o->csv)
         port_csv_header(o->csv, sc);
+    st = exchange(sc, sim, o, st);
     record(sc, sim, o);
     double t0 = now_s();
-    if (!o->realtime) {
-        while (st != RT_E_DONE)
+    if (!running(st)) {
+    } else if (!o->realtime) {
+        while (running(st))
             st = tick_and_record(sc, sim, o);
     } else {
         rt_scene_now = sc, rt_sim_now = sim, rt_opts_now = o, rt_last = RT_OK;
         rt_overruns = 0;
         uint32_t us = (uint32_t)(sc->dt * 1e6 + 0.5);
         if (sim->state.tick < sim->plan.n_ticks && port_timer_start(us, on_tick) == 0) {
-            while (rt_last != RT_E_DONE)
+            while (running(rt_last))
                 port_timer_wait();
             port_timer_stop();
         }
-        st = RT_E_DONE;
+        st = rt_last == RT_E_LINK ? RT_E_LINK : RT_E_DONE;
         sim->stats.count[RT_CNT_OVERRUN] += (uint32_t)rt_overruns;
     }
     r->wall_s = now_s() - t0;

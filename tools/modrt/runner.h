@@ -12,6 +12,10 @@ typedef struct port_run_opts {
     FILE *csv;          /* trace destination, or NULL */
     unsigned every;     /* record every N ticks (>= 1) */
     int realtime;       /* 1: pace ticks by the wall clock */
+    /* the scene's inputs from outside (a controller link, a replay log), or NULL: called
+       at tick 0 and after every tick before it is recorded; returns 1 to end the run */
+    int (*exchange)(void *ctx, const rt_scene *sc, rt_sim *sim);
+    void *xctx;
 } port_run_opts;
 
 typedef struct port_run_result {
@@ -19,7 +23,8 @@ typedef struct port_run_result {
     uint64_t overruns;  /* real-time ticks that missed their deadline */
 } port_run_result;
 
-/* Runs an initialised scene to its end; returns the last tick status. */
+/* Runs an initialised scene to its end; returns the last tick status (RT_E_LINK when the
+   exchange ended it, also set as the run's status). */
 rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port_run_result *r);
 /* Writes the CSV header: t, then Block.signal for each recorded signal. */
 void port_csv_header(FILE *f, const rt_scene *sc);

@@ -445,6 +445,44 @@ static void recs(FILE *f, const scn_scene *s)
     fputs("};\n", f);
 }
 
+/* the controller link: exports like recorded signals, the import block, defaults,
+   policies, and the layout's identity (docs/link.md) */
+static void link(FILE *f, const scn_scene *s)
+{
+    static const char *const what[] = {"RT_SIG_Y", "RT_SIG_X", "RT_SIG_D", "RT_SIG_MBS"};
+#define SCN_X_ID(id, name) #id,
+    static const char *const pol[] = {RT_LINK_POLICY_LIST(SCN_X_ID)};
+#undef SCN_X_ID
+    const rt_link *l = &s->link;
+    if (!l->name)
+        return;
+    if (l->nexp) {
+        fputs("static const rt_rec link_exp[] = {\n", f);
+        for (uint16_t i = 0; i < l->nexp; i++)
+            fprintf(f, "    {B_%s, %s, %u}, /* %s.%s */\n", s->blk[l->exp[i].block].name.s,
+                    what[l->exp[i].what], l->exp[i].index, s->lexp[i].sig.block.s,
+                    s->lexp[i].sig.port.s);
+        fputs("};\n", f);
+    }
+    if (l->nimp) {
+        fputs("static const real_t link_def[] = {", f);
+        for (uint16_t i = 0; i < l->nimp; i++)
+            fprintf(f, "%s%s", i ? ", " : "", R(l->def[i]));
+        fputs("};\nstatic const uint8_t link_policy[] = {", f);
+        for (uint16_t i = 0; i < l->nimp; i++)
+            fprintf(f, "%s%s", i ? ", " : "", pol[l->policy[i]]);
+        fputs("};\n", f);
+    }
+    fprintf(f, "static const rt_link link = {\n    .name = \"%s\", .period = %u, .id = 0x%08xu,\n",
+            l->name, (unsigned)l->period, (unsigned)l->id);
+    if (l->nexp)
+        fprintf(f, "    .exp = link_exp, .nexp = %u,\n", l->nexp);
+    if (l->nimp)
+        fprintf(f, "    .block = B_%s, .nimp = %u, .def = link_def, .policy = link_policy,\n",
+                s->blk[l->block].name.s, l->nimp);
+    fputs("};\n", f);
+}
+
 static void joints(FILE *f, const scn_scene *s)
 {
     char id[SCN_MAX_NAME + 4];
@@ -510,6 +548,8 @@ static void scene(FILE *f, const scn_ctx *c)
         fprintf(f, "    .loop_iter_max = %u,\n", (unsigned)s->loop_iter);
     if (s->loop_tol != 0)
         fprintf(f, "    .loop_tol = %s,\n", R(s->loop_tol));
+    if (s->link.name)
+        fputs("    .link = &link,\n", f);
     fputs("};\n", f);
 }
 
@@ -522,6 +562,7 @@ int scn_emit(scn_ctx *c, FILE *f)
     wiring(f, &c->sc);
     sets(f, &c->sc);
     recs(f, &c->sc);
+    link(f, &c->sc);
     joints(f, &c->sc);
     scene(f, c);
     return ferror(f) ? -1 : 0;

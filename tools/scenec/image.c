@@ -176,6 +176,7 @@ int scn_build_image(scn_ctx *c)
     sc->loop_solver = s->solver.s ? &rt_broyden : NULL;
     sc->loop_iter_max = (uint8_t)s->loop_iter;
     sc->loop_tol = (real_t)s->loop_tol;
+    sc->link = s->link.name ? &s->link : NULL;
     return init_check(c);
 }
 

@@ -260,6 +260,19 @@ int scn_push_include(scn_ctx *c, const char *name, scn_pos pos)
     return c->err ? -1 : 0;
 }
 
+int scn_push_text(scn_ctx *c, const char *label, const char *text, scn_pos pos)
+{
+    if (c->depth >= SCN_MAX_DEPTH || c->nfiles >= SCN_MAX_FILES) {
+        scn_fail(c, pos, label, "includes nested too deeply or too many files",
+                 scn_fmt(c, "at most %u levels and %u files", SCN_MAX_DEPTH, SCN_MAX_FILES));
+        return -1;
+    }
+    c->depth++;
+    add_file(c, label, label, text, strlen(text));
+    scn_next(c);
+    return c->err ? -1 : 0;
+}
+
 void scn_pop_include(scn_ctx *c)
 {
     if (c->depth > 0)

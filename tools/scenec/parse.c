@@ -563,6 +563,113 @@ static void st_record(scn_ctx *c, scn_pos at)
     scn_expect_op(c, ";");
 }
 
+/* ------------------------------------------------------------------ controller link */
+
+/* (C): the controller's name; both statements must name the same one */
+static void controller(scn_ctx *c, scn_name *slot, const char *word, const char *stmt)
+{
+    scn_expect_word(c, word);
+    scn_name n = paren_name(c, "the controller's name");
+    if (!c->err && slot->s)
+        scn_fail(c, n.pos, n.s, scn_fmt(c, "a second %s statement", stmt),
+                 "one export and one import statement per scene (one controller)");
+    *slot = n;
+}
+
+/* export (Block.signal, ...) to (C); */
+static void st_export(scn_ctx *c, scn_pos at)
+{
+    scn_scene *s = &c->sc;
+    (void)at;
+    scn_expect_op(c, "(");
+    do {
+        scn_rec r;
+        memset(&r, 0, sizeof r);
+        r.want = -1;
+        r.sig.block = scn_expect_name(c, "a signal as Block.signal");
+        scn_expect_op(c, ".");
+        r.sig.port = scn_expect_name(c, "a signal name");
+        if (!c->err && s->nlexp >= SCN_MAX_RECS)
+            scn_fail(c, r.sig.block.pos, r.sig.block.s, "too many exported signals",
+                     scn_fmt(c, "at most %u", SCN_MAX_RECS));
+        if (!c->err)
+            s->lexp[s->nlexp++] = r;
+    } while (!c->err && scn_accept_op(c, ","));
+    scn_expect_op(c, ")");
+    controller(c, &s->ctl_exp, "to", "export");
+    scn_expect_op(c, ";");
+}
+
+/* name [= constant] [hold|default|stop] */
+static void import_item(scn_ctx *c, scn_scene *s)
+{
+    scn_name n = scn_expect_name(c, "an imported signal's name");
+    if (!c->err && s->nlimp >= SCN_MAX_PORTS)
+        scn_fail(c, n.pos, n.s, "too many imported signals", scn_fmt(c, "at most %u", SCN_MAX_PORTS));
+    if (c->err)
+        return;
+    scn_var *v = &s->limp[s->nlimp];
+    v->name = n, v->init = 0;
+    if (scn_accept_op(c, "="))
+        v->init = scn_const_expr(c);
+    s->lpol[s->nlimp] = RT_LINK_HOLD;
+    if (c->tok.kind == SCN_T_ID && rt_link_policy_find(c->tok.s) >= 0) {
+        s->lpol[s->nlimp] = (uint8_t)rt_link_policy_find(c->tok.s);
+        scn_next(c);
+    }
+    s->nlimp++;
+}
+
+/* the define and the load an import stands for: a DSS block named after the controller,
+   one held discrete state and output per import (rt_link_apply writes both) */
+static void import_expand(scn_ctx *c, scn_scene *s, scn_pos at)
+{
+    const char *C = s->ctl_imp.s;
+    char *out = scn_fmt(c, "define dss_system (%s__import) with outputs (", C);
+    for (uint16_t i = 0; i < s->nlimp; i++)
+        out = scn_fmt(c, "%s%s%s", out, i ? ", " : "", s->limp[i].name.s);
+    out = scn_fmt(c, "%s) states (", out);
+    for (uint16_t i = 0; i < s->nlimp; i++)
+        out = scn_fmt(c, "%s%s%s__in = %.17g", out, i ? ", " : "", s->limp[i].name.s,
+                      s->limp[i].init);
+    out = scn_fmt(c, "%s) period (%.17g s) by {", out, s->lperiod);
+    for (uint16_t i = 0; i < s->nlimp; i++)
+        out = scn_fmt(c, "%s %s = %s__in; next(%s__in) = %s__in;", out, s->limp[i].name.s,
+                      s->limp[i].name.s, s->limp[i].name.s, s->limp[i].name.s);
+    out = scn_fmt(c, "%s };\nload system (%s) of type (%s__import);\n", out, C, C);
+    scn_push_text(c, scn_fmt(c, "<import from %s>", C), out, at);
+}
+
+/* import (name [= v] [hold|default|stop], ...) from (C) [every (time)]; */
+static void st_import(scn_ctx *c, scn_pos at)
+{
+    scn_scene *s = &c->sc;
+    scn_expect_op(c, "(");
+    do
+        import_item(c, s);
+    while (!c->err && scn_accept_op(c, ","));
+    scn_expect_op(c, ")");
+    controller(c, &s->ctl_imp, "from", "import");
+    scn_pos every = at;
+    s->lperiod = s->dt;
+    if (!c->err && scn_is_word(c, "every")) {
+        scn_next(c);
+        s->lperiod = paren_time(c, 0, NULL, &every);
+    }
+    double r = s->dt > 0 ? s->lperiod / s->dt : 0, n = (double)(uint32_t)(r + 0.5);
+    if (!c->err && !(s->lperiod > 0 && s->dt > 0))
+        scn_fail(c, at, "import", "no exchange period",
+                 "base tick (...) before the import, and every (<time>) if not every tick");
+    else if (!c->err && !(n >= 1 && (n - r) * (n - r) <= RT_TICK_MATCH_REL * RT_TICK_MATCH_REL * r * r))
+        scn_fail(c, every, scn_fmt(c, "%g s", s->lperiod),
+                 "exchange period is not a whole number of base ticks",
+                 scn_fmt(c, "a multiple of %g s", s->dt));
+    if (!c->err && !scn_is_op(c, ";"))
+        scn_fail_tok(c, "syntax error", "every (<time>) or ';'");
+    if (!c->err)
+        import_expand(c, s, at);
+}
+
 /* solve loops by (broyden) [iterations (n)] [tolerance (v)]; */
 static void st_solve(scn_ctx *c, scn_pos at)
 {
@@ -633,6 +740,7 @@ static const stmt_entry stmts[] = {
     {"include", st_include}, {"define", st_define},   {"load", st_load},
     {"connect", st_connect}, {"link", st_link},       {"set", st_set},
     {"record", st_record},   {"solve", st_solve},     {"stabilization", st_stab},
+    {"export", st_export},   {"import", st_import},
     {0, 0},
 };
 
@@ -658,7 +766,8 @@ static void statement(scn_ctx *c)
         return;
     }
     scn_fail_tok(c, "syntax error", "a statement: scene, base tick, end time, include, define, "
-                                    "load, connect, link, set, record, solve, stabilization or "
+                                    "load, connect, link, set, record, solve, stabilization, "
+                                    "export, import or "
                                     "Block.name = value;");
 }
 

@@ -290,6 +290,19 @@ typedef struct scn_scene {
     scn_rec rec[SCN_MAX_RECS];
     uint16_t nrec;
 
+    /* the controller link: export (refs) to (C); import (names) from (C) [every (t)];
+       resolved by check.c into link (docs/link.md) */
+    scn_name ctl_exp, ctl_imp;  /* the controller each statement names (.s NULL: none) */
+    scn_rec lexp[SCN_MAX_RECS];
+    uint16_t nlexp;
+    scn_var limp[SCN_MAX_PORTS]; /* import names and defaults */
+    uint8_t lpol[SCN_MAX_PORTS]; /* their rt_link_policy */
+    uint16_t nlimp;
+    double lperiod;             /* exchange period [s] */
+    rt_rec lexp_r[SCN_MAX_RECS];
+    real_t ldef[SCN_MAX_PORTS];
+    rt_link link;               /* resolved; link.name NULL: the scene has no link */
+
     /* define bodies */
     scn_stmt st[SCN_MAX_STMTS];
     uint32_t nst;
@@ -371,6 +384,8 @@ const char *scn_path(const scn_ctx *c, scn_pos pos);    /* file of a position */
 int scn_open_main(scn_ctx *c, const char *path, const char *text, size_t len);
 /* Opens `name` (as written in an include at pos) and reads on from its first token. */
 int scn_push_include(scn_ctx *c, const char *name, scn_pos pos);
+/* reads generated text next, as if included (the statements an import expands to) */
+int scn_push_text(scn_ctx *c, const char *label, const char *text, scn_pos pos);
 void scn_pop_include(scn_ctx *c);
 void scn_next(scn_ctx *c);                              /* reads the next token */
 /* Comma-separated names for "expected" texts (at most max, then "..."). */
@@ -408,6 +423,10 @@ const char *scn_kind_desc(scn_ctx *c, const scn_block *b);
 void scn_check_sets(scn_ctx *c);
 void scn_check_links(scn_ctx *c);
 void scn_check_rest(scn_ctx *c);
+/* resolves a recorded (or exported) signal reference into r->r (sets.c) */
+void scn_resolve_rec(scn_ctx *c, scn_rec *r);
+/* resolves the controller link into c->sc.link (link.c) */
+void scn_check_link(scn_ctx *c);
 /* sets.c: marks in[i] for the statements d->st0 + i of one service (SCN_ST_OUT, _DER or
    _NEXT): its own, and the lets they need, directly or through other lets */
 void scn_service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint8_t *in);

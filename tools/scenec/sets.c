@@ -366,6 +366,11 @@ static void options(scn_ctx *c)
                  "stabilization (baumgarte) alpha (...) beta (...);");
 }
 
+void scn_resolve_rec(scn_ctx *c, scn_rec *r)
+{
+    record(c, r);
+}
+
 void scn_check_rest(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
@@ -377,6 +382,8 @@ void scn_check_rest(scn_ctx *c)
         record(c, &s->rec[i]);
     if (!c->err)
         options(c);
+    if (!c->err)
+        scn_check_link(c);
 }
 
 /* ------------------------------------------------------------------ services */

@@ -1,0 +1,43 @@
+# link.mk - the controller link's suites (docs/link.md); included by the Makefile.
+#   make test-link        end to end over loopback with the example controllers (tests/link/link.sh)
+#   make link-fuzz        the datagram and replay-log decoders under libFuzzer for FUZZ_TIME s
+#   make test-link-fuzz   the same for 5 s (CI)
+
+LINK_FUZZ_SRCS = tests/link/fuzz_link.c ports/common/link_wire.c tools/modrt/mrlog.c \
+                 $(filter-out rt/registry.c,$(RT_SRCS))
+LINK_FUZZ_FLAGS = $(CSTD) -g -O1 -Irt -Iports -Itools/modrt
+
+build/fuzz/link-fuzz: $(LINK_FUZZ_SRCS) tests/scenec/fuzz_main.c
+	@mkdir -p $(dir $@)
+	@if command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(){return 0;}' | \
+	    clang -x c -fsanitize=fuzzer - -o build/fuzz/probe-link 2>/dev/null; then \
+	  clang $(LINK_FUZZ_FLAGS) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+	    $(LINK_FUZZ_SRCS) -o $@; \
+	else \
+	  $(CC) $(LINK_FUZZ_FLAGS) -fsanitize=address,undefined -fno-sanitize-recover=all \
+	    $(LINK_FUZZ_SRCS) tests/scenec/fuzz_main.c -o $@; \
+	fi
+
+# seeds: good and bad packets and logs written by the unit and end-to-end tests
+link-fuzz-seeds: build/host/tests
+	@mkdir -p build/fuzz/link-corpus
+	@build/host/tests link_ > /dev/null 2>&1; \
+	 for f in build/test-link-*.mrl build/test-link/*.mrl; do \
+	   [ -f "$$f" ] && { printf '\000'; cat "$$f"; } > build/fuzz/link-corpus/$$(basename $$f); done; \
+	 python3 tests/link/seed_packets.py build/fuzz/link-corpus
+
+link-fuzz: deps build/fuzz/link-fuzz link-fuzz-seeds
+	sh tests/link/fuzz.sh build/fuzz/link-fuzz $(FUZZ_TIME)
+test-link-fuzz: build/fuzz/link-fuzz link-fuzz-seeds
+	@sh tests/link/fuzz.sh build/fuzz/link-fuzz 5
+
+# the C example controller (a host program: POSIX sockets and the freestanding codec)
+build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(CSTD) -O2 -Iports $^ -o $@
+
+test-link: deps-host build/host/modrt build/host/pi_controller
+	@bash tests/link/link.sh
+
+TEST_SUITES += test-link test-link-fuzz
+.PHONY: link-fuzz link-fuzz-seeds test-link test-link-fuzz

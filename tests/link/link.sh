@@ -1,0 +1,113 @@
+#!/bin/sh
+# link.sh - the controller link end to end over loopback (docs/link.md): the Python example
+# controller closes the loop of pi_link live, lock-step and in soft real time, each with
+# --record; `modrt replay` of each log gives the live run's hash; the lock-step trace
+# equals pi_loop's (the same PI law in the scene) value for value; a controller that sends
+# every kind of bad datagram around its good answers changes nothing but the counters; one
+# that falls silent triggers the timeout and the import's policy; corrupt, truncated and
+# foreign logs are refused with one line. Every controller runs under `timeout`, on
+# 127.0.0.1, and is waited for by this script.
+set -u
+M=build/host/modrt
+T=build/test-link
+mkdir -p $T
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL link: $*"; }
+field() { sed -n "s/^$1: //p" "$2"; }
+
+# start CONTROLLER [ARGS]: runs it bounded in time, waits for its "port N" line
+start() {
+    rm -f $T/ctl.out
+    timeout 30 python3 "$@" > $T/ctl.out 2>&1 &
+    CTL=$!
+    for _ in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
+        PORT=$(sed -n 's/^port //p' $T/ctl.out)
+        [ -n "$PORT" ] && return 0
+        sleep 0.1
+    done
+    bad "controller $* did not start"; kill $CTL 2>/dev/null; PORT=0
+}
+stop() { kill $CTL 2>/dev/null; wait $CTL 2>/dev/null; }
+
+loop_hash=$($M run pi_loop --csv $T/loop.csv | sed -n 's/^hash: //p')
+
+# 1. lock-step: exact, replayable, equal to the in-scene controller
+start tools/examples/pi_controller.py --idle 3
+$M run pi_link --link udp:127.0.0.1:$PORT --record $T/ls.mrl --csv $T/ls.csv > $T/ls.out; rc=$?
+stop
+h=$(field hash $T/ls.out)
+[ $rc -eq 0 ] && [ "$(field link_applied $T/ls.out)" = 301 ] && ok || bad "lock-step run: exit $rc"
+[ "$h" = "$loop_hash" ] && ok || bad "lock-step hash $h, pi_loop's $loop_hash"
+if [ "$(tail -n +2 $T/ls.csv | cut -d, -f2-)" = "$(tail -n +2 $T/loop.csv | cut -d, -f2-)" ]; then ok
+else bad "lock-step trace differs from pi_loop's"; fi
+rh=$($M replay $T/ls.mrl | sed -n 's/^hash: //p')
+[ "$rh" = "$h" ] && ok || bad "replay of the lock-step log: $rh, live $h"
+echo "link: lock-step: hash $h = pi_loop = replay; $(grep link_rtt_us $T/ls.out)"
+
+# the C example controller: the same law, the same hash
+start_c() {
+    rm -f $T/ctl.out
+    timeout 30 build/host/pi_controller 0 3 > $T/ctl.out 2>&1 &
+    CTL=$!
+    for _ in 1 2 3 4 5 6 7 8 9 10; do
+        PORT=$(sed -n 's/^port //p' $T/ctl.out); [ -n "$PORT" ] && return 0; sleep 0.1
+    done
+}
+start_c
+h=$($M run pi_link --link udp:127.0.0.1:$PORT | sed -n 's/^hash: //p')
+stop
+[ "$h" = "$loop_hash" ] && ok || bad "C controller: hash $h, pi_loop's $loop_hash"
+
+# 2. soft real time: whatever the timing did, the replay reproduces it
+start tools/examples/pi_controller.py --idle 3
+$M run pi_link --link udp:127.0.0.1:$PORT --realtime --record $T/rt.mrl > $T/rt.out; rc=$?
+stop
+h=$(field hash $T/rt.out)
+rh=$($M replay $T/rt.mrl | sed -n 's/^hash: //p')
+[ -n "$h" ] && [ "$rh" = "$h" ] && ok || bad "replay of the real-time log: $rh, live $h (exit $rc)"
+echo "link: soft real time: applied $(field link_applied $T/rt.out), missing $(field link_missing $T/rt.out), late $(field link_late $T/rt.out); replay hash = live"
+
+# 3. bad datagrams around every answer: counted by kind, never applied
+start tests/link/evil_controller.py
+$M run pi_link --link udp:127.0.0.1:$PORT --t-end 0.5 > $T/evil.out; rc=$?
+stop
+want=$($M run pi_loop --t-end 0.5 | sed -n 's/^hash: //p')
+[ "$(field hash $T/evil.out)" = "$want" ] && ok || bad "bad datagrams changed the run"
+n=$(field link_applied $T/evil.out)
+[ "$n" = 51 ] && [ "$(field link_bad $T/evil.out)" -ge $((9 * 50)) ] &&
+[ "$(field link_dup $T/evil.out)" -ge 100 ] && [ "$(field link_late $T/evil.out)" -ge 49 ] && ok ||
+    bad "bad-datagram counts: $(grep '^link_' $T/evil.out | tr '\n' ' ')"
+[ $rc -eq 1 ] && ok || bad "a run that received bad datagrams exits $rc, not 1"
+echo "link: bad datagrams: $(grep '^link_\(bad\|dup\|late\)' $T/evil.out | tr '\n' ' ')"
+
+# 4. a controller that falls silent: bounded wait, counted, policy applied (hold)
+start tests/link/evil_controller.py --silent-after 5
+$M run pi_link --link udp:127.0.0.1:$PORT --link-timeout 0.02 --t-end 0.2 > $T/quiet.out; rc=$?
+stop
+[ $rc -eq 1 ] && [ "$(field link_missing $T/quiet.out)" = 16 ] && ok ||
+    bad "silent controller: exit $rc, missing $(field link_missing $T/quiet.out)"
+
+# 5. no controller at all: the defaults (c = 0), and the plant stays at rest
+$M run pi_link --link none --csv $T/none.csv > $T/none.out && \
+    [ "$(tail -1 $T/none.csv | cut -d, -f3-)" = "0,0" ] && ok || bad "--link none"
+
+# 6. logs that must be refused with one line
+cp $T/ls.mrl $T/cut.mrl && truncate -s -7 $T/cut.mrl
+cp $T/ls.mrl $T/flip.mrl && printf '\377' | dd of=$T/flip.mrl bs=1 seek=600 conv=notrunc 2>/dev/null
+printf 'MRTR' > $T/short.mrl
+for f in cut flip short; do
+    out=$($M replay $T/$f.mrl 2>&1); rc=$?
+    if [ $rc -eq 2 ] && [ "$(echo "$out" | wc -l)" = 1 ] && echo "$out" | grep -q 'at byte'; then ok
+    else bad "replay of $f.mrl: exit $rc: $out"; fi
+done
+# another layout: the scene file changed between recording and replay
+sed 's/export (Ref.y, Plant.y)/export (Plant.y, Ref.y)/' models/scenes/pi_link.scn > $T/pi_link.scn
+cp models/scenes/pi_link.scn $T/orig.scn
+$M run $T/orig.scn --link none --record $T/file.mrl > /dev/null
+cp $T/pi_link.scn $T/orig.scn
+out=$($M replay $T/file.mrl 2>&1); rc=$?
+[ $rc -eq 2 ] && echo "$out" | grep -q 'link layout' && ok || bad "foreign layout: exit $rc: $out"
+
+echo "link: $pass passed, $fail failed"
+[ $fail -eq 0 ]
