@@ -25,6 +25,10 @@
 # time, and idle (WFI) jumps to the next timer deadline, so port_cycles() and tick
 # timing are repeatable run to run. See ports/cortex-m/port.c and ports/riscv/port.c.
 
+# QEMU_TIMEOUT bounds every emulated run (seconds): a guard against a hung image, not a
+# speed target; the soft-float rv32 unit tests take about 145 s on a shared 2-core machine.
+QEMU_TIMEOUT ?= 400
+
 # Directory of this fragment ("ports" when included as ports/targets.mk).
 PORTS_DIR := $(patsubst %/,%,$(dir $(lastword $(MAKEFILE_LIST))))
 
@@ -39,7 +43,7 @@ TARGET_QEMU_EXTRA ?=
 CM_PORT_SRCS := $(PORTS_DIR)/cortex-m/startup.c $(PORTS_DIR)/cortex-m/port.c \
                 $(PORTS_DIR)/common/libc_min.c $(PORTS_DIR)/common/softfloat.c
 CM_LDFLAGS := -T$(PORTS_DIR)/cortex-m/link.ld -nostartfiles -nostdlib -Wl,--gc-sections -lgcc
-CM_QEMU = timeout 120 qemu-system-arm -display none -monitor none -serial null \
+CM_QEMU = timeout $(QEMU_TIMEOUT) qemu-system-arm -display none -monitor none -serial null \
           -chardev stdio,id=sh0 -semihosting-config enable=on,target=native,chardev=sh0 \
           -icount shift=0,sleep=off
 CM_CHECK := command -v arm-none-eabi-gcc arm-none-eabi-size qemu-system-arm >/dev/null
@@ -95,7 +99,7 @@ TARGET_ARCH_rv32      := -misa-spec=2.2 -march=rv32imac -mabi=ilp32 -mcmodel=med
 TARGET_CFLAGS_rv32    := $(TARGET_ARCH_rv32) -ffreestanding
 TARGET_LDFLAGS_rv32   := $(TARGET_ARCH_rv32) $(RV_LDFLAGS)
 TARGET_PORT_SRCS_rv32 := $(RV_PORT_SRCS)
-TARGET_RUN_rv32        = timeout 120 qemu-system-riscv32 $(RV_QEMU_OPTS) $(TARGET_QEMU_EXTRA) -kernel
+TARGET_RUN_rv32        = timeout $(QEMU_TIMEOUT) qemu-system-riscv32 $(RV_QEMU_OPTS) $(TARGET_QEMU_EXTRA) -kernel
 TARGET_SIZE_rv32      := riscv64-unknown-elf-size
 TARGET_NM_rv32        := riscv64-unknown-elf-nm
 TARGET_CHECK_rv32     := $(RV_CHECK) && command -v qemu-system-riscv32 >/dev/null
@@ -106,7 +110,7 @@ TARGET_ARCH_rv64      := -march=rv64gc -mabi=lp64d -mcmodel=medany
 TARGET_CFLAGS_rv64    := $(TARGET_ARCH_rv64) -ffreestanding
 TARGET_LDFLAGS_rv64   := $(TARGET_ARCH_rv64) $(RV_LDFLAGS)
 TARGET_PORT_SRCS_rv64 := $(RV_PORT_SRCS)
-TARGET_RUN_rv64        = timeout 120 qemu-system-riscv64 $(RV_QEMU_OPTS) $(TARGET_QEMU_EXTRA) -kernel
+TARGET_RUN_rv64        = timeout $(QEMU_TIMEOUT) qemu-system-riscv64 $(RV_QEMU_OPTS) $(TARGET_QEMU_EXTRA) -kernel
 TARGET_SIZE_rv64      := riscv64-unknown-elf-size
 TARGET_NM_rv64        := riscv64-unknown-elf-nm
 TARGET_CHECK_rv64     := $(RV_CHECK) && command -v qemu-system-riscv64 >/dev/null
@@ -122,7 +126,7 @@ TARGET_ARCH_aarch64      :=
 TARGET_CFLAGS_aarch64    :=
 TARGET_LDFLAGS_aarch64   := -static -Wl,--gc-sections
 TARGET_PORT_SRCS_aarch64 := $(PORTS_DIR)/posix/port.c $(PORTS_DIR)/posix/app_main.c
-TARGET_RUN_aarch64        = timeout 120 env -i qemu-aarch64 $(TARGET_QEMU_EXTRA)
+TARGET_RUN_aarch64        = timeout $(QEMU_TIMEOUT) env -i qemu-aarch64 $(TARGET_QEMU_EXTRA)
 TARGET_SIZE_aarch64      := aarch64-linux-gnu-size
 TARGET_NM_aarch64        := aarch64-linux-gnu-nm
 TARGET_CHECK_aarch64     := command -v aarch64-linux-gnu-gcc aarch64-linux-gnu-size qemu-aarch64 >/dev/null

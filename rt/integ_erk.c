@@ -4,14 +4,51 @@
  * Each method is a const rt_integrator whose tab points to its tableau. The stepper
  * writes every stage state into the set's slice of x, so the right-hand side always
  * reads the state where the blocks expect it (no copies per block). Sums run in a fixed
- * order: the same inputs give the same bits on every target. */
+ * order: the same inputs give the same bits on every target.
+ *
+ * Every method carries an embedded solution of one order less (e: the weights b - bhat)
+ * and reports the scaled norm of the difference as the step's local error estimate
+ * (stats->last_err; rt/step.c counts it against the set's accuracy). All but Heun's
+ * need f(t + h, x1) for it: one evaluation more per step, which erk_bound counts. */
 #include "rti.h"
 
 /* Butcher tableau of an s-stage explicit method: a is s*s row-major (strictly lower) */
 typedef struct erk_tab {
     uint8_t s;
     const real_t *a, *b, *c;
+    const real_t *e;    /* b - bhat against an embedded solution of one order less:
+                           s weights, plus one for f(t + h, x1) when fsal */
+    uint8_t fsal;       /* the embedded solution needs the derivative at the step's end */
 } erk_tab;
+
+/* max_i |h sum_j e_j k_ij| / (1 + |x_i|): the local error of the embedded solution of
+   one order less, which bounds the method's own from above. The pairs that need the
+   derivative at the step's end (FSAL) pay one more right-hand side for it, in k[s]: at a
+   fixed step it cannot be the next step's first stage, which sees the state after
+   projection, events and the other sets' new outputs. */
+static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
+                           const real_t *x, uint16_t n, const rt_iwork *w)
+{
+    const erk_tab *tab = m->tab;
+    uint8_t s = tab->s;
+    if (tab->fsal) {
+        rt_status st = f->eval(f->ctx, t + h, w->k[s]);
+        if (st != RT_OK) /* no derivative at the end: nothing to vouch for the step */
+            return (real_t)1 / (real_t)0;
+        s++;
+    }
+    real_t mx = 0;
+    for (uint16_t i = 0; i < n; i++) {
+        real_t acc = 0;
+        for (uint8_t j = 0; j < s; j++)
+            acc += tab->e[j] * w->k[j][i];
+        real_t r = rt_fabs(h * acc) / (1 + rt_fabs(x[i]));
+        if (r != r)
+            return r;
+        mx = r > mx ? r : mx;
+    }
+    return mx;
+}
 
 /* x = x0 + h * sum_{j<i} a_ij k_j, the state of stage i */
 static void stage_state(const erk_tab *t, uint8_t i, real_t h, real_t *x, uint16_t n,
@@ -45,7 +82,22 @@ static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, rea
             acc += tab->b[j] * w->k[j][i];
         x[i] = w->x0[i] + h * acc;
     }
+    if (w->stats) { /* no statistics (a bare step): no estimate, no extra evaluation */
+        real_t e = erk_estimate(m, f, t, h, x, n, w);
+        w->stats->last_err = e;
+        if (e != e || e > w->stats->err_max)
+            w->stats->err_max = e;
+    }
     return st;
+}
+
+/* stages, plus the end-point derivative of the error estimate */
+static void erk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+                      rt_step_work *w)
+{
+    const erk_tab *tab = m->tab;
+    (void)cfg, (void)n;
+    w->rhs = (uint32_t)tab->s + tab->fsal, w->lu = 0;
 }
 
 #define R(v) ((real_t)(v))
@@ -54,25 +106,32 @@ static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, rea
 static const real_t euler_a[] = {0};
 static const real_t euler_b[] = {1};
 static const real_t euler_c[] = {0};
-static const erk_tab euler_tab = {1, euler_a, euler_b, euler_c};
+static const real_t euler_e[] = {R(0.5), R(-0.5)}; /* against Heun's method */
+static const erk_tab euler_tab = {1, euler_a, euler_b, euler_c, euler_e, 1};
 
 /* Heun's method (explicit trapezoidal), order 2 */
 static const real_t heun_a[] = {0, 0, 1, 0};
 static const real_t heun_b[] = {R(0.5), R(0.5)};
 static const real_t heun_c[] = {0, 1};
-static const erk_tab heun_tab = {2, heun_a, heun_b, heun_c};
+static const real_t heun_e[] = {R(-0.5), R(0.5)}; /* against explicit Euler */
+static const erk_tab heun_tab = {2, heun_a, heun_b, heun_c, heun_e, 0};
 
-/* Bogacki-Shampine, order 3 (its fourth, FSAL stage only serves error estimates) */
+/* Bogacki-Shampine 3(2); its fourth (FSAL) stage only serves the error estimate */
 static const real_t bs3_a[] = {0, 0, 0, R(0.5), 0, 0, 0, R(0.75), 0};
 static const real_t bs3_b[] = {R(2.0 / 9.0), R(1.0 / 3.0), R(4.0 / 9.0)};
 static const real_t bs3_c[] = {0, R(0.5), R(0.75)};
-static const erk_tab bs3_tab = {3, bs3_a, bs3_b, bs3_c};
+/* b - bhat, bhat = (7/24, 1/4, 1/3, 1/8) (Bogacki & Shampine 1989) */
+static const real_t bs3_e[] = {R(-5.0 / 72.0), R(1.0 / 12.0), R(1.0 / 9.0), R(-1.0 / 8.0)};
+static const erk_tab bs3_tab = {3, bs3_a, bs3_b, bs3_c, bs3_e, 1};
 
 /* the classic Runge-Kutta method, order 4 */
 static const real_t rk4_a[] = {0, 0, 0, 0, R(0.5), 0, 0, 0, 0, R(0.5), 0, 0, 0, 0, 1, 0};
 static const real_t rk4_b[] = {R(1.0 / 6.0), R(1.0 / 3.0), R(1.0 / 3.0), R(1.0 / 6.0)};
 static const real_t rk4_c[] = {0, R(0.5), R(0.5), 1};
-static const erk_tab rk4_tab = {4, rk4_a, rk4_b, rk4_c};
+/* no third-order combination of its own stages differs from b; with f(t + h, x1),
+   bhat = (1/6, 1/3, 1/3, 0, 1/6) is third order, so b - bhat = (0, 0, 0, 1/6, -1/6) */
+static const real_t rk4_e[] = {0, 0, 0, R(1.0 / 6.0), R(-1.0 / 6.0)};
+static const erk_tab rk4_tab = {4, rk4_a, rk4_b, rk4_c, rk4_e, 1};
 
 /* Dormand-Prince 5(4), fifth-order solution; b7 = 0, so six stages suffice at fixed step */
 static const real_t dp5_a[] = {
@@ -87,15 +146,19 @@ static const real_t dp5_a[] = {
 static const real_t dp5_b[] = {R(35.0 / 384.0), 0, R(500.0 / 1113.0), R(125.0 / 192.0),
                                R(-2187.0 / 6784.0), R(11.0 / 84.0)};
 static const real_t dp5_c[] = {0, R(1.0 / 5.0), R(3.0 / 10.0), R(4.0 / 5.0), R(8.0 / 9.0), 1};
-static const erk_tab dp5_tab = {6, dp5_a, dp5_b, dp5_c};
+/* b - bhat against the fourth-order companion, whose seventh (FSAL) stage is f(t + h, x1)
+   (Dormand & Prince 1980; Hairer, Norsett & Wanner I, II.5) */
+static const real_t dp5_e[] = {R(71.0 / 57600.0), 0, R(-71.0 / 16695.0), R(71.0 / 1920.0),
+                               R(-17253.0 / 339200.0), R(22.0 / 525.0), R(-1.0 / 40.0)};
+static const erk_tab dp5_tab = {6, dp5_a, dp5_b, dp5_c, dp5_e, 1};
 
-const rt_integrator rt_euler = {.name = "euler", .order = 1, .stages = 1, .step = erk_step,
+const rt_integrator rt_euler = {.name = "euler", .order = 1, .stages = 1, .step = erk_step, .bound = erk_bound,
                                 .tab = &euler_tab};
-const rt_integrator rt_heun = {.name = "heun", .order = 2, .stages = 2, .step = erk_step,
+const rt_integrator rt_heun = {.name = "heun", .order = 2, .stages = 2, .step = erk_step, .bound = erk_bound,
                                .tab = &heun_tab};
-const rt_integrator rt_bs3 = {.name = "bs3", .order = 3, .stages = 3, .step = erk_step,
+const rt_integrator rt_bs3 = {.name = "bs3", .order = 3, .stages = 3, .step = erk_step, .bound = erk_bound,
                               .tab = &bs3_tab};
-const rt_integrator rt_rk4 = {.name = "rk4", .order = 4, .stages = 4, .step = erk_step,
+const rt_integrator rt_rk4 = {.name = "rk4", .order = 4, .stages = 4, .step = erk_step, .bound = erk_bound,
                               .tab = &rk4_tab};
-const rt_integrator rt_dopri5 = {.name = "dopri5", .order = 5, .stages = 6, .step = erk_step,
+const rt_integrator rt_dopri5 = {.name = "dopri5", .order = 5, .stages = 6, .step = erk_step, .bound = erk_bound,
                                  .tab = &dp5_tab};

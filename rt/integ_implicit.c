@@ -1,35 +1,55 @@
 /* integ_implicit.c - stiff fixed-step integrators with bounded work per step: backward
  * Euler, the trapezoidal rule and the L-stable SDIRK methods of orders 2 and 3 (simplified
- * Newton, capped), and the L-stable Rosenbrock-W method ROS2 (linear solves, no Newton).
+ * Newton, retried, split, capped), and the L-stable Rosenbrock-W method ROS2 (linear
+ * solves, no Newton); each with an embedded local error estimate.
  *
  * Iteration matrix. All implicit stages of a method share one diagonal coefficient gamma,
  * so one matrix M = I - h gamma J serves the whole step. J = df/dx comes from forward
  * differences at the step's first right-hand-side evaluation (state x0): x_j moves in place
  * by sqrt(eps) max(|x_j|, 1) (the rhs reads the state from x) and is restored bit for bit;
  * n more evaluations per refresh. J is refreshed every jac_every steps, and at the step
- * after one that was degraded or met a singular M. M is refactored from the stored J,
- * without new evaluations, when h gamma differs from the factored value (event re-steps).
- * All of it lives in the set's rt_implicit_ws, so a replay reproduces it bit for bit.
+ * after one that was degraded, split or met a singular M. M is refactored from the stored
+ * J, without new evaluations, when h gamma differs from the factored value (event
+ * re-steps). All of it lives in the set's rt_implicit_ws, so a replay reproduces it bit for
+ * bit.
  *
  * Newton. A stage Y = v + h gamma f(t + c h, Y) is solved from the predictor Y0 = the
  * previous stage value (x0 for the first). Iteration m evaluates f once and solves
  * M d = v + h gamma f(Y_m) - Y_m; the residual of Y_m is the scaled norm
  * r_m = max_i |d_i| / (1 + |Y_i|), i.e. |d| <= tol (atol + rtol |Y|) with atol = rtol = 1.
- * Then: r_m <= tol: apply d, done. r_m not below r_{m-1} (not contracting): drop Y_m and
- * keep Y_{m-1}, whose residual is r_{m-1}. r_0 not finite: keep the predictor. Otherwise
- * apply d and go on, at most newton_max iterations. The stage's residual is the r of the
- * iterate kept, or of the one its final correction was applied to (that correction, in a
- * contracting iteration, only shrinks the error). The step's residual is the largest over
- * its stages: it goes to stats->last_residual, and above tol the step is counted as
- * degraded and returns RT_E_NOCONV. A first iteration cannot show convergence (its
- * correction is the whole stage increment), so newton_max = 1 makes every step degraded;
- * a linear problem converges in two or three (the Jacobian is exact to sqrt(eps)).
+ * r_m <= tol: apply d, done. r_m not below r_{m-1} (not contracting) or not finite: stop
+ * there (never back to the predictor: a step that returned its start state would meet the
+ * same Jacobian at the same point next step and repeat the failure bit for bit, which is
+ * how these methods used to freeze on Robertson's kinetics). Otherwise apply d and go on,
+ * at most newton_max iterations. A first iteration cannot show convergence (its
+ * correction is the whole stage increment).
  *
- * Cost per step, s implicit stages: at most s * newton_max rhs evaluations and LU solves
- * (plus one evaluation for an explicit first stage); when J is due, n more evaluations and
- * one factorization (n^3/3 multiply-adds), or the factorization alone when h changed.
- * ROS2: three evaluations and two solves, plus the same refresh. No other data-dependent
- * loop; sums in a fixed order. */
+ * A step that does not converge (docs/solvers.md, "Steps that cannot stall"):
+ *  1. retry with full Newton: a Jacobian at every iterate, 2 newton_max iterations (the
+ *     Jacobian at the step's start may not see the stiff direction at all: Robertson's at
+ *     (1, 0, 0) has neither the 1e4 y2 y3 nor the 3e7 y2^2 terms);
+ *  2. split the step into 2, 4, ... K substeps (K = the set's `substeps`, default
+ *     RT_IMP_SUBSTEPS), each with a fresh Jacobian at its start; the first K that
+ *     converges is the answer (counted: substep, a recovered step, not a fault);
+ *  3. else keep the attempt with the smallest residual (never the start state unless
+ *     every attempt gave NaN), count the step as degraded and return RT_E_NOCONV.
+ * dirk_bound gives the most work this can take; `modrt info` prints it per set.
+ *
+ * Error estimate. A DIRK step's embedded first-order solution is x0 + h k_s (the last
+ * stage's derivative alone), so e = h sum_j (a_sj - [j = s]) k_j; backward Euler, its own
+ * companion, is compared with the trapezoidal rule, e = h/2 (k_1 - f(t + h, x0)). The
+ * difference is filtered by M for the L-stable methods (Hairer & Wanner II, IV.8:
+ * e <- M^-1 e, so the stiff components, which the L-stable solution damps, are not read
+ * as error); the trapezoidal rule, which carries them on, is judged by the raw e. ROS2 against its
+ * first-order companion x0 + h k1: e = h/2 (k1 + k2). The scaled norm of e goes to
+ * stats->last_err; rt/step.c counts the step (errest) when it is above the set's accuracy.
+ * The estimate only reports: the schedule never changes.
+ *
+ * Cost per step when it converges, s implicit stages: at most s * newton_max rhs
+ * evaluations and LU solves (plus one evaluation for an explicit first stage); when J is
+ * due, n more evaluations and one factorization (n^3/3 multiply-adds), or the
+ * factorization alone when h changed. ROS2: three evaluations and two solves, plus the
+ * same refresh. Sums in a fixed order. */
 #include "rti.h"
 
 #include "linalg.h"
@@ -48,7 +68,8 @@
 /* stage buffers of rt_iwork this file uses besides the stage derivatives k[0..s-1] */
 #define IMP_BUF_V (RT_MAX_STAGES - 3) /* base value v of the stage equation */
 #define IMP_BUF_F (RT_MAX_STAGES - 2) /* f(Y), then the Newton correction */
-#define IMP_BUF_D (RT_MAX_STAGES - 1) /* perturbed f of the finite differences */
+#define IMP_BUF_D (RT_MAX_STAGES - 1) /* perturbed f of the finite differences; the
+                                        previous Newton iterate */
 #define IMP_MAX_S (RT_MAX_STAGES - 3) /* stages a tableau may have */
 
 /* Diagonally implicit Runge-Kutta tableau with one diagonal gamma. a is s*s row-major,
@@ -59,6 +80,7 @@ typedef struct dirk_tab {
     uint8_t s;
     const real_t *a, *c;
     real_t gamma;
+    uint8_t lstable; /* R(-inf) = 0: the error estimate may be filtered by M */
 } dirk_tab;
 
 /* Rosenbrock-W method ROS2 of Verwer, Spee, Blom & Hundsdorfer (1999), M = I - h gamma J:
@@ -79,6 +101,9 @@ typedef struct imp_step {
     uint8_t nmax;       /* Newton iterations per stage */
     uint8_t refresh;    /* the Jacobian is due at the step's first evaluation */
     uint8_t singular;   /* a factorization of this step was singular */
+    uint8_t full;       /* retrying: a Jacobian at every Newton iterate */
+    real_t err;         /* local error estimate of the result (largest over substeps) */
+    real_t *f0;         /* where to keep the step's first evaluation, or NULL */
     rt_status rhs_st;   /* first error of the right-hand side */
     real_t res;         /* largest final residual of the stages */
     uint32_t iters;     /* Newton iterations of the step */
@@ -159,9 +184,13 @@ static void at_base(imp_step *c, real_t tb, const real_t *fb)
 /* ends a step: ages J, records the statistics, picks the status to return; a step
    above tolerance forces a fresh Jacobian at the next step (a stale one is the usual
    cause, and iterating on it from a degraded state can only drift further) */
-static rt_status finish(imp_step *c)
+static rt_status finish(imp_step *c, real_t res)
 {
     rt_istats *s = c->w->stats;
+    c->res = res;
+    s->last_err = c->err;
+    if (c->err != c->err || c->err > s->err_max)
+        s->err_max = c->err;
     c->w->imp->age++;
     s->last_residual = c->res;
     if (c->iters > s->newton_iter_max)
@@ -191,33 +220,51 @@ static real_t scaled_norm(const real_t *d, const real_t *y, uint16_t n)
     return m;
 }
 
+/* the step's local error estimate e (n values in buffer e, overwritten), filtered by the
+   iteration matrix, M e (Hairer & Wanner II, IV.8: stiff components of the raw
+   difference of two solutions are not errors of the L-stable one), as a scaled norm */
+static real_t estimate(imp_step *c, real_t *e)
+{
+    const rt_implicit_ws *ws = c->w->imp;
+    if (ws->valid)
+        rti_lu_solve(ws->lu, c->n, ws->piv, e);
+    return scaled_norm(e, c->x, c->n);
+}
+
 /* solves Y = v + hg f(tc, Y) for Y in x, from the predictor in x; first: this is the
    step's first evaluation, at x = x0. Returns the residual of the last iteration. */
 static real_t newton(imp_step *c, real_t tc, const real_t *v, int first)
 {
-    real_t *x = c->x, *d = c->w->k[IMP_BUF_F], *prev_x = c->w->k[IMP_BUF_D];
+    real_t *x = c->x, *d = c->w->k[IMP_BUF_F];
     const rt_implicit_ws *ws = c->w->imp;
     real_t res = 0;
     for (uint8_t m = 0; m < c->nmax; m++) {
         rhs(c, tc, d);
-        if (first && m == 0)
-            at_base(c, tc, d); /* uses prev_x's buffer before it holds anything */
+        if (first && m == 0) {
+            at_base(c, tc, d);
+            for (uint16_t i = 0; c->f0 && i < c->n; i++)
+                c->f0[i] = d[i];
+        }
+        else if (c->full) { /* a retry: the Jacobian at every iterate (full Newton) */
+            fd_jacobian(c, tc, d);
+            c->w->stats->jac_evals++;
+            factor(c);
+        }
         for (uint16_t i = 0; i < c->n; i++)
             d[i] = v[i] + c->hg * d[i] - x[i];
         rti_lu_solve(ws->lu, c->n, ws->piv, d);
         real_t r = scaled_norm(d, x, c->n);
         c->iters++;
-        /* not contracting: the iterate before the last correction was better */
-        if (m > 0 && !(r < res)) {
-            for (uint16_t i = 0; i < c->n; i++)
-                x[i] = prev_x[i];
+        /* not contracting, or no finite correction: give up on this iteration matrix and
+           leave the iterate where it is (never back at the predictor, which would repeat
+           the same failure step after step); dirk_step retries */
+        if ((m > 0 && !c->full && !(r < res)) || !rt_isfinite(r)) {
+            res = rt_isfinite(r) ? r : r - r; /* NaN: a failure whatever the tolerance */
             break;
         }
         res = r;
-        if (!rt_isfinite(r)) /* nothing to compare with: keep the predictor */
-            break;
         for (uint16_t i = 0; i < c->n; i++)
-            prev_x[i] = x[i], x[i] += d[i];
+            x[i] += d[i];
         if (r <= c->tol)
             break;
     }
@@ -238,32 +285,125 @@ static void stage_base(const dirk_tab *t, uint8_t i, real_t h, real_t *v, uint16
     }
 }
 
+/* one DIRK step of h from w->x0 into x; returns its residual (the largest of its stages,
+   NaN sticks) */
+static real_t dirk_attempt(imp_step *c, const dirk_tab *tab, real_t t, real_t h)
+{
+    const rt_iwork *w = c->w;
+    real_t *v = w->k[IMP_BUF_V], *x = c->x, worst = 0;
+    for (uint16_t j = 0; j < c->n; j++)
+        x[j] = w->x0[j];
+    c->f0 = tab->s == 1 ? w->k[1] : NULL; /* backward Euler's estimate needs f at x0 */
+    for (uint8_t i = 0; i < tab->s; i++) {
+        real_t tc = t + tab->c[i] * h;
+        if (tab->a[i * tab->s + i] == 0) { /* explicit first stage, at x0 */
+            rhs(c, tc, w->k[i]);
+            at_base(c, tc, w->k[i]);
+            continue;
+        }
+        stage_base(tab, i, h, v, c->n, w);
+        real_t res = newton(c, tc, v, i == 0);
+        if (worst == worst && !(res <= worst)) /* the largest; a NaN sticks */
+            worst = res;
+        /* the stage derivative consistent with the stage value (not f(Y), which would
+           amplify the iteration error by the stiffness) */
+        for (uint16_t j = 0; j < c->n; j++)
+            w->k[i][j] = (x[j] - v[j]) / c->hg;
+    }
+    /* embedded first-order solution x0 + h k_s: e = h sum_j (a_sj - [j = s]) k_j;
+       backward Euler is its own companion: against the trapezoidal rule,
+       e = h/2 (k_1 - f(t + h, x0)), about h^2/2 x'' */
+    real_t *e = w->k[IMP_BUF_V];
+    for (uint16_t j = 0; j < c->n; j++) {
+        real_t acc = 0;
+        if (tab->s == 1)
+            acc = R(0.5) * (w->k[0][j] - w->k[1][j]);
+        for (uint8_t i = 0; tab->s > 1 && i < tab->s; i++)
+            acc += (tab->a[(tab->s - 1) * tab->s + i] - (i + 1 == tab->s ? 1 : 0)) * w->k[i][j];
+        e[j] = h * acc;
+    }
+    /* an A-stable method that does not damp stiff modes (trap: R(-inf) = -1) carries
+       their error on, ringing: its estimate is taken raw */
+    real_t err = tab->lstable ? estimate(c, e) : scaled_norm(e, c->x, c->n);
+    if (c->err == c->err && !(err <= c->err))
+        c->err = err;
+    return worst;
+}
+
+/* keeps x as the best result so far when its residual is the smallest */
+static void keep_best(imp_step *c, real_t res, real_t *best)
+{
+    if (!(res < *best))
+        return;
+    *best = res;
+    for (uint16_t j = 0; j < c->n; j++)
+        c->w->imp->best[j] = c->x[j];
+}
+
+/* the step split into k substeps, each with a fresh Jacobian at its start; x from xs */
+static real_t dirk_split(imp_step *c, const dirk_tab *tab, real_t t, real_t h, uint8_t k)
+{
+    real_t worst = 0, hk = h / (real_t)k;
+    rt_implicit_ws *ws = c->w->imp;
+    for (uint16_t j = 0; j < c->n; j++)
+        c->x[j] = ws->xs[j];
+    for (uint8_t i = 0; i < k && worst == worst; i++) {
+        for (uint16_t j = 0; j < c->n; j++)
+            c->w->x0[j] = c->x[j];
+        c->hg = hk * tab->gamma;
+        c->refresh = 1;
+        real_t r = dirk_attempt(c, tab, t + (real_t)i * hk, hk);
+        if (!(r <= worst))
+            worst = r;
+    }
+    return worst;
+}
+
+/* A step that does not converge is never left at its start (docs/solvers.md): retry
+   with the Jacobian at the failed iterate, then split into 2, 4, ... substeps up to the
+   set's bound; if all of that fails, keep the result with the smallest residual. */
 static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
                            real_t *x, uint16_t n, const rt_iwork *w)
 {
     const dirk_tab *tab = m->tab;
-    real_t *v = w->k[IMP_BUF_V];
+    rt_implicit_ws *ws = w->imp;
     imp_step c;
     if (!(h != 0)) /* an empty step leaves x alone (k = (Y - v) / (h gamma) needs h) */
         return RT_OK;
     begin(&c, f, x, n, w, h * tab->gamma);
-    for (uint8_t i = 0; i < tab->s; i++) {
-        real_t tc = t + tab->c[i] * h;
-        if (tab->a[i * tab->s + i] == 0) { /* explicit first stage, at x0 */
-            rhs(&c, tc, w->k[i]);
-            at_base(&c, tc, w->k[i]);
-            continue;
-        }
-        stage_base(tab, i, h, v, n, w);
-        real_t res = newton(&c, tc, v, i == 0);
-        if (c.res == c.res && !(res <= c.res)) /* the largest; a NaN sticks */
-            c.res = res;
-        /* the stage derivative consistent with the stage value (not f(Y), which would
-           amplify the iteration error by the stiffness) */
-        for (uint16_t j = 0; j < n; j++)
-            w->k[i][j] = (x[j] - v[j]) / c.hg;
+    for (uint16_t j = 0; j < n; j++)
+        ws->xs[j] = x[j];
+    real_t best = R(1) / R(0), res = dirk_attempt(&c, tab, t, h);
+    if (res <= c.tol)
+        return finish(&c, res);
+    keep_best(&c, res, &best);
+    /* 1: full Newton, a Jacobian at every iterate (the start's may not see the stiff
+       direction: Robertson's at y = (1, 0, 0) has no 1e4 y2 y3 or 3e7 y2^2 terms) */
+    c.full = 1, c.err = 0, c.singular = 0; /* each attempt reports its own */
+    c.nmax = (uint8_t)(2 * c.nmax < 255 ? 2 * c.nmax : 255); /* a cold start needs more */
+    res = dirk_attempt(&c, tab, t, h);
+    if (res <= c.tol) {
+        w->stats->retried++;
+        return finish(&c, res);
     }
-    return finish(&c); /* stiffly accurate: x holds the last stage value */
+    keep_best(&c, res, &best);
+    /* 2: substeps, each with its own Jacobian */
+    uint8_t kmax = w->cfg->substeps ? w->cfg->substeps : RT_IMP_SUBSTEPS;
+    for (uint8_t k = 2; k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
+        c.err = 0, c.singular = 0;
+        res = dirk_split(&c, tab, t, h, k);
+        if (res <= c.tol) {
+            w->stats->substepped++;
+            ws->valid = 0; /* the next step's Jacobian belongs to its own h */
+            return finish(&c, res);
+        }
+        keep_best(&c, res, &best);
+    }
+    /* 3: the best of them (the start state only if every attempt gave NaN) */
+    for (uint16_t j = 0; j < n; j++)
+        x[j] = best == best && best < R(1) / R(0) ? ws->best[j] : x[j];
+    ws->valid = 0;
+    return finish(&c, best < R(1) / R(0) ? best : res);
 }
 
 /* ------------------------------------------------------------------ ROS2 stepper */
@@ -290,9 +430,38 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     for (uint16_t i = 0; i < n; i++)
         k2[i] -= 2 * k1[i] + ft[i];
     rti_lu_solve(ws->lu, n, ws->piv, k2);
-    for (uint16_t i = 0; i < n; i++)
+    for (uint16_t i = 0; i < n; i++) {
         x[i] = w->x0[i] + h * (R(1.5) * k1[i] + R(0.5) * k2[i]);
-    return finish(&c); /* no iteration: residual 0, never degraded */
+        ft[i] = h * R(0.5) * (k1[i] + k2[i]); /* against the embedded x0 + h k1 */
+    }
+    c.err = scaled_norm(ft, x, n); /* the k are M^-1 f already: no filter */
+    return finish(&c, 0); /* no iteration: residual 0, never degraded */
+}
+
+/* ------------------------------------------------------------------ work bounds */
+
+/* A DIRK step: the attempt (a Jacobian, n evaluations, and nmax iterations per implicit
+   stage), the full-Newton retry (2 nmax iterations per stage, each with a Jacobian and a
+   factorization), then 2, 4, ... K substeps, each an attempt: 2 K - 1 attempts and one
+   retry in all */
+static void dirk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+                       rt_step_work *w)
+{
+    const dirk_tab *tab = m->tab;
+    uint32_t nmax = cfg->newton_max ? cfg->newton_max : IMP_NEWTON_MAX;
+    uint32_t k = cfg->substeps ? cfg->substeps : RT_IMP_SUBSTEPS, expl = tab->a[0] == 0;
+    uint32_t impl = tab->s - expl, full = 2 * nmax < 255 ? 2 * nmax : 255;
+    uint32_t attempt = n + expl + impl * nmax;
+    w->rhs = (2 * k - 1) * attempt + expl + impl * full * (1u + n);
+    w->lu = (2 * k - 1) + impl * full;
+}
+
+/* ROS2: a Jacobian (n evaluations), f(t, x0), f(t + h, x0), f(t + h, x1); one factorization */
+static void ros2_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+                       rt_step_work *w)
+{
+    (void)m, (void)cfg;
+    w->rhs = 3u + n, w->lu = 1;
 }
 
 /* ------------------------------------------------------------------ methods */
@@ -300,19 +469,19 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
 /* backward Euler: order 1, L-stable, R(z) = 1 / (1 - z) */
 static const real_t be_a[] = {1};
 static const real_t be_c[] = {1};
-static const dirk_tab be_tab = {1, be_a, be_c, 1};
+static const dirk_tab be_tab = {1, be_a, be_c, 1, 1};
 
 /* trapezoidal rule as a two-stage ESDIRK (explicit first stage): order 2, A-stable but
    not L-stable, R(z) = (1 + z/2) / (1 - z/2) -> -1 as z -> -inf */
 static const real_t trap_a[] = {0, 0, R(0.5), R(0.5)};
 static const real_t trap_c[] = {0, 1};
-static const dirk_tab trap_tab = {2, trap_a, trap_c, R(0.5)};
+static const dirk_tab trap_tab = {2, trap_a, trap_c, R(0.5), 0};
 
 /* Alexander (1977), two-stage SDIRK: gamma = 1 - 1/sqrt(2), order 2, L-stable */
 #define SD2_G 0.29289321881345247560
 static const real_t sd2_a[] = {R(SD2_G), 0, R(1 - SD2_G), R(SD2_G)};
 static const real_t sd2_c[] = {R(SD2_G), 1};
-static const dirk_tab sd2_tab = {2, sd2_a, sd2_c, R(SD2_G)};
+static const dirk_tab sd2_tab = {2, sd2_a, sd2_c, R(SD2_G), 1};
 
 /* Alexander (1977), three-stage SDIRK: gamma the root of x^3 - 3x^2 + 3/2 x - 1/6 in
    (1/6, 1/2), c2 = (1 + gamma)/2, b1 = -(6 gamma^2 - 16 gamma + 1)/4,
@@ -327,7 +496,7 @@ static const real_t sd3_a[] = {
     R(SD3_B1), R(SD3_B2), R(SD3_G),
 };
 static const real_t sd3_c[] = {R(SD3_G), R(SD3_A21 + SD3_G), 1};
-static const dirk_tab sd3_tab = {3, sd3_a, sd3_c, R(SD3_G)};
+static const dirk_tab sd3_tab = {3, sd3_a, sd3_c, R(SD3_G), 1};
 
 /* ROS2 with gamma = 1 + 1/sqrt(2): L-stable, order 2 for any Jacobian approximation (a
    W-method: a stale Jacobian keeps the order, though on stiff problems the error then
@@ -339,12 +508,12 @@ static const ros2_tab ros2_tab_ = {R(1.70710678118654752440)};
 #endif
 
 const rt_integrator rt_beuler = {.name = "beuler", .order = 1, .stages = 1, .implicit = 1,
-                                 .step = dirk_step, .tab = &be_tab};
+                                 .step = dirk_step, .bound = dirk_bound, .tab = &be_tab};
 const rt_integrator rt_trap = {.name = "trap", .order = 2, .stages = 2, .implicit = 1,
-                               .step = dirk_step, .tab = &trap_tab};
+                               .step = dirk_step, .bound = dirk_bound, .tab = &trap_tab};
 const rt_integrator rt_sdirk2 = {.name = "sdirk2", .order = 2, .stages = 2, .implicit = 1,
-                                 .step = dirk_step, .tab = &sd2_tab};
+                                 .step = dirk_step, .bound = dirk_bound, .tab = &sd2_tab};
 const rt_integrator rt_sdirk3 = {.name = "sdirk3", .order = 3, .stages = 3, .implicit = 1,
-                                 .step = dirk_step, .tab = &sd3_tab};
+                                 .step = dirk_step, .bound = dirk_bound, .tab = &sd3_tab};
 const rt_integrator rt_ros2 = {.name = "ros2", .order = 2, .stages = 2, .implicit = 1,
-                               .step = ros2_step, .tab = &ros2_tab_};
+                               .step = ros2_step, .bound = ros2_bound, .tab = &ros2_tab_};

@@ -94,7 +94,7 @@ static void check_residual(const rt_scene *sc, rt_sim *sim, uint8_t set)
     if (!(worst <= w->res_max))
         w->res_max = worst;
     if (!(worst <= RT_MBS_RES_TOL))
-        rti_count(sim, RT_CNT_DEGRADED, rti_mbs_row_block(sc, sim, set, row), RT_E_NOCONV);
+        rti_count(sim, RT_CNT_DEGRADED, rti_mbs_row_block(sc, sim, set, row), RT_E_DEGRADED);
 }
 
 /* multipliers at the step end, for recorded joint reactions: outputs give the inputs */

@@ -17,25 +17,34 @@
 
 /* ------------------------------------------------------------------ status codes */
 
-/* Declared once; expanded into the enum and the name table (rt_status_name). */
+/* Declared once; expanded into the enum and the tables of rt_status_name and
+ * rt_status_severity. Severity: 0 ok; 1 the answer was computed but may be inaccurate
+ * (doubtful); 2 the answer is wrong or incomplete (failed); 3 the run could not start.
+ * A run reports the most severe status it met (the first of equal ones). */
 #define RT_STATUS_LIST(X)                                                        \
-    X(RT_OK, "ok")                                                               \
-    X(RT_E_ARG, "bad argument")                                                  \
-    X(RT_E_SCENE, "malformed scene")                                             \
-    X(RT_E_CAPACITY, "scene exceeds a compile-time limit")                       \
-    X(RT_E_UNCONNECTED, "input is not connected and has no default value")       \
-    X(RT_E_LOOP, "algebraic loop that cannot be solved")                         \
-    X(RT_E_PARAM, "parameter out of range")                                      \
-    X(RT_E_NAN, "non-finite value")                                              \
-    X(RT_E_NOCONV, "iteration did not converge")                                 \
-    X(RT_E_SINGULAR, "singular or near-singular matrix")                         \
-    X(RT_E_EVENT, "too many state events in one step")                           \
-    X(RT_E_OVERRUN, "tick deadline overrun")                                     \
-    X(RT_E_LINK, "controller link lost (an import with policy stop)")            \
-    X(RT_E_DONE, "end time reached")
+    X(RT_OK, 0, "ok")                                                            \
+    X(RT_E_ARG, 3, "bad argument")                                               \
+    X(RT_E_SCENE, 3, "malformed scene")                                          \
+    X(RT_E_CAPACITY, 3, "scene exceeds a compile-time limit")                    \
+    X(RT_E_UNCONNECTED, 3, "input is not connected and has no default value")    \
+    X(RT_E_LOOP, 3, "algebraic loop that cannot be solved")                      \
+    X(RT_E_PARAM, 3, "parameter out of range")                                   \
+    X(RT_E_NAN, 2, "non-finite value")                                           \
+    X(RT_E_NOCONV, 2, "algebraic loop iteration did not converge")               \
+    X(RT_E_DEGRADED, 2, "step accepted with its residual above tolerance (degraded)") \
+    X(RT_E_SINGULAR, 2, "singular or near-singular matrix")                      \
+    X(RT_E_EVENT, 2, "too many state events in one step")                        \
+    X(RT_E_NOLOC, 2, "state event not located within its bound")                 \
+    X(RT_E_INVARIANT, 2, "a root function ended a step on the wrong side without a located crossing") \
+    X(RT_E_UNSTABLE, 2, "numerically unstable: the state grows without bound")   \
+    X(RT_E_LINK, 2, "controller link lost (an import with policy stop)")         \
+    X(RT_E_ACCURACY, 1, "local error estimate above the set's accuracy")         \
+    X(RT_E_LOST, 2, "local error estimate above RT_ERR_LOST: no correct digit left") \
+    X(RT_E_OVERRUN, 1, "tick deadline overrun")                                  \
+    X(RT_E_DONE, 0, "end time reached")
 
 typedef enum {
-#define RT_X_ENUM(id, text) id,
+#define RT_X_ENUM(id, sev, text) id,
     RT_STATUS_LIST(RT_X_ENUM)
 #undef RT_X_ENUM
     RT_STATUS_COUNT
@@ -50,6 +59,10 @@ typedef enum {
     X(RT_CNT_NOCONV, "noconv", "iteration not converged within its bound")       \
     X(RT_CNT_SINGULAR, "singular", "singular matrix met")                        \
     X(RT_CNT_DEGRADED, "degraded", "step accepted with residual above tolerance")\
+    X(RT_CNT_SUBSTEP, "substep", "implicit step that converged only in substeps") \
+    X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy") \
+    X(RT_CNT_INVARIANT, "invariant", "step ending further below a guard root (a floor) without a located crossing: the model tunnels") \
+    X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
     X(RT_CNT_OVERRUN, "overrun", "tick finished after its deadline")             \
     X(RT_CNT_EVENTS, "events", "state events handled")
 
@@ -62,6 +75,8 @@ typedef enum {
 
 /* Returns the constant text of a status code ("?" for a value out of range). */
 const char *rt_status_name(rt_status s);
+/* 0 ok, 1 doubtful, 2 failed, 3 could not start (RT_STATUS_LIST) */
+int rt_status_severity(rt_status s);
 /* Returns the short key of a counter, as printed in run summaries ("?" if out of range). */
 const char *rt_counter_key(rt_counter c);
 
@@ -123,6 +138,10 @@ typedef struct rt_kind {
     const uint8_t *feed_table;  /* ny*nu row-major, only for RT_FEED_TABLE */
     const int8_t *root_dir;     /* nr crossing directions: -1 falling, +1 rising, 0 both;
                                    NULL: both */
+    const uint8_t *root_guard;  /* nr flags, 1: the root is a one-sided constraint (a
+                                   floor) that must stay >= 0 except across a located
+                                   crossing; a step ending further below is counted
+                                   (invariant). NULL: none */
 
     /* Called once at rt_init with the instance parameters: returns RT_OK or RT_E_PARAM.
        May be NULL (no check). */
@@ -185,6 +204,8 @@ typedef struct rt_implicit_ws {
     real_t lu[RT_MAX_IMPLICIT_N * RT_MAX_IMPLICIT_N]; /* LU factors, row-major */
     real_t jac[RT_MAX_IMPLICIT_N * RT_MAX_IMPLICIT_N];/* last Jacobian df/dx */
     uint16_t piv[RT_MAX_IMPLICIT_N];                  /* row pivots of lu */
+    real_t xs[RT_MAX_IMPLICIT_N];   /* the step's start, kept across its retries */
+    real_t best[RT_MAX_IMPLICIT_N]; /* the retries' result with the smallest residual */
     real_t h_factored;        /* step (times method constant) lu belongs to */
     uint32_t age;             /* steps since the Jacobian was refreshed */
     uint8_t valid;            /* lu holds a usable factorization */
@@ -195,15 +216,23 @@ typedef struct rt_istats {
     uint32_t newton_iter_max; /* most Newton iterations in one step (all stages) */
     uint32_t jac_evals;       /* Jacobian refreshes */
     uint32_t degraded;        /* steps ended with residual above tolerance */
+    uint32_t retried;         /* steps that converged after a Jacobian at the iterate */
+    real_t last_err;          /* the last step's local error estimate (scaled norm) */
+    real_t err_max;           /* the largest of them */
+    uint32_t substepped;      /* steps that converged only in substeps */
     real_t last_residual;     /* residual norm after the last iteration */
 } rt_istats;
 
 /* Per-set settings of an implicit method (rt_set; zeros select the defaults). */
 typedef struct rt_implicit_cfg {
     uint8_t newton_max;       /* Newton iterations per stage (default 4) */
+    uint8_t substeps;         /* most substeps a failing step is split into, a power of
+                                 two (default RT_IMP_SUBSTEPS; 1: no splitting) */
     uint16_t jac_every;       /* refresh the Jacobian every N steps (default 1) */
     real_t tol;               /* residual tolerance, scaled norm (default 1e-8;
                                  1e-5 with RT_REAL_FLOAT) */
+    real_t accuracy;          /* local error a step may show, scaled norm max_i |e_i| /
+                                 (1 + |x_i|) (default RT_ERR_TOL); above it: errest */
 } rt_implicit_cfg;
 
 /* Workspace an integrator may use for one step of one set (carved from rt_sim). */
@@ -214,6 +243,12 @@ typedef struct rt_iwork {
     rt_istats *stats;         /* statistics of this set */
     const rt_implicit_cfg *cfg; /* settings of this set */
 } rt_iwork;
+
+/* The most work of one step: right-hand-side evaluations and LU factorizations. */
+typedef struct rt_step_work {
+    uint32_t rhs;
+    uint32_t lu;
+} rt_step_work;
 
 /* A fixed-step integration method (const method table). */
 typedef struct rt_integrator {
@@ -227,6 +262,10 @@ typedef struct rt_integrator {
     rt_status (*step)(const struct rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
                       real_t *x, uint16_t n, const rt_iwork *w);
     const void *tab;   /* method data, e.g. a Butcher tableau */
+    /* the most work one step of n states can take with the settings cfg, whatever the
+       model does (the fixed bound of docs/solvers.md, "Bounded work") */
+    void (*bound)(const struct rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+                  struct rt_step_work *w);
 } rt_integrator;
 
 /* The library of integrators: a registry of {name, method} rows ending in {NULL, NULL}. */
@@ -239,6 +278,8 @@ extern const rt_integrator rt_euler, rt_heun, rt_bs3, rt_rk4, rt_dopri5;
 extern const rt_integrator rt_beuler, rt_trap, rt_sdirk2, rt_sdirk3, rt_ros2;
 /* Returns the integrator registered under name, or NULL. */
 const rt_integrator *rt_integrator_find(const char *name);
+/* the worst-case work of one step of set s of sc (n states) */
+rt_step_work rt_step_bound(const struct rt_scene *sc, uint8_t s, uint16_t n);
 
 /* ------------------------------------------------------------------ scenes */
 
@@ -525,7 +566,9 @@ typedef struct rt_state {
 typedef struct rt_stats {
     rt_status status;                /* first fault met (RT_OK while clean) */
     uint32_t count[RT_CNT_COUNT];    /* fault counters */
+    uint8_t growth[RT_MAX_SETS];     /* steps in a row the set's state grew fast */
     int16_t last_block[RT_CNT_COUNT];/* last offending block per counter, -1 none */
+    uint32_t first_tick[RT_CNT_COUNT];/* tick of each counter's first count */
     uint32_t event_iter_max;         /* high-water mark of event-location iterations */
     uint32_t loop_hist[RT_LOOP_ITER_LIMIT + 1]; /* loop solves by iterations taken */
     uint32_t loop_iter_max;          /* high-water mark of iterations per loop solve */

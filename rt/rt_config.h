@@ -124,6 +124,32 @@ typedef double real_t;
 #endif
 
 /* ---- implicit integrators and algebraic loops ---- */
+#ifndef RT_ERR_TOL
+/* the local error a step may show by its method's embedded estimate, scaled norm
+   max_i |e_i| / (1 + |x_i|), unless the set says `accuracy (...)`; a step above it is
+   counted (errest) and the status says so: it reports, the fixed schedule never changes */
+#define RT_ERR_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-2 : (real_t)1e-3)
+#endif
+#ifndef RT_ERR_LOST
+/* a step whose estimate exceeds this (an error as large as the state's scale 1 + |x|)
+   has no correct digit: counted as errest too, but the status is failed, not doubtful */
+#define RT_ERR_LOST ((real_t)1)
+#endif
+#ifndef RT_GROWTH_FACTOR
+/* a set whose state norm max(1, |x|) grows by more than this factor in each of
+   RT_GROWTH_STEPS consecutive steps is unstable (counted: unstable), long before it
+   overflows; a stable method on a well-posed model never grows that fast at its step */
+#define RT_GROWTH_FACTOR 4
+#endif
+#ifndef RT_GROWTH_STEPS
+#define RT_GROWTH_STEPS 3
+#endif
+#ifndef RT_IMP_SUBSTEPS
+/* a failing implicit step is retried with a Jacobian at its iterate, then split into
+   2, 4, ... up to this many substeps (a power of two); worst-case work of one step is
+   then 2 + (2 + 4 + ... + RT_IMP_SUBSTEPS) = 2 RT_IMP_SUBSTEPS step-equivalents */
+#define RT_IMP_SUBSTEPS 8
+#endif
 #ifndef RT_MAX_IMPLICIT_N
 #define RT_MAX_IMPLICIT_N 64 /* states of a set integrated by an implicit method */
 #endif

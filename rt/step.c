@@ -8,6 +8,32 @@
  * tick stays bounded whatever the model does. */
 #include "rti.h"
 
+/* max(1, max_i |x_i|); NaN if x holds one */
+static real_t norm(const real_t *x, uint16_t n)
+{
+    real_t m = 1;
+    for (uint16_t i = 0; i < n; i++) {
+        real_t a = rt_fabs(x[i]);
+        if (a != a)
+            return a;
+        m = a > m ? a : m;
+    }
+    return m;
+}
+
+/* an explicit method past its stability limit multiplies the state by |R(h lambda)| > 1
+   every step: RT_GROWTH_STEPS steps in a row of growth by RT_GROWTH_FACTOR are counted
+   (unstable) long before the values overflow */
+static void watch_growth(rt_sim *sim, uint8_t s, real_t before, real_t after)
+{
+    uint8_t *g = &sim->stats.growth[s];
+    *g = after > (real_t)RT_GROWTH_FACTOR * before ? (uint8_t)(*g + 1) : 0;
+    if (*g >= RT_GROWTH_STEPS) {
+        rti_count(sim, RT_CNT_UNSTABLE, -1, RT_E_UNSTABLE);
+        *g = 0;
+    }
+}
+
 /* integrates the set from t by h in place, then post-stabilizes its multibody part
    (eq. 10); a step that ended above its residual tolerance is counted as degraded */
 static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
@@ -22,11 +48,22 @@ static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
     w.imp = &sim->state.imp[s];
     w.stats = &sim->stats.istats[s];
     w.cfg = &sc->sets[s].implicit;
+    uint32_t split = w.stats->substepped;
+    real_t before = norm(sim->state.x + x0, n);
+    w.stats->last_err = 0;
     rt_status st = sc->sets[s].method->step(sc->sets[s].method, &f, t, h, sim->state.x + x0, n, &w);
     if (st == RT_E_NOCONV)
-        rti_count(sim, RT_CNT_DEGRADED, -1, RT_E_NOCONV);
+        rti_count(sim, RT_CNT_DEGRADED, -1, RT_E_DEGRADED);
     else if (st == RT_E_SINGULAR)
         rti_count(sim, RT_CNT_SINGULAR, -1, RT_E_SINGULAR);
+    if (w.stats->substepped != split)
+        rti_count(sim, RT_CNT_SUBSTEP, -1, RT_OK); /* recovered: reported, not a fault */
+    real_t acc = w.cfg->accuracy > 0 ? w.cfg->accuracy : RT_ERR_TOL;
+    real_t e = w.stats->last_err; /* a NaN estimate is the nan counter's (below) */
+    if (e == e && !(e <= acc))
+        rti_count(sim, RT_CNT_ERREST, -1,
+                  w.stats->last_err <= RT_ERR_LOST ? RT_E_ACCURACY : RT_E_LOST);
+    watch_growth(sim, s, before, norm(sim->state.x + x0, n));
     /* projects when stab is RT_STAB_PROJECT; otherwise refreshes recorded reactions */
     if (sc->mbs)
         sc->mbs->project(sc, sim, s, t + h);
@@ -112,7 +149,7 @@ static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
     if (it > sim->stats.event_iter_max)
         sim->stats.event_iter_max = it;
     if (k->b - k->a > RT_EVENT_TTOL && k->rb != 0)
-        rti_count(sim, RT_CNT_EVENT_NOLOC, -1, RT_E_NOCONV);
+        rti_count(sim, RT_CNT_EVENT_NOLOC, -1, RT_E_NOLOC);
 }
 
 /* runs the event handler of the located root at time te with the state in xb */
@@ -141,6 +178,22 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, int root
     rti_count(sim, RT_CNT_EVENTS, blk, RT_OK);
 }
 
+/* a guard root (rt_kind.root_guard, a floor) that ends the step below zero and further
+   below than it started, with no crossing located: the model tunnels through its floor */
+static void check_guards(const rt_scene *sc, rt_sim *sim, uint8_t s, const real_t *ra,
+                         const real_t *rb)
+{
+    uint16_t n = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nr == 0 || sc->blocks[b].set != s)
+            continue;
+        for (uint16_t i = 0; i < k->nr; i++, n++)
+            if (k->root_guard && k->root_guard[i] && rb[n] < 0 && rb[n] < ra[n])
+                rti_count(sim, RT_CNT_INVARIANT, b, RT_E_INVARIANT);
+    }
+}
+
 /* sub-steps from t0 to t + h, locating and firing events on the way */
 static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
@@ -156,8 +209,10 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         rti_roots(sc, sim, s, t0 + span, sim->work.rs);
         uint16_t blk, which;
         int c = find_crossing(sc, s, r, sim->work.rs, &blk, &which);
-        if (c < 0)
+        if (c < 0) {
+            check_guards(sc, sim, s, r, sim->work.rs);
             break;
+        }
         if (ev >= RT_EVENTS_PER_STEP_MAX) {
             rti_count(sim, RT_CNT_EVENT_LIMIT, blk, RT_E_EVENT);
             break;

@@ -5,9 +5,15 @@
 #include "rti.h"
 
 static const char *const status_text[] = {
-#define RT_X_TEXT(id, text) text,
+#define RT_X_TEXT(id, sev, text) text,
     RT_STATUS_LIST(RT_X_TEXT)
 #undef RT_X_TEXT
+};
+
+static const unsigned char status_severity[] = {
+#define RT_X_SEV(id, sev, text) sev,
+    RT_STATUS_LIST(RT_X_SEV)
+#undef RT_X_SEV
 };
 
 static const char *const counter_key[] = {
@@ -19,6 +25,11 @@ static const char *const counter_key[] = {
 const char *rt_status_name(rt_status s)
 {
     return (unsigned)s < RT_STATUS_COUNT ? status_text[s] : "?";
+}
+
+int rt_status_severity(rt_status s)
+{
+    return (unsigned)s < RT_STATUS_COUNT ? status_severity[s] : 3;
 }
 
 const char *rt_counter_key(rt_counter c)
@@ -112,10 +123,11 @@ const char *rt_error_text(const rt_sim *sim)
 
 void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status)
 {
-    sim->stats.count[c]++;
+    if (sim->stats.count[c]++ == 0)
+        sim->stats.first_tick[c] = (uint32_t)sim->state.tick;
     sim->stats.last_block[c] = (int16_t)b;
-    if (sim->stats.status == RT_OK)
-        sim->stats.status = status;
+    if (rt_status_severity(status) > rt_status_severity(sim->stats.status))
+        sim->stats.status = status; /* the worst; the first of equally bad ones */
 }
 
 /* FNV-1a over the bytes of the value's bit pattern, least significant byte first, so the

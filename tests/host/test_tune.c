@@ -66,7 +66,9 @@ static double rerun(const uint32_t *r)
         if (tu_sim.state.tick == tu_sim.plan.n_ticks)
             break;
     }
-    TH_CHECK(tu_sim.stats.status == RT_OK);
+    /* the tuner measures the error against its reference, so a step's conservative
+       estimate above the default accuracy (severity 1) is allowed; nothing worse */
+    TH_CHECK(rt_status_severity(tu_sim.stats.status) < 2);
     return e;
 }
 
@@ -89,9 +91,10 @@ static void test_tune_chosen_meets_tol(void)
     th_note("re-run error against the exact solution", e);
     TH_CHECK(e <= tol);
     TH_NEAR(e, r.best.err, tol / 100);
-    /* cost: derivatives per simulated second, 4 RK4 stages x states x steps per second */
+    /* cost: derivatives per simulated second, 4 RK4 stages and the end-point derivative
+       of its error estimate x states x steps per second */
     double steps0 = 1 / (DT * r.best.ratio[0]), steps1 = 1 / (DT * r.best.ratio[1]);
-    TH_NEAR(r.best.cost, 4 * (2 * steps0 + steps1), 1e-9 * r.best.cost);
+    TH_NEAR(r.best.cost, 5 * (2 * steps0 + steps1), 1e-9 * r.best.cost);
     /* no cheaper neighbour: doubling either step breaks the tolerance */
     for (int s = 0; s < 2; s++) {
         uint32_t d[2] = {r.best.ratio[0], r.best.ratio[1]};

@@ -2,13 +2,15 @@
  * a const table, GNU-style options (in any order with the positional arguments,
  * `--opt value` or `--opt=value`, `--` ends the options), `--help` per subcommand on
  * stdout with exit 0, and one line on stderr with exit 2 for every bad argument.
- * Exit codes: CLI_OK (0), CLI_FAULTS (1: a run counted faults), CLI_USAGE (2). */
+ * Exit codes: CLI_OK (0), CLI_FAULTS (1: a run failed: NaN, instability, a degraded
+ * step, a lost link...), CLI_USAGE (2), CLI_DOUBTFUL (3: the run completed but a step's
+ * error estimate or a deadline was exceeded): rt_status_severity of the run's status. */
 #ifndef CLI_H
 #define CLI_H
 
 #include "rt.h"
 
-enum { CLI_OK = 0, CLI_FAULTS = 1, CLI_USAGE = 2, CLI_HELP = 3 /* internal: help shown */ };
+enum { CLI_OK = 0, CLI_FAULTS = 1, CLI_USAGE = 2, CLI_DOUBTFUL = 3 };
 
 #define CLI_POS_MAX 8 /* positional arguments of one subcommand */
 

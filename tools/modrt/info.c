@@ -209,6 +209,24 @@ static void scene_blocks(FILE *f, const rt_scene *sc)
     }
 }
 
+/* one set: method, step, and the most work one of its steps can take (the implicit
+   methods' retries and substeps included: docs/solvers.md, "Bounded work") */
+static void scene_set(FILE *f, const rt_scene *sc, uint8_t s)
+{
+    char b[32], t[32], a[32];
+    const rt_set *st = &sc->sets[s];
+    uint16_t n = 0;
+    for (uint16_t i = 0; i < sc->nblocks; i++)
+        n = (uint16_t)(n + (sc->blocks[i].set == s ? sc->blocks[i].kind->nx : 0));
+    rt_step_work w = rt_step_bound(sc, s, n);
+    fprintf(f, "  %-10s %-8s step %s s (%u ticks of %s s); %u states; worst step %u "
+               "right-hand sides, %u factorizations; accuracy %s\n",
+            st->name, st->method->name, num(b, (double)(sc->dt * (real_t)st->ratio)),
+            (unsigned)st->ratio, num(t, (double)sc->dt), (unsigned)n, (unsigned)w.rhs,
+            (unsigned)w.lu,
+            num(a, (double)(st->implicit.accuracy > 0 ? st->implicit.accuracy : RT_ERR_TOL)));
+}
+
 static void scene_wiring(FILE *f, const rt_scene *sc)
 {
     char b[32];
@@ -231,9 +249,7 @@ static void scene_wiring(FILE *f, const rt_scene *sc)
     }
     fprintf(f, "sets: %u\n", sc->nsets);
     for (uint8_t s = 0; s < sc->nsets; s++)
-        fprintf(f, "  %-10s %-8s step %s s (%u ticks of %s s)\n", sc->sets[s].name,
-                sc->sets[s].method->name, num(b, (double)(sc->dt * (real_t)sc->sets[s].ratio)),
-                (unsigned)sc->sets[s].ratio, num(b + 16, (double)sc->dt));
+        scene_set(f, sc, s);
 }
 
 static uint32_t gcd(uint32_t a, uint32_t b)

@@ -1,7 +1,7 @@
 /* modrt.c - the host command line: list and describe the registered scenes and kinds,
  * run a scene or a scene file (FILE.scn, compiled in host memory by tools/scenec) on the
  * POSIX port, size a per-scene build, tune a multirate schedule. The conventions (GNU-style
- * options, --help per subcommand, exit codes 0 ok / 1 faults counted / 2 usage) are in
+ * options, --help per subcommand, exit codes 0 ok / 1 failed / 2 usage / 3 doubtful) are in
  * cli.h; each subcommand is a row of the table at the end of this file. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -14,6 +14,7 @@
 #include "models.h"
 #include "mrlog.h"
 #include "scn_host.h"
+#include "study.h"
 #include "runner.h"
 #include "tune.h"
 #include "version.h"
@@ -107,6 +108,13 @@ static int apply_set(const rt_scene *sc, const char *arg)
     return 0;
 }
 
+/* 0 ok, 3 doubtful (accuracy, overrun), 1 failed: the run's worst status */
+static int exit_code(const rt_sim *sim)
+{
+    int sev = rt_status_severity(sim->stats.status);
+    return sev == 0 ? CLI_OK : sev == 1 ? CLI_DOUBTFUL : CLI_FAULTS;
+}
+
 static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, double wall)
 {
     fprintf(f, "scene: %s\nticks: %llu\nsim_time: %.17g\nwall_s: %.6f\n", sc->name,
@@ -117,9 +125,20 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
         fprintf(f, "%s: %u", rt_counter_key((rt_counter)c), (unsigned)s->stats.count[c]);
         if (s->stats.last_block[c] >= 0 && c != RT_CNT_EVENTS)
             fprintf(f, " (last %s)", sc->blocks[s->stats.last_block[c]].name);
+        if (s->stats.count[c] > 0 && c != RT_CNT_EVENTS)
+            fprintf(f, " (first at tick %u)", (unsigned)s->stats.first_tick[c]);
         fputc('\n', f);
     }
     fprintf(f, "event_iter_max: %u\n", (unsigned)s->stats.event_iter_max);
+    for (uint8_t k = 0; k < sc->nsets; k++)
+        fprintf(f, "rhs_evals.%s: %llu\n", sc->sets[k].name,
+                (unsigned long long)s->stats.rhs_evals[k]);
+    for (uint8_t k = 0; k < sc->nsets; k++) {
+        const rt_implicit_cfg *c = &sc->sets[k].implicit;
+        fprintf(f, "err_max.%s: %g (accuracy %g)\n", sc->sets[k].name,
+                (double)s->stats.istats[k].err_max,
+                (double)(c->accuracy > 0 ? c->accuracy : RT_ERR_TOL));
+    }
     for (uint8_t k = 0; k < sc->nsets; k++)
         if (rt_set_is_source(s, k))
             fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_err[k]);
@@ -143,6 +162,7 @@ typedef struct run_args {
     int nsets;
     const char *link, *record;
     double link_timeout;
+    study_args study; /* per-set overrides */
 } run_args;
 
 static int opt_t_end(void *ctx, const char *v)
@@ -201,6 +221,19 @@ static int opt_link_timeout(void *ctx, const char *v)
     return CLI_OK;
 }
 
+#define STUDY_OPT(name)                                                           \
+    static int opt_##name(void *ctx, const char *v)                               \
+    {                                                                             \
+        return study_add(&((run_args *)ctx)->study, #name, v);                    \
+    }
+STUDY_OPT(method)
+STUDY_OPT(step)
+STUDY_OPT(tol)
+STUDY_OPT(accuracy)
+STUDY_OPT(substeps)
+STUDY_OPT(newton)
+#undef STUDY_OPT
+
 static int opt_record(void *ctx, const char *v)
 {
     ((run_args *)ctx)->record = v;
@@ -221,6 +254,15 @@ static const cli_opt run_opts[] = {
      opt_link_timeout},
     {"record", "FILE", "write every imported vector and its tick to a replay log "
      "(modrt replay FILE)", opt_record},
+    {"method", "SET=NAME", "integrate set SET by method NAME instead of the scene's; repeatable "
+     "(as are the five below)", opt_method},
+    {"step", "SET=TIME", "set SET's step [s], a whole number of base ticks", opt_step},
+    {"tol", "SET=E", "Newton residual tolerance of an implicit set", opt_tol},
+    {"accuracy", "SET=E", "local error a step of SET may show before it is counted (errest)",
+     opt_accuracy},
+    {"substeps", "SET=N", "most substeps a failing implicit step is split into (power of 2)",
+     opt_substeps},
+    {"newton", "SET=N", "Newton iterations per stage of an implicit set", opt_newton},
     {NULL, NULL, NULL, NULL},
 };
 
@@ -291,6 +333,8 @@ static int cmd_run(void *ctx, int npos, char **pos)
     rt_scene sc = *base; /* the const scene, with the end time the user asked for */
     if (a->has_t_end)
         sc.t_end = (real_t)a->t_end;
+    if (study_apply(&a->study, &sc) != CLI_OK)
+        return CLI_USAGE;
     rt_status st = rt_init(&sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
@@ -315,7 +359,7 @@ static int cmd_run(void *ctx, int npos, char **pos)
     FILE *out = to_stdout ? stderr : stdout;
     summary(out, &sc, &sim, st, r.wall_s);
     int link_bad = stop_inputs(a, out, rec);
-    return sim.stats.status == RT_OK && !link_bad ? CLI_OK : CLI_FAULTS;
+    return link_bad ? CLI_FAULTS : exit_code(&sim);
 }
 
 /* ------------------------------------------------------------------ replay */
@@ -392,7 +436,7 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     if (csv && !to_stdout && fclose(csv) != 0)
         return cli_fail("error writing the CSV file", a->csv);
     summary(to_stdout ? stderr : stdout, &sc, &sim, st, r.wall_s);
-    return sim.stats.status == RT_OK ? CLI_OK : CLI_FAULTS;
+    return exit_code(&sim);
 }
 
 static unsigned at_least_1(unsigned n) { return n ? n : 1; }
@@ -441,7 +485,9 @@ static const cli_cmd commands[] = {
      "A scene: blocks with parameter values, wiring, sets, schedule, evaluation order, loops.\n"
      "A kind: inputs, outputs, states and parameters with defaults and units, equations.", info_opts, 1, 1, &info_ctx, cmd_info},
     {"run", "SCENE|FILE.scn", "run a scene to its end time; prints a key: value summary",
-     "Exit status 0 when no fault was counted, 1 when one was, 2 for bad arguments.\n"
+     "Exit status 0 when no fault was counted; 1 when the answer failed (NaN, instability,\n"
+     "a degraded step, a lost link...); 3 when it completed but a step's error estimate\n"
+     "exceeded its set's accuracy or a tick its deadline; 2 for bad arguments.\n"
      "The summary's hash is a 64-bit FNV-1a over the bit patterns of every recorded value:\n"
      "the same scene gives the same hash on every run and every target.",
      run_opts, 1, 1, &run_ctx, cmd_run},

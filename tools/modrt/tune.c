@@ -113,7 +113,8 @@ static void account(tune_sched *m, double t0)
 {
     const rt_scene *sc = T.sc;
     static const rt_counter faults[] = {RT_CNT_NAN, RT_CNT_EVENT_LIMIT, RT_CNT_EVENT_NOLOC,
-                                        RT_CNT_NOCONV, RT_CNT_SINGULAR, RT_CNT_DEGRADED};
+                                        RT_CNT_NOCONV, RT_CNT_SINGULAR, RT_CNT_DEGRADED,
+                                        RT_CNT_UNSTABLE};
     m->host_s = cpu_s() - t0;
     m->cost = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
@@ -122,7 +123,9 @@ static void account(tune_sched *m, double t0)
         m->cost += m->evals[s] * T.w[s];
         m->xset_err[s] = (double)sim.stats.xset_err[s];
     }
-    m->clean = sim.stats.status == RT_OK;
+    /* a step's error estimate above its accuracy (severity 1) is not a fault here: the
+       tuner measures the error itself, against its reference */
+    m->clean = rt_status_severity(sim.stats.status) < 2;
     for (unsigned i = 0; i < sizeof faults / sizeof faults[0]; i++)
         m->clean = m->clean && sim.stats.count[faults[i]] == 0;
 }
@@ -243,13 +246,16 @@ static void decode(uint32_t c, const tune_result *r, uint32_t *ratio)
     }
 }
 
-/* lower bound of the cost: every stage evaluated once per step */
+/* lower bound of the cost: every stage evaluated once per step (an explicit method's
+   error estimate included: it always takes its evaluations) */
 static double bound(const uint32_t *ratio)
 {
     double b = 0;
     for (uint8_t s = 0; s < T.sc->nsets; s++) {
         double steps = (double)((T.n_ticks + ratio[s] - 1) / ratio[s]);
-        b += T.sc->sets[s].method->stages * steps * T.w[s];
+        const rt_integrator *m = T.sc->sets[s].method;
+        uint32_t per = m->implicit ? m->stages : rt_step_bound(T.sc, s, 1).rhs;
+        b += per * steps * T.w[s];
     }
     return b / (double)T.sc->t_end;
 }

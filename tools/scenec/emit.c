@@ -423,9 +423,11 @@ static void sets(FILE *f, const scn_scene *s)
                 (unsigned)st->ratio);
         if (st->interp)
             fprintf(f, ", .interp = %s", interp_id[st->interp]);
-        if (st->newton || st->jacobian || st->tol != 0)
-            fprintf(f, ",\n     .implicit = {.newton_max = %u, .jac_every = %u, .tol = %s}",
-                    (unsigned)st->newton, (unsigned)st->jacobian, R(st->tol));
+        if (st->newton || st->jacobian || st->tol != 0 || st->substeps || st->accuracy != 0)
+            fprintf(f, ",\n     .implicit = {.newton_max = %u, .substeps = %u, .jac_every = %u,"
+                       " .tol = %s, .accuracy = %s}",
+                    (unsigned)st->newton, (unsigned)st->substeps, (unsigned)st->jacobian,
+                    R(st->tol), R(st->accuracy));
         fputs("},\n", f);
     }
     fputs("};\n", f);

@@ -112,6 +112,8 @@ static void sets_recs(scn_ctx *c, rt_scene *sc)
         st[i].implicit.newton_max = (uint8_t)x->newton;
         st[i].implicit.jac_every = (uint16_t)x->jacobian;
         st[i].implicit.tol = (real_t)x->tol;
+        st[i].implicit.substeps = (uint8_t)x->substeps;
+        st[i].implicit.accuracy = (real_t)x->accuracy;
     }
     rt_rec *r = scn_alloc(c, (s->nrec + 1u) * sizeof *r);
     for (uint16_t i = 0; i < s->nrec; i++)

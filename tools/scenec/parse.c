@@ -509,9 +509,13 @@ static void set_clause(scn_ctx *c, scn_set *st, uint8_t *seen)
         scn_next(c), st->jacobian = paren_count(c, 65535), st->has_jacobian = 1;
     } else if (scn_is_word(c, "tolerance") && once(c, &seen[6])) {
         scn_next(c), st->tol = paren_const(c), st->has_tol = 1;
+    } else if (scn_is_word(c, "substeps") && once(c, &seen[7])) {
+        scn_next(c), st->substeps = paren_count(c, 128), st->has_substeps = 1;
+    } else if (scn_is_word(c, "accuracy") && once(c, &seen[8])) {
+        scn_next(c), st->accuracy = paren_const(c), st->has_accuracy = 1;
     } else if (!c->err) {
         scn_fail_tok(c, "syntax error", "method, step, interpolation, members, newton, "
-                                        "jacobian, tolerance (...) or ';'");
+                                        "jacobian, tolerance, substeps, accuracy (...) or ';'");
     }
 }
 
@@ -519,7 +523,7 @@ static void set_clause(scn_ctx *c, scn_set *st, uint8_t *seen)
 static void st_set(scn_ctx *c, scn_pos at)
 {
     scn_scene *s = &c->sc;
-    uint8_t seen[7] = {0};
+    uint8_t seen[9] = {0};
     if (s->nset >= RT_MAX_SETS) {
         scn_fail(c, at, "set", "too many sets", "at most RT_MAX_SETS sets");
         return;

@@ -242,8 +242,9 @@ typedef struct scn_set {
     uint8_t has_members;
     uint16_t m0, m1;            /* its members in scn_scene.members */
     uint32_t newton, jacobian;
-    double tol;
-    uint8_t has_newton, has_jacobian, has_tol;
+    double tol, accuracy;
+    uint32_t substeps;
+    uint8_t has_newton, has_jacobian, has_tol, has_substeps, has_accuracy;
     /* resolved */
     const rt_integrator *m;
     uint32_t ratio;

@@ -42,12 +42,18 @@ static void set_method(scn_ctx *c, scn_set *st)
         scn_fail(c, st->method.pos, st->method.s, "unknown integration method", method_list(c));
         return;
     }
-    if (!st->m->implicit && (st->has_newton || st->has_jacobian || st->has_tol))
+    if (!st->m->implicit && (st->has_newton || st->has_jacobian || st->has_tol ||
+                             st->has_substeps))
         scn_fail(c, st->method.pos, st->method.s,
-                 "newton, jacobian and tolerance apply to implicit methods only",
+                 "newton, jacobian, tolerance and substeps apply to implicit methods only",
                  "an implicit method (beuler, trap, sdirk2, sdirk3, ros2) or no such clause");
     if (st->has_tol && !(st->tol > 0))
         scn_fail(c, st->name.pos, st->name.s, "tolerance must be positive", "a value above 0");
+    if (st->has_accuracy && !(st->accuracy > 0))
+        scn_fail(c, st->name.pos, st->name.s, "accuracy must be positive", "a value above 0");
+    if (st->has_substeps && (st->substeps & (st->substeps - 1)) != 0)
+        scn_fail(c, st->name.pos, st->name.s, "substeps must be a power of two",
+                 "1, 2, 4, ... 128 (1: a failing step is not split)");
 }
 
 static void set_ratio(scn_ctx *c, scn_set *st)

@@ -1,0 +1,84 @@
+"""hard_cases.py - the hard cases of tests/hard/hard.py that are not a grid of methods and
+steps: explicit methods past their stability limit, injected NaN and overflow, and the
+Zeno ball against its analytic impact and rest times."""
+import math
+
+from hard import run, cost
+
+
+def first_tick(summ, key):
+    v = summ.get(key, "")
+    return int(v.split("first at tick ")[1].split(")")[0]) if "first at tick" in v else None
+
+
+def unstable(s):
+    """explicit methods at h = 10 ms on eigenvalue -1e6 (h lambda = -1e4): counted as
+    unstable, status failed, and the first fault is counted while the state is still far
+    from overflow (|x| < 1e100; one step multiplies it by |R(-1e4)|, up to 4e14 for rk4)"""
+    for m in ("rk4", "dopri5", "heun", "euler"):
+        rc, summ, rows = run(s.modrt, "stifflin.scn", ["--method", "main=" + m])
+        s.row("stifflin", m, "0.01", math.inf, summ, rc)
+        s.check(rc == 1 and first_tick(summ, "unstable") is not None,
+                "explicit %s past its stability limit: status %s" % (m, summ.get("status")))
+        ticks = [t for t in (first_tick(summ, k) for k in ("unstable", "errest")) if t]
+        first = min(ticks) if ticks else 0
+        big = max((abs(v) for r in rows if r[0] <= first * 1e-3 + 1e-9 for v in r[1:]),
+                  default=0)
+        s.check(first > 0 and big < 1e100, "%s: first fault at tick %d, |x| up to %g"
+                % (m, first, big))
+
+
+def faults(s):
+    """a NaN derivative and an overflowing state: status failed, both counted"""
+    rc, summ, rows = run(s.modrt, "faults.scn", [])
+    s.row("faults (NaN, overflow)", "rk4", "0.001", math.nan, summ, rc)
+    s.check(rc == 1, "faults: exit %d, status %s" % (rc, summ.get("status")))
+    s.check(int(summ.get("nan", "0").split()[0]) > 0, "faults: no NaN counted")
+
+
+def ball_times(g, e, h0, n):
+    """analytic impact times t_k and the time of rest t_inf (sum of the geometric series
+    of flight times 2 e^k v1 / g)"""
+    v1 = math.sqrt(2 * g * h0)
+    t = [math.sqrt(2 * h0 / g)]
+    for k in range(1, n):
+        t.append(t[-1] + 2 * v1 * e ** k / g)
+    return t, t[0] + 2 * v1 * e / (g * (1 - e))
+
+
+def zeno(s, long):
+    """the library ball to t = 10 s (1e5 s with --long): impacts at the analytic times,
+    rest at the analytic time, never below its floor"""
+    t_end = "100000" if long else "10"
+    rc, summ, rows = run(s.modrt, "zeno.scn", ["--t-end", t_end])
+    times, t_rest = ball_times(9.81, 0.8, 1.0, 40)
+    cols = summ.get("columns", [])
+    n_col = cols.index("Ball.n") if "Ball.n" in cols else None
+    hits = []
+    for a, b in zip(rows, rows[1:]):
+        if n_col is not None and b[n_col] > a[n_col]:
+            hits.append(b[0])
+    low = min((r[1] for r in rows), default=math.nan)
+    rest = rows[-1][cols.index("Ball.t_rest")] if rows and "Ball.t_rest" in cols else math.nan
+    err = max((abs(hits[k] - times[k]) for k in range(min(10, len(hits)))), default=math.inf)
+    s.row("zeno ball to %s s" % t_end, "rk4", "0.001", err, summ, rc)
+    s.check(rc == 0, "ball: status %s" % summ.get("status"))
+    s.check(len(hits) >= 10 and err < 2e-3,
+            "ball: first impacts off the analytic times by %.3g s" % err)
+    s.check(low >= -1e-6, "ball: fell through its floor to %g m" % low)
+    last = rows[-1] if rows else [0, math.nan, math.nan]
+    s.check(abs(last[1]) < 1e-9 and abs(last[2]) < 1e-9,
+            "ball: not at rest at the end (h %g, v %g)" % (last[1], last[2]))
+    s.check(abs(rest - t_rest) < 1e-3, "ball: rest at %g s, analytic %.6f s" % (rest, t_rest))
+    # without the rest (t_min = 0) it tunnels after its 32nd impact: never silently
+    rc, summ, rows = run(s.modrt, "zeno.scn", ["--t-end", t_end, "--set", "Ball.t_min=0"])
+    low = min((r[1] for r in rows), default=math.nan)
+    s.row("zeno ball, no rest (t_min = 0)", "rk4", "0.001", abs(low), summ, rc)
+    s.check(rc == 1 and int(summ.get("invariant", "0").split()[0]) > 0,
+            "ball without rest: fell to %g m with status %s" % (low, summ.get("status")))
+
+
+def extra(s, long):
+    unstable(s)
+    faults(s)
+    zeno(s, long)
