@@ -18,6 +18,7 @@ RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b)
     for (size_t i = sim->plan.u_off[b], end = sim->plan.u_off[b + 1]; i < end; i++) {
         switch (kind[i]) {
         case RT_SRC_Y:
+        case RT_SRC_HELD:
             u[i] = sim->state.y[src[i]];
             break;
         case RT_SRC_TORN:

@@ -227,10 +227,20 @@ static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
 }
 
 /* the number of ticks that reaches t_end, rounded to the nearest tick */
-static uint64_t tick_count(const rt_scene *sc)
+/* the end time in base ticks: a whole number of them (a quarter tick of rounding at most,
+   RT_TICK_SLACK), and at most RT_MAX_TICKS; else RT_E_SCENE and n_ticks stays 0 */
+static rt_status tick_count(const rt_scene *sc, rt_sim *sim)
 {
     real_t n = sc->t_end / sc->dt;
-    return (uint64_t)(n + (real_t)0.5);
+    if (!(n >= 0 && n <= (real_t)RT_MAX_TICKS))
+        return rti_fail(sim, RT_E_SCENE, "end time out of range: at most RT_MAX_TICKS "
+                        "(2^53) base ticks, and not negative", (const char *)0);
+    real_t k = (real_t)(uint64_t)(n + (real_t)0.5), slack = RT_TICK_SLACK * (n > 1 ? n : 1);
+    if (!(rt_fabs(n - k) <= (slack < (real_t)0.25 ? slack : (real_t)0.25)))
+        return rti_fail(sim, RT_E_SCENE, "end time is not a whole number of base ticks",
+                        (const char *)0);
+    sim->plan.n_ticks = (uint64_t)k;
+    return RT_OK;
 }
 
 rt_status rt_init(const rt_scene *sc, rt_sim *sim)
@@ -262,6 +272,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     rti_zero(&sim->work.w, sizeof sim->work.w);
     if (sc->mbs && (st = (rt_status)sc->mbs->init(sc, sim)) != RT_OK)
         return st;
-    sim->plan.n_ticks = tick_count(sc);
+    if ((st = tick_count(sc, sim)) != RT_OK)
+        return st;
     return rt_refresh(sc, sim);
 }

@@ -62,7 +62,7 @@ static int port_next(const void *ctx, uint16_t v, uint32_t *cursor)
             continue;
         const rt_kind *k = sc->blocks[cn->to].kind;
         uint8_t src = g->sim->plan.src_kind[g->sim->plan.u_off[cn->to] + cn->u];
-        if (src == RT_SRC_TORN || src == RT_SRC_XSET)
+        if (src == RT_SRC_TORN || src == RT_SRC_XSET || src == RT_SRC_HELD)
             j = k->ny; /* a torn or cross-set input carries no algebraic edge */
         for (; j < k->ny; j++) {
             if (feeds(k, (uint16_t)j, cn->u)) {

@@ -446,7 +446,9 @@ typedef enum {
     RT_SRC_Y = 0,      /* an output: y[src] */
     RT_SRC_DEFAULT,    /* the scene's constant: def[i] */
     RT_SRC_TORN,       /* a torn loop input: the solver's unknown torn_val[src] */
-    RT_SRC_XSET        /* an output of another set, reconstructed from its history */
+    RT_SRC_XSET,       /* an output of another set, reconstructed from its history */
+    RT_SRC_HELD        /* a sampled (DSS) output of another set: y[src], held from its
+                          sample instant (zero-order hold), never interpolated */
 } rt_src_kind;
 
 /* One entry of the evaluation sequence. */

@@ -124,6 +124,15 @@ typedef double real_t;
 #endif
 
 /* ---- implicit integrators and algebraic loops ---- */
+#ifndef RT_MAX_TICKS
+/* the longest run in base ticks: t = tick * dt stays exact in the tick count */
+#define RT_MAX_TICKS ((uint64_t)1 << 53)
+#endif
+#ifndef RT_TICK_SLACK
+/* end time / base tick may differ from a whole number by this much relative rounding
+   (at most a quarter tick); more is an error, not a silent rounding */
+#define RT_TICK_SLACK (16 * RT_EPS)
+#endif
 #ifndef RT_ERR_TOL
 /* the local error a step may show by its method's embedded estimate, scaled norm
    max_i |e_i| / (1 + |x_i|), unless the set says `accuracy (...)`; a step above it is

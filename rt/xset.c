@@ -22,6 +22,15 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
         if (sf == st)
             continue;
         uint16_t gi = (uint16_t)(sim->plan.u_off[cn->to] + cn->u);
+        /* a sampled output is piecewise constant by definition: computed at its sample
+           instant (rt_refresh, before any set steps) and not again until the next, so the
+           live value is its exact zero-order hold in every set; the history would label
+           it with the end of its set's step and deliver it one step late */
+        if (sc->blocks[cn->from].kind->type == RT_KIND_DSS) {
+            sim->plan.src_kind[gi] = RT_SRC_HELD;
+            sim->plan.interp[gi] = RT_INTERP_HOLD;
+            continue;
+        }
         sim->plan.src_kind[gi] = RT_SRC_XSET;
         sim->plan.src_set[gi] = sf;
         sim->plan.interp[gi] = scheme ? scheme : RT_INTERP_HOLD;

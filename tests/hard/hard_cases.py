@@ -78,7 +78,27 @@ def zeno(s, long):
             "ball without rest: fell to %g m with status %s" % (low, summ.get("status")))
 
 
+def zoh(s):
+    """a sampled controller in the plant's set, in its own set, and with the plant's set
+    asking for linear interpolation: the same trajectory to the bit (a sampled output is
+    held from its sample instant; no set adds a delay), and the plant's first response
+    comes in the tick of the first sample after the reference step (t = 0.1 s)"""
+    runs = {v: run(s.modrt, "zoh_%s.scn" % v, []) for v in ("same", "own", "own_linear")}
+    base = runs["same"][2]
+    for v, (rc, summ, rows) in runs.items():
+        diff = max((abs(a - b) for r, q in zip(rows, base) for a, b in zip(r, q)),
+                   default=math.inf) if len(rows) == len(base) else math.inf
+        s.row("sampled PI, controller set " + v, "rk4", "0.001", diff, summ, rc)
+        s.check(rc == 0 and diff == 0, "zoh %s: differs from the same-set run by %g" % (v, diff))
+    cols = runs["own"][1].get("columns", [])
+    c = cols.index("PI.c") if "PI.c" in cols else 0
+    on = [r[0] for r in runs["own"][2] if r[c] != 0]
+    s.check(bool(on) and abs(on[0] - 0.1) < 1e-9,
+            "zoh: the command appears at t = %s, not at the sample t = 0.1 s" % (on[:1],))
+
+
 def extra(s, long):
+    zoh(s)
     unstable(s)
     faults(s)
     zeno(s, long)

@@ -284,12 +284,15 @@ static void scene_schedule(FILE *f, const rt_scene *sc, const rt_sim *s)
     for (uint16_t c = 0; c < sc->nconns; c++) {
         const rt_conn *cn = &sc->conns[c];
         rt_interp how;
-        if (rt_input_source(s, cn->to, cn->u, &how) != RT_SRC_XSET)
+        rt_src_kind src = rt_input_source(s, cn->to, cn->u, &how);
+        if (src != RT_SRC_XSET && src != RT_SRC_HELD)
             continue;
         fprintf(f, "  across sets: %s.%s -> %s.%s by %s\n", sc->blocks[cn->from].name,
                 sc->blocks[cn->from].kind->y_names[cn->y], sc->blocks[cn->to].name,
                 sc->blocks[cn->to].kind->u_names[cn->u],
-                rt_interp_name(how));
+                src == RT_SRC_HELD ? "zero-order hold from its sample instant (a sampled "
+                                     "output is piecewise constant; no delay)"
+                                   : rt_interp_name(how));
     }
 }
 

@@ -5,6 +5,7 @@
  * signals and parameter ranges. Each problem is reported at the text that causes it. */
 #include "scn.h"
 
+#include <math.h>
 #include <string.h>
 
 #include "models.h"
@@ -104,6 +105,13 @@ static void header(scn_ctx *c)
         scn_fail(c, top, s->name.s, "missing base tick", "base tick (<time>); in the scene");
     if (!s->has_end)
         scn_fail(c, top, s->name.s, "missing end time", "end time (<time>); in the scene");
+    if (!s->has_dt || !s->has_end || !(s->dt > 0))
+        return;
+    double n = s->t_end / s->dt, k = floor(n + 0.5);
+    if (fabs(n - k) > 1e-9 * (n > 1 ? n : 1))
+        scn_fail(c, s->end_pos, "end", "end time is not a whole number of base ticks",
+                 scn_fmt(c, "a multiple of the base tick, e.g. %.12g s or %.12g s",
+                         floor(n) * s->dt, (floor(n) + 1) * s->dt));
 }
 
 /* ------------------------------------------------------------------ defines */
