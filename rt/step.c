@@ -152,30 +152,33 @@ static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
         rti_count(sim, RT_CNT_EVENT_NOLOC, -1, RT_E_NOLOC);
 }
 
-/* runs the event handler of the located root at time te with the state in xb */
-static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, int root)
+/* runs, at the located time te with the state in xb, the handler of every root that
+   crossed since the start of the (sub)step (roots r_start): the located one and any
+   crossing at the same time, e.g. two bodies hitting their floors together, which would
+   otherwise start the rest of the step on the wrong side and never be seen again.
+   Handlers run in root order, each with the outputs after the previous one. */
+static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const real_t *r_start)
 {
-    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
-    uint16_t blk = 0, which = 0, m = 0;
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0), m = 0;
+    for (uint16_t i = 0; i < n; i++)
+        sim->state.x[x0 + i] = sim->work.xb[i];
+    rti_outputs(sc, sim, te, RTI_IN_STEP);
+    rti_roots(sc, sim, s, te, sim->work.rs);
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
         if (k->nr == 0 || sc->blocks[b].set != s)
             continue;
-        if (root < m + k->nr) {
-            blk = b, which = (uint16_t)(root - m);
-            break;
+        for (uint16_t i = 0; i < k->nr; i++, m++) {
+            if (!crossed(k, i, r_start[m], sim->work.rs[m]))
+                continue;
+            rt_args a;
+            rti_gather(sim, b);
+            rti_args(sc, sim, b, te, 0, &a);
+            k->event(&a, i, sim->state.x + sim->plan.x_off[b], sim->state.d + sim->plan.d_off[b]);
+            rti_count(sim, RT_CNT_EVENTS, b, RT_OK);
+            rti_outputs(sc, sim, te, RTI_IN_STEP);
         }
-        m = (uint16_t)(m + k->nr);
     }
-    for (uint16_t i = 0; i < n; i++)
-        sim->state.x[x0 + i] = sim->work.xb[i];
-    rti_outputs(sc, sim, te, RTI_IN_STEP);
-    rt_args a;
-    rti_gather(sim, blk);
-    rti_args(sc, sim, blk, te, 0, &a);
-    sc->blocks[blk].kind->event(&a, which, sim->state.x + sim->plan.x_off[blk],
-                                sim->state.d + sim->plan.d_off[blk]);
-    rti_count(sim, RT_CNT_EVENTS, blk, RT_OK);
 }
 
 /* a guard root (rt_kind.root_guard, a floor) that ends the step below zero and further
@@ -222,7 +225,7 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
             sim->work.xb[i] = sim->state.x[x0 + i];
         locate(sc, sim, s, t0, span, &k, r);
         real_t te = t0 + k.b * span;
-        fire(sc, sim, s, te, k.root);
+        fire(sc, sim, s, te, r);
         /* the rest of the step starts from the handled state */
         span = (t0 + span) - te;
         t0 = te;

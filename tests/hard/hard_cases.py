@@ -97,7 +97,22 @@ def zoh(s):
             "zoh: the command appears at t = %s, not at the sample t = 0.1 s" % (on[:1],))
 
 
+def events(s):
+    """state events of a defined system (`when`): a ball written as a define follows the
+    library ball exactly (impacts at the same located times, both handled), and its second
+    root counts the passes down through 0.5 m: 2, the first at sqrt(1 / 9.81) = 0.3193 s
+    (seen at the next tick, 0.320 s)"""
+    rc, summ, rows = run(s.modrt, "../scenec/scenes/lang_events.scn", [])
+    same = all(r[1] == r[3] and r[2] == r[4] for r in rows)
+    first = next((r[0] for r in rows if r[5] > 0), math.nan)
+    s.row("defined ball with when (...)", "rk4", "0.001", abs(first - 0.320), summ, rc)
+    s.check(rc == 0 and same and rows and rows[-1][5] == 2 and abs(first - 0.320) < 1e-9,
+            "events: define vs library ball equal %s, passes %s, first at %s"
+            % (same, rows[-1][5] if rows else "?", first))
+
+
 def extra(s, long):
+    events(s)
     zoh(s)
     unstable(s)
     faults(s)

@@ -215,6 +215,11 @@ static void define_kind(scn_ctx *c, scn_define *d)
         k->nx = d->nx;
         k->x_names = var_names(c, d->x, d->nx), k->x_default = var_values(c, d->x, d->nx);
     }
+    if (d->nr) { /* state events: `when` statements */
+        int8_t *dir = scn_alloc(c, d->nr);
+        memcpy(dir, d->rdir, d->nr);
+        k->nr = d->nr, k->root_dir = dir;
+    }
     d->kind = k;
     if (d->type != SCN_DEF_LSS) {
         define_feed(c, d, k);

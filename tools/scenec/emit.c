@@ -217,6 +217,32 @@ static void service(FILE *f, const scn_ctx *c, const scn_define *d, const char *
     fputs("}\n", f);
 }
 
+/* roots and the event handlers, one case per root */
+static void event_services(FILE *f, const scn_ctx *c, const scn_define *d, const char *id)
+{
+    uint8_t in[SCN_MAX_STMTS];
+    int ntemp = 0;
+    scn_service(c, d, SCN_ST_ROOT, in);
+    fprintf(f, "\nstatic void %s_roots(const rt_args *a, real_t *r)\n{\n    (void)a;\n", id);
+    for (uint32_t s = d->st0; s < d->st1; s++)
+        if (in[s - d->st0])
+            statement(f, c, &c->sc.st[s], "r", &ntemp);
+    fprintf(f, "}\n\nstatic const int8_t %s_rdir[] = {", id);
+    for (uint16_t r = 0; r < d->nr; r++)
+        fprintf(f, "%s%d", r ? ", " : "", d->rdir[r]);
+    fprintf(f, "};\n\nstatic void %s_event(const rt_args *a, uint16_t which, real_t *x, "
+               "real_t *d)\n{\n    (void)a, (void)d;\n    switch (which) {\n", id);
+    for (uint16_t r = 0; r < d->nr; r++) {
+        scn_service_event(c, d, r, in);
+        fprintf(f, "    case %u: {\n", (unsigned)r);
+        for (uint32_t s = d->st0; s < d->st1; s++)
+            if (in[s - d->st0])
+                statement(f, c, &c->sc.st[s], "x", &ntemp);
+        fputs("        break;\n    }\n", f);
+    }
+    fputs("    default:\n        break;\n    }\n}\n", f);
+}
+
 static void lss_spec(FILE *f, const scn_define *d, const char *id)
 {
     const scn_matrix *m[4] = {&d->A, &d->B, &d->C, &d->D};
@@ -263,11 +289,13 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
             service(f, c, d, pre, SCN_ST_DER);
         if (dss)
             service(f, c, d, pre, SCN_ST_NEXT);
+        if (d->nr)
+            event_services(f, c, d, pre);
     }
     fprintf(f, "\nstatic const rt_kind %s_kind = {\n    .name = \"%s\", .type = %s,\n", pre, id,
             type_id[k->type]);
-    fprintf(f, "    .nu = %u, .ny = %u, .nx = %u, .nd = %u, .np = %u,\n", k->nu, k->ny, k->nx,
-            k->nd, k->np);
+    fprintf(f, "    .nu = %u, .ny = %u, .nx = %u, .nd = %u, .np = %u, .nr = %u,\n", k->nu,
+            k->ny, k->nx, k->nd, k->np, k->nr);
     const char *slot[] = {d->nu ? "u" : 0, d->ny ? "y" : 0, d->np ? "p" : 0,
                           d->nx ? "x" : 0};
     const char *field[] = {"u_names", "y_names", "p_names", dss ? "d_names" : "x_names"};
@@ -291,6 +319,8 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
         fprintf(f, " .deriv = %s_deriv,", pre);
     if (dss)
         fprintf(f, " .update = %s_update,", pre);
+    if (d->nr)
+        fprintf(f, " .roots = %s_roots, .event = %s_event, .root_dir = %s_rdir,", pre, pre, pre);
     fputs("\n};\n", f);
 }
 

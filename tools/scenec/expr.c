@@ -489,7 +489,9 @@ static void expr(scn_ctx *c)
 
 /* ------------------------------------------------------------------ body statements */
 
-static void add_stmt(scn_ctx *c, uint8_t kind, uint16_t index, scn_pos pos)
+/* one statement: its expression, stored into index, ended by the operator term */
+static void add_stmt_to(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, scn_pos pos,
+                        const char *term)
 {
     scn_scene *s = &c->sc;
     if (s->nst >= SCN_MAX_STMTS) {
@@ -501,8 +503,13 @@ static void add_stmt(scn_ctx *c, uint8_t kind, uint16_t index, scn_pos pos)
     c->sdepth = 0;
     expr(c);
     emit(c, kind == SCN_ST_LET ? SCN_OP_SETLOC : SCN_OP_OUT, index, -1);
-    scn_expect_op(c, ";");
-    s->st[s->nst++] = (scn_stmt){kind, index, code0, s->ncode, pos};
+    scn_expect_op(c, term);
+    s->st[s->nst++] = (scn_stmt){kind, index, code0, s->ncode, pos, root};
+}
+
+static void add_stmt(scn_ctx *c, uint8_t kind, uint16_t index, scn_pos pos)
+{
+    add_stmt_to(c, kind, index, 0, pos, ";");
 }
 
 /* the target of `name = ...`: an output */
@@ -555,19 +562,78 @@ static void let_stmt(scn_ctx *c)
     d->loc[d->nloc++] = n;
 }
 
+/* one assignment of a `when` handler: state = e; or x[i] = e; each state once */
+static void handler_stmt(scn_ctx *c, uint16_t r)
+{
+    scn_define *d = c->def;
+    scn_name n = scn_expect_name(c, "a state assignment (state = ...; or x[i] = ...;) or '}'");
+    if (c->err)
+        return;
+    int i = scn_is_op(c, "[") && !strcmp(n.s, "x") ? index_in(c, d->nx, "states")
+                                                   : find_var(d->x, d->nx, n.s);
+    if (i < 0 && !c->err)
+        scn_fail(c, n.pos, n.s, "not a state of the define",
+                 "a state name or x[i]: an event handler sets states");
+    for (uint32_t s = d->st0; !c->err && s < c->sc.nst; s++)
+        if (c->sc.st[s].kind == SCN_ST_EVENT && c->sc.st[s].root == r &&
+            c->sc.st[s].index == i)
+            scn_fail(c, n.pos, n.s, "assigned twice in the handler", "one value per state");
+    if (c->err)
+        return;
+    scn_pos pos = c->tok.pos;
+    scn_expect_op(c, "=");
+    add_stmt_to(c, SCN_ST_EVENT, (uint16_t)i, r, pos, ";");
+}
+
+/* when [falling|rising] (e) { state = ...; ... }: a root function of an ss_system (a state
+   event where e crosses 0 in that direction) and what happens to the states there */
+static void when_stmt(scn_ctx *c, scn_name at)
+{
+    scn_define *d = c->def;
+    if (d->type != SCN_DEF_SS || d->nx == 0) {
+        scn_fail(c, at.pos, at.s, "state events belong to an ss_system with states",
+                 "when (...) { ... } in the body of an ss_system");
+        return;
+    }
+    if (d->nr >= SCN_MAX_PORTS) {
+        scn_fail(c, at.pos, at.s, "too many roots",
+                 scn_fmt(c, "at most %u per define", SCN_MAX_PORTS));
+        return;
+    }
+    int8_t dir = 0;
+    if (scn_is_word(c, "falling") || scn_is_word(c, "rising")) {
+        dir = scn_is_word(c, "falling") ? -1 : 1;
+        scn_next(c);
+    }
+    uint16_t r = d->nr++;
+    d->rdir[r] = dir;
+    scn_pos pos = c->tok.pos;
+    scn_expect_op(c, "(");
+    add_stmt_to(c, SCN_ST_ROOT, r, 0, pos, ")");
+    scn_expect_op(c, "{");
+    while (!c->err && !scn_is_op(c, "}") && c->tok.kind != SCN_T_EOF)
+        handler_stmt(c, r);
+    scn_expect_op(c, "}");
+}
+
 /* which kind of assignment a body statement is and to which index */
 static void body_stmt(scn_ctx *c)
 {
     scn_define *d = c->def;
     int dss = d->type == SCN_DEF_DSS;
     scn_name n = scn_expect_name(c, "a body statement: y[i] = ..., xdot[i] = ..., "
-                                    "xnext[i] = ..., der(x) = ..., let v = ... or '}'");
+                                    "xnext[i] = ..., der(x) = ..., let v = ..., "
+                                    "when (...) { ... } or '}'");
     if (c->err)
         return;
     uint8_t kind = SCN_ST_OUT;
     int i = -1;
     if (strcmp(n.s, "let") == 0 && c->tok.kind == SCN_T_ID) {
         let_stmt(c);
+        return;
+    }
+    if (strcmp(n.s, "when") == 0 && (scn_is_op(c, "(") || c->tok.kind == SCN_T_ID)) {
+        when_stmt(c, n);
         return;
     }
     if (scn_is_op(c, "[") && !strcmp(n.s, "y")) {

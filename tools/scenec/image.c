@@ -18,12 +18,10 @@ static const real_t *reals(scn_ctx *c, const double *v, size_t n)
     return out;
 }
 
-/* the program of one service: its statements' code, flattened in order */
-static scn_prog program(scn_ctx *c, const scn_define *d, uint8_t kind, const real_t *k)
+/* the program of the statements marked in `in`, flattened in order */
+static scn_prog program_of(scn_ctx *c, const scn_define *d, const uint8_t *in, const real_t *k)
 {
-    uint8_t in[SCN_MAX_STMTS];
     uint32_t n = 0;
-    scn_service(c, d, kind, in);
     for (uint32_t s = d->st0; s < d->st1; s++)
         n += in[s - d->st0] ? c->sc.st[s].code1 - c->sc.st[s].code0 : 0;
     scn_ins *ins = scn_alloc(c, (n ? n : 1) * sizeof *ins);
@@ -36,6 +34,31 @@ static scn_prog program(scn_ctx *c, const scn_define *d, uint8_t kind, const rea
         n += st->code1 - st->code0;
     }
     return (scn_prog){ins, n, k, d->nloc};
+}
+
+/* the program of one service */
+static scn_prog program(scn_ctx *c, const scn_define *d, uint8_t kind, const real_t *k)
+{
+    uint8_t in[SCN_MAX_STMTS];
+    scn_service(c, d, kind, in);
+    return program_of(c, d, in, k);
+}
+
+/* roots and one handler program per root (`when`) */
+static void events(scn_ctx *c, const scn_define *d, const real_t *k, scn_vm_spec *vs,
+                   rt_kind *kd)
+{
+    if (d->nr == 0)
+        return;
+    scn_prog *ev = scn_alloc(c, d->nr * sizeof *ev);
+    uint8_t in[SCN_MAX_STMTS];
+    for (uint16_t r = 0; r < d->nr; r++) {
+        scn_service_event(c, d, r, in);
+        ev[r] = program_of(c, d, in, k);
+    }
+    vs->roots = program(c, d, SCN_ST_ROOT, k);
+    vs->event = ev;
+    kd->roots = scn_vm_roots, kd->event = scn_vm_event;
 }
 
 /* the kind of a define with its services */
@@ -63,6 +86,7 @@ static const rt_kind *define_services(scn_ctx *c, const scn_define *d, const rea
     kd->output = d->ny ? scn_vm_output : NULL;
     kd->deriv = d->type == SCN_DEF_SS && d->nx ? scn_vm_deriv : NULL;
     kd->update = d->type == SCN_DEF_DSS ? scn_vm_update : NULL;
+    events(c, d, k, vs, kd);
     return kd;
 }
 

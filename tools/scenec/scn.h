@@ -130,13 +130,16 @@ typedef struct scn_prog {
 
 /* rt_kind.spec of an interpreted define: one program per service. */
 typedef struct scn_vm_spec {
-    scn_prog out, der, upd;
+    scn_prog out, der, upd, roots;
+    const scn_prog *event;      /* one handler program per root */
 } scn_vm_spec;
 
 /* VM services (vm.c): the rt_kind slots of interpreted defines; they read a->spec. */
 void scn_vm_output(const rt_args *a, real_t *y);
 void scn_vm_deriv(const rt_args *a, real_t *xdot);
 void scn_vm_update(const rt_args *a, real_t *dnext);
+void scn_vm_roots(const rt_args *a, real_t *r);
+void scn_vm_event(const rt_args *a, uint16_t which, real_t *x, real_t *d);
 
 /* ------------------------------------------------------------------ the scene */
 
@@ -144,7 +147,11 @@ void scn_vm_update(const rt_args *a, real_t *dnext);
 extern const char *const scn_interp_key[RT_INTERP_COUNT];
 
 typedef enum { SCN_DEF_SS = 0, SCN_DEF_LSS, SCN_DEF_DSS } scn_def_type;
-typedef enum { SCN_ST_LET = 0, SCN_ST_OUT, SCN_ST_DER, SCN_ST_NEXT } scn_stmt_kind;
+typedef enum {
+    SCN_ST_LET = 0, SCN_ST_OUT, SCN_ST_DER, SCN_ST_NEXT,
+    SCN_ST_ROOT,                /* the root function `when (...)`, index: the root */
+    SCN_ST_EVENT                /* a state assignment of root `root`'s handler */
+} scn_stmt_kind;
 
 /* a port, parameter or state of a define, with its default value */
 typedef struct scn_var {
@@ -158,6 +165,7 @@ typedef struct scn_stmt {
     uint16_t index;             /* local, output or state index */
     uint32_t code0, code1;      /* its instructions in scn_scene.code (terminator incl.) */
     scn_pos pos;
+    uint16_t root;              /* SCN_ST_EVENT: the root whose handler it belongs to */
 } scn_stmt;
 
 typedef struct scn_matrix {
@@ -177,6 +185,8 @@ typedef struct scn_define {
     double period;              /* DSS default sample period [s]; 0: none */
     scn_pos period_pos;
     uint32_t st0, st1;          /* its statements in scn_scene.st */
+    int8_t rdir[SCN_MAX_PORTS]; /* root directions of `when`: -1 falling, +1 rising, 0 both */
+    uint16_t nr;                /* roots (`when` statements) */
     scn_matrix A, B, C, D;      /* LSS */
     /* derived by check.c */
     rt_kind *kind;              /* sizes, names, defaults, feed (no services) */
@@ -431,6 +441,8 @@ void scn_check_link(scn_ctx *c);
 /* sets.c: marks in[i] for the statements d->st0 + i of one service (SCN_ST_OUT, _DER or
    _NEXT): its own, and the lets they need, directly or through other lets */
 void scn_service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint8_t *in);
+/* the same for the handler of root r (its SCN_ST_EVENT statements and the lets they use) */
+void scn_service_event(const scn_ctx *c, const scn_define *d, uint16_t r, uint8_t *in);
 int scn_build_image(scn_ctx *c);                        /* image.c */
 /* The C literal of a double that reads back as the same double ("0.1", "-2", "1e-300"). */
 void scn_real_literal(double v, char *buf, size_t n);

@@ -394,15 +394,28 @@ void scn_check_rest(scn_ctx *c)
 
 /* ------------------------------------------------------------------ services */
 
-void scn_service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint8_t *in)
+/* marks the statements of one service: kind, and for SCN_ST_EVENT root r's handler */
+static void service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint16_t r,
+                    uint8_t *in)
 {
     uint8_t need[SCN_MAX_LOCALS] = {0};
     for (uint32_t s = d->st1; s-- > d->st0;) {
         const scn_stmt *st = &c->sc.st[s];
-        int mine = st->kind == kind || (st->kind == SCN_ST_LET && need[st->index]);
+        int mine = (st->kind == kind && (kind != SCN_ST_EVENT || st->root == r)) ||
+                   (st->kind == SCN_ST_LET && need[st->index]);
         in[s - d->st0] = (uint8_t)mine;
         for (uint32_t i = st->code0; mine && i < st->code1; i++)
             if (c->sc.code[i].op == SCN_OP_LOC)
                 need[c->sc.code[i].a] = 1;
     }
+}
+
+void scn_service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint8_t *in)
+{
+    service(c, d, kind, 0, in);
+}
+
+void scn_service_event(const scn_ctx *c, const scn_define *d, uint16_t r, uint8_t *in)
+{
+    service(c, d, SCN_ST_EVENT, r, in);
 }

@@ -98,3 +98,15 @@ void scn_vm_update(const rt_args *a, real_t *dnext)
 {
     run(&((const scn_vm_spec *)a->spec)->upd, a, dnext);
 }
+
+void scn_vm_roots(const rt_args *a, real_t *r)
+{
+    run(&((const scn_vm_spec *)a->spec)->roots, a, r);
+}
+
+/* the handler of root which; its assignments write the states in place, in order */
+void scn_vm_event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
+{
+    (void)d;
+    run(&((const scn_vm_spec *)a->spec)->event[which], a, x);
+}
