@@ -111,7 +111,88 @@ def events(s):
             % (same, rows[-1][5] if rows else "?", first))
 
 
+G2, G3 = 1 - 1 / math.sqrt(2), 0.43586652150845899942
+STAB = {  # R(z), written out from each method's tableau
+    "euler": lambda z: 1 + z,
+    "heun": lambda z: 1 + z + z * z / 2,
+    "bs3": lambda z: 1 + z + z ** 2 / 2 + z ** 3 / 6,
+    "rk4": lambda z: 1 + z + z ** 2 / 2 + z ** 3 / 6 + z ** 4 / 24,
+    "dopri5": lambda z: 1 + z + z ** 2 / 2 + z ** 3 / 6 + z ** 4 / 24 + z ** 5 / 120 +
+    z ** 6 / 600,
+    "beuler": lambda z: 1 / (1 - z),
+    "trap": lambda z: (1 + z / 2) / (1 - z / 2),
+    "sdirk2": lambda z: (1 + (1 - 2 * G2) * z) / (1 - G2 * z) ** 2,
+    "sdirk3": None,  # stage by stage below
+    "ros2": lambda z: (1 + (1 - 2 * (1 + 1 / math.sqrt(2))) * z +
+                       ((1 + 1 / math.sqrt(2)) ** 2 - 2 * (1 + 1 / math.sqrt(2)) + 0.5) * z * z)
+    / (1 - (1 + 1 / math.sqrt(2)) * z) ** 2,
+}
+
+
+def sdirk3(z):
+    g, b1, b2 = G3, 1.20849664917601007034, -0.64436317068446906975
+    d, a21 = 1 - g * z, (1 - G3) / 2
+    y1 = 1 / d
+    y2 = (1 + a21 * z * y1) / d
+    return (1 + b1 * z * y1 + b2 * z * y2) / d
+
+
+def dahlquist(s):
+    """one step of x' = z x from 1: x(1) = R(z) of every method, for z from -0.5 to -1e6
+    (explicit methods only inside their stability region, z >= -2)"""
+    worst = {}
+    for m, fn in STAB.items():
+        fn = fn or sdirk3
+        zs = [-0.5, -1.5] if m in ("euler", "heun", "bs3", "rk4", "dopri5") else \
+             [-0.5, -2, -10, -1e3, -1e6]
+        for z in zs:
+            rc, summ, rows = run(s.modrt, "dahlquist.scn",
+                                 ["--method", "main=" + m, "--set", "T.lam=%r" % z])
+            got = rows[-1][1] if rows else math.nan
+            err = abs(got - fn(z)) / max(1.0, abs(fn(z)))
+            worst[m] = max(worst.get(m, 0), err)
+            s.check(err < 1e-9, "dahlquist %s z=%g: x(1) = %r, R(z) = %r" % (m, z, got, fn(z)))
+    for m, e in worst.items():
+        s.row("Dahlquist: largest |x(1) - R(z)|, z in [-1e6, -0.5]", m, "1", e,
+              {"status": "no fault"}, 0)
+
+
+def mbs_drift(s, long):
+    """pendulum10 for 1e5 steps (1e6 with --long): the energy stays within 1e-3 of the
+    scale m g (1 + ... + 10) = 540 J, the residuals at rounding level, status ok"""
+    rc, summ, rows = run(s.modrt, "pendulum_drift.scn",
+                         ["--every", "100"] + (["--t-end", "5000"] if long else []))
+    de = max((abs(r[1] - rows[0][1]) for r in rows), default=math.inf)
+    res = max((max(abs(r[2]), abs(r[3])) for r in rows), default=math.inf)
+    s.row("pendulum10, %s steps: energy drift [J]" % ("1e6" if long else "1e5"), "dopri5",
+          "0.005", de, summ, rc)
+    s.row("pendulum10, %s steps: largest residual" % ("1e6" if long else "1e5"), "dopri5",
+          "0.005", res, summ, rc)
+    s.check(rc == 0 and de < 0.54 and res < 1e-12,
+            "pendulum drift: energy %g J, residual %g, status %s" % (de, res, summ.get("status")))
+
+
+def joints(s):
+    """redundant, conflicting and near-singular joints: never a wrong answer with status ok.
+    Redundant rods (consistent) give the single rod's answer; the conflicting pair cannot
+    be met (residual 0.5 m) and the nearly collinear pair is near-singular: both failed"""
+    _, _, single = run(s.modrt, "joints_single.scn", [])
+    for name in ("joints_redundant", "joints_conflict", "joints_near_singular"):
+        rc, summ, rows = run(s.modrt, name + ".scn", [])
+        diff = max((abs(a - b) for r, q in zip(rows, single) for a, b in zip(r[1:3], q[1:3])),
+                   default=math.inf)
+        res = max((abs(r[3]) for r in rows), default=math.inf)
+        s.row(name.replace("_", " ") + ": |x - single rod|", "dopri5", "0.005", diff, summ, rc)
+        if name == "joints_redundant":
+            s.check(diff < 1e-12, "redundant joints: %g from the single rod" % diff)
+        else:
+            s.check(rc != 0, "%s: status ok (residual %g)" % (name, res))
+
+
 def extra(s, long):
+    dahlquist(s)
+    mbs_drift(s, long)
+    joints(s)
     events(s)
     zoh(s)
     unstable(s)
