@@ -153,7 +153,7 @@ def dahlquist(s):
             worst[m] = max(worst.get(m, 0), err)
             s.check(err < 1e-9, "dahlquist %s z=%g: x(1) = %r, R(z) = %r" % (m, z, got, fn(z)))
     for m, e in worst.items():
-        s.row("Dahlquist: largest |x(1) - R(z)|, z in [-1e6, -0.5]", m, "1", e,
+        s.row("Dahlquist: largest error of x(1) against R(z), z in [-1e6, -0.5]", m, "1", e,
               {"status": "no fault"}, 0)
 
 
@@ -182,7 +182,8 @@ def joints(s):
         diff = max((abs(a - b) for r, q in zip(rows, single) for a, b in zip(r[1:3], q[1:3])),
                    default=math.inf)
         res = max((abs(r[3]) for r in rows), default=math.inf)
-        s.row(name.replace("_", " ") + ": |x - single rod|", "dopri5", "0.005", diff, summ, rc)
+        s.row(name.replace("_", " ") + ": distance from the single rod", "dopri5", "0.005", diff,
+              summ, rc)
         if name == "joints_redundant":
             s.check(diff < 1e-12, "redundant joints: %g from the single rod" % diff)
         else:
