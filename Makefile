@@ -52,7 +52,7 @@ RT_SRCS     := $(wildcard rt/*.c)
 MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
                $(patsubst models/scenes/%.scn,build/gen/scenes/%.c,$(wildcard models/scenes/*.scn))
 POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/modrt/cli.c \
-               tools/modrt/info.c tools/modrt/study.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c
+               tools/modrt/info.c tools/modrt/study.c tools/modrt/rtloop.c tools/modrt/trace.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
 
@@ -285,7 +285,8 @@ $(O)/multirate_bench: $(call obj,tools/bench/multirate_bench.c tools/bench/bench
 # benchmarks write into build/bench/ only (documents are spliced into copies there);
 # `make docs` runs them and copies the figures over the committed ones in docs/
 BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
-bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot
+RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
+bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot $(O)/modrt
 	@mkdir -p build/bench
 	@cp docs/mbs.md docs/multirate.md build/bench/
 	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md
@@ -297,6 +298,7 @@ bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot
 	    -t "pendulum10_actuated: position error at 10 s against host CPU time" \
 	    -x "host CPU s per run of 10 s" -y "largest position error at 10 s [m]" \
 	    -o build/bench/multirate_bench.svg build/bench/multirate.csv
+	@sh tools/bench/rt_bench.sh $(O)/modrt $(RT_BENCH_S)
 	@echo "bench: figures in build/bench/ (make docs copies them into docs/)"
 
 # the committed references and figures: the block reference from the kinds' tables, and

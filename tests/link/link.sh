@@ -109,5 +109,29 @@ cp $T/pi_link.scn $T/orig.scn
 out=$($M replay $T/file.mrl 2>&1); rc=$?
 [ $rc -eq 2 ] && echo "$out" | grep -q 'link layout' && ok || bad "foreign layout: exit $rc: $out"
 
+# 7. the real-time clock (rtloop.c): the trace of a real-time run equals the simulated
+# run's row for row (written by the trace ring's thread), the summary has the latency
+# statistics and a per-tick log; 1 us ticks miss every deadline: catchup and skip still
+# give the simulated trace, stop ends the run as failed at the first miss
+$M run pi_loop --realtime --t-end 0.5 --csv $T/rt.csv --rt-log $T/rt_lat.csv > $T/rt.out
+$M run pi_loop --t-end 0.5 --csv $T/sim.csv > $T/sim.out
+cmp -s $T/rt.csv $T/sim.csv && ok || bad "real-time CSV differs from the simulated run's"
+[ "$(field hash $T/rt.out)" = "$(field hash $T/sim.out)" ] && ok || bad "real-time hash differs"
+grep -q '^latency_us: min .* p50 .* p99 .* max' $T/rt.out && grep -q '^exec_us: ' $T/rt.out &&
+    [ "$(field trace_dropped $T/rt.out)" = 0 ] && ok || bad "real-time summary: $(cat $T/rt.out)"
+[ "$(wc -l < $T/rt_lat.csv)" = 501 ] && ok || bad "--rt-log: $(wc -l < $T/rt_lat.csv) lines"
+printf 'scene (fast_tick) doc ("1 us ticks");\nbase tick (1 us);\nend time (1 ms);\n%s\n%s\nrecord (O.x);\n' \
+    'load system (O) of type (oscillator);' 'set (main) method (rk4) step (1 tick);' > $T/fast.scn
+$M run $T/fast.scn --csv $T/fast_sim.csv > /dev/null
+for p in catchup skip; do
+    $M run $T/fast.scn --realtime --overrun $p --csv $T/fast_$p.csv > $T/fast_$p.out; rc=$?
+    [ $rc -eq 3 ] && [ "$(field ticks $T/fast_$p.out)" = 1000 ] && cmp -s $T/fast_sim.csv $T/fast_$p.csv &&
+        ok || bad "--overrun $p: exit $rc"
+done
+[ "$(field skipped_deadlines $T/fast_skip.out)" != 0 ] && ok || bad "--overrun skip skipped nothing"
+$M run $T/fast.scn --realtime --overrun stop > $T/fast_stop.out; rc=$?
+[ $rc -eq 1 ] && [ "$(field ticks $T/fast_stop.out)" = 1 ] && ok || bad "--overrun stop: exit $rc"
+$M run pi_loop --overrun late > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "--overrun late accepted"
+
 echo "link: $pass passed, $fail failed"
 [ $fail -eq 0 ]

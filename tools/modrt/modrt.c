@@ -163,6 +163,8 @@ typedef struct run_args {
     const char *link, *record;
     double link_timeout;
     study_args study; /* per-set overrides */
+    int overrun;      /* rtloop_policy */
+    const char *rt_log;
 } run_args;
 
 static int opt_t_end(void *ctx, const char *v)
@@ -234,6 +236,21 @@ STUDY_OPT(substeps)
 STUDY_OPT(newton)
 #undef STUDY_OPT
 
+static int opt_overrun(void *ctx, const char *v)
+{
+    int p = rtloop_policy_find(v);
+    if (p < 0)
+        return cli_fail("--overrun expects catchup, skip or stop, got", v);
+    ((run_args *)ctx)->overrun = p;
+    return CLI_OK;
+}
+
+static int opt_rt_log(void *ctx, const char *v)
+{
+    ((run_args *)ctx)->rt_log = v;
+    return CLI_OK;
+}
+
 static int opt_record(void *ctx, const char *v)
 {
     ((run_args *)ctx)->record = v;
@@ -246,8 +263,13 @@ static const cli_opt run_opts[] = {
      opt_csv},
     {"every", "N", "record every N-th tick (default 1)", opt_every},
     {"set", "BLOCK.PARAM=VALUE", "set parameter (or initial state) P of block B to V; repeatable", opt_set},
-    {"realtime", NULL, "pace the ticks by the wall clock (default: simulated clock)",
+    {"realtime", NULL, "pace the ticks by the wall clock (default: simulated clock); "
+     "SCHED_FIFO and locked memory when permitted; latency statistics in the summary",
      opt_realtime},
+    {"overrun", "catchup|skip|stop", "real time: a missed deadline runs the missed ticks back "
+     "to back (catchup, default), drops them (skip), or ends the run (stop)", opt_overrun},
+    {"rt-log", "FILE", "real time: write each tick's wake-up latency and execution time "
+     "[us] to FILE (CSV)", opt_rt_log},
     {"link", "udp:HOST:PORT|none", "exchange the scene's export/import signals with a "
      "controller (docs/link.md); lock-step, or soft real time with --realtime", opt_link},
     {"link-timeout", "S", "lock-step: wait at most S seconds per exchange (default 1)",
@@ -347,7 +369,10 @@ static int cmd_run(void *ctx, int npos, char **pos)
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : fopen(a->csv, "w")))
         return cli_fail("cannot write the CSV file", a->csv);
-    port_run_opts o = {csv, a->every, a->realtime, NULL, NULL};
+    FILE *rt_log = NULL;
+    if (a->rt_log && !(rt_log = fopen(a->rt_log, "w")))
+        return cli_fail("cannot write the --rt-log file", a->rt_log);
+    port_run_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log};
     port_run_result r;
     mrl_writer *rec;
     int rc = start_inputs(a, pos[0], &sc, &o, &rec);
@@ -356,8 +381,12 @@ static int cmd_run(void *ctx, int npos, char **pos)
     st = port_run(&sc, &sim, &o, &r);
     if (csv && !to_stdout && fclose(csv) != 0)
         return cli_fail("error writing the CSV file", a->csv);
+    if (rt_log && fclose(rt_log) != 0)
+        return cli_fail("error writing the --rt-log file", a->rt_log);
     FILE *out = to_stdout ? stderr : stdout;
     summary(out, &sc, &sim, st, r.wall_s);
+    if (a->realtime)
+        rtloop_print(out, (rtloop_policy)a->overrun, &r.rt);
     int link_bad = stop_inputs(a, out, rec);
     return link_bad ? CLI_FAULTS : exit_code(&sim);
 }
@@ -429,7 +458,7 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : fopen(a->csv, "w")))
         return mrl_close(), cli_fail("cannot write the CSV file", a->csv);
-    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL};
+    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL};
     port_run_result r;
     rt_status st = port_run(&sc, &sim, &o, &r);
     mrl_close();

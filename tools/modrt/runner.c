@@ -1,7 +1,9 @@
 /* runner.c - the POSIX tick loops: the simulated clock runs ticks back to back (the
- * deterministic replay used by CI), the real-time clock paces them with port_timer_*
- * and counts overruns. Both record through rt_record, so the hash is the same. */
+ * deterministic replay used by CI), the real-time clock paces them (rtloop.c: absolute
+ * deadlines, latency statistics, the trace ring) and counts overruns. Both record
+ * through rt_record at the same ticks, so the hash and the CSV are the same. */
 #define _POSIX_C_SOURCE 200809L
+#include <string.h>
 #include <time.h>
 
 #include "port.h"
@@ -24,9 +26,14 @@ void port_csv_header(FILE *f, const rt_scene *sc)
 
 void port_csv_row(FILE *f, const rt_scene *sc, const rt_sim *sim, const real_t *vals)
 {
+    port_csv_row_at(f, sc, (double)rt_time(sc, sim), vals);
+}
+
+void port_csv_row_at(FILE *f, const rt_scene *sc, double t, const real_t *vals)
+{
     /* 17 significant digits round-trip a double; 9 a float */
     const char *fmt = RT_REAL_IS_FLOAT ? ",%.9g" : ",%.17g";
-    fprintf(f, RT_REAL_IS_FLOAT ? "%.9g" : "%.17g", (double)rt_time(sc, sim));
+    fprintf(f, RT_REAL_IS_FLOAT ? "%.9g" : "%.17g", t);
     for (uint16_t i = 0; i < sc->nrecs; i++)
         fprintf(f, fmt, (double)vals[i]);
     fputc('\n', f);
@@ -65,25 +72,39 @@ static rt_status tick_and_record(const rt_scene *sc, rt_sim *sim, const port_run
 }
 
 
-/* the real-time clock calls this from port_timer_wait */
-static const rt_scene *rt_scene_now;
-static rt_sim *rt_sim_now;
-static const port_run_opts *rt_opts_now;
-static rt_status rt_last = RT_OK;
-static uint64_t rt_overruns;
-
-static void on_tick(void)
+/* one real-time tick: the model and the exchange (rtloop.c records the row) */
+static rt_status rt_tick_exchange(const rt_scene *sc, rt_sim *sim, void *ctx)
 {
-    if (!running(rt_last))
-        return;
-    rt_last = tick_and_record(rt_scene_now, rt_sim_now, rt_opts_now);
-    if (port_timer_late())
-        rt_overruns++;
+    return exchange(sc, sim, (const port_run_opts *)ctx, rt_tick(sc, sim));
+}
+
+/* the real-time clock: rtloop.c paces the ticks; misses are counted as overruns, and
+   policy stop ends the run as failed */
+static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const port_run_opts *o,
+                              port_run_result *r)
+{
+    rt_status st = RT_E_DONE;
+    if (sim->state.tick < sim->plan.n_ticks) {
+        if (o->csv)
+            fflush(o->csv); /* the header and row 0, before the writer thread takes over */
+        st = rtloop_run(sc, sim, rt_tick_exchange, (void *)o, o->every,
+                        (rtloop_policy)o->overrun, o->csv, o->rt_log, stderr, &r->rt);
+    }
+    r->overruns = r->rt.misses;
+    if (r->rt.misses && sim->stats.count[RT_CNT_OVERRUN] == 0)
+        sim->stats.first_tick[RT_CNT_OVERRUN] = (uint32_t)r->rt.first_miss;
+    sim->stats.count[RT_CNT_OVERRUN] += (uint32_t)r->rt.misses;
+    if (r->rt.misses && rt_status_severity(RT_E_OVERRUN) > rt_status_severity(sim->stats.status))
+        sim->stats.status = RT_E_OVERRUN;
+    if (r->rt.stopped && rt_status_severity(RT_E_STOPPED) > rt_status_severity(sim->stats.status))
+        sim->stats.status = RT_E_STOPPED;
+    return st == RT_OK ? RT_E_STOPPED : st;
 }
 
 rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port_run_result *r)
 {
     rt_status st = RT_OK;
+    memset(r, 0, sizeof *r);
     if (o->csv)
         port_csv_header(o->csv, sc);
     st = exchange(sc, sim, o, st);
@@ -94,18 +115,8 @@ rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port
         while (running(st))
             st = tick_and_record(sc, sim, o);
     } else {
-        rt_scene_now = sc, rt_sim_now = sim, rt_opts_now = o, rt_last = RT_OK;
-        rt_overruns = 0;
-        uint32_t us = (uint32_t)(sc->dt * 1e6 + 0.5);
-        if (sim->state.tick < sim->plan.n_ticks && port_timer_start(us, on_tick) == 0) {
-            while (running(rt_last))
-                port_timer_wait();
-            port_timer_stop();
-        }
-        st = rt_last == RT_E_LINK ? RT_E_LINK : RT_E_DONE;
-        sim->stats.count[RT_CNT_OVERRUN] += (uint32_t)rt_overruns;
+        st = run_realtime(sc, sim, o, r);
     }
     r->wall_s = now_s() - t0;
-    r->overruns = o->realtime ? rt_overruns : 0;
     return st;
 }

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "rt.h"
+#include "rtloop.h"
 
 typedef struct port_run_opts {
     FILE *csv;          /* trace destination, or NULL */
@@ -16,11 +17,14 @@ typedef struct port_run_opts {
        at tick 0 and after every tick before it is recorded; returns 1 to end the run */
     int (*exchange)(void *ctx, const rt_scene *sc, rt_sim *sim);
     void *xctx;
+    int overrun;        /* real time: rtloop_policy of a missed deadline */
+    FILE *rt_log;       /* real time: per-tick latency and execution time, or NULL */
 } port_run_opts;
 
 typedef struct port_run_result {
     double wall_s;      /* wall-clock time of the tick loop [s] */
     uint64_t overruns;  /* real-time ticks that missed their deadline */
+    rtloop_stats rt;    /* real time: latency, execution time, misses */
 } port_run_result;
 
 /* Runs an initialised scene to its end; returns the last tick status (RT_E_LINK when the
@@ -30,5 +34,7 @@ rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port
 void port_csv_header(FILE *f, const rt_scene *sc);
 /* Writes one CSV row of the current state (values as recorded, full precision). */
 void port_csv_row(FILE *f, const rt_scene *sc, const rt_sim *sim, const real_t *vals);
+/* The same for a row recorded at simulated time t (the real-time trace's writer). */
+void port_csv_row_at(FILE *f, const rt_scene *sc, double t, const real_t *vals);
 
 #endif /* PORT_RUNNER_H */
