@@ -2,6 +2,7 @@
 #
 #   REAL=double|float   scalar type of the runtime (real_t)
 #   SAN=1               build with AddressSanitizer and UndefinedBehaviorSanitizer
+#   FAULT=1             the fault-injection test build (-DRT_FAULT_INJECT=1)
 #   O=DIR               output directory; by default keyed by everything that changes the
 #                       object code: build/host, build/host-float, build/host-san, ...
 #                       (cross targets: build/<target>, build/<target>-float)
@@ -10,12 +11,13 @@
 
 REAL ?= double
 SAN ?= 0
+FAULT ?= 0
 CC ?= gcc
 V ?= 0
 # parallel jobs of the sub-makes `make test` runs
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 XSUF := $(if $(filter float,$(REAL)),-float)
-O ?= build/host$(XSUF)$(if $(filter 1,$(SAN)),-san)
+O ?= build/host$(XSUF)$(if $(filter 1,$(SAN)),-san)$(if $(filter 1,$(FAULT)),-fault)
 ifeq ($(V),1)
 Q :=
 else
@@ -33,6 +35,9 @@ ifeq ($(REAL),float)
 CDEFS    += -DRT_REAL_FLOAT
 else ifneq ($(REAL),double)
 $(error REAL must be double or float, not '$(REAL)')
+endif
+ifeq ($(FAULT),1)
+CDEFS    += -DRT_FAULT_INJECT=1
 endif
 ifeq ($(SAN),1)
 COPT     := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
@@ -142,7 +147,7 @@ check-freestanding: $(RT_OBJS) $(MODEL_OBJS)
 # every suite is a make target; `make test` runs them one after another, one line each,
 # and ends with the grand total (tools/run-suites.sh). Other makefiles add theirs to
 # TEST_SUITES.
-TEST_SUITES = check-freestanding test-unit test-san test-float test-cli test-scenec \
+TEST_SUITES = check-freestanding test-unit test-san test-float test-faults test-cli test-scenec \
                test-fuzz $(addprefix cross-test-,$(CROSS_TARGETS))
 test: deps
 	@V=$(V) sh tools/run-suites.sh "$(MAKE) JOBS=$(JOBS) V=$(V)" $(TEST_SUITES)
@@ -152,15 +157,24 @@ test-san:
 	$(MAKE) --no-print-directory -j$(JOBS) SAN=1 unit
 test-float:
 	$(MAKE) --no-print-directory -j$(JOBS) REAL=float unit
+# fault injection (tests/faults/test_faults.c): a build with the hooks of rti.h
+$(O)/faults: $(call obj,tests/faults/test_faults.c tests/harness.c tests/testutil.c \
+                      ports/posix/port.c) $(RT_OBJS) $(MODEL_OBJS)
+	$(Q)$(CC) $(LDSAN) $^ -lm -o $@
+faults: $(O)/faults
+	$(O)/faults
+test-faults:
+	$(MAKE) --no-print-directory -j$(JOBS) FAULT=1 SAN=1 faults
 test-cli:
 	$(MAKE) --no-print-directory -j$(JOBS) all
 	sh tests/cli.sh $(O)
 	sh tests/readme.sh
+	python3 tests/scenec/limits.py $(O)/modrt
 test-scenec:
 	$(MAKE) --no-print-directory -j$(JOBS) scenec-test
 test-fuzz:
 	$(MAKE) --no-print-directory fuzz-short
-.PHONY: deps deps-host test-unit test-san test-float test-cli test-scenec test-fuzz docs FORCE
+.PHONY: deps deps-host test-unit test-san test-float test-faults faults test-cli test-scenec test-fuzz docs FORCE
 
 # ---- cross targets (ports/targets.mk: compilers, flags, QEMU commands) ----
 include ports/targets.mk
@@ -336,3 +350,4 @@ include tests/link/link.mk
 
 -include $(shell find build -name '*.d' 2>/dev/null)
 include tests/hard/hard.mk
+include tests/static/static.mk

@@ -50,6 +50,10 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t, r
     rti_gather(sim, b);
     rti_args(sc, sim, b, t, sc->dt * (real_t)sim->plan.period[b], &a);
     k->output(&a, sim->state.y + sim->plan.y_off[b]);
+#if RT_FAULT_INJECT
+    if (rti_fault_due(RTI_FAULT_NAN) && rti_fault_plan.block == (int16_t)b && k->ny > 0)
+        sim->state.y[sim->plan.y_off[b]] = (real_t)0 / (real_t)0;
+#endif
 }
 
 void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, real_t t,

@@ -52,8 +52,9 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
             nx += sc->blocks[b].kind->nx;
             nr += sc->blocks[b].kind->nr;
             if (nx > RT_MAX_X || nr > RT_MAX_ROOTS)
-                return rti_fail(sim, RT_E_CAPACITY, "states or roots exceed RT_MAX_X or ",
-                                "RT_MAX_ROOTS", (const char *)0);
+                return rti_fail(sim, RT_E_CAPACITY, "states or roots exceed ",
+                                RTI_LIMIT(RT_MAX_X), " or ", RTI_LIMIT(RT_MAX_ROOTS),
+                                (const char *)0);
         }
     }
     sim->plan.set_x[sc->nsets] = (uint16_t)nx;
@@ -62,7 +63,8 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
         if (sc->sets[s].method->implicit &&
             sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_IMPLICIT_N)
             return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
-                            ": an implicit method's states exceed RT_MAX_IMPLICIT_N",
+                            ": an implicit method's states exceed ",
+                            RTI_LIMIT(RT_MAX_IMPLICIT_N),
                             (const char *)0);
 
     sim->plan.x_off[sc->nblocks] = (uint16_t)nx;
@@ -77,7 +79,8 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
         nd += k->nd, nu += k->nu, ny += k->ny, np += k->np;
         if (nd > RT_MAX_D || nu > RT_MAX_U || ny > RT_MAX_Y || np > RT_MAX_P)
             return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                            " exceeds RT_MAX_D, RT_MAX_U, RT_MAX_Y or RT_MAX_P",
+                            " exceeds ", RTI_LIMIT(RT_MAX_D), ", ", RTI_LIMIT(RT_MAX_U), ", ",
+                            RTI_LIMIT(RT_MAX_Y), " or ", RTI_LIMIT(RT_MAX_P),
                             (const char *)0);
     }
     return RT_OK;
@@ -183,10 +186,11 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
 static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
 {
     if (sc->nblocks > RT_MAX_BLOCKS)
-        return rti_fail(sim, RT_E_CAPACITY, "blocks exceed RT_MAX_BLOCKS", (const char *)0);
-    if (sc->nsets == 0 || sc->nsets > RT_MAX_SETS)
-        return rti_fail(sim, RT_E_CAPACITY, "a scene needs 1 to RT_MAX_SETS sets",
+        return rti_fail(sim, RT_E_CAPACITY, "blocks exceed ", RTI_LIMIT(RT_MAX_BLOCKS),
                         (const char *)0);
+    if (sc->nsets == 0 || sc->nsets > RT_MAX_SETS)
+        return rti_fail(sim, RT_E_CAPACITY, "a scene needs 1 to ", RTI_LIMIT(RT_MAX_SETS),
+                        " sets", (const char *)0);
     if (!(sc->dt > 0) || !(sc->t_end >= 0) || !rt_isfinite(sc->t_end))
         return rti_fail(sim, RT_E_SCENE, "base tick must be > 0 and end time >= 0",
                         (const char *)0);
@@ -233,8 +237,8 @@ static rt_status tick_count(const rt_scene *sc, rt_sim *sim)
 {
     real_t n = sc->t_end / sc->dt;
     if (!(n >= 0 && n <= (real_t)RT_MAX_TICKS))
-        return rti_fail(sim, RT_E_SCENE, "end time out of range: at most RT_MAX_TICKS "
-                        "(2^53) base ticks, and not negative", (const char *)0);
+        return rti_fail(sim, RT_E_SCENE, "end time out of range: not negative, and at most "
+                        "RT_MAX_TICKS (2^53) base ticks", (const char *)0);
     real_t k = (real_t)(uint64_t)(n + (real_t)0.5), slack = RT_TICK_SLACK * (n > 1 ? n : 1);
     if (!(rt_fabs(n - k) <= (slack < (real_t)0.25 ? slack : (real_t)0.25)))
         return rti_fail(sim, RT_E_SCENE, "end time is not a whole number of base ticks",

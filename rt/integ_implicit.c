@@ -254,6 +254,8 @@ static real_t newton(imp_step *c, real_t tc, const real_t *v, int first)
             d[i] = v[i] + c->hg * d[i] - x[i];
         rti_lu_solve(ws->lu, c->n, ws->piv, d);
         real_t r = scaled_norm(d, x, c->n);
+        if (rti_fault_due(RTI_FAULT_NEWTON))
+            r = R(1) / R(0); /* diverged */
         c->iters++;
         /* not contracting, or no finite correction: give up on this iteration matrix and
            leave the iterate where it is (never back at the predictor, which would repeat

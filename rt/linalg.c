@@ -3,6 +3,7 @@
  * Used by the multibody index-1 solve and projection and by the implicit integrators.
  * Loops run in a fixed order, so the same matrix gives the same bits on every target. */
 #include "linalg.h"
+#include "rti.h"
 
 real_t rti_norm_inf(const real_t *v, uint16_t n)
 {
@@ -47,6 +48,8 @@ rt_status rti_lu(real_t *a, uint16_t n, uint16_t *piv, real_t tol)
         if (p != k)
             swap_rows(a, n, p, k);
         real_t d = a[k * n + k];
+        if (k == 0 && rti_fault_due(RTI_FAULT_SINGULAR))
+            d = 0;
         if (!(rt_fabs(d) > floor_)) {
             /* singular or NaN: continue with the threshold so the result stays finite */
             st = RT_E_SINGULAR;

@@ -142,6 +142,8 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
     real_t *H = sim->state.loop_h + lp->h0;
     real_t *f = sim->work.loop_work, *fn = f + n, *s = fn + n, *scratch = s + n;
     real_t tol = sc->loop_tol > 0 ? sc->loop_tol : DEFAULT_TOL;
+    if (rti_fault_due(RTI_FAULT_LOOP))
+        tol = 0; /* the loop can only run to its iteration bound */
     uint32_t max = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
     uint32_t it = 0;
     int ok = residual(&c, f);

@@ -30,7 +30,7 @@ static rt_status check_spec(const rt_scene *sc, rt_sim *sim, uint16_t b)
                         "is missing)", (const char *)0);
     if (sp->nz > RT_MAX_MBS_BZ)
         return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                        ": velocities exceed RT_MAX_MBS_BZ", (const char *)0);
+                        ": velocities exceed ", RTI_LIMIT(RT_MAX_MBS_BZ), (const char *)0);
     return RT_OK;
 }
 
@@ -83,7 +83,7 @@ static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
         mo[s] += (uint32_t)sp->nz * sp->nz;
         if (nz > RT_MAX_MBS_Z || nq > RT_MAX_MBS_Q || nc > RT_MAX_MBS_C)
             return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
-                            ": MBS blocks exceed RT_MAX_MBS_Z, RT_MAX_MBS_Q or RT_MAX_MBS_C",
+                            ": MBS blocks exceed ", RTI_LIMIT(RT_MAX_MBS_Z), ", ", RTI_LIMIT(RT_MAX_MBS_Q), " or ", RTI_LIMIT(RT_MAX_MBS_C),
                             (const char *)0);
         w->nz[s] = (uint16_t)nz, w->nq[s] = (uint16_t)nq, w->nc[s] = (uint16_t)nc;
     }
@@ -95,7 +95,7 @@ static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
 {
     rt_mbs_work *w = &sim->work.mbs;
     if (sc->njoints > RT_MAX_JOINTS)
-        return rti_fail(sim, RT_E_CAPACITY, "joints exceed RT_MAX_JOINTS", (const char *)0);
+        return rti_fail(sim, RT_E_CAPACITY, "joints exceed ", RTI_LIMIT(RT_MAX_JOINTS), (const char *)0);
     if (sc->njoints > 0 && !sc->joints)
         return rti_fail(sim, RT_E_SCENE, "njoints > 0 but no joint table", (const char *)0);
     for (uint16_t j = 0; j < sc->njoints; j++) {
@@ -106,7 +106,7 @@ static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
         uint8_t s = sc->blocks[jt->b1].set;
         if (w->nc[s] + jt->kind->nc > RT_MAX_MBS_C)
             return rti_fail(sim, RT_E_CAPACITY, "joint ", jt->name,
-                            ": the constraints of its set exceed RT_MAX_MBS_C",
+                            ": the constraints of its set exceed ", RTI_LIMIT(RT_MAX_MBS_C),
                             (const char *)0);
         w->jrow[j] = w->nc[s];
         w->nc[s] = (uint16_t)(w->nc[s] + jt->kind->nc);
@@ -243,7 +243,7 @@ static real_t energy(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_t 
 static real_t reaction(const rt_scene *sc, const rt_sim *sim, uint16_t j, uint16_t c,
                        real_t t)
 {
-    const real_t *lam = sim->work.mbs.jlam + j * RT_MBS_JOINT_NC_MAX;
+    const real_t *lam = sim->work.mbs.jlam + (size_t)j * RT_MBS_JOINT_NC_MAX;
     if (c >= RT_MBS_JSIG_LAMBDA)
         return lam[c - RT_MBS_JSIG_LAMBDA];
     rt_mbs_node n1, n2;

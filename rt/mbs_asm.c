@@ -36,7 +36,7 @@ static void anchor(const rt_joint *j, rt_mbs_node *n)
 static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, int side,
                        real_t t, rt_mbs_node *n, real_t *J)
 {
-    int16_t b = side ? j->b2 : j->b1;
+    int16_t b = (int16_t)(side ? j->b2 : j->b1);
     if (b < 0) {
         anchor(j, n);
         return;
@@ -99,10 +99,10 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_
             continue;
         w->gam[r] = row_dot(e.C[i], n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
         uint16_t b1 = (uint16_t)j->b1;
-        map_row(e.C[i], w->J[0], spec_of(sc, b1)->nz, w->W + r * ld + w->zo[b1], 0);
+        map_row(e.C[i], w->J[0], spec_of(sc, b1)->nz, w->W + (size_t)r * ld + w->zo[b1], 0);
         if (j->b2 >= 0) {
             uint16_t b2 = (uint16_t)j->b2;
-            map_row(e.C[i] + 6, w->J[1], spec_of(sc, b2)->nz, w->W + r * ld + w->zo[b2],
+            map_row(e.C[i] + 6, w->J[1], spec_of(sc, b2)->nz, w->W + (size_t)r * ld + w->zo[b2],
                     b2 == b1);
         }
     }
@@ -162,7 +162,7 @@ static void assemble_block(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_
     }
     if (sp->nc > 0) {
         uint16_t r = w->co[b];
-        real_t *W = (what & RTI_MBS_JAC) ? w->W + r * ld + zo : 0;
+        real_t *W = (what & RTI_MBS_JAC) ? w->W + (size_t)r * ld + zo : 0;
         sp->constr(&a, w->g + r, w->gd + r, W, ld, w->gam + r);
     }
 }

@@ -145,7 +145,7 @@ static rt_status record_loops(const rt_scene *sc, rt_sim *sim, rti_next_fn next,
         if (!is_cycle(next, g, comp, n, id, &first) || (!ports && holds_actual(sim, comp, n, id)))
             continue;
         if (sim->plan.nloops >= RT_MAX_LOOPS)
-            return rti_fail(sim, RT_E_CAPACITY, "more algebraic loops than RT_MAX_LOOPS",
+            return rti_fail(sim, RT_E_CAPACITY, "more algebraic loops than ", RTI_LIMIT(RT_MAX_LOOPS),
                             (const char *)0);
         rt_loop *l = &sim->plan.loops[sim->plan.nloops++];
         l->actual = (uint8_t)ports;
@@ -158,7 +158,7 @@ static rt_status record_loops(const rt_scene *sc, rt_sim *sim, rti_next_fn next,
                 continue;
             uint16_t b = ports ? block_of_y(sim, sc->nblocks, v) : v;
             if (*used + l->nblocks >= 2 * RT_MAX_BLOCKS)
-                return rti_fail(sim, RT_E_CAPACITY, "loop listing exceeds 2*RT_MAX_BLOCKS",
+                return rti_fail(sim, RT_E_CAPACITY, "loop listing exceeds 2 * ", RTI_LIMIT(RT_MAX_BLOCKS),
                                 (const char *)0);
             loop_add_block(sim, l, b);
         }
@@ -187,7 +187,7 @@ static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, 
 static rt_status emit(rt_sim *sim, uint8_t kind, uint16_t index)
 {
     if (sim->plan.nseq >= RT_MAX_SEQ)
-        return rti_fail(sim, RT_E_CAPACITY, "evaluation sequence exceeds RT_MAX_SEQ",
+        return rti_fail(sim, RT_E_CAPACITY, "evaluation sequence exceeds RT_MAX_SEQ (RT_MAX_Y + RT_MAX_BLOCKS)",
                         (const char *)0);
     sim->plan.seq[sim->plan.nseq].kind = kind;
     sim->plan.seq[sim->plan.nseq++].index = index;
@@ -255,7 +255,7 @@ static rt_status build_sequence(const rt_scene *sc, rt_sim *sim, uint16_t ny, ui
 static rt_status tear_input(rt_sim *sim, uint16_t gi, rt_loop *lp)
 {
     if (sim->plan.ntorn >= RT_MAX_TORN)
-        return rti_fail(sim, RT_E_CAPACITY, "torn loop inputs exceed RT_MAX_TORN",
+        return rti_fail(sim, RT_E_CAPACITY, "torn loop inputs exceed ", RTI_LIMIT(RT_MAX_TORN),
                         (const char *)0);
     sim->plan.torn_in[sim->plan.ntorn] = gi;
     sim->plan.torn_src[sim->plan.ntorn] = sim->plan.src[gi];

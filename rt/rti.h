@@ -25,6 +25,11 @@ typedef enum {
 /* ---- text (util.c) ---- */
 /* Writes the NULL-terminated list of strings into sim->err and returns status. */
 rt_status rti_fail(rt_sim *sim, rt_status status, ...);
+/* "RT_MAX_X (256 in rt_config.h)": a limit with its value, for rti_fail's messages; a
+   per-scene build (make image) sizes the limits from the scene */
+#define RTI_STR2(x) #x
+#define RTI_STR(x) RTI_STR2(x)
+#define RTI_LIMIT(name) #name " (" RTI_STR(name) " in rt_config.h)"
 /* Sets n bytes at p to zero (freestanding memset). */
 void rti_zero(void *p, size_t n);
 /* the value of a signal reference (recorded or exported) at the current state (sim.c) */
@@ -98,5 +103,33 @@ typedef rt_scc_work rti_scc_work;
    sinks first) and returns the number of components. */
 uint16_t rti_scc(uint16_t n, rti_next_fn next, const void *ctx, rti_scc_work *w,
                  uint16_t *comp);
+
+/* ------------------------------------------------------------------ fault injection */
+
+/* A test build (-DRT_FAULT_INJECT=1, `make test-faults`) can force one fault from a chosen
+   tick on (tests/faults/test_faults.c, docs/reliability.md); other builds have no hook. */
+#ifndef RT_FAULT_INJECT
+#define RT_FAULT_INJECT 0
+#endif
+typedef enum {
+    RTI_FAULT_NONE = 0,
+    RTI_FAULT_NAN,      /* output 0 of block `block` is NaN */
+    RTI_FAULT_SINGULAR, /* every LU factorization meets a zero pivot */
+    RTI_FAULT_LOOP,     /* an algebraic loop cannot meet its tolerance */
+    RTI_FAULT_NEWTON    /* every Newton iteration of an implicit step diverges */
+} rti_fault_kind;
+typedef struct rti_fault {
+    rti_fault_kind kind;
+    int16_t block;      /* RTI_FAULT_NAN: the block */
+    uint64_t from_tick; /* the first tick it happens in */
+    uint64_t to_tick;   /* the tick it stops at (exclusive) */
+} rti_fault;
+#if RT_FAULT_INJECT
+extern rti_fault rti_fault_plan;
+extern const rt_sim *rti_fault_sim; /* the simulator ticking (set by rt_tick) */
+int rti_fault_due(rti_fault_kind k);
+#else
+#define rti_fault_due(k) 0
+#endif
 
 #endif /* RTI_H */

@@ -66,6 +66,15 @@ static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
         rti_gather(sim, b);
         rti_args(sc, sim, b, t, sc->dt * (real_t)sim->plan.period[b], &a);
         k->update(&a, next);
+        /* a non-finite next state (a NaN input at the sample) is not taken: the block
+           keeps its discrete state, as a continuous set keeps its state (rt/step.c) */
+        int finite = 1;
+        for (uint16_t i = 0; i < k->nd; i++)
+            finite = finite && rt_isfinite(next[i]);
+        if (!finite) {
+            rti_count(sim, RT_CNT_NAN, (int)b, RT_E_NAN);
+            continue;
+        }
         for (uint16_t i = 0; i < k->nd; i++)
             sim->state.d[sim->plan.d_off[b] + i] = next[i];
     }
@@ -76,6 +85,9 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
     if (sim->state.tick >= sim->plan.n_ticks)
         return RT_E_DONE;
     real_t t = rt_time(sc, sim);
+#if RT_FAULT_INJECT
+    rti_fault_sim = sim;
+#endif
     discrete_updates(sc, sim, t);
     /* fixed schedule: a set steps when the tick count is a multiple of its ratio,
        slowest first (rt/xset.c), and publishes its outputs for the other sets */

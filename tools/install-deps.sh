@@ -1,6 +1,7 @@
 #!/bin/sh
 # install-deps.sh - installs, from Debian's packages, everything the make targets use: the
-# host compiler, the cross compilers, QEMU, clang's libFuzzer, valgrind, python3. Skips
+# host compiler, the cross compilers, QEMU, clang's libFuzzer, valgrind, python3, cppcheck
+# and clang-tidy. Skips
 # what is already there. Needs root (or sudo) for apt-get.
 #
 #   sh tools/install-deps.sh            install what is missing (all groups)
@@ -31,6 +32,9 @@ if [ "$group" = all ]; then
         need="$need libclang-rt-dev"
     # callgrind: deterministic instruction counts of the benchmarks
     have valgrind                || need="$need valgrind"
+    # the static checks of make test-static
+    have cppcheck                || need="$need cppcheck"
+    have clang-tidy              || need="$need clang-tidy"
 fi
 if [ -z "$need" ]; then
     [ "$auto" -eq 1 ] || echo "install-deps: everything is installed"

@@ -75,7 +75,7 @@ size_t link_encode(const link_packet *p, uint8_t *buf, size_t cap)
     put(buf + 28, p->seq, 4);
     put(buf + 32, p->tick, 8);
     for (uint16_t i = 0; i < p->n; i++)
-        put(buf + LINK_HEADER + 8 * i, bits_of(p->v[i]), 8);
+        put(buf + LINK_HEADER + 8 * (size_t)i, bits_of(p->v[i]), 8);
     size_t body = LINK_HEADER + 8 * (size_t)p->n;
     put(buf + body, link_crc32(0, buf, body), 4);
     return body + 4;
@@ -122,7 +122,7 @@ link_wire_error link_decode(const uint8_t *buf, size_t len, uint8_t type, const 
     p->seq = (uint32_t)get(buf + 28, 4);
     p->tick = get(buf + 32, 8);
     for (uint16_t i = 0; i < p->n; i++) {
-        p->v[i] = double_of(get(buf + LINK_HEADER + 8 * i, 8));
+        p->v[i] = double_of(get(buf + LINK_HEADER + 8 * (size_t)i, 8));
         if (!(p->v[i] - p->v[i] == 0))
             return LINK_E_VALUE;
     }

@@ -24,7 +24,11 @@ void Reset_Handler(void)
     /* Copy initialised data from its load address in flash, then zero .bss. The linker
        script aligns both to 4 bytes at each end. */
     const uint32_t *src = __data_load;
+    /* the linker script's symbols bound one region each: comparing them is well defined
+       here, whatever the C object model says of distinct objects */
+    // cppcheck-suppress comparePointers
     for (uint32_t *dst = __data_start; dst < __data_end;) *dst++ = *src++;
+    // cppcheck-suppress comparePointers
     for (uint32_t *dst = __bss_start; dst < __bss_end;) *dst++ = 0;
 
 #if defined(__ARM_FP)

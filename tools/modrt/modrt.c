@@ -4,6 +4,7 @@
  * options, --help per subcommand, exit codes 0 ok / 1 failed / 2 usage / 3 doubtful) are in
  * cli.h; each subcommand is a row of the table at the end of this file. */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -353,8 +354,23 @@ static int cmd_run(void *ctx, int npos, char **pos)
     if (!base)
         return CLI_USAGE;
     rt_scene sc = *base; /* the const scene, with the end time the user asked for */
-    if (a->has_t_end)
+    if (a->has_t_end) {
+        double n = a->t_end / (double)sc.dt;
+        char b[160], v[32];
+        snprintf(v, sizeof v, "%.10g", a->t_end);
+        if (!(n <= (double)RT_MAX_TICKS)) {
+            snprintf(b, sizeof b, "--t-end: at most %.10g s with the scene's base tick of "
+                     "%.10g s (2^53 ticks), got", (double)RT_MAX_TICKS * (double)sc.dt,
+                     (double)sc.dt);
+            return cli_fail(b, v);
+        }
+        if (fabs(n - floor(n + 0.5)) > 1e-9 * (n > 1 ? n : 1)) {
+            snprintf(b, sizeof b, "--t-end must be a whole number of base ticks (%.10g s), got",
+                     (double)sc.dt);
+            return cli_fail(b, v);
+        }
         sc.t_end = (real_t)a->t_end;
+    }
     if (study_apply(&a->study, &sc) != CLI_OK)
         return CLI_USAGE;
     rt_status st = rt_init(&sc, &sim);

@@ -108,7 +108,11 @@ static void header(scn_ctx *c)
     if (!s->has_dt || !s->has_end || !(s->dt > 0))
         return;
     double n = s->t_end / s->dt, k = floor(n + 0.5);
-    if (fabs(n - k) > 1e-9 * (n > 1 ? n : 1))
+    if (!(n <= (double)RT_MAX_TICKS))
+        scn_fail(c, s->end_pos, "end", "end time beyond the tick counter",
+                 scn_fmt(c, "at most %.10g s with a base tick of %.10g s (2^53 ticks, "
+                            "RT_MAX_TICKS)", (double)RT_MAX_TICKS * s->dt, s->dt));
+    else if (fabs(n - k) > 1e-9 * (n > 1 ? n : 1))
         scn_fail(c, s->end_pos, "end", "end time is not a whole number of base ticks",
                  scn_fmt(c, "a multiple of the base tick, e.g. %.12g s or %.12g s",
                          floor(n) * s->dt, (floor(n) + 1) * s->dt));
@@ -392,7 +396,7 @@ static void assign_block(scn_ctx *c, uint16_t ai, scn_block *b)
     /* an input default (rt_default) */
     if (s->ndflt >= RT_MAX_U) {
         scn_fail(c, a->lhs.port.pos, a->lhs.port.s, "too many input defaults",
-                 "at most RT_MAX_U defaults");
+                 scn_limit(c, RT_MAX_U, "defaults", "RT_MAX_U"));
         return;
     }
     s->dflt[s->ndflt++] = (scn_default){(uint16_t)(b - s->blk), (uint16_t)i, a->v};

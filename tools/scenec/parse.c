@@ -414,7 +414,8 @@ static void st_load(scn_ctx *c, scn_pos at)
             return;
         if ((joint ? s->njnt >= RT_MAX_JOINTS : s->nblk >= RT_MAX_BLOCKS)) {
             scn_fail(c, names[i].pos, names[i].s, joint ? "too many joints" : "too many systems",
-                     joint ? "at most RT_MAX_JOINTS joints" : "at most RT_MAX_BLOCKS systems");
+                     joint ? scn_limit(c, RT_MAX_JOINTS, "joints", "RT_MAX_JOINTS")
+                           : scn_limit(c, RT_MAX_BLOCKS, "systems", "RT_MAX_BLOCKS"));
             return;
         }
         if (joint) {
@@ -445,7 +446,8 @@ static void st_connect(scn_ctx *c, scn_pos at)
     }
     scn_expect_op(c, ";");
     if (!c->err && s->nconn >= RT_MAX_U)
-        scn_fail(c, at, "connect", "too many connections", "at most RT_MAX_U connections");
+        scn_fail(c, at, "connect", "too many connections",
+                 scn_limit(c, RT_MAX_U, "connections", "RT_MAX_U"));
     if (!c->err)
         s->conn[s->nconn++] = cn;
 }
@@ -481,7 +483,7 @@ static void st_link(scn_ctx *c, scn_pos at)
     l.joint = paren_name(c, "a joint name");
     scn_expect_op(c, ";");
     if (!c->err && s->nlnk >= RT_MAX_JOINTS)
-        scn_fail(c, at, "link", "too many links", "at most RT_MAX_JOINTS links");
+        scn_fail(c, at, "link", "too many links", scn_limit(c, RT_MAX_JOINTS, "links", "RT_MAX_JOINTS"));
     if (!c->err)
         s->lnk[s->nlnk++] = l;
 }
@@ -525,7 +527,7 @@ static void st_set(scn_ctx *c, scn_pos at)
     scn_scene *s = &c->sc;
     uint8_t seen[9] = {0};
     if (s->nset >= RT_MAX_SETS) {
-        scn_fail(c, at, "set", "too many sets", "at most RT_MAX_SETS sets");
+        scn_fail(c, at, "set", "too many sets", scn_limit(c, RT_MAX_SETS, "sets", "RT_MAX_SETS"));
         return;
     }
     scn_set *st = &s->set[s->nset];
@@ -559,7 +561,7 @@ static void st_record(scn_ctx *c, scn_pos at)
         r.sig.port = scn_expect_name(c, "a signal name");
         if (!c->err && s->nrec >= SCN_MAX_RECS)
             scn_fail(c, r.sig.block.pos, r.sig.block.s, "too many recorded signals",
-                     "at most RT_MAX_REC signals");
+                     scn_limit(c, RT_MAX_REC, "signals", "RT_MAX_REC"));
         if (!c->err)
             s->rec[s->nrec++] = r;
     } while (!c->err && scn_accept_op(c, ","));

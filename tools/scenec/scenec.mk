@@ -45,9 +45,9 @@ ifeq ($(O),build/host)
 $(SCENEC): $(call obj,$(SCN_DIR)/scenec.c) $(SCN_LIB_OBJS) $(RT_OBJS) $(SCN_MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -o $@
 else
-# other builds (REAL=float, SAN=1) use the double compiler of build/host
+# other builds (REAL=float, SAN=1, FAULT=1) use the double compiler of build/host
 $(SCENEC): scenec-always
-	@$(MAKE) --no-print-directory O=build/host REAL=double SAN=0 $(SCENEC)
+	@$(MAKE) --no-print-directory O=build/host REAL=double SAN=0 FAULT=0 $(SCENEC)
 .PHONY: scenec-always
 scenec-always:
 endif

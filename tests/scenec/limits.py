@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""limits.py - every compile-time limit a scene file can reach, at the limit and one past
+it (docs/reliability.md): at the limit the scene runs; one past, `modrt run` exits 2 with
+one line naming the place, the number and the macro. Also the numeric ranges of the end
+time and the CLI. The limits are read from rt/rt_config.h, so the test follows them.
+Usage: limits.py MODRT"""
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CFG = open(os.path.join(ROOT, "rt", "rt_config.h")).read()
+LIM = {m.group(1): int(m.group(2)) for m in re.finditer(r"#define (RT_MAX_\w+) (\d+)\b", CFG)}
+TMP = os.path.join(ROOT, "build", "limits")
+os.makedirs(TMP, exist_ok=True)
+HEAD = "base tick (1 ms);\nend time (2 ms);\n"
+passed = failed = 0
+
+
+def run(modrt, text, *args):
+    path = os.path.join(TMP, "limit.scn")
+    with open(path, "w") as f:
+        f.write(text)
+    p = subprocess.run([modrt, "run", path] + list(args), capture_output=True, text=True,
+                       timeout=60)
+    return p.returncode, p.stdout + p.stderr
+
+
+def check(ok, what):
+    global passed, failed
+    if ok:
+        passed += 1
+    else:
+        failed += 1
+        print("FAIL limits: " + what)
+
+
+def systems(n):
+    """n oscillators, 32 per load statement"""
+    out = []
+    for k in range(0, n, 32):
+        names = ", ".join("O%d" % i for i in range(k, min(n, k + 32)))
+        out.append("load system (%s) of type (oscillator);" % names)
+    return "\n".join(out) + "\n"
+
+
+def scene_systems(n):
+    return HEAD + systems(n)
+
+
+def scene_sets(n):
+    return HEAD + systems(n) + "".join(
+        "set (s%d) method (rk4) step (1 tick) members (O%d);\n" % (i, i) for i in range(n))
+
+
+def scene_recs(n):
+    return HEAD + systems(1) + "record (%s);\n" % ", ".join(["O0.x"] * n)
+
+
+def scene_conns(n):
+    """gains in a chain: each connection feeds one gain's input"""
+    blocks = (n + 1 + 63) // 64  # not needed: one source, n sinks in groups
+    text = HEAD + "load system (S) of type (oscillator);\n"
+    k = 0
+    body = []
+    gains = []
+    while k < n:
+        g = "G%d" % len(gains)
+        gains.append(g)
+        body.append("connect(S.x, %s.u);" % g)
+        k += 1
+    text += "load system (%s) of type (gain) from file (\"algebra\");\n" % ", ".join(gains)
+    return text + "\n".join(body) + "\n"
+
+
+def scene_joints(n):
+    text = HEAD + "load system (B) of type (mbs_point) from file (\"mbs_point\");\nB.x = 1;\n"
+    names = ["J%d" % i for i in range(n)]
+    text += "load joint (%s) of type (sphdiff);\n" % ", ".join(names)
+    text += "".join("%s.l = 1;\n" % j for j in names)
+    text += "".join("link(B.c, ground) by (%s);\n" % j for j in names)
+    text += "stabilization (project);\n"
+    return text
+
+
+CASES = [  # (what, macro, scene of n, the limit's number as reported)
+    ("systems", "RT_MAX_BLOCKS", scene_systems),
+    ("sets", "RT_MAX_SETS", scene_sets),
+    ("signals", "RT_MAX_REC", scene_recs),
+    ("joints", "RT_MAX_JOINTS", scene_joints),
+]
+
+
+def limit_cases(modrt):
+    for what, macro, make in CASES:
+        n = LIM[macro]
+        rc, out = run(modrt, make(n), "--t-end", "0.001")
+        check(rc in (0, 1, 3), "%s at the limit %d: exit %d: %s" % (what, n, rc, out[-300:]))
+        rc, out = run(modrt, make(n + 1))
+        lines = out.strip().splitlines()
+        check(rc == 2 and len(lines) == 1 and ("at most %d" % n) in out and macro in out,
+              "%s one past the limit %d: exit %d: %s" % (what, n, rc, out[-300:]))
+        print("limits: %-8s %s = %d: at the limit runs, one past: %s" % (what, macro, n,
+                                                                          lines[-1] if lines else ""))
+
+
+def end_time_cases(modrt):
+    """the end time: whole ticks, not negative, at most 2^53 ticks, from the scene and
+    from --t-end; every refusal one line, exit 2"""
+    base = HEAD.replace("end time (2 ms);", "end time (%s);") + systems(1)
+    for t, ok in (("1e-3 s", True), ("0.0015 s", False), ("1e300 s", False),
+                  ("9007199254740.992 s", True), ("9007199254741 s", False)):
+        rc, out = run(modrt, base % t, "--t-end", "0.002") if ok else run(modrt, base % t)
+        check((rc in (0, 3)) if ok else (rc == 2 and len(out.strip().splitlines()) == 1),
+              "end time (%s): exit %d: %s" % (t, rc, out[-200:]))
+    for v in ("1e308", "2e16", "-1", "nan", "0.0005", "1e19"):
+        rc, out = run(modrt, base % "1 s", "--t-end", v)
+        check(rc == 2 and len(out.strip().splitlines()) == 1,
+              "--t-end %s: exit %d: %s" % (v, rc, out[-200:]))
+
+
+def main():
+    modrt = sys.argv[1]
+    limit_cases(modrt)
+    end_time_cases(modrt)
+    print("limits: %d passed, %d failed" % (passed, failed))
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
