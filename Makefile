@@ -351,3 +351,4 @@ include tests/link/link.mk
 -include $(shell find build -name '*.d' 2>/dev/null)
 include tests/hard/hard.mk
 include tests/static/static.mk
+include tests/vehicles/vehicles.mk

@@ -54,6 +54,13 @@ extern const rt_kind mdl_mbs_body_kind, mdl_mbs_bodyf_kind;
 enum { MDL_MBS_BODY_Y_N1 = 9, MDL_MBS_BODY_Y_N2 = 15 };      /* node x y z vx vy vz (outputs) */
 /* two mass points joined by an internal rod (an internal constraint), nodes "p1", "p2" */
 extern const rt_kind mdl_mbs_dumbbell_kind;
+/* planar single-track car with linear tires (vehicle_st.c), inputs delta, Fx; nodes
+   "front", "rear" (hitch points) */
+extern const rt_kind mdl_st_car_kind;
+/* the ISO 3888-1 double lane change (lane_change.c): a pure-pursuit driver on its centre
+   line, and the towed vehicle's steering from the tow-bar angles */
+extern const rt_kind mdl_iso_driver_kind, mdl_tow_steer_kind;
+enum { MDL_ST_X, MDL_ST_Y, MDL_ST_PSI, MDL_ST_U, MDL_ST_V, MDL_ST_R, MDL_ST_AY };
 
 /* registry of model kinds by name, ending in {NULL, NULL} */
 typedef struct mdl_entry {

@@ -1,0 +1,144 @@
+/* vehicle_st.c - a planar single-track car with linear tires as a multibody module
+ * (eq. 6: K = I, M = diag(m, m, Iz)), with hitch nodes for a tow bar (docs/vehicles.md).
+ *
+ * Coordinates q = (x, y, psi): the centre of mass in the ground frame (x along the track,
+ * y to the left) and the yaw angle; velocities z = (vx, vy, r) in the ground frame, so
+ * q' = z. In the body frame the speeds are u = vx cos psi + vy sin psi (forward) and
+ * v = -vx sin psi + vy cos psi (left). The linear single-track tires (NUMERICS.md,
+ * "Vehicle models"):
+ *   F_yf = C_f (delta - (v + l_f r) / u),  F_yr = -C_r (v - l_r r) / u,
+ * with u bounded below by u_min (the slip is undefined at rest); in the body frame
+ * F_x = Fx (the drive input), F_y = F_yf + F_yr, M_z = l_f F_yf - l_r F_yr, so
+ * m (v' + u r) = F_yf + F_yr and I_z r' = l_f F_yf - l_r F_yr, as in the textbook model.
+ * Nodes "front" and "rear": the hitch points d_f ahead of and d_r behind the centre of
+ * mass, at height 0, their frame turned by psi about z. */
+#include "models.h"
+
+enum { P_M, P_IZ, P_LF, P_LR, P_CF, P_CR, P_DF, P_DR, P_UMIN, P_COUNT };
+enum { U_DELTA, U_FX };
+
+static const char *const x_names[] = {"x", "y", "psi", "vx", "vy", "r"};
+static const char *const y_names[] = {"x", "y", "psi", "u", "v", "r", "ay"};
+static const char *const u_names[] = {"delta", "Fx"};
+static const char *const p_names[] = {"m", "Iz", "lf", "lr", "Cf", "Cr", "df", "dr", "umin"};
+static const char *const node_names[] = {"front", "rear"};
+/* CommonRoad vehicle 1 (NUMERICS.md): m, Iz, lf, lr; C_f 158 kN/rad and C_r 170 kN/rad
+   (mildly understeering); hitches 2 m ahead of and behind the centre of mass */
+static const real_t p_default[P_COUNT] = {(real_t)1225.887, (real_t)1538.853, (real_t)0.88392,
+                                          (real_t)1.50876, (real_t)158000, (real_t)170000, 2, 2,
+                                          1};
+static const real_t x_default[6] = {0, 0, 0, 20, 0, 0};
+/* ay depends on delta directly (the front tire force); nothing else feeds through */
+static const uint8_t feed[7 * 2] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0};
+
+/* body-frame tire resultants: fb = (F_x, F_y, M_z) */
+static void tires(const rt_args *a, real_t *fb)
+{
+    const real_t *x = a->x, *p = a->p;
+    real_t c = rt_cos(x[2]), s = rt_sin(x[2]);
+    real_t u = c * x[3] + s * x[4], v = -s * x[3] + c * x[4], r = x[5];
+    real_t us = u > p[P_UMIN] ? u : p[P_UMIN];
+    real_t fyf = p[P_CF] * (a->u[U_DELTA] - (v + p[P_LF] * r) / us);
+    real_t fyr = -p[P_CR] * (v - p[P_LR] * r) / us;
+    fb[0] = a->u[U_FX];
+    fb[1] = fyf + fyr;
+    fb[2] = p[P_LF] * fyf - p[P_LR] * fyr;
+}
+
+static void kin(const rt_args *a, const real_t *v, real_t *qd)
+{
+    (void)a;
+    qd[0] = v[0], qd[1] = v[1], qd[2] = v[2];
+}
+
+static void mass(const rt_args *a, real_t *M)
+{
+    M[0] = M[1] = a->p[P_M];
+    M[2] = a->p[P_IZ];
+}
+
+/* the body-frame resultants turned into the ground frame */
+static void force(const rt_args *a, real_t *k)
+{
+    real_t fb[3], c = rt_cos(a->x[2]), s = rt_sin(a->x[2]);
+    tires(a, fb);
+    k[0] = c * fb[0] - s * fb[1];
+    k[1] = s * fb[0] + c * fb[1];
+    k[2] = fb[2];
+}
+
+/* hitch i at d ahead of the centre of mass (d < 0: behind) */
+static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
+{
+    const real_t *x = a->x;
+    real_t d = i == 0 ? a->p[P_DF] : -a->p[P_DR];
+    real_t c = rt_cos(x[2]), s = rt_sin(x[2]), r = x[5];
+    n->r[0] = x[0] + d * c, n->r[1] = x[1] + d * s, n->r[2] = 0;
+    n->v[0] = x[3] - d * s * r, n->v[1] = x[4] + d * c * r, n->v[2] = 0;
+    n->w[0] = n->w[1] = 0, n->w[2] = r;
+    n->ar[0] = -d * c * r * r, n->ar[1] = -d * s * r * r, n->ar[2] = 0;
+    n->aw[0] = n->aw[1] = n->aw[2] = 0;
+    const real_t S[9] = {c, -s, 0, s, c, 0, 0, 0, 1};
+    for (int k = 0; k < 9; k++)
+        n->S[k] = S[k];
+    if (!J)
+        return;
+    /* 6 x 3: Jr = [1 0 -d s; 0 1 d c; 0 0 0], Jw = [0 0 0; 0 0 0; 0 0 1] */
+    const real_t Jn[18] = {1, 0, -d * s, 0, 1, d * c, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
+    for (int k = 0; k < 18; k++)
+        J[k] = Jn[k];
+}
+
+static void energy(const rt_args *a, real_t *e)
+{
+    const real_t *x = a->x;
+    e[0] = (real_t)0.5 * (a->p[P_M] * (x[3] * x[3] + x[4] * x[4]) + a->p[P_IZ] * x[5] * x[5]);
+    e[1] = 0;
+}
+
+static void output(const rt_args *a, real_t *y)
+{
+    const real_t *x = a->x;
+    real_t c = rt_cos(x[2]), s = rt_sin(x[2]), fb[3];
+    y[0] = x[0], y[1] = x[1], y[2] = x[2];
+    y[3] = c * x[3] + s * x[4];
+    y[4] = -s * x[3] + c * x[4];
+    y[5] = x[5];
+    tires(a, fb);
+    y[6] = fb[1] / a->p[P_M]; /* v' + u r: the lateral acceleration in the body frame */
+}
+
+static rt_status check(const real_t *p, const void *spec)
+{
+    (void)spec;
+    int ok = 1;
+    for (int i = 0; i < P_COUNT; i++)
+        ok = ok && rt_isfinite(p[i]);
+    return ok && p[P_M] > 0 && p[P_IZ] > 0 && p[P_LF] > 0 && p[P_LR] > 0 && p[P_CF] > 0 &&
+                   p[P_CR] > 0 && p[P_DF] >= 0 && p[P_DR] >= 0 && p[P_UMIN] > 0
+               ? RT_OK
+               : RT_E_PARAM;
+}
+
+static const rt_mbs_spec spec = {
+    .nq = 3, .nz = 3, .nn = 2, .flags = RT_MBS_M_DIAG, .node_names = node_names,
+    .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
+};
+
+const rt_kind mdl_st_car_kind = {
+    .name = "st_car", .type = RT_KIND_MBS, .nu = 2, .ny = 7, .nx = 6, .np = P_COUNT,
+    .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
+    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
+    .check = check, .output = output, .spec = &spec,
+    .doc = RT_DOC(
+        "Planar single-track car with linear tires as a multibody module (eq. (6)):\n"
+        "q = (x, y, psi), z = (vx, vy, r) in the ground frame, q' = z,\n"
+        "M = diag(m, m, Iz). Body speeds u (forward), v (left). Tires:\n"
+        "F_yf = Cf (delta - (v + lf r)/u), F_yr = -Cr (v - lr r)/u (u >= umin);\n"
+        "m (v' + u r) = F_yf + F_yr, Iz r' = lf F_yf - lr F_yr, m (u' - v r) = Fx.\n"
+        "Nodes front and rear: hitch points df ahead of and dr behind the centre of mass.\n"
+        "Outputs x, y, psi, u, v, r and the lateral acceleration ay = v' + u r.\n"
+        "Defaults: CommonRoad vehicle 1 (m, Iz, lf, lr), Cf 158 kN/rad, Cr 170 kN/rad."),
+    .units = RT_DOC("rad N m m rad m/s m/s rad/s m/s^2 m m rad m/s m/s rad/s "
+                    "kg kg*m^2 m m N/rad N/rad m m m/s"),
+};
