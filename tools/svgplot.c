@@ -684,16 +684,18 @@ static void svg_end(FILE *out)
 struct opts {
     const char *in, *out, *title, *cols, *xlabel, *ylabel;
     int xy, logx, logy, width, height;
+    int lines;                 /* xy mode: curves without point markers (paths) */
 };
 
 static void usage(FILE *f)
 {
     fputs("usage: svgplot [-o OUT.svg] [-t TITLE] [-c COLS] [-x XLABEL] [-y YLABEL] [-W WIDTH] [-H HEIGHT] TRACE.csv\n"
-          "       svgplot --xy [--logx] [--logy] [-c SERIES] [-x XLABEL] [-y YLABEL] [-o OUT.svg] [-t TITLE]\n"
+          "       svgplot --xy [--logx] [--logy] [--lines] [-c SERIES] [-x XLABEL] [-y YLABEL] [-o OUT.svg] [-t TITLE]\n"
           "               [-W WIDTH] [-H HEIGHT] TABLE.csv\n"
           "Trace mode: header 't,NAME,...'; plots every column (or the comma-separated -c names) against t;\n"
           "  -c NAME=LABEL,... gives a series its legend text.\n"
-          "XY mode: header 'series,x,y'; one marked curve per series, in order of first appearance.\n"
+          "XY mode: header 'series,x,y'; one marked curve per series, in order of first appearance\n"
+          "  (--lines: no markers, for paths; a 'nan,nan' row is a gap in a path).\n"
           "Writes SVG to stdout unless -o is given. Empty fields, nan and inf are gaps.\n",
           f);
 }
@@ -718,6 +720,7 @@ static int parse_flag(struct opts *o, const char *a)
     if (!strcmp(a, "--xy")) o->xy = 1;
     else if (!strcmp(a, "--logx")) o->logx = 1;
     else if (!strcmp(a, "--logy")) o->logy = 1;
+    else if (!strcmp(a, "--lines")) o->lines = 1;
     else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(stdout); exit(0); }
     else return 0;
     return 1;
@@ -1101,6 +1104,8 @@ static void xy_ranges(const struct opts *o, struct xy *d, struct ranges *r)
             continue;
         }
         int s = g_ps[i];
+        if (o->lines && isnan(g_px[i]) && isnan(g_py[i]))
+            continue; /* a "nan,nan" row: a deliberate gap in a path */
         if (d->skipped[s]++ == 0) d->skip_line[s] = g_pline[i];
     }
     for (int s = 0; s < d->n; s++)
@@ -1123,9 +1128,17 @@ static void xy_series_out(FILE *out, const struct opts *o, const struct plot *p,
 {
     struct pen pn = {out, 0, 0, 0};
     svg_series_begin(out, s);
-    for (long i = 0; i < d->npts; i++)
-        if (g_ps[i] == s && xy_ok(o, i)) pen_to(&pn, data_px(&p->ax, g_px[i]), data_px(&p->ay, g_py[i]));
+    for (long i = 0; i < d->npts; i++) {
+        if (g_ps[i] != s)
+            continue;
+        if (xy_ok(o, i))
+            pen_to(&pn, data_px(&p->ax, g_px[i]), data_px(&p->ay, g_py[i]));
+        else if (o->lines)
+            pen_break(&pn); /* a gap: the path does not join across it */
+    }
     fputs("\"/>\n", out); /* no pen_break: the markers already show lone points */
+    if (!p->markers)
+        return;
     fprintf(out, "<g fill=\"%s\" stroke=\"%s\">\n", PALETTE[s % NPALETTE], PALETTE[s % NPALETTE]);
     for (long i = 0; i < d->npts; i++)
         if (g_ps[i] == s && xy_ok(o, i)) svg_marker(out, s, data_px(&p->ax, g_px[i]), data_px(&p->ay, g_py[i]));
@@ -1147,7 +1160,8 @@ static void run_xy(const struct opts *o)
     struct ranges r = {0};
     xy_ranges(o, d, &r);
 
-    struct plot p = {.W = o->width, .H = o->height, .title = o->title, .n = d->n, .markers = 1};
+    struct plot p = {.W = o->width, .H = o->height, .title = o->title, .n = d->n,
+                     .markers = !o->lines};
     p.xlabel = o->xlabel ? o->xlabel : "x";
     p.ylabel = o->ylabel ? o->ylabel : "y";
     for (int s = 0; s < d->n; s++) p.name[s] = d->name[s];
