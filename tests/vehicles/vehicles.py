@@ -130,11 +130,39 @@ def lane_change(modrt, scene="lane_change_planar", x0=20.0):
     check(res < 1e-12, "%s: tow-bar residual %.3g" % (scene, res))
 
 
+def multirate(modrt):
+    """lane_change (vehicles RK4 5 ms, steering chain ROS2 1 ms) and lane_change_single
+    (all ROS2 1 ms) against a reference by another method (lane_change_single by SDIRK3
+    at 1 ms): positions at the 5 ms instants, the servo's wheel angle at every tick"""
+    runs = {}
+    for name, args in (("ref", ["lane_change_single", "--method", "all=sdirk3"]),
+                       ("lane_change", ["lane_change"]),
+                       ("lane_change_single", ["lane_change_single"])):
+        rc, summ, head, rows = run(modrt, *args)
+        runs[name] = (rc, summ, head, rows)
+    _, _, head, ref = runs["ref"]
+    col = {h: i for i, h in enumerate(head)}
+    pos = [col[k] for k in ("V1.x", "V1.y", "V2.x", "V2.y")]
+    for name in ("lane_change", "lane_change_single"):
+        rc, summ, _, rows = runs[name]
+        e = max(abs(a[i] - b[i]) for a, b in zip(ref, rows) if round(a[0] * 1000) % 5 == 0
+                for i in pos)
+        ew = max(abs(a[col["Servo.y"]] - b[col["Servo.y"]]) for a, b in zip(ref, rows))
+        print("vehicles: %s: largest position difference from the reference %.2g m, wheel "
+              "angle %.2g rad, host %s s, status %s" % (name, e, ew, summ.get("wall_s"),
+                                                        summ.get("status")))
+        check(rc == 0 and e < 1e-4 and ew < 1e-4,
+              "%s: %.3g m / %.3g rad from the reference" % (name, e, ew))
+
+
 def main():
     modrt = sys.argv[1]
     cornering(modrt)
     free_roll(modrt)
     lane_change(modrt)
+    lane_change(modrt, "lane_change")
+    lane_change(modrt, "lane_change_single")
+    multirate(modrt)
     print("vehicles: %d passed, %d failed" % (passed, failed))
     sys.exit(1 if failed else 0)
 
