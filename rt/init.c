@@ -182,6 +182,30 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+/* a tolerance setting: 0 selects the default; else positive and finite */
+static int tol_ok(real_t v)
+{
+    return v == 0 || (v > 0 && rt_isfinite(v));
+}
+
+/* one set's settings (rt_set, rt_implicit_cfg): what the scene language and the CLI
+   check, checked again for a hand-written scene */
+static rt_status check_set(const rt_scene *sc, uint8_t s, rt_sim *sim)
+{
+    const rt_set *st = &sc->sets[s];
+    const rt_implicit_cfg *c = &st->implicit;
+    if (!st->method || st->ratio == 0 || st->method->stages > RT_MAX_STAGES)
+        return rti_fail(sim, RT_E_SCENE, "set ", st->name,
+                        ": needs a method and a step of at least one tick", (const char *)0);
+    if (!tol_ok(c->tol) || !tol_ok(c->accuracy) ||
+        (c->substeps & (c->substeps - 1)) != 0 || c->substeps > 128)
+        return rti_fail(sim, RT_E_PARAM, "set ", st->name,
+                        ": tolerance and accuracy must be 0 (default) or positive and "
+                        "finite, substeps 0 (default) or a power of two up to 128",
+                        (const char *)0);
+    return RT_OK;
+}
+
 /* scene-level checks before anything is laid out */
 static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
 {
@@ -194,12 +218,15 @@ static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
     if (!(sc->dt > 0) || !(sc->t_end >= 0) || !rt_isfinite(sc->t_end))
         return rti_fail(sim, RT_E_SCENE, "base tick must be > 0 and end time >= 0",
                         (const char *)0);
-    for (uint8_t s = 0; s < sc->nsets; s++)
-        if (!sc->sets[s].method || sc->sets[s].ratio == 0 ||
-            sc->sets[s].method->stages > RT_MAX_STAGES)
-            return rti_fail(sim, RT_E_SCENE, "set ", sc->sets[s].name,
-                            ": needs a method and a step of at least one tick",
-                            (const char *)0);
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        rt_status st = check_set(sc, s, sim);
+        if (st != RT_OK)
+            return st;
+    }
+    if (!tol_ok(sc->loop_tol) || sc->loop_iter_max > RT_LOOP_ITER_LIMIT)
+        return rti_fail(sim, RT_E_PARAM, "loop tolerance must be 0 (default) or positive "
+                        "and finite, loop iterations at most ", RTI_LIMIT(RT_LOOP_ITER_LIMIT),
+                        (const char *)0);
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         rt_status st = check_kind(sim, &sc->blocks[b]);
         if (st != RT_OK)

@@ -11,7 +11,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CFG = open(os.path.join(ROOT, "rt", "rt_config.h")).read()
-LIM = {m.group(1): int(m.group(2)) for m in re.finditer(r"#define (RT_MAX_\w+) (\d+)\b", CFG)}
+LIM = {m.group(1): int(m.group(2)) for m in re.finditer(r"#define (RT_\w+) (\d+)\b", CFG)}
 TMP = os.path.join(ROOT, "build", "limits")
 os.makedirs(TMP, exist_ok=True)
 HEAD = "base tick (1 ms);\nend time (2 ms);\n"
@@ -120,10 +120,65 @@ def end_time_cases(modrt):
               "--t-end %s: exit %d: %s" % (v, rc, out[-200:]))
 
 
+BALL = HEAD + "load system (Ball) of type (ball) from file (\"ball\");\n"
+
+
+def one_line_refusal(rc, out):
+    return rc == 2 and len(out.strip().splitlines()) == 1
+
+
+def cli_cases(modrt):
+    """every numeric option of `modrt run`: at its limit it runs, one past it is refused
+    with one line and exit 2"""
+    sdirk = BALL + "set (main) method (sdirk2) step (1 tick);\n"
+    cases = [  # (scene, option, value at the limit, value one past)
+        (BALL, "--every", "1000000000", "1000000001"), (BALL, "--every", "1", "0"),
+        (BALL, "--link-timeout", "3600", "3600.5"), (BALL, "--link-timeout", "1e-9", "0"),
+        (BALL, "--step", "main=0.001", "main=0.0005"), (BALL, "--step", "main=0.002", "main=0"),
+        (sdirk, "--tol", "main=1e-300", "main=0"), (sdirk, "--accuracy", "main=1e-300", "main=-1"),
+        (sdirk, "--substeps", "main=128", "main=129"), (sdirk, "--substeps", "main=1", "main=3"),
+        (sdirk, "--newton", "main=255", "main=256"), (sdirk, "--newton", "main=1", "main=0"),
+        (BALL, "--set", "Ball.e=1", "Ball.e=1.0000001"), (BALL, "--set", "Ball.g=1e-300", "Ball.g=0"),
+        (BALL, "--t-end", "0.002", "0.0025"),
+    ]
+    for scene, opt, ok_v, bad_v in cases:
+        rc, out = run(modrt, scene, opt, ok_v)
+        check(rc in (0, 1, 3), "%s %s at the limit: exit %d: %s" % (opt, ok_v, rc, out[-200:]))
+        rc, out = run(modrt, scene, opt, bad_v)
+        check(one_line_refusal(rc, out), "%s %s one past: exit %d: %s" % (opt, bad_v, rc, out[-200:]))
+
+
+def scene_cases(modrt):
+    """the numeric clauses of the scene language at their limit and one past"""
+    def sset(clause):
+        return BALL + "set (main) method (sdirk2) step (1 tick) %s;\n" % clause
+    loops = HEAD + systems(1) + "solve loops by (broyden) iterations (%s);\n"
+    cases = [
+        (sset("newton (255)"), sset("newton (256)")), (sset("newton (1)"), sset("newton (0)")),
+        (sset("jacobian (65535)"), sset("jacobian (65536)")),
+        (sset("substeps (128)"), sset("substeps (129)")), (sset("substeps (2)"), sset("substeps (3)")),
+        (sset("tolerance (1e-300)"), sset("tolerance (0)")),
+        (sset("accuracy (1e-300)"), sset("accuracy (0)")),
+        (loops % LIM["RT_LOOP_ITER_LIMIT"], loops % (LIM["RT_LOOP_ITER_LIMIT"] + 1)),
+        (BALL + "set (main) method (rk4) step (2 ms);\n",
+         BALL + "set (main) method (rk4) step (1.5 ms);\n"),
+        (HEAD.replace("base tick (1 ms)", "base tick (1e-300 s)").replace("2 ms", "2e-300 s") +
+         systems(1), HEAD.replace("base tick (1 ms)", "base tick (0 s)") + systems(1)),
+        (BALL + "Ball.e = 1;\n", BALL + "Ball.e = 1.0000001;\n"),
+    ]
+    for ok_text, bad_text in cases:
+        rc, out = run(modrt, ok_text, "--t-end", "0") if "1e-300 s" in ok_text else run(modrt, ok_text)
+        check(rc in (0, 1, 3), "scene at the limit: exit %d: %s\n%s" % (rc, out[-200:], ok_text))
+        rc, out = run(modrt, bad_text)
+        check(one_line_refusal(rc, out), "scene one past: exit %d: %s\n%s" % (rc, out[-200:], bad_text))
+
+
 def main():
     modrt = sys.argv[1]
     limit_cases(modrt)
     end_time_cases(modrt)
+    cli_cases(modrt)
+    scene_cases(modrt)
     print("limits: %d passed, %d failed" % (passed, failed))
     sys.exit(1 if failed else 0)
 

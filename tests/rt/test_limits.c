@@ -1,0 +1,97 @@
+/* test_limits.c - every numeric input of a hand-written scene (the C API) at its limit and
+ * one past it (docs/reliability.md): rt_init accepts the one and refuses the other with a
+ * status and a message, and leaves no run that could say "ok" about it. */
+#include "models.h"
+#include "testutil.h"
+
+static const real_t ball_p[] = {(real_t)9.81, (real_t)0.8, (real_t)1e-3};
+
+/* a one-block scene to vary: the ball (parameters with a range), one set */
+typedef struct variant {
+    rt_block blk[RT_MAX_BLOCKS + 1];
+    rt_set set[RT_MAX_SETS + 1];
+    real_t p[3];
+    rt_scene sc;
+} variant;
+
+static variant v;
+
+static rt_scene *base(void)
+{
+    /* one ball (roots count against RT_MAX_ROOTS), the rest oscillators */
+    v.blk[0] = (rt_block){.name = "B", .kind = &mdl_ball_kind, .p = v.p};
+    for (int i = 1; i < RT_MAX_BLOCKS + 1; i++)
+        v.blk[i] = (rt_block){.name = "O", .kind = &mdl_oscillator_kind};
+    for (int i = 0; i < RT_MAX_SETS + 1; i++)
+        v.set[i] = (rt_set){.name = "s", .method = &rt_rk4, .ratio = 1};
+    for (int i = 0; i < 3; i++)
+        v.p[i] = ball_p[i];
+    v.sc = (rt_scene){.name = "limits", .dt = (real_t)1e-3, .t_end = 1, .blocks = v.blk,
+                      .nblocks = 1, .sets = v.set, .nsets = 1};
+    return &v.sc;
+}
+
+/* rt_init's status for the scene as varied */
+static rt_status init(void)
+{
+    return rt_init(&v.sc, &tu_sim);
+}
+
+/* the variant is accepted (at the limit) */
+#define AT(expr) (base(), (expr), init() == RT_OK)
+/* the variant is refused with status st (one past) */
+#define PAST(expr, st) (base(), (expr), init() == (st))
+
+static void test_times(void)
+{
+    real_t two53 = (real_t)9007199254740992.0;
+    TH_CHECK(PAST(v.sc.dt = 0, RT_E_SCENE) && PAST(v.sc.dt = -1, RT_E_SCENE));
+    TH_CHECK(AT(v.sc.t_end = 0) && PAST(v.sc.t_end = (real_t)-1e-3, RT_E_SCENE));
+    TH_CHECK(PAST(v.sc.t_end = (real_t)0 / (real_t)0, RT_E_SCENE));
+    TH_CHECK(PAST(v.sc.t_end = (real_t)1.0005, RT_E_SCENE)); /* not whole ticks */
+    if (!RT_REAL_IS_FLOAT) { /* 2^53 ticks: exact in double only */
+        TH_CHECK(AT(v.sc.t_end = two53 * v.sc.dt));
+        TH_CHECK(PAST(v.sc.t_end = 2 * two53 * v.sc.dt, RT_E_SCENE));
+    }
+    TH_CHECK(PAST(v.sc.t_end = (real_t)1e300 * (real_t)1e300, RT_E_SCENE)); /* inf */
+}
+
+static void test_counts(void)
+{
+    TH_CHECK(AT(v.sc.nblocks = RT_MAX_BLOCKS) && PAST(v.sc.nblocks = RT_MAX_BLOCKS + 1, RT_E_CAPACITY));
+    TH_CHECK(AT(v.sc.nsets = RT_MAX_SETS) && PAST(v.sc.nsets = RT_MAX_SETS + 1, RT_E_CAPACITY));
+    TH_CHECK(PAST(v.sc.nsets = 0, RT_E_CAPACITY));
+    TH_CHECK(AT(v.set[0].ratio = 1) && PAST(v.set[0].ratio = 0, RT_E_SCENE));
+    TH_CHECK(PAST(v.blk[0].set = 1, RT_E_SCENE)); /* a set that does not exist */
+}
+
+static void test_settings(void)
+{
+    real_t nan = (real_t)0 / (real_t)0;
+    TH_CHECK(AT(v.set[0].implicit.tol = 0) && PAST(v.set[0].implicit.tol = -1, RT_E_PARAM));
+    TH_CHECK(PAST(v.set[0].implicit.tol = nan, RT_E_PARAM));
+    TH_CHECK(AT(v.set[0].implicit.accuracy = (real_t)1e-12) &&
+             PAST(v.set[0].implicit.accuracy = -1, RT_E_PARAM));
+    TH_CHECK(AT(v.set[0].implicit.substeps = 128) && PAST(v.set[0].implicit.substeps = 129, RT_E_PARAM));
+    TH_CHECK(AT(v.set[0].implicit.substeps = 1) && PAST(v.set[0].implicit.substeps = 3, RT_E_PARAM));
+    TH_CHECK(AT(v.sc.loop_iter_max = RT_LOOP_ITER_LIMIT) &&
+             PAST(v.sc.loop_iter_max = RT_LOOP_ITER_LIMIT + 1, RT_E_PARAM));
+    TH_CHECK(PAST(v.sc.loop_tol = nan, RT_E_PARAM) && AT(v.sc.loop_tol = (real_t)1e-300));
+}
+
+/* parameter values through the kind's range check (the ball: 0 <= e <= 1, g > 0) */
+static void test_parameters(void)
+{
+    TH_CHECK(AT(v.p[1] = 1) && PAST(v.p[1] = (real_t)1.0000001, RT_E_PARAM));
+    TH_CHECK(AT(v.p[1] = 0) && PAST(v.p[1] = (real_t)-1e-30, RT_E_PARAM));
+    TH_CHECK(PAST(v.p[0] = 0, RT_E_PARAM) && PAST(v.p[2] = -1, RT_E_PARAM));
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "B")); /* the message names the block */
+}
+
+const th_test th_limits_tests[] = {
+    {"limits_times", test_times},
+    {"limits_counts", test_counts},
+    {"limits_settings", test_settings},
+    {"limits_parameters", test_parameters},
+    {0, 0},
+};
