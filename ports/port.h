@@ -16,10 +16,11 @@ void port_exit(int code);
    or 0 where the port has none. */
 uint64_t port_cycles(void);
 
-/* Periodic tick source: calls fn every period_us microseconds of the port's time base
-   (a hardware timer on bare metal, CLOCK_MONOTONIC with an absolute deadline on POSIX).
-   Returns 0 on success, -1 if the port cannot provide the period. */
-int port_timer_start(uint32_t period_us, void (*fn)(void));
+/* Periodic tick source: calls fn(ctx) every period_us microseconds of the port's time
+   base (a hardware timer on bare metal, CLOCK_MONOTONIC with an absolute deadline on
+   POSIX), so the caller keeps its state in ctx, not in file-scope globals. Returns 0 on
+   success, -1 if the port cannot provide the period. */
+int port_timer_start(uint32_t period_us, void (*fn)(void *ctx), void *ctx);
 /* Waits for the next timer tick (WFI on bare metal, clock_nanosleep on POSIX). */
 void port_timer_wait(void);
 void port_timer_stop(void);

@@ -5,7 +5,7 @@
  * rt_init computed. */
 #include "rti.h"
 
-RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b)
+RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b, real_t t)
 {
     /* GCC 12 on AArch64 (-O2): ivopts builds the addresses of this loop from -7 * sim,
        the pure-const pass then takes them for NULL dereferences and deletes every call of
@@ -25,7 +25,7 @@ RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b)
             u[i] = sim->state.torn_val[src[i]];
             break;
         case RT_SRC_XSET:
-            u[i] = rti_xset_value(sim, src[i], sim->plan.src_set[i], sim->plan.interp[i], sim->work.t_now);
+            u[i] = rti_xset_value(sim, src[i], sim->plan.src_set[i], sim->plan.interp[i], t);
             break;
         default:
             u[i] = sim->plan.def[i];
@@ -41,14 +41,14 @@ static int dss_hit(const rt_sim *sim, uint16_t b, rti_mode mode)
 }
 
 /* calls the output equation of block b */
-static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t, rti_mode mode)
+static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at)
 {
     const rt_kind *k = sc->blocks[b].kind;
-    if (k->type == RT_KIND_DSS && !dss_hit(sim, b, mode))
+    if (k->type == RT_KIND_DSS && !dss_hit(sim, b, at.mode))
         return;
     rt_args a;
-    rti_gather(sim, b);
-    rti_args(sc, sim, b, t, sc->dt * (real_t)sim->plan.period[b], &a);
+    rti_gather(sim, b, at.t);
+    rti_args(sc, sim, b, at.t, sc->dt * (real_t)sim->plan.period[b], &a);
     k->output(&a, sim->state.y + sim->plan.y_off[b]);
 #if RT_FAULT_INJECT
     if (rti_fault_due(RTI_FAULT_NAN) && rti_fault_plan.block == (int16_t)b && k->ny > 0)
@@ -56,35 +56,32 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t, r
 #endif
 }
 
-void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, real_t t,
-                   rti_mode mode)
+void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, rti_at at)
 {
-    sim->work.t_now = t;
     for (uint16_t s = begin; s < end; s++)
-        call_output(sc, sim, sim->plan.seq[s].index, t, mode);
+        call_output(sc, sim, sim->plan.seq[s].index, at);
 }
 
 /* is block b evaluated in the pass under way (its set, or every set)? */
-static int in_pass(const rt_scene *sc, const rt_sim *sim, uint16_t b)
+static int in_pass(const rt_scene *sc, rti_at at, uint16_t b)
 {
-    return sim->work.set_now == RT_ALL_SETS || sc->blocks[b].set == sim->work.set_now;
+    return at.set == RT_ALL_SETS || sc->blocks[b].set == at.set;
 }
 
-void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode)
+void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
 {
-    sim->work.t_now = t;
     for (uint16_t s = 0; s < sim->plan.nseq; s++) {
         const rt_seq_step *st = &sim->plan.seq[s];
         if (st->kind == RT_SEQ_CALL) {
-            if (in_pass(sc, sim, st->index))
-                call_output(sc, sim, st->index, t, mode);
+            if (in_pass(sc, at, st->index))
+                call_output(sc, sim, st->index, at);
             continue;
         }
         /* an actual loop (all in one set: cross-set edges are no algebraic
            dependency): the solver runs its segment until the torn inputs agree */
         const rt_loop *l = &sim->plan.loops[st->index];
-        if (in_pass(sc, sim, sim->plan.loop_blocks[l->first]))
-            sc->loop_solver->solve(sc, sim, (uint8_t)st->index, t, mode);
+        if (in_pass(sc, at, sim->plan.loop_blocks[l->first]))
+            sc->loop_solver->solve(sc, sim, (uint8_t)st->index, at.t, (int)at.mode);
         s = (uint16_t)(l->seq1 - 1);
     }
 }
@@ -92,13 +89,12 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode)
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r)
 {
     uint16_t n = 0;
-    sim->work.t_now = t;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
         if (k->nr == 0 || sc->blocks[b].set != s)
             continue;
         rt_args a;
-        rti_gather(sim, b);
+        rti_gather(sim, b, t);
         rti_args(sc, sim, b, t, 0, &a);
         k->roots(&a, r + n);
         n = (uint16_t)(n + k->nr);
@@ -112,15 +108,14 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     rt_sim *sim = c->sim;
     uint16_t base = sim->plan.set_x[c->set];
 
-    sim->work.set_now = c->set;
     sim->stats.rhs_evals[c->set]++;
-    rti_outputs(sc, sim, t, RTI_IN_STEP);
+    rti_outputs(sc, sim, (rti_at){t, c->set, RTI_IN_STEP});
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
         if (k->nx == 0 || !k->deriv || sc->blocks[b].set != c->set)
             continue;
         rt_args a;
-        rti_gather(sim, b);
+        rti_gather(sim, b, t);
         rti_args(sc, sim, b, t, c->h, &a);
         k->deriv(&a, xdot + (sim->plan.x_off[b] - base));
     }

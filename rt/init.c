@@ -293,7 +293,6 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         sim->stats.last_block[c] = -1;
     for (uint8_t s = 0; s < RT_MAX_SETS; s++)
         sim->plan.set_xout[s] = 0, sim->plan.sched[s] = s;
-    sim->work.set_now = RT_ALL_SETS;
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||

@@ -31,7 +31,7 @@ static int residual(const solve_ctx *c, real_t *f)
 {
     rt_sim *sim = c->sim;
     int finite = 1;
-    rti_run_calls(c->sc, sim, c->lp->seq0, c->lp->seq1, c->t, c->mode);
+    rti_run_calls(c->sc, sim, c->lp->seq0, c->lp->seq1, (rti_at){c->t, RT_ALL_SETS, c->mode});
     for (uint16_t i = 0; i < c->n; i++) {
         f[i] = c->w[i] - sim->state.y[sim->plan.torn_src[c->lp->torn0 + i]];
         finite = finite && rt_isfinite(f[i]);

@@ -156,7 +156,7 @@ static void assemble_block(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_
         mass_factor(sim, sp, b, M, w->Mpiv + zo);
     }
     if (what & RTI_MBS_FORCE) {
-        rti_gather(sim, b); /* the inputs are applied forces (eq. 6b) */
+        rti_gather(sim, b, t); /* the inputs are applied forces (eq. 6b) */
         sp->force(&a, w->a + zo);
         mass_solve(sp, M, w->Mpiv + zo, w->a + zo);
     }

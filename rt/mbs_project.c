@@ -102,7 +102,7 @@ static void refresh_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t 
 {
     if (!sim->work.mbs.need_lambda)
         return;
-    rti_outputs(sc, sim, t, RTI_IN_STEP);
+    rti_outputs(sc, sim, (rti_at){t, set, RTI_IN_STEP});
     rti_mbs_lambda(sc, sim, set, t);
 }
 

@@ -585,8 +585,6 @@ typedef struct rt_stats {
 
 /* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */
 typedef struct rt_work {
-    uint8_t set_now;                 /* set being evaluated (RT_ALL_SETS: every set) */
-    real_t t_now;                    /* time of the evaluation under way [s] */
     real_t u[RT_MAX_U];              /* gathered inputs */
     /* integrator workspace; the graph searches of rt_init use the same storage */
     union {

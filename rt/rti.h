@@ -11,6 +11,15 @@ typedef enum {
     RTI_IN_STEP      /* inside a set step: DSS outputs are held, not called */
 } rti_mode;
 
+/* An evaluation instant, passed down explicitly (no ambient "current set/time" in
+   rt_sim): the time, the set whose blocks are evaluated (RT_ALL_SETS: every set) and the
+   mode of the output sequence. */
+typedef struct rti_at {
+    real_t t;
+    uint8_t set;
+    rti_mode mode;
+} rti_at;
+
 /* src_kind of an input not routed yet (rt_init's routing fills every input) */
 #define RTI_SRC_UNSET 0xFF
 
@@ -60,13 +69,13 @@ static inline void rti_args(const rt_scene *sc, const rt_sim *sim, uint16_t b, r
     a->p = sim->state.p + sim->plan.p_off[b];
     a->spec = sc->blocks[b].kind->spec;
 }
-/* Gathers the inputs of block b from the outputs that feed them (y = P u). */
-void rti_gather(rt_sim *sim, uint16_t b);
+/* Gathers the inputs of block b at time t from the outputs that feed them (y = P u; an
+   input from another set is reconstructed at t). */
+void rti_gather(rt_sim *sim, uint16_t b, real_t t);
 /* Calls the output equations of sequence entries [begin, end) (a loop segment). */
-void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, real_t t,
-                   rti_mode mode);
-/* Evaluates the output sequence at time t, solving actual loops on the way. */
-void rti_outputs(const rt_scene *sc, rt_sim *sim, real_t t, rti_mode mode);
+void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, rti_at at);
+/* Evaluates the output sequence at the instant at, solving actual loops on the way. */
+void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at);
 /* Root values of the blocks of set s at time t (outputs must be current) into r. */
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */

@@ -24,8 +24,8 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
     real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
-    sim->work.set_now = s;
-    rti_outputs(sc, sim, ts, sim->state.set_tick[s] == sim->state.tick ? RTI_AT_TICK : RTI_IN_STEP);
+    rti_mode mode = sim->state.set_tick[s] == sim->state.tick ? RTI_AT_TICK : RTI_IN_STEP;
+    rti_outputs(sc, sim, (rti_at){ts, s, mode});
     rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
 }
 
@@ -48,7 +48,6 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
             rti_xset_push(sc, sim, s, 0);
         }
     }
-    sim->work.set_now = RT_ALL_SETS;
     return RT_OK;
 }
 
@@ -61,9 +60,7 @@ static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
             continue;
         real_t next[RT_MAX_D];
         rt_args a;
-        sim->work.set_now = sc->blocks[b].set;
-        sim->work.t_now = t;
-        rti_gather(sim, b);
+        rti_gather(sim, b, t);
         rti_args(sc, sim, b, t, sc->dt * (real_t)sim->plan.period[b], &a);
         k->update(&a, next);
         /* a non-finite next state (a NaN input at the sample) is not taken: the block
@@ -96,12 +93,11 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
         uint32_t ratio = sc->sets[s].ratio;
         if (sim->state.tick % ratio != 0)
             continue;
-        sim->work.set_now = s;
         rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
         sim->state.set_tick[s] = sim->state.tick + ratio;
         if (sim->plan.set_xout[s]) {
             real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
-            rti_outputs(sc, sim, ts, RTI_IN_STEP);
+            rti_outputs(sc, sim, (rti_at){ts, s, RTI_IN_STEP});
             rti_xset_push(sc, sim, s, ts);
         }
     }

@@ -104,7 +104,7 @@ static void trial(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h
     for (uint16_t i = 0; i < n; i++)
         sim->state.x[x0 + i] = sim->work.xs[i];
     integrate(sc, sim, s, t, th * h);
-    rti_outputs(sc, sim, t + th * h, RTI_IN_STEP);
+    rti_outputs(sc, sim, (rti_at){t + th * h, s, RTI_IN_STEP});
     rti_roots(sc, sim, s, t + th * h, r);
 }
 
@@ -162,7 +162,7 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const re
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0), m = 0;
     for (uint16_t i = 0; i < n; i++)
         sim->state.x[x0 + i] = sim->work.xb[i];
-    rti_outputs(sc, sim, te, RTI_IN_STEP);
+    rti_outputs(sc, sim, (rti_at){te, s, RTI_IN_STEP});
     rti_roots(sc, sim, s, te, sim->work.rs);
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
@@ -172,11 +172,11 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const re
             if (!crossed(k, i, r_start[m], sim->work.rs[m]))
                 continue;
             rt_args a;
-            rti_gather(sim, b);
+            rti_gather(sim, b, te);
             rti_args(sc, sim, b, te, 0, &a);
             k->event(&a, i, sim->state.x + sim->plan.x_off[b], sim->state.d + sim->plan.d_off[b]);
             rti_count(sim, RT_CNT_EVENTS, b, RT_OK);
-            rti_outputs(sc, sim, te, RTI_IN_STEP);
+            rti_outputs(sc, sim, (rti_at){te, s, RTI_IN_STEP});
         }
     }
 }
@@ -208,7 +208,7 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         for (uint16_t i = 0; i < n; i++)
             sim->work.xs[i] = sim->state.x[x0 + i];
         integrate(sc, sim, s, t0, span);
-        rti_outputs(sc, sim, t0 + span, RTI_IN_STEP);
+        rti_outputs(sc, sim, (rti_at){t0 + span, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0 + span, sim->work.rs);
         uint16_t blk, which;
         int c = find_crossing(sc, s, r, sim->work.rs, &blk, &which);
@@ -229,7 +229,7 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         /* the rest of the step starts from the handled state */
         span = (t0 + span) - te;
         t0 = te;
-        rti_outputs(sc, sim, t0, RTI_IN_STEP);
+        rti_outputs(sc, sim, (rti_at){t0, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0, r);
         if (!(span > 0))
             break;

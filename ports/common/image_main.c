@@ -14,9 +14,13 @@
 extern const rt_scene RT_SCENE;
 
 static rt_sim sim;
-static volatile uint32_t timer_ticks; /* counted by the timer callback */
 
-static void on_timer(void) { timer_ticks++; }
+/* the timer callback's context: ticks it has counted */
+typedef struct timer_count {
+    volatile uint32_t ticks;
+} timer_count;
+
+static void on_timer(void *ctx) { ((timer_count *)ctx)->ticks++; }
 
 static void put_u64(uint64_t v, unsigned base, int width)
 {
@@ -34,11 +38,12 @@ int app_main(void)
 {
     const rt_scene *sc = &RT_SCENE;
     uint32_t overruns = 0;
+    static timer_count count; /* the timer interrupt keeps a pointer to it */
     if (rt_init(sc, &sim) != RT_OK)
         return 1;
     rt_record(sc, &sim, 0);
     uint32_t us = (uint32_t)(sc->dt * (real_t)1e6 + (real_t)0.5);
-    if (port_timer_start(us, on_timer) != 0) {
+    if (port_timer_start(us, on_timer, &count) != 0) {
         port_write("rt: the port cannot tick at this period\n");
         return 1;
     }
@@ -55,7 +60,7 @@ int app_main(void)
     port_write(" ticks ");
     put_u64(sim.state.tick, 10, 1);
     port_write(" timer ");
-    put_u64(timer_ticks, 10, 1);
+    put_u64(count.ticks, 10, 1);
     port_write(" overruns ");
     put_u64(overruns, 10, 1);
     port_write(" hash ");

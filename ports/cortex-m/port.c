@@ -156,7 +156,8 @@ uint64_t port_cycles(void)
 
 /* ------------------------------------------------------------------ periodic tick */
 
-static void (*volatile cm_tick_fn)(void);
+static void (*volatile cm_tick_fn)(void *);
+static void *volatile cm_tick_ctx;
 static volatile uint32_t cm_tick_flag;
 static uint32_t cm_tick_div;            /* SysTick interrupts per period */
 static uint32_t cm_tick_count;          /* interrupts since the last period boundary */
@@ -170,11 +171,11 @@ void SysTick_Handler(void)
     cm_tick_count = 0;
     cm_period_start = w;
     cm_tick_flag = 1;
-    void (*fn)(void) = cm_tick_fn;
-    if (fn) fn();
+    void (*fn)(void *) = cm_tick_fn;
+    if (fn) fn(cm_tick_ctx);
 }
 
-int port_timer_start(uint32_t period_us, void (*fn)(void))
+int port_timer_start(uint32_t period_us, void (*fn)(void *ctx), void *ctx)
 {
     if (period_us == 0) return -1;
     uint64_t ticks = (uint64_t)period_us * (CM_SYSCLK_HZ / 1000000u);
@@ -183,6 +184,7 @@ int port_timer_start(uint32_t period_us, void (*fn)(void))
     if (div > 0xFFFFu || ticks / div < 2) return -1;
 
     CM_SYST_CSR = 0;
+    cm_tick_ctx = ctx;
     cm_tick_fn = fn;
     cm_tick_div = (uint32_t)div;
     cm_tick_count = 0;

@@ -13,7 +13,8 @@
 
 static struct timespec next_deadline;
 static long period_ns;
-static void (*tick_fn)(void);
+static void (*tick_fn)(void *);
+static void *tick_ctx;
 
 /* a console has nowhere to report its own failure: the result is dropped on purpose */
 void port_write(const char *s)
@@ -42,12 +43,12 @@ static void advance(struct timespec *t, long ns)
     }
 }
 
-int port_timer_start(uint32_t period_us, void (*fn)(void))
+int port_timer_start(uint32_t period_us, void (*fn)(void *ctx), void *ctx)
 {
     if (period_us == 0 || !fn)
         return -1;
     period_ns = (long)period_us * 1000L;
-    tick_fn = fn;
+    tick_fn = fn, tick_ctx = ctx;
     clock_gettime(CLOCK_MONOTONIC, &next_deadline);
     advance(&next_deadline, period_ns);
     return 0;
@@ -60,7 +61,7 @@ void port_timer_wait(void)
         ;
     advance(&next_deadline, period_ns);
     if (tick_fn)
-        tick_fn();
+        tick_fn(tick_ctx);
 }
 
 void port_timer_stop(void)

@@ -133,7 +133,8 @@ static void rv_set_mtimecmp(uint64_t t)
 #endif
 }
 
-static void (*volatile rv_tick_fn)(void);
+static void (*volatile rv_tick_fn)(void *);
+static void *volatile rv_tick_ctx;
 static volatile uint32_t rv_tick_flag;
 static volatile uint32_t rv_tick_running;
 static uint64_t rv_tick_period; /* mtime ticks */
@@ -151,8 +152,8 @@ void rv_trap(uintptr_t mcause, uintptr_t mepc, uintptr_t mtval)
         rv_tick_next += rv_tick_period;
         rv_set_mtimecmp(rv_tick_next);
         rv_tick_flag = 1;
-        void (*fn)(void) = rv_tick_fn;
-        if (fn) fn();
+        void (*fn)(void *) = rv_tick_fn;
+        if (fn) fn(rv_tick_ctx);
         return;
     }
     port_write("\n*** TRAP: ");
@@ -164,13 +165,14 @@ void rv_trap(uintptr_t mcause, uintptr_t mepc, uintptr_t mtval)
     port_exit(3);
 }
 
-int port_timer_start(uint32_t period_us, void (*fn)(void))
+int port_timer_start(uint32_t period_us, void (*fn)(void *ctx), void *ctx)
 {
     if (period_us == 0) return -1;
     uint64_t ticks = (uint64_t)period_us * (RV_MTIME_HZ / 1000000u);
     if (ticks == 0) return -1;
 
     rv_csr_clear(mie, RV_MIP_MTIP);
+    rv_tick_ctx = ctx;
     rv_tick_fn = fn;
     rv_tick_period = ticks;
     rv_tick_flag = 0;
