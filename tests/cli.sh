@@ -123,5 +123,12 @@ expect_err "bad set value" 2 "not a finite number" $M run oscillator --set Osc.o
 expect_err "bad set range" 2 "out of range" $M run pi_loop --set Plant.T=0
 expect_err "bad csv path" 2 "cannot write the CSV file" $M run oscillator --csv /nonexistent/x.csv
 
+# the scene compiler alone gives a per-scene build its limits: the same as modrt sizes
+for f in models/scenes/*.scn; do
+    a=$(build/host/scenec --sizes "$f" 2>&1) b=$($M sizes "$f" 2>&1)
+    [ -n "$a" ] && [ "$a" = "$b" ] && ok || bad "scenec --sizes $f differs from modrt sizes"
+done
+expect_err "scenec --sizes of a bad scene" 1 "error" build/host/scenec --sizes tests/scenec/errors/not_multibody.scn
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

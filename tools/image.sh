@@ -1,7 +1,7 @@
 #!/bin/sh
 # image.sh - `make image`: builds a per-scene firmware image for one cross target from any
-# scene file (or library scene name): scenec compiles the scene to C, `modrt sizes` gives
-# its exact limits, and the image links ports/common/image_main.c, the runtime and the
+# scene file (or library scene name): scenec compiles the scene to C, `scenec --sizes`
+# gives its exact limits, and the image links ports/common/image_main.c, the runtime and the
 # models without registries (unused kinds are dropped by --gc-sections). docs/porting.md
 # explains the pieces. Usage (through make, which passes its variables):
 #   sh tools/image.sh TARGET SCENE CONSOLE EXTRA_CFLAGS
@@ -38,7 +38,7 @@ mkdir -p "$dir"
 build/host/scenec -o "$dir/$name.c" "$scene" || fail "scenec could not compile $scene (see above)"
 sym=$(sed -n 's/^const rt_scene \(mdl_scene_[A-Za-z0-9_]*\) = {$/\1/p' "$dir/$name.c" | head -1)
 [ -n "$sym" ] || fail "no scene table in $dir/$name.c"
-sizes=$(build/host/modrt sizes "$scene") || fail "modrt sizes $scene failed (see above)"
+sizes=$(build/host/scenec --sizes "$scene") || fail "scenec --sizes $scene failed (see above)"
 
 cc=$(make -s "print-TARGET_CC_$target")
 cflags="$(make -s print-CSTD) -O2 -ffunction-sections -fdata-sections $(make -s print-CINC) \

@@ -484,10 +484,8 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     return exit_code(&sim);
 }
 
-static unsigned at_least_1(unsigned n) { return n ? n : 1; }
-
 /* the compile-time limits that fit this scene exactly, as -D flags for a per-scene build
-   (multibody limits stay at their defaults: their workspace is sized per set) */
+   (the same as `scenec --sizes`, tools/scenec/host.c) */
 static int cmd_sizes(void *ctx, int npos, char **pos)
 {
     const rt_scene *sc = cli_scene(pos[0]);
@@ -497,18 +495,7 @@ static int cmd_sizes(void *ctx, int npos, char **pos)
     rt_status st = rt_init(sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
-    rt_sizes z;
-    rt_sizes_of(sc, &sim, &z);
-    printf("-DRT_MAX_BLOCKS=%u -DRT_MAX_X=%u -DRT_MAX_D=%u -DRT_MAX_U=%u -DRT_MAX_Y=%u "
-           "-DRT_MAX_P=%u -DRT_MAX_ROOTS=%u -DRT_MAX_SETS=%u -DRT_MAX_REC=%u "
-           "-DRT_MAX_LOOPS=%u -DRT_MAX_TORN=%u -DRT_MAX_IMPLICIT_N=%u",
-           at_least_1(z.blocks), at_least_1(z.x), at_least_1(z.d), at_least_1(z.u),
-           at_least_1(z.y), at_least_1(z.p), at_least_1(z.roots), at_least_1(z.sets),
-           at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
-           at_least_1(z.implicit_n));
-    printf(" -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
-           "-DRT_MAX_MBS_BZ=%u\n", at_least_1(sc->njoints), at_least_1(z.mbs_z),
-           at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz));
+    scn_host_sizes(stdout, sc, &sim);
     return 0;
 }
 

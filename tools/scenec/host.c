@@ -1,5 +1,6 @@
 /* host.c - scene files in the modrt CLI (scn_host.h): one compilation per process, kept
- * for the process's lifetime because the scene it returns points into it. */
+ * for the process's lifetime because the scene it returns points into it; and the exact
+ * per-scene limits, shared by `scenec --sizes` and `modrt sizes`. */
 #include "scn_host.h"
 
 #include <stdio.h>
@@ -28,4 +29,23 @@ const rt_scene *scn_host_load(const char *path)
     }
     last = c;
     return &last->image;
+}
+
+static unsigned at_least_1(unsigned n) { return n ? n : 1; }
+
+/* multibody limits beyond joints come from the set workspaces (rt_sizes_of) */
+void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
+{
+    rt_sizes z;
+    rt_sizes_of(sc, sim, &z);
+    fprintf(f, "-DRT_MAX_BLOCKS=%u -DRT_MAX_X=%u -DRT_MAX_D=%u -DRT_MAX_U=%u -DRT_MAX_Y=%u "
+               "-DRT_MAX_P=%u -DRT_MAX_ROOTS=%u -DRT_MAX_SETS=%u -DRT_MAX_REC=%u "
+               "-DRT_MAX_LOOPS=%u -DRT_MAX_TORN=%u -DRT_MAX_IMPLICIT_N=%u",
+            at_least_1(z.blocks), at_least_1(z.x), at_least_1(z.d), at_least_1(z.u),
+            at_least_1(z.y), at_least_1(z.p), at_least_1(z.roots), at_least_1(z.sets),
+            at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
+            at_least_1(z.implicit_n));
+    fprintf(f, " -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
+               "-DRT_MAX_MBS_BZ=%u\n", at_least_1(sc->njoints), at_least_1(z.mbs_z),
+            at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz));
 }

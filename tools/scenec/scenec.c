@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "scn.h"
+#include "scn_host.h"
 
 #define MAX_INPUTS 256 /* scene files of one --registry call */
 
@@ -26,6 +27,8 @@ static int usage(void)
     fputs("usage: scenec [-I DIR]... [-o OUT.c] [-M OUT.d] FILE.scn   compile to C\n"
           "       scenec --check [-I DIR]... FILE.scn                 check only\n"
           "       scenec --run [-I DIR]... FILE.scn                   run in host memory\n"
+          "       scenec --sizes [-I DIR]... FILE.scn                 the exact limits of a\n"
+          "                                                           per-scene build (-D flags)\n"
           "       scenec --registry [--symbol NAME] -o OUT.c FILE.scn...\n",
           stderr);
     return 2;
@@ -39,6 +42,8 @@ static int parse_args(int argc, char **argv, opts *o)
         int more = i + 1 < argc;
         if (!strcmp(a, "--check") || !strcmp(a, "--run") || !strcmp(a, "--registry"))
             o->mode = a[2] == 'c' ? 'k' : a[3] == 'u' ? 'r' : 'g';
+        else if (!strcmp(a, "--sizes"))
+            o->mode = 's';
         else if (!strcmp(a, "-o") && more)
             o->out = argv[++i];
         else if (!strcmp(a, "-M") && more)
@@ -151,6 +156,22 @@ static int cmd_run(const opts *o)
     return rc;
 }
 
+/* the exact compile-time limits of a per-scene build, as -D flags (docs/porting.md) */
+static int cmd_sizes(const opts *o)
+{
+    scn_ctx *c = compile(o, o->in[0]);
+    if (!c)
+        return 1;
+    rt_sim *sim = scn_alloc(c, sizeof *sim);
+    rt_status st = rt_init(&c->image, sim);
+    if (st == RT_OK)
+        scn_host_sizes(stdout, &c->image, sim);
+    else
+        fprintf(stderr, "%s: error: %s: %s\n", o->in[0], rt_status_name(st), rt_error_text(sim));
+    scn_free(c);
+    return st != RT_OK;
+}
+
 static int cmd_registry(const opts *o)
 {
     char tmp[4096], names[MAX_INPUTS][SCN_MAX_NAME + 1];
@@ -191,5 +212,7 @@ int main(int argc, char **argv)
         return cmd_run(&o);
     if (o.mode == 'g')
         return cmd_registry(&o);
+    if (o.mode == 's')
+        return cmd_sizes(&o);
     return cmd_compile(&o);
 }
