@@ -106,3 +106,8 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
         z->mbs_c = m->nc[s] > z->mbs_c ? m->nc[s] : z->mbs_c;
     }
 }
+
+real_t rt_output(const rt_sim *sim, uint16_t block, uint16_t j)
+{
+    return sim->state.y[sim->plan.y_off[block] + j];
+}

@@ -671,6 +671,8 @@ uint16_t rt_set_nx(const rt_sim *sim, uint8_t set);
 int rt_set_is_source(const rt_sim *sim, uint8_t set);
 /* Base ticks to the end time. */
 uint64_t rt_tick_count(const rt_sim *sim);
+/* Output j of block b now (as the last tick or refresh left it). */
+real_t rt_output(const rt_sim *sim, uint16_t block, uint16_t j);
 /* Where input u of block reads its value from, and (RT_SRC_XSET) how it is rebuilt. */
 rt_src_kind rt_input_source(const rt_sim *sim, uint16_t block, uint16_t u, rt_interp *interp);
 /* The evaluation sequence (rt/order.c): its length and entries. */

@@ -138,9 +138,10 @@ static double run(const rt_integrator *m, long n, int project, double *secs, uns
     *status = (unsigned)sim.stats.status;
     double worst = 0;
     for (int b = 0; b < NB; b++) {
-        const real_t *y = sim.state.y + sim.plan.y_off[b];
-        double e[3] = {(double)y[0] - ref_xz[2 * b], (double)y[1],
-                       (double)y[2] - ref_xz[2 * b + 1]};
+        uint16_t bb = (uint16_t)b;
+        double e[3] = {(double)rt_output(&sim, bb, 0) - ref_xz[2 * b],
+                       (double)rt_output(&sim, bb, 1),
+                       (double)rt_output(&sim, bb, 2) - ref_xz[2 * b + 1]};
         for (int i = 0; i < 3; i++)
             worst = fabs(e[i]) > worst || e[i] != e[i] ? fabs(e[i]) : worst;
     }

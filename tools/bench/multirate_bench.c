@@ -111,7 +111,7 @@ static void positions(double *p)
 {
     for (int b = 0; b < NB; b++)
         for (int k = 0; k < 3; k++)
-            p[3 * b + k] = (double)sim.state.y[sim.plan.y_off[b] + k];
+            p[3 * b + k] = (double)rt_output(&sim, (uint16_t)b, (uint16_t)k);
 }
 
 /* runs c to 10 s; positions into p (if not NULL), returns the CPU time */

@@ -84,7 +84,7 @@ static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const port_run_op
                               port_run_result *r)
 {
     rt_status st = RT_E_DONE;
-    if (sim->state.tick < sim->plan.n_ticks) {
+    if (sim->state.tick < rt_tick_count(sim)) {
         if (o->csv)
             fflush(o->csv); /* the header and row 0, before the writer thread takes over */
         st = rtloop_run(sc, sim, rt_tick_exchange, (void *)o, o->every,
