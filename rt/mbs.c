@@ -125,16 +125,19 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
         w->to[b] = (uint16_t)n;
         if (!is_mbs(sc, b))
             continue;
-        for (uint16_t i = 0; i < spec_of(sc, b)->nc && n < RT_MBS_MAX_TOUCH; i++)
-            w->trow[n++] = (uint16_t)(w->co[b] + i);
+        /* n counts every touch; only those that fit are stored (an exact fit is fine) */
+        for (uint16_t i = 0; i < spec_of(sc, b)->nc; i++, n++)
+            if (n < RT_MBS_MAX_TOUCH)
+                w->trow[n] = (uint16_t)(w->co[b] + i);
         for (uint16_t j = 0; j < sc->njoints; j++) {
             const rt_joint *jt = &sc->joints[j];
             if (jt->b1 != b && jt->b2 != b)
                 continue;
-            for (uint16_t i = 0; i < jt->kind->nc && n < RT_MBS_MAX_TOUCH; i++)
-                w->trow[n++] = (uint16_t)(w->jrow[j] + i);
+            for (uint16_t i = 0; i < jt->kind->nc; i++, n++)
+                if (n < RT_MBS_MAX_TOUCH)
+                    w->trow[n] = (uint16_t)(w->jrow[j] + i);
         }
-        if (n >= RT_MBS_MAX_TOUCH)
+        if (n > RT_MBS_MAX_TOUCH)
             return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
                             ": constraint rows exceed RT_MBS_MAX_TOUCH", (const char *)0);
     }
