@@ -56,7 +56,9 @@ enum { MDL_MBS_BODY_Y_N1 = 9, MDL_MBS_BODY_Y_N2 = 15 };      /* node x y z vx vy
 extern const rt_kind mdl_mbs_dumbbell_kind;
 /* planar single-track car with linear tires (vehicle_st.c), inputs delta, Fx; nodes
    "front", "rear" (hitch points) */
-extern const rt_kind mdl_st_car_kind;
+extern const rt_kind mdl_st_car_kind, mdl_st_car_mf_kind; /* linear / Magic-Formula tires */
+/* aerodynamic drag from the forward speed (drag.c) */
+extern const rt_kind mdl_drag_kind;
 /* the ISO 3888-1 double lane change (lane_change.c): a pure-pursuit driver on its centre
    line, and the towed vehicle's steering from the tow-bar angles */
 extern const rt_kind mdl_iso_driver_kind, mdl_tow_steer_kind;

@@ -19,6 +19,8 @@ const mdl_entry mdl_kinds[] = {
     {"mbs_bodyf", &mdl_mbs_bodyf_kind},
     {"mbs_dumbbell", &mdl_mbs_dumbbell_kind},
     {"st_car", &mdl_st_car_kind},
+    {"st_car_mf", &mdl_st_car_mf_kind},
+    {"drag", &mdl_drag_kind},
     {"iso_driver", &mdl_iso_driver_kind},
     {"tow_steer", &mdl_tow_steer_kind},
     {"pulley", &mdl_pulley_kind},

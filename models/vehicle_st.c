@@ -15,35 +15,61 @@
 #include "models.h"
 
 enum { P_M, P_IZ, P_LF, P_LR, P_CF, P_CR, P_DF, P_DR, P_UMIN, P_COUNT };
+/* st_car_mf adds the Magic Formula's friction, shape, curvature and gravity */
+enum { P_MU = P_COUNT, P_SHAPE, P_CURV, P_G, P_COUNT_MF };
 enum { U_DELTA, U_FX };
 
 static const char *const x_names[] = {"x", "y", "psi", "vx", "vy", "r"};
 static const char *const y_names[] = {"x", "y", "psi", "u", "v", "r", "ay"};
 static const char *const u_names[] = {"delta", "Fx"};
-static const char *const p_names[] = {"m", "Iz", "lf", "lr", "Cf", "Cr", "df", "dr", "umin"};
+static const char *const p_names[] = {"m", "Iz", "lf", "lr", "Cf", "Cr", "df", "dr", "umin",
+                                      "mu", "C", "E", "g"};
 static const char *const node_names[] = {"front", "rear"};
 /* CommonRoad vehicle 1 (NUMERICS.md): m, Iz, lf, lr; C_f 158 kN/rad and C_r 170 kN/rad
    (mildly understeering); hitches 2 m ahead of and behind the centre of mass */
 static const real_t p_default[P_COUNT] = {(real_t)1225.887, (real_t)1538.853, (real_t)0.88392,
                                           (real_t)1.50876, (real_t)158000, (real_t)170000, 2, 2,
                                           1};
+/* the same car, and a dry road: mu 1, lateral shape 1.3, curvature -0.5 (Pacejka,
+   Tire and Vehicle Dynamics, ch. 4: typical lateral values), g 9.81 m/s^2 */
+static const real_t p_default_mf[P_COUNT_MF] = {
+    (real_t)1225.887, (real_t)1538.853, (real_t)0.88392, (real_t)1.50876, (real_t)158000,
+    (real_t)170000, 2, 2, 1, 1, (real_t)1.3, (real_t)-0.5, (real_t)9.81};
 static const real_t x_default[6] = {0, 0, 0, 20, 0, 0};
 /* ay depends on delta directly (the front tire force); nothing else feeds through */
 static const uint8_t feed[7 * 2] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0};
 
-/* body-frame tire resultants: fb = (F_x, F_y, M_z) */
-static void tires(const rt_args *a, real_t *fb)
+/* Magic Formula F = D sin(C atan(B a - E (B a - atan(B a)))), D = mu Fz, with
+   B C D = the cornering stiffness, so that F = Ca a for small slip angles a */
+static real_t magic(real_t alpha, real_t ca, real_t fz, const real_t *p)
+{
+    real_t d = p[P_MU] * fz, b = ca / (p[P_SHAPE] * d), ba = b * alpha;
+    return d * rt_sin(p[P_SHAPE] * rt_atan(ba - p[P_CURV] * (ba - rt_atan(ba))));
+}
+
+/* body-frame tire resultants: fb = (F_x, F_y, M_z); mf: the Magic Formula with exact
+   slip angles and static axle loads, else the linear tires */
+static void tires_law(const rt_args *a, real_t *fb, int mf)
 {
     const real_t *x = a->x, *p = a->p;
     real_t c = rt_cos(x[2]), s = rt_sin(x[2]);
     real_t u = c * x[3] + s * x[4], v = -s * x[3] + c * x[4], r = x[5];
-    real_t us = u > p[P_UMIN] ? u : p[P_UMIN];
-    real_t fyf = p[P_CF] * (a->u[U_DELTA] - (v + p[P_LF] * r) / us);
-    real_t fyr = -p[P_CR] * (v - p[P_LR] * r) / us;
+    real_t us = u > p[P_UMIN] ? u : p[P_UMIN], fyf, fyr;
+    if (mf) {
+        real_t l = p[P_LF] + p[P_LR], w = p[P_M] * p[P_G];
+        fyf = magic(a->u[U_DELTA] - rt_atan((v + p[P_LF] * r) / us), p[P_CF], w * p[P_LR] / l, p);
+        fyr = magic(-rt_atan((v - p[P_LR] * r) / us), p[P_CR], w * p[P_LF] / l, p);
+    } else {
+        fyf = p[P_CF] * (a->u[U_DELTA] - (v + p[P_LF] * r) / us);
+        fyr = -p[P_CR] * (v - p[P_LR] * r) / us;
+    }
     fb[0] = a->u[U_FX];
     fb[1] = fyf + fyr;
     fb[2] = p[P_LF] * fyf - p[P_LR] * fyr;
 }
+
+static void tires(const rt_args *a, real_t *fb) { tires_law(a, fb, 0); }
+static void tires_mf(const rt_args *a, real_t *fb) { tires_law(a, fb, 1); }
 
 static void kin(const rt_args *a, const real_t *v, real_t *qd)
 {
@@ -57,14 +83,27 @@ static void mass(const rt_args *a, real_t *M)
     M[2] = a->p[P_IZ];
 }
 
-/* the body-frame resultants turned into the ground frame */
-static void force(const rt_args *a, real_t *k)
+/* the body-frame resultants fb turned into the ground frame */
+static void to_ground(const rt_args *a, const real_t *fb, real_t *k)
 {
-    real_t fb[3], c = rt_cos(a->x[2]), s = rt_sin(a->x[2]);
-    tires(a, fb);
+    real_t c = rt_cos(a->x[2]), s = rt_sin(a->x[2]);
     k[0] = c * fb[0] - s * fb[1];
     k[1] = s * fb[0] + c * fb[1];
     k[2] = fb[2];
+}
+
+static void force(const rt_args *a, real_t *k)
+{
+    real_t fb[3];
+    tires(a, fb);
+    to_ground(a, fb, k);
+}
+
+static void force_mf(const rt_args *a, real_t *k)
+{
+    real_t fb[3];
+    tires_mf(a, fb);
+    to_ground(a, fb, k);
 }
 
 /* hitch i at d ahead of the centre of mass (d < 0: behind) */
@@ -96,26 +135,55 @@ static void energy(const rt_args *a, real_t *e)
     e[1] = 0;
 }
 
-static void output(const rt_args *a, real_t *y)
+/* outputs from the state and the body-frame resultants fb */
+static void outputs(const rt_args *a, const real_t *fb, real_t *y)
 {
     const real_t *x = a->x;
-    real_t c = rt_cos(x[2]), s = rt_sin(x[2]), fb[3];
+    real_t c = rt_cos(x[2]), s = rt_sin(x[2]);
     y[0] = x[0], y[1] = x[1], y[2] = x[2];
     y[3] = c * x[3] + s * x[4];
     y[4] = -s * x[3] + c * x[4];
     y[5] = x[5];
-    tires(a, fb);
     y[6] = fb[1] / a->p[P_M]; /* v' + u r: the lateral acceleration in the body frame */
+}
+
+static void output(const rt_args *a, real_t *y)
+{
+    real_t fb[3];
+    tires(a, fb);
+    outputs(a, fb, y);
+}
+
+static void output_mf(const rt_args *a, real_t *y)
+{
+    real_t fb[3];
+    tires_mf(a, fb);
+    outputs(a, fb, y);
+}
+
+static rt_status check_n(const real_t *p, int n)
+{
+    int ok = 1;
+    for (int i = 0; i < n; i++)
+        ok = ok && rt_isfinite(p[i]);
+    return ok && p[P_M] > 0 && p[P_IZ] > 0 && p[P_LF] > 0 && p[P_LR] > 0 && p[P_CF] > 0 &&
+                   p[P_CR] > 0 && p[P_DF] >= 0 && p[P_DR] >= 0 && p[P_UMIN] > 0
+               ? RT_OK
+               : RT_E_PARAM;
 }
 
 static rt_status check(const real_t *p, const void *spec)
 {
     (void)spec;
-    int ok = 1;
-    for (int i = 0; i < P_COUNT; i++)
-        ok = ok && rt_isfinite(p[i]);
-    return ok && p[P_M] > 0 && p[P_IZ] > 0 && p[P_LF] > 0 && p[P_LR] > 0 && p[P_CF] > 0 &&
-                   p[P_CR] > 0 && p[P_DF] >= 0 && p[P_DR] >= 0 && p[P_UMIN] > 0
+    return check_n(p, P_COUNT);
+}
+
+/* the Magic Formula also needs mu > 0, C in (0, 2) (a peak), E <= 1, g > 0 */
+static rt_status check_mf(const real_t *p, const void *spec)
+{
+    (void)spec;
+    return check_n(p, P_COUNT_MF) == RT_OK && p[P_MU] > 0 && p[P_SHAPE] > 0 &&
+                   p[P_SHAPE] < 2 && p[P_CURV] <= 1 && p[P_G] > 0
                ? RT_OK
                : RT_E_PARAM;
 }
@@ -141,4 +209,25 @@ const rt_kind mdl_st_car_kind = {
         "Defaults: CommonRoad vehicle 1 (m, Iz, lf, lr), Cf 158 kN/rad, Cr 170 kN/rad."),
     .units = RT_DOC("rad N m m rad m/s m/s rad/s m/s^2 m m rad m/s m/s rad/s "
                     "kg kg*m^2 m m N/rad N/rad m m m/s"),
+};
+
+static const rt_mbs_spec spec_mf = {
+    .nq = 3, .nz = 3, .nn = 2, .flags = RT_MBS_M_DIAG, .node_names = node_names,
+    .kin = kin, .mass = mass, .force = force_mf, .node = node, .energy = energy,
+};
+
+const rt_kind mdl_st_car_mf_kind = {
+    .name = "st_car_mf", .type = RT_KIND_MBS, .nu = 2, .ny = 7, .nx = 6, .np = P_COUNT_MF,
+    .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
+    .p_default = p_default_mf, .x_default = x_default, .feed = RT_FEED_TABLE,
+    .feed_table = feed, .check = check_mf, .output = output_mf, .spec = &spec_mf,
+    .doc = RT_DOC(
+        "Planar single-track car with Magic-Formula tires (the same ports, states and\n"
+        "nodes as st_car): slip angles a_f = delta - atan((v + lf r)/u),\n"
+        "a_r = -atan((v - lr r)/u) (u >= umin); F = D sin(C atan(B a - E (B a - atan(B a))))\n"
+        "with D = mu Fz on the static axle loads Fz_f = m g lr/L, Fz_r = m g lf/L and\n"
+        "B C D = Cf (front), Cr (rear), so small slips give the linear tires' forces.\n"
+        "mu: friction, > 0; C: shape, 0 < C < 2; E: curvature, <= 1; g: gravity."),
+    .units = RT_DOC("rad N m m rad m/s m/s rad/s m/s^2 m m rad m/s m/s rad/s "
+                    "kg kg*m^2 m m N/rad N/rad m m m/s - - - m/s^2"),
 };

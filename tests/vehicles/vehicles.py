@@ -67,6 +67,49 @@ def cornering(modrt):
           "cornering: ay %.6f, U r %.6f" % (last["Car.ay"], 20.0 * r))
 
 
+def magic(alpha, ca, fz, mu=1.0, c=1.3, e=-0.5):
+    d = mu * fz
+    b = ca / (c * d)
+    ba = b * alpha
+    return d * math.sin(c * math.atan(ba - e * (ba - math.atan(ba))))
+
+
+def steady_state_mf(U, d):
+    """v, r of the Magic-Formula car in steady state: Newton's method on
+    F_yf + F_yr - m U r = 0, lf F_yf - lr F_yr = 0 (finite-difference Jacobian)"""
+    L, w = LF + LR, M * 9.81
+
+    def res(v, r):
+        fyf = magic(d - math.atan((v + LF * r) / U), CF, w * LR / L)
+        fyr = magic(-math.atan((v - LR * r) / U), CR, w * LF / L)
+        return fyf + fyr - M * U * r, LF * fyf - LR * fyr
+
+    v, r = steady_state(U, d)  # the linear answer as the start
+    for _ in range(50):
+        f1, f2 = res(v, r)
+        h = 1e-7
+        a11, a21 = [(x - y) / h for x, y in zip(res(v + h, r), (f1, f2))]
+        a12, a22 = [(x - y) / h for x, y in zip(res(v, r + h), (f1, f2))]
+        det = a11 * a22 - a12 * a21
+        dv, dr = (f1 * a22 - a12 * f2) / det, (a11 * f2 - a21 * f1) / det
+        v, r = v - dv, r - dr
+        if abs(dv) + abs(dr) < 1e-15:
+            break
+    return v, r
+
+
+def cornering_mf(modrt):
+    rc, summ, head, rows = run(modrt, os.path.join(HERE, "cornering_mf.scn"))
+    last = dict(zip(head, rows[-1]))
+    v, r = steady_state_mf(20.0, 0.04)
+    vl, rl = steady_state(20.0, 0.04)
+    er, ev = abs(last["Car.r"] / r - 1), abs(last["Car.v"] / v - 1)
+    print("vehicles: cornering, Magic Formula: r %.9f (steady state %.9f; linear tires %.6f)"
+          ", v %.9f (%.9f)" % (last["Car.r"], r, rl, last["Car.v"], v))
+    check(rc == 0 and er < 1e-5 and ev < 1e-4 and abs(r / rl - 1) > 0.01,
+          "cornering (Magic Formula): r off by %.3g, v by %.3g (exit %d)" % (er, ev, rc))
+
+
 def free_roll(modrt):
     rc, summ, head, rows = run(modrt, os.path.join(HERE, "cornering.scn"), "--set",
                                "Steer.y0=0", "--set", "Steer.y1=0", "--set", "Kp.k=0")
@@ -158,6 +201,7 @@ def multirate(modrt):
 def main():
     modrt = sys.argv[1]
     cornering(modrt)
+    cornering_mf(modrt)
     free_roll(modrt)
     lane_change(modrt)
     lane_change(modrt, "lane_change")
