@@ -570,6 +570,8 @@ typedef struct rt_stats {
     rt_status status;                /* first fault met (RT_OK while clean) */
     uint32_t count[RT_CNT_COUNT];    /* fault counters */
     uint8_t growth[RT_MAX_SETS];     /* steps in a row the set's state grew fast */
+    uint32_t unstable[RT_MAX_SETS];  /* RT_CNT_UNSTABLE by set */
+    uint32_t errest[RT_MAX_SETS];    /* RT_CNT_ERREST by set */
     int16_t last_block[RT_CNT_COUNT];/* last offending block per counter, -1 none */
     uint32_t first_tick[RT_CNT_COUNT];/* tick of each counter's first count */
     uint32_t event_iter_max;         /* high-water mark of event-location iterations */

@@ -30,6 +30,7 @@ static void watch_growth(rt_sim *sim, uint8_t s, real_t before, real_t after)
     *g = after > (real_t)RT_GROWTH_FACTOR * before ? (uint8_t)(*g + 1) : 0;
     if (*g >= RT_GROWTH_STEPS) {
         rti_count(sim, RT_CNT_UNSTABLE, -1, RT_E_UNSTABLE);
+        sim->stats.unstable[s]++;
         *g = 0;
     }
 }
@@ -60,9 +61,11 @@ static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
         rti_count(sim, RT_CNT_SUBSTEP, -1, RT_OK); /* recovered: reported, not a fault */
     real_t acc = w.cfg->accuracy > 0 ? w.cfg->accuracy : RT_ERR_TOL;
     real_t e = w.stats->last_err; /* a NaN estimate is the nan counter's (below) */
-    if (e == e && !(e <= acc))
+    if (e == e && !(e <= acc)) {
         rti_count(sim, RT_CNT_ERREST, -1,
                   w.stats->last_err <= RT_ERR_LOST ? RT_E_ACCURACY : RT_E_LOST);
+        sim->stats.errest[s]++;
+    }
     watch_growth(sim, s, before, norm(sim->state.x + x0, n));
     /* projects when stab is RT_STAB_PROJECT; otherwise refreshes recorded reactions */
     if (sc->mbs)

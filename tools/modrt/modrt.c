@@ -139,6 +139,10 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
         fprintf(f, "err_max.%s: %g (accuracy %g)\n", sc->sets[k].name,
                 (double)s->stats.istats[k].err_max,
                 (double)(c->accuracy > 0 ? c->accuracy : RT_ERR_TOL));
+        if (s->stats.errest[k] || s->stats.unstable[k])
+            fprintf(f, "errest.%s: %u\nunstable.%s: %u\n", sc->sets[k].name,
+                    (unsigned)s->stats.errest[k], sc->sets[k].name,
+                    (unsigned)s->stats.unstable[k]);
     }
     for (uint8_t k = 0; k < sc->nsets; k++)
         if (rt_set_is_source(s, k))
