@@ -33,7 +33,9 @@
  *     converges is the answer (counted: substep, a recovered step, not a fault);
  *  3. else keep the attempt with the smallest residual (never the start state unless
  *     every attempt gave NaN), count the step as degraded and return RT_E_NOCONV.
- * dirk_bound gives the most work this can take; `modrt info` prints it per set.
+ * dirk_bound gives the most work this can take; `modrt info` prints it per set. ROS2,
+ * which has no iteration, splits a step the same way when its error estimate exceeds the
+ * set's accuracy (ros2_step, ros2_bound).
  *
  * Error estimate. A DIRK step's embedded first-order solution is x0 + h k_s (the last
  * stage's derivative alone), so e = h sum_j (a_sj - [j = s]) k_j; backward Euler, its own
@@ -410,25 +412,27 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
 
 /* ------------------------------------------------------------------ ROS2 stepper */
 
-static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
-                           real_t *x, uint16_t n, const rt_iwork *w)
+/* one ROS2 step of h from w->x0 into x (the Jacobian refreshed first when due); returns
+   its local error estimate against the embedded x0 + h k1 */
+static real_t ros2_attempt(imp_step *c, const ros2_tab *tab, real_t t, real_t h)
 {
-    const ros2_tab *tab = m->tab;
-    real_t *k1 = w->k[0], *k2 = w->k[1], *ft = w->k[2], g = tab->gamma;
+    const rt_iwork *w = c->w;
+    real_t *k1 = w->k[0], *k2 = w->k[1], *ft = w->k[2], g = tab->gamma, *x = c->x;
     const rt_implicit_ws *ws = w->imp;
-    imp_step c;
-    begin(&c, f, x, n, w, h * g);
-    rhs(&c, t, k1);
-    at_base(&c, t, k1);
+    uint16_t n = c->n;
+    for (uint16_t i = 0; i < n; i++)
+        x[i] = w->x0[i];
+    rhs(c, t, k1);
+    at_base(c, t, k1);
     /* h gamma df/dt ~ gamma (f(t + h, x0) - f(t, x0)): over the whole step, so an input
        that jumps inside it costs no more than the jump itself */
-    rhs(&c, t + h, ft);
+    rhs(c, t + h, ft);
     for (uint16_t i = 0; i < n; i++)
         ft[i] = g * (ft[i] - k1[i]), k1[i] += ft[i];
     rti_lu_solve(ws->lu, n, ws->piv, k1);
     for (uint16_t i = 0; i < n; i++)
         x[i] = w->x0[i] + h * k1[i];
-    rhs(&c, t + h, k2);
+    rhs(c, t + h, k2);
     for (uint16_t i = 0; i < n; i++)
         k2[i] -= 2 * k1[i] + ft[i];
     rti_lu_solve(ws->lu, n, ws->piv, k2);
@@ -436,7 +440,65 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
         x[i] = w->x0[i] + h * (R(1.5) * k1[i] + R(0.5) * k2[i]);
         ft[i] = h * R(0.5) * (k1[i] + k2[i]); /* against the embedded x0 + h k1 */
     }
-    c.err = scaled_norm(ft, x, n); /* the k are M^-1 f already: no filter */
+    real_t e = scaled_norm(ft, x, n); /* the k are M^-1 f already: no filter */
+    return e == e ? e : R(1) / R(0);
+}
+
+/* the step split into k substeps, each with a fresh Jacobian at its start; x from xs;
+   returns the largest estimate of its substeps */
+static real_t ros2_split(imp_step *c, const ros2_tab *tab, real_t t, real_t h, uint8_t k)
+{
+    real_t worst = 0, hk = h / (real_t)k;
+    rt_implicit_ws *ws = c->w->imp;
+    for (uint16_t j = 0; j < c->n; j++)
+        c->x[j] = ws->xs[j];
+    for (uint8_t i = 0; i < k; i++) {
+        for (uint16_t j = 0; j < c->n; j++)
+            c->w->x0[j] = c->x[j];
+        c->hg = hk * tab->gamma, c->refresh = 1;
+        real_t e = ros2_attempt(c, tab, t + (real_t)i * hk, hk);
+        worst = e > worst ? e : worst;
+    }
+    return worst;
+}
+
+/* ROS2 has no iteration that could fail; a step whose estimate exceeds the set's
+   accuracy is what tells a bad step (a stale Jacobian, a transient the step cannot
+   follow). It is split into 2, 4, ... K substeps with a fresh Jacobian each, as a DIRK
+   step that does not converge (the same bound); the first split within the accuracy is
+   the answer, else the one with the smallest estimate. */
+static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
+                           real_t *x, uint16_t n, const rt_iwork *w)
+{
+    const ros2_tab *tab = m->tab;
+    rt_implicit_ws *ws = w->imp;
+    real_t acc = w->cfg->accuracy > 0 ? w->cfg->accuracy : RT_ERR_TOL;
+    imp_step c;
+    begin(&c, f, x, n, w, h * tab->gamma);
+    for (uint16_t j = 0; j < n; j++)
+        ws->xs[j] = x[j];
+    real_t e = ros2_attempt(&c, tab, t, h), best = e;
+    uint8_t kmax = w->cfg->substeps ? w->cfg->substeps : RT_IMP_SUBSTEPS;
+    for (uint16_t j = 0; j < n; j++)
+        ws->best[j] = x[j];
+    for (uint8_t k = 2; e > acc && k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
+        e = ros2_split(&c, tab, t, h, k);
+        ws->valid = 0; /* the next step's Jacobian belongs to its own h */
+        if (e <= acc) {
+            w->stats->substepped++;
+            best = e;
+            break;
+        }
+        if (e < best) {
+            best = e;
+            for (uint16_t j = 0; j < n; j++)
+                ws->best[j] = x[j];
+        }
+    }
+    if (e > acc) /* no split met the accuracy: the smallest estimate, reported as such */
+        for (uint16_t j = 0; j < n; j++)
+            x[j] = ws->best[j];
+    c.err = best;
     return finish(&c, 0); /* no iteration: residual 0, never degraded */
 }
 
@@ -458,12 +520,14 @@ static void dirk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint1
     w->lu = (2 * k - 1) + impl * full;
 }
 
-/* ROS2: a Jacobian (n evaluations), f(t, x0), f(t + h, x0), f(t + h, x1); one factorization */
+/* ROS2: an attempt is a Jacobian (n evaluations), f(t, x0), f(t + h, x0), f(t + h, x1)
+   and one factorization; with the substeps 2, 4, ... K: 2 K - 1 attempts */
 static void ros2_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
                        rt_step_work *w)
 {
-    (void)m, (void)cfg;
-    w->rhs = 3u + n, w->lu = 1;
+    uint32_t k = cfg->substeps ? cfg->substeps : RT_IMP_SUBSTEPS;
+    (void)m;
+    w->rhs = (2 * k - 1) * (3u + n), w->lu = 2 * k - 1;
 }
 
 /* ------------------------------------------------------------------ methods */

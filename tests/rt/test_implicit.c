@@ -133,7 +133,8 @@ static void test_dahlquist(void)
 {
     static const real_t one[] = {1};
     static const real_t lam6[] = {(real_t)-1e6}, lam12[] = {(real_t)-1e12};
-    rt_implicit_cfg cfg = {0};
+    rt_implicit_cfg cfg = {.substeps = 1}; /* the method's own step: ROS2 would split one
+                                              whose estimate exceeds the accuracy */
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
         double r1 = 0, r2 = 0, x100 = 0;
@@ -247,7 +248,7 @@ static void stiff_exact(double t, const real_t *x0, double *x)
 static double stiff_error(const rt_integrator *m, real_t h)
 {
     static const real_t x0[] = {3, 2, 1}; /* V^-1 x0 = (1, 1, 1): every mode excited */
-    rt_implicit_cfg cfg = {.jac_every = 1000};
+    rt_implicit_cfg cfg = {.jac_every = 1000, .substeps = 1};
     double ex[3], e = 0;
     if (!run(&stiff3, 0, x0, m, cfg, h, 1))
         return 1e30;
@@ -283,6 +284,38 @@ static void test_stiff_linear(void)
         if (m != &rt_trap && m->order >= 2)
             TH_CHECK(e1 < e_trap / (FLT && m == &rt_ros2 ? 5 : 100));
     }
+}
+
+/* ROS2 splits a step whose estimate exceeds the accuracy: on the stiff linear system
+   with its Jacobian kept for the run (a W-method's error grows with the Jacobian's age)
+   and a coarse step, the split steps are counted and the answer gets closer to the
+   exponential than the unsplit method's; the bound rt_step_bound gives covers them */
+static void test_ros2_split(void)
+{
+    static const real_t x0[] = {3, 2, 1};
+    double ex[3], e_split = 0, e_one = 0;
+    stiff_matrix();
+    for (int split = 0; split < 2; split++) {
+        rt_implicit_cfg cfg = {.jac_every = 1000, .substeps = (uint8_t)(split ? 0 : 1),
+                               .accuracy = (real_t)1e-3};
+        if (!TH_CHECK(run(&stiff3, 0, x0, &rt_ros2, cfg, (real_t)0.1, 1)))
+            return;
+        stiff_exact((double)rt_time(&scene, &tu_sim), x0, ex);
+        double e = 0;
+        for (int i = 0; i < 3; i++)
+            e = dabs((double)tu_sim.state.x[i] - ex[i]) > e ? dabs((double)tu_sim.state.x[i] - ex[i]) : e;
+        *(split ? &e_split : &e_one) = e;
+        if (split)
+            TH_CHECK(tu_sim.stats.istats[0].substepped > 0 && tu_sim.stats.count[RT_CNT_SUBSTEP] > 0);
+        else
+            TH_CHECK(tu_sim.stats.istats[0].substepped == 0);
+    }
+    th_note("ROS2 at h = 0.1, error without splitting", e_one);
+    th_note("ROS2 at h = 0.1, error with splitting", e_split);
+    TH_CHECK(e_split < e_one);
+    rt_step_work wk;
+    rt_ros2.bound(&rt_ros2, &(rt_implicit_cfg){0}, 3, &wk);
+    TH_CHECK(wk.rhs == (2 * RT_IMP_SUBSTEPS - 1) * (3 + 3) && wk.lu == 2 * RT_IMP_SUBSTEPS - 1);
 }
 
 /* ------------------------------------------------------------------ degraded steps */
@@ -341,11 +374,13 @@ static void test_jac_reuse(void)
     static const real_t p[] = {100, 1}, zero[] = {0};
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
-        TH_CHECK(run(&cubic, p, zero, m, (rt_implicit_cfg){.newton_max = 8}, (real_t)0.01, 3));
+        TH_CHECK(run(&cubic, p, zero, m, (rt_implicit_cfg){.newton_max = 8, .substeps = 1},
+                     (real_t)0.01, 3));
         double x1 = (double)tu_sim.state.x[0];
         uint32_t j1 = tu_sim.stats.istats[0].jac_evals, it1 = tu_sim.stats.istats[0].newton_iter_max;
         TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
-        TH_CHECK(run(&cubic, p, zero, m, (rt_implicit_cfg){.newton_max = 8, .jac_every = 10},
+        TH_CHECK(run(&cubic, p, zero, m,
+                     (rt_implicit_cfg){.newton_max = 8, .jac_every = 10, .substeps = 1},
                      (real_t)0.01, 3));
         double x10 = (double)tu_sim.state.x[0];
         uint32_t j10 = tu_sim.stats.istats[0].jac_evals, it10 = tu_sim.stats.istats[0].newton_iter_max;
@@ -613,6 +648,7 @@ const th_test th_implicit_tests[] = {
     {"implicit_dahlquist", test_dahlquist},
     {"implicit_orders", test_orders},
     {"implicit_stiff_linear", test_stiff_linear},
+    {"implicit_ros2_split", test_ros2_split},
     {"implicit_degraded", test_degraded},
     {"implicit_jac_reuse", test_jac_reuse},
     {"implicit_singular", test_singular},
