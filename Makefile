@@ -259,22 +259,24 @@ $(foreach t,$(CROSS_TARGETS),$(eval check-target-$(t): ; @$$(TARGET_CHECK_$(t)))
 
 # ---- footprint: one image per scene and target, sized by `modrt sizes` ----
 FOOT_TARGETS := m3 m4f m7 rv32 rv64
+FOOT_FLOAT_TARGETS := m4f m7 # the targets with a binary32 FPU get REAL=float rows too
 # everything but the registries: a scene names its kinds and methods directly
 FOOT_SRCS = tests/cross/footprint_main.c tests/harness.c \
             $(filter-out rt/registry.c,$(RT_SRCS)) \
             $(filter-out models/registry.c models/scenes/% build/gen/%,$(MODEL_SRCS))
 footprint: deps build/host/modrt $(INSN_COUNT_SO) scenes
-	sh tools/footprint.sh "$(FOOT_TARGETS)" > docs/footprint.md
+	$(MAKE) --no-print-directory REAL=float build/host-float/modrt
+	sh tools/footprint.sh "$(FOOT_TARGETS)" "$(FOOT_FLOAT_TARGETS)" > docs/footprint.md
 	@echo "footprint: wrote docs/footprint.md"
 # one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes)
 FOOT_TICKS ?= 1000
 foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@[ -n "$(T)" ] && [ -n "$(S)" ] || { echo "usage: make foot-elf T=<target> S=<scene>" >&2; exit 2; }
-	@mkdir -p build/foot/$(T)
+	@mkdir -p build/foot/$(T)$(XSUF)
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
 	  $(shell build/host/modrt sizes $(S)) \
 	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) build/gen/scenes/$(S).c \
-	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)/$(S).elf
+	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 	@mkdir -p $(dir $@)
 	$(INSN_COUNT_CC) $(INSN_COUNT_CFLAGS) -o $@ $<

@@ -4,10 +4,15 @@
 # plugin, and prints docs/footprint.md: flash and RAM (from the size tool), the stack
 # high-water mark of the ticks (painted stack), instructions per tick (min/median/max over
 # every tick, deterministic under -icount), the models linked, and the trace hash checked
-# against the host's. Usage: [FOOT_SCENES="a b"] sh tools/footprint.sh "m3 m4f m7 rv32 rv64"
+# against the host's; then the slowest tick in microseconds at a stated clock and whether
+# it fits the scene's own base tick; rows in binary32 (REAL=float) for the targets with a
+# single-precision FPU, hashed against the host's float build.
+# Usage: [FOOT_SCENES="a b"] sh tools/footprint.sh "m3 m4f m7 rv32 rv64" ["m4f m7"]
 set -eu
 targets=$1
+float_targets=${2:-}
 M=build/host/modrt
+MF=build/host-float/modrt
 so=$(make -s print-INSN_COUNT_SO)
 scenes=${FOOT_SCENES:-$($M list | awk '{print $1}')}
 
@@ -25,38 +30,60 @@ the hash. Counts are deterministic (run under \`-icount shift=0\`). The stack co
 high-water mark of the painted stack during the ticks (init excluded), measured, not a
 static bound. Each image runs the first FOOT_TICKS ticks of its scene (default 1000, or
 the whole scene if shorter); the host hash is taken over the same ticks. Flash = text + data, RAM = data + bss (static, the whole \`rt_sim\`), both in
-bytes. Every image's trace hash is compared with \`modrt run\` on the host.
+bytes. Every image's trace hash is compared with \`modrt run\` on the host (the float rows
+with the host's REAL=float build). The last two columns turn the slowest tick into time at
+one instruction per cycle at a typical clock of each core (Cortex-M3 72 MHz, M4F 168 MHz,
+M7 600 MHz, RV32 100 MHz, RV64 1 GHz: our assumption, not a measurement; flash wait
+states make M3/M4F slower than that) and say whether it fits the scene's own base tick.
 
-| scene | target | flash | RAM | stack | insn/tick min | median | max | hash = host | models linked |
-|---|---|---:|---:|---:|---:|---:|---:|:-:|---|
+| scene | target | real | flash | RAM | stack | insn/tick min | median | max | hash = host | models linked | slowest tick [us] | fits its tick |
+|---|---|---|---:|---:|---:|---:|---:|---:|:-:|---|---:|:-:|
 HDR
+
+# MHz of the stated clock of a target
+mhz() { case $1 in m3) echo 72;; m4f) echo 168;; m7) echo 600;; rv32) echo 100;; *) echo 1000;; esac; }
+
+# one row: scene, target, real (double|float), host hash, base tick [s]
+row() {
+    s=$1 t=$2 real=$3 want=$4 dt=$5 # sh has no locals: names the caller does not use
+    sfx=
+    [ "$real" = float ] && sfx=-float
+    make -s foot-elf T="$t" S="$s" REAL="$real"
+    elf=build/foot/$t$sfx/$s.elf
+    size=$(make -s "print-TARGET_SIZE_$t")
+    nm=$(make -s "print-TARGET_NM_$t")
+    set -- $($size "$elf" | awk 'NR == 2 {print $1, $2, $3}')
+    flash=$(($1 + $2)) ram=$(($2 + $3))
+    addr=$($nm "$elf" | awk '$3 == "port_cycles" {print $1}')
+    run=$(make -s "print-TARGET_RUN_$t")
+    # the run command ends in -kernel: put the plugin before it
+    out=$(eval "$(echo "$run" | sed "s|-kernel\$|-plugin $(pwd)/$so,addr=0x$addr -d plugin -kernel|") $elf" 2>&1 || true)
+    hash=$(echo "$out" | sed -n 's/.* hash \([0-9a-f]*\) .*/\1/p')
+    stack=$(echo "$out" | sed -n 's/.* stack \([0-9]*\).*/\1/p')
+    stats=$(echo "$out" | sed -n 's/.*min \([0-9]*\) median \([0-9]*\) max \([0-9]*\).*/\1 | \2 | \3/p')
+    max=$(echo "$out" | sed -n 's/.*max \([0-9]*\).*/\1/p')
+    models=$($nm "$elf" | awk '$3 ~ /^mdl_.*_kind$/ {sub(/^mdl_/, "", $3); sub(/_kind$/, "", $3); print $3}' | sort | tr '\n' ' ')
+    same=no
+    [ "$hash" = "$want" ] && same=yes
+    time=$(awk -v n="${max:-0}" -v f="$(mhz "$t")" -v dt="$dt" 'BEGIN {
+        us = n / f; printf "%.1f | %s", us, (n > 0 && us <= dt * 1e6) ? "yes" : "no" }')
+    echo "| $s | $t | $real | $flash | $ram | $stack | $stats | $same | $models | $time |"
+}
 
 for s in $scenes; do
     # the host reference over the same ticks as the image
     dt=$($M info "$s" | sed -n 's/^base tick: \([^ ]*\) s$/\1/p')
     ticks=$(make -s print-FOOT_TICKS)
-    host=$($M run "$s" --t-end "$(awk -v d="$dt" -v n="$ticks" 'BEGIN { printf "%.17g", d * n }')" | sed -n 's/^hash: //p')
+    t_end=$(awk -v d="$dt" -v n="$ticks" 'BEGIN { printf "%.17g", d * n }')
+    host=$($M run "$s" --t-end "$t_end" | sed -n 's/^hash: //p')
+    hostf=
+    [ -z "$float_targets" ] || hostf=$($MF run "$s" --t-end "$t_end" | sed -n 's/^hash: //p')
     for t in $targets; do
         if ! make -s "check-target-$t" 2>/dev/null; then
-            echo "| $s | $t | skipped: toolchain or QEMU missing | | | | | | | |"
+            echo "| $s | $t | | skipped: toolchain or QEMU missing | | | | | | | | | |"
             continue
         fi
-        make -s foot-elf T="$t" S="$s"
-        elf=build/foot/$t/$s.elf
-        size=$(make -s "print-TARGET_SIZE_$t")
-        nm=$(make -s "print-TARGET_NM_$t")
-        set -- $($size "$elf" | awk 'NR == 2 {print $1, $2, $3}')
-        flash=$(($1 + $2)) ram=$(($2 + $3))
-        addr=$($nm "$elf" | awk '$3 == "port_cycles" {print $1}')
-        run=$(make -s "print-TARGET_RUN_$t")
-        # the run command ends in -kernel: put the plugin before it
-        out=$(eval "$(echo "$run" | sed "s|-kernel\$|-plugin $(pwd)/$so,addr=0x$addr -d plugin -kernel|") $elf" 2>&1 || true)
-        hash=$(echo "$out" | sed -n 's/.* hash \([0-9a-f]*\) .*/\1/p')
-        stack=$(echo "$out" | sed -n 's/.* stack \([0-9]*\).*/\1/p')
-        stats=$(echo "$out" | sed -n 's/.*min \([0-9]*\) median \([0-9]*\) max \([0-9]*\).*/\1 | \2 | \3/p')
-        models=$($nm "$elf" | awk '$3 ~ /^mdl_.*_kind$/ {sub(/^mdl_/, "", $3); sub(/_kind$/, "", $3); print $3}' | sort | tr '\n' ' ')
-        same=no
-        [ "$hash" = "$host" ] && same=yes
-        echo "| $s | $t | $flash | $ram | $stack | $stats | $same | $models |"
+        row "$s" "$t" double "$host" "$dt"
+        case " $float_targets " in *" $t "*) row "$s" "$t" float "$hostf" "$dt";; esac
     done
 done

@@ -368,7 +368,9 @@ static int cmd_run(void *ctx, int npos, char **pos)
                      (double)sc.dt);
             return cli_fail(b, v);
         }
-        if (fabs(n - floor(n + 0.5)) > 1e-9 * (n > 1 ? n : 1)) {
+        /* the same slack as rt_init: the rounding of real_t, at most a quarter tick */
+        double slack = (double)RT_TICK_SLACK * (n > 1 ? n : 1);
+        if (fabs(n - floor(n + 0.5)) > (slack < 0.25 ? slack : 0.25)) {
             snprintf(b, sizeof b, "--t-end must be a whole number of base ticks (%.10g s), got",
                      (double)sc.dt);
             return cli_fail(b, v);
