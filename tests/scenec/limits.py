@@ -148,6 +148,22 @@ def cli_cases(modrt):
         check(one_line_refusal(rc, out), "%s %s one past: exit %d: %s" % (opt, bad_v, rc, out[-200:]))
 
 
+def tune_cases(modrt):
+    """the numeric options of `modrt tune` at their limit and one past"""
+    cases = [(["--tol", "1e-300"], ["--tol", "0"]),
+             (["--tol", "1e-3", "--doublings", "12"], ["--tol", "1e-3", "--doublings", "13"]),
+             (["--tol", "1e-3", "--ref-div", "1024"], ["--tol", "1e-3", "--ref-div", "2048"]),
+             (["--tol", "1e-3", "--ref-div", "2"], ["--tol", "1e-3", "--ref-div", "3"])]
+    for ok_args, bad_args in cases:
+        p = subprocess.run([modrt, "tune", "oscillator"] + ok_args, capture_output=True,
+                           text=True, timeout=120)
+        check(p.returncode in (0, 1), "tune %s at the limit: exit %d" % (ok_args, p.returncode))
+        p = subprocess.run([modrt, "tune", "oscillator"] + bad_args, capture_output=True,
+                           text=True, timeout=120)
+        check(one_line_refusal(p.returncode, p.stderr),
+              "tune %s one past: exit %d: %s" % (bad_args, p.returncode, p.stderr[-200:]))
+
+
 def scene_cases(modrt):
     """the numeric clauses of the scene language at their limit and one past"""
     def sset(clause):
@@ -178,6 +194,7 @@ def main():
     limit_cases(modrt)
     end_time_cases(modrt)
     cli_cases(modrt)
+    tune_cases(modrt)
     scene_cases(modrt)
     print("limits: %d passed, %d failed" % (passed, failed))
     sys.exit(1 if failed else 0)
