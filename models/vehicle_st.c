@@ -68,8 +68,10 @@ static void tires_law(const rt_args *a, real_t *fb, int mf)
     fb[2] = p[P_LF] * fyf - p[P_LR] * fyr;
 }
 
-static void tires(const rt_args *a, real_t *fb) { tires_law(a, fb, 0); }
-static void tires_mf(const rt_args *a, real_t *fb) { tires_law(a, fb, 1); }
+static const rt_mbs_spec spec_mf;
+
+/* the tire law of the kind the block is: st_car_mf's spec selects the Magic Formula */
+static void tires(const rt_args *a, real_t *fb) { tires_law(a, fb, a->spec == &spec_mf); }
 
 static void kin(const rt_args *a, const real_t *v, real_t *qd)
 {
@@ -96,13 +98,6 @@ static void force(const rt_args *a, real_t *k)
 {
     real_t fb[3];
     tires(a, fb);
-    to_ground(a, fb, k);
-}
-
-static void force_mf(const rt_args *a, real_t *k)
-{
-    real_t fb[3];
-    tires_mf(a, fb);
     to_ground(a, fb, k);
 }
 
@@ -151,13 +146,6 @@ static void output(const rt_args *a, real_t *y)
 {
     real_t fb[3];
     tires(a, fb);
-    outputs(a, fb, y);
-}
-
-static void output_mf(const rt_args *a, real_t *y)
-{
-    real_t fb[3];
-    tires_mf(a, fb);
     outputs(a, fb, y);
 }
 
@@ -213,14 +201,14 @@ const rt_kind mdl_st_car_kind = {
 
 static const rt_mbs_spec spec_mf = {
     .nq = 3, .nz = 3, .nn = 2, .flags = RT_MBS_M_DIAG, .node_names = node_names,
-    .kin = kin, .mass = mass, .force = force_mf, .node = node, .energy = energy,
+    .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
 };
 
 const rt_kind mdl_st_car_mf_kind = {
     .name = "st_car_mf", .type = RT_KIND_MBS, .nu = 2, .ny = 7, .nx = 6, .np = P_COUNT_MF,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default_mf, .x_default = x_default, .feed = RT_FEED_TABLE,
-    .feed_table = feed, .check = check_mf, .output = output_mf, .spec = &spec_mf,
+    .feed_table = feed, .check = check_mf, .output = output, .spec = &spec_mf,
     .doc = RT_DOC(
         "Planar single-track car with Magic-Formula tires (the same ports, states and\n"
         "nodes as st_car): slip angles a_f = delta - atan((v + lf r)/u),\n"

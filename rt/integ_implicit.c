@@ -291,8 +291,9 @@ static void stage_base(const dirk_tab *t, uint8_t i, real_t h, real_t *v, uint16
 
 /* one DIRK step of h from w->x0 into x; returns its residual (the largest of its stages,
    NaN sticks) */
-static real_t dirk_attempt(imp_step *c, const dirk_tab *tab, real_t t, real_t h)
+static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
 {
+    const dirk_tab *tab = tp;
     const rt_iwork *w = c->w;
     real_t *v = w->k[IMP_BUF_V], *x = c->x, worst = 0;
     for (uint16_t j = 0; j < c->n; j++)
@@ -344,8 +345,14 @@ static void keep_best(imp_step *c, real_t res, real_t *best)
         c->w->imp->best[j] = c->x[j];
 }
 
-/* the step split into k substeps, each with a fresh Jacobian at its start; x from xs */
-static real_t dirk_split(imp_step *c, const dirk_tab *tab, real_t t, real_t h, uint8_t k)
+/* one attempt of a method over [t, t + h] from w->x0 into x: its residual (DIRK) or its
+   error estimate (ROS2) */
+typedef real_t (*attempt_fn)(imp_step *c, const void *tab, real_t t, real_t h);
+
+/* the step split into k substeps, each with a fresh Jacobian at its start; x from xs;
+   returns the largest figure of the substeps (a NaN sticks and ends the split) */
+static real_t split(imp_step *c, attempt_fn attempt, const void *tab, real_t gamma, real_t t,
+                    real_t h, uint8_t k)
 {
     real_t worst = 0, hk = h / (real_t)k;
     rt_implicit_ws *ws = c->w->imp;
@@ -354,14 +361,15 @@ static real_t dirk_split(imp_step *c, const dirk_tab *tab, real_t t, real_t h, u
     for (uint8_t i = 0; i < k && worst == worst; i++) {
         for (uint16_t j = 0; j < c->n; j++)
             c->w->x0[j] = c->x[j];
-        c->hg = hk * tab->gamma;
+        c->hg = hk * gamma;
         c->refresh = 1;
-        real_t r = dirk_attempt(c, tab, t + (real_t)i * hk, hk);
+        real_t r = attempt(c, tab, t + (real_t)i * hk, hk);
         if (!(r <= worst))
             worst = r;
     }
     return worst;
 }
+
 
 /* A step that does not converge is never left at its start (docs/solvers.md): retry
    with the Jacobian at the failed iterate, then split into 2, 4, ... substeps up to the
@@ -395,7 +403,7 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     uint8_t kmax = w->cfg->substeps ? w->cfg->substeps : RT_IMP_SUBSTEPS;
     for (uint8_t k = 2; k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
         c.err = 0, c.singular = 0;
-        res = dirk_split(&c, tab, t, h, k);
+        res = split(&c, dirk_attempt, tab, tab->gamma, t, h, k);
         if (res <= c.tol) {
             w->stats->substepped++;
             ws->valid = 0; /* the next step's Jacobian belongs to its own h */
@@ -414,8 +422,9 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
 
 /* one ROS2 step of h from w->x0 into x (the Jacobian refreshed first when due); returns
    its local error estimate against the embedded x0 + h k1 */
-static real_t ros2_attempt(imp_step *c, const ros2_tab *tab, real_t t, real_t h)
+static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
 {
+    const ros2_tab *tab = tp;
     const rt_iwork *w = c->w;
     real_t *k1 = w->k[0], *k2 = w->k[1], *ft = w->k[2], g = tab->gamma, *x = c->x;
     const rt_implicit_ws *ws = w->imp;
@@ -444,24 +453,6 @@ static real_t ros2_attempt(imp_step *c, const ros2_tab *tab, real_t t, real_t h)
     return e == e ? e : R(1) / R(0);
 }
 
-/* the step split into k substeps, each with a fresh Jacobian at its start; x from xs;
-   returns the largest estimate of its substeps */
-static real_t ros2_split(imp_step *c, const ros2_tab *tab, real_t t, real_t h, uint8_t k)
-{
-    real_t worst = 0, hk = h / (real_t)k;
-    rt_implicit_ws *ws = c->w->imp;
-    for (uint16_t j = 0; j < c->n; j++)
-        c->x[j] = ws->xs[j];
-    for (uint8_t i = 0; i < k; i++) {
-        for (uint16_t j = 0; j < c->n; j++)
-            c->w->x0[j] = c->x[j];
-        c->hg = hk * tab->gamma, c->refresh = 1;
-        real_t e = ros2_attempt(c, tab, t + (real_t)i * hk, hk);
-        worst = e > worst ? e : worst;
-    }
-    return worst;
-}
-
 /* ROS2 has no iteration that could fail; a step whose estimate exceeds the set's
    accuracy is what tells a bad step (a stale Jacobian, a transient the step cannot
    follow). It is split into 2, 4, ... K substeps with a fresh Jacobian each, as a DIRK
@@ -482,7 +473,7 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     for (uint16_t j = 0; j < n; j++)
         ws->best[j] = x[j];
     for (uint8_t k = 2; e > acc && k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
-        e = ros2_split(&c, tab, t, h, k);
+        e = split(&c, ros2_attempt, tab, tab->gamma, t, h, k);
         ws->valid = 0; /* the next step's Jacobian belongs to its own h */
         if (e <= acc) {
             w->stats->substepped++;

@@ -123,11 +123,24 @@ expect_err "bad set value" 2 "not a finite number" $M run oscillator --set Osc.o
 expect_err "bad set range" 2 "out of range" $M run pi_loop --set Plant.T=0
 expect_err "bad csv path" 2 "cannot write the CSV file" $M run oscillator --csv /nonexistent/x.csv
 
-# the scene compiler alone gives a per-scene build its limits: the same as modrt sizes
-for f in models/scenes/*.scn; do
-    a=$(build/host/scenec --sizes "$f" 2>&1) b=$($M sizes "$f" 2>&1)
-    [ -n "$a" ] && [ "$a" = "$b" ] && ok || bad "scenec --sizes $f differs from modrt sizes"
-done
+# the scene compiler alone gives a per-scene build its limits, counted here by hand from
+# the scene files: pi_loop has 3 blocks (step, pi, pt1), 1 state, 1 discrete state, 3
+# inputs, 3 outputs, 3 + 2 + 2 parameters, 3 records; pendulum10 10 mass points (6 states,
+# 6 outputs, 4 parameters, 3 velocities each), 22 records, 10 rods; empty tables count 1.
+# (tests/image.sh runs images built with these limits against the host's hash)
+want_pi="-DRT_MAX_BLOCKS=3 -DRT_MAX_X=1 -DRT_MAX_D=1 -DRT_MAX_U=3 -DRT_MAX_Y=3 -DRT_MAX_P=7"
+want_pi="$want_pi -DRT_MAX_ROOTS=1 -DRT_MAX_SETS=1 -DRT_MAX_REC=3 -DRT_MAX_LOOPS=1 -DRT_MAX_TORN=1"
+want_pi="$want_pi -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_JOINTS=1 -DRT_MAX_MBS_Z=1 -DRT_MAX_MBS_Q=1"
+want_pi="$want_pi -DRT_MAX_MBS_C=1 -DRT_MAX_MBS_BZ=1"
+want_pe="-DRT_MAX_BLOCKS=10 -DRT_MAX_X=60 -DRT_MAX_D=1 -DRT_MAX_U=1 -DRT_MAX_Y=60 -DRT_MAX_P=40"
+want_pe="$want_pe -DRT_MAX_ROOTS=1 -DRT_MAX_SETS=1 -DRT_MAX_REC=22 -DRT_MAX_LOOPS=1 -DRT_MAX_TORN=1"
+want_pe="$want_pe -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_JOINTS=10 -DRT_MAX_MBS_Z=30 -DRT_MAX_MBS_Q=30"
+want_pe="$want_pe -DRT_MAX_MBS_C=10 -DRT_MAX_MBS_BZ=3"
+[ "$(build/host/scenec --sizes models/scenes/pi_loop.scn)" = "$want_pi" ] && ok ||
+    bad "scenec --sizes pi_loop: $(build/host/scenec --sizes models/scenes/pi_loop.scn)"
+[ "$(build/host/scenec --sizes models/scenes/pendulum10.scn)" = "$want_pe" ] && ok ||
+    bad "scenec --sizes pendulum10: $(build/host/scenec --sizes models/scenes/pendulum10.scn)"
+[ "$($M sizes pi_loop)" = "$want_pi" ] && ok || bad "modrt sizes pi_loop: $($M sizes pi_loop)"
 expect_err "scenec --sizes of a bad scene" 1 "error" build/host/scenec --sizes tests/scenec/errors/not_multibody.scn
 
 echo "$pass passed, $fail failed"

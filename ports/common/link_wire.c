@@ -32,13 +32,13 @@ uint32_t link_crc32(uint32_t crc, const uint8_t *p, size_t n)
     return ~crc;
 }
 
-static void put(uint8_t *b, uint64_t v, int bytes)
+void link_put_le(uint8_t *b, uint64_t v, int bytes)
 {
     for (int i = 0; i < bytes; i++)
         b[i] = (uint8_t)(v >> (8 * i));
 }
 
-static uint64_t get(const uint8_t *b, int bytes)
+uint64_t link_get_le(const uint8_t *b, int bytes)
 {
     uint64_t v = 0;
     for (int i = 0; i < bytes; i++)
@@ -46,13 +46,13 @@ static uint64_t get(const uint8_t *b, int bytes)
     return v;
 }
 
-static uint64_t bits_of(double d)
+uint64_t link_bits_of(double d)
 {
     union { double d; uint64_t u; } c = {.d = d};
     return c.u;
 }
 
-static double double_of(uint64_t u)
+double link_double_of(uint64_t u)
 {
     union { uint64_t u; double d; } c = {.u = u};
     return c.d;
@@ -65,19 +65,19 @@ size_t link_encode(const link_packet *p, uint8_t *buf, size_t cap)
     for (int i = 0; i < 4; i++)
         buf[i] = (uint8_t)LINK_MAGIC[i];
     buf[4] = LINK_VERSION, buf[5] = p->type;
-    put(buf + 6, p->n, 2);
+    link_put_le(buf + 6, p->n, 2);
     int end = 0;
     for (int i = 0; i < LINK_NAME_LEN; i++) {
         end |= p->name[i] == 0;
         buf[8 + i] = end ? 0 : (uint8_t)p->name[i];
     }
-    put(buf + 24, p->id, 4);
-    put(buf + 28, p->seq, 4);
-    put(buf + 32, p->tick, 8);
+    link_put_le(buf + 24, p->id, 4);
+    link_put_le(buf + 28, p->seq, 4);
+    link_put_le(buf + 32, p->tick, 8);
     for (uint16_t i = 0; i < p->n; i++)
-        put(buf + LINK_HEADER + 8 * (size_t)i, bits_of(p->v[i]), 8);
+        link_put_le(buf + LINK_HEADER + 8 * (size_t)i, link_bits_of(p->v[i]), 8);
     size_t body = LINK_HEADER + 8 * (size_t)p->n;
-    put(buf + body, link_crc32(0, buf, body), 4);
+    link_put_le(buf + body, link_crc32(0, buf, body), 4);
     return body + 4;
 }
 
@@ -102,11 +102,11 @@ link_wire_error link_decode(const uint8_t *buf, size_t len, uint8_t type, const 
             return LINK_E_MAGIC;
     if (buf[4] != LINK_VERSION)
         return LINK_E_VERSION;
-    p->n = (uint16_t)get(buf + 6, 2);
+    p->n = (uint16_t)link_get_le(buf + 6, 2);
     if (p->n > LINK_MAX_VALUES || len != LINK_SIZE(p->n))
         return LINK_E_SIZE;
     size_t body = LINK_HEADER + 8 * (size_t)p->n;
-    if (get(buf + body, 4) != link_crc32(0, buf, body))
+    if (link_get_le(buf + body, 4) != link_crc32(0, buf, body))
         return LINK_E_CRC;
     p->type = buf[5];
     if (p->type != type)
@@ -114,15 +114,15 @@ link_wire_error link_decode(const uint8_t *buf, size_t len, uint8_t type, const 
     for (int i = 0; i < LINK_NAME_LEN; i++)
         p->name[i] = (char)buf[8 + i];
     p->name[LINK_NAME_LEN] = 0;
-    p->id = (uint32_t)get(buf + 24, 4);
+    p->id = (uint32_t)link_get_le(buf + 24, 4);
     if (!same_name(buf + 8, name) || p->id != id)
         return LINK_E_SCENE;
     if (p->n != n)
         return LINK_E_COUNT;
-    p->seq = (uint32_t)get(buf + 28, 4);
-    p->tick = get(buf + 32, 8);
+    p->seq = (uint32_t)link_get_le(buf + 28, 4);
+    p->tick = link_get_le(buf + 32, 8);
     for (uint16_t i = 0; i < p->n; i++) {
-        p->v[i] = double_of(get(buf + LINK_HEADER + 8 * (size_t)i, 8));
+        p->v[i] = link_double_of(link_get_le(buf + LINK_HEADER + 8 * (size_t)i, 8));
         if (!(p->v[i] - p->v[i] == 0))
             return LINK_E_VALUE;
     }

@@ -63,6 +63,12 @@ typedef struct link_packet {
 const char *link_wire_error_name(int e); /* its meaning */
 const char *link_wire_error_key(int e);  /* one word, for key: value summaries */
 uint32_t link_crc32(uint32_t crc, const uint8_t *p, size_t n);
+/* The byte order of the wire and of the replay log (tools/modrt/mrlog.c): v into / from
+   `bytes` little-endian bytes, and a binary64's bit pattern. */
+void link_put_le(uint8_t *b, uint64_t v, int bytes);
+uint64_t link_get_le(const uint8_t *b, int bytes);
+uint64_t link_bits_of(double d);
+double link_double_of(uint64_t u);
 /* Writes packet p (p->n values) into buf (cap bytes); returns its size, or 0 if it
    does not fit or n exceeds LINK_MAX_VALUES. */
 size_t link_encode(const link_packet *p, uint8_t *buf, size_t cap);

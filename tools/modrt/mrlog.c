@@ -28,34 +28,6 @@ struct mrl_writer {
 
 static mrl_writer writer;
 
-static void put(uint8_t *b, uint64_t v, int bytes)
-{
-    for (int i = 0; i < bytes; i++)
-        b[i] = (uint8_t)(v >> (8 * i));
-}
-
-static uint64_t get(const uint8_t *b, int bytes)
-{
-    uint64_t v = 0;
-    for (int i = 0; i < bytes; i++)
-        v |= (uint64_t)b[i] << (8 * i);
-    return v;
-}
-
-static uint64_t bits(double d)
-{
-    uint64_t u;
-    memcpy(&u, &d, sizeof u);
-    return u;
-}
-
-static double real_of(uint64_t u)
-{
-    double d;
-    memcpy(&d, &u, sizeof d);
-    return d;
-}
-
 static size_t header_size(uint16_t nsets)
 {
     return MRL_FIXED + (MRL_SCENE_LEN + 1) + (size_t)nsets * (MRL_SET_LEN + 1) + 4;
@@ -66,19 +38,19 @@ static size_t encode_header(const mrl_header *h, uint8_t *b)
     size_t n = header_size(h->nsets);
     memset(b, 0, n);
     memcpy(b, "MRTR", 4);
-    put(b + 4, MRL_VERSION, 2);
-    put(b + 6, n, 2);
-    put(b + 8, h->id, 4);
-    put(b + 12, h->nimp, 2);
+    link_put_le(b + 4, MRL_VERSION, 2);
+    link_put_le(b + 6, n, 2);
+    link_put_le(b + 8, h->id, 4);
+    link_put_le(b + 12, h->nimp, 2);
     b[14] = h->real_size, b[15] = h->realtime;
-    put(b + 16, bits(h->t_end), 8);
-    put(b + 24, h->every, 4);
-    put(b + 28, h->nsets, 2);
+    link_put_le(b + 16, link_bits_of(h->t_end), 8);
+    link_put_le(b + 24, h->every, 4);
+    link_put_le(b + 28, h->nsets, 2);
     memcpy(b + MRL_FIXED, h->scene, strlen(h->scene));
     uint8_t *p = b + MRL_FIXED + MRL_SCENE_LEN + 1;
     for (uint16_t i = 0; i < h->nsets; i++, p += MRL_SET_LEN + 1)
         memcpy(p, h->sets[i], strlen(h->sets[i]));
-    put(b + n - 4, link_crc32(0, b, n - 4), 4);
+    link_put_le(b + n - 4, link_crc32(0, b, n - 4), 4);
     return n;
 }
 
@@ -104,10 +76,10 @@ int mrl_append(mrl_writer *w, uint64_t tick, const real_t *v)
 {
     uint8_t b[MRL_MAX_RECORD];
     size_t n = 8 + 8 * (size_t)w->nimp;
-    put(b, tick, 8);
+    link_put_le(b, tick, 8);
     for (uint16_t i = 0; i < w->nimp; i++)
-        put(b + 8 + 8 * i, bits((double)v[i]), 8);
-    put(b + n, link_crc32(0, b, n), 4);
+        link_put_le(b + 8 + 8 * i, link_bits_of((double)v[i]), 8);
+    link_put_le(b + n, link_crc32(0, b, n), 4);
     if (fwrite(b, 1, n + 4, w->f) != n + 4)
         w->failed = 1;
     w->count++;
@@ -118,8 +90,8 @@ int mrl_finish(mrl_writer *w, char *err, size_t n)
 {
     uint8_t b[16];
     memcpy(b, "MRTE", 4);
-    put(b + 4, w->count, 8);
-    put(b + 12, link_crc32(0, b, 12), 4);
+    link_put_le(b + 4, w->count, 8);
+    link_put_le(b + 12, link_crc32(0, b, 12), 4);
     if (fwrite(b, 1, 16, w->f) != 16)
         w->failed = 1;
     if (fclose(w->f) != 0)
@@ -159,21 +131,21 @@ static int read_header(mrl_header *h, char *err, size_t n)
         return fail(err, n, "not a modrt replay log (it does not begin with MRTR)", 0);
     if (got != MRL_FIXED)
         return fail(err, n, "truncated header", (long)got);
-    if (get(b + 4, 2) != MRL_VERSION)
+    if (link_get_le(b + 4, 2) != MRL_VERSION)
         return fail(err, n, "unsupported replay log version", 4);
-    h->nsets = (uint16_t)get(b + 28, 2);
-    size_t sz = get(b + 6, 2);
+    h->nsets = (uint16_t)link_get_le(b + 28, 2);
+    size_t sz = link_get_le(b + 6, 2);
     if (h->nsets > MRL_MAX_SETS || sz != header_size(h->nsets))
         return fail(err, n, "bad header size or --set count", 6);
     if (fread(b + MRL_FIXED, 1, sz - MRL_FIXED, rd.f) != sz - MRL_FIXED)
         return fail(err, n, "truncated header", MRL_FIXED);
-    if (get(b + sz - 4, 4) != link_crc32(0, b, sz - 4))
+    if (link_get_le(b + sz - 4, 4) != link_crc32(0, b, sz - 4))
         return fail(err, n, "header CRC mismatch (corrupt header)", (long)sz - 4);
-    h->id = (uint32_t)get(b + 8, 4);
-    h->nimp = (uint16_t)get(b + 12, 2);
+    h->id = (uint32_t)link_get_le(b + 8, 4);
+    h->nimp = (uint16_t)link_get_le(b + 12, 2);
     h->real_size = b[14], h->realtime = b[15];
-    h->t_end = real_of(get(b + 16, 8));
-    h->every = (uint32_t)get(b + 24, 4);
+    h->t_end = link_double_of(link_get_le(b + 16, 8));
+    h->every = (uint32_t)link_get_le(b + 24, 4);
     if (h->nimp > LINK_MAX_VALUES || h->every == 0)
         return fail(err, n, "bad value count or --every in the header", 12);
     memcpy(h->scene, b + MRL_FIXED, MRL_SCENE_LEN + 1);
@@ -197,21 +169,21 @@ static int read_record(char *err, size_t n, uint64_t prev, int check_order)
     if (got == 4 && memcmp(b, "MRTE", 4) == 0) {
         if (fread(b + 4, 1, 12, rd.f) != 12)
             return fail(err, n, "truncated end marker", at);
-        if (get(b + 12, 4) != link_crc32(0, b, 12))
+        if (link_get_le(b + 12, 4) != link_crc32(0, b, 12))
             return fail(err, n, "end marker CRC mismatch", at);
-        rd.count = get(b + 4, 8);
+        rd.count = link_get_le(b + 4, 8);
         return 0;
     }
     if (got != 4 || fread(b + 4, 1, rec, rd.f) != rec)
         return fail(err, n, got == 0 ? "truncated: no end marker after the last record"
                                      : "truncated record", at);
-    if (get(b + rec, 4) != link_crc32(0, b, rec))
+    if (link_get_le(b + rec, 4) != link_crc32(0, b, rec))
         return fail(err, n, "record CRC mismatch (corrupt record)", at);
-    rd.tick = get(b, 8);
+    rd.tick = link_get_le(b, 8);
     if (check_order && rd.next > 0 && rd.tick <= prev)
         return fail(err, n, "record ticks not increasing", at);
     for (uint16_t i = 0; i < rd.nimp; i++) {
-        double d = real_of(get(b + 8 + 8 * i, 8));
+        double d = link_double_of(link_get_le(b + 8 + 8 * i, 8));
         if (!(d - d == 0))
             return fail(err, n, "non-finite value in a record", at + 8 + 8 * i);
         rd.v[i] = (real_t)d;

@@ -540,25 +540,32 @@ static void st_set(scn_ctx *c, scn_pos at)
         s->nset++;
 }
 
+/* [output|state|discrete] Block.signal (a qualifier only where `qualified`) */
+static scn_rec signal_ref(scn_ctx *c, int qualified)
+{
+    static const char *const quals[] = {"output", "state", "discrete"};
+    scn_rec r;
+    memset(&r, 0, sizeof r);
+    r.want = -1;
+    r.sig.block = scn_expect_name(c, "a signal as Block.signal");
+    for (int q = 0; qualified && q < 3 && !c->err && !scn_is_op(c, "."); q++)
+        if (!strcmp(r.sig.block.s, quals[q])) {
+            r.want = (int8_t)q; /* RT_SIG_Y, RT_SIG_X, RT_SIG_D in this order */
+            r.sig.block = scn_expect_name(c, "a signal as Block.signal");
+        }
+    scn_expect_op(c, ".");
+    r.sig.port = scn_expect_name(c, "a signal name");
+    return r;
+}
+
 /* record ([output|state|discrete] Block.signal, ...); */
 static void st_record(scn_ctx *c, scn_pos at)
 {
-    static const char *const quals[] = {"output", "state", "discrete"};
     scn_scene *s = &c->sc;
     (void)at;
     scn_expect_op(c, "(");
     do {
-        scn_rec r;
-        memset(&r, 0, sizeof r);
-        r.want = -1;
-        r.sig.block = scn_expect_name(c, "a signal as Block.signal");
-        for (int q = 0; q < 3 && !c->err && !scn_is_op(c, "."); q++)
-            if (!strcmp(r.sig.block.s, quals[q])) {
-                r.want = (int8_t)q; /* RT_SIG_Y, RT_SIG_X, RT_SIG_D in this order */
-                r.sig.block = scn_expect_name(c, "a signal as Block.signal");
-            }
-        scn_expect_op(c, ".");
-        r.sig.port = scn_expect_name(c, "a signal name");
+        scn_rec r = signal_ref(c, 1);
         if (!c->err && s->nrec >= SCN_MAX_RECS)
             scn_fail(c, r.sig.block.pos, r.sig.block.s, "too many recorded signals",
                      scn_limit(c, RT_MAX_REC, "signals", "RT_MAX_REC"));
@@ -589,12 +596,7 @@ static void st_export(scn_ctx *c, scn_pos at)
     (void)at;
     scn_expect_op(c, "(");
     do {
-        scn_rec r;
-        memset(&r, 0, sizeof r);
-        r.want = -1;
-        r.sig.block = scn_expect_name(c, "a signal as Block.signal");
-        scn_expect_op(c, ".");
-        r.sig.port = scn_expect_name(c, "a signal name");
+        scn_rec r = signal_ref(c, 0);
         if (!c->err && s->nlexp >= SCN_MAX_RECS)
             scn_fail(c, r.sig.block.pos, r.sig.block.s, "too many exported signals",
                      scn_fmt(c, "at most %u", SCN_MAX_RECS));
