@@ -14,6 +14,7 @@
  * frame). Outputs: position and velocity of the centre of mass, body angular velocity,
  * position and velocity of nodes n1 and n2. */
 #include "models.h"
+#include "rigid.h"
 
 enum { P_M = 0, P_J = 1, P_G = 7, P_N1 = 10, P_N2 = 13, NP = 16 };
 
@@ -31,23 +32,6 @@ static const real_t p_default[NP] = {1, (real_t)0.1, (real_t)0.1, (real_t)0.1, 0
                                      0, 0, (real_t)-9.81, 0, 0, 0, 0, 0, 0};
 static const real_t x_default[13] = {0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
 
-static void cross3(const real_t *a, const real_t *b, real_t *c)
-{
-    /* cppcheck's whole-program pass sizes real_t[3] as float and calls offset 16 (b[2] as
-       double) out of bounds: a false positive (every caller passes three real_t) */
-    // cppcheck-suppress ctuArrayIndex
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-/* y = A x for a row-major 3 x 3 A */
-static void mul3(const real_t *A, const real_t *x, real_t *y)
-{
-    for (int i = 0; i < 3; i++)
-        y[i] = A[3 * (size_t)i] * x[0] + A[3 * (size_t)i + 1] * x[1] + A[3 * (size_t)i + 2] * x[2];
-}
-
 /* the symmetric inertia tensor from its six parameters */
 static void inertia(const real_t *p, real_t *J)
 {
@@ -58,28 +42,8 @@ static void inertia(const real_t *p, real_t *J)
     J[2] = J[6] = j[5];
 }
 
-/* R(p / |p|), row-major; a zero quaternion reads as the identity (finite, deterministic) */
-static void rotation(const real_t *q, real_t *R)
-{
-    real_t n = rt_sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    real_t a = 1, b = 0, c = 0, d = 0;
-    if (n > 0)
-        a = q[0] / n, b = q[1] / n, c = q[2] / n, d = q[3] / n;
-    R[0] = 1 - 2 * (c * c + d * d), R[1] = 2 * (b * c - a * d), R[2] = 2 * (b * d + a * c);
-    R[3] = 2 * (b * c + a * d), R[4] = 1 - 2 * (b * b + d * d), R[5] = 2 * (c * d - a * b);
-    R[6] = 2 * (b * d - a * c), R[7] = 2 * (c * d + a * b), R[8] = 1 - 2 * (b * b + c * c);
-}
-
 /* r' = v, p' = 1/2 p (x) (0, w): the K of eq. 6a applied to v = [v; w] */
-static void kin(const rt_args *a, const real_t *v, real_t *qd)
-{
-    const real_t *p = a->x + 3, *w = v + 3;
-    qd[0] = v[0], qd[1] = v[1], qd[2] = v[2];
-    qd[3] = (real_t)-0.5 * (p[1] * w[0] + p[2] * w[1] + p[3] * w[2]);
-    qd[4] = (real_t)0.5 * (p[0] * w[0] + p[2] * w[2] - p[3] * w[1]);
-    qd[5] = (real_t)0.5 * (p[0] * w[1] + p[3] * w[0] - p[1] * w[2]);
-    qd[6] = (real_t)0.5 * (p[0] * w[2] + p[1] * w[1] - p[2] * w[0]);
-}
+static void kin(const rt_args *a, const real_t *v, real_t *qd) { mdl_rigid_kin(a->x, v, qd); }
 
 /* M = diag(m I, J), 6 x 6 */
 static void mass(const rt_args *a, real_t *M)
@@ -101,8 +65,8 @@ static void force(const rt_args *a, real_t *k)
     const real_t *w = a->x + 10;
     real_t J[9], Jw[3];
     inertia(a->p, J);
-    mul3(J, w, Jw);
-    cross3(w, Jw, k + 3);
+    mdl_mul3(J, w, Jw);
+    mdl_cross3(w, Jw, k + 3);
     for (int i = 0; i < 3; i++) {
         k[i] = a->p[P_M] * a->p[P_G + i];
         k[3 + i] = -k[3 + i];
@@ -117,43 +81,15 @@ static void force_u(const rt_args *a, real_t *k)
         k[i] += a->u[i];
 }
 
-/* node at body offset s: r = r0 + R s, v = v0 + R (w x s), w_I = R w,
+/* node at body offset s (rigid.c): r = r0 + R s, v = v0 + R (w x s), w_I = R w,
    ar = R (w x (w x s)), aw = 0; Jr = [I, -R [s]x], Jw = [0, R] */
 static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
 {
     static const real_t zero[3] = {0, 0, 0};
     const real_t *s = i == 1 ? a->p + P_N1 : i == 2 ? a->p + P_N2 : zero;
-    const real_t *w = a->x + 10;
-    real_t R[9], t[3], ws[3], wws[3];
-    rotation(a->x + 3, R);
-    cross3(w, s, ws);
-    cross3(w, ws, wws);
-    mul3(R, s, t);
-    for (int k = 0; k < 3; k++)
-        n->r[k] = a->x[k] + t[k];
-    mul3(R, ws, t);
-    for (int k = 0; k < 3; k++)
-        n->v[k] = a->x[7 + k] + t[k], n->aw[k] = 0;
-    mul3(R, w, n->w);
-    mul3(R, wws, n->ar);
-    for (int k = 0; k < 9; k++)
-        n->S[k] = R[k];
-    if (!J)
-        return;
-    /* column c of [s]x is s x e_c, so column c of -R [s]x is -R (s x e_c) */
-    for (int k = 0; k < 36; k++)
-        J[k] = 0;
-    for (int c = 0; c < 3; c++) {
-        real_t e[3] = {0, 0, 0}, se[3], col[3];
-        e[c] = 1;
-        cross3(s, e, se);
-        mul3(R, se, col);
-        for (int r = 0; r < 3; r++) {
-            J[r * 6 + r] = 1;
-            J[r * 6 + 3 + c] = -col[r];
-            J[(3 + r) * 6 + 3 + c] = R[3 * r + c];
-        }
-    }
+    real_t R[9];
+    mdl_rotation(a->x + 3, R);
+    mdl_rigid_node(a->x, R, s, n, J);
 }
 
 /* T = m |v|^2 / 2 + w^T J w / 2, V = -m g . r */
@@ -162,19 +98,10 @@ static void energy(const rt_args *a, real_t *e)
     const real_t *x = a->x, *p = a->p, *w = x + 10;
     real_t J[9], Jw[3];
     inertia(p, J);
-    mul3(J, w, Jw);
+    mdl_mul3(J, w, Jw);
     e[0] = (real_t)0.5 * (p[P_M] * (x[7] * x[7] + x[8] * x[8] + x[9] * x[9]) +
                           (w[0] * Jw[0] + w[1] * Jw[1] + w[2] * Jw[2]));
     e[1] = -p[P_M] * (p[P_G] * x[0] + p[P_G + 1] * x[1] + p[P_G + 2] * x[2]);
-}
-
-/* p <- p / |p| after the position projection */
-static void normalize(real_t *q)
-{
-    real_t n = rt_sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
-    if (n > 0)
-        for (int i = 3; i < 7; i++)
-            q[i] /= n;
 }
 
 /* centre of mass, body angular velocity, and nodes n1, n2 (position, velocity) */
@@ -207,11 +134,11 @@ static rt_status check(const real_t *p, const void *spec)
 
 static const rt_mbs_spec spec = {
     .nq = 7, .nz = 6, .nn = 3, .node_names = node_names, .kin = kin, .mass = mass,
-    .force = force, .node = node, .energy = energy, .normalize = normalize,
+    .force = force, .node = node, .energy = energy, .normalize = mdl_rigid_normalize,
 };
 static const rt_mbs_spec spec_u = {
     .nq = 7, .nz = 6, .nn = 3, .node_names = node_names, .kin = kin, .mass = mass,
-    .force = force_u, .node = node, .energy = energy, .normalize = normalize,
+    .force = force_u, .node = node, .energy = energy, .normalize = mdl_rigid_normalize,
 };
 
 const rt_kind mdl_mbs_body_kind = {

@@ -57,6 +57,10 @@ extern const rt_kind mdl_mbs_dumbbell_kind;
 /* planar single-track car with linear tires (vehicle_st.c), inputs delta, Fx; nodes
    "front", "rear" (hitch points) */
 extern const rt_kind mdl_st_car_kind, mdl_st_car_mf_kind; /* linear / Magic-Formula tires */
+/* spatial car (vehicle_3d.c): a rigid chassis with a unit quaternion on four sprung
+   corners, the ports and nodes of st_car plus the input Fa and the outputs z, roll,
+   pitch and the corner loads */
+extern const rt_kind mdl_car3d_kind, mdl_car3d_mf_kind; /* linear / Magic-Formula tires */
 /* aerodynamic drag from the forward speed (drag.c) */
 extern const rt_kind mdl_drag_kind;
 /* the ISO 3888-1 double lane change (lane_change.c): a pure-pursuit driver on its centre
@@ -81,5 +85,10 @@ extern const rt_scene_entry mdl_scenes[];
 extern const rt_kind mdl_servo2_kind, mdl_arm_pd_kind, mdl_arm_motor_kind;
 enum { MDL_SERVO2_Y = 0, MDL_SERVO2_YD };
 enum { MDL_ARM_PD_Y_U = 0, MDL_ARM_PD_Y_THETA, MDL_ARM_PD_Y_THR };
+
+/* a steering chain's actuators (models/steer_chain.c): a DC torque motor with a PI
+   current loop (NSS; input iref, outputs s, phi, w, i) and a valve-controlled hydraulic
+   cylinder on the steering rack (NSS; input xv, outputs delta, y, p) */
+extern const rt_kind mdl_dc_motor_kind, mdl_hyd_servo_kind;
 
 #endif /* MDL_MODELS_H */

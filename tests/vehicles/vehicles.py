@@ -190,7 +190,7 @@ def multirate(modrt):
         rc, summ, _, rows = runs[name]
         e = max(abs(a[i] - b[i]) for a, b in zip(ref, rows) if round(a[0] * 1000) % 5 == 0
                 for i in pos)
-        ew = max(abs(a[col["Servo.y"]] - b[col["Servo.y"]]) for a, b in zip(ref, rows))
+        ew = max(abs(a[col["Servo.delta"]] - b[col["Servo.delta"]]) for a, b in zip(ref, rows))
         print("vehicles: %s: largest position difference from the reference %.2g m, wheel "
               "angle %.2g rad, host %s s, status %s" % (name, e, ew, summ.get("wall_s"),
                                                         summ.get("status")))

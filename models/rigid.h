@@ -1,0 +1,112 @@
+/* rigid.h - kinematics of a spatial rigid body with a unit quaternion, shared by the
+ * multibody kinds that have one (mbs_body.c, vehicle_3d.c): rotation, quaternion
+ * kinematics, interaction nodes at body offsets. The state layout is that of mbs_body:
+ * x = [r (3), p (4, scalar first), v (3, inertial), w (3, body frame)]. Static inline
+ * functions, not a unit of their own: a scene's image links only the model units that
+ * define its kinds (tests/scenec/effects.sh). */
+#ifndef MDL_RIGID_H
+#define MDL_RIGID_H
+
+#include "rt.h"
+
+/* offsets into the state of a rigid body */
+enum { MDL_RB_R = 0, MDL_RB_P = 3, MDL_RB_V = 7, MDL_RB_W = 10, MDL_RB_NQ = 7, MDL_RB_NZ = 6 };
+
+/* c = a x b */
+static inline void mdl_cross3(const real_t *a, const real_t *b, real_t *c)
+{
+    /* cppcheck's whole-program pass sizes real_t[3] as float and calls offset 16 (b[2] as
+       double) out of bounds: a false positive (every caller passes three real_t) */
+    // cppcheck-suppress ctuArrayIndex
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* y = A x for a row-major 3 x 3 A */
+static inline void mdl_mul3(const real_t *A, const real_t *x, real_t *y)
+{
+    for (int i = 0; i < 3; i++)
+        y[i] = A[3 * (size_t)i] * x[0] + A[3 * (size_t)i + 1] * x[1] + A[3 * (size_t)i + 2] * x[2];
+}
+
+/* y = A^T x for a row-major 3 x 3 A */
+static inline void mdl_mul3t(const real_t *A, const real_t *x, real_t *y)
+{
+    for (int i = 0; i < 3; i++)
+        y[i] = A[i] * x[0] + A[3 + i] * x[1] + A[6 + i] * x[2];
+}
+
+/* R(q / |q|), row-major; a zero quaternion reads as the identity (finite,
+   deterministic) */
+static inline void mdl_rotation(const real_t *q, real_t *R)
+{
+    real_t n = rt_sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    real_t a = 1, b = 0, c = 0, d = 0;
+    if (n > 0)
+        a = q[0] / n, b = q[1] / n, c = q[2] / n, d = q[3] / n;
+    R[0] = 1 - 2 * (c * c + d * d), R[1] = 2 * (b * c - a * d), R[2] = 2 * (b * d + a * c);
+    R[3] = 2 * (b * c + a * d), R[4] = 1 - 2 * (b * b + d * d), R[5] = 2 * (c * d - a * b);
+    R[6] = 2 * (b * d - a * c), R[7] = 2 * (c * d + a * b), R[8] = 1 - 2 * (b * b + c * c);
+}
+
+/* r' = v, p' = 1/2 p (x) (0, w): K(q) of eq. 6a applied to v = [v; w] (q = x); K keeps
+   |p| constant up to the integrator's error, the projection renormalizes it */
+static inline void mdl_rigid_kin(const real_t *x, const real_t *v, real_t *qd)
+{
+    const real_t *p = x + MDL_RB_P, *w = v + 3;
+    qd[0] = v[0], qd[1] = v[1], qd[2] = v[2];
+    qd[3] = (real_t)-0.5 * (p[1] * w[0] + p[2] * w[1] + p[3] * w[2]);
+    qd[4] = (real_t)0.5 * (p[0] * w[0] + p[2] * w[2] - p[3] * w[1]);
+    qd[5] = (real_t)0.5 * (p[0] * w[1] + p[3] * w[0] - p[1] * w[2]);
+    qd[6] = (real_t)0.5 * (p[0] * w[2] + p[1] * w[1] - p[2] * w[0]);
+}
+
+/* the node at body offset s of the body in state x with rotation R: r = r0 + R s,
+   v = v0 + R (w x s), w_I = R w, ar = R (w x (w x s)), aw = 0, frame S = R; if J is not
+   NULL the 6 x 6 Jacobians Jr = [I, -R [s]x], Jw = [0, R] */
+static inline void mdl_rigid_node(const real_t *x, const real_t *R, const real_t *s, rt_mbs_node *n,
+                    real_t *J)
+{
+    const real_t *w = x + MDL_RB_W;
+    real_t t[3], ws[3], wws[3];
+    mdl_cross3(w, s, ws);
+    mdl_cross3(w, ws, wws);
+    mdl_mul3(R, s, t);
+    for (int k = 0; k < 3; k++)
+        n->r[k] = x[k] + t[k];
+    mdl_mul3(R, ws, t);
+    for (int k = 0; k < 3; k++)
+        n->v[k] = x[MDL_RB_V + k] + t[k], n->aw[k] = 0;
+    mdl_mul3(R, w, n->w);
+    mdl_mul3(R, wws, n->ar);
+    for (int k = 0; k < 9; k++)
+        n->S[k] = R[k];
+    if (!J)
+        return;
+    /* column c of [s]x is s x e_c, so column c of -R [s]x is -R (s x e_c) */
+    for (int k = 0; k < 36; k++)
+        J[k] = 0;
+    for (int c = 0; c < 3; c++) {
+        real_t e[3] = {0, 0, 0}, se[3], col[3];
+        e[c] = 1;
+        mdl_cross3(s, e, se);
+        mdl_mul3(R, se, col);
+        for (int r = 0; r < 3; r++) {
+            J[r * 6 + r] = 1;
+            J[r * 6 + 3 + c] = -col[r];
+            J[(3 + r) * 6 + 3 + c] = R[3 * r + c];
+        }
+    }
+}
+
+/* p <- p / |p| in q = [r, p] (after the position projection) */
+static inline void mdl_rigid_normalize(real_t *q)
+{
+    real_t n = rt_sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
+    if (n > 0)
+        for (int i = 3; i < 7; i++)
+            q[i] /= n;
+}
+
+#endif /* MDL_RIGID_H */

@@ -1,0 +1,337 @@
+/* vehicle_3d.c - a spatial car as a multibody module (eq. 6): the chassis a rigid body
+ * with six degrees of freedom and a unit quaternion (rigid.h, as mbs_body), standing on
+ * four corners with vertical spring-dampers and tires, with the hitch nodes and ports of
+ * the single-track car (vehicle_st.c) so that a scene can swap the kinds
+ * (docs/vehicles.md, "The spatial car").
+ *
+ * Coordinates q = [r, p] (centre of mass, quaternion of the body-to-ground rotation R),
+ * velocities z = [v (ground frame), w (body frame)], M = diag(m, m, m, Ixx, Iyy, Izz)
+ * (principal axes: RT_MBS_M_DIAG). Body frame x forward, y left, z up; ground z up.
+ * Corner i (fl, fr, rl, rr) is the body point s_i = (l_f or -l_r, +-t/2, -h): the contact
+ * point when the car stands at its design height h. Its height z_i and vertical speed
+ * give the vertical load (suspension spring in series with the tire, damper; unsprung
+ * masses neglected)
+ *     F_z,i = max(0, pre F0_i - k z_i - c z_i'),  F0 = m g l_r / (2 L) front, m g l_f / (2 L) rear,
+ * so that with pre = 1 the car starts at rest in static equilibrium. The tire forces act
+ * at the corner point in the ground plane, from the slip of the point's velocity in the
+ * wheel frame (the body x axis projected on the ground, turned by delta at the front):
+ *     tan a = -V_y / V_x  (V_x >= u_min; the slip angle of vehicle_st.c for small angles).
+ * car3d: linear tires whose cornering stiffness is proportional to the load,
+ *     F_y = (C/2) (F_z / F0) tan a,
+ * F_x as demanded (no friction limit). car3d_mf: the Magic Formula with D = mu F_z and a
+ * degressive cornering stiffness C_a(F_z) = c1 sin(2 atan(F_z / c2)), c2 = fzpk F0,
+ * C_a(F0) = C/2 (Pacejka, Tire and Vehicle Dynamics, ch. 4), combined with the
+ * longitudinal force by the friction circle: F_x = the demand limited to mu F_z,
+ * F_y = F_y0 sqrt(1 - (F_x / (mu F_z))^2).
+ * The longitudinal force is quasi-static: the drive input Fx is split on the axles
+ * (share `drive` in front) and on the two wheels; no wheel spin states (their slip time
+ * constant of about 2 ms at 20 m/s would bound the vehicles' step near 1 ms). Fa is a
+ * force along the heading at the centre of mass (aerodynamic drag). */
+#include "models.h"
+#include "rigid.h"
+
+enum {
+    P_M, P_IXX, P_IYY, P_IZZ, P_LF, P_LR, P_TF, P_TR, P_H, P_CF, P_CR, P_FZPK, P_MU,
+    P_SHAPE, P_CURV, P_KF, P_KR, P_CDF, P_CDR, P_PRE, P_DRIVE, P_DF, P_DR, P_UMIN, P_G,
+    P_COUNT
+};
+enum { U_DELTA, U_FX, U_FA, NU };
+enum { Y_X, Y_Y, Y_PSI, Y_U, Y_V, Y_R, Y_AY, Y_Z, Y_ROLL, Y_PITCH, Y_FZ, NY = Y_FZ + 4 };
+enum { NCORNER = 4, NX = MDL_RB_NQ + MDL_RB_NZ };
+
+static const char *const x_names[] = {"x", "y", "z", "p0", "p1", "p2", "p3",
+                                      "vx", "vy", "vz", "wx", "wy", "wz"};
+static const char *const y_names[] = {"x", "y", "psi", "u", "v", "r", "ay",
+                                      "z", "roll", "pitch", "Fz_fl", "Fz_fr", "Fz_rl", "Fz_rr"};
+static const char *const u_names[] = {"delta", "Fx", "Fa"};
+static const char *const p_names[] = {"m", "Ixx", "Iyy", "Izz", "lf", "lr", "tf", "tr", "h",
+                                      "Cf", "Cr", "fzpk", "mu", "C", "E", "kf", "kr", "cf",
+                                      "cr", "pre", "drive", "df", "dr", "umin", "g"};
+static const char *const node_names[] = {"front", "rear"};
+/* CommonRoad vehicle 1 (docs/vehicles.md): m, Ixx = I_Phi_s, Iyy = I_y_s, Izz, lf, lr,
+   tracks T_f, T_r, h = h_cg; corner stiffness K_sf in series with the tire's K_zt,
+   damping K_sdf. Cf, Cr, mu, C, E as st_car_mf; fzpk, drive, df, dr, umin: our choice */
+static const real_t p_default[P_COUNT] = {
+    (real_t)1225.887, (real_t)244.047, (real_t)1342.260, (real_t)1538.853, (real_t)0.88392,
+    (real_t)1.50876, (real_t)1.389888, (real_t)1.423416, (real_t)0.557784, 158000, 170000,
+    2, 1, (real_t)1.3, (real_t)-0.5, (real_t)19632.988, (real_t)19632.988,
+    (real_t)1459.390, (real_t)1459.390, 1, 1, 2, 2, 1, (real_t)9.81};
+static const real_t x_default[NX] = {0, 0, (real_t)0.557784, 1, 0, 0, 0, 20, 0, 0, 0, 0, 0};
+/* ay depends directly on delta and Fx (the tire forces); nothing else feeds through */
+static const uint8_t feed[NY * NU] = {[Y_AY * NU + U_DELTA] = 1, [Y_AY * NU + U_FX] = 1};
+
+/* what every force evaluation needs: the rotation, the heading and the wheel angle */
+typedef struct chassis {
+    real_t R[9];    /* body to ground, row-major */
+    real_t hx, hy;  /* heading: the body x axis projected on the ground, unit length */
+    real_t cd, sd;  /* cos, sin of the front wheels' angle */
+} chassis;
+
+/* the sum of the corner forces: ground-frame force, body-frame moment about the centre of
+   mass, and the vertical loads */
+typedef struct wrench {
+    real_t f[3], t[3], fz[NCORNER];
+} wrench;
+
+static void frame(const rt_args *a, chassis *c)
+{
+    mdl_rotation(a->x + MDL_RB_P, c->R);
+    real_t n = rt_sqrt(c->R[0] * c->R[0] + c->R[3] * c->R[3]);
+    /* a car standing on its nose has no heading: keep the ground x axis (finite) */
+    c->hx = n > 0 ? c->R[0] / n : 1, c->hy = n > 0 ? c->R[3] / n : 0;
+    c->cd = rt_cos(a->u[U_DELTA]), c->sd = rt_sin(a->u[U_DELTA]);
+}
+
+/* corner i = fl, fr, rl, rr at body offset s (y to the left) */
+static void corner_offset(const real_t *p, int i, real_t *s)
+{
+    int front = i < 2;
+    s[0] = front ? p[P_LF] : -p[P_LR];
+    s[1] = (i & 1 ? (real_t)-0.5 : (real_t)0.5) * (front ? p[P_TF] : p[P_TR]);
+    s[2] = -p[P_H];
+}
+
+/* the static load of corner i: the statics of the axles, shared by the two wheels */
+static real_t static_load(const real_t *p, int i)
+{
+    return p[P_M] * p[P_G] * (i < 2 ? p[P_LR] : p[P_LF]) / (2 * (p[P_LF] + p[P_LR]));
+}
+
+/* vertical load from the corner's height z and vertical speed zd; a wheel off the
+   ground carries nothing (no adhesion) */
+static real_t vertical(const real_t *p, int i, real_t z, real_t zd)
+{
+    int front = i < 2;
+    real_t fz = p[P_PRE] * static_load(p, i) - p[front ? P_KF : P_KR] * z -
+                p[front ? P_CDF : P_CDR] * zd;
+    return fz > 0 ? fz : 0;
+}
+
+/* Magic Formula F = D sin(C atan(B a - E (B a - atan(B a)))), D = mu fz, with
+   B C D = C_a(fz) = c1 sin(2 atan(fz / c2)) = c1 2 x / (1 + x^2), x = fz / c2,
+   c2 = fzpk f0 and c1 such that C_a(f0) = ca0. B = 2 c1 / (c2 (1 + x^2) C mu) stays
+   finite as fz goes to zero */
+static real_t magic(const real_t *p, real_t alpha, real_t ca0, real_t f0, real_t fz)
+{
+    real_t d = p[P_MU] * fz;
+    if (d <= 0)
+        return 0;
+    real_t c2 = p[P_FZPK] * f0, x = fz / c2, x0 = 1 / p[P_FZPK];
+    real_t c1 = ca0 * (1 + x0 * x0) / (2 * x0);
+    real_t b = 2 * c1 / (c2 * (1 + x * x) * p[P_SHAPE] * p[P_MU]), ba = b * alpha;
+    return d * rt_sin(p[P_SHAPE] * rt_atan(ba - p[P_CURV] * (ba - rt_atan(ba))));
+}
+
+/* friction circle: the longitudinal demand limited to fmax = mu fz, the pure lateral
+   force scaled so that |(fx, fy)| <= fmax (|fy0| <= fmax by the Magic Formula) */
+static void combine(real_t fmax, real_t fxd, real_t *fx, real_t *fy)
+{
+    if (fmax <= 0) {
+        *fx = *fy = 0;
+        return;
+    }
+    real_t f = fxd > fmax ? fmax : fxd < -fmax ? -fmax : fxd, q = f / fmax;
+    *fx = f;
+    *fy *= rt_sqrt(1 - q * q);
+}
+
+/* wheel-frame forces (fx along the wheel, fy across) of corner i from its load fz and
+   the contact point's speeds vx along the wheel and vy across it: the slip is tan(a) =
+   -vy / vx (vx >= umin), as the Magic Formula of Pacejka (ch. 4.3) takes it, which needs
+   no inverse tangent */
+static void tire(const rt_args *a, int i, real_t fz, real_t vx, real_t vy, int mf,
+                 real_t *fx, real_t *fy)
+{
+    const real_t *p = a->p;
+    int front = i < 2;
+    real_t slip = -vy / (vx > p[P_UMIN] ? vx : p[P_UMIN]);
+    real_t share = front ? p[P_DRIVE] : 1 - p[P_DRIVE];
+    real_t f0 = static_load(p, i), ca0 = (front ? p[P_CF] : p[P_CR]) / 2;
+    *fx = (real_t)0.5 * share * a->u[U_FX];
+    if (mf) {
+        *fy = magic(p, slip, ca0, f0, fz);
+        combine(p[P_MU] * fz, *fx, fx, fy);
+    } else {
+        *fy = ca0 * fz / f0 * slip;
+    }
+}
+
+/* corner i: its vertical load and tire forces at the corner point, added to w */
+static void corner(const rt_args *a, const chassis *c, int i, int mf, wrench *w)
+{
+    const real_t *x = a->x;
+    real_t s[3], ws[3], t[3], vp[3], F[3], fb[3], tb[3], fx, fy;
+    corner_offset(a->p, i, s);
+    mdl_cross3(x + MDL_RB_W, s, ws);
+    mdl_mul3(c->R, ws, t);
+    for (int k = 0; k < 3; k++)
+        vp[k] = x[MDL_RB_V + k] + t[k];
+    mdl_mul3(c->R, s, t);
+    real_t fz = vertical(a->p, i, x[2] + t[2], vp[2]);
+    /* the contact point's velocity in the heading frame, then in the wheel frame (front
+       wheels turned by delta) */
+    real_t vx = c->hx * vp[0] + c->hy * vp[1], vy = -c->hy * vp[0] + c->hx * vp[1];
+    real_t cd = i < 2 ? c->cd : 1, sd = i < 2 ? c->sd : 0;
+    tire(a, i, fz, cd * vx + sd * vy, -sd * vx + cd * vy, mf, &fx, &fy);
+    /* wheel frame -> heading frame -> ground */
+    real_t fh = fx * cd - fy * sd, fl = fx * sd + fy * cd;
+    F[0] = c->hx * fh - c->hy * fl, F[1] = c->hy * fh + c->hx * fl, F[2] = fz;
+    /* its moment about the centre of mass in the body frame: s x R^T F */
+    mdl_mul3t(c->R, F, fb);
+    mdl_cross3(s, fb, tb);
+    for (int k = 0; k < 3; k++)
+        w->f[k] += F[k], w->t[k] += tb[k];
+    w->fz[i] = fz;
+}
+
+static const rt_mbs_spec spec_mf;
+
+/* the four corners; the kind's spec selects the tire law (car3d_mf: Magic Formula) */
+static void corners(const rt_args *a, const chassis *c, wrench *w)
+{
+    for (int k = 0; k < 3; k++)
+        w->f[k] = w->t[k] = 0;
+    for (int i = 0; i < NCORNER; i++)
+        corner(a, c, i, a->spec == &spec_mf, w);
+}
+
+static void kin(const rt_args *a, const real_t *v, real_t *qd) { mdl_rigid_kin(a->x, v, qd); }
+
+static void mass(const rt_args *a, real_t *M)
+{
+    M[0] = M[1] = M[2] = a->p[P_M];
+    M[3] = a->p[P_IXX], M[4] = a->p[P_IYY], M[5] = a->p[P_IZZ];
+}
+
+/* k = [sum F_i + Fa heading - m g e_z, sum s_i x R^T F_i - w x J w] (eq. 6b) */
+static void force(const rt_args *a, real_t *k)
+{
+    const real_t *p = a->p, *w = a->x + MDL_RB_W;
+    chassis c;
+    wrench t;
+    frame(a, &c);
+    corners(a, &c, &t);
+    real_t Jw[3] = {p[P_IXX] * w[0], p[P_IYY] * w[1], p[P_IZZ] * w[2]}, gyro[3];
+    mdl_cross3(w, Jw, gyro);
+    k[0] = t.f[0] + a->u[U_FA] * c.hx;
+    k[1] = t.f[1] + a->u[U_FA] * c.hy;
+    k[2] = t.f[2] - p[P_M] * p[P_G];
+    for (int i = 0; i < 3; i++)
+        k[3 + i] = t.t[i] - gyro[i];
+}
+
+/* hitch i at d ahead of the centre of mass (d < 0: behind), at its height */
+static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
+{
+    real_t R[9], s[3] = {i == 0 ? a->p[P_DF] : -a->p[P_DR], 0, 0};
+    mdl_rotation(a->x + MDL_RB_P, R);
+    mdl_rigid_node(a->x, R, s, n, J);
+}
+
+/* T = m |v|^2 / 2 + w^T J w / 2; V = m g z + sum (k z_i^2 / 2 - pre F0_i z_i), the
+   potential of gravity and of the corner springs while every wheel touches the ground */
+static void energy(const rt_args *a, real_t *e)
+{
+    const real_t *x = a->x, *p = a->p, *v = x + MDL_RB_V, *w = x + MDL_RB_W;
+    real_t R[9], s[3], t[3];
+    e[0] = (real_t)0.5 * (p[P_M] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
+                          p[P_IXX] * w[0] * w[0] + p[P_IYY] * w[1] * w[1] +
+                          p[P_IZZ] * w[2] * w[2]);
+    e[1] = p[P_M] * p[P_G] * x[2];
+    mdl_rotation(x + MDL_RB_P, R);
+    for (int i = 0; i < NCORNER; i++) {
+        corner_offset(p, i, s);
+        mdl_mul3(R, s, t);
+        real_t z = x[2] + t[2], k = p[i < 2 ? P_KF : P_KR];
+        e[1] += (real_t)0.5 * k * z * z - p[P_PRE] * static_load(p, i) * z;
+    }
+}
+
+/* yaw, roll, pitch (z-y-x angles of R), the yaw rate psi' = (wy sin(roll) +
+   wz cos(roll)) / cos(pitch), the speeds in the heading frame, a_y from the tire forces */
+static void output(const rt_args *a, real_t *y)
+{
+    const real_t *x = a->x, *w = x + MDL_RB_W;
+    chassis c;
+    wrench t;
+    frame(a, &c);
+    corners(a, &c, &t);
+    const real_t *R = c.R;
+    real_t cc = R[7] * R[7] + R[8] * R[8], sp = -R[6] > 1 ? 1 : -R[6] < -1 ? -1 : -R[6];
+    y[Y_X] = x[0], y[Y_Y] = x[1], y[Y_Z] = x[2];
+    y[Y_PSI] = rt_atan2(R[3], R[0]);
+    y[Y_ROLL] = rt_atan2(R[7], R[8]);
+    y[Y_PITCH] = rt_asin(sp);
+    y[Y_U] = c.hx * x[MDL_RB_V] + c.hy * x[MDL_RB_V + 1];
+    y[Y_V] = -c.hy * x[MDL_RB_V] + c.hx * x[MDL_RB_V + 1];
+    y[Y_R] = cc > 0 ? (w[1] * R[7] + w[2] * R[8]) / cc : 0;
+    y[Y_AY] = (-c.hy * t.f[0] + c.hx * t.f[1]) / a->p[P_M];
+    for (int i = 0; i < NCORNER; i++)
+        y[Y_FZ + i] = t.fz[i];
+}
+
+/* every parameter finite; masses, inertias, lengths, stiffnesses, fzpk, umin and g
+   positive; dampers, pre, hitch offsets and mu not negative; drive in [0, 1];
+   C in (0, 2) (a peak) and E <= 1 */
+static rt_status check(const real_t *p, const void *spec)
+{
+    (void)spec;
+    static const uint8_t positive[] = {P_M, P_IXX, P_IYY, P_IZZ, P_LF, P_LR, P_TF, P_TR, P_H,
+                                       P_CF, P_CR, P_FZPK, P_SHAPE, P_KF, P_KR, P_UMIN, P_G};
+    static const uint8_t nonneg[] = {P_MU, P_CDF, P_CDR, P_PRE, P_DF, P_DR};
+    int ok = 1;
+    for (int i = 0; i < P_COUNT; i++)
+        ok = ok && rt_isfinite(p[i]);
+    for (unsigned i = 0; i < sizeof positive; i++)
+        ok = ok && p[positive[i]] > 0;
+    for (unsigned i = 0; i < sizeof nonneg; i++)
+        ok = ok && p[nonneg[i]] >= 0;
+    return ok && p[P_DRIVE] <= 1 && p[P_SHAPE] < 2 && p[P_CURV] <= 1 ? RT_OK : RT_E_PARAM;
+}
+
+static const rt_mbs_spec spec = {
+    .nq = MDL_RB_NQ, .nz = MDL_RB_NZ, .nn = 2, .flags = RT_MBS_M_DIAG,
+    .node_names = node_names, .kin = kin, .mass = mass, .force = force, .node = node,
+    .energy = energy, .normalize = mdl_rigid_normalize,
+};
+static const rt_mbs_spec spec_mf = {
+    .nq = MDL_RB_NQ, .nz = MDL_RB_NZ, .nn = 2, .flags = RT_MBS_M_DIAG,
+    .node_names = node_names, .kin = kin, .mass = mass, .force = force, .node = node,
+    .energy = energy, .normalize = mdl_rigid_normalize,
+};
+
+#define CAR3D_UNITS                                                                        \
+    "rad N N m m rad m/s m/s rad/s m/s^2 m rad rad N N N N m m m - - - - m/s m/s m/s "     \
+    "rad/s rad/s rad/s kg kg*m^2 kg*m^2 kg*m^2 m m m m m N/rad N/rad - - - - N/m N/m "     \
+    "N*s/m N*s/m - - m m m/s m/s^2"
+
+const rt_kind mdl_car3d_kind = {
+    .name = "car3d", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
+    .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
+    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
+    .check = check, .output = output, .spec = &spec,
+    .doc = RT_DOC(
+        "Spatial car (eq. (6)): chassis a rigid body, q = [r, p] (unit quaternion), z =\n"
+        "[v ground, w body], M = diag(m, m, m, Ixx, Iyy, Izz); corners (lf|-lr, +-t/2, -h)\n"
+        "on vertical spring-dampers: Fz = max(0, pre F0 - k z_i - c z_i'), F0 the static\n"
+        "loads. Linear tires F_y = (C/2)(Fz/F0) tan a, tan a = -V_y/V_x in the wheel frame\n"
+        "(V_x >= umin), at each corner; Fx split on the axles (drive: front share), Fa\n"
+        "along the heading at the centre of mass.\n"
+        "Nodes front, rear: df ahead, dr behind the centre of mass. Outputs as st_car\n"
+        "plus z, roll, pitch, the corner loads. Defaults: CommonRoad vehicle 1."),
+    .units = RT_DOC(CAR3D_UNITS),
+};
+
+const rt_kind mdl_car3d_mf_kind = {
+    .name = "car3d_mf", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
+    .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
+    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
+    .check = check, .output = output, .spec = &spec_mf,
+    .doc = RT_DOC(
+        "Spatial car with Magic-Formula tires (the ports, states and nodes of car3d):\n"
+        "F_y0 = D sin(C atan(B a - E (B a - atan(B a)))), a = tan(slip) = -V_y/V_x,\n"
+        "D = mu Fz, B C D = c1 sin(2 atan(Fz/c2)), c2 = fzpk F0, equal to C/2 at F0;\n"
+        "combined slip by the friction circle: F_x = Fx share/2 limited to mu Fz,\n"
+        "F_y = F_y0 sqrt(1 - (F_x/(mu Fz))^2). mu = 0: no tire forces."),
+    .units = RT_DOC(CAR3D_UNITS),
+};
