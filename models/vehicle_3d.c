@@ -60,11 +60,23 @@ static const real_t x_default[NX] = {0, 0, (real_t)0.557784, 1, 0, 0, 0, 20, 0, 
 /* ay depends directly on delta and Fx (the tire forces); nothing else feeds through */
 static const uint8_t feed[NY * NU] = {[Y_AY * NU + U_DELTA] = 1, [Y_AY * NU + U_FX] = 1};
 
-/* what every force evaluation needs: the rotation, the heading and the wheel angle */
+/* what the two wheels of an axle share, from the parameters and inputs (computed once per
+   evaluation, so that a corner divides only where its own state enters) */
+typedef struct axle {
+    real_t f0;     /* static load of each wheel: the statics of the axles [N] */
+    real_t k, c;   /* corner stiffness [N/m], damping [N s/m] */
+    real_t ca0;    /* cornering stiffness of each wheel at f0 [N/rad] */
+    real_t ic2;    /* 1 / c2 = 1 / (fzpk f0) [1/N] */
+    real_t bk;     /* B (1 + x^2) = 2 c1 / (c2 C mu), 0 when mu = 0 [1/rad] */
+    real_t fxd;    /* longitudinal force demanded of each wheel [N] */
+    real_t cd, sd; /* cos, sin of the wheels' angle */
+} axle;
+
+/* what every force evaluation needs: the rotation, the heading, the axles */
 typedef struct chassis {
     real_t R[9];    /* body to ground, row-major */
     real_t hx, hy;  /* heading: the body x axis projected on the ground, unit length */
-    real_t cd, sd;  /* cos, sin of the front wheels' angle */
+    axle ax[2];     /* front, rear */
 } chassis;
 
 /* the sum of the corner forces: ground-frame force, body-frame moment about the centre of
@@ -73,13 +85,30 @@ typedef struct wrench {
     real_t f[3], t[3], fz[NCORNER];
 } wrench;
 
+/* axle j (0 front, 1 rear) with wheel angle delta and its share of the drive force.
+   c1 = ca0 (1 + x0^2) / (2 x0) with x0 = f0 / c2 = 1 / fzpk makes C_a(f0) = ca0 */
+static void axle_of(const rt_args *a, int j, real_t delta, real_t share, axle *x)
+{
+    const real_t *p = a->p;
+    real_t fzpk = p[P_FZPK], c1;
+    x->f0 = p[P_M] * p[P_G] * p[j ? P_LF : P_LR] / (2 * (p[P_LF] + p[P_LR]));
+    x->k = p[j ? P_KR : P_KF], x->c = p[j ? P_CDR : P_CDF];
+    x->ca0 = (real_t)0.5 * p[j ? P_CR : P_CF];
+    x->ic2 = 1 / (fzpk * x->f0);
+    c1 = x->ca0 * (fzpk * fzpk + 1) / (2 * fzpk);
+    x->bk = p[P_MU] > 0 ? 2 * c1 * x->ic2 / (p[P_SHAPE] * p[P_MU]) : 0;
+    x->fxd = (real_t)0.5 * share * a->u[U_FX];
+    x->cd = j ? 1 : rt_cos(delta), x->sd = j ? 0 : rt_sin(delta);
+}
+
 static void frame(const rt_args *a, chassis *c)
 {
     mdl_rotation(a->x + MDL_RB_P, c->R);
     real_t n = rt_sqrt(c->R[0] * c->R[0] + c->R[3] * c->R[3]);
     /* a car standing on its nose has no heading: keep the ground x axis (finite) */
     c->hx = n > 0 ? c->R[0] / n : 1, c->hy = n > 0 ? c->R[3] / n : 0;
-    c->cd = rt_cos(a->u[U_DELTA]), c->sd = rt_sin(a->u[U_DELTA]);
+    axle_of(a, 0, a->u[U_DELTA], a->p[P_DRIVE], &c->ax[0]);
+    axle_of(a, 1, 0, 1 - a->p[P_DRIVE], &c->ax[1]);
 }
 
 /* corner i = fl, fr, rl, rr at body offset s (y to the left) */
@@ -91,34 +120,23 @@ static void corner_offset(const real_t *p, int i, real_t *s)
     s[2] = -p[P_H];
 }
 
-/* the static load of corner i: the statics of the axles, shared by the two wheels */
-static real_t static_load(const real_t *p, int i)
-{
-    return p[P_M] * p[P_G] * (i < 2 ? p[P_LR] : p[P_LF]) / (2 * (p[P_LF] + p[P_LR]));
-}
-
 /* vertical load from the corner's height z and vertical speed zd; a wheel off the
    ground carries nothing (no adhesion) */
-static real_t vertical(const real_t *p, int i, real_t z, real_t zd)
+static real_t vertical(const real_t *p, const axle *x, real_t z, real_t zd)
 {
-    int front = i < 2;
-    real_t fz = p[P_PRE] * static_load(p, i) - p[front ? P_KF : P_KR] * z -
-                p[front ? P_CDF : P_CDR] * zd;
+    real_t fz = p[P_PRE] * x->f0 - x->k * z - x->c * zd;
     return fz > 0 ? fz : 0;
 }
 
 /* Magic Formula F = D sin(C atan(B a - E (B a - atan(B a)))), D = mu fz, with
-   B C D = C_a(fz) = c1 sin(2 atan(fz / c2)) = c1 2 x / (1 + x^2), x = fz / c2,
-   c2 = fzpk f0 and c1 such that C_a(f0) = ca0. B = 2 c1 / (c2 (1 + x^2) C mu) stays
-   finite as fz goes to zero */
-static real_t magic(const real_t *p, real_t alpha, real_t ca0, real_t f0, real_t fz)
+   B C D = C_a(fz) = c1 sin(2 atan(fz / c2)) = c1 2 x / (1 + x^2), x = fz / c2:
+   B = 2 c1 / (c2 (1 + x^2) C mu) stays finite as fz goes to zero */
+static real_t magic(const real_t *p, const axle *x, real_t alpha, real_t fz)
 {
     real_t d = p[P_MU] * fz;
     if (d <= 0)
         return 0;
-    real_t c2 = p[P_FZPK] * f0, x = fz / c2, x0 = 1 / p[P_FZPK];
-    real_t c1 = ca0 * (1 + x0 * x0) / (2 * x0);
-    real_t b = 2 * c1 / (c2 * (1 + x * x) * p[P_SHAPE] * p[P_MU]), ba = b * alpha;
+    real_t r = fz * x->ic2, ba = x->bk / (1 + r * r) * alpha;
     return d * rt_sin(p[P_SHAPE] * rt_atan(ba - p[P_CURV] * (ba - rt_atan(ba))));
 }
 
@@ -135,24 +153,20 @@ static void combine(real_t fmax, real_t fxd, real_t *fx, real_t *fy)
     *fy *= rt_sqrt(1 - q * q);
 }
 
-/* wheel-frame forces (fx along the wheel, fy across) of corner i from its load fz and
-   the contact point's speeds vx along the wheel and vy across it: the slip is tan(a) =
-   -vy / vx (vx >= umin), as the Magic Formula of Pacejka (ch. 4.3) takes it, which needs
-   no inverse tangent */
-static void tire(const rt_args *a, int i, real_t fz, real_t vx, real_t vy, int mf,
+/* wheel-frame forces (fx along the wheel, fy across) of a wheel of axle x from its load
+   fz and the contact point's speeds vx along the wheel and vy across it: the slip is
+   tan(a) = -vy / vx (vx >= umin), as the Magic Formula of Pacejka (ch. 4.3) takes it,
+   which needs no inverse tangent */
+static void tire(const real_t *p, const axle *x, real_t fz, real_t vx, real_t vy, int mf,
                  real_t *fx, real_t *fy)
 {
-    const real_t *p = a->p;
-    int front = i < 2;
     real_t slip = -vy / (vx > p[P_UMIN] ? vx : p[P_UMIN]);
-    real_t share = front ? p[P_DRIVE] : 1 - p[P_DRIVE];
-    real_t f0 = static_load(p, i), ca0 = (front ? p[P_CF] : p[P_CR]) / 2;
-    *fx = (real_t)0.5 * share * a->u[U_FX];
+    *fx = x->fxd;
     if (mf) {
-        *fy = magic(p, slip, ca0, f0, fz);
+        *fy = magic(p, x, slip, fz);
         combine(p[P_MU] * fz, *fx, fx, fy);
     } else {
-        *fy = ca0 * fz / f0 * slip;
+        *fy = x->ca0 * fz / x->f0 * slip;
     }
 }
 
@@ -160,6 +174,7 @@ static void tire(const rt_args *a, int i, real_t fz, real_t vx, real_t vy, int m
 static void corner(const rt_args *a, const chassis *c, int i, int mf, wrench *w)
 {
     const real_t *x = a->x;
+    const axle *ax = &c->ax[i < 2 ? 0 : 1];
     real_t s[3], ws[3], t[3], vp[3], F[3], fb[3], tb[3], fx, fy;
     corner_offset(a->p, i, s);
     mdl_cross3(x + MDL_RB_W, s, ws);
@@ -167,12 +182,11 @@ static void corner(const rt_args *a, const chassis *c, int i, int mf, wrench *w)
     for (int k = 0; k < 3; k++)
         vp[k] = x[MDL_RB_V + k] + t[k];
     mdl_mul3(c->R, s, t);
-    real_t fz = vertical(a->p, i, x[2] + t[2], vp[2]);
-    /* the contact point's velocity in the heading frame, then in the wheel frame (front
-       wheels turned by delta) */
+    real_t fz = vertical(a->p, ax, x[2] + t[2], vp[2]);
+    /* the contact point's velocity in the heading frame, then in the wheel frame */
     real_t vx = c->hx * vp[0] + c->hy * vp[1], vy = -c->hy * vp[0] + c->hx * vp[1];
-    real_t cd = i < 2 ? c->cd : 1, sd = i < 2 ? c->sd : 0;
-    tire(a, i, fz, cd * vx + sd * vy, -sd * vx + cd * vy, mf, &fx, &fy);
+    real_t cd = ax->cd, sd = ax->sd;
+    tire(a->p, ax, fz, cd * vx + sd * vy, -sd * vx + cd * vy, mf, &fx, &fy);
     /* wheel frame -> heading frame -> ground */
     real_t fh = fx * cd - fy * sd, fl = fx * sd + fy * cd;
     F[0] = c->hx * fh - c->hy * fl, F[1] = c->hy * fh + c->hx * fl, F[2] = fz;
@@ -234,6 +248,9 @@ static void energy(const rt_args *a, real_t *e)
 {
     const real_t *x = a->x, *p = a->p, *v = x + MDL_RB_V, *w = x + MDL_RB_W;
     real_t R[9], s[3], t[3];
+    axle ax[2];
+    axle_of(a, 0, 0, 0, &ax[0]);
+    axle_of(a, 1, 0, 0, &ax[1]);
     e[0] = (real_t)0.5 * (p[P_M] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
                           p[P_IXX] * w[0] * w[0] + p[P_IYY] * w[1] * w[1] +
                           p[P_IZZ] * w[2] * w[2]);
@@ -242,8 +259,9 @@ static void energy(const rt_args *a, real_t *e)
     for (int i = 0; i < NCORNER; i++) {
         corner_offset(p, i, s);
         mdl_mul3(R, s, t);
-        real_t z = x[2] + t[2], k = p[i < 2 ? P_KF : P_KR];
-        e[1] += (real_t)0.5 * k * z * z - p[P_PRE] * static_load(p, i) * z;
+        real_t z = x[2] + t[2];
+        const axle *c = &ax[i < 2 ? 0 : 1];
+        e[1] += (real_t)0.5 * c->k * z * z - p[P_PRE] * c->f0 * z;
     }
 }
 

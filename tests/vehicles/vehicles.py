@@ -18,7 +18,7 @@ against an independent answer:
     gyroscopic term, Newton's method) and against the single-track closed form;
   * lane_change and lane_change_single (spatial cars, V2's steering chain) against a
     reference by another method at a finer step (tests/vehicles/lane_change_ref.scn,
-    SDIRK3 at 0.25 ms), whose own error is shown smaller.
+    dopri5 at 0.25 ms), whose own error is shown smaller.
 Usage: vehicles.py MODRT"""
 import math
 import os
@@ -186,10 +186,12 @@ def lane_change(modrt, scene="lane_change_planar", x0=20.0):
 
 def multirate(modrt):
     """lane_change (vehicles RK4 5 ms, steering chain ROS2 1 ms) and lane_change_single
-    (all ROS2 1 ms) against a reference by another method at a finer step
-    (lane_change_ref.scn: SDIRK3 at 0.25 ms), whose own error (against SDIRK3 at 0.5 ms)
-    must be ten times smaller: positions at the 5 ms instants, the wheel angle of V2 at
-    every millisecond"""
+    (all RK4 1 ms) against a reference by another method at a finer step
+    (lane_change_ref.scn: Dormand-Prince 5(4) at 0.25 ms), whose own error (against the
+    same method at 0.5 ms) must be four times smaller: positions at the 5 ms instants, the
+    wheel angle of V2 at every millisecond. The reference's difference does not fall below
+    some 3e-10 m at 0.125 ms either: rounding, accumulated over 8 s of closed-loop driving
+    (2e-12 of the 160 m travelled)"""
     ref_scn = os.path.join(HERE, "lane_change_ref.scn")
     runs = {}
     for name, args in (("ref", [ref_scn]), ("ref2", [ref_scn, "--step=all=0.0005"]),
@@ -215,7 +217,7 @@ def multirate(modrt):
 
     rc2, _, _, rows2 = runs["ref2"]
     e_ref, ew_ref = diff(rows2)
-    print("vehicles: reference (SDIRK3 0.25 ms) against SDIRK3 0.5 ms: %.2g m, %.2g rad, "
+    print("vehicles: reference (dopri5 0.25 ms) against dopri5 0.5 ms: %.2g m, %.2g rad, "
           "host %s s" % (e_ref, ew_ref, runs["ref"][1].get("wall_s")))
     check(runs["ref"][0] == 0 and rc2 == 0, "reference runs failed")
     for name in ("lane_change", "lane_change_single"):
@@ -224,10 +226,10 @@ def multirate(modrt):
         print("vehicles: %s: largest position difference from the reference %.2g m, wheel "
               "angle %.2g rad, host %s s, status %s" % (name, e, ew, summ.get("wall_s"),
                                                         summ.get("status")))
-        check(rc == 0 and e < 1e-3 and ew < 1e-4,
+        check(rc == 0 and e < 1e-4 and ew < 1e-4,
               "%s: %.3g m / %.3g rad from the reference" % (name, e, ew))
-        check(e_ref < e / 10 and ew_ref < ew / 10,
-              "%s: the reference's own error (%.3g m, %.3g rad) is not ten times smaller "
+        check(e_ref < e / 4 and ew_ref < ew / 4,
+              "%s: the reference's own error (%.3g m, %.3g rad) is not four times smaller "
               "than the error measured with it (%.3g m, %.3g rad)" % (name, e_ref, ew_ref,
                                                                      e, ew))
 
