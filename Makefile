@@ -344,17 +344,19 @@ ifeq ($(DEMO_SCENE),pendulum10)
 	@echo "demo: energy and residual plots build/demo/pendulum10-energy.svg, -residual.svg"
 endif
 	@echo "demo: trace build/demo/$(DEMO_SCENE).csv, plot build/demo/$(DEMO_SCENE).svg"
-	$(O)/modrt run lane_change_planar --csv build/demo/lane_change_planar.csv
-	sh tools/lane_view.sh build/demo/lane_change_planar.csv > build/demo/lane_change_top.csv
+	$(O)/modrt run lane_change --csv build/demo/lane_change.csv
+	sh tools/lane_view.sh build/demo/lane_change.csv > build/demo/lane_change_top.csv
 	$(O)/svgplot --xy --lines -W 1000 -H 360 -x "x along the track [m]" -y "y [m]" \
-	    -t "lane_change_planar: paths of both cars through the ISO 3888-1 cones at 20 m/s" \
+	    -t "lane_change: paths of both spatial cars through the ISO 3888-1 cones at 20 m/s" \
 	    -o build/demo/lane_change-top.svg build/demo/lane_change_top.csv
-	$(O)/svgplot -o build/demo/lane_change-steer.svg -t "lane_change_planar: steering" \
-	    -c "Driver.delta=V1 (driver),Tow.delta=V2 (from the tow-bar angles)" -y "steering angle [rad]" \
-	    build/demo/lane_change_planar.csv
-	$(O)/svgplot -o build/demo/lane_change-ay.svg -t "lane_change_planar: lateral acceleration" \
-	    -c "V1.ay=V1,V2.ay=V2" -y "lateral acceleration [m/s^2]" build/demo/lane_change_planar.csv
-	@echo "demo: lane change build/demo/lane_change-top.svg, -steer.svg, -ay.svg"
+	$(O)/svgplot -o build/demo/lane_change-steer.svg -t "lane_change: steering" \
+	    -c "Driver.delta=V1 (driver),Tow.delta=V2 command,Servo.delta=V2 (servo)" \
+	    -y "steering angle [rad]" build/demo/lane_change.csv
+	$(O)/svgplot -o build/demo/lane_change-ay.svg -t "lane_change: lateral acceleration" \
+	    -c "V1.ay=V1,V2.ay=V2" -y "lateral acceleration [m/s^2]" build/demo/lane_change.csv
+	$(O)/svgplot -o build/demo/lane_change-roll.svg -t "lane_change: roll of the chassis" \
+	    -c "V1.roll=V1,V2.roll=V2" -y "roll angle [rad]" build/demo/lane_change.csv
+	@echo "demo: lane change build/demo/lane_change-top.svg, -steer.svg, -ay.svg, -roll.svg"
 
 clean:
 	rm -rf build
