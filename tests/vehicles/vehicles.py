@@ -186,7 +186,7 @@ def lane_change(modrt, scene="lane_change_planar", x0=20.0):
 
 def multirate(modrt):
     """lane_change (vehicles RK4 5 ms, steering chain ROS2 1 ms) and lane_change_single
-    (all RK4 1 ms) against a reference by another method at a finer step
+    (all BS3 1 ms) against a reference by another method at a finer step
     (lane_change_ref.scn: Dormand-Prince 5(4) at 0.25 ms), whose own error (against the
     same method at 0.5 ms) must be four times smaller: positions at the 5 ms instants, the
     wheel angle of V2 at every millisecond. The reference's difference does not fall below
