@@ -260,8 +260,8 @@ static void energy(const rt_args *a, real_t *e)
         corner_offset(p, i, s);
         mdl_mul3(R, s, t);
         real_t z = x[2] + t[2];
-        const axle *c = &ax[i < 2 ? 0 : 1];
-        e[1] += (real_t)0.5 * c->k * z * z - p[P_PRE] * c->f0 * z;
+        const axle *xi = &ax[i < 2 ? 0 : 1];
+        e[1] += (real_t)0.5 * xi->k * z * z - p[P_PRE] * xi->f0 * z;
     }
 }
 
