@@ -442,7 +442,8 @@ def steady_state_mf3d(U, d):
 
     def res(q):
         v, r = q
-        tf = (math.sin(d) * U - math.cos(d) * (v + LF * r)) / (math.cos(d) * U + math.sin(d) * (v + LF * r))
+        vf = v + LF * r  # the front contact's lateral speed, then tan(slip) in the wheel frame
+        tf = (math.sin(d) * U - math.cos(d) * vf) / (math.cos(d) * U + math.sin(d) * vf)
         fyf = 2 * magic3d(tf, CF / 2, f0f, f0f) * math.cos(d)
         fyr = 2 * magic3d(-(v - LR * r) / U, CR / 2, f0r, f0r)
         return [fyf + fyr - M * U * r, LF * fyf - LR * fyr]
