@@ -153,40 +153,47 @@ static void combine(real_t fmax, real_t fxd, real_t *fx, real_t *fy)
     *fy *= rt_sqrt(1 - q * q);
 }
 
-/* wheel-frame forces (fx along the wheel, fy across) of a wheel of axle x from its load
-   fz and the contact point's speeds vx along the wheel and vy across it: the slip is
-   tan(a) = -vy / vx (vx >= umin), as the Magic Formula of Pacejka (ch. 4.3) takes it,
-   which needs no inverse tangent */
-static void tire(const real_t *p, const axle *x, real_t fz, real_t vx, real_t vy, int mf,
-                 real_t *fx, real_t *fy)
+/* A tire law: wheel-frame forces (fx along the wheel, fy across) of a wheel of axle x
+   from its load fz and the slip tan(a) = -vy / vx of its contact point (vx >= umin), as
+   the Magic Formula of Pacejka (ch. 4.3) takes it, which needs no inverse tangent. Each
+   kind names its own law, so a scene of linear tires links no Magic Formula. */
+typedef void tire_law(const real_t *p, const axle *x, real_t fz, real_t slip, real_t *fx,
+                      real_t *fy);
+
+/* car3d: cornering stiffness proportional to the load, fx as demanded */
+static void tire_linear(const real_t *p, const axle *x, real_t fz, real_t slip, real_t *fx,
+                        real_t *fy)
 {
-    real_t slip = -vy / (vx > p[P_UMIN] ? vx : p[P_UMIN]);
+    (void)p;
     *fx = x->fxd;
-    if (mf) {
-        *fy = magic(p, x, slip, fz);
-        combine(p[P_MU] * fz, *fx, fx, fy);
-    } else {
-        *fy = x->ca0 * fz / x->f0 * slip;
-    }
+    *fy = x->ca0 * fz / x->f0 * slip;
+}
+
+/* car3d_mf: the Magic Formula, combined with fx by the friction circle */
+static void tire_mf(const real_t *p, const axle *x, real_t fz, real_t slip, real_t *fx,
+                    real_t *fy)
+{
+    *fy = magic(p, x, slip, fz);
+    combine(p[P_MU] * fz, x->fxd, fx, fy);
 }
 
 /* corner i: its vertical load and tire forces at the corner point, added to w */
-static void corner(const rt_args *a, const chassis *c, int i, int mf, wrench *w)
+static void corner(const rt_args *a, const chassis *c, int i, tire_law *law, wrench *w)
 {
-    const real_t *x = a->x;
+    const real_t *x = a->x, *p = a->p;
     const axle *ax = &c->ax[i < 2 ? 0 : 1];
     real_t s[3], ws[3], t[3], vp[3], F[3], fb[3], tb[3], fx, fy;
-    corner_offset(a->p, i, s);
+    corner_offset(p, i, s);
     mdl_cross3(x + MDL_RB_W, s, ws);
     mdl_mul3(c->R, ws, t);
     for (int k = 0; k < 3; k++)
         vp[k] = x[MDL_RB_V + k] + t[k];
     mdl_mul3(c->R, s, t);
-    real_t fz = vertical(a->p, ax, x[2] + t[2], vp[2]);
+    real_t fz = vertical(p, ax, x[2] + t[2], vp[2]);
     /* the contact point's velocity in the heading frame, then in the wheel frame */
     real_t vx = c->hx * vp[0] + c->hy * vp[1], vy = -c->hy * vp[0] + c->hx * vp[1];
-    real_t cd = ax->cd, sd = ax->sd;
-    tire(a->p, ax, fz, cd * vx + sd * vy, -sd * vx + cd * vy, mf, &fx, &fy);
+    real_t cd = ax->cd, sd = ax->sd, vxw = cd * vx + sd * vy, vyw = -sd * vx + cd * vy;
+    law(p, ax, fz, -vyw / (vxw > p[P_UMIN] ? vxw : p[P_UMIN]), &fx, &fy);
     /* wheel frame -> heading frame -> ground */
     real_t fh = fx * cd - fy * sd, fl = fx * sd + fy * cd;
     F[0] = c->hx * fh - c->hy * fl, F[1] = c->hy * fh + c->hx * fl, F[2] = fz;
@@ -198,15 +205,13 @@ static void corner(const rt_args *a, const chassis *c, int i, int mf, wrench *w)
     w->fz[i] = fz;
 }
 
-static const rt_mbs_spec spec_mf;
-
-/* the four corners; the kind's spec selects the tire law (car3d_mf: Magic Formula) */
-static void corners(const rt_args *a, const chassis *c, wrench *w)
+/* the four corners with the kind's tire law */
+static void corners(const rt_args *a, const chassis *c, tire_law *law, wrench *w)
 {
     for (int k = 0; k < 3; k++)
         w->f[k] = w->t[k] = 0;
     for (int i = 0; i < NCORNER; i++)
-        corner(a, c, i, a->spec == &spec_mf, w);
+        corner(a, c, i, law, w);
 }
 
 static void kin(const rt_args *a, const real_t *v, real_t *qd) { mdl_rigid_kin(a->x, v, qd); }
@@ -218,13 +223,13 @@ static void mass(const rt_args *a, real_t *M)
 }
 
 /* k = [sum F_i + Fa heading - m g e_z, sum s_i x R^T F_i - w x J w] (eq. 6b) */
-static void force(const rt_args *a, real_t *k)
+static void force(const rt_args *a, tire_law *law, real_t *k)
 {
     const real_t *p = a->p, *w = a->x + MDL_RB_W;
     chassis c;
     wrench t;
     frame(a, &c);
-    corners(a, &c, &t);
+    corners(a, &c, law, &t);
     real_t Jw[3] = {p[P_IXX] * w[0], p[P_IYY] * w[1], p[P_IZZ] * w[2]}, gyro[3];
     mdl_cross3(w, Jw, gyro);
     k[0] = t.f[0] + a->u[U_FA] * c.hx;
@@ -267,13 +272,13 @@ static void energy(const rt_args *a, real_t *e)
 
 /* yaw, roll, pitch (z-y-x angles of R), the yaw rate psi' = (wy sin(roll) +
    wz cos(roll)) / cos(pitch), the speeds in the heading frame, a_y from the tire forces */
-static void output(const rt_args *a, real_t *y)
+static void output(const rt_args *a, tire_law *law, real_t *y)
 {
     const real_t *x = a->x, *w = x + MDL_RB_W;
     chassis c;
     wrench t;
     frame(a, &c);
-    corners(a, &c, &t);
+    corners(a, &c, law, &t);
     const real_t *R = c.R;
     real_t cc = R[7] * R[7] + R[8] * R[8], sp = -R[6] > 1 ? 1 : -R[6] < -1 ? -1 : -R[6];
     y[Y_X] = x[0], y[Y_Y] = x[1], y[Y_Z] = x[2];
@@ -287,6 +292,12 @@ static void output(const rt_args *a, real_t *y)
     for (int i = 0; i < NCORNER; i++)
         y[Y_FZ + i] = t.fz[i];
 }
+
+/* the hooks of each kind with its tire law */
+static void force_linear(const rt_args *a, real_t *k) { force(a, tire_linear, k); }
+static void force_mf(const rt_args *a, real_t *k) { force(a, tire_mf, k); }
+static void output_linear(const rt_args *a, real_t *y) { output(a, tire_linear, y); }
+static void output_mf(const rt_args *a, real_t *y) { output(a, tire_mf, y); }
 
 /* every parameter finite; masses, inertias, lengths, stiffnesses, fzpk, umin and g
    positive; dampers, pre, hitch offsets and mu not negative; drive in [0, 1];
@@ -309,12 +320,12 @@ static rt_status check(const real_t *p, const void *spec)
 
 static const rt_mbs_spec spec = {
     .nq = MDL_RB_NQ, .nz = MDL_RB_NZ, .nn = 2, .flags = RT_MBS_M_DIAG,
-    .node_names = node_names, .kin = kin, .mass = mass, .force = force, .node = node,
+    .node_names = node_names, .kin = kin, .mass = mass, .force = force_linear, .node = node,
     .energy = energy, .normalize = mdl_rigid_normalize,
 };
 static const rt_mbs_spec spec_mf = {
     .nq = MDL_RB_NQ, .nz = MDL_RB_NZ, .nn = 2, .flags = RT_MBS_M_DIAG,
-    .node_names = node_names, .kin = kin, .mass = mass, .force = force, .node = node,
+    .node_names = node_names, .kin = kin, .mass = mass, .force = force_mf, .node = node,
     .energy = energy, .normalize = mdl_rigid_normalize,
 };
 
@@ -327,7 +338,7 @@ const rt_kind mdl_car3d_kind = {
     .name = "car3d", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
-    .check = check, .output = output, .spec = &spec,
+    .check = check, .output = output_linear, .spec = &spec,
     .doc = RT_DOC(
         "Spatial car (eq. (6)): chassis a rigid body, q = [r, p] (unit quaternion), z =\n"
         "[v ground, w body], M = diag(m, m, m, Ixx, Iyy, Izz); corners (lf|-lr, +-t/2, -h)\n"
@@ -344,7 +355,7 @@ const rt_kind mdl_car3d_mf_kind = {
     .name = "car3d_mf", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
-    .check = check, .output = output, .spec = &spec_mf,
+    .check = check, .output = output_mf, .spec = &spec_mf,
     .doc = RT_DOC(
         "Spatial car with Magic-Formula tires (the ports, states and nodes of car3d):\n"
         "F_y0 = D sin(C atan(B a - E (B a - atan(B a)))), a = tan(slip) = -V_y/V_x,\n"
