@@ -101,6 +101,7 @@ static void axle_of(const rt_args *a, int j, real_t delta, real_t share, axle *x
     x->cd = j ? 1 : rt_cos(delta), x->sd = j ? 0 : rt_sin(delta);
 }
 
+/* the rotation, the heading and both axles, once per evaluation */
 static void frame(const rt_args *a, chassis *c)
 {
     mdl_rotation(a->x + MDL_RB_P, c->R);
