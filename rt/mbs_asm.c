@@ -2,10 +2,11 @@
  * M and the stacked W = G K of eq. 9, the Schur complement A = W M^-1 W^T over the rows
  * each block touches, the multipliers lambda, and z' (eqs. 6b, 7b); the mbs accel service.
  *
- * Only (block, row) pairs that can be non-zero are formed: a joint row touches the two
- * blocks it links, an internal row its own block, so a chain of n bodies costs O(n) here
- * plus one dense LU of A (its size is the number of constraints). Loops run in a fixed
- * order, so the same state gives the same bits on every target. */
+ * Only (block, row) pairs that can be non-zero are formed and stored: a joint row touches
+ * the two blocks it links, an internal row its own block, so W and Y keep one slice of a
+ * block's velocities per touch, A only the entries the blocks share, and its sparse
+ * L D L^T (rt/mbs_ldl.c) only the pattern found at init: a chain of n bodies costs O(n).
+ * Loops run in a fixed order, so the same state gives the same bits on every target. */
 #include "linalg.h"
 #include "rti_mbs.h"
 
@@ -80,9 +81,14 @@ static void map_row(const real_t *C6, const real_t *J, uint16_t nz, real_t *Wrow
     }
 }
 
+/* the slice of W (or Y) of touch t of block b: nz values */
+static real_t *slice(const rt_mbs_work *w, real_t *base, uint16_t b, uint16_t t, uint16_t nz)
+{
+    return base + w->wo[b] + (size_t)(t - w->to[b]) * nz;
+}
+
 /* rows of joint ji: g, g', and with RTI_MBS_JAC the rows of W and gam (eq. 7b) */
-static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_t ji,
-                           real_t t, int what)
+static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t t, int what)
 {
     rt_mbs_work *w = &sim->work.mbs;
     const rt_joint *j = &sc->joints[ji];
@@ -90,7 +96,7 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_
     rt_mbs_node n1, n2;
     rt_joint_eval e;
     rti_mbs_joint(sc, sim, ji, t, &n1, &n2, jac ? w->J[0] : 0, jac ? w->J[1] : 0, &e);
-    uint16_t ld = w->nz[set];
+    uint16_t b1 = (uint16_t)j->b1, nz1 = spec_of(sc, b1)->nz;
     for (uint16_t i = 0; i < j->kind->nc; i++) {
         uint16_t r = (uint16_t)(w->jrow[ji] + i);
         w->g[r] = e.g[i];
@@ -98,12 +104,11 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_
         if (!jac)
             continue;
         w->gam[r] = row_dot(e.C[i], n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
-        uint16_t b1 = (uint16_t)j->b1;
-        map_row(e.C[i], w->J[0], spec_of(sc, b1)->nz, w->W + (size_t)r * ld + w->zo[b1], 0);
+        map_row(e.C[i], w->J[0], nz1, slice(w, w->W, b1, (uint16_t)(w->jt[ji][0] + i), nz1), 0);
         if (j->b2 >= 0) {
-            uint16_t b2 = (uint16_t)j->b2;
-            map_row(e.C[i] + 6, w->J[1], spec_of(sc, b2)->nz, w->W + (size_t)r * ld + w->zo[b2],
-                    b2 == b1);
+            uint16_t b2 = (uint16_t)j->b2, nz2 = spec_of(sc, b2)->nz;
+            map_row(e.C[i] + 6, w->J[1], nz2,
+                    slice(w, w->W, b2, (uint16_t)(w->jt[ji][1] + i), nz2), b2 == b1);
         }
     }
 }
@@ -141,29 +146,31 @@ static void mass_solve(const rt_mbs_spec *sp, const real_t *M, const uint16_t *p
         rti_lu_solve(M, sp->nz, piv, v);
 }
 
-/* block b's own part: M factors, free accelerations M^-1 k, internal constraint rows */
-static void assemble_block(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_t b,
-                           real_t t, int what)
+/* block b's own part: M factors (once for a constant M), free accelerations M^-1 k,
+   internal constraint rows (its first touches, so their W slices form an nc x nz matrix) */
+static void assemble_block(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t, int what)
 {
     rt_mbs_work *w = &sim->work.mbs;
     const rt_mbs_spec *sp = spec_of(sc, b);
-    uint16_t zo = w->zo[b], ld = w->nz[set];
+    uint16_t zo = w->zo[b];
     real_t *M = w->M + w->mo[b];
     rt_args a;
     rti_args(sc, sim, b, t, 0, &a);
-    if (what & RTI_MBS_JAC) {
+    if ((what & RTI_MBS_JAC) && !((sp->flags & RT_MBS_M_CONST) && w->m_valid[b])) {
         sp->mass(&a, M);
-        mass_factor(sim, sp, b, M, w->Mpiv + zo);
+        mass_factor(sim, sp, b, M, w->Mpiv + w->mo[b]);
+        w->m_valid[b] = 1;
     }
     if (what & RTI_MBS_FORCE) {
-        rti_gather(sim, b, t); /* the inputs are applied forces (eq. 6b) */
+        if (sc->blocks[b].kind->nu > 0)
+            rti_gather(sim, b, t); /* the inputs are applied forces (eq. 6b) */
         sp->force(&a, w->a + zo);
-        mass_solve(sp, M, w->Mpiv + zo, w->a + zo);
+        mass_solve(sp, M, w->Mpiv + w->mo[b], w->a + zo);
     }
     if (sp->nc > 0) {
         uint16_t r = w->co[b];
-        real_t *W = (what & RTI_MBS_JAC) ? w->W + (size_t)r * ld + zo : 0;
-        sp->constr(&a, w->g + r, w->gd + r, W, ld, w->gam + r);
+        real_t *W = (what & RTI_MBS_JAC) ? w->W + w->wo[b] : 0;
+        sp->constr(&a, w->g + r, w->gd + r, W, sp->nz, w->gam + r);
     }
 }
 
@@ -171,10 +178,10 @@ void rti_mbs_assemble(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, in
 {
     for (uint16_t b = 0; b < sc->nblocks; b++)
         if (rti_mbs_in_set(sc, b, set))
-            assemble_block(sc, sim, set, b, t, what);
+            assemble_block(sc, sim, b, t, what);
     for (uint16_t j = 0; j < sc->njoints; j++)
         if (sc->blocks[sc->joints[j].b1].set == set)
-            assemble_joint(sc, sim, set, j, t, what);
+            assemble_joint(sc, sim, j, t, what);
 }
 
 /* ------------------------------------------------------------------ the Schur complement */
@@ -195,85 +202,67 @@ int rti_mbs_row_block(const rt_scene *sc, const rt_sim *sim, uint8_t set, uint16
     return -1;
 }
 
-/* a pivot of A fell below the threshold: count it with the block of that row */
-static void report_singular(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t floor_)
+/* block b's share of Y = M^-1 W^T and A = W Y, over the pairs of rows it touches */
+static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
 {
-    rt_mbs_work *w = &sim->work.mbs;
-    uint16_t m = w->nc[set], perm[RT_MAX_MBS_C], row = 0;
-    for (uint16_t i = 0; i < m; i++)
-        perm[i] = i;
-    /* replay the row swaps of rti_lu: position k of U holds original row perm[k] */
-    for (uint16_t k = 0; k < m; k++) {
-        uint16_t p = w->Apiv[k], s = perm[k];
-        perm[k] = perm[p], perm[p] = s;
-    }
-    for (uint16_t k = 0; k < m; k++)
-        if (rt_fabs(w->A[k * m + k]) <= floor_) {
-            row = perm[k];
-            break;
-        }
-    rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, set, row), RT_E_SINGULAR);
-}
-
-/* block b's share of Y = M^-1 W^T and A = W Y, over the rows it touches */
-static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b, uint16_t m,
-                        uint16_t ld)
-{
-    uint16_t zo = w->zo[b], nz = sp->nz;
+    uint16_t nz = sp->nz, t0 = w->to[b], t1 = w->to[b + 1];
     const real_t *M = w->M + w->mo[b];
-    for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
-        uint16_t r = w->trow[i];
-        real_t col[RT_MAX_MBS_BZ];
+    for (uint16_t i = t0; i < t1; i++) {
+        const real_t *Wi = slice(w, w->W, b, i, nz);
+        real_t *Yi = slice(w, w->Y, b, i, nz);
         for (uint16_t c = 0; c < nz; c++)
-            col[c] = w->W[r * ld + zo + c];
-        mass_solve(sp, M, w->Mpiv + zo, col);
-        for (uint16_t c = 0; c < nz; c++)
-            w->Y[(zo + c) * m + r] = col[c];
+            Yi[c] = Wi[c];
+        mass_solve(sp, M, w->Mpiv + w->mo[b], Yi);
     }
-    for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++)
-        for (uint16_t k = w->to[b]; k < w->to[b + 1]; k++) {
-            uint16_t r = w->trow[i], s = w->trow[k];
+    const uint16_t *ps = w->pslot + w->po[b];
+    for (uint16_t i = t0; i < t1; i++) {
+        const real_t *Wi = slice(w, w->W, b, i, nz);
+        for (uint16_t k = i; k < t1; k++) {
+            const real_t *Yk = slice(w, w->Y, b, k, nz);
             real_t acc = 0;
             for (uint16_t c = 0; c < nz; c++)
-                acc += w->W[r * ld + zo + c] * w->Y[(zo + c) * m + s];
-            w->A[r * m + s] += acc;
+                acc += Wi[c] * Yk[c];
+            w->lv[*ps++] += acc;
         }
+    }
 }
 
 void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint16_t m = w->nc[set], ld = w->nz[set];
-    if (m == 0)
+    if (w->nc[set] == 0)
         return;
-    for (uint16_t i = 0; i < m * m; i++)
-        w->A[i] = 0;
+    rti_mbs_ldl_clear(w, set);
     for (uint16_t b = 0; b < sc->nblocks; b++)
         if (rti_mbs_in_set(sc, b, set))
-            schur_block(w, spec_of(sc, b), b, m, ld);
-    real_t scale = rti_norm_inf(w->A, (uint16_t)(m * m));
-    if (rti_lu(w->A, m, w->Apiv, RT_MBS_PIVOT_TOL) != RT_OK)
-        report_singular(sc, sim, set, RT_MBS_PIVOT_TOL * (scale > 0 ? scale : 1));
+            schur_block(w, spec_of(sc, b), b);
+    int bad = rti_mbs_ldl_factor(w, set);
+    if (bad >= 0) /* counted with the block owning the first offending row */
+        rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, set, (uint16_t)bad),
+                  RT_E_SINGULAR);
 }
 
 void rti_mbs_solve(rt_sim *sim, uint8_t set, real_t *v)
 {
-    rti_lu_solve(sim->work.mbs.A, sim->work.mbs.nc[set], sim->work.mbs.Apiv, v);
+    rti_mbs_ldl_solve(&sim->work.mbs, set, v);
 }
 
 void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *v,
                      real_t *dz)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint16_t m = w->nc[set];
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         if (!rti_mbs_in_set(sc, b, set))
             continue;
-        for (uint16_t c = w->zo[b]; c < w->zo[b] + spec_of(sc, b)->nz; c++) {
-            real_t acc = 0;
-            for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++)
-                acc += w->Y[c * m + w->trow[i]] * v[w->trow[i]];
-            dz[c] = -acc;
+        uint16_t nz = spec_of(sc, b)->nz;
+        real_t *d = dz + w->zo[b];
+        for (uint16_t c = 0; c < nz; c++)
+            d[c] = 0;
+        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
+            const real_t *Yi = slice(w, w->Y, b, i, nz);
+            real_t vi = v[w->trow[i]];
+            for (uint16_t c = 0; c < nz; c++)
+                d[c] -= Yi[c] * vi;
         }
     }
 }
@@ -298,13 +287,14 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         if (!rti_mbs_in_set(sc, b, set))
             continue;
-        uint16_t zo = w->zo[b], nz = spec_of(sc, b)->nz;
+        uint16_t nz = spec_of(sc, b)->nz;
+        const real_t *ab = w->a + w->zo[b];
         for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
-            uint16_t r = w->trow[i];
+            const real_t *Wi = slice(w, w->W, b, i, nz);
             real_t acc = 0;
             for (uint16_t c = 0; c < nz; c++)
-                acc += w->W[r * ld + zo + c] * w->a[zo + c];
-            w->lam[r] += acc;
+                acc += Wi[c] * ab[c];
+            w->lam[w->trow[i]] += acc;
         }
     }
     rti_mbs_solve(sim, set, w->lam);
@@ -312,7 +302,7 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     for (uint16_t j = 0; j < sc->njoints; j++)
         if (sc->blocks[sc->joints[j].b1].set == set)
             for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
-                w->jlam[j * RT_MBS_JOINT_NC_MAX + i] = w->lam[w->jrow[j] + i];
+                w->jlam[w->jlo[j] + i] = w->lam[w->jrow[j] + i];
 }
 
 /* q' = K z + b (eq. 6a) and z' = M^-1 (k - W^T lambda) for every MBS block of the set */

@@ -106,6 +106,36 @@ typedef double real_t;
 #ifndef RT_MAX_MBS_BZ
 #define RT_MAX_MBS_BZ 16 /* generalized velocities of one MBS block (node Jacobians, M) */
 #endif
+/* exact per-scene sizes of the multibody tables (totals over every set; `modrt sizes`
+   prints them): the defaults hold any scene within the per-set limits above */
+#ifndef RT_MAX_MBS_ROWS
+#define RT_MAX_MBS_ROWS (RT_MAX_MBS_C * RT_MAX_SETS) /* constraint rows of all sets */
+#endif
+#ifndef RT_MAX_MBS_TOUCH
+/* (block, row) pairs that can be non-zero in W: each row touches one or two blocks */
+#define RT_MAX_MBS_TOUCH (2 * RT_MAX_MBS_ROWS)
+#endif
+#ifndef RT_MAX_MBS_TW
+/* entries of W and of Y = M^-1 W^T kept: the velocities of the block of every touch */
+#define RT_MAX_MBS_TW (RT_MAX_MBS_C * RT_MAX_MBS_Z)
+#endif
+#ifndef RT_MAX_MBS_PAIRS
+/* entries of A = W M^-1 W^T that blocks contribute: t (t + 1) / 2 for a block touching
+   t rows, summed over the blocks */
+#define RT_MAX_MBS_PAIRS (RT_MAX_MBS_C * (RT_MAX_MBS_C + 1) / 2)
+#endif
+#ifndef RT_MAX_MBS_LNZ
+/* off-diagonal non-zeros of the sparse LDL^T factors of A (fill included), all sets */
+#define RT_MAX_MBS_LNZ (RT_MAX_MBS_C * (RT_MAX_MBS_C - 1) / 2)
+#endif
+#ifndef RT_MAX_MBS_M
+/* entries of the mass matrices of all MBS blocks: nz for a diagonal M, nz^2 otherwise */
+#define RT_MAX_MBS_M (RT_MAX_MBS_Z * RT_MAX_MBS_BZ)
+#endif
+#ifndef RT_MAX_MBS_JROWS
+/* constraint rows of all joints (their multipliers are kept for recorded reactions) */
+#define RT_MAX_MBS_JROWS (RT_MAX_JOINTS * 6)
+#endif
 #ifndef RT_MBS_PIVOT_TOL
 /* pivot threshold of the factorizations of M and W M^-1 W^T, relative to the largest
    entry: a well-posed chain of ten links has relative pivots near 1e-2, a redundant or
