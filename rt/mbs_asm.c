@@ -33,7 +33,8 @@ static void anchor(const rt_joint *j, rt_mbs_node *n)
         n->S[i] = j->at_S ? j->at_S[i] : (i % 4 == 0 ? 1 : 0);
 }
 
-/* node `side` (0: n1 of b1, 1: n2 of b2) of joint j; Jacobians into J if not NULL */
+/* node `side` (0: n1 of b1, 1: n2 of b2) of joint j; Jacobians into J if not NULL, unless
+   the kind declares its nodes to be points (Jr = I, Jw = 0: nothing to compute) */
 static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, int side,
                        real_t t, rt_mbs_node *n, real_t *J)
 {
@@ -42,9 +43,11 @@ static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j,
         anchor(j, n);
         return;
     }
+    const rt_mbs_spec *sp = spec_of(sc, (uint16_t)b);
     rt_args a;
     rti_args(sc, sim, (uint16_t)b, t, 0, &a);
-    spec_of(sc, (uint16_t)b)->node(&a, (uint16_t)(side ? j->n2 : j->n1), n, J);
+    sp->node(&a, (uint16_t)(side ? j->n2 : j->n1), n,
+             (sp->flags & RT_MBS_NODE_POINT) ? 0 : J);
 }
 
 void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
@@ -67,9 +70,17 @@ static real_t row_dot(const real_t *C, const real_t *x1, const real_t *y1, const
 }
 
 /* W[row, block cols] (+)= C6 J: six coefficients times a node's 6 x nz Jacobian; zero
-   coefficients (a translational joint's rotation part) are skipped */
-static void map_row(const real_t *C6, const real_t *J, uint16_t nz, real_t *Wrow, int add)
+   coefficients (a translational joint's rotation part) are skipped; a point node's
+   Jacobian [I; 0] maps the first three coefficients unchanged */
+static void map_row(const rt_mbs_spec *sp, const real_t *C6, const real_t *J, real_t *Wrow,
+                    int add)
 {
+    uint16_t nz = sp->nz;
+    if (sp->flags & RT_MBS_NODE_POINT) {
+        for (uint16_t c = 0; c < 3; c++)
+            Wrow[c] = add ? Wrow[c] + C6[c] : C6[c];
+        return;
+    }
     if (!add)
         for (uint16_t c = 0; c < nz; c++)
             Wrow[c] = 0;
@@ -104,10 +115,11 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t 
         if (!jac)
             continue;
         w->gam[r] = row_dot(e.C[i], n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
-        map_row(e.C[i], w->J[0], nz1, slice(w, w->W, b1, (uint16_t)(w->jt[ji][0] + i), nz1), 0);
+        map_row(spec_of(sc, b1), e.C[i], w->J[0],
+                slice(w, w->W, b1, (uint16_t)(w->jt[ji][0] + i), nz1), 0);
         if (j->b2 >= 0) {
             uint16_t b2 = (uint16_t)j->b2, nz2 = spec_of(sc, b2)->nz;
-            map_row(e.C[i] + 6, w->J[1], nz2,
+            map_row(spec_of(sc, b2), e.C[i] + 6, w->J[1],
                     slice(w, w->W, b2, (uint16_t)(w->jt[ji][1] + i), nz2), b2 == b1);
         }
     }

@@ -56,6 +56,10 @@ typedef struct rt_mbs_node {
 #define RT_MBS_M_DIAG 0x01  /* M is diagonal: mass() writes nz values, solves divide */
 #define RT_MBS_M_CONST 0x02 /* M depends on parameters only: factored once, again only
                                after a parameter change or a restored state */
+#define RT_MBS_NODE_POINT 0x04 /* every node is the point q itself: nz = 3, Jr = I,
+                                  Jw = 0; the assembly then asks node() for no Jacobian
+                                  and takes a joint's translational coefficients as the
+                                  row of W */
 
 /* Type-specific part of an MBS kind (rt_kind.spec). The hooks read the block's state
  * x = [q (nq), z (nz)], inputs, parameters and time through rt_args; none may allocate
