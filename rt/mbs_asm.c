@@ -219,18 +219,23 @@ static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
 {
     uint16_t nz = sp->nz, t0 = w->to[b], t1 = w->to[b + 1];
     const real_t *M = w->M + w->mo[b];
-    for (uint16_t i = t0; i < t1; i++) {
-        const real_t *Wi = slice(w, w->W, b, i, nz);
-        real_t *Yi = slice(w, w->Y, b, i, nz);
+    const real_t *Wi = w->W + w->wo[b];
+    real_t *Yi = w->Y + w->wo[b];
+    for (uint16_t i = t0; i < t1; i++, Wi += nz, Yi += nz) {
+        if (sp->flags & RT_MBS_M_DIAG) { /* the common case without a call */
+            for (uint16_t c = 0; c < nz; c++)
+                Yi[c] = Wi[c] / M[c];
+            continue;
+        }
         for (uint16_t c = 0; c < nz; c++)
             Yi[c] = Wi[c];
         mass_solve(sp, M, w->Mpiv + w->mo[b], Yi);
     }
     const uint16_t *ps = w->pslot + w->po[b];
-    for (uint16_t i = t0; i < t1; i++) {
-        const real_t *Wi = slice(w, w->W, b, i, nz);
-        for (uint16_t k = i; k < t1; k++) {
-            const real_t *Yk = slice(w, w->Y, b, k, nz);
+    Wi = w->W + w->wo[b];
+    for (uint16_t i = t0; i < t1; i++, Wi += nz) {
+        const real_t *Yk = w->Y + w->wo[b] + (size_t)(i - t0) * nz;
+        for (uint16_t k = i; k < t1; k++, Yk += nz) {
             real_t acc = 0;
             for (uint16_t c = 0; c < nz; c++)
                 acc += Wi[c] * Yk[c];
