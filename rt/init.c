@@ -151,11 +151,8 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
         sim->plan.src_kind[i] = RTI_SRC_UNSET, sim->plan.src[i] = 0, sim->plan.def[i] = 0, sim->work.u[i] = 0;
         sim->plan.interp[i] = 0, sim->plan.src_set[i] = 0;
     }
-    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++) {
-        sim->plan.xsrc[v] = 0;
-        for (int k = 0; k < RT_HIST; k++)
-            sim->state.hist_y[k][v] = 0;
-    }
+    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++)
+        sim->plan.xsrc[v] = 0; /* (the history hist_y was zeroed with the state) */
     for (uint16_t c = 0; c < sc->nconns; c++)
         if ((st = route_conn(sc, sim, &sc->conns[c])) != RT_OK)
             return st;
@@ -179,6 +176,22 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
                                 sc->blocks[b].kind->u_names[i],
                                 " is not connected and has no default value",
                                 (const char *)0);
+    return RT_OK;
+}
+
+/* the per-scene sizes of the cross-set history and of event location */
+static rt_status check_history(const rt_scene *sc, rt_sim *sim)
+{
+    for (uint16_t v = RT_MAX_HIST_Y; v < sim->plan.y_off[sc->nblocks]; v++)
+        if (sim->plan.xsrc[v])
+            return rti_fail(sim, RT_E_CAPACITY, "outputs read by another set exceed ",
+                            RTI_LIMIT(RT_MAX_HIST_Y), (const char *)0);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] &&
+            sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_EVENT_X)
+            return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
+                            ": states of a set with roots exceed ", RTI_LIMIT(RT_MAX_EVENT_X),
+                            (const char *)0);
     return RT_OK;
 }
 
@@ -295,7 +308,8 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         sim->plan.set_xout[s] = 0, sim->plan.sched[s] = s;
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
-        (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
+        (st = rti_xset_init(sc, sim)) != RT_OK || (st = check_history(sc, sim)) != RT_OK ||
+        (st = rti_order(sc, sim)) != RT_OK ||
         (st = rti_link_check(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */

@@ -29,9 +29,10 @@ static rt_status check_spec(const rt_scene *sc, rt_sim *sim, uint16_t b)
         return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name,
                         ": its MBS description is inconsistent (nx != nq + nz, or a hook "
                         "is missing)", (const char *)0);
-    if (sp->nz > RT_MAX_MBS_BZ)
+    if (sp->nz > RT_MAX_MBS_BZ || (!(sp->flags & RT_MBS_NODE_POINT) && sp->nz > RT_MAX_MBS_JZ))
         return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                        ": velocities exceed ", RTI_LIMIT(RT_MAX_MBS_BZ), (const char *)0);
+                        ": velocities exceed ", RTI_LIMIT(RT_MAX_MBS_BZ), " or ",
+                        RTI_LIMIT(RT_MAX_MBS_JZ), (const char *)0);
     return RT_OK;
 }
 

@@ -559,7 +559,7 @@ typedef struct rt_state {
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
     real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
     uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
-    real_t hist_y[RT_HIST][RT_MAX_Y];/* cross-set outputs at those times */
+    real_t hist_y[RT_HIST][RT_MAX_HIST_Y];/* cross-set outputs at those times */
     rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
     uint64_t hash;                   /* FNV-1a over recorded values */
 } rt_state;
@@ -594,7 +594,7 @@ typedef struct rt_work {
         rt_scc_work scc;
     } w;
     real_t x0[RT_MAX_X];
-    real_t xb[RT_MAX_X];             /* state at the right end of an event bracket */
+    real_t xb[RT_MAX_EVENT_X];           /* state at the right end of an event bracket */
     real_t xs[RT_MAX_X];             /* saved state for event location */
     real_t rs[RT_MAX_ROOTS];         /* root values scratch */
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
@@ -697,6 +697,10 @@ typedef struct rt_sizes {
     uint16_t implicit_n;   /* states of the largest set with an implicit method */
     uint16_t mbs_z, mbs_q, mbs_c; /* largest multibody set: velocities, coordinates, rows */
     uint16_t mbs_bz;       /* velocities of the largest multibody block */
+    uint16_t hist_y;       /* highest output index read by another set, plus one */
+    uint16_t event_x;      /* states of the largest set with roots */
+    /* multibody tables over all sets (rt_config.h, RT_MAX_MBS_*) */
+    uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

@@ -89,6 +89,18 @@ typedef double real_t;
 
 /* ---- multirate (rt/xset.c) ---- */
 #define RT_HIST 3 /* communication points kept per cross-set signal (Hermite needs 3) */
+#ifndef RT_MAX_HIST_Y
+/* outputs the cross-set history is indexed by: the highest output index another set
+   reads, plus one (a scene of one set needs 1) */
+#define RT_MAX_HIST_Y RT_MAX_Y
+#endif
+
+/* ---- state events (rt/step.c) ---- */
+#ifndef RT_MAX_EVENT_X
+/* states of the largest set with root functions: event location keeps the state at the
+   right end of its bracket (a scene without roots needs 1) */
+#define RT_MAX_EVENT_X RT_MAX_X
+#endif
 
 /* ---- multibody (rt/mbs.c) ---- */
 #ifndef RT_MAX_MBS_Z
@@ -126,11 +138,16 @@ typedef double real_t;
 #endif
 #ifndef RT_MAX_MBS_LNZ
 /* off-diagonal non-zeros of the sparse LDL^T factors of A (fill included), all sets */
-#define RT_MAX_MBS_LNZ (RT_MAX_MBS_C * (RT_MAX_MBS_C - 1) / 2)
+#define RT_MAX_MBS_LNZ (RT_MAX_MBS_C > 1 ? RT_MAX_MBS_C * (RT_MAX_MBS_C - 1) / 2 : 1)
 #endif
 #ifndef RT_MAX_MBS_M
 /* entries of the mass matrices of all MBS blocks: nz for a diagonal M, nz^2 otherwise */
 #define RT_MAX_MBS_M (RT_MAX_MBS_Z * RT_MAX_MBS_BZ)
+#endif
+#ifndef RT_MAX_MBS_JZ
+/* velocities of the largest MBS block whose nodes have Jacobians to map (any kind but
+   those flagged RT_MBS_NODE_POINT) */
+#define RT_MAX_MBS_JZ RT_MAX_MBS_BZ
 #endif
 #ifndef RT_MAX_MBS_JROWS
 /* constraint rows of all joints (their multipliers are kept for recorded reactions) */

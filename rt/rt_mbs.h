@@ -233,7 +233,7 @@ typedef struct rt_mbs_work {
     real_t lam[RT_MAX_MBS_C];       /* multipliers, or projection corrections */
     real_t dz[RT_MAX_MBS_Z];        /* velocity-space correction */
     real_t qt[RT_MAX_MBS_Q];        /* predicted coordinates (projection) */
-    real_t J[2][6 * RT_MAX_MBS_BZ]; /* Jacobians of a joint's two nodes */
+    real_t J[2][6 * RT_MAX_MBS_JZ]; /* Jacobians of a joint's two nodes */
     real_t jlam[RT_MAX_MBS_JROWS];  /* multipliers of each joint (at jlo) */
 
     /* statistics (high-water marks for sizing and reports) */
