@@ -179,13 +179,18 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
-/* the per-scene sizes of the cross-set history and of event location */
+/* the per-scene sizes of the cross-set history, the loop histogram (after rti_order,
+   which finds the torn inputs) and event location */
 static rt_status check_history(const rt_scene *sc, rt_sim *sim)
 {
     for (uint16_t v = RT_MAX_HIST_Y; v < sim->plan.y_off[sc->nblocks]; v++)
         if (sim->plan.xsrc[v])
             return rti_fail(sim, RT_E_CAPACITY, "outputs read by another set exceed ",
                             RTI_LIMIT(RT_MAX_HIST_Y), (const char *)0);
+    uint32_t iters = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
+    if (sim->plan.ntorn > 0 && iters > RT_MAX_LOOP_HIST - 1)
+        return rti_fail(sim, RT_E_CAPACITY, "the loops' iteration bound exceeds ",
+                        RTI_LIMIT(RT_MAX_LOOP_HIST), " - 1", (const char *)0);
     for (uint8_t s = 0; s < sc->nsets; s++)
         if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] &&
             sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_EVENT_X)
@@ -308,8 +313,8 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         sim->plan.set_xout[s] = 0, sim->plan.sched[s] = s;
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
-        (st = rti_xset_init(sc, sim)) != RT_OK || (st = check_history(sc, sim)) != RT_OK ||
-        (st = rti_order(sc, sim)) != RT_OK ||
+        (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
+        (st = check_history(sc, sim)) != RT_OK ||
         (st = rti_link_check(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */

@@ -67,7 +67,7 @@ static rt_status check_joint(const rt_scene *sc, rt_sim *sim, const rt_joint *j)
 static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint32_t mo = 0;
+    uint32_t mo = 0, nqt[RT_MAX_SETS] = {0};
     for (uint8_t s = 0; s < RT_MAX_SETS; s++)
         w->nz[s] = w->nq[s] = w->nc[s] = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
@@ -80,16 +80,20 @@ static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
             return st;
         const rt_mbs_spec *sp = spec_of(sc, b);
         uint8_t s = sc->blocks[b].set;
-        w->zo[b] = w->nz[s], w->qo[b] = w->nq[s], w->co[b] = w->nc[s];
+        w->zo[b] = w->nz[s], w->qo[b] = (uint16_t)nqt[s], w->co[b] = w->nc[s];
         w->mo[b] = (uint16_t)mo;
+        if (!(sp->flags & RT_MBS_K_CONST) || sp->kinb)
+            nqt[s] += sp->nq;
         uint32_t nz = (uint32_t)w->nz[s] + sp->nz, nq = (uint32_t)w->nq[s] + sp->nq;
         uint32_t nc = (uint32_t)w->nc[s] + sp->nc;
         mo += (sp->flags & RT_MBS_M_DIAG) ? sp->nz : (uint32_t)sp->nz * sp->nz;
-        if (nz > RT_MAX_MBS_Z || nq > RT_MAX_MBS_Q || nc > RT_MAX_MBS_C || mo > RT_MAX_MBS_M)
+        if (nz > RT_MAX_MBS_Z || nq > RT_MAX_MBS_Q || nc > RT_MAX_MBS_C || mo > RT_MAX_MBS_M ||
+            nqt[s] > RT_MAX_MBS_QT)
             return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
                             ": MBS blocks exceed ", RTI_LIMIT(RT_MAX_MBS_Z), ", ",
-                            RTI_LIMIT(RT_MAX_MBS_Q), ", ", RTI_LIMIT(RT_MAX_MBS_C), " or ",
-                            RTI_LIMIT(RT_MAX_MBS_M), (const char *)0);
+                            RTI_LIMIT(RT_MAX_MBS_Q), ", ", RTI_LIMIT(RT_MAX_MBS_C), ", ",
+                            RTI_LIMIT(RT_MAX_MBS_M), " or ", RTI_LIMIT(RT_MAX_MBS_QT),
+                            (const char *)0);
         w->nz[s] = (uint16_t)nz, w->nq[s] = (uint16_t)nq, w->nc[s] = (uint16_t)nc;
     }
     return RT_OK;
@@ -136,10 +140,11 @@ static void add_touch(rt_mbs_work *w, uint32_t *n, uint16_t r)
 static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint32_t n = 0, tw = 0;
+    uint32_t n = 0, tw = 0, ty = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         w->to[b] = (uint16_t)n;
         w->wo[b] = (uint16_t)tw;
+        w->yo[b] = (uint16_t)ty;
         if (!is_mbs(sc, b))
             continue;
         for (uint16_t i = 0; i < spec_of(sc, b)->nc; i++)
@@ -155,10 +160,13 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
                 add_touch(w, &n, (uint16_t)(w->jrow[j] + i));
         }
         tw += (n - w->to[b]) * spec_of(sc, b)->nz;
-        if (n > RT_MAX_MBS_TOUCH || tw > RT_MAX_MBS_TW)
+        if (!(spec_of(sc, b)->flags & RT_MBS_M_DIAG))
+            ty += (n - w->to[b]) * spec_of(sc, b)->nz;
+        if (n > RT_MAX_MBS_TOUCH || tw > RT_MAX_MBS_TW || ty > RT_MAX_MBS_TY)
             return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                            ": constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_TOUCH), " or ",
-                            RTI_LIMIT(RT_MAX_MBS_TW), (const char *)0);
+                            ": constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_TOUCH), ", ",
+                            RTI_LIMIT(RT_MAX_MBS_TW), " or ", RTI_LIMIT(RT_MAX_MBS_TY),
+                            (const char *)0);
     }
     w->to[sc->nblocks] = (uint16_t)n;
     return RT_OK;

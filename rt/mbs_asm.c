@@ -214,28 +214,35 @@ int rti_mbs_row_block(const rt_scene *sc, const rt_sim *sim, uint8_t set, uint16
     return -1;
 }
 
-/* block b's share of Y = M^-1 W^T and A = W Y, over the pairs of rows it touches */
+/* block b's share of A = W Y over the pairs of rows it touches, Y = M^-1 W^T: a diagonal
+   M divides on the fly (Y is kept only for a dense M, RT_MAX_MBS_TY) */
 static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
 {
     uint16_t nz = sp->nz, t0 = w->to[b], t1 = w->to[b + 1];
     const real_t *M = w->M + w->mo[b];
-    const real_t *Wi = w->W + w->wo[b];
-    real_t *Yi = w->Y + w->wo[b];
-    for (uint16_t i = t0; i < t1; i++, Wi += nz, Yi += nz) {
-        if (sp->flags & RT_MBS_M_DIAG) { /* the common case without a call */
-            for (uint16_t c = 0; c < nz; c++)
-                Yi[c] = Wi[c] / M[c];
-            continue;
+    const real_t *W = w->W + w->wo[b], *Wi = W;
+    const uint16_t *ps = w->pslot + w->po[b];
+    if (sp->flags & RT_MBS_M_DIAG) {
+        for (uint16_t i = t0; i < t1; i++, Wi += nz) {
+            const real_t *Wk = Wi;
+            for (uint16_t k = i; k < t1; k++, Wk += nz) {
+                real_t acc = 0;
+                for (uint16_t c = 0; c < nz; c++)
+                    acc += Wi[c] * (Wk[c] / M[c]);
+                w->lv[*ps++] += acc;
+            }
         }
+        return;
+    }
+    real_t *Y = w->Y + w->yo[b], *Yi = Y;
+    for (uint16_t i = t0; i < t1; i++, Wi += nz, Yi += nz) {
         for (uint16_t c = 0; c < nz; c++)
             Yi[c] = Wi[c];
         mass_solve(sp, M, w->Mpiv + w->mo[b], Yi);
     }
-    const uint16_t *ps = w->pslot + w->po[b];
-    Wi = w->W + w->wo[b];
-    for (uint16_t i = t0; i < t1; i++, Wi += nz) {
-        const real_t *Yk = w->Y + w->wo[b] + (size_t)(i - t0) * nz;
-        for (uint16_t k = i; k < t1; k++, Yk += nz) {
+    for (Wi = W; t0 < t1; t0++, Wi += nz, Y += nz) {
+        const real_t *Yk = Y;
+        for (uint16_t k = t0; k < t1; k++, Yk += nz) {
             real_t acc = 0;
             for (uint16_t c = 0; c < nz; c++)
                 acc += Wi[c] * Yk[c];
@@ -265,7 +272,7 @@ void rti_mbs_solve(rt_sim *sim, uint8_t set, real_t *v)
 }
 
 void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *v,
-                     real_t *dz)
+                     real_t *dz, int add)
 {
     rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
@@ -273,13 +280,14 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
             continue;
         uint16_t nz = spec_of(sc, b)->nz;
         real_t *d = dz + w->zo[b];
-        for (uint16_t c = 0; c < nz; c++)
+        for (uint16_t c = 0; c < nz && !add; c++)
             d[c] = 0;
-        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
-            const real_t *Yi = slice(w, w->Y, b, i, nz);
+        const real_t *M = w->M + w->mo[b], *Wi = w->W + w->wo[b], *Yi = w->Y + w->yo[b];
+        int diag = spec_of(sc, b)->flags & RT_MBS_M_DIAG;
+        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++, Wi += nz, Yi += nz) {
             real_t vi = v[w->trow[i]];
             for (uint16_t c = 0; c < nz; c++)
-                d[c] -= Yi[c] * vi;
+                d[c] -= (diag ? Wi[c] / M[c] : Yi[c]) * vi;
         }
     }
 }
@@ -289,18 +297,17 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
 void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint16_t m = w->nc[set], ld = w->nz[set];
+    uint16_t m = w->nc[set];
     rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC | RTI_MBS_FORCE);
-    for (uint16_t c = 0; c < ld; c++)
-        w->dz[c] = 0;
-    if (m == 0)
+    if (m == 0) /* no constraint: z' is the free acceleration */
         return;
     rti_mbs_schur(sc, sim, set);
-    /* A lambda = W M^-1 k + gam (+ alpha g' + beta g): eq. 7b with z' from eq. 6b */
-    int baum = sc->stab == RT_STAB_BAUMGARTE;
-    for (uint16_t r = 0; r < m; r++)
-        w->lam[r] = w->gam[r] +
-                    (baum ? sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r] : 0);
+    /* A lambda = W M^-1 k + gam (+ alpha g' + beta g): eq. 7b with z' from eq. 6b; the
+       right side and then lambda are formed in gam, which is not needed after */
+    real_t *lam = w->gam;
+    if (sc->stab == RT_STAB_BAUMGARTE)
+        for (uint16_t r = 0; r < m; r++)
+            lam[r] += sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r];
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         if (!rti_mbs_in_set(sc, b, set))
             continue;
@@ -311,15 +318,15 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
             real_t acc = 0;
             for (uint16_t c = 0; c < nz; c++)
                 acc += Wi[c] * ab[c];
-            w->lam[w->trow[i]] += acc;
+            lam[w->trow[i]] += acc;
         }
     }
-    rti_mbs_solve(sim, set, w->lam);
-    rti_mbs_correct(sc, sim, set, w->lam, w->dz);
+    rti_mbs_solve(sim, set, lam);
+    rti_mbs_correct(sc, sim, set, lam, w->a, 1); /* z' = M^-1 k - Y lambda, into a */
     for (uint16_t j = 0; j < sc->njoints; j++)
         if (sc->blocks[sc->joints[j].b1].set == set)
             for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
-                w->jlam[w->jlo[j] + i] = w->lam[w->jrow[j] + i];
+                w->jlam[w->jlo[j] + i] = lam[w->jrow[j] + i];
 }
 
 /* q' = K z + b (eq. 6a) and z' = M^-1 (k - W^T lambda) for every MBS block of the set */
@@ -344,6 +351,6 @@ void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_
                 qd[i] += bq[i];
         }
         for (uint16_t c = 0; c < sp->nz; c++)
-            qd[sp->nq + c] = w->a[w->zo[b] + c] + w->dz[w->zo[b] + c];
+            qd[sp->nq + c] = w->a[w->zo[b] + c];
     }
 }

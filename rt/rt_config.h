@@ -79,12 +79,16 @@ typedef double real_t;
 /* nodes of the graphs searched at init (output ports, blocks) */
 #define RT_MAX_NODES (RT_MAX_Y > RT_MAX_BLOCKS ? RT_MAX_Y : RT_MAX_BLOCKS)
 
-/* evaluation sequence: at most one call per output port plus one per block */
+/* evaluation sequence: at most one call per output port plus one per block (a per-scene
+   build passes its scene's exact length) */
+#ifndef RT_MAX_SEQ
 #define RT_MAX_SEQ (RT_MAX_Y + RT_MAX_BLOCKS)
+#endif
 
 /* ---- integrators ---- */
 #ifndef RT_MAX_STAGES
-#define RT_MAX_STAGES 7 /* Runge-Kutta stages (Dormand-Prince needs 7) */
+#define RT_MAX_STAGES 6 /* stage buffers: Runge-Kutta stages (Dormand-Prince: 6, its error
+                           estimate reuses them); an implicit method's stages + 3 */
 #endif
 
 /* ---- multirate (rt/xset.c) ---- */
@@ -130,6 +134,16 @@ typedef double real_t;
 #ifndef RT_MAX_MBS_TW
 /* entries of W and of Y = M^-1 W^T kept: the velocities of the block of every touch */
 #define RT_MAX_MBS_TW (RT_MAX_MBS_C * RT_MAX_MBS_Z)
+#endif
+#ifndef RT_MAX_MBS_QT
+/* coordinates of one set's MBS blocks whose K depends on q or that have a kinb (the
+   projection's predicted coordinates) */
+#define RT_MAX_MBS_QT RT_MAX_MBS_Q
+#endif
+#ifndef RT_MAX_MBS_TY
+/* entries of Y = M^-1 W^T kept: as RT_MAX_MBS_TW over the blocks with a dense M (a
+   diagonal M divides where Y is needed) */
+#define RT_MAX_MBS_TY RT_MAX_MBS_TW
 #endif
 #ifndef RT_MAX_MBS_PAIRS
 /* entries of A = W M^-1 W^T that blocks contribute: t (t + 1) / 2 for a block touching
@@ -216,7 +230,12 @@ typedef double real_t;
 #define RT_LOOP_ITER_MAX 8 /* default Broyden iterations per loop evaluation */
 #endif
 #ifndef RT_LOOP_ITER_LIMIT
-#define RT_LOOP_ITER_LIMIT 32 /* the most a scene may ask for (sizes the histogram) */
+#define RT_LOOP_ITER_LIMIT 32 /* the most a scene may ask for */
+#endif
+#ifndef RT_MAX_LOOP_HIST
+/* entries of the histogram of loop solves by iterations taken: the scene's iteration
+   bound plus one (a scene without actual loops needs 1) */
+#define RT_MAX_LOOP_HIST (RT_LOOP_ITER_LIMIT + 1)
 #endif
 
 /* ---- state events ---- */
@@ -235,8 +254,8 @@ typedef double real_t;
 #if RT_MAX_BLOCKS > 65535 || RT_MAX_Y > 65535 || RT_MAX_U > 65535 || RT_MAX_X > 65535
 #error "modrt indexes blocks, states and ports with 16-bit integers: keep every RT_MAX_* below 65536."
 #endif
-#if RT_MAX_STAGES < 7
-#error "RT_MAX_STAGES must be at least 7: the fifth-order Dormand-Prince method has seven stages."
+#if RT_MAX_STAGES < 6
+#error "RT_MAX_STAGES must be at least 6: the fifth-order Dormand-Prince method has six stages."
 #endif
 
 #endif /* RT_CONFIG_H */

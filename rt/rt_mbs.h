@@ -28,7 +28,7 @@ struct rt_args;
    (the tunable ones, RT_MAX_MBS_* and RT_MBS_*_TOL, are in rt_config.h) */
 
 #define RT_MBS_JOINT_NC_MAX 6 /* constraint equations of one joint (the fixed joint has 6) */
-#if RT_MAX_MBS_TW > 65535 || RT_MAX_MBS_M > 65535 || \
+#if RT_MAX_MBS_TW > 65535 || RT_MAX_MBS_TY > 65535 || RT_MAX_MBS_M > 65535 || \
     RT_MAX_MBS_ROWS + RT_MAX_MBS_LNZ > 65535 || RT_MAX_MBS_PAIRS > 65535
 #error "rt_mbs_work indexes its tables with 16-bit integers: keep RT_MAX_MBS_TW, \
 RT_MAX_MBS_M, RT_MAX_MBS_PAIRS and RT_MAX_MBS_ROWS + RT_MAX_MBS_LNZ below 65536."
@@ -56,6 +56,8 @@ typedef struct rt_mbs_node {
 #define RT_MBS_M_DIAG 0x01  /* M is diagonal: mass() writes nz values, solves divide */
 #define RT_MBS_M_CONST 0x02 /* M depends on parameters only: factored once, again only
                                after a parameter change or a restored state */
+#define RT_MBS_K_CONST 0x08    /* K does not depend on q (kin reads no coordinate): the
+                                  projection keeps no predicted q for the block */
 #define RT_MBS_NODE_POINT 0x04 /* every node is the point q itself: nz = 3, Jr = I,
                                   Jw = 0; the assembly then asks node() for no Jacobian
                                   and takes a joint's translational coefficients as the
@@ -196,11 +198,13 @@ enum {
 typedef struct rt_mbs_work {
     /* tables (init) */
     uint16_t zo[RT_MAX_BLOCKS];     /* first velocity of each MBS block within its set */
-    uint16_t qo[RT_MAX_BLOCKS];     /* first coordinate of each MBS block within its set */
+    uint16_t qo[RT_MAX_BLOCKS];     /* its first entry in qt (blocks with a kinb or a K
+                                       that depends on q; 0 for the others) */
     uint16_t mo[RT_MAX_BLOCKS];     /* first entry of its M factors in M (all sets) */
     uint16_t co[RT_MAX_BLOCKS];     /* first internal constraint row within its set */
     uint16_t to[RT_MAX_BLOCKS + 1]; /* its touches: trow[to[b] .. to[b+1]) */
-    uint16_t wo[RT_MAX_BLOCKS];     /* first entry of its touches' slices in W and Y */
+    uint16_t wo[RT_MAX_BLOCKS];     /* first entry of its touches' slices in W */
+    uint16_t yo[RT_MAX_BLOCKS];     /* ... in Y (blocks with a dense M only) */
     uint16_t po[RT_MAX_BLOCKS + 1]; /* its pairs of touches: pslot[po[b] .. po[b+1]) */
     uint16_t trow[RT_MAX_MBS_TOUCH];/* constraint rows touching each block, ascending */
     uint16_t pslot[RT_MAX_MBS_PAIRS];/* where each pair (i <= k) of a block's touches adds
@@ -225,14 +229,13 @@ typedef struct rt_mbs_work {
     real_t M[RT_MAX_MBS_M];         /* factors of each block's M (a diagonal M: nz values) */
     uint16_t Mpiv[RT_MAX_MBS_M];    /* their row pivots (dense M), at mo[b] */
     real_t W[RT_MAX_MBS_TW];        /* W = G K: per touch the block's nz columns */
-    real_t Y[RT_MAX_MBS_TW];        /* M^-1 W^T, transposed like W */
-    real_t a[RT_MAX_MBS_Z];         /* forces k, then free accelerations M^-1 k */
+    real_t Y[RT_MAX_MBS_TY];        /* M^-1 W^T, transposed like W (dense M only) */
+    real_t a[RT_MAX_MBS_Z];         /* forces k, free accelerations M^-1 k, then z' (the
+                                       index-1 solve); the correction dz (projection) */
     real_t g[RT_MAX_MBS_C];         /* g [m or 1] */
     real_t gd[RT_MAX_MBS_C];        /* g' */
-    real_t gam[RT_MAX_MBS_C];       /* acceleration term of eq. 7b */
-    real_t lam[RT_MAX_MBS_C];       /* multipliers, or projection corrections */
-    real_t dz[RT_MAX_MBS_Z];        /* velocity-space correction */
-    real_t qt[RT_MAX_MBS_Q];        /* predicted coordinates (projection) */
+    real_t gam[RT_MAX_MBS_C];       /* acceleration term of eq. 7b, then the multipliers */
+    real_t qt[RT_MAX_MBS_QT];       /* predicted coordinates (projection), kinb scratch */
     real_t J[2][6 * RT_MAX_MBS_JZ]; /* Jacobians of a joint's two nodes */
     real_t jlam[RT_MAX_MBS_JROWS];  /* multipliers of each joint (at jlo) */
 
