@@ -172,11 +172,11 @@ static void prismatic_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_
 static const char *const sphdiff_p[] = {"l"};
 
 const rt_joint_kind rt_joint_sphdiff = {
-    .name = "sphdiff", .nc = 1, .np = 1, .p_names = sphdiff_p,
+    .name = "sphdiff", .nc = 1, .np = 1, .trans = 1, .p_names = sphdiff_p,
     .check = sphdiff_check, .eval = sphdiff_eval,
 };
 const rt_joint_kind rt_joint_spherical = {
-    .name = "spherical", .nc = 3, .eval = spherical_eval,
+    .name = "spherical", .nc = 3, .trans = 1, .eval = spherical_eval,
 };
 const rt_joint_kind rt_joint_revolute = {
     .name = "revolute", .nc = 5, .eval = revolute_eval,

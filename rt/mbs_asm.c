@@ -33,8 +33,21 @@ static void anchor(const rt_joint *j, rt_mbs_node *n)
         n->S[i] = j->at_S ? j->at_S[i] : (i % 4 == 0 ? 1 : 0);
 }
 
-/* node `side` (0: n1 of b1, 1: n2 of b2) of joint j; Jacobians into J if not NULL, unless
-   the kind declares its nodes to be points (Jr = I, Jw = 0: nothing to compute) */
+/* a node of a kind flagged RT_MBS_NODE_POINT is the point itself: r = q, v = z, S = I, at
+   rest in rotation, no acceleration terms; filled here without a call (and no Jacobian:
+   Jr = I, Jw = 0 is what the flag declares) */
+static void point_node(const real_t *x, rt_mbs_node *n)
+{
+    for (int i = 0; i < 3; i++) {
+        n->r[i] = x[i];
+        n->v[i] = x[3 + i];
+        n->w[i] = n->ar[i] = n->aw[i] = 0;
+    }
+    for (int i = 0; i < 9; i++)
+        n->S[i] = i % 4 == 0 ? 1 : 0;
+}
+
+/* node `side` (0: n1 of b1, 1: n2 of b2) of joint j; Jacobians into J if not NULL */
 static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, int side,
                        real_t t, rt_mbs_node *n, real_t *J)
 {
@@ -44,10 +57,13 @@ static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j,
         return;
     }
     const rt_mbs_spec *sp = spec_of(sc, (uint16_t)b);
+    if (sp->flags & RT_MBS_NODE_POINT) {
+        point_node(sim->state.x + sim->plan.x_off[b], n);
+        return;
+    }
     rt_args a;
     rti_args(sc, sim, (uint16_t)b, t, 0, &a);
-    sp->node(&a, (uint16_t)(side ? j->n2 : j->n1), n,
-             (sp->flags & RT_MBS_NODE_POINT) ? 0 : J);
+    sp->node(&a, (uint16_t)(side ? j->n2 : j->n1), n, J);
 }
 
 void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
@@ -59,11 +75,17 @@ void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
     j->kind->eval(j->p, n1, n2, e);
 }
 
-/* C_i . [x1; y1; x2; y2] for four 3-vectors */
-static real_t row_dot(const real_t *C, const real_t *x1, const real_t *y1, const real_t *x2,
-                      const real_t *y2)
+/* C_i . [x1; y1; x2; y2] for four 3-vectors; a translational joint kind (trans) has no
+   angular coefficients, whose zero terms are left out (the same sum) */
+static real_t row_dot(const real_t *C, int trans, const real_t *x1, const real_t *y1,
+                      const real_t *x2, const real_t *y2)
 {
     real_t s = 0;
+    if (trans) {
+        for (int k = 0; k < 3; k++)
+            s += C[k] * x1[k] + C[6 + k] * x2[k];
+        return s;
+    }
     for (int k = 0; k < 3; k++)
         s += C[k] * x1[k] + C[3 + k] * y1[k] + C[6 + k] * x2[k] + C[9 + k] * y2[k];
     return s;
@@ -111,10 +133,10 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t 
     for (uint16_t i = 0; i < j->kind->nc; i++) {
         uint16_t r = (uint16_t)(w->jrow[ji] + i);
         w->g[r] = e.g[i];
-        w->gd[r] = row_dot(e.C[i], n1.v, n1.w, n2.v, n2.w);
+        w->gd[r] = row_dot(e.C[i], j->kind->trans, n1.v, n1.w, n2.v, n2.w);
         if (!jac)
             continue;
-        w->gam[r] = row_dot(e.C[i], n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
+        w->gam[r] = row_dot(e.C[i], j->kind->trans, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
         map_row(spec_of(sc, b1), e.C[i], w->J[0],
                 slice(w, w->W, b1, (uint16_t)(w->jt[ji][0] + i), nz1), 0);
         if (j->b2 >= 0) {

@@ -114,6 +114,8 @@ typedef struct rt_joint_kind {
     const char *name;             /* e.g. "sphdiff" */
     uint8_t nc;                   /* constraint equations, <= RT_MBS_JOINT_NC_MAX */
     uint8_t np;                   /* parameters */
+    uint8_t trans;                /* 1: translational conditions only, C's angular columns
+                                     (3-5, 9-11) are always zero and need not be read */
     const char *const *p_names;   /* np names (NULL iff np == 0) */
     /* Returns 0 when the parameters are valid. NULL: any parameters are. */
     int (*check)(const real_t *p);
