@@ -172,6 +172,23 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+/* each set's MBS blocks and joints, in scene order: what the evaluations loop over */
+static void set_lists(const rt_scene *sc, rt_sim *sim)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    uint16_t nb = 0, nj = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        w->sb[s] = nb, w->sj[s] = nj;
+        for (uint16_t b = 0; b < sc->nblocks; b++)
+            if (rti_mbs_in_set(sc, b, s))
+                w->sblk[nb++] = b;
+        for (uint16_t j = 0; j < sc->njoints; j++)
+            if (sc->blocks[sc->joints[j].b1].set == s)
+                w->sjnt[nj++] = j;
+    }
+    w->sb[sc->nsets] = nb, w->sj[sc->nsets] = nj;
+}
+
 /* the symbolic phase of each set's sparse factorization (rt/mbs_ldl.c) */
 static rt_status factor_tables(const rt_scene *sc, rt_sim *sim)
 {
@@ -221,7 +238,8 @@ static int init(const rt_scene *sc, rt_sim *sim)
         return rti_fail(sim, RT_E_SCENE, "unknown stabilization, or Baumgarte parameters "
                         "not finite and >= 0", (const char *)0);
     if ((st = block_tables(sc, sim)) != RT_OK || (st = joint_tables(sc, sim)) != RT_OK ||
-        (st = touch_tables(sc, sim)) != RT_OK || (st = factor_tables(sc, sim)) != RT_OK ||
+        (st = touch_tables(sc, sim)) != RT_OK || (set_lists(sc, sim), 0) ||
+        (st = factor_tables(sc, sim)) != RT_OK ||
         (st = check_recs(sc, sim)) != RT_OK)
         return st;
     sim->work.mbs.res_max = 0;

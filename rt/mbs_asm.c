@@ -36,13 +36,17 @@ static void anchor(const rt_joint *j, rt_mbs_node *n)
 /* a node of a kind flagged RT_MBS_NODE_POINT is the point itself: r = q, v = z, S = I, at
    rest in rotation, no acceleration terms; filled here without a call (and no Jacobian:
    Jr = I, Jw = 0 is what the flag declares) */
-static void point_node(const real_t *x, rt_mbs_node *n)
+static void point_node(const real_t *x, rt_mbs_node *n, int trans)
 {
     for (int i = 0; i < 3; i++) {
         n->r[i] = x[i];
         n->v[i] = x[3 + i];
-        n->w[i] = n->ar[i] = n->aw[i] = 0;
+        n->ar[i] = 0;
     }
+    if (trans) /* a translational joint kind reads no rotation (rt_joint_kind.trans) */
+        return;
+    for (int i = 0; i < 3; i++)
+        n->w[i] = n->aw[i] = 0;
     for (int i = 0; i < 9; i++)
         n->S[i] = i % 4 == 0 ? 1 : 0;
 }
@@ -58,7 +62,7 @@ static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j,
     }
     const rt_mbs_spec *sp = spec_of(sc, (uint16_t)b);
     if (sp->flags & RT_MBS_NODE_POINT) {
-        point_node(sim->state.x + sim->plan.x_off[b], n);
+        point_node(sim->state.x + sim->plan.x_off[b], n, j->kind->trans);
         return;
     }
     rt_args a;
@@ -112,6 +116,26 @@ static void map_row(const rt_mbs_spec *sp, const real_t *C6, const real_t *J, re
         for (uint16_t c = 0; c < nz; c++)
             Wrow[c] += C6[k] * J[k * nz + c];
     }
+}
+
+/* sum_c a_c b_c / m_c (m NULL: no division), in the order of a loop from c = 0; three
+   velocities (a point, a planar body) spelled out, the common case of the inner loops */
+static real_t dot(const real_t *a, const real_t *b, const real_t *m, uint16_t n)
+{
+    real_t acc = 0;
+    if (n == 3 && m) {
+        acc += a[0] * (b[0] / m[0]);
+        acc += a[1] * (b[1] / m[1]);
+        acc += a[2] * (b[2] / m[2]);
+    } else if (n == 3) {
+        acc += a[0] * b[0];
+        acc += a[1] * b[1];
+        acc += a[2] * b[2];
+    } else {
+        for (uint16_t c = 0; c < n; c++)
+            acc += a[c] * (m ? b[c] / m[c] : b[c]);
+    }
+    return acc;
 }
 
 /* the slice of W (or Y) of touch t of block b: nz values */
@@ -210,12 +234,11 @@ static void assemble_block(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t
 
 void rti_mbs_assemble(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, int what)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        if (rti_mbs_in_set(sc, b, set))
-            assemble_block(sc, sim, b, t, what);
-    for (uint16_t j = 0; j < sc->njoints; j++)
-        if (sc->blocks[sc->joints[j].b1].set == set)
-            assemble_joint(sc, sim, j, t, what);
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
+        assemble_block(sc, sim, w->sblk[k], t, what);
+    for (uint16_t k = w->sj[set]; k < w->sj[set + 1]; k++)
+        assemble_joint(sc, sim, w->sjnt[k], t, what);
 }
 
 /* ------------------------------------------------------------------ the Schur complement */
@@ -247,12 +270,8 @@ static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
     if (sp->flags & RT_MBS_M_DIAG) {
         for (uint16_t i = t0; i < t1; i++, Wi += nz) {
             const real_t *Wk = Wi;
-            for (uint16_t k = i; k < t1; k++, Wk += nz) {
-                real_t acc = 0;
-                for (uint16_t c = 0; c < nz; c++)
-                    acc += Wi[c] * (Wk[c] / M[c]);
-                w->lv[*ps++] += acc;
-            }
+            for (uint16_t k = i; k < t1; k++, Wk += nz)
+                w->lv[*ps++] += dot(Wi, Wk, M, nz);
         }
         return;
     }
@@ -264,12 +283,8 @@ static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
     }
     for (Wi = W; t0 < t1; t0++, Wi += nz, Y += nz) {
         const real_t *Yk = Y;
-        for (uint16_t k = t0; k < t1; k++, Yk += nz) {
-            real_t acc = 0;
-            for (uint16_t c = 0; c < nz; c++)
-                acc += Wi[c] * Yk[c];
-            w->lv[*ps++] += acc;
-        }
+        for (uint16_t k = t0; k < t1; k++, Yk += nz)
+            w->lv[*ps++] += dot(Wi, Yk, 0, nz);
     }
 }
 
@@ -279,9 +294,8 @@ void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
     if (w->nc[set] == 0)
         return;
     rti_mbs_ldl_clear(w, set);
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        if (rti_mbs_in_set(sc, b, set))
-            schur_block(w, spec_of(sc, b), b);
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
+        schur_block(w, spec_of(sc, w->sblk[k]), w->sblk[k]);
     int bad = rti_mbs_ldl_factor(w, set);
     if (bad >= 0) /* counted with the block owning the first offending row */
         rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, set, (uint16_t)bad),
@@ -297,9 +311,8 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
                      real_t *dz, int add)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
         uint16_t nz = spec_of(sc, b)->nz;
         real_t *d = dz + w->zo[b];
         for (uint16_t c = 0; c < nz && !add; c++)
@@ -308,6 +321,12 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
         int diag = spec_of(sc, b)->flags & RT_MBS_M_DIAG;
         for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++, Wi += nz, Yi += nz) {
             real_t vi = v[w->trow[i]];
+            if (diag && nz == 3) {
+                d[0] -= (Wi[0] / M[0]) * vi;
+                d[1] -= (Wi[1] / M[1]) * vi;
+                d[2] -= (Wi[2] / M[2]) * vi;
+                continue;
+            }
             for (uint16_t c = 0; c < nz; c++)
                 d[c] -= (diag ? Wi[c] / M[c] : Yi[c]) * vi;
         }
@@ -330,25 +349,21 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     if (sc->stab == RT_STAB_BAUMGARTE)
         for (uint16_t r = 0; r < m; r++)
             lam[r] += sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r];
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
         uint16_t nz = spec_of(sc, b)->nz;
         const real_t *ab = w->a + w->zo[b];
-        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
-            const real_t *Wi = slice(w, w->W, b, i, nz);
-            real_t acc = 0;
-            for (uint16_t c = 0; c < nz; c++)
-                acc += Wi[c] * ab[c];
-            lam[w->trow[i]] += acc;
-        }
+        const real_t *Wi = w->W + w->wo[b];
+        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++, Wi += nz)
+            lam[w->trow[i]] += dot(Wi, ab, 0, nz);
     }
     rti_mbs_solve(sim, set, lam);
     rti_mbs_correct(sc, sim, set, lam, w->a, 1); /* z' = M^-1 k - Y lambda, into a */
-    for (uint16_t j = 0; j < sc->njoints; j++)
-        if (sc->blocks[sc->joints[j].b1].set == set)
-            for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
-                w->jlam[w->jlo[j] + i] = lam[w->jrow[j] + i];
+    for (uint16_t k = w->sj[set]; k < w->sj[set + 1]; k++) {
+        uint16_t j = w->sjnt[k];
+        for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
+            w->jlam[w->jlo[j] + i] = lam[w->jrow[j] + i];
+    }
 }
 
 /* q' = K z + b (eq. 6a) and z' = M^-1 (k - W^T lambda) for every MBS block of the set */
@@ -358,9 +373,8 @@ void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_
     if (w->nz[set] == 0)
         return;
     rti_mbs_lambda(sc, sim, set, t);
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
         real_t *qd = xdot + (sim->plan.x_off[b] - sim->plan.set_x[set]);
         rt_args a;

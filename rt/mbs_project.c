@@ -21,8 +21,10 @@ static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
    iteration */
 static void save_q(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set) || (spec_of(sc, b)->flags & RT_MBS_K_CONST))
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        if (spec_of(sc, b)->flags & RT_MBS_K_CONST)
             continue;
         for (uint16_t i = 0; i < spec_of(sc, b)->nq; i++)
             sim->work.mbs.qt[sim->work.mbs.qo[b] + i] = sim->state.x[sim->plan.x_off[b] + i];
@@ -33,9 +35,8 @@ static void save_q(const rt_scene *sc, rt_sim *sim, uint8_t set)
 static void move_q(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
         real_t dq[RT_MAX_MBS_Q];
         rt_args a;
@@ -52,9 +53,8 @@ static void move_q(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 static void move_z(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
         real_t *z = sim->state.x + sim->plan.x_off[b] + sp->nq;
         for (uint16_t c = 0; c < sp->nz; c++)
@@ -65,9 +65,10 @@ static void move_z(const rt_scene *sc, rt_sim *sim, uint8_t set)
 /* the kinds' own normalization (unit quaternions) */
 static void normalize(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        if (rti_mbs_in_set(sc, b, set) && spec_of(sc, b)->normalize)
-            spec_of(sc, b)->normalize(sim->state.x + sim->plan.x_off[b]);
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
+        if (spec_of(sc, w->sblk[k])->normalize)
+            spec_of(sc, w->sblk[k])->normalize(sim->state.x + sim->plan.x_off[w->sblk[k]]);
 }
 
 /* one correction: v <- A^-1 v in place (v = g or g', evaluated anew before they are read

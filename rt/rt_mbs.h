@@ -211,6 +211,10 @@ typedef struct rt_mbs_work {
     uint16_t trow[RT_MAX_MBS_TOUCH];/* constraint rows touching each block, ascending */
     uint16_t pslot[RT_MAX_MBS_PAIRS];/* where each pair (i <= k) of a block's touches adds
                                        to A: an index into lv */
+    uint16_t sb[RT_MAX_SETS + 1];   /* each set's MBS blocks: sblk[sb[s] .. sb[s+1]) */
+    uint16_t sblk[RT_MAX_BLOCKS];   /* ... in block order */
+    uint16_t sj[RT_MAX_SETS + 1];   /* each set's joints: sjnt[sj[s] .. sj[s+1]) */
+    uint16_t sjnt[RT_MAX_JOINTS];   /* ... in joint order */
     uint16_t jrow[RT_MAX_JOINTS];   /* first row of each joint within its set */
     uint16_t jt[RT_MAX_JOINTS][2];  /* touch of its first row in b1's and b2's lists */
     uint16_t jlo[RT_MAX_JOINTS];    /* first of its multipliers in jlam */
