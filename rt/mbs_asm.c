@@ -70,6 +70,37 @@ static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j,
     sp->node(&a, (uint16_t)(side ? j->n2 : j->n1), n, J);
 }
 
+/* the position and velocity of side `side` of joint j if that node is a point (a point
+   node or an anchor: 1), else 0 */
+static int point_of(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, int side,
+                    const real_t **r, const real_t **v)
+{
+    static const real_t zero[3] = {0, 0, 0};
+    int16_t b = (int16_t)(side ? j->b2 : j->b1);
+    if (b < 0) {
+        *r = j->at ? j->at : zero, *v = zero;
+        return 1;
+    }
+    const real_t *x = sim->state.x + sim->plan.x_off[b];
+    *r = x, *v = x + 3;
+    return (spec_of(sc, (uint16_t)b)->flags & RT_MBS_NODE_POINT) != 0;
+}
+
+/* joint j between two points with a kind that has eval_points: its fast path; 0 if not
+   applicable (the nodes are then filled and eval is called) */
+static int joint_points(const rt_scene *sc, const rt_sim *sim, const rt_joint *j,
+                        rt_mbs_node *n1, rt_mbs_node *n2, rt_joint_eval *e)
+{
+    const real_t *r1, *v1, *r2, *v2;
+    if (!j->kind->eval_points || !point_of(sc, sim, j, 0, &r1, &v1) ||
+        !point_of(sc, sim, j, 1, &r2, &v2))
+        return 0;
+    j->kind->eval_points(j->p, r1, v1, r2, v2, e);
+    for (int i = 0; i < 3; i++) /* what a translational row reads of the nodes */
+        n1->v[i] = v1[i], n2->v[i] = v2[i], n1->ar[i] = n2->ar[i] = 0;
+    return 1;
+}
+
 void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
                    rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2, rt_joint_eval *e)
 {
@@ -152,7 +183,8 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t 
     int jac = what & RTI_MBS_JAC;
     rt_mbs_node n1, n2;
     rt_joint_eval e;
-    rti_mbs_joint(sc, sim, ji, t, &n1, &n2, jac ? w->J[0] : 0, jac ? w->J[1] : 0, &e);
+    if (!joint_points(sc, sim, j, &n1, &n2, &e))
+        rti_mbs_joint(sc, sim, ji, t, &n1, &n2, jac ? w->J[0] : 0, jac ? w->J[1] : 0, &e);
     uint16_t b1 = (uint16_t)j->b1, nz1 = spec_of(sc, b1)->nz;
     for (uint16_t i = 0; i < j->kind->nc; i++) {
         uint16_t r = (uint16_t)(w->jrow[ji] + i);

@@ -122,6 +122,13 @@ typedef struct rt_joint_kind {
     /* Evaluates g, C and c for nodes n1, n2. Never NULL; finite for finite nodes. */
     void (*eval)(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
                  rt_joint_eval *e);
+    /* What eval computes when both nodes are points (RT_MBS_NODE_POINT or an anchor:
+       position r, velocity v, S = I, no rotation, no acceleration terms), from r and v
+       directly: g, c and the translational coefficients C[i][0..2], C[i][6..8], the same
+       bits as eval; the other entries of e are left unwritten. NULL: the runtime fills
+       the nodes and calls eval. Only for translational kinds (trans = 1). */
+    void (*eval_points)(const real_t *p, const real_t *r1, const real_t *v1,
+                        const real_t *r2, const real_t *v2, rt_joint_eval *e);
 } rt_joint_kind;
 
 /* the library of joint kinds */
