@@ -524,6 +524,8 @@ typedef struct rt_plan {
 
     /* evaluation order (rt/order.c) */
     rt_seq_step seq[RT_MAX_SEQ];
+    uint8_t rhs_skip[RT_MAX_BLOCKS]; /* 1: no input of the block's set reads its outputs
+                                        live, so a right-hand side does not call it */
     uint16_t nseq;
     rt_loop loops[RT_MAX_LOOPS];
     uint8_t nloops;
