@@ -86,21 +86,6 @@ static int point_of(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, in
     return (spec_of(sc, (uint16_t)b)->flags & RT_MBS_NODE_POINT) != 0;
 }
 
-/* joint j between two points with a kind that has eval_points: its fast path; 0 if not
-   applicable (the nodes are then filled and eval is called) */
-static int joint_points(const rt_scene *sc, const rt_sim *sim, const rt_joint *j,
-                        rt_mbs_node *n1, rt_mbs_node *n2, rt_joint_eval *e)
-{
-    const real_t *r1, *v1, *r2, *v2;
-    if (!j->kind->eval_points || !point_of(sc, sim, j, 0, &r1, &v1) ||
-        !point_of(sc, sim, j, 1, &r2, &v2))
-        return 0;
-    j->kind->eval_points(j->p, r1, v1, r2, v2, e);
-    for (int i = 0; i < 3; i++) /* what a translational row reads of the nodes */
-        n1->v[i] = v1[i], n2->v[i] = v2[i], n1->ar[i] = n2->ar[i] = 0;
-    return 1;
-}
-
 void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
                    rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2, rt_joint_eval *e)
 {
@@ -175,6 +160,44 @@ static real_t *slice(const rt_mbs_work *w, real_t *base, uint16_t b, uint16_t t,
     return base + w->wo[b] + (size_t)(t - w->to[b]) * nz;
 }
 
+/* the rows of joint ji between two points by its kind's eval_points (0 if that does not
+   apply): g, g' = C1 v1 + C2 v2, and with jac gam = c (points have no acceleration
+   terms: the general path adds a zero sum, +0) and W's rows C1, C2 (a point node's
+   Jacobian is [I; 0]); the same bits as the general path below, without node structs */
+static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int jac)
+{
+    const rt_joint *j = &sc->joints[ji];
+    const real_t *r1, *v1, *r2, *v2;
+    if (!j->kind->eval_points || !point_of(sc, sim, j, 0, &r1, &v1) ||
+        !point_of(sc, sim, j, 1, &r2, &v2))
+        return 0;
+    rt_mbs_work *w = &sim->work.mbs;
+    rt_joint_eval e;
+    j->kind->eval_points(j->p, r1, v1, r2, v2, &e);
+    uint16_t b1 = (uint16_t)j->b1;
+    for (uint16_t i = 0; i < j->kind->nc; i++) {
+        uint16_t r = (uint16_t)(w->jrow[ji] + i);
+        const real_t *C = e.C[i];
+        real_t s = 0;
+        for (int k = 0; k < 3; k++)
+            s += C[k] * v1[k] + C[6 + k] * v2[k];
+        w->g[r] = e.g[i];
+        w->gd[r] = s;
+        if (!jac)
+            continue;
+        w->gam[r] = (real_t)0 + e.c[i];
+        real_t *W1 = slice(w, w->W, b1, (uint16_t)(w->jt[ji][0] + i), 3);
+        for (int k = 0; k < 3; k++)
+            W1[k] = C[k];
+        if (j->b2 < 0)
+            continue;
+        real_t *W2 = slice(w, w->W, (uint16_t)j->b2, (uint16_t)(w->jt[ji][1] + i), 3);
+        for (int k = 0; k < 3; k++)
+            W2[k] = j->b2 == j->b1 ? W2[k] + C[6 + k] : C[6 + k];
+    }
+    return 1;
+}
+
 /* rows of joint ji: g, g', and with RTI_MBS_JAC the rows of W and gam (eq. 7b) */
 static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t t, int what)
 {
@@ -183,8 +206,9 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t 
     int jac = what & RTI_MBS_JAC;
     rt_mbs_node n1, n2;
     rt_joint_eval e;
-    if (!joint_points(sc, sim, j, &n1, &n2, &e))
-        rti_mbs_joint(sc, sim, ji, t, &n1, &n2, jac ? w->J[0] : 0, jac ? w->J[1] : 0, &e);
+    if (assemble_points(sc, sim, ji, jac))
+        return;
+    rti_mbs_joint(sc, sim, ji, t, &n1, &n2, jac ? w->J[0] : 0, jac ? w->J[1] : 0, &e);
     uint16_t b1 = (uint16_t)j->b1, nz1 = spec_of(sc, b1)->nz;
     for (uint16_t i = 0; i < j->kind->nc; i++) {
         uint16_t r = (uint16_t)(w->jrow[ji] + i);
