@@ -153,9 +153,10 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
             const rt_joint *jt = &sc->joints[j];
             if (jt->b1 != b && jt->b2 != b)
                 continue;
-            w->jt[j][jt->b1 == b ? 0 : 1] = (uint16_t)n;
+            uint16_t at = (uint16_t)(tw + (n - w->to[b]) * spec_of(sc, b)->nz);
+            w->jw[j][jt->b1 == b ? 0 : 1] = at;
             if (jt->b2 == b)
-                w->jt[j][1] = (uint16_t)n;
+                w->jw[j][1] = at;
             for (uint16_t i = 0; i < jt->kind->nc; i++)
                 add_touch(w, &n, (uint16_t)(w->jrow[j] + i));
         }

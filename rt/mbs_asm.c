@@ -154,12 +154,6 @@ static real_t dot(const real_t *a, const real_t *b, const real_t *m, uint16_t n)
     return acc;
 }
 
-/* the slice of W (or Y) of touch t of block b: nz values */
-static real_t *slice(const rt_mbs_work *w, real_t *base, uint16_t b, uint16_t t, uint16_t nz)
-{
-    return base + w->wo[b] + (size_t)(t - w->to[b]) * nz;
-}
-
 /* the rows of joint ji between two points by its kind's eval_points (0 if that does not
    apply): g, g' = C1 v1 + C2 v2, and with jac gam = c (points have no acceleration
    terms: the general path adds a zero sum, +0) and W's rows C1, C2 (a point node's
@@ -174,26 +168,27 @@ static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int jac
     rt_mbs_work *w = &sim->work.mbs;
     rt_joint_eval e;
     j->kind->eval_points(j->p, r1, v1, r2, v2, &e);
-    uint16_t b1 = (uint16_t)j->b1;
     for (uint16_t i = 0; i < j->kind->nc; i++) {
         uint16_t r = (uint16_t)(w->jrow[ji] + i);
         const real_t *C = e.C[i];
-        real_t s = 0;
-        for (int k = 0; k < 3; k++)
-            s += C[k] * v1[k] + C[6 + k] * v2[k];
+        real_t s = 0; /* the sum of the general path's row_dot, term by term */
+        s += C[0] * v1[0] + C[6] * v2[0];
+        s += C[1] * v1[1] + C[7] * v2[1];
+        s += C[2] * v1[2] + C[8] * v2[2];
         w->g[r] = e.g[i];
         w->gd[r] = s;
         if (!jac)
             continue;
         w->gam[r] = (real_t)0 + e.c[i];
-        real_t *W1 = slice(w, w->W, b1, (uint16_t)(w->jt[ji][0] + i), 3);
-        for (int k = 0; k < 3; k++)
-            W1[k] = C[k];
+        real_t *W1 = w->W + w->jw[ji][0] + 3 * i;
+        W1[0] = C[0], W1[1] = C[1], W1[2] = C[2];
         if (j->b2 < 0)
             continue;
-        real_t *W2 = slice(w, w->W, (uint16_t)j->b2, (uint16_t)(w->jt[ji][1] + i), 3);
-        for (int k = 0; k < 3; k++)
-            W2[k] = j->b2 == j->b1 ? W2[k] + C[6 + k] : C[6 + k];
+        real_t *W2 = w->W + w->jw[ji][1] + 3 * i;
+        if (j->b2 == j->b1)
+            W2[0] += C[6], W2[1] += C[7], W2[2] += C[8];
+        else
+            W2[0] = C[6], W2[1] = C[7], W2[2] = C[8];
     }
     return 1;
 }
@@ -218,11 +213,11 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t 
             continue;
         w->gam[r] = row_dot(e.C[i], j->kind->trans, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
         map_row(spec_of(sc, b1), e.C[i], w->J[0],
-                slice(w, w->W, b1, (uint16_t)(w->jt[ji][0] + i), nz1), 0);
+                w->W + w->jw[ji][0] + (size_t)i * nz1, 0);
         if (j->b2 >= 0) {
             uint16_t b2 = (uint16_t)j->b2, nz2 = spec_of(sc, b2)->nz;
             map_row(spec_of(sc, b2), e.C[i] + 6, w->J[1],
-                    slice(w, w->W, b2, (uint16_t)(w->jt[ji][1] + i), nz2), b2 == b1);
+                    w->W + w->jw[ji][1] + (size_t)i * nz2, b2 == b1);
         }
     }
 }

@@ -223,7 +223,8 @@ typedef struct rt_mbs_work {
     uint16_t sj[RT_MAX_SETS + 1];   /* each set's joints: sjnt[sj[s] .. sj[s+1]) */
     uint16_t sjnt[RT_MAX_JOINTS];   /* ... in joint order */
     uint16_t jrow[RT_MAX_JOINTS];   /* first row of each joint within its set */
-    uint16_t jt[RT_MAX_JOINTS][2];  /* touch of its first row in b1's and b2's lists */
+    uint16_t jw[RT_MAX_JOINTS][2];  /* W slices of its first row in b1's and b2's columns
+                                       (its rows follow, nz of the block apart) */
     uint16_t jlo[RT_MAX_JOINTS];    /* first of its multipliers in jlam */
     uint16_t nz[RT_MAX_SETS];       /* velocities of each set's MBS blocks */
     uint16_t nq[RT_MAX_SETS];       /* coordinates of each set's MBS blocks */
