@@ -225,9 +225,9 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t 
 /* ------------------------------------------------------------------ blocks */
 
 /* factors block b's M in place (a diagonal M is only checked); a pivot at or below the
-   threshold is counted and replaced by it, so the solves stay finite */
-static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *M,
-                        uint16_t *piv)
+   threshold is counted and replaced by it, so the solves stay finite. A dense M keeps its
+   nz row pivots after the nz^2 factors, as reals (small integers, exact) */
+static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *M)
 {
     rt_status st = RT_OK;
     if (sp->flags & RT_MBS_M_DIAG) {
@@ -239,20 +239,27 @@ static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *
             if (!(M[i] > floor_))
                 M[i] = floor_, st = RT_E_SINGULAR;
     } else {
+        uint16_t piv[RT_MAX_MBS_BZ];
         st = rti_lu(M, sp->nz, piv, RT_MBS_PIVOT_TOL);
+        for (uint16_t i = 0; i < sp->nz; i++)
+            M[sp->nz * sp->nz + i] = (real_t)piv[i];
     }
     if (st != RT_OK)
         rti_count(sim, RT_CNT_SINGULAR, b, RT_E_SINGULAR);
 }
 
 /* v <- M^-1 v with the factors of mass_factor */
-static void mass_solve(const rt_mbs_spec *sp, const real_t *M, const uint16_t *piv, real_t *v)
+static void mass_solve(const rt_mbs_spec *sp, const real_t *M, real_t *v)
 {
-    if (sp->flags & RT_MBS_M_DIAG)
+    if (sp->flags & RT_MBS_M_DIAG) {
         for (uint16_t i = 0; i < sp->nz; i++)
             v[i] /= M[i];
-    else
-        rti_lu_solve(M, sp->nz, piv, v);
+        return;
+    }
+    uint16_t piv[RT_MAX_MBS_BZ];
+    for (uint16_t i = 0; i < sp->nz; i++)
+        piv[i] = (uint16_t)M[sp->nz * sp->nz + i];
+    rti_lu_solve(M, sp->nz, piv, v);
 }
 
 /* block b's own part: M factors (once for a constant M), free accelerations M^-1 k,
@@ -267,14 +274,14 @@ static void assemble_block(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t
     rti_args(sc, sim, b, t, 0, &a);
     if ((what & RTI_MBS_JAC) && !((sp->flags & RT_MBS_M_CONST) && w->m_valid[b])) {
         sp->mass(&a, M);
-        mass_factor(sim, sp, b, M, w->Mpiv + w->mo[b]);
+        mass_factor(sim, sp, b, M);
         w->m_valid[b] = 1;
     }
     if (what & RTI_MBS_FORCE) {
         if (sc->blocks[b].kind->nu > 0)
             rti_gather(sim, b, t); /* the inputs are applied forces (eq. 6b) */
         sp->force(&a, w->a + zo);
-        mass_solve(sp, M, w->Mpiv + w->mo[b], w->a + zo);
+        mass_solve(sp, M, w->a + zo);
     }
     if (sp->nc > 0) {
         uint16_t r = w->co[b];
@@ -330,7 +337,7 @@ static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
     for (uint16_t i = t0; i < t1; i++, Wi += nz, Yi += nz) {
         for (uint16_t c = 0; c < nz; c++)
             Yi[c] = Wi[c];
-        mass_solve(sp, M, w->Mpiv + w->mo[b], Yi);
+        mass_solve(sp, M, Yi);
     }
     for (Wi = W; t0 < t1; t0++, Wi += nz, Y += nz) {
         const real_t *Yk = Y;

@@ -155,8 +155,9 @@ typedef double real_t;
 #define RT_MAX_MBS_LNZ (RT_MAX_MBS_C > 1 ? RT_MAX_MBS_C * (RT_MAX_MBS_C - 1) / 2 : 1)
 #endif
 #ifndef RT_MAX_MBS_M
-/* entries of the mass matrices of all MBS blocks: nz for a diagonal M, nz^2 otherwise */
-#define RT_MAX_MBS_M (RT_MAX_MBS_Z * RT_MAX_MBS_BZ)
+/* entries of the mass matrices of all MBS blocks: nz for a diagonal M, nz (nz + 1)
+   otherwise (its LU factors and row pivots) */
+#define RT_MAX_MBS_M (RT_MAX_MBS_Z * (RT_MAX_MBS_BZ + 1))
 #endif
 #ifndef RT_MAX_MBS_JZ
 /* velocities of the largest MBS block whose nodes have Jacobians to map (any kind but

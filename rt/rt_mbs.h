@@ -240,8 +240,8 @@ typedef struct rt_mbs_work {
     /* values */
     real_t lv[RT_MAX_MBS_ROWS + RT_MAX_MBS_LNZ]; /* A, then its factors: the diagonal D
                                        (lv[rb[s] + i]), then L (lv[RT_MAX_MBS_ROWS + e]) */
-    real_t M[RT_MAX_MBS_M];         /* factors of each block's M (a diagonal M: nz values) */
-    uint16_t Mpiv[RT_MAX_MBS_M];    /* their row pivots (dense M), at mo[b] */
+    real_t M[RT_MAX_MBS_M];         /* factors of each block's M (a diagonal M: nz values;
+                                       a dense M: nz^2 factors, then nz row pivots) */
     real_t W[RT_MAX_MBS_TW];        /* W = G K: per touch the block's nz columns */
     real_t Y[RT_MAX_MBS_TY];        /* M^-1 W^T, transposed like W (dense M only) */
     real_t a[RT_MAX_MBS_Z];         /* forces k, free accelerations M^-1 k, then z' (the
