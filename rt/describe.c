@@ -99,7 +99,8 @@ static void mbs_sizes(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
         if (!(sp->flags & RT_MBS_M_DIAG))
             z->mbs_ty = (uint16_t)(z->mbs_ty + t * sp->nz);
         z->mbs_pairs = (uint16_t)(z->mbs_pairs + t * (t + 1) / 2);
-        z->mbs_m = (uint16_t)(z->mbs_m + ((sp->flags & RT_MBS_M_DIAG) ? sp->nz : sp->nz * (sp->nz + 1)));
+        uint16_t me = (sp->flags & RT_MBS_M_DIAG) ? sp->nz : (uint16_t)(sp->nz * (sp->nz + 1));
+        z->mbs_m = (uint16_t)(z->mbs_m + me); /* M's entries: factors (and pivots) */
         if (!(sp->flags & RT_MBS_NODE_POINT) && sp->nz > z->mbs_jz)
             z->mbs_jz = sp->nz;
     }

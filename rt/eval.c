@@ -80,7 +80,7 @@ static uint16_t writer(const rt_scene *sc, const rt_sim *sim, uint16_t v)
     return b;
 }
 
-void rti_rhs_plan(const rt_scene *sc, rt_sim *sim)
+rt_status rti_rhs_plan(const rt_scene *sc, rt_sim *sim)
 {
     for (uint16_t b = 0; b < sc->nblocks; b++)
         sim->plan.rhs_skip[b] = 1;
@@ -94,6 +94,7 @@ void rti_rhs_plan(const rt_scene *sc, rt_sim *sim)
             if (sc->blocks[wb].set == sc->blocks[b].set)
                 sim->plan.rhs_skip[wb] = 0;
         }
+    return RT_OK;
 }
 
 void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)

@@ -314,7 +314,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
-        (st = check_history(sc, sim)) != RT_OK || (rti_rhs_plan(sc, sim), 0) ||
+        (st = check_history(sc, sim)) != RT_OK || (st = rti_rhs_plan(sc, sim)) != RT_OK ||
         (st = rti_link_check(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */

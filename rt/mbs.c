@@ -174,7 +174,7 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
 }
 
 /* each set's MBS blocks and joints, in scene order: what the evaluations loop over */
-static void set_lists(const rt_scene *sc, rt_sim *sim)
+static rt_status set_lists(const rt_scene *sc, rt_sim *sim)
 {
     rt_mbs_work *w = &sim->work.mbs;
     uint16_t nb = 0, nj = 0;
@@ -188,6 +188,7 @@ static void set_lists(const rt_scene *sc, rt_sim *sim)
                 w->sjnt[nj++] = j;
     }
     w->sb[sc->nsets] = nb, w->sj[sc->nsets] = nj;
+    return RT_OK;
 }
 
 /* the symbolic phase of each set's sparse factorization (rt/mbs_ldl.c) */
@@ -239,7 +240,7 @@ static int init(const rt_scene *sc, rt_sim *sim)
         return rti_fail(sim, RT_E_SCENE, "unknown stabilization, or Baumgarte parameters "
                         "not finite and >= 0", (const char *)0);
     if ((st = block_tables(sc, sim)) != RT_OK || (st = joint_tables(sc, sim)) != RT_OK ||
-        (st = touch_tables(sc, sim)) != RT_OK || (set_lists(sc, sim), 0) ||
+        (st = touch_tables(sc, sim)) != RT_OK || (st = set_lists(sc, sim)) != RT_OK ||
         (st = factor_tables(sc, sim)) != RT_OK ||
         (st = check_recs(sc, sim)) != RT_OK)
         return st;

@@ -81,8 +81,8 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at);
 /* Root values of the blocks of set s at time t (outputs must be current) into r. */
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
 /* Marks the blocks a right-hand side need not call (plan.rhs_skip): no input of their
-   own set reads their outputs live (after routing and rti_xset_init). */
-void rti_rhs_plan(const rt_scene *sc, rt_sim *sim);
+   own set reads their outputs live (after routing and rti_xset_init). Returns RT_OK. */
+rt_status rti_rhs_plan(const rt_scene *sc, rt_sim *sim);
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
 

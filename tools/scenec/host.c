@@ -53,9 +53,10 @@ void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
             at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz));
     /* the multibody tables over all sets (their defaults derive from the limits above) */
     fprintf(f, " -DRT_MAX_MBS_ROWS=%u -DRT_MAX_MBS_TOUCH=%u -DRT_MAX_MBS_TW=%u "
-               "-DRT_MAX_MBS_QT=%u -DRT_MAX_MBS_TY=%u -DRT_MAX_MBS_PAIRS=%u -DRT_MAX_MBS_LNZ=%u -DRT_MAX_MBS_M=%u "
-               "-DRT_MAX_MBS_JROWS=%u -DRT_MAX_MBS_JZ=%u\n",
+               "-DRT_MAX_MBS_QT=%u -DRT_MAX_MBS_TY=%u -DRT_MAX_MBS_PAIRS=%u "
+               "-DRT_MAX_MBS_LNZ=%u -DRT_MAX_MBS_M=%u -DRT_MAX_MBS_JROWS=%u -DRT_MAX_MBS_JZ=%u\n",
             at_least_1(z.mbs_rows), at_least_1(z.mbs_touch), at_least_1(z.mbs_tw),
-            at_least_1(z.mbs_qt), at_least_1(z.mbs_ty), at_least_1(z.mbs_pairs), at_least_1(z.mbs_lnz), at_least_1(z.mbs_m),
-            at_least_1(z.mbs_jrows), at_least_1(z.mbs_jz));
+            at_least_1(z.mbs_qt), at_least_1(z.mbs_ty), at_least_1(z.mbs_pairs),
+            at_least_1(z.mbs_lnz), at_least_1(z.mbs_m), at_least_1(z.mbs_jrows),
+            at_least_1(z.mbs_jz));
 }
