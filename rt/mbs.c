@@ -24,7 +24,7 @@ static rt_status check_spec(const rt_scene *sc, rt_sim *sim, uint16_t b)
     const rt_mbs_spec *sp = spec_of(sc, b);
     int ok = sp->nq + sp->nz == k->nx && sp->nz > 0 && sp->kin && sp->mass && sp->force &&
              sp->energy && (sp->nc == 0 || sp->constr) && (sp->nn == 0 || sp->node) &&
-             (!(sp->flags & RT_MBS_NODE_POINT) || sp->nz == 3);
+             (!(sp->flags & RT_MBS_NODE_POINT) || (sp->nq == 3 && sp->nz == 3));
     if (!ok)
         return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name,
                         ": its MBS description is inconsistent (nx != nq + nz, or a hook "
