@@ -183,10 +183,12 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
    which finds the torn inputs) and event location */
 static rt_status check_history(const rt_scene *sc, rt_sim *sim)
 {
-    for (uint16_t v = RT_MAX_HIST_Y; v < sim->plan.y_off[sc->nblocks]; v++)
-        if (sim->plan.xsrc[v])
-            return rti_fail(sim, RT_E_CAPACITY, "outputs read by another set exceed ",
-                            RTI_LIMIT(RT_MAX_HIST_Y), (const char *)0);
+    uint32_t top = 0; /* the highest output index another set reads, plus one */
+    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++)
+        top = sim->plan.xsrc[v] ? (uint32_t)v + 1 : top;
+    if (top > RT_MAX_HIST_Y)
+        return rti_fail(sim, RT_E_CAPACITY, "outputs read by another set exceed ",
+                        RTI_LIMIT(RT_MAX_HIST_Y), (const char *)0);
     uint32_t iters = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
     if (sim->plan.ntorn > 0 && iters > RT_MAX_LOOP_HIST - 1)
         return rti_fail(sim, RT_E_CAPACITY, "the loops' iteration bound exceeds ",

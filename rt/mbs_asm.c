@@ -180,11 +180,11 @@ static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int jac
         if (!jac)
             continue;
         w->gam[r] = (real_t)0 + e.c[i];
-        real_t *W1 = w->W + w->jw[ji][0] + 3 * i;
+        real_t *W1 = w->W + w->jw[ji][0] + (size_t)3 * i;
         W1[0] = C[0], W1[1] = C[1], W1[2] = C[2];
         if (j->b2 < 0)
             continue;
-        real_t *W2 = w->W + w->jw[ji][1] + 3 * i;
+        real_t *W2 = w->W + w->jw[ji][1] + (size_t)3 * i;
         if (j->b2 == j->b1)
             W2[0] += C[6], W2[1] += C[7], W2[2] += C[8];
         else

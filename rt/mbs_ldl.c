@@ -23,7 +23,7 @@ typedef struct graph {
 
 static int has(const graph *g, uint16_t r, uint16_t s)
 {
-    return (g->adj[r][s / WORD_BITS] >> (s % WORD_BITS)) & 1u;
+    return (int)((g->adj[r][s / WORD_BITS] >> (s % WORD_BITS)) & 1u);
 }
 
 static void link2(graph *g, uint16_t r, uint16_t s)
@@ -37,7 +37,7 @@ static void touches_graph(const rt_scene *sc, const rt_mbs_work *w, uint8_t set,
 {
     for (uint16_t r = 0; r < w->nc[set]; r++) {
         g->gone[r] = 0;
-        for (uint16_t k = 0; k < ADJ_WORDS; k++)
+        for (int k = 0; k < ADJ_WORDS; k++)
             g->adj[r][k] = 0;
     }
     for (uint16_t b = 0; b < sc->nblocks; b++)
@@ -163,7 +163,7 @@ void rti_mbs_ldl_clear(rt_mbs_work *w, uint8_t set)
 int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
 {
     uint16_t base = w->rb[set], n = (uint16_t)(w->rb[set + 1] - base);
-    real_t *D = w->lv + base, *L = w->lv + RT_MAX_MBS_ROWS;
+    real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
     const uint16_t *lp = w->lp + base;
     real_t u[RT_MAX_MBS_C]; /* row i so far: u[j] = L_ij D_j, zero outside its pattern */
     real_t big = 0;
@@ -201,7 +201,7 @@ int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
 void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v)
 {
     uint16_t base = w->rb[set], n = (uint16_t)(w->rb[set + 1] - base);
-    const real_t *D = w->lv + base, *L = w->lv + RT_MAX_MBS_ROWS;
+    const real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
     const uint16_t *lp = w->lp + base, *perm = w->perm + base;
     real_t y[RT_MAX_MBS_C];
     for (uint16_t i = 0; i < n; i++) { /* L y = P v */
