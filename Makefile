@@ -298,11 +298,21 @@ $(O)/mbs_bench: $(call obj,tools/bench/mbs_bench.c tools/bench/bench_doc.c) $(RT
 $(O)/multirate_bench: $(call obj,tools/bench/multirate_bench.c tools/bench/bench_doc.c) \
                      $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
+$(O)/overhead_bench: $(call obj,tools/bench/overhead_bench.c tools/bench/pendulum_mono.c) \
+                    $(RT_OBJS) $(MODEL_OBJS)
+	$(CC) $(LDSAN) $^ -lm -o $@
+# modrt against the hand-written monolith (docs/overhead.md): the trajectory check (fails
+# the target when they differ), then instruction counts and ratios
+overhead: $(O)/overhead_bench
+	@mkdir -p build/bench
+	$(O)/overhead_bench check
+	@sh tools/bench/overhead.sh $(O)/overhead_bench | tee build/bench/overhead.txt
+.PHONY: overhead
 # benchmarks write into build/bench/ only (documents are spliced into copies there);
 # `make docs` runs them and copies the figures over the committed ones in docs/
 BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
-bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot $(O)/modrt
+bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot $(O)/modrt overhead
 	@mkdir -p build/bench
 	@cp docs/mbs.md docs/multirate.md build/bench/
 	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md

@@ -19,7 +19,7 @@ static void kin(const rt_args *a, const real_t *v, real_t *qd)
         qd[i] = v[i];
 }
 
-/* M = m I, diagonal (RT_MBS_M_DIAG) */
+/* M = m I, diagonal and constant (RT_MBS_M_DIAG, RT_MBS_M_CONST) */
 static void mass(const rt_args *a, real_t *M)
 {
     M[0] = M[1] = M[2] = a->p[0];
@@ -39,7 +39,8 @@ static void force_u(const rt_args *a, real_t *k)
         k[i] = a->p[0] * a->p[1 + i] + a->u[i];
 }
 
-/* node "c": r = q, v = z, Jr = I, no rotation, no acceleration terms */
+/* node "c": r = q, v = z, Jr = I, no rotation, no acceleration terms (the kind says
+   RT_MBS_NODE_POINT, so the assembly needs no J; it is written when asked for) */
 static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
 {
     static const real_t unit[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
@@ -81,11 +82,15 @@ static rt_status check(const real_t *p, const void *spec)
 }
 
 static const rt_mbs_spec spec = {
-    .nq = 3, .nz = 3, .nn = 1, .flags = RT_MBS_M_DIAG, .node_names = node_names,
+    .nq = 3, .nz = 3, .nn = 1, 
+    .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_NODE_POINT,
+    .node_names = node_names,
     .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
 };
 static const rt_mbs_spec spec_u = {
-    .nq = 3, .nz = 3, .nn = 1, .flags = RT_MBS_M_DIAG, .node_names = node_names,
+    .nq = 3, .nz = 3, .nn = 1, 
+    .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_NODE_POINT,
+    .node_names = node_names,
     .kin = kin, .mass = mass, .force = force_u, .node = node, .energy = energy,
 };
 

@@ -177,7 +177,8 @@ static rt_status check_mf(const real_t *p, const void *spec)
 }
 
 static const rt_mbs_spec spec = {
-    .nq = 3, .nz = 3, .nn = 2, .flags = RT_MBS_M_DIAG, .node_names = node_names,
+    .nq = 3, .nz = 3, .nn = 2, .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST,
+    .node_names = node_names,
     .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
 };
 
@@ -200,7 +201,8 @@ const rt_kind mdl_st_car_kind = {
 };
 
 static const rt_mbs_spec spec_mf = {
-    .nq = 3, .nz = 3, .nn = 2, .flags = RT_MBS_M_DIAG, .node_names = node_names,
+    .nq = 3, .nz = 3, .nn = 2, .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST,
+    .node_names = node_names,
     .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
 };
 

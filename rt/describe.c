@@ -79,6 +79,45 @@ rt_torn rt_torn_at(const rt_scene *sc, const rt_sim *sim, uint16_t k)
                      (uint16_t)(gi - sim->plan.u_off[to])};
 }
 
+/* the multibody tables' exact sizes, from the tables init built */
+static void mbs_sizes(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
+{
+    const rt_mbs_work *m = &sim->work.mbs;
+    z->mbs_rows = z->mbs_touch = z->mbs_tw = z->mbs_ty = z->mbs_pairs = z->mbs_lnz = 0;
+    z->mbs_m = z->mbs_jrows = z->mbs_jz = z->mbs_qt = 0;
+    if (!sc->mbs)
+        return;
+    z->mbs_rows = m->rb[sc->nsets];
+    z->mbs_lnz = m->lp[m->rb[sc->nsets]];
+    z->mbs_touch = m->to[sc->nblocks];
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_mbs_spec *sp = sc->blocks[b].kind->spec;
+        if (sc->blocks[b].kind->type != RT_KIND_MBS)
+            continue;
+        uint16_t t = (uint16_t)(m->to[b + 1] - m->to[b]);
+        z->mbs_tw = (uint16_t)(z->mbs_tw + t * sp->nz);
+        if (!(sp->flags & RT_MBS_M_DIAG))
+            z->mbs_ty = (uint16_t)(z->mbs_ty + t * sp->nz);
+        z->mbs_pairs = (uint16_t)(z->mbs_pairs + t * (t + 1) / 2);
+        uint16_t me = (sp->flags & RT_MBS_M_DIAG) ? sp->nz : (uint16_t)(sp->nz * (sp->nz + 1));
+        z->mbs_m = (uint16_t)(z->mbs_m + me); /* M's entries: factors (and pivots) */
+        if (!(sp->flags & RT_MBS_NODE_POINT) && sp->nz > z->mbs_jz)
+            z->mbs_jz = sp->nz;
+    }
+    for (uint8_t s = 0; s < sc->nsets; s++) { /* qt of each set: its blocks' qo plus nq */
+        uint16_t n = 0;
+        for (uint16_t b = 0; b < sc->nblocks; b++) {
+            const rt_mbs_spec *sp = sc->blocks[b].kind->spec;
+            if (sc->blocks[b].kind->type == RT_KIND_MBS && sc->blocks[b].set == s &&
+                (!(sp->flags & RT_MBS_K_CONST) || sp->kinb))
+                n = (uint16_t)(m->qo[b] + sp->nq);
+        }
+        z->mbs_qt = n > z->mbs_qt ? n : z->mbs_qt;
+    }
+    for (uint16_t j = 0; j < sc->njoints; j++)
+        z->mbs_jrows = (uint16_t)(z->mbs_jrows + sc->joints[j].kind->nc);
+}
+
 void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
 {
     uint16_t nb = sc->nblocks;
@@ -105,6 +144,18 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
         z->mbs_q = m->nq[s] > z->mbs_q ? m->nq[s] : z->mbs_q;
         z->mbs_c = m->nc[s] > z->mbs_c ? m->nc[s] : z->mbs_c;
     }
+    z->hist_y = z->event_x = 0;
+    for (uint16_t v = 0; v < z->y; v++)
+        if (sim->plan.xsrc[v])
+            z->hist_y = (uint16_t)(v + 1);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] && rt_set_nx(sim, s) > z->event_x)
+            z->event_x = rt_set_nx(sim, s);
+    z->seq = sim->plan.nseq;
+    z->loop_hist = 0;
+    if (sim->plan.ntorn > 0)
+        z->loop_hist = (uint16_t)((sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX) + 1);
+    mbs_sizes(sc, sim, z);
 }
 
 real_t rt_output(const rt_sim *sim, uint16_t block, uint16_t j)

@@ -62,10 +62,39 @@ void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end
         call_output(sc, sim, sim->plan.seq[s].index, at);
 }
 
-/* is block b evaluated in the pass under way (its set, or every set)? */
-static int in_pass(const rt_scene *sc, rti_at at, uint16_t b)
+/* is block b evaluated in the pass under way (its set, or every set; in a right-hand
+   side only if its set reads its outputs)? */
+static int in_pass(const rt_scene *sc, const rt_sim *sim, rti_at at, uint16_t b)
 {
+    if (at.mode == RTI_IN_RHS && sim->plan.rhs_skip[b])
+        return 0;
     return at.set == RT_ALL_SETS || sc->blocks[b].set == at.set;
+}
+
+/* the block whose outputs hold global output index v */
+static uint16_t writer(const rt_scene *sc, const rt_sim *sim, uint16_t v)
+{
+    uint16_t b = 0;
+    while (b + 1 < sc->nblocks && sim->plan.y_off[b + 1] <= v)
+        b++;
+    return b;
+}
+
+rt_status rti_rhs_plan(const rt_scene *sc, rt_sim *sim)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        sim->plan.rhs_skip[b] = 1;
+    /* a live read (RT_SRC_Y) from the reader's own set keeps the writer; cross-set inputs
+       read the history, sampled (DSS) outputs are held: neither needs the call */
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
+            if (sim->plan.src_kind[i] != RT_SRC_Y)
+                continue;
+            uint16_t wb = writer(sc, sim, sim->plan.src[i]);
+            if (sc->blocks[wb].set == sc->blocks[b].set)
+                sim->plan.rhs_skip[wb] = 0;
+        }
+    return RT_OK;
 }
 
 void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
@@ -73,14 +102,14 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
     for (uint16_t s = 0; s < sim->plan.nseq; s++) {
         const rt_seq_step *st = &sim->plan.seq[s];
         if (st->kind == RT_SEQ_CALL) {
-            if (in_pass(sc, at, st->index))
+            if (in_pass(sc, sim, at, st->index))
                 call_output(sc, sim, st->index, at);
             continue;
         }
         /* an actual loop (all in one set: cross-set edges are no algebraic
            dependency): the solver runs its segment until the torn inputs agree */
         const rt_loop *l = &sim->plan.loops[st->index];
-        if (in_pass(sc, at, sim->plan.loop_blocks[l->first]))
+        if (in_pass(sc, sim, (rti_at){at.t, at.set, RTI_IN_STEP}, sim->plan.loop_blocks[l->first]))
             sc->loop_solver->solve(sc, sim, (uint8_t)st->index, at.t, (int)at.mode);
         s = (uint16_t)(l->seq1 - 1);
     }
@@ -109,7 +138,7 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     uint16_t base = sim->plan.set_x[c->set];
 
     sim->stats.rhs_evals[c->set]++;
-    rti_outputs(sc, sim, (rti_at){t, c->set, RTI_IN_STEP});
+    rti_outputs(sc, sim, (rti_at){t, c->set, RTI_IN_RHS});
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
         if (k->nx == 0 || !k->deriv || sc->blocks[b].set != c->set)

@@ -151,11 +151,8 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
         sim->plan.src_kind[i] = RTI_SRC_UNSET, sim->plan.src[i] = 0, sim->plan.def[i] = 0, sim->work.u[i] = 0;
         sim->plan.interp[i] = 0, sim->plan.src_set[i] = 0;
     }
-    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++) {
-        sim->plan.xsrc[v] = 0;
-        for (int k = 0; k < RT_HIST; k++)
-            sim->state.hist_y[k][v] = 0;
-    }
+    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++)
+        sim->plan.xsrc[v] = 0; /* (the history hist_y was zeroed with the state) */
     for (uint16_t c = 0; c < sc->nconns; c++)
         if ((st = route_conn(sc, sim, &sc->conns[c])) != RT_OK)
             return st;
@@ -179,6 +176,29 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
                                 sc->blocks[b].kind->u_names[i],
                                 " is not connected and has no default value",
                                 (const char *)0);
+    return RT_OK;
+}
+
+/* the per-scene sizes of the cross-set history, the loop histogram (after rti_order,
+   which finds the torn inputs) and event location */
+static rt_status check_history(const rt_scene *sc, rt_sim *sim)
+{
+    uint32_t top = 0; /* the highest output index another set reads, plus one */
+    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++)
+        top = sim->plan.xsrc[v] ? (uint32_t)v + 1 : top;
+    if (top > RT_MAX_HIST_Y)
+        return rti_fail(sim, RT_E_CAPACITY, "outputs read by another set exceed ",
+                        RTI_LIMIT(RT_MAX_HIST_Y), (const char *)0);
+    uint32_t iters = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
+    if (sim->plan.ntorn > 0 && iters > RT_MAX_LOOP_HIST - 1)
+        return rti_fail(sim, RT_E_CAPACITY, "the loops' iteration bound exceeds ",
+                        RTI_LIMIT(RT_MAX_LOOP_HIST), " - 1", (const char *)0);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] &&
+            sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_EVENT_X)
+            return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
+                            ": states of a set with roots exceed ", RTI_LIMIT(RT_MAX_EVENT_X),
+                            (const char *)0);
     return RT_OK;
 }
 
@@ -296,6 +316,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
+        (st = check_history(sc, sim)) != RT_OK || (st = rti_rhs_plan(sc, sim)) != RT_OK ||
         (st = rti_link_check(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */

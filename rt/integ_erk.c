@@ -23,25 +23,31 @@ typedef struct erk_tab {
 
 /* max_i |h sum_j e_j k_ij| / (1 + |x_i|): the local error of the embedded solution of
    one order less, which bounds the method's own from above. The pairs that need the
-   derivative at the step's end (FSAL) pay one more right-hand side for it, in k[s]: at a
-   fixed step it cannot be the next step's first stage, which sees the state after
-   projection, events and the other sets' new outputs. */
+   derivative at the step's end (FSAL) pay one more right-hand side for it: at a fixed
+   step it cannot be the next step's first stage, which sees the state after projection,
+   events and the other sets' new outputs. It needs no buffer of its own: the sum over
+   the s stages goes into x0 (dead once x1 is formed), then f(t + h, x1) into k[0], and
+   the last term is added in the same order as one sum would (the same bits), so
+   Dormand-Prince needs six stage buffers, not seven (RT_MAX_STAGES, #14). */
 static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
                            const real_t *x, uint16_t n, const rt_iwork *w)
 {
     const erk_tab *tab = m->tab;
     uint8_t s = tab->s;
-    if (tab->fsal) {
-        rt_status st = f->eval(f->ctx, t + h, w->k[s]);
-        if (st != RT_OK) /* no derivative at the end: nothing to vouch for the step */
-            return (real_t)1 / (real_t)0;
-        s++;
-    }
-    real_t mx = 0;
     for (uint16_t i = 0; i < n; i++) {
         real_t acc = 0;
         for (uint8_t j = 0; j < s; j++)
             acc += tab->e[j] * w->k[j][i];
+        w->x0[i] = acc;
+    }
+    if (tab->fsal) {
+        rt_status st = f->eval(f->ctx, t + h, w->k[0]);
+        if (st != RT_OK) /* no derivative at the end: nothing to vouch for the step */
+            return (real_t)1 / (real_t)0;
+    }
+    real_t mx = 0;
+    for (uint16_t i = 0; i < n; i++) {
+        real_t acc = tab->fsal ? w->x0[i] + tab->e[s] * w->k[0][i] : w->x0[i];
         real_t r = rt_fabs(h * acc) / (1 + rt_fabs(x[i]));
         if (r != r)
             return r;

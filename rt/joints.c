@@ -72,16 +72,17 @@ static void perpendicular(const rt_mbs_node *n1, const rt_mbs_node *n2, int iu, 
 }
 
 /* ---- spherical difference joint |r1 - r2| - l = 0 (eq. 8); p = {l} ----
-   with d = r1 - r2, e = d / |d|: g' = e . (v1 - v2), c = (|d'|^2 - (e . d')^2) / |d| */
-static void sphdiff_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
-                         rt_joint_eval *e)
+   with d = r1 - r2, e = d / |d|: g' = e . (v1 - v2), c = (|d'|^2 - (e . d')^2) / |d|;
+   the translational entries only (eval_points); eval clears the rest first */
+static void sphdiff_points(const real_t *p, const real_t *r1, const real_t *v1,
+                           const real_t *r2, const real_t *v2, rt_joint_eval *e)
 {
     real_t d[3], dd[3], u[3] = {1, 0, 0};
     for (int i = 0; i < 3; i++)
-        d[i] = n1->r[i] - n2->r[i], dd[i] = n1->v[i] - n2->v[i];
+        d[i] = r1[i] - r2[i], dd[i] = v1[i] - v2[i];
     real_t len = rt_sqrt(dot3(d, d));
-    clear(e, 1);
     e->g[0] = len - p[0];
+    e->c[0] = 0;
     /* coincident nodes have no direction: +x, no curvature term (finite, deterministic) */
     if (len > RT_MBS_LEN_MIN)
         for (int i = 0; i < 3; i++)
@@ -92,6 +93,13 @@ static void sphdiff_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_no
         real_t ud = dot3(u, dd);
         e->c[0] = (dot3(dd, dd) - ud * ud) / len;
     }
+}
+
+static void sphdiff_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
+                         rt_joint_eval *e)
+{
+    clear(e, 1);
+    sphdiff_points(p, n1->r, n1->v, n2->r, n2->v, e);
 }
 
 static int sphdiff_check(const real_t *p)
@@ -172,11 +180,11 @@ static void prismatic_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_
 static const char *const sphdiff_p[] = {"l"};
 
 const rt_joint_kind rt_joint_sphdiff = {
-    .name = "sphdiff", .nc = 1, .np = 1, .p_names = sphdiff_p,
-    .check = sphdiff_check, .eval = sphdiff_eval,
+    .name = "sphdiff", .nc = 1, .np = 1, .trans = 1, .p_names = sphdiff_p,
+    .check = sphdiff_check, .eval = sphdiff_eval, .eval_points = sphdiff_points,
 };
 const rt_joint_kind rt_joint_spherical = {
-    .name = "spherical", .nc = 3, .eval = spherical_eval,
+    .name = "spherical", .nc = 3, .trans = 1, .eval = spherical_eval,
 };
 const rt_joint_kind rt_joint_revolute = {
     .name = "revolute", .nc = 5, .eval = revolute_eval,

@@ -77,4 +77,7 @@ void rt_snapshot(const rt_sim *sim, rt_state *out)
 void rt_restore(rt_sim *sim, const rt_state *in)
 {
     sim->state = *in;
+    /* the parameters may differ: constant mass matrices are factored anew */
+    for (uint16_t b = 0; b < RT_MAX_BLOCKS; b++)
+        sim->work.mbs.m_valid[b] = 0;
 }

@@ -148,6 +148,7 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
     uint32_t it = 0;
     int ok = residual(&c, f);
     max = max > RT_LOOP_ITER_LIMIT ? RT_LOOP_ITER_LIMIT : max;
+    max = max > RT_MAX_LOOP_HIST - 1 ? RT_MAX_LOOP_HIST - 1 : max; /* init checked it */
     if (ok && scaled_norm(&c, f) > tol && !sim->state.loop_h_valid[l]) {
         fd_inverse(&c, f, H, scratch, fn);
         sim->state.loop_h_valid[l] = 1;

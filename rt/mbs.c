@@ -23,14 +23,16 @@ static rt_status check_spec(const rt_scene *sc, rt_sim *sim, uint16_t b)
     const rt_kind *k = sc->blocks[b].kind;
     const rt_mbs_spec *sp = spec_of(sc, b);
     int ok = sp->nq + sp->nz == k->nx && sp->nz > 0 && sp->kin && sp->mass && sp->force &&
-             sp->energy && (sp->nc == 0 || sp->constr) && (sp->nn == 0 || sp->node);
+             sp->energy && (sp->nc == 0 || sp->constr) && (sp->nn == 0 || sp->node) &&
+             (!(sp->flags & RT_MBS_NODE_POINT) || (sp->nq == 3 && sp->nz == 3));
     if (!ok)
         return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name,
                         ": its MBS description is inconsistent (nx != nq + nz, or a hook "
                         "is missing)", (const char *)0);
-    if (sp->nz > RT_MAX_MBS_BZ)
+    if (sp->nz > RT_MAX_MBS_BZ || (!(sp->flags & RT_MBS_NODE_POINT) && sp->nz > RT_MAX_MBS_JZ))
         return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                        ": velocities exceed ", RTI_LIMIT(RT_MAX_MBS_BZ), (const char *)0);
+                        ": velocities exceed ", RTI_LIMIT(RT_MAX_MBS_BZ), " or ",
+                        RTI_LIMIT(RT_MAX_MBS_JZ), (const char *)0);
     return RT_OK;
 }
 
@@ -60,15 +62,17 @@ static rt_status check_joint(const rt_scene *sc, rt_sim *sim, const rt_joint *j)
     return RT_OK;
 }
 
-/* offsets of each MBS block within its set, and the set totals against the limits */
+/* offsets of each MBS block within its set (M's over all sets), and the set totals
+   against the limits */
 static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint32_t mo[RT_MAX_SETS] = {0};
+    uint32_t mo = 0, nqt[RT_MAX_SETS] = {0};
     for (uint8_t s = 0; s < RT_MAX_SETS; s++)
         w->nz[s] = w->nq[s] = w->nc[s] = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         w->zo[b] = w->qo[b] = w->mo[b] = w->co[b] = 0;
+        w->m_valid[b] = 0;
         if (!is_mbs(sc, b))
             continue;
         rt_status st = check_spec(sc, sim, b);
@@ -76,14 +80,19 @@ static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
             return st;
         const rt_mbs_spec *sp = spec_of(sc, b);
         uint8_t s = sc->blocks[b].set;
-        w->zo[b] = w->nz[s], w->qo[b] = w->nq[s], w->co[b] = w->nc[s];
-        w->mo[b] = (uint16_t)mo[s];
+        w->zo[b] = w->nz[s], w->qo[b] = (uint16_t)nqt[s], w->co[b] = w->nc[s];
+        w->mo[b] = (uint16_t)mo;
+        if (!(sp->flags & RT_MBS_K_CONST) || sp->kinb)
+            nqt[s] += sp->nq;
         uint32_t nz = (uint32_t)w->nz[s] + sp->nz, nq = (uint32_t)w->nq[s] + sp->nq;
         uint32_t nc = (uint32_t)w->nc[s] + sp->nc;
-        mo[s] += (uint32_t)sp->nz * sp->nz;
-        if (nz > RT_MAX_MBS_Z || nq > RT_MAX_MBS_Q || nc > RT_MAX_MBS_C)
+        mo += (sp->flags & RT_MBS_M_DIAG) ? sp->nz : (uint32_t)sp->nz * (sp->nz + 1u);
+        if (nz > RT_MAX_MBS_Z || nq > RT_MAX_MBS_Q || nc > RT_MAX_MBS_C || mo > RT_MAX_MBS_M ||
+            nqt[s] > RT_MAX_MBS_QT)
             return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
-                            ": MBS blocks exceed ", RTI_LIMIT(RT_MAX_MBS_Z), ", ", RTI_LIMIT(RT_MAX_MBS_Q), " or ", RTI_LIMIT(RT_MAX_MBS_C),
+                            ": MBS blocks exceed ", RTI_LIMIT(RT_MAX_MBS_Z), ", ",
+                            RTI_LIMIT(RT_MAX_MBS_Q), ", ", RTI_LIMIT(RT_MAX_MBS_C), ", ",
+                            RTI_LIMIT(RT_MAX_MBS_M), " or ", RTI_LIMIT(RT_MAX_MBS_QT),
                             (const char *)0);
         w->nz[s] = (uint16_t)nz, w->nq[s] = (uint16_t)nq, w->nc[s] = (uint16_t)nc;
     }
@@ -94,6 +103,7 @@ static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
 static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
 {
     rt_mbs_work *w = &sim->work.mbs;
+    uint32_t lo = 0;
     if (sc->njoints > RT_MAX_JOINTS)
         return rti_fail(sim, RT_E_CAPACITY, "joints exceed ", RTI_LIMIT(RT_MAX_JOINTS), (const char *)0);
     if (sc->njoints > 0 && !sc->joints)
@@ -104,44 +114,94 @@ static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
         if (st != RT_OK)
             return st;
         uint8_t s = sc->blocks[jt->b1].set;
-        if (w->nc[s] + jt->kind->nc > RT_MAX_MBS_C)
+        if (w->nc[s] + jt->kind->nc > RT_MAX_MBS_C || lo + jt->kind->nc > RT_MAX_MBS_JROWS)
             return rti_fail(sim, RT_E_CAPACITY, "joint ", jt->name,
                             ": the constraints of its set exceed ", RTI_LIMIT(RT_MAX_MBS_C),
-                            (const char *)0);
+                            " or ", RTI_LIMIT(RT_MAX_MBS_JROWS), (const char *)0);
         w->jrow[j] = w->nc[s];
         w->nc[s] = (uint16_t)(w->nc[s] + jt->kind->nc);
-        for (uint16_t i = 0; i < RT_MBS_JOINT_NC_MAX; i++)
-            w->jlam[j * RT_MBS_JOINT_NC_MAX + i] = 0;
+        w->jlo[j] = (uint16_t)lo;
+        for (uint16_t i = 0; i < jt->kind->nc; i++)
+            w->jlam[lo++] = 0;
     }
     return RT_OK;
 }
 
-/* the rows each block touches (its internal rows, then its joints' rows), ascending */
+/* one touch (block b, row r): counted always, stored while it fits */
+static void add_touch(rt_mbs_work *w, uint32_t *n, uint16_t r)
+{
+    if (*n < RT_MAX_MBS_TOUCH)
+        w->trow[*n] = r;
+    (*n)++;
+}
+
+/* the rows each block touches (its internal rows, then its joints' rows), ascending, and
+   where each touch's slice of W and Y begins */
 static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint32_t n = 0;
+    uint32_t n = 0, tw = 0, ty = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         w->to[b] = (uint16_t)n;
+        w->wo[b] = (uint16_t)tw;
+        w->yo[b] = (uint16_t)ty;
         if (!is_mbs(sc, b))
             continue;
-        /* n counts every touch; only those that fit are stored (an exact fit is fine) */
-        for (uint16_t i = 0; i < spec_of(sc, b)->nc; i++, n++)
-            if (n < RT_MBS_MAX_TOUCH)
-                w->trow[n] = (uint16_t)(w->co[b] + i);
+        for (uint16_t i = 0; i < spec_of(sc, b)->nc; i++)
+            add_touch(w, &n, (uint16_t)(w->co[b] + i));
         for (uint16_t j = 0; j < sc->njoints; j++) {
             const rt_joint *jt = &sc->joints[j];
             if (jt->b1 != b && jt->b2 != b)
                 continue;
-            for (uint16_t i = 0; i < jt->kind->nc; i++, n++)
-                if (n < RT_MBS_MAX_TOUCH)
-                    w->trow[n] = (uint16_t)(w->jrow[j] + i);
+            uint16_t at = (uint16_t)(tw + (n - w->to[b]) * spec_of(sc, b)->nz);
+            w->jw[j][jt->b1 == b ? 0 : 1] = at;
+            if (jt->b2 == b)
+                w->jw[j][1] = at;
+            for (uint16_t i = 0; i < jt->kind->nc; i++)
+                add_touch(w, &n, (uint16_t)(w->jrow[j] + i));
         }
-        if (n > RT_MBS_MAX_TOUCH)
+        tw += (n - w->to[b]) * spec_of(sc, b)->nz;
+        if (!(spec_of(sc, b)->flags & RT_MBS_M_DIAG))
+            ty += (n - w->to[b]) * spec_of(sc, b)->nz;
+        if (n > RT_MAX_MBS_TOUCH || tw > RT_MAX_MBS_TW || ty > RT_MAX_MBS_TY)
             return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                            ": constraint rows exceed RT_MBS_MAX_TOUCH", (const char *)0);
+                            ": constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_TOUCH), ", ",
+                            RTI_LIMIT(RT_MAX_MBS_TW), " or ", RTI_LIMIT(RT_MAX_MBS_TY),
+                            (const char *)0);
     }
     w->to[sc->nblocks] = (uint16_t)n;
+    return RT_OK;
+}
+
+/* each set's MBS blocks and joints, in scene order: what the evaluations loop over */
+static rt_status set_lists(const rt_scene *sc, rt_sim *sim)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    uint16_t nb = 0, nj = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        w->sb[s] = nb, w->sj[s] = nj;
+        for (uint16_t b = 0; b < sc->nblocks; b++)
+            if (rti_mbs_in_set(sc, b, s))
+                w->sblk[nb++] = b;
+        for (uint16_t j = 0; j < sc->njoints; j++)
+            if (sc->blocks[sc->joints[j].b1].set == s)
+                w->sjnt[nj++] = j;
+    }
+    w->sb[sc->nsets] = nb, w->sj[sc->nsets] = nj;
+    return RT_OK;
+}
+
+/* the symbolic phase of each set's sparse factorization (rt/mbs_ldl.c) */
+static rt_status factor_tables(const rt_scene *sc, rt_sim *sim)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    uint32_t np = 0;
+    w->rb[0] = 0, w->lp[0] = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        rt_status st = rti_mbs_ldl_init(sc, sim, s, &np);
+        if (st != RT_OK)
+            return st;
+    }
     return RT_OK;
 }
 
@@ -180,7 +240,9 @@ static int init(const rt_scene *sc, rt_sim *sim)
         return rti_fail(sim, RT_E_SCENE, "unknown stabilization, or Baumgarte parameters "
                         "not finite and >= 0", (const char *)0);
     if ((st = block_tables(sc, sim)) != RT_OK || (st = joint_tables(sc, sim)) != RT_OK ||
-        (st = touch_tables(sc, sim)) != RT_OK || (st = check_recs(sc, sim)) != RT_OK)
+        (st = touch_tables(sc, sim)) != RT_OK || (st = set_lists(sc, sim)) != RT_OK ||
+        (st = factor_tables(sc, sim)) != RT_OK ||
+        (st = check_recs(sc, sim)) != RT_OK)
         return st;
     sim->work.mbs.res_max = 0;
     sim->work.mbs.projections = 0;
@@ -246,7 +308,7 @@ static real_t energy(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_t 
 static real_t reaction(const rt_scene *sc, const rt_sim *sim, uint16_t j, uint16_t c,
                        real_t t)
 {
-    const real_t *lam = sim->work.mbs.jlam + (size_t)j * RT_MBS_JOINT_NC_MAX;
+    const real_t *lam = sim->work.mbs.jlam + sim->work.mbs.jlo[j];
     if (c >= RT_MBS_JSIG_LAMBDA)
         return lam[c - RT_MBS_JSIG_LAMBDA];
     rt_mbs_node n1, n2;

@@ -2,10 +2,11 @@
  * M and the stacked W = G K of eq. 9, the Schur complement A = W M^-1 W^T over the rows
  * each block touches, the multipliers lambda, and z' (eqs. 6b, 7b); the mbs accel service.
  *
- * Only (block, row) pairs that can be non-zero are formed: a joint row touches the two
- * blocks it links, an internal row its own block, so a chain of n bodies costs O(n) here
- * plus one dense LU of A (its size is the number of constraints). Loops run in a fixed
- * order, so the same state gives the same bits on every target. */
+ * Only (block, row) pairs that can be non-zero are formed and stored: a joint row touches
+ * the two blocks it links, an internal row its own block, so W and Y keep one slice of a
+ * block's velocities per touch, A only the entries the blocks share, and its sparse
+ * L D L^T (rt/mbs_ldl.c) only the pattern found at init: a chain of n bodies costs O(n).
+ * Loops run in a fixed order, so the same state gives the same bits on every target. */
 #include "linalg.h"
 #include "rti_mbs.h"
 
@@ -32,6 +33,24 @@ static void anchor(const rt_joint *j, rt_mbs_node *n)
         n->S[i] = j->at_S ? j->at_S[i] : (i % 4 == 0 ? 1 : 0);
 }
 
+/* a node of a kind flagged RT_MBS_NODE_POINT is the point itself: r = q, v = z, S = I, at
+   rest in rotation, no acceleration terms; filled here without a call (and no Jacobian:
+   Jr = I, Jw = 0 is what the flag declares) */
+static void point_node(const real_t *x, rt_mbs_node *n, int trans)
+{
+    for (int i = 0; i < 3; i++) {
+        n->r[i] = x[i];
+        n->v[i] = x[3 + i];
+        n->ar[i] = 0;
+    }
+    if (trans) /* a translational joint kind reads no rotation (rt_joint_kind.trans) */
+        return;
+    for (int i = 0; i < 3; i++)
+        n->w[i] = n->aw[i] = 0;
+    for (int i = 0; i < 9; i++)
+        n->S[i] = i % 4 == 0 ? 1 : 0;
+}
+
 /* node `side` (0: n1 of b1, 1: n2 of b2) of joint j; Jacobians into J if not NULL */
 static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, int side,
                        real_t t, rt_mbs_node *n, real_t *J)
@@ -41,9 +60,30 @@ static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j,
         anchor(j, n);
         return;
     }
+    const rt_mbs_spec *sp = spec_of(sc, (uint16_t)b);
+    if (sp->flags & RT_MBS_NODE_POINT) {
+        point_node(sim->state.x + sim->plan.x_off[b], n, j->kind->trans);
+        return;
+    }
     rt_args a;
     rti_args(sc, sim, (uint16_t)b, t, 0, &a);
-    spec_of(sc, (uint16_t)b)->node(&a, (uint16_t)(side ? j->n2 : j->n1), n, J);
+    sp->node(&a, (uint16_t)(side ? j->n2 : j->n1), n, J);
+}
+
+/* the position and velocity of side `side` of joint j if that node is a point (a point
+   node or an anchor: 1), else 0 */
+static int point_of(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, int side,
+                    const real_t **r, const real_t **v)
+{
+    static const real_t zero[3] = {0, 0, 0};
+    int16_t b = (int16_t)(side ? j->b2 : j->b1);
+    if (b < 0) {
+        *r = j->at ? j->at : zero, *v = zero;
+        return 1;
+    }
+    const real_t *x = sim->state.x + sim->plan.x_off[b];
+    *r = x, *v = x + 3;
+    return (spec_of(sc, (uint16_t)b)->flags & RT_MBS_NODE_POINT) != 0;
 }
 
 void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
@@ -55,20 +95,34 @@ void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
     j->kind->eval(j->p, n1, n2, e);
 }
 
-/* C_i . [x1; y1; x2; y2] for four 3-vectors */
-static real_t row_dot(const real_t *C, const real_t *x1, const real_t *y1, const real_t *x2,
-                      const real_t *y2)
+/* C_i . [x1; y1; x2; y2] for four 3-vectors; a translational joint kind (trans) has no
+   angular coefficients, whose zero terms are left out (the same sum) */
+static real_t row_dot(const real_t *C, int trans, const real_t *x1, const real_t *y1,
+                      const real_t *x2, const real_t *y2)
 {
     real_t s = 0;
+    if (trans) {
+        for (int k = 0; k < 3; k++)
+            s += C[k] * x1[k] + C[6 + k] * x2[k];
+        return s;
+    }
     for (int k = 0; k < 3; k++)
         s += C[k] * x1[k] + C[3 + k] * y1[k] + C[6 + k] * x2[k] + C[9 + k] * y2[k];
     return s;
 }
 
 /* W[row, block cols] (+)= C6 J: six coefficients times a node's 6 x nz Jacobian; zero
-   coefficients (a translational joint's rotation part) are skipped */
-static void map_row(const real_t *C6, const real_t *J, uint16_t nz, real_t *Wrow, int add)
+   coefficients (a translational joint's rotation part) are skipped; a point node's
+   Jacobian [I; 0] maps the first three coefficients unchanged */
+static void map_row(const rt_mbs_spec *sp, const real_t *C6, const real_t *J, real_t *Wrow,
+                    int add)
 {
+    uint16_t nz = sp->nz;
+    if (sp->flags & RT_MBS_NODE_POINT) {
+        for (uint16_t c = 0; c < 3; c++)
+            Wrow[c] = add ? Wrow[c] + C6[c] : C6[c];
+        return;
+    }
     if (!add)
         for (uint16_t c = 0; c < nz; c++)
             Wrow[c] = 0;
@@ -80,30 +134,90 @@ static void map_row(const real_t *C6, const real_t *J, uint16_t nz, real_t *Wrow
     }
 }
 
+/* sum_c a_c b_c / m_c (m NULL: no division), in the order of a loop from c = 0; three
+   velocities (a point, a planar body) spelled out, the common case of the inner loops */
+static real_t dot(const real_t *a, const real_t *b, const real_t *m, uint16_t n)
+{
+    real_t acc = 0;
+    if (n == 3 && m) {
+        acc += a[0] * (b[0] / m[0]);
+        acc += a[1] * (b[1] / m[1]);
+        acc += a[2] * (b[2] / m[2]);
+    } else if (n == 3) {
+        acc += a[0] * b[0];
+        acc += a[1] * b[1];
+        acc += a[2] * b[2];
+    } else {
+        for (uint16_t c = 0; c < n; c++)
+            acc += a[c] * (m ? b[c] / m[c] : b[c]);
+    }
+    return acc;
+}
+
+/* the rows of joint ji between two points by its kind's eval_points (0 if that does not
+   apply): g, g' = C1 v1 + C2 v2, and with jac gam = c (points have no acceleration
+   terms: the general path adds a zero sum, +0) and W's rows C1, C2 (a point node's
+   Jacobian is [I; 0]); the same bits as the general path below, without node structs */
+static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int jac)
+{
+    const rt_joint *j = &sc->joints[ji];
+    const real_t *r1, *v1, *r2, *v2;
+    if (!j->kind->eval_points || !point_of(sc, sim, j, 0, &r1, &v1) ||
+        !point_of(sc, sim, j, 1, &r2, &v2))
+        return 0;
+    rt_mbs_work *w = &sim->work.mbs;
+    rt_joint_eval e;
+    j->kind->eval_points(j->p, r1, v1, r2, v2, &e);
+    for (uint16_t i = 0; i < j->kind->nc; i++) {
+        uint16_t r = (uint16_t)(w->jrow[ji] + i);
+        const real_t *C = e.C[i];
+        real_t s = 0; /* the sum of the general path's row_dot, term by term */
+        s += C[0] * v1[0] + C[6] * v2[0];
+        s += C[1] * v1[1] + C[7] * v2[1];
+        s += C[2] * v1[2] + C[8] * v2[2];
+        w->g[r] = e.g[i];
+        w->gd[r] = s;
+        if (!jac)
+            continue;
+        w->gam[r] = (real_t)0 + e.c[i];
+        real_t *W1 = w->W + w->jw[ji][0] + (size_t)3 * i;
+        W1[0] = C[0], W1[1] = C[1], W1[2] = C[2];
+        if (j->b2 < 0)
+            continue;
+        real_t *W2 = w->W + w->jw[ji][1] + (size_t)3 * i;
+        if (j->b2 == j->b1)
+            W2[0] += C[6], W2[1] += C[7], W2[2] += C[8];
+        else
+            W2[0] = C[6], W2[1] = C[7], W2[2] = C[8];
+    }
+    return 1;
+}
+
 /* rows of joint ji: g, g', and with RTI_MBS_JAC the rows of W and gam (eq. 7b) */
-static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_t ji,
-                           real_t t, int what)
+static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t t, int what)
 {
     rt_mbs_work *w = &sim->work.mbs;
     const rt_joint *j = &sc->joints[ji];
     int jac = what & RTI_MBS_JAC;
     rt_mbs_node n1, n2;
     rt_joint_eval e;
+    if (assemble_points(sc, sim, ji, jac))
+        return;
     rti_mbs_joint(sc, sim, ji, t, &n1, &n2, jac ? w->J[0] : 0, jac ? w->J[1] : 0, &e);
-    uint16_t ld = w->nz[set];
+    uint16_t b1 = (uint16_t)j->b1, nz1 = spec_of(sc, b1)->nz;
     for (uint16_t i = 0; i < j->kind->nc; i++) {
         uint16_t r = (uint16_t)(w->jrow[ji] + i);
         w->g[r] = e.g[i];
-        w->gd[r] = row_dot(e.C[i], n1.v, n1.w, n2.v, n2.w);
+        w->gd[r] = row_dot(e.C[i], j->kind->trans, n1.v, n1.w, n2.v, n2.w);
         if (!jac)
             continue;
-        w->gam[r] = row_dot(e.C[i], n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
-        uint16_t b1 = (uint16_t)j->b1;
-        map_row(e.C[i], w->J[0], spec_of(sc, b1)->nz, w->W + (size_t)r * ld + w->zo[b1], 0);
+        w->gam[r] = row_dot(e.C[i], j->kind->trans, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[i];
+        map_row(spec_of(sc, b1), e.C[i], w->J[0],
+                w->W + w->jw[ji][0] + (size_t)i * nz1, 0);
         if (j->b2 >= 0) {
-            uint16_t b2 = (uint16_t)j->b2;
-            map_row(e.C[i] + 6, w->J[1], spec_of(sc, b2)->nz, w->W + (size_t)r * ld + w->zo[b2],
-                    b2 == b1);
+            uint16_t b2 = (uint16_t)j->b2, nz2 = spec_of(sc, b2)->nz;
+            map_row(spec_of(sc, b2), e.C[i] + 6, w->J[1],
+                    w->W + w->jw[ji][1] + (size_t)i * nz2, b2 == b1);
         }
     }
 }
@@ -111,9 +225,9 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_
 /* ------------------------------------------------------------------ blocks */
 
 /* factors block b's M in place (a diagonal M is only checked); a pivot at or below the
-   threshold is counted and replaced by it, so the solves stay finite */
-static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *M,
-                        uint16_t *piv)
+   threshold is counted and replaced by it, so the solves stay finite. A dense M keeps its
+   nz row pivots after the nz^2 factors, as reals (small integers, exact) */
+static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *M)
 {
     rt_status st = RT_OK;
     if (sp->flags & RT_MBS_M_DIAG) {
@@ -125,56 +239,64 @@ static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *
             if (!(M[i] > floor_))
                 M[i] = floor_, st = RT_E_SINGULAR;
     } else {
+        uint16_t piv[RT_MAX_MBS_BZ];
         st = rti_lu(M, sp->nz, piv, RT_MBS_PIVOT_TOL);
+        for (uint16_t i = 0; i < sp->nz; i++)
+            M[sp->nz * sp->nz + i] = (real_t)piv[i];
     }
     if (st != RT_OK)
         rti_count(sim, RT_CNT_SINGULAR, b, RT_E_SINGULAR);
 }
 
 /* v <- M^-1 v with the factors of mass_factor */
-static void mass_solve(const rt_mbs_spec *sp, const real_t *M, const uint16_t *piv, real_t *v)
+static void mass_solve(const rt_mbs_spec *sp, const real_t *M, real_t *v)
 {
-    if (sp->flags & RT_MBS_M_DIAG)
+    if (sp->flags & RT_MBS_M_DIAG) {
         for (uint16_t i = 0; i < sp->nz; i++)
             v[i] /= M[i];
-    else
-        rti_lu_solve(M, sp->nz, piv, v);
+        return;
+    }
+    uint16_t piv[RT_MAX_MBS_BZ];
+    for (uint16_t i = 0; i < sp->nz; i++)
+        piv[i] = (uint16_t)M[sp->nz * sp->nz + i];
+    rti_lu_solve(M, sp->nz, piv, v);
 }
 
-/* block b's own part: M factors, free accelerations M^-1 k, internal constraint rows */
-static void assemble_block(const rt_scene *sc, rt_sim *sim, uint8_t set, uint16_t b,
-                           real_t t, int what)
+/* block b's own part: M factors (once for a constant M), free accelerations M^-1 k,
+   internal constraint rows (its first touches, so their W slices form an nc x nz matrix) */
+static void assemble_block(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t, int what)
 {
     rt_mbs_work *w = &sim->work.mbs;
     const rt_mbs_spec *sp = spec_of(sc, b);
-    uint16_t zo = w->zo[b], ld = w->nz[set];
+    uint16_t zo = w->zo[b];
     real_t *M = w->M + w->mo[b];
     rt_args a;
     rti_args(sc, sim, b, t, 0, &a);
-    if (what & RTI_MBS_JAC) {
+    if ((what & RTI_MBS_JAC) && !((sp->flags & RT_MBS_M_CONST) && w->m_valid[b])) {
         sp->mass(&a, M);
-        mass_factor(sim, sp, b, M, w->Mpiv + zo);
+        mass_factor(sim, sp, b, M);
+        w->m_valid[b] = 1;
     }
     if (what & RTI_MBS_FORCE) {
-        rti_gather(sim, b, t); /* the inputs are applied forces (eq. 6b) */
+        if (sc->blocks[b].kind->nu > 0)
+            rti_gather(sim, b, t); /* the inputs are applied forces (eq. 6b) */
         sp->force(&a, w->a + zo);
-        mass_solve(sp, M, w->Mpiv + zo, w->a + zo);
+        mass_solve(sp, M, w->a + zo);
     }
     if (sp->nc > 0) {
         uint16_t r = w->co[b];
-        real_t *W = (what & RTI_MBS_JAC) ? w->W + (size_t)r * ld + zo : 0;
-        sp->constr(&a, w->g + r, w->gd + r, W, ld, w->gam + r);
+        real_t *W = (what & RTI_MBS_JAC) ? w->W + w->wo[b] : 0;
+        sp->constr(&a, w->g + r, w->gd + r, W, sp->nz, w->gam + r);
     }
 }
 
 void rti_mbs_assemble(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, int what)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        if (rti_mbs_in_set(sc, b, set))
-            assemble_block(sc, sim, set, b, t, what);
-    for (uint16_t j = 0; j < sc->njoints; j++)
-        if (sc->blocks[sc->joints[j].b1].set == set)
-            assemble_joint(sc, sim, set, j, t, what);
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
+        assemble_block(sc, sim, w->sblk[k], t, what);
+    for (uint16_t k = w->sj[set]; k < w->sj[set + 1]; k++)
+        assemble_joint(sc, sim, w->sjnt[k], t, what);
 }
 
 /* ------------------------------------------------------------------ the Schur complement */
@@ -195,85 +317,76 @@ int rti_mbs_row_block(const rt_scene *sc, const rt_sim *sim, uint8_t set, uint16
     return -1;
 }
 
-/* a pivot of A fell below the threshold: count it with the block of that row */
-static void report_singular(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t floor_)
+/* block b's share of A = W Y over the pairs of rows it touches, Y = M^-1 W^T: a diagonal
+   M divides on the fly (Y is kept only for a dense M, RT_MAX_MBS_TY) */
+static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
 {
-    rt_mbs_work *w = &sim->work.mbs;
-    uint16_t m = w->nc[set], perm[RT_MAX_MBS_C], row = 0;
-    for (uint16_t i = 0; i < m; i++)
-        perm[i] = i;
-    /* replay the row swaps of rti_lu: position k of U holds original row perm[k] */
-    for (uint16_t k = 0; k < m; k++) {
-        uint16_t p = w->Apiv[k], s = perm[k];
-        perm[k] = perm[p], perm[p] = s;
-    }
-    for (uint16_t k = 0; k < m; k++)
-        if (rt_fabs(w->A[k * m + k]) <= floor_) {
-            row = perm[k];
-            break;
-        }
-    rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, set, row), RT_E_SINGULAR);
-}
-
-/* block b's share of Y = M^-1 W^T and A = W Y, over the rows it touches */
-static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b, uint16_t m,
-                        uint16_t ld)
-{
-    uint16_t zo = w->zo[b], nz = sp->nz;
+    uint16_t nz = sp->nz, t0 = w->to[b], t1 = w->to[b + 1];
     const real_t *M = w->M + w->mo[b];
-    for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
-        uint16_t r = w->trow[i];
-        real_t col[RT_MAX_MBS_BZ];
-        for (uint16_t c = 0; c < nz; c++)
-            col[c] = w->W[r * ld + zo + c];
-        mass_solve(sp, M, w->Mpiv + zo, col);
-        for (uint16_t c = 0; c < nz; c++)
-            w->Y[(zo + c) * m + r] = col[c];
-    }
-    for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++)
-        for (uint16_t k = w->to[b]; k < w->to[b + 1]; k++) {
-            uint16_t r = w->trow[i], s = w->trow[k];
-            real_t acc = 0;
-            for (uint16_t c = 0; c < nz; c++)
-                acc += w->W[r * ld + zo + c] * w->Y[(zo + c) * m + s];
-            w->A[r * m + s] += acc;
+    const real_t *W = w->W + w->wo[b], *Wi = W;
+    const uint16_t *ps = w->pslot + w->po[b];
+    if (sp->flags & RT_MBS_M_DIAG) {
+        for (uint16_t i = t0; i < t1; i++, Wi += nz) {
+            const real_t *Wk = Wi;
+            for (uint16_t k = i; k < t1; k++, Wk += nz)
+                w->lv[*ps++] += dot(Wi, Wk, M, nz);
         }
+        return;
+    }
+    real_t *Y = w->Y + w->yo[b], *Yi = Y;
+    for (uint16_t i = t0; i < t1; i++, Wi += nz, Yi += nz) {
+        for (uint16_t c = 0; c < nz; c++)
+            Yi[c] = Wi[c];
+        mass_solve(sp, M, Yi);
+    }
+    for (Wi = W; t0 < t1; t0++, Wi += nz, Y += nz) {
+        const real_t *Yk = Y;
+        for (uint16_t k = t0; k < t1; k++, Yk += nz)
+            w->lv[*ps++] += dot(Wi, Yk, 0, nz);
+    }
 }
 
 void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint16_t m = w->nc[set], ld = w->nz[set];
-    if (m == 0)
+    if (w->nc[set] == 0)
         return;
-    for (uint16_t i = 0; i < m * m; i++)
-        w->A[i] = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        if (rti_mbs_in_set(sc, b, set))
-            schur_block(w, spec_of(sc, b), b, m, ld);
-    real_t scale = rti_norm_inf(w->A, (uint16_t)(m * m));
-    if (rti_lu(w->A, m, w->Apiv, RT_MBS_PIVOT_TOL) != RT_OK)
-        report_singular(sc, sim, set, RT_MBS_PIVOT_TOL * (scale > 0 ? scale : 1));
+    rti_mbs_ldl_clear(w, set);
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
+        schur_block(w, spec_of(sc, w->sblk[k]), w->sblk[k]);
+    int bad = rti_mbs_ldl_factor(w, set);
+    if (bad >= 0) /* counted with the block owning the first offending row */
+        rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, set, (uint16_t)bad),
+                  RT_E_SINGULAR);
 }
 
 void rti_mbs_solve(rt_sim *sim, uint8_t set, real_t *v)
 {
-    rti_lu_solve(sim->work.mbs.A, sim->work.mbs.nc[set], sim->work.mbs.Apiv, v);
+    rti_mbs_ldl_solve(&sim->work.mbs, set, v);
 }
 
 void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *v,
-                     real_t *dz)
+                     real_t *dz, int add)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint16_t m = w->nc[set];
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
-        for (uint16_t c = w->zo[b]; c < w->zo[b] + spec_of(sc, b)->nz; c++) {
-            real_t acc = 0;
-            for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++)
-                acc += w->Y[c * m + w->trow[i]] * v[w->trow[i]];
-            dz[c] = -acc;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        uint16_t nz = spec_of(sc, b)->nz;
+        real_t *d = dz + w->zo[b];
+        for (uint16_t c = 0; c < nz && !add; c++)
+            d[c] = 0;
+        const real_t *M = w->M + w->mo[b], *Wi = w->W + w->wo[b], *Yi = w->Y + w->yo[b];
+        int diag = spec_of(sc, b)->flags & RT_MBS_M_DIAG;
+        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++, Wi += nz, Yi += nz) {
+            real_t vi = v[w->trow[i]];
+            if (diag && nz == 3) {
+                d[0] -= (Wi[0] / M[0]) * vi;
+                d[1] -= (Wi[1] / M[1]) * vi;
+                d[2] -= (Wi[2] / M[2]) * vi;
+                continue;
+            }
+            for (uint16_t c = 0; c < nz; c++)
+                d[c] -= (diag ? Wi[c] / M[c] : Yi[c]) * vi;
         }
     }
 }
@@ -283,36 +396,32 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
 void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    uint16_t m = w->nc[set], ld = w->nz[set];
+    uint16_t m = w->nc[set];
     rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC | RTI_MBS_FORCE);
-    for (uint16_t c = 0; c < ld; c++)
-        w->dz[c] = 0;
-    if (m == 0)
+    if (m == 0) /* no constraint: z' is the free acceleration */
         return;
     rti_mbs_schur(sc, sim, set);
-    /* A lambda = W M^-1 k + gam (+ alpha g' + beta g): eq. 7b with z' from eq. 6b */
-    int baum = sc->stab == RT_STAB_BAUMGARTE;
-    for (uint16_t r = 0; r < m; r++)
-        w->lam[r] = w->gam[r] +
-                    (baum ? sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r] : 0);
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
-        uint16_t zo = w->zo[b], nz = spec_of(sc, b)->nz;
-        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++) {
-            uint16_t r = w->trow[i];
-            real_t acc = 0;
-            for (uint16_t c = 0; c < nz; c++)
-                acc += w->W[r * ld + zo + c] * w->a[zo + c];
-            w->lam[r] += acc;
-        }
+    /* A lambda = W M^-1 k + gam (+ alpha g' + beta g): eq. 7b with z' from eq. 6b; the
+       right side and then lambda are formed in gam, which is not needed after */
+    real_t *lam = w->gam;
+    if (sc->stab == RT_STAB_BAUMGARTE)
+        for (uint16_t r = 0; r < m; r++)
+            lam[r] += sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r];
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        uint16_t nz = spec_of(sc, b)->nz;
+        const real_t *ab = w->a + w->zo[b];
+        const real_t *Wi = w->W + w->wo[b];
+        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++, Wi += nz)
+            lam[w->trow[i]] += dot(Wi, ab, 0, nz);
     }
-    rti_mbs_solve(sim, set, w->lam);
-    rti_mbs_correct(sc, sim, set, w->lam, w->dz);
-    for (uint16_t j = 0; j < sc->njoints; j++)
-        if (sc->blocks[sc->joints[j].b1].set == set)
-            for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
-                w->jlam[j * RT_MBS_JOINT_NC_MAX + i] = w->lam[w->jrow[j] + i];
+    rti_mbs_solve(sim, set, lam);
+    rti_mbs_correct(sc, sim, set, lam, w->a, 1); /* z' = M^-1 k - Y lambda, into a */
+    for (uint16_t k = w->sj[set]; k < w->sj[set + 1]; k++) {
+        uint16_t j = w->sjnt[k];
+        for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
+            w->jlam[w->jlo[j] + i] = lam[w->jrow[j] + i];
+    }
 }
 
 /* q' = K z + b (eq. 6a) and z' = M^-1 (k - W^T lambda) for every MBS block of the set */
@@ -322,9 +431,8 @@ void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_
     if (w->nz[set] == 0)
         return;
     rti_mbs_lambda(sc, sim, set, t);
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
         real_t *qd = xdot + (sim->plan.x_off[b] - sim->plan.set_x[set]);
         rt_args a;
@@ -337,6 +445,6 @@ void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_
                 qd[i] += bq[i];
         }
         for (uint16_t c = 0; c < sp->nz; c++)
-            qd[sp->nq + c] = w->a[w->zo[b] + c] + w->dz[w->zo[b] + c];
+            qd[sp->nq + c] = w->a[w->zo[b] + c];
     }
 }

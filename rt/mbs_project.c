@@ -17,65 +17,66 @@ static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
     return (const rt_mbs_spec *)sc->blocks[b].kind->spec;
 }
 
-/* qt <- q of every MBS block of the set: the frozen point of the iteration */
+/* qt <- q of every MBS block of the set whose K depends on q: the frozen point of the
+   iteration */
 static void save_q(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        if (spec_of(sc, b)->flags & RT_MBS_K_CONST)
             continue;
         for (uint16_t i = 0; i < spec_of(sc, b)->nq; i++)
             sim->work.mbs.qt[sim->work.mbs.qo[b] + i] = sim->state.x[sim->plan.x_off[b] + i];
     }
 }
 
-/* q += K(q~) dz, block by block: the velocity-space correction mapped to coordinates */
+/* q += K(q~) dz (in a), block by block: the velocity-space correction mapped to coordinates */
 static void move_q(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
         real_t dq[RT_MAX_MBS_Q];
         rt_args a;
         rti_args(sc, sim, b, t, 0, &a);
-        a.x = w->qt + w->qo[b]; /* K at the predicted coordinates (kin reads q only) */
-        sp->kin(&a, w->dz + w->zo[b], dq);
+        if (!(sp->flags & RT_MBS_K_CONST)) /* K at the predicted coordinates (kin reads q) */
+            a.x = w->qt + w->qo[b];
+        sp->kin(&a, w->a + w->zo[b], dq);
         for (uint16_t i = 0; i < sp->nq; i++)
             sim->state.x[sim->plan.x_off[b] + i] += dq[i];
     }
 }
 
-/* z += dz for every MBS block of the set */
+/* z += dz (in a) for every MBS block of the set */
 static void move_z(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!rti_mbs_in_set(sc, b, set))
-            continue;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
         real_t *z = sim->state.x + sim->plan.x_off[b] + sp->nq;
         for (uint16_t c = 0; c < sp->nz; c++)
-            z[c] += w->dz[w->zo[b] + c];
+            z[c] += w->a[w->zo[b] + c];
     }
 }
 
 /* the kinds' own normalization (unit quaternions) */
 static void normalize(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        if (rti_mbs_in_set(sc, b, set) && spec_of(sc, b)->normalize)
-            spec_of(sc, b)->normalize(sim->state.x + sim->plan.x_off[b]);
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
+        if (spec_of(sc, w->sblk[k])->normalize)
+            spec_of(sc, w->sblk[k])->normalize(sim->state.x + sim->plan.x_off[w->sblk[k]]);
 }
 
-/* one correction: v <- A^-1 v (v = g or g'), dz = -Y v */
-static void correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *rhs)
+/* one correction: v <- A^-1 v in place (v = g or g', evaluated anew before they are read
+   again), dz = -Y v into a (free during the projection) */
+static void correct(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t *v)
 {
-    rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t r = 0; r < w->nc[set]; r++)
-        w->lam[r] = rhs[r];
-    rti_mbs_solve(sim, set, w->lam);
-    rti_mbs_correct(sc, sim, set, w->lam, w->dz);
+    rti_mbs_solve(sim, set, v);
+    rti_mbs_correct(sc, sim, set, v, sim->work.mbs.a, 0);
 }
 
 /* largest |g| after the projection: a high-water mark, and a degraded step above the

@@ -187,7 +187,7 @@ static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, 
 static rt_status emit(rt_sim *sim, uint8_t kind, uint16_t index)
 {
     if (sim->plan.nseq >= RT_MAX_SEQ)
-        return rti_fail(sim, RT_E_CAPACITY, "evaluation sequence exceeds RT_MAX_SEQ (RT_MAX_Y + RT_MAX_BLOCKS)",
+        return rti_fail(sim, RT_E_CAPACITY, "evaluation sequence exceeds ", RTI_LIMIT(RT_MAX_SEQ),
                         (const char *)0);
     sim->plan.seq[sim->plan.nseq].kind = kind;
     sim->plan.seq[sim->plan.nseq++].index = index;

@@ -50,7 +50,7 @@
  *                       x < 0 needs an integer y, else NaN; C99 Annex F special
  *                       cases; |y| > 2^64 over/underflows directly          (0.51)
  *   tanh        0.503   (0.51)
- *   fabs floor fmin fmax isfinite: exact. fmin(-0, +0) = -0, fmax(-0, +0) = +0; a NaN
+ *   fabs isfinite (inline in rt_math.h) floor fmin fmax: exact. fmin(-0, +0) = -0, fmax(-0, +0) = +0; a NaN
  *   argument of fmin/fmax is ignored unless both are NaN.
  * Cost, QEMU instruction counts per call (M3 soft-float / M7 double FPU): sqrt 1.8k/15,
  * sin 2.8k/120 (4k/520 beyond 2^20), exp 4.4k/120, log 6.3k/150, atan 8.9k/170,
@@ -898,16 +898,6 @@ real_t rt_sqrt(real_t x)
 #endif
 }
 
-real_t rt_fabs(real_t x)
-{
-    return from_bits_f(bits_f(x) & 0x7fffffffu);
-}
-
-int rt_isfinite(real_t x)
-{
-    return (bits_f(x) & 0x7f800000u) != 0x7f800000u;
-}
-
 /* floor by clearing the fraction bits; NaN, inf and integers come back unchanged. */
 real_t rt_floor(real_t x)
 {
@@ -935,16 +925,6 @@ real_t rt_sqrt(real_t x)
 #else
     return rti_sqrt_soft(x);
 #endif
-}
-
-real_t rt_fabs(real_t x)
-{
-    return abs_d(x);
-}
-
-int rt_isfinite(real_t x)
-{
-    return (bits_of(x) & EXP_MASK) != EXP_MASK;
 }
 
 /* floor by clearing the fraction bits; NaN, inf and integers come back unchanged. */

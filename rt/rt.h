@@ -524,6 +524,8 @@ typedef struct rt_plan {
 
     /* evaluation order (rt/order.c) */
     rt_seq_step seq[RT_MAX_SEQ];
+    uint8_t rhs_skip[RT_MAX_BLOCKS]; /* 1: no input of the block's set reads its outputs
+                                        live, so a right-hand side does not call it */
     uint16_t nseq;
     rt_loop loops[RT_MAX_LOOPS];
     uint8_t nloops;
@@ -559,7 +561,7 @@ typedef struct rt_state {
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
     real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
     uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
-    real_t hist_y[RT_HIST][RT_MAX_Y];/* cross-set outputs at those times */
+    real_t hist_y[RT_HIST][RT_MAX_HIST_Y];/* cross-set outputs at those times */
     rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
     uint64_t hash;                   /* FNV-1a over recorded values */
 } rt_state;
@@ -575,7 +577,7 @@ typedef struct rt_stats {
     int16_t last_block[RT_CNT_COUNT];/* last offending block per counter, -1 none */
     uint32_t first_tick[RT_CNT_COUNT];/* tick of each counter's first count */
     uint32_t event_iter_max;         /* high-water mark of event-location iterations */
-    uint32_t loop_hist[RT_LOOP_ITER_LIMIT + 1]; /* loop solves by iterations taken */
+    uint32_t loop_hist[RT_MAX_LOOP_HIST]; /* loop solves by iterations taken */
     uint32_t loop_iter_max;          /* high-water mark of iterations per loop solve */
     real_t loop_residual;            /* largest residual left by a loop solve that failed */
     real_t xset_err[RT_MAX_SETS];    /* monitor: largest change of a set's cross-set
@@ -594,7 +596,7 @@ typedef struct rt_work {
         rt_scc_work scc;
     } w;
     real_t x0[RT_MAX_X];
-    real_t xb[RT_MAX_X];             /* state at the right end of an event bracket */
+    real_t xb[RT_MAX_EVENT_X];           /* state at the right end of an event bracket */
     real_t xs[RT_MAX_X];             /* saved state for event location */
     real_t rs[RT_MAX_ROOTS];         /* root values scratch */
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
@@ -696,7 +698,14 @@ typedef struct rt_sizes {
     uint16_t blocks, x, d, u, y, p, roots, sets, recs, loops, torn;
     uint16_t implicit_n;   /* states of the largest set with an implicit method */
     uint16_t mbs_z, mbs_q, mbs_c; /* largest multibody set: velocities, coordinates, rows */
+    uint16_t mbs_qt;       /* ... coordinates with a q-dependent K or a kinb */
     uint16_t mbs_bz;       /* velocities of the largest multibody block */
+    uint16_t hist_y;       /* highest output index read by another set, plus one */
+    uint16_t event_x;      /* states of the largest set with roots */
+    uint16_t seq;          /* entries of the evaluation sequence */
+    uint16_t loop_hist;    /* the loops' iteration bound plus one (0 without loops) */
+    /* multibody tables over all sets (rt_config.h, RT_MAX_MBS_*) */
+    uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_ty, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

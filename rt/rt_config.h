@@ -79,16 +79,32 @@ typedef double real_t;
 /* nodes of the graphs searched at init (output ports, blocks) */
 #define RT_MAX_NODES (RT_MAX_Y > RT_MAX_BLOCKS ? RT_MAX_Y : RT_MAX_BLOCKS)
 
-/* evaluation sequence: at most one call per output port plus one per block */
+/* evaluation sequence: at most one call per output port plus one per block (a per-scene
+   build passes its scene's exact length) */
+#ifndef RT_MAX_SEQ
 #define RT_MAX_SEQ (RT_MAX_Y + RT_MAX_BLOCKS)
+#endif
 
 /* ---- integrators ---- */
 #ifndef RT_MAX_STAGES
-#define RT_MAX_STAGES 7 /* Runge-Kutta stages (Dormand-Prince needs 7) */
+#define RT_MAX_STAGES 6 /* stage buffers: Runge-Kutta stages (Dormand-Prince: 6, its error
+                           estimate reuses them); an implicit method's stages + 3 */
 #endif
 
 /* ---- multirate (rt/xset.c) ---- */
 #define RT_HIST 3 /* communication points kept per cross-set signal (Hermite needs 3) */
+#ifndef RT_MAX_HIST_Y
+/* outputs the cross-set history is indexed by: the highest output index another set
+   reads, plus one (a scene of one set needs 1) */
+#define RT_MAX_HIST_Y RT_MAX_Y
+#endif
+
+/* ---- state events (rt/step.c) ---- */
+#ifndef RT_MAX_EVENT_X
+/* states of the largest set with root functions: event location keeps the state at the
+   right end of its bracket (a scene without roots needs 1) */
+#define RT_MAX_EVENT_X RT_MAX_X
+#endif
 
 /* ---- multibody (rt/mbs.c) ---- */
 #ifndef RT_MAX_MBS_Z
@@ -105,6 +121,52 @@ typedef double real_t;
 #endif
 #ifndef RT_MAX_MBS_BZ
 #define RT_MAX_MBS_BZ 16 /* generalized velocities of one MBS block (node Jacobians, M) */
+#endif
+/* exact per-scene sizes of the multibody tables (totals over every set; `modrt sizes`
+   prints them): the defaults hold any scene within the per-set limits above */
+#ifndef RT_MAX_MBS_ROWS
+#define RT_MAX_MBS_ROWS (RT_MAX_MBS_C * RT_MAX_SETS) /* constraint rows of all sets */
+#endif
+#ifndef RT_MAX_MBS_TOUCH
+/* (block, row) pairs that can be non-zero in W: each row touches one or two blocks */
+#define RT_MAX_MBS_TOUCH (2 * RT_MAX_MBS_ROWS)
+#endif
+#ifndef RT_MAX_MBS_TW
+/* entries of W and of Y = M^-1 W^T kept: the velocities of the block of every touch */
+#define RT_MAX_MBS_TW (RT_MAX_MBS_C * RT_MAX_MBS_Z)
+#endif
+#ifndef RT_MAX_MBS_QT
+/* coordinates of one set's MBS blocks whose K depends on q or that have a kinb (the
+   projection's predicted coordinates) */
+#define RT_MAX_MBS_QT RT_MAX_MBS_Q
+#endif
+#ifndef RT_MAX_MBS_TY
+/* entries of Y = M^-1 W^T kept: as RT_MAX_MBS_TW over the blocks with a dense M (a
+   diagonal M divides where Y is needed) */
+#define RT_MAX_MBS_TY RT_MAX_MBS_TW
+#endif
+#ifndef RT_MAX_MBS_PAIRS
+/* entries of A = W M^-1 W^T that blocks contribute: t (t + 1) / 2 for a block touching
+   t rows, summed over the blocks */
+#define RT_MAX_MBS_PAIRS (RT_MAX_MBS_C * (RT_MAX_MBS_C + 1) / 2)
+#endif
+#ifndef RT_MAX_MBS_LNZ
+/* off-diagonal non-zeros of the sparse LDL^T factors of A (fill included), all sets */
+#define RT_MAX_MBS_LNZ (RT_MAX_MBS_C > 1 ? RT_MAX_MBS_C * (RT_MAX_MBS_C - 1) / 2 : 1)
+#endif
+#ifndef RT_MAX_MBS_M
+/* entries of the mass matrices of all MBS blocks: nz for a diagonal M, nz (nz + 1)
+   otherwise (its LU factors and row pivots) */
+#define RT_MAX_MBS_M (RT_MAX_MBS_Z * (RT_MAX_MBS_BZ + 1))
+#endif
+#ifndef RT_MAX_MBS_JZ
+/* velocities of the largest MBS block whose nodes have Jacobians to map (any kind but
+   those flagged RT_MBS_NODE_POINT) */
+#define RT_MAX_MBS_JZ RT_MAX_MBS_BZ
+#endif
+#ifndef RT_MAX_MBS_JROWS
+/* constraint rows of all joints (their multipliers are kept for recorded reactions) */
+#define RT_MAX_MBS_JROWS (RT_MAX_JOINTS * 6)
 #endif
 #ifndef RT_MBS_PIVOT_TOL
 /* pivot threshold of the factorizations of M and W M^-1 W^T, relative to the largest
@@ -169,7 +231,12 @@ typedef double real_t;
 #define RT_LOOP_ITER_MAX 8 /* default Broyden iterations per loop evaluation */
 #endif
 #ifndef RT_LOOP_ITER_LIMIT
-#define RT_LOOP_ITER_LIMIT 32 /* the most a scene may ask for (sizes the histogram) */
+#define RT_LOOP_ITER_LIMIT 32 /* the most a scene may ask for */
+#endif
+#ifndef RT_MAX_LOOP_HIST
+/* entries of the histogram of loop solves by iterations taken: the scene's iteration
+   bound plus one (a scene without actual loops needs 1) */
+#define RT_MAX_LOOP_HIST (RT_LOOP_ITER_LIMIT + 1)
 #endif
 
 /* ---- state events ---- */
@@ -188,8 +255,8 @@ typedef double real_t;
 #if RT_MAX_BLOCKS > 65535 || RT_MAX_Y > 65535 || RT_MAX_U > 65535 || RT_MAX_X > 65535
 #error "modrt indexes blocks, states and ports with 16-bit integers: keep every RT_MAX_* below 65536."
 #endif
-#if RT_MAX_STAGES < 7
-#error "RT_MAX_STAGES must be at least 7: the fifth-order Dormand-Prince method has seven stages."
+#if RT_MAX_STAGES < 6
+#error "RT_MAX_STAGES must be at least 6: the fifth-order Dormand-Prince method has six stages."
 #endif
 
 #endif /* RT_CONFIG_H */

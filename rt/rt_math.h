@@ -7,6 +7,8 @@
 #ifndef RT_MATH_H
 #define RT_MATH_H
 
+#include <stdint.h>
+
 #include "rt_config.h"
 
 #define RT_PI 3.14159265358979323846
@@ -25,10 +27,37 @@ real_t rt_exp(real_t x);
 real_t rt_log(real_t x);
 real_t rt_pow(real_t x, real_t y);
 real_t rt_tanh(real_t x);
-real_t rt_fabs(real_t x);
 real_t rt_floor(real_t x);
 real_t rt_fmin(real_t a, real_t b);
 real_t rt_fmax(real_t a, real_t b);
-int rt_isfinite(real_t x);          /* 0 for NaN and +-inf */
+
+/* |x| and finiteness from the bit pattern, inline: the steps call them for every state
+   (a call each cost more than the operation, #14); exact, NaNs pass through rt_fabs */
+#if RT_REAL_IS_FLOAT
+typedef uint32_t rt_real_bits;
+#define RT_SIGN_BIT 0x80000000u
+#define RT_EXP_BITS 0x7f800000u
+#else
+typedef uint64_t rt_real_bits;
+#define RT_SIGN_BIT 0x8000000000000000ull
+#define RT_EXP_BITS 0x7ff0000000000000ull
+#endif
+typedef union rt_real_rep {
+    real_t r;
+    rt_real_bits u;
+} rt_real_rep;
+
+static inline real_t rt_fabs(real_t x)
+{
+    rt_real_rep v = {.r = x};
+    v.u &= ~RT_SIGN_BIT;
+    return v.r;
+}
+
+static inline int rt_isfinite(real_t x) /* 0 for NaN and +-inf */
+{
+    rt_real_rep v = {.r = x};
+    return (v.u & RT_EXP_BITS) != RT_EXP_BITS;
+}
 
 #endif /* RT_MATH_H */

@@ -28,12 +28,10 @@ struct rt_args;
    (the tunable ones, RT_MAX_MBS_* and RT_MBS_*_TOL, are in rt_config.h) */
 
 #define RT_MBS_JOINT_NC_MAX 6 /* constraint equations of one joint (the fixed joint has 6) */
-/* touched (block, constraint row) pairs over all sets: each row touches one or two blocks */
-#define RT_MBS_MAX_TOUCH (2 * RT_MAX_MBS_C * RT_MAX_SETS)
-
-#if RT_MAX_MBS_C * RT_MAX_MBS_Z > 65535 || RT_MAX_MBS_Z * RT_MAX_MBS_BZ > 65535
-#error "rt_mbs_work indexes its matrices with 16-bit integers: keep RT_MAX_MBS_C * \
-RT_MAX_MBS_Z and RT_MAX_MBS_Z * RT_MAX_MBS_BZ below 65536."
+#if RT_MAX_MBS_TW > 65535 || RT_MAX_MBS_TY > 65535 || RT_MAX_MBS_M > 65535 || \
+    RT_MAX_MBS_ROWS + RT_MAX_MBS_LNZ > 65535 || RT_MAX_MBS_PAIRS > 65535
+#error "rt_mbs_work indexes its tables with 16-bit integers: keep RT_MAX_MBS_TW, \
+RT_MAX_MBS_M, RT_MAX_MBS_PAIRS and RT_MAX_MBS_ROWS + RT_MAX_MBS_LNZ below 65536."
 #endif
 
 /* ------------------------------------------------------------------ nodes */
@@ -55,7 +53,16 @@ typedef struct rt_mbs_node {
 /* ------------------------------------------------------------------ the MBS kind */
 
 /* flags of rt_mbs_spec */
-#define RT_MBS_M_DIAG 0x01 /* M is diagonal: mass() writes nz values, solves divide */
+#define RT_MBS_M_DIAG 0x01  /* M is diagonal: mass() writes nz values, solves divide */
+#define RT_MBS_M_CONST 0x02 /* M depends on parameters only: factored once, again only
+                               after a parameter change or a restored state */
+#define RT_MBS_K_CONST 0x08    /* K does not depend on q (kin reads no coordinate): the
+                                  projection keeps no predicted q for the block */
+#define RT_MBS_NODE_POINT 0x04 /* every node is the point itself: x = [r, v], nq = nz = 3,
+                                  Jr = I, Jw = 0, S = I, no acceleration terms; the
+                                  assembly fills such nodes itself, asks for no Jacobian
+                                  and takes a joint's translational coefficients as the
+                                  row of W */
 
 /* Type-specific part of an MBS kind (rt_kind.spec). The hooks read the block's state
  * x = [q (nq), z (nz)], inputs, parameters and time through rt_args; none may allocate
@@ -108,12 +115,21 @@ typedef struct rt_joint_kind {
     const char *name;             /* e.g. "sphdiff" */
     uint8_t nc;                   /* constraint equations, <= RT_MBS_JOINT_NC_MAX */
     uint8_t np;                   /* parameters */
+    uint8_t trans;                /* 1: translational conditions only, C's angular columns
+                                     (3-5, 9-11) are always zero and need not be read */
     const char *const *p_names;   /* np names (NULL iff np == 0) */
     /* Returns 0 when the parameters are valid. NULL: any parameters are. */
     int (*check)(const real_t *p);
     /* Evaluates g, C and c for nodes n1, n2. Never NULL; finite for finite nodes. */
     void (*eval)(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
                  rt_joint_eval *e);
+    /* What eval computes when both nodes are points (RT_MBS_NODE_POINT or an anchor:
+       position r, velocity v, S = I, no rotation, no acceleration terms), from r and v
+       directly: g, c and the translational coefficients C[i][0..2], C[i][6..8], the same
+       bits as eval; the other entries of e are left unwritten. NULL: the runtime fills
+       the nodes and calls eval. Only for translational kinds (trans = 1). */
+    void (*eval_points)(const real_t *p, const real_t *r1, const real_t *v1,
+                        const real_t *r2, const real_t *v2, rt_joint_eval *e);
 } rt_joint_kind;
 
 /* the library of joint kinds */
@@ -182,41 +198,61 @@ enum {
 
 /* ------------------------------------------------------------------ workspace */
 
-/* Workspace of the multibody services, in rt_sim. The tables are filled by init; the
- * matrices are scratch of the set being evaluated (one set at a time), sized by the
- * per-set limits RT_MAX_MBS_*. Index conventions: a set's velocities z are numbered
- * block by block (zo), its constraint rows internal rows first (co), then joint rows
- * (jrow). */
+/* Workspace of the multibody services, in rt_sim. The tables are filled by init. Index
+ * conventions: a set's velocities z are numbered block by block (zo), its constraint
+ * rows internal rows first (co), then joint rows (jrow); a block's touches (the rows
+ * that can be non-zero in its columns of W) are trow[to[b] .. to[b+1]), and W and
+ * Y = M^-1 W^T keep one slice of the block's nz velocities per touch. A is factored as
+ * L D L^T over the pattern init computed (rt/mbs_ldl.c). Every array is sized by its own
+ * limit of rt_config.h, so a per-scene build holds exactly its scene. */
 typedef struct rt_mbs_work {
     /* tables (init) */
     uint16_t zo[RT_MAX_BLOCKS];     /* first velocity of each MBS block within its set */
-    uint16_t qo[RT_MAX_BLOCKS];     /* first coordinate of each MBS block within its set */
-    uint16_t mo[RT_MAX_BLOCKS];     /* first entry of its M factors in M */
+    uint16_t qo[RT_MAX_BLOCKS];     /* its first entry in qt (blocks with a kinb or a K
+                                       that depends on q; 0 for the others) */
+    uint16_t mo[RT_MAX_BLOCKS];     /* first entry of its M factors in M (all sets) */
     uint16_t co[RT_MAX_BLOCKS];     /* first internal constraint row within its set */
-    uint16_t to[RT_MAX_BLOCKS + 1]; /* its touched rows: trow[to[b] .. to[b+1]) */
-    uint16_t trow[RT_MBS_MAX_TOUCH];/* constraint rows touching each block, ascending */
+    uint16_t to[RT_MAX_BLOCKS + 1]; /* its touches: trow[to[b] .. to[b+1]) */
+    uint16_t wo[RT_MAX_BLOCKS];     /* first entry of its touches' slices in W */
+    uint16_t yo[RT_MAX_BLOCKS];     /* ... in Y (blocks with a dense M only) */
+    uint16_t po[RT_MAX_BLOCKS + 1]; /* its pairs of touches: pslot[po[b] .. po[b+1]) */
+    uint16_t trow[RT_MAX_MBS_TOUCH];/* constraint rows touching each block, ascending */
+    uint16_t pslot[RT_MAX_MBS_PAIRS];/* where each pair (i <= k) of a block's touches adds
+                                       to A: an index into lv */
+    uint16_t sb[RT_MAX_SETS + 1];   /* each set's MBS blocks: sblk[sb[s] .. sb[s+1]) */
+    uint16_t sblk[RT_MAX_BLOCKS];   /* ... in block order */
+    uint16_t sj[RT_MAX_SETS + 1];   /* each set's joints: sjnt[sj[s] .. sj[s+1]) */
+    uint16_t sjnt[RT_MAX_JOINTS];   /* ... in joint order */
     uint16_t jrow[RT_MAX_JOINTS];   /* first row of each joint within its set */
+    uint16_t jw[RT_MAX_JOINTS][2];  /* W slices of its first row in b1's and b2's columns
+                                       (its rows follow, nz of the block apart) */
+    uint16_t jlo[RT_MAX_JOINTS];    /* first of its multipliers in jlam */
     uint16_t nz[RT_MAX_SETS];       /* velocities of each set's MBS blocks */
     uint16_t nq[RT_MAX_SETS];       /* coordinates of each set's MBS blocks */
     uint16_t nc[RT_MAX_SETS];       /* constraint rows of each set */
     uint8_t need_lambda;            /* the scene records joint reactions */
+    uint8_t m_valid[RT_MAX_BLOCKS]; /* 1: M of a block with RT_MBS_M_CONST is factored */
+    /* the sparse LDL^T of each set's A (rt/mbs_ldl.c): rows in elimination order */
+    uint16_t rb[RT_MAX_SETS + 1];   /* first row of each set in perm, lp and lv */
+    uint16_t perm[RT_MAX_MBS_ROWS]; /* set row eliminated at each position */
+    uint16_t lp[RT_MAX_MBS_ROWS + 1];/* row i of L: columns lj[lp[i] .. lp[i+1]) */
+    uint16_t lj[RT_MAX_MBS_LNZ];    /* column positions within the set, ascending */
 
-    /* scratch of one set */
-    real_t M[RT_MAX_MBS_Z * RT_MAX_MBS_BZ];  /* LU factors of the diagonal blocks of M */
-    uint16_t Mpiv[RT_MAX_MBS_Z];             /* their row pivots (per block) */
-    real_t W[RT_MAX_MBS_C * RT_MAX_MBS_Z];   /* W = G K, nc x nz row-major (touched) */
-    real_t Y[RT_MAX_MBS_Z * RT_MAX_MBS_C];   /* M^-1 W^T, nz x nc row-major (touched) */
-    real_t A[RT_MAX_MBS_C * RT_MAX_MBS_C];   /* W M^-1 W^T, then its LU factors */
-    uint16_t Apiv[RT_MAX_MBS_C];             /* row pivots of A */
-    real_t a[RT_MAX_MBS_Z];                  /* forces k, then free accelerations M^-1 k */
-    real_t g[RT_MAX_MBS_C];                  /* g [m or 1] */
-    real_t gd[RT_MAX_MBS_C];                 /* g' */
-    real_t gam[RT_MAX_MBS_C];                /* acceleration term of eq. 7b */
-    real_t lam[RT_MAX_MBS_C];                /* multipliers, or projection corrections */
-    real_t dz[RT_MAX_MBS_Z];                 /* velocity-space correction */
-    real_t qt[RT_MAX_MBS_Q];                 /* predicted coordinates (projection) */
-    real_t J[2][6 * RT_MAX_MBS_BZ];          /* Jacobians of a joint's two nodes */
-    real_t jlam[RT_MAX_JOINTS * RT_MBS_JOINT_NC_MAX]; /* multipliers of each joint */
+    /* values */
+    real_t lv[RT_MAX_MBS_ROWS + RT_MAX_MBS_LNZ]; /* A, then its factors: the diagonal D
+                                       (lv[rb[s] + i]), then L (lv[RT_MAX_MBS_ROWS + e]) */
+    real_t M[RT_MAX_MBS_M];         /* factors of each block's M (a diagonal M: nz values;
+                                       a dense M: nz^2 factors, then nz row pivots) */
+    real_t W[RT_MAX_MBS_TW];        /* W = G K: per touch the block's nz columns */
+    real_t Y[RT_MAX_MBS_TY];        /* M^-1 W^T, transposed like W (dense M only) */
+    real_t a[RT_MAX_MBS_Z];         /* forces k, free accelerations M^-1 k, then z' (the
+                                       index-1 solve); the correction dz (projection) */
+    real_t g[RT_MAX_MBS_C];         /* g [m or 1] */
+    real_t gd[RT_MAX_MBS_C];        /* g' */
+    real_t gam[RT_MAX_MBS_C];       /* acceleration term of eq. 7b, then the multipliers */
+    real_t qt[RT_MAX_MBS_QT];       /* predicted coordinates (projection), kinb scratch */
+    real_t J[2][6 * RT_MAX_MBS_JZ]; /* Jacobians of a joint's two nodes */
+    real_t jlam[RT_MAX_MBS_JROWS];  /* multipliers of each joint (at jlo) */
 
     /* statistics (high-water marks for sizing and reports) */
     real_t res_max;       /* largest |g| right after a projection */

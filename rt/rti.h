@@ -8,7 +8,9 @@
 /* evaluation modes of the output sequence */
 typedef enum {
     RTI_AT_TICK = 0, /* at a tick boundary: DSS blocks whose sample hits are called */
-    RTI_IN_STEP      /* inside a set step: DSS outputs are held, not called */
+    RTI_IN_STEP,     /* inside a set step: DSS outputs are held, not called */
+    RTI_IN_RHS       /* inside a right-hand side: as RTI_IN_STEP, and blocks whose outputs
+                        no input of their set reads are not called (plan.rhs_skip) */
 } rti_mode;
 
 /* An evaluation instant, passed down explicitly (no ambient "current set/time" in
@@ -78,6 +80,9 @@ void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end
 void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at);
 /* Root values of the blocks of set s at time t (outputs must be current) into r. */
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
+/* Marks the blocks a right-hand side need not call (plan.rhs_skip): no input of their
+   own set reads their outputs live (after routing and rti_xset_init). Returns RT_OK. */
+rt_status rti_rhs_plan(const rt_scene *sc, rt_sim *sim);
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
 

@@ -21,19 +21,31 @@ void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t
 /* Evaluates the set's MBS blocks and joints at the current state into sim->work.mbs. */
 void rti_mbs_assemble(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
                       int what);
-/* Forms Y = M^-1 W^T and A = W Y over the touched rows and factors A; a singular A is
-   counted (RT_CNT_SINGULAR) with the block of the offending row. */
+/* Forms Y = M^-1 W^T and A = W Y over the touched rows and factors A (rt/mbs_ldl.c); a
+   singular A is counted (RT_CNT_SINGULAR) with the block of the offending row. */
 void rti_mbs_schur(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set);
 /* v (nc values) <- A^-1 v with the factors of rti_mbs_schur. */
 void rti_mbs_solve(struct rt_sim *sim, uint8_t set, real_t *v);
-/* dz = -Y v: the velocity-space correction of multipliers v. */
+/* dz = -Y v (add: dz -= Y v): the velocity-space correction of multipliers v. */
 void rti_mbs_correct(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set,
-                     const real_t *v, real_t *dz);
+                     const real_t *v, real_t *dz, int add);
+/* rt/mbs_ldl.c. Symbolic phase at init: the elimination order and L's pattern of set
+   `set` (w->rb[set] and w->lp[w->rb[set]] set by the previous set), and the slots of each
+   block's pairs of touches from *np on (advanced). */
+rt_status rti_mbs_ldl_init(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set,
+                           uint32_t *np);
+/* Zeroes the set's A before the blocks add their shares. */
+void rti_mbs_ldl_clear(rt_mbs_work *w, uint8_t set);
+/* Factors the set's A = L D L^T in place; returns the set row of the first pivot at or
+   below the threshold (replaced by it), or -1. */
+int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set);
+/* v <- A^-1 v with the factors. */
+void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v);
 /* The block owning constraint row `row` of the set (a joint's b1), or -1. */
 int rti_mbs_row_block(const struct rt_scene *sc, const struct rt_sim *sim, uint8_t set,
                       uint16_t row);
-/* The index-1 solve at the current state: lambda into lam and jlam, and
-   z' = a + dz (free accelerations plus constraint part). */
+/* The index-1 solve at the current state: lambda into gam and jlam, and
+   z' = M^-1 k - Y lambda into a. */
 void rti_mbs_lambda(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
 /* The accel service (see rt_mbs_ops) and the project service (rt/mbs_project.c). */
 void rti_mbs_accel(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,

@@ -188,6 +188,7 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
             p[i] = old;
             return RT_E_PARAM;
         }
+        sim->work.mbs.m_valid[b] = 0; /* a constant mass matrix is factored anew (#14) */
         return RT_OK;
     }
     /* before the first tick, initial states can be set by name too */

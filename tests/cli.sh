@@ -127,15 +127,27 @@ expect_err "bad csv path" 2 "cannot write the CSV file" $M run oscillator --csv 
 # the scene files: pi_loop has 3 blocks (step, pi, pt1), 1 state, 1 discrete state, 3
 # inputs, 3 outputs, 3 + 2 + 2 parameters, 3 records; pendulum10 10 mass points (6 states,
 # 6 outputs, 4 parameters, 3 velocities each), 22 records, 10 rods; empty tables count 1.
+# Both have one set (no cross-set history), no roots (no event bracket), one sequence call
+# per block, no loops. pendulum10's multibody tables: 10 rows; 19 touches (each rod its
+# two points, J1 only B1); W keeps 19 x 3 entries; mass points have K = I (no predicted
+# q) and a diagonal M (no Y, 3 entries each); B1..B9 touch 2 rows (3 pairs), B10 1 (1
+# pair): 28; a chain's A is tridiagonal, its L has 9 entries below the diagonal and no
+# fill; 10 joint rows; point nodes need no Jacobian.
 # (tests/image.sh runs images built with these limits against the host's hash)
 want_pi="-DRT_MAX_BLOCKS=3 -DRT_MAX_X=1 -DRT_MAX_D=1 -DRT_MAX_U=3 -DRT_MAX_Y=3 -DRT_MAX_P=7"
 want_pi="$want_pi -DRT_MAX_ROOTS=1 -DRT_MAX_SETS=1 -DRT_MAX_REC=3 -DRT_MAX_LOOPS=1 -DRT_MAX_TORN=1"
-want_pi="$want_pi -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_JOINTS=1 -DRT_MAX_MBS_Z=1 -DRT_MAX_MBS_Q=1"
-want_pi="$want_pi -DRT_MAX_MBS_C=1 -DRT_MAX_MBS_BZ=1"
+want_pi="$want_pi -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_HIST_Y=1 -DRT_MAX_EVENT_X=1 -DRT_MAX_SEQ=3"
+want_pi="$want_pi -DRT_MAX_LOOP_HIST=1 -DRT_MAX_JOINTS=1 -DRT_MAX_MBS_Z=1 -DRT_MAX_MBS_Q=1"
+want_pi="$want_pi -DRT_MAX_MBS_C=1 -DRT_MAX_MBS_BZ=1 -DRT_MAX_MBS_ROWS=1 -DRT_MAX_MBS_TOUCH=1"
+want_pi="$want_pi -DRT_MAX_MBS_TW=1 -DRT_MAX_MBS_QT=1 -DRT_MAX_MBS_TY=1 -DRT_MAX_MBS_PAIRS=1"
+want_pi="$want_pi -DRT_MAX_MBS_LNZ=1 -DRT_MAX_MBS_M=1 -DRT_MAX_MBS_JROWS=1 -DRT_MAX_MBS_JZ=1"
 want_pe="-DRT_MAX_BLOCKS=10 -DRT_MAX_X=60 -DRT_MAX_D=1 -DRT_MAX_U=1 -DRT_MAX_Y=60 -DRT_MAX_P=40"
 want_pe="$want_pe -DRT_MAX_ROOTS=1 -DRT_MAX_SETS=1 -DRT_MAX_REC=22 -DRT_MAX_LOOPS=1 -DRT_MAX_TORN=1"
-want_pe="$want_pe -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_JOINTS=10 -DRT_MAX_MBS_Z=30 -DRT_MAX_MBS_Q=30"
-want_pe="$want_pe -DRT_MAX_MBS_C=10 -DRT_MAX_MBS_BZ=3"
+want_pe="$want_pe -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_HIST_Y=1 -DRT_MAX_EVENT_X=1 -DRT_MAX_SEQ=10"
+want_pe="$want_pe -DRT_MAX_LOOP_HIST=1 -DRT_MAX_JOINTS=10 -DRT_MAX_MBS_Z=30 -DRT_MAX_MBS_Q=30"
+want_pe="$want_pe -DRT_MAX_MBS_C=10 -DRT_MAX_MBS_BZ=3 -DRT_MAX_MBS_ROWS=10 -DRT_MAX_MBS_TOUCH=19"
+want_pe="$want_pe -DRT_MAX_MBS_TW=57 -DRT_MAX_MBS_QT=1 -DRT_MAX_MBS_TY=1 -DRT_MAX_MBS_PAIRS=28"
+want_pe="$want_pe -DRT_MAX_MBS_LNZ=9 -DRT_MAX_MBS_M=30 -DRT_MAX_MBS_JROWS=10 -DRT_MAX_MBS_JZ=1"
 [ "$(build/host/scenec --sizes models/scenes/pi_loop.scn)" = "$want_pi" ] && ok ||
     bad "scenec --sizes pi_loop: $(build/host/scenec --sizes models/scenes/pi_loop.scn)"
 [ "$(build/host/scenec --sizes models/scenes/pendulum10.scn)" = "$want_pe" ] && ok ||

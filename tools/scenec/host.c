@@ -45,7 +45,18 @@ void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
             at_least_1(z.y), at_least_1(z.p), at_least_1(z.roots), at_least_1(z.sets),
             at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
             at_least_1(z.implicit_n));
+    fprintf(f, " -DRT_MAX_HIST_Y=%u -DRT_MAX_EVENT_X=%u -DRT_MAX_SEQ=%u -DRT_MAX_LOOP_HIST=%u",
+            at_least_1(z.hist_y), at_least_1(z.event_x), at_least_1(z.seq),
+            at_least_1(z.loop_hist));
     fprintf(f, " -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
-               "-DRT_MAX_MBS_BZ=%u\n", at_least_1(sc->njoints), at_least_1(z.mbs_z),
+               "-DRT_MAX_MBS_BZ=%u", at_least_1(sc->njoints), at_least_1(z.mbs_z),
             at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz));
+    /* the multibody tables over all sets (their defaults derive from the limits above) */
+    fprintf(f, " -DRT_MAX_MBS_ROWS=%u -DRT_MAX_MBS_TOUCH=%u -DRT_MAX_MBS_TW=%u "
+               "-DRT_MAX_MBS_QT=%u -DRT_MAX_MBS_TY=%u -DRT_MAX_MBS_PAIRS=%u "
+               "-DRT_MAX_MBS_LNZ=%u -DRT_MAX_MBS_M=%u -DRT_MAX_MBS_JROWS=%u -DRT_MAX_MBS_JZ=%u\n",
+            at_least_1(z.mbs_rows), at_least_1(z.mbs_touch), at_least_1(z.mbs_tw),
+            at_least_1(z.mbs_qt), at_least_1(z.mbs_ty), at_least_1(z.mbs_pairs),
+            at_least_1(z.mbs_lnz), at_least_1(z.mbs_m), at_least_1(z.mbs_jrows),
+            at_least_1(z.mbs_jz));
 }

@@ -1,0 +1,221 @@
+/* mbs_ldl.c - the sparse L D L^T factorization of a set's Schur complement
+ * A = W M^-1 W^T (eq. 9), which is symmetric positive definite when W has full rank.
+ *
+ * Eq. (9)'s Jacobian is block-sparse: a constraint row couples only the one or two blocks
+ * it touches, so A_rs can be non-zero only when rows r and s touch a common block. A chain
+ * gives a tridiagonal A, a tree or a few closed loops a sparse one. At init (symbolic
+ * phase) a minimum-degree elimination order and the pattern of L with its fill are
+ * computed once from the touches; every evaluation then only adds the blocks' shares into
+ * the pattern's slots and factors those non-zeros (numeric phase), with no pivoting (A is
+ * positive definite; a pivot at or below the threshold is replaced by it and counted, as
+ * the dense LU did). Loops run in a fixed order: the same A gives the same bits on every
+ * target. */
+#include "rti_mbs.h"
+
+#define WORD_BITS 32
+#define ADJ_WORDS ((RT_MAX_MBS_C + WORD_BITS - 1) / WORD_BITS)
+
+/* the graph of A's pattern while it is eliminated: adjacency bitsets by set row */
+typedef struct graph {
+    uint32_t adj[RT_MAX_MBS_C][ADJ_WORDS];
+    uint8_t gone[RT_MAX_MBS_C]; /* eliminated */
+} graph;
+
+static int has(const graph *g, uint16_t r, uint16_t s)
+{
+    return (int)((g->adj[r][s / WORD_BITS] >> (s % WORD_BITS)) & 1u);
+}
+
+static void link2(graph *g, uint16_t r, uint16_t s)
+{
+    g->adj[r][s / WORD_BITS] |= 1u << (s % WORD_BITS);
+    g->adj[s][r / WORD_BITS] |= 1u << (r % WORD_BITS);
+}
+
+/* rows r, s share a block: A_rs may be non-zero */
+static void touches_graph(const rt_scene *sc, const rt_mbs_work *w, uint8_t set, graph *g)
+{
+    for (uint16_t r = 0; r < w->nc[set]; r++) {
+        g->gone[r] = 0;
+        for (int k = 0; k < ADJ_WORDS; k++)
+            g->adj[r][k] = 0;
+    }
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        if (rti_mbs_in_set(sc, b, set))
+            for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++)
+                for (uint16_t k = w->to[b]; k < w->to[b + 1]; k++)
+                    if (w->trow[i] != w->trow[k])
+                        link2(g, w->trow[i], w->trow[k]);
+}
+
+/* the remaining row with the fewest remaining neighbours (the lowest on ties) */
+static uint16_t min_degree(const graph *g, uint16_t n)
+{
+    uint16_t best = 0, best_deg = UINT16_MAX;
+    for (uint16_t r = 0; r < n; r++) {
+        if (g->gone[r])
+            continue;
+        uint16_t deg = 0;
+        for (uint16_t s = 0; s < n; s++)
+            deg = (uint16_t)(deg + (!g->gone[s] && has(g, r, s)));
+        if (deg < best_deg)
+            best = r, best_deg = deg;
+    }
+    return best;
+}
+
+/* minimum-degree order; eliminating a row joins its remaining neighbours (the fill), so
+   afterwards the graph holds the pattern of L + L^T */
+static void order(graph *g, uint16_t n, uint16_t *perm)
+{
+    for (uint16_t k = 0; k < n; k++) {
+        uint16_t v = min_degree(g, n);
+        perm[k] = v;
+        g->gone[v] = 1;
+        for (uint16_t r = 0; r < n; r++)
+            for (uint16_t s = (uint16_t)(r + 1); s < n; s++)
+                if (!g->gone[r] && !g->gone[s] && has(g, v, r) && has(g, v, s))
+                    link2(g, r, s);
+    }
+}
+
+/* position of set row r in the elimination order */
+static uint16_t pos_of(const rt_mbs_work *w, uint8_t set, uint16_t r)
+{
+    uint16_t i = 0;
+    while (w->perm[w->rb[set] + i] != r)
+        i++;
+    return i;
+}
+
+/* the slot in lv where A_rs (set rows) is kept: its diagonal, or L's entry */
+static uint16_t slot(const rt_mbs_work *w, uint8_t set, uint16_t r, uint16_t s)
+{
+    uint16_t i = pos_of(w, set, r), j = pos_of(w, set, s);
+    if (i == j)
+        return (uint16_t)(w->rb[set] + i);
+    uint16_t hi = i > j ? i : j, lo = i > j ? j : i, row = (uint16_t)(w->rb[set] + hi);
+    uint16_t e = w->lp[row];
+    while (w->lj[e] != lo)
+        e++;
+    return (uint16_t)(RT_MAX_MBS_ROWS + e);
+}
+
+/* the slots of every pair (i <= k) of each block's touches */
+static rt_status pair_slots(const rt_scene *sc, rt_sim *sim, uint8_t set, uint32_t *np)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!rti_mbs_in_set(sc, b, set))
+            continue;
+        uint16_t t0 = w->to[b], t1 = w->to[b + 1];
+        if (*np + (uint32_t)(t1 - t0) * (t1 - t0 + 1) / 2 > RT_MAX_MBS_PAIRS)
+            return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
+                            ": its constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_PAIRS),
+                            (const char *)0);
+        w->po[b] = (uint16_t)*np;
+        for (uint16_t i = t0; i < t1; i++)
+            for (uint16_t k = i; k < t1; k++)
+                w->pslot[(*np)++] = slot(w, set, w->trow[i], w->trow[k]);
+        w->po[b + 1] = (uint16_t)*np;
+    }
+    return RT_OK;
+}
+
+rt_status rti_mbs_ldl_init(const rt_scene *sc, rt_sim *sim, uint8_t set, uint32_t *np)
+{
+    graph g; /* 4 bytes per 32 rows squared: 360 bytes at the default 40 rows */
+    rt_mbs_work *w = &sim->work.mbs;
+    uint16_t n = w->nc[set], base = w->rb[set];
+    if ((uint32_t)base + n > RT_MAX_MBS_ROWS)
+        return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[set].name,
+                        ": constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_ROWS),
+                        (const char *)0);
+    w->rb[set + 1] = (uint16_t)(base + n);
+    touches_graph(sc, w, set, &g);
+    order(&g, n, w->perm + base);
+    /* L's row i: the positions j < i adjacent in the filled graph, ascending */
+    uint32_t e = w->lp[base];
+    for (uint16_t i = 0; i < n; i++) {
+        for (uint16_t j = 0; j < i; j++)
+            if (has(&g, w->perm[base + i], w->perm[base + j])) {
+                if (e >= RT_MAX_MBS_LNZ)
+                    return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[set].name,
+                                    ": the factors of its constraints exceed ",
+                                    RTI_LIMIT(RT_MAX_MBS_LNZ), (const char *)0);
+                w->lj[e++] = j;
+            }
+        w->lp[base + i + 1] = (uint16_t)e;
+    }
+    return pair_slots(sc, sim, set, np);
+}
+
+/* ------------------------------------------------------------------ numeric phase */
+
+void rti_mbs_ldl_clear(rt_mbs_work *w, uint8_t set)
+{
+    for (uint16_t i = w->rb[set]; i < w->rb[set + 1]; i++)
+        w->lv[i] = 0;
+    for (uint16_t e = w->lp[w->rb[set]]; e < w->lp[w->rb[set + 1]]; e++)
+        w->lv[RT_MAX_MBS_ROWS + e] = 0;
+}
+
+int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
+{
+    uint16_t base = w->rb[set], n = (uint16_t)(w->rb[set + 1] - base);
+    real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
+    const uint16_t *lp = w->lp + base;
+    real_t u[RT_MAX_MBS_C]; /* row i so far: u[j] = L_ij D_j, zero outside its pattern */
+    real_t big = 0;
+    for (uint16_t i = 0; i < n; i++) {
+        big = D[i] > big ? D[i] : big; /* positive definite: the largest entry is on it */
+        u[i] = 0;
+    }
+    real_t floor_ = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);
+    int bad = -1;
+    for (uint16_t i = 0; i < n; i++) {
+        real_t d = D[i];
+        for (uint16_t e = lp[i]; e < lp[i + 1]; e++) {
+            uint16_t j = w->lj[e];
+            real_t t = L[e];
+            /* L_jk D_k L_ik over row j's columns k < j; u is zero where row i has none */
+            for (uint16_t f = lp[j]; f < lp[j + 1]; f++)
+                t -= L[f] * u[w->lj[f]];
+            u[j] = t;
+            L[e] = t / D[j];
+            d -= L[e] * t;
+        }
+        for (uint16_t e = lp[i]; e < lp[i + 1]; e++)
+            u[w->lj[e]] = 0;
+        if (i == 0 && rti_fault_due(RTI_FAULT_SINGULAR))
+            d = 0;
+        if (!(d > floor_)) { /* singular, indefinite or NaN: go on with the threshold */
+            bad = bad < 0 ? (int)w->perm[base + i] : bad;
+            d = floor_;
+        }
+        D[i] = d;
+    }
+    return bad;
+}
+
+void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v)
+{
+    uint16_t base = w->rb[set], n = (uint16_t)(w->rb[set + 1] - base);
+    const real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
+    const uint16_t *lp = w->lp + base, *perm = w->perm + base;
+    real_t y[RT_MAX_MBS_C];
+    for (uint16_t i = 0; i < n; i++) { /* L y = P v */
+        real_t t = v[perm[i]];
+        for (uint16_t e = lp[i]; e < lp[i + 1]; e++)
+            t -= L[e] * y[w->lj[e]];
+        y[i] = t;
+    }
+    for (uint16_t i = 0; i < n; i++)
+        y[i] /= D[i];
+    for (uint16_t i = n; i-- > 0;) { /* L^T x = y */
+        real_t t = y[i];
+        for (uint16_t e = lp[i]; e < lp[i + 1]; e++)
+            y[w->lj[e]] -= L[e] * t;
+        v[perm[i]] = t;
+    }
+}

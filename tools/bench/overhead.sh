@@ -1,0 +1,29 @@
+#!/bin/sh
+# overhead.sh - modular overhead of modrt against the hand-written monolith
+# (tools/bench/pendulum_mono.c): instructions per simulated second of each side counted by
+# callgrind inside the run only (--toggle-collect on modrt_ticks or mono_steps: start-up
+# excluded), deterministic; prints one line per scene and method,
+#   modular overhead <scene> <method>: <modrt / monolith>
+# against the monolith with the dense Schur solve and the same embedded error estimate,
+# then the same against the monolith without the estimate and with the Thomas solve.
+# Usage: sh tools/bench/overhead.sh build/host/overhead_bench [SECONDS]
+set -eu
+B=$1
+S=${2:-1}
+count() { # side method -> instructions per simulated second
+    f=$(mktemp)
+    valgrind --tool=callgrind --callgrind-out-file=$f --toggle-collect="$3" \
+        "$B" count "$1" "$2" "$S" > /dev/null 2>&1
+    n=$(sed -n 's/^summary: //p' "$f")
+    rm -f "$f"
+    echo $((n / S))
+}
+for m in bs3 rk4 dopri5; do
+    r=$(count modrt $m modrt_ticks)
+    d=$(count mono $m mono_steps)
+    n=$(count mono-noest $m mono_steps)
+    t=$(count thomas $m mono_steps)
+    awk -v m=$m -v r=$r -v d=$d -v n=$n -v t=$t 'BEGIN {
+        printf "modular overhead pendulum10 %s: %.2f\n", m, r / d
+        printf "  instructions per simulated s: modrt %d, monolith %d (dense, with estimate), %d (no estimate: %.2fx), %d (Thomas: %.2fx)\n", r, d, n, r / n, t, r / t }'
+done

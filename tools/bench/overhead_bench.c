@@ -1,0 +1,135 @@
+/* overhead_bench.c - modrt against the hand-written monolith of the same formulation
+ * (pendulum_mono.c): the trajectory check, and the runs that tools/bench/overhead.sh
+ * counts with callgrind to print the modular overhead (docs/overhead.md).
+ *
+ * The modrt side is the library as an application runs it: rt_init, then rt_tick per
+ * base tick (scene pendulum10 with its method replaced). The counted functions are
+ * modrt_ticks and mono_steps; start-up (init, the first projection) is outside them.
+ *
+ * Usage: overhead_bench check            both sides, every method, 2 s: the largest
+ *                                        position difference must be below CHECK_TOL
+ *                                        (exit 1 otherwise)
+ *        overhead_bench count SIDE METHOD SECONDS
+ *                                        SIDE modrt | mono | mono-noest | thomas;
+ *                                        METHOD bs3 | rk4 | dopri5 */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pendulum_mono.h"
+#include "scenes/scenes.h"
+
+#define CHECK_T 2.0     /* simulated time of the trajectory check [s] */
+#define CHECK_TOL 1e-11 /* largest position difference accepted [m]: rounding grows in the
+                           chaotic chain, a formulation error gives 1e-3 or more */
+
+static rt_sim sim;
+
+static const struct {
+    const char *name;
+    const rt_integrator *rt;
+    int mono;
+} methods[] = {
+    {"bs3", &rt_bs3, MONO_BS3},
+    {"rk4", &rt_rk4, MONO_RK4},
+    {"dopri5", &rt_dopri5, MONO_DOPRI5},
+};
+#define NMETHODS (int)(sizeof methods / sizeof methods[0])
+
+static int method_index(const char *name)
+{
+    for (int i = 0; i < NMETHODS; i++)
+        if (strcmp(name, methods[i].name) == 0)
+            return i;
+    fprintf(stderr, "overhead_bench: unknown method %s\n", name);
+    exit(2);
+}
+
+/* pendulum10 with method i over t_end seconds (the scene's own step) */
+static void modrt_init(rt_scene *sc, rt_set *set, int i, double t_end)
+{
+    *sc = mdl_scene_pendulum10;
+    *set = sc->sets[0];
+    set->method = methods[i].rt;
+    sc->sets = set;
+    sc->t_end = (real_t)t_end;
+    if (rt_init(sc, &sim) != RT_OK) {
+        fprintf(stderr, "overhead_bench: init: %s\n", rt_error_text(&sim));
+        exit(1);
+    }
+}
+
+__attribute__((noinline)) void modrt_ticks(const rt_scene *sc, rt_sim *s, long n)
+{
+    for (long i = 0; i < n; i++)
+        rt_tick(sc, s);
+}
+
+/* the monolith started from modrt's initial state (outputs x, y, z, vx, vy, vz) */
+static void mono_start(mono *m, int i, int solver, int estimate, const rt_scene *sc)
+{
+    double x0[6 * MONO_NB];
+    for (uint16_t b = 0; b < MONO_NB; b++)
+        for (uint16_t j = 0; j < 6; j++)
+            x0[6 * b + j] = (double)rt_output(&sim, b, j);
+    m->method = methods[i].mono, m->solver = solver, m->estimate = estimate;
+    m->h = (double)sc->dt;
+    mono_init(m, x0);
+}
+
+static int check(void)
+{
+    int bad = 0;
+    for (int i = 0; i < NMETHODS; i++) {
+        rt_scene sc;
+        rt_set set;
+        modrt_init(&sc, &set, i, CHECK_T);
+        long n = lround(CHECK_T / (double)sc.dt);
+        for (int solver = MONO_DENSE; solver <= MONO_THOMAS; solver++) {
+            mono m;
+            modrt_init(&sc, &set, i, CHECK_T);
+            mono_start(&m, i, solver, 1, &sc);
+            modrt_ticks(&sc, &sim, n);
+            mono_steps(&m, n);
+            double worst = 0;
+            for (uint16_t b = 0; b < MONO_NB; b++)
+                for (uint16_t j = 0; j < 3; j++) {
+                    double d = fabs((double)rt_output(&sim, b, j) - m.x[6 * b + j]);
+                    worst = d > worst || d != d ? d : worst;
+                }
+            int ok = worst <= CHECK_TOL;
+            bad += !ok;
+            printf("trajectory pendulum10 %s %s: largest position difference at %g s "
+                   "%.2e m (tolerance %.0e) %s\n", methods[i].name,
+                   solver == MONO_DENSE ? "dense" : "thomas", CHECK_T, worst, CHECK_TOL,
+                   ok ? "ok" : "FAILED");
+        }
+    }
+    return bad ? 1 : 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 2 && strcmp(argv[1], "check") == 0)
+        return check();
+    if (argc != 5 || strcmp(argv[1], "count") != 0) {
+        fprintf(stderr, "usage: overhead_bench check | count SIDE METHOD SECONDS\n");
+        return 2;
+    }
+    int i = method_index(argv[3]);
+    double secs = atof(argv[4]);
+    rt_scene sc;
+    rt_set set;
+    modrt_init(&sc, &set, i, secs);
+    long n = lround(secs / (double)sc.dt);
+    if (strcmp(argv[2], "modrt") == 0) {
+        modrt_ticks(&sc, &sim, n);
+        return sim.stats.status == RT_OK ? 0 : 1;
+    }
+    static mono m;
+    int solver = strcmp(argv[2], "thomas") == 0 ? MONO_THOMAS : MONO_DENSE;
+    mono_start(&m, i, solver, strcmp(argv[2], "mono-noest") != 0, &sc);
+    mono_steps(&m, n);
+    return 0;
+}
