@@ -70,7 +70,7 @@ include tools/scenec/scenec.mk
 
 .PHONY: all help test unit demo bench check-freestanding cross-test footprint clean \
         $(addprefix cross-test-,$(CROSS_TARGETS)) $(addprefix check-target-,$(CROSS_TARGETS)) \
-        foot-elf image
+        foot-elf image effects
 
 all: $(O)/modrt $(O)/svgplot $(SCENEC)
 
@@ -85,6 +85,7 @@ help:
 	@echo "make cross-test   every cross target under QEMU (cross-test-<t>: one; targets:"
 	@echo "                  $(CROSS_TARGETS))"
 	@echo "make footprint    flash, RAM and instructions per tick of every scene on every target"
+	@echo "make effects      what each effect of the lane change costs (M7 and host; a few minutes)"
 	@echo "make image TARGET=<t> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
 	@echo "                  a firmware image of one scene (docs/porting.md)"
 	@echo "make fuzz         the scene-language fuzzer for $(FUZZ_TIME) s"
@@ -267,15 +268,29 @@ FOOT_SRCS = tests/cross/footprint_main.c tests/harness.c \
 footprint: deps build/host/modrt $(INSN_COUNT_SO) scenes
 	$(MAKE) --no-print-directory REAL=float build/host-float/modrt
 	sh tools/footprint.sh "$(FOOT_TARGETS)" "$(FOOT_FLOAT_TARGETS)" > docs/footprint.md
+	sh tools/effects.sh >> docs/footprint.md
 	@echo "footprint: wrote docs/footprint.md"
-# one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes)
+# the effects of the lane change alone (Cortex-M7 and the host, a few minutes): replaces
+# the section "Effects of the lane change" at the end of docs/footprint.md
+effects: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
+	sh tools/effects.sh > build/effects.md
+	awk '/^## Effects of the lane change$$/ { exit } { print }' docs/footprint.md | \
+	    sed -e :a -e '/^\n*$$/{$$d;N;ba' -e '}' > build/footprint.md
+	cat build/effects.md >> build/footprint.md
+	mv build/footprint.md docs/footprint.md
+	@echo "effects: wrote the section of docs/footprint.md"
+# one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes); a scene
+# outside the library: SCN=<file.scn> too, S its scene name (scenec compiles and sizes it)
 FOOT_TICKS ?= 1000
+FOOT_GEN = $(if $(SCN),build/foot/gen/$(S).c,build/gen/scenes/$(S).c)
+FOOT_SIZES = $(if $(SCN),$(shell build/host/scenec --sizes $(SCN)),$(shell build/host/modrt sizes $(S)))
 foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
-	@[ -n "$(T)" ] && [ -n "$(S)" ] || { echo "usage: make foot-elf T=<target> S=<scene>" >&2; exit 2; }
-	@mkdir -p build/foot/$(T)$(XSUF)
+	@[ -n "$(T)" ] && [ -n "$(S)" ] || { echo "usage: make foot-elf T=<target> S=<scene> [SCN=<file.scn>]" >&2; exit 2; }
+	@mkdir -p build/foot/$(T)$(XSUF) build/foot/gen
+	@$(if $(SCN),build/host/scenec -o $(FOOT_GEN) $(SCN))
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
-	  $(shell build/host/modrt sizes $(S)) \
-	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) build/gen/scenes/$(S).c \
+	  $(FOOT_SIZES) \
+	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) $(FOOT_GEN) \
 	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 	@mkdir -p $(dir $@)

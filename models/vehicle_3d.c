@@ -11,10 +11,13 @@
  * point when the car stands at its design height h. Its height z_i and vertical speed
  * give the vertical load (suspension spring in series with the tire, damper; unsprung
  * masses neglected)
- *     F_z,i = max(0, pre F0_i - k z_i - c z_i'),  F0 = m g l_r / (2 L) front, m g l_f / (2 L) rear,
- * so that with pre = 1 the car starts at rest in static equilibrium. The tire forces act
- * at the corner point in the ground plane, from the slip of the point's velocity in the
- * wheel frame (the body x axis projected on the ground, turned by delta at the front):
+ *     F_z,i = max(0, pre F0_i - k z_i - c z_i' - (K_b / t^2) (z_i - z_o)),
+ *     F0 = m g l_r / (2 L) front, m g l_f / (2 L) rear,
+ * so that with pre = 1 the car starts at rest in static equilibrium; z_o is the height of
+ * the other wheel on the axle, K_b the axle's anti-roll bar (roll stiffness kbf, kbr,
+ * acting at the contacts). The tire forces act at the corner point in the ground plane,
+ * from the slip of the point's velocity in the wheel frame (the body x axis projected on
+ * the ground, turned by delta at the front):
  *     tan a = -V_y / V_x  (V_x >= u_min; the slip angle of vehicle_st.c for small angles).
  * car3d: linear tires whose cornering stiffness is proportional to the load,
  *     F_y = (C/2) (F_z / F0) tan a,
@@ -33,7 +36,7 @@
 enum {
     P_M, P_IXX, P_IYY, P_IZZ, P_LF, P_LR, P_TF, P_TR, P_H, P_CF, P_CR, P_FZPK, P_MU,
     P_SHAPE, P_CURV, P_KF, P_KR, P_CDF, P_CDR, P_PRE, P_DRIVE, P_DF, P_DR, P_UMIN, P_G,
-    P_COUNT
+    P_KBF, P_KBR, P_COUNT
 };
 enum { U_DELTA, U_FX, U_FA, NU };
 enum { Y_X, Y_Y, Y_PSI, Y_U, Y_V, Y_R, Y_AY, Y_Z, Y_ROLL, Y_PITCH, Y_FZ, NY = Y_FZ + 4 };
@@ -46,16 +49,18 @@ static const char *const y_names[] = {"x", "y", "psi", "u", "v", "r", "ay",
 static const char *const u_names[] = {"delta", "Fx", "Fa"};
 static const char *const p_names[] = {"m", "Ixx", "Iyy", "Izz", "lf", "lr", "tf", "tr", "h",
                                       "Cf", "Cr", "fzpk", "mu", "C", "E", "kf", "kr", "cf",
-                                      "cr", "pre", "drive", "df", "dr", "umin", "g"};
+                                      "cr", "pre", "drive", "df", "dr", "umin", "g", "kbf", "kbr"};
 static const char *const node_names[] = {"front", "rear"};
 /* CommonRoad vehicle 1 (docs/vehicles.md): m, Ixx = I_Phi_s, Iyy = I_y_s, Izz, lf, lr,
    tracks T_f, T_r, h = h_cg; corner stiffness K_sf in series with the tire's K_zt,
-   damping K_sdf. Cf, Cr, mu, C, E as st_car_mf; fzpk, drive, df, dr, umin: our choice */
+   damping K_sdf. Cf, Cr, mu, C, E as st_car_mf; fzpk, drive, df, dr, umin: our choice;
+   anti-roll bars kbf, kbr for a roll gradient of 5 deg/g with 68 % of the roll stiffness
+   at the front (docs/vehicles.md, "Anti-roll bars") */
 static const real_t p_default[P_COUNT] = {
     (real_t)1225.887, (real_t)244.047, (real_t)1342.260, (real_t)1538.853, (real_t)0.88392,
     (real_t)1.50876, (real_t)1.389888, (real_t)1.423416, (real_t)0.557784, 158000, 170000,
     2, 1, (real_t)1.3, (real_t)-0.5, (real_t)19632.988, (real_t)19632.988,
-    (real_t)1459.390, (real_t)1459.390, 1, 1, 2, 2, 1, (real_t)9.81};
+    (real_t)1459.390, (real_t)1459.390, 1, 1, 2, 2, 1, (real_t)9.81, 37900, 6900};
 static const real_t x_default[NX] = {0, 0, (real_t)0.557784, 1, 0, 0, 0, 20, 0, 0, 0, 0, 0};
 /* ay depends directly on delta and Fx (the tire forces); nothing else feeds through */
 static const uint8_t feed[NY * NU] = {[Y_AY * NU + U_DELTA] = 1, [Y_AY * NU + U_FX] = 1};
@@ -65,51 +70,75 @@ static const uint8_t feed[NY * NU] = {[Y_AY * NU + U_DELTA] = 1, [Y_AY * NU + U_
 typedef struct axle {
     real_t f0;     /* static load of each wheel: the statics of the axles [N] */
     real_t k, c;   /* corner stiffness [N/m], damping [N s/m] */
+    real_t kb;     /* anti-roll bar at the contacts: its roll stiffness / t^2 [N/m] */
     real_t ca0;    /* cornering stiffness of each wheel at f0 [N/rad] */
     real_t ic2;    /* 1 / c2 = 1 / (fzpk f0) [1/N] */
     real_t bk;     /* B (1 + x^2) = 2 c1 / (c2 C mu), 0 when mu = 0 [1/rad] */
     real_t fxd;    /* longitudinal force demanded of each wheel [N] */
     real_t cd, sd; /* cos, sin of the wheels' angle */
+    real_t ex, ey; /* the wheels' forward axis in the ground frame (the heading turned by
+                      the wheels' angle), unit length */
 } axle;
 
 /* what every force evaluation needs: the rotation, the heading, the axles */
 typedef struct chassis {
     real_t R[9];    /* body to ground, row-major */
+    real_t wg[3];   /* angular velocity in the ground frame, R w [rad/s] */
     real_t hx, hy;  /* heading: the body x axis projected on the ground, unit length */
     axle ax[2];     /* front, rear */
 } chassis;
 
-/* the sum of the corner forces: ground-frame force, body-frame moment about the centre of
-   mass, and the vertical loads */
+/* a corner's contact point: its offset from the centre of mass and its velocity, both in
+   the ground frame, and its height */
+typedef struct contact {
+    real_t r[3], v[3], z;
+} contact;
+
+/* the sum of the corner forces: ground-frame force, ground-frame moment about the centre
+   of mass, and the vertical loads */
 typedef struct wrench {
     real_t f[3], t[3], fz[NCORNER];
 } wrench;
 
 /* axle j (0 front, 1 rear) with wheel angle delta and its share of the drive force.
-   c1 = ca0 (1 + x0^2) / (2 x0) with x0 = f0 / c2 = 1 / fzpk makes C_a(f0) = ca0 */
+   c1 = ca0 (1 + x0^2) / (2 x0) with x0 = f0 / c2 = 1 / fzpk makes C_a(f0) = ca0. The
+   wheels' cosine from the sine (|delta| <= pi/2, as a road wheel turns): one sine, not
+   two reductions */
 static void axle_of(const rt_args *a, int j, real_t delta, real_t share, axle *x)
 {
     const real_t *p = a->p;
-    real_t fzpk = p[P_FZPK], c1;
+    real_t fzpk = p[P_FZPK], c1, t = p[j ? P_TR : P_TF];
     x->f0 = p[P_M] * p[P_G] * p[j ? P_LF : P_LR] / (2 * (p[P_LF] + p[P_LR]));
     x->k = p[j ? P_KR : P_KF], x->c = p[j ? P_CDR : P_CDF];
+    x->kb = p[j ? P_KBR : P_KBF] / (t * t);
     x->ca0 = (real_t)0.5 * p[j ? P_CR : P_CF];
     x->ic2 = 1 / (fzpk * x->f0);
     c1 = x->ca0 * (fzpk * fzpk + 1) / (2 * fzpk);
     x->bk = p[P_MU] > 0 ? 2 * c1 * x->ic2 / (p[P_SHAPE] * p[P_MU]) : 0;
     x->fxd = (real_t)0.5 * share * a->u[U_FX];
-    x->cd = j ? 1 : rt_cos(delta), x->sd = j ? 0 : rt_sin(delta);
+    if (delta == 0) {
+        x->cd = 1, x->sd = 0;
+    } else if (delta <= (real_t)RT_HALF_PI && delta >= (real_t)-RT_HALF_PI) {
+        x->sd = rt_sin(delta), x->cd = rt_sqrt(1 - x->sd * x->sd);
+    } else {
+        x->sd = rt_sin(delta), x->cd = rt_cos(delta);
+    }
 }
 
-/* the rotation, the heading and both axles, once per evaluation */
+/* the rotation, the heading, the angular velocity in the ground frame and both axles,
+   once per evaluation */
 static void frame(const rt_args *a, chassis *c)
 {
     mdl_rotation(a->x + MDL_RB_P, c->R);
     real_t n = rt_sqrt(c->R[0] * c->R[0] + c->R[3] * c->R[3]);
     /* a car standing on its nose has no heading: keep the ground x axis (finite) */
     c->hx = n > 0 ? c->R[0] / n : 1, c->hy = n > 0 ? c->R[3] / n : 0;
-    axle_of(a, 0, a->u[U_DELTA], a->p[P_DRIVE], &c->ax[0]);
-    axle_of(a, 1, 0, 1 - a->p[P_DRIVE], &c->ax[1]);
+    mdl_mul3(c->R, a->x + MDL_RB_W, c->wg);
+    for (int j = 0; j < 2; j++) {
+        axle *x = &c->ax[j];
+        axle_of(a, j, j ? 0 : a->u[U_DELTA], j ? 1 - a->p[P_DRIVE] : a->p[P_DRIVE], x);
+        x->ex = c->hx * x->cd - c->hy * x->sd, x->ey = c->hy * x->cd + c->hx * x->sd;
+    }
 }
 
 /* corner i = fl, fr, rl, rr at body offset s (y to the left) */
@@ -121,11 +150,25 @@ static void corner_offset(const real_t *p, int i, real_t *s)
     s[2] = -p[P_H];
 }
 
-/* vertical load from the corner's height z and vertical speed zd; a wheel off the
-   ground carries nothing (no adhesion) */
-static real_t vertical(const real_t *p, const axle *x, real_t z, real_t zd)
+/* corner i's contact point: r = R s, v = v_cm + (R w) x r, z = z_cm + r_z */
+static void contact_of(const rt_args *a, const chassis *c, int i, contact *k)
 {
-    real_t fz = p[P_PRE] * x->f0 - x->k * z - x->c * zd;
+    const real_t *x = a->x;
+    real_t s[3], t[3];
+    corner_offset(a->p, i, s);
+    mdl_mul3(c->R, s, k->r);
+    mdl_cross3(c->wg, k->r, t);
+    for (int j = 0; j < 3; j++)
+        k->v[j] = x[MDL_RB_V + j] + t[j];
+    k->z = x[2] + k->r[2];
+}
+
+/* vertical load from the corner's height z, vertical speed zd and the height zo of the
+   other corner on its axle (the anti-roll bar pushes against the difference); a wheel
+   off the ground carries nothing (no adhesion) */
+static real_t vertical(const real_t *p, const axle *x, real_t z, real_t zd, real_t zo)
+{
+    real_t fz = p[P_PRE] * x->f0 - x->k * z - x->c * zd - x->kb * (z - zo);
     return fz > 0 ? fz : 0;
 }
 
@@ -145,8 +188,8 @@ static real_t magic(const real_t *p, const axle *x, real_t alpha, real_t fz)
    force scaled so that |(fx, fy)| <= fmax (|fy0| <= fmax by the Magic Formula) */
 static void combine(real_t fmax, real_t fxd, real_t *fx, real_t *fy)
 {
-    if (fmax <= 0) {
-        *fx = *fy = 0;
+    if (fmax <= 0 || fxd == 0) {
+        *fx = 0, *fy = fmax > 0 ? *fy : 0;
         return;
     }
     real_t f = fxd > fmax ? fmax : fxd < -fmax ? -fmax : fxd, q = f / fmax;
@@ -178,41 +221,43 @@ static void tire_mf(const real_t *p, const axle *x, real_t fz, real_t slip, real
     combine(p[P_MU] * fz, x->fxd, fx, fy);
 }
 
-/* corner i: its vertical load and tire forces at the corner point, added to w */
-static void corner(const rt_args *a, const chassis *c, int i, tire_law *law, wrench *w)
+/* corner i at contact k, with the height zo of the other wheel on its axle: its vertical
+   load and tire forces at the contact point, added to w (the moment about the centre of
+   mass, r x F in the ground frame, only if torque is set: outputs need none) */
+static void corner(const rt_args *a, const chassis *c, int i, const contact *k, real_t zo,
+                   tire_law *law, int torque, wrench *w)
 {
-    const real_t *x = a->x, *p = a->p;
+    const real_t *p = a->p, *vp = k->v;
     const axle *ax = &c->ax[i < 2 ? 0 : 1];
-    real_t s[3], ws[3], t[3], vp[3], F[3], fb[3], tb[3], fx, fy;
-    corner_offset(p, i, s);
-    mdl_cross3(x + MDL_RB_W, s, ws);
-    mdl_mul3(c->R, ws, t);
-    for (int k = 0; k < 3; k++)
-        vp[k] = x[MDL_RB_V + k] + t[k];
-    mdl_mul3(c->R, s, t);
-    real_t fz = vertical(p, ax, x[2] + t[2], vp[2]);
-    /* the contact point's velocity in the heading frame, then in the wheel frame */
-    real_t vx = c->hx * vp[0] + c->hy * vp[1], vy = -c->hy * vp[0] + c->hx * vp[1];
-    real_t cd = ax->cd, sd = ax->sd, vxw = cd * vx + sd * vy, vyw = -sd * vx + cd * vy;
+    real_t F[3], tg[3], fx, fy;
+    real_t fz = vertical(p, ax, k->z, vp[2], zo);
+    /* the contact point's velocity in the wheel frame (along and across the wheel) */
+    real_t ex = ax->ex, ey = ax->ey;
+    real_t vxw = ex * vp[0] + ey * vp[1], vyw = -ey * vp[0] + ex * vp[1];
     law(p, ax, fz, -vyw / (vxw > p[P_UMIN] ? vxw : p[P_UMIN]), &fx, &fy);
-    /* wheel frame -> heading frame -> ground */
-    real_t fh = fx * cd - fy * sd, fl = fx * sd + fy * cd;
-    F[0] = c->hx * fh - c->hy * fl, F[1] = c->hy * fh + c->hx * fl, F[2] = fz;
-    /* its moment about the centre of mass in the body frame: s x R^T F */
-    mdl_mul3t(c->R, F, fb);
-    mdl_cross3(s, fb, tb);
-    for (int k = 0; k < 3; k++)
-        w->f[k] += F[k], w->t[k] += tb[k];
+    /* wheel frame -> ground */
+    F[0] = ex * fx - ey * fy, F[1] = ey * fx + ex * fy, F[2] = fz;
+    for (int j = 0; j < 3; j++)
+        w->f[j] += F[j];
+    if (torque) {
+        mdl_cross3(k->r, F, tg);
+        for (int j = 0; j < 3; j++)
+            w->t[j] += tg[j];
+    }
     w->fz[i] = fz;
 }
 
-/* the four corners with the kind's tire law */
-static void corners(const rt_args *a, const chassis *c, tire_law *law, wrench *w)
+/* the four corners with the kind's tire law: contacts first (each wheel's load needs the
+   other wheel's height on its axle, for the anti-roll bar) */
+static void corners(const rt_args *a, const chassis *c, tire_law *law, int torque, wrench *w)
 {
-    for (int k = 0; k < 3; k++)
-        w->f[k] = w->t[k] = 0;
+    contact k[NCORNER];
+    for (int j = 0; j < 3; j++)
+        w->f[j] = w->t[j] = 0;
     for (int i = 0; i < NCORNER; i++)
-        corner(a, c, i, law, w);
+        contact_of(a, c, i, &k[i]);
+    for (int i = 0; i < NCORNER; i++)
+        corner(a, c, i, &k[i], k[i ^ 1].z, law, torque, w);
 }
 
 static void kin(const rt_args *a, const real_t *v, real_t *qd) { mdl_rigid_kin(a->x, v, qd); }
@@ -223,21 +268,22 @@ static void mass(const rt_args *a, real_t *M)
     M[3] = a->p[P_IXX], M[4] = a->p[P_IYY], M[5] = a->p[P_IZZ];
 }
 
-/* k = [sum F_i + Fa heading - m g e_z, sum s_i x R^T F_i - w x J w] (eq. 6b) */
+/* k = [sum F_i + Fa heading - m g e_z, R^T sum (R s_i) x F_i - w x J w] (eq. 6b) */
 static void force(const rt_args *a, tire_law *law, real_t *k)
 {
     const real_t *p = a->p, *w = a->x + MDL_RB_W;
     chassis c;
     wrench t;
     frame(a, &c);
-    corners(a, &c, law, &t);
-    real_t Jw[3] = {p[P_IXX] * w[0], p[P_IYY] * w[1], p[P_IZZ] * w[2]}, gyro[3];
+    corners(a, &c, law, 1, &t);
+    real_t Jw[3] = {p[P_IXX] * w[0], p[P_IYY] * w[1], p[P_IZZ] * w[2]}, gyro[3], tb[3];
     mdl_cross3(w, Jw, gyro);
+    mdl_mul3t(c.R, t.t, tb);
     k[0] = t.f[0] + a->u[U_FA] * c.hx;
     k[1] = t.f[1] + a->u[U_FA] * c.hy;
     k[2] = t.f[2] - p[P_M] * p[P_G];
     for (int i = 0; i < 3; i++)
-        k[3 + i] = t.t[i] - gyro[i];
+        k[3 + i] = tb[i] - gyro[i];
 }
 
 /* hitch i at d ahead of the centre of mass (d < 0: behind), at its height */
@@ -248,12 +294,13 @@ static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
     mdl_rigid_node(a->x, R, s, n, J);
 }
 
-/* T = m |v|^2 / 2 + w^T J w / 2; V = m g z + sum (k z_i^2 / 2 - pre F0_i z_i), the
-   potential of gravity and of the corner springs while every wheel touches the ground */
+/* T = m |v|^2 / 2 + w^T J w / 2; V = m g z + sum (k z_i^2 / 2 - pre F0_i z_i)
+   + sum over the axles kb (z_left - z_right)^2 / 2, the potential of gravity, of the
+   corner springs and of the anti-roll bars while every wheel touches the ground */
 static void energy(const rt_args *a, real_t *e)
 {
     const real_t *x = a->x, *p = a->p, *v = x + MDL_RB_V, *w = x + MDL_RB_W;
-    real_t R[9], s[3], t[3];
+    real_t R[9], s[3], t[3], z[NCORNER];
     axle ax[2];
     axle_of(a, 0, 0, 0, &ax[0]);
     axle_of(a, 1, 0, 0, &ax[1]);
@@ -265,9 +312,13 @@ static void energy(const rt_args *a, real_t *e)
     for (int i = 0; i < NCORNER; i++) {
         corner_offset(p, i, s);
         mdl_mul3(R, s, t);
-        real_t z = x[2] + t[2];
+        z[i] = x[2] + t[2];
         const axle *xi = &ax[i < 2 ? 0 : 1];
-        e[1] += (real_t)0.5 * xi->k * z * z - p[P_PRE] * xi->f0 * z;
+        e[1] += (real_t)0.5 * xi->k * z[i] * z[i] - p[P_PRE] * xi->f0 * z[i];
+    }
+    for (int j = 0; j < 2; j++) {
+        real_t dz = z[2 * j] - z[2 * j + 1];
+        e[1] += (real_t)0.5 * ax[j].kb * dz * dz;
     }
 }
 
@@ -279,7 +330,7 @@ static void output(const rt_args *a, tire_law *law, real_t *y)
     chassis c;
     wrench t;
     frame(a, &c);
-    corners(a, &c, law, &t);
+    corners(a, &c, law, 0, &t);
     const real_t *R = c.R;
     real_t cc = R[7] * R[7] + R[8] * R[8], sp = -R[6] > 1 ? 1 : -R[6] < -1 ? -1 : -R[6];
     y[Y_X] = x[0], y[Y_Y] = x[1], y[Y_Z] = x[2];
@@ -301,14 +352,14 @@ static void output_linear(const rt_args *a, real_t *y) { output(a, tire_linear, 
 static void output_mf(const rt_args *a, real_t *y) { output(a, tire_mf, y); }
 
 /* every parameter finite; masses, inertias, lengths, stiffnesses, fzpk, umin and g
-   positive; dampers, pre, hitch offsets and mu not negative; drive in [0, 1];
-   C in (0, 2) (a peak) and E <= 1 */
+   positive; dampers, anti-roll bars, pre, hitch offsets and mu not negative; drive in
+   [0, 1]; C in (0, 2) (a peak) and E <= 1 */
 static rt_status check(const real_t *p, const void *spec)
 {
     (void)spec;
     static const uint8_t positive[] = {P_M, P_IXX, P_IYY, P_IZZ, P_LF, P_LR, P_TF, P_TR, P_H,
                                        P_CF, P_CR, P_FZPK, P_SHAPE, P_KF, P_KR, P_UMIN, P_G};
-    static const uint8_t nonneg[] = {P_MU, P_CDF, P_CDR, P_PRE, P_DF, P_DR};
+    static const uint8_t nonneg[] = {P_MU, P_CDF, P_CDR, P_PRE, P_DF, P_DR, P_KBF, P_KBR};
     int ok = 1;
     for (int i = 0; i < P_COUNT; i++)
         ok = ok && rt_isfinite(p[i]);
@@ -333,7 +384,7 @@ static const rt_mbs_spec spec_mf = {
 #define CAR3D_UNITS                                                                        \
     "rad N N m m rad m/s m/s rad/s m/s^2 m rad rad N N N N m m m - - - - m/s m/s m/s "     \
     "rad/s rad/s rad/s kg kg*m^2 kg*m^2 kg*m^2 m m m m m N/rad N/rad - - - - N/m N/m "     \
-    "N*s/m N*s/m - - m m m/s m/s^2"
+    "N*s/m N*s/m - - m m m/s m/s^2 N*m/rad N*m/rad"
 
 const rt_kind mdl_car3d_kind = {
     .name = "car3d", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
@@ -343,10 +394,11 @@ const rt_kind mdl_car3d_kind = {
     .doc = RT_DOC(
         "Spatial car (eq. (6)): chassis a rigid body, q = [r, p] (unit quaternion), z =\n"
         "[v ground, w body], M = diag(m, m, m, Ixx, Iyy, Izz); corners (lf|-lr, +-t/2, -h)\n"
-        "on vertical spring-dampers: Fz = max(0, pre F0 - k z_i - c z_i'), F0 the static\n"
-        "loads. Linear tires F_y = (C/2)(Fz/F0) tan a, tan a = -V_y/V_x in the wheel frame\n"
-        "(V_x >= umin), at each corner; Fx split on the axles (drive: front share), Fa\n"
-        "along the heading at the centre of mass.\n"
+        "on vertical spring-dampers: Fz = max(0, pre F0 - k z_i - c z_i' - kb/t^2 (z_i -\n"
+        "z_o)), F0 the static loads, kb the axle's anti-roll bar (roll stiffness), z_o the\n"
+        "other wheel's height. Linear tires F_y = (C/2)(Fz/F0) tan a, tan a = -V_y/V_x in\n"
+        "the wheel frame (V_x >= umin), at each corner; Fx split on the axles (drive:\n"
+        "front share), Fa along the heading at the centre of mass.\n"
         "Nodes front, rear: df ahead, dr behind the centre of mass. Outputs as st_car\n"
         "plus z, roll, pitch, the corner loads. Defaults: CommonRoad vehicle 1."),
     .units = RT_DOC(CAR3D_UNITS),

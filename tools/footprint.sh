@@ -40,29 +40,12 @@ states make M3/M4F slower than that) and say whether it fits the scene's own bas
 |---|---|---|---:|---:|---:|---:|---:|---:|:-:|---|---:|:-:|
 HDR
 
-# MHz of the stated clock of a target
-mhz() { case $1 in m3) echo 72;; m4f) echo 168;; m7) echo 600;; rv32) echo 100;; *) echo 1000;; esac; }
+. tools/foot_lib.sh
 
 # one row: scene, target, real (double|float), host hash, base tick [s]
 row() {
     s=$1 t=$2 real=$3 want=$4 dt=$5 # sh has no locals: names the caller does not use
-    sfx=
-    [ "$real" = float ] && sfx=-float
-    make -s foot-elf T="$t" S="$s" REAL="$real"
-    elf=build/foot/$t$sfx/$s.elf
-    size=$(make -s "print-TARGET_SIZE_$t")
-    nm=$(make -s "print-TARGET_NM_$t")
-    set -- $($size "$elf" | awk 'NR == 2 {print $1, $2, $3}')
-    flash=$(($1 + $2)) ram=$(($2 + $3))
-    addr=$($nm "$elf" | awk '$3 == "port_cycles" {print $1}')
-    run=$(make -s "print-TARGET_RUN_$t")
-    # the run command ends in -kernel: put the plugin before it
-    out=$(eval "$(echo "$run" | sed "s|-kernel\$|-plugin $(pwd)/$so,addr=0x$addr -d plugin -kernel|") $elf" 2>&1 || true)
-    hash=$(echo "$out" | sed -n 's/.* hash \([0-9a-f]*\) .*/\1/p')
-    stack=$(echo "$out" | sed -n 's/.* stack \([0-9]*\).*/\1/p')
-    stats=$(echo "$out" | sed -n 's/.*min \([0-9]*\) median \([0-9]*\) max \([0-9]*\).*/\1 | \2 | \3/p')
-    max=$(echo "$out" | sed -n 's/.*max \([0-9]*\).*/\1/p')
-    models=$($nm "$elf" | awk '$3 ~ /^mdl_.*_kind$/ {sub(/^mdl_/, "", $3); sub(/_kind$/, "", $3); print $3}' | sort | tr '\n' ' ')
+    foot_measure "$t" "$s" "$real"
     same=no
     [ "$hash" = "$want" ] && same=yes
     time=$(awk -v n="${max:-0}" -v f="$(mhz "$t")" -v dt="$dt" 'BEGIN {

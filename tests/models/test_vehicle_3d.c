@@ -3,7 +3,8 @@
  * the hitch nodes' velocities against Jacobian times velocity and against a finite
  * difference of their positions; the applied forces against the energy hook (with tires
  * off and no dampers the generalized forces' power is minus the rate of the potential
- * energy, taken by a central difference along the motion); the static loads of the
+ * energy, taken by a central difference along the motion; once with the anti-roll bars
+ * alone); the bars' energy of a rolled car against K_b sin^2(phi) / 2; the static loads of the
  * preloaded car against m g l_r / (2 L) and m g l_f / (2 L); the motor and the hydraulic
  * servo at rest at the steady states computed by hand. Whole-scene checks of the cars are
  * in tests/vehicles/vehicles.py. */
@@ -14,13 +15,22 @@ static double absd(double v) { return v < 0 ? -v : v; }
 static double fmax_d(double a, double b) { return a > b ? a : b; }
 
 /* parameter indices of car3d (its p_names) and state offsets */
-enum { P_M = 0, P_LF = 4, P_LR = 5, P_MU = 12, P_CF_D = 17, P_CR_D = 18, P_G = 24, NP = 25 };
+enum {
+    P_M = 0, P_LF = 4, P_LR = 5, P_TF = 6, P_TR = 7, P_H = 8, P_MU = 12, P_KF = 15, P_KR = 16,
+    P_CF_D = 17, P_CR_D = 18, P_PRE = 19, P_G = 24, P_KBF = 25, P_KBR = 26, NP = 27
+};
 enum { NX = 13, NZ = 6 };
 
 /* a car turning, rolled, pitched and bouncing: x y z p0..p3 vx vy vz wx wy wz */
 static const real_t moving[NX] = {3, -1, (real_t)0.54, (real_t)0.99, (real_t)0.06, (real_t)-0.04,
                                   (real_t)0.1, 19, 2, (real_t)0.3, (real_t)0.4, (real_t)-0.2,
                                   (real_t)0.5};
+
+/* the same motion rolled and pitched half as much, so that with the anti-roll bars every
+   wheel keeps touching the ground (the energy hook's premise) */
+static const real_t moving_low[NX] = {3, -1, (real_t)0.54, (real_t)0.99, (real_t)0.03,
+                                      (real_t)-0.02, (real_t)0.05, 19, 2, (real_t)0.3,
+                                      (real_t)0.4, (real_t)-0.2, (real_t)0.5};
 
 static void car_args(const rt_kind *k, const real_t *x, const real_t *u, const real_t *p,
                      rt_args *a)
@@ -81,8 +91,11 @@ static void test_nodes(void)
 
 /* tires off (mu = 0), no dampers, no inputs: the generalized forces' power
    k . z = m g-free force . v + torque . w (the gyroscopic term does no work) equals
-   -dV/dt along the motion, V the kind's potential energy */
-static void test_energy_power(void)
+   -dV/dt along the motion, V the kind's potential energy, while every wheel touches the
+   ground (checked). bars_only: corner springs off (the preload stays, so that the bars
+   lift no wheel), so that only gravity, the preload and the anti-roll bars act (the bars'
+   force and energy must agree on their own) */
+static void energy_power(int bars_only)
 {
     const rt_kind *k = &mdl_car3d_mf_kind;
     const rt_mbs_spec *sp = k->spec;
@@ -92,10 +105,16 @@ static void test_energy_power(void)
     for (int i = 0; i < NP; i++)
         p[i] = k->p_default[i];
     p[P_MU] = 0, p[P_CF_D] = 0, p[P_CR_D] = 0;
+    if (bars_only)
+        p[P_KF] = 0, p[P_KR] = 0;
     for (int i = 0; i < NX; i++)
-        x[i] = moving[i];
+        x[i] = moving_low[i];
     sp->normalize(x);
     car_args(k, x, u, p, &a);
+    real_t y[14];
+    k->output(&a, y);
+    for (int i = 10; i < 14; i++)
+        TH_CHECK(y[i] > 0);
     sp->force(&a, f);
     sp->mass(&a, M);
     sp->energy(&a, e);
@@ -112,10 +131,44 @@ static void test_energy_power(void)
     sp->energy(&ap, ep);
     sp->energy(&am, em);
     double dvdt = ((double)ep[1] - (double)em[1]) / (2 * (double)dt);
-    th_note("generalized force power [W]", power);
+    th_note(bars_only ? "generalized force power, bars only [W]" : "generalized force power [W]",
+            power);
     th_note("-dV/dt by central difference [W]", -dvdt);
     TH_NEAR(power, -dvdt, (RT_REAL_IS_FLOAT ? 1e-2 : 1e-8) * absd(power));
     TH_NEAR(e[0], kin, (RT_REAL_IS_FLOAT ? 1e-6 : 1e-12) * kin);
+}
+
+static void test_energy_power(void) { energy_power(0); }
+static void test_energy_power_bars(void) { energy_power(1); }
+
+/* the anti-roll bars' potential by hand: springs and preload off, the car rolled by phi
+   about its x axis through the centre of mass at height h: the wheels of an axle of
+   track t stand at -+ (t/2) sin(phi) relative to each other's mean, so a bar of roll
+   stiffness K_b (K_b / t^2 on the height difference t sin(phi)) stores K_b sin^2(phi) / 2;
+   V - m g z = (K_bf + K_br) sin^2(phi) / 2 */
+static void test_bar_energy(void)
+{
+    const rt_kind *k = &mdl_car3d_mf_kind;
+    const rt_mbs_spec *sp = k->spec;
+    static const real_t u[3] = {0, 0, 0};
+    real_t p[NP], x[NX], e[2];
+    const double phi = 0.05;
+    rt_args a;
+    for (int i = 0; i < NP; i++)
+        p[i] = k->p_default[i];
+    p[P_KF] = 0, p[P_KR] = 0, p[P_PRE] = 0;
+    for (int i = 0; i < NX; i++)
+        x[i] = 0;
+    x[2] = p[P_H];
+    /* quaternion of a rotation phi about x: (cos(phi/2), sin(phi/2), 0, 0) */
+    x[3] = rt_cos((real_t)(phi / 2)), x[4] = rt_sin((real_t)(phi / 2));
+    car_args(k, x, u, p, &a);
+    sp->energy(&a, e);
+    double sp2 = (double)rt_sin((real_t)phi);
+    double want = 0.5 * ((double)p[P_KBF] + (double)p[P_KBR]) * sp2 * sp2;
+    double got = (double)e[1] - (double)p[P_M] * (double)p[P_G] * (double)x[2];
+    th_note("bars' energy at 0.05 rad [J]", got);
+    TH_NEAR(got, want, (RT_REAL_IS_FLOAT ? 1e-3 : 1e-10) * want);
 }
 
 /* preloaded car at its design height at rest: loads m g l_r / (2 L), m g l_f / (2 L),
@@ -174,6 +227,8 @@ static void test_chain_steady(void)
 const th_test th_vehicle_3d_tests[] = {
     {"vehicle_3d_nodes", test_nodes},
     {"vehicle_3d_energy_power", test_energy_power},
+    {"vehicle_3d_energy_power_bars", test_energy_power_bars},
+    {"vehicle_3d_bar_energy", test_bar_energy},
     {"vehicle_3d_static_loads", test_static_loads},
     {"steer_chain_steady", test_chain_steady},
     {0, 0},
