@@ -296,7 +296,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
-        (st = rti_link_check(sc, sim)) != RT_OK)
+        (st = rti_link_check(sc, sim)) != RT_OK || (st = rti_bg_init(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */
     rti_zero(&sim->work.w, sizeof sim->work.w);

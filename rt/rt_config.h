@@ -89,6 +89,11 @@ typedef double real_t;
 
 /* ---- multirate (rt/xset.c) ---- */
 #define RT_HIST 3 /* communication points kept per cross-set signal (Hermite needs 3) */
+#ifndef RT_MAX_BG
+/* states plus outputs of the background set (rt/bg.c): the result of its step waits
+   there for its deadline */
+#define RT_MAX_BG 512
+#endif
 
 /* ---- multibody (rt/mbs.c) ---- */
 #ifndef RT_MAX_MBS_Z

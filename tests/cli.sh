@@ -131,11 +131,11 @@ expect_err "bad csv path" 2 "cannot write the CSV file" $M run oscillator --csv 
 want_pi="-DRT_MAX_BLOCKS=3 -DRT_MAX_X=1 -DRT_MAX_D=1 -DRT_MAX_U=3 -DRT_MAX_Y=3 -DRT_MAX_P=7"
 want_pi="$want_pi -DRT_MAX_ROOTS=1 -DRT_MAX_SETS=1 -DRT_MAX_REC=3 -DRT_MAX_LOOPS=1 -DRT_MAX_TORN=1"
 want_pi="$want_pi -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_JOINTS=1 -DRT_MAX_MBS_Z=1 -DRT_MAX_MBS_Q=1"
-want_pi="$want_pi -DRT_MAX_MBS_C=1 -DRT_MAX_MBS_BZ=1"
+want_pi="$want_pi -DRT_MAX_MBS_C=1 -DRT_MAX_MBS_BZ=1 -DRT_MAX_BG=1"
 want_pe="-DRT_MAX_BLOCKS=10 -DRT_MAX_X=60 -DRT_MAX_D=1 -DRT_MAX_U=1 -DRT_MAX_Y=60 -DRT_MAX_P=40"
 want_pe="$want_pe -DRT_MAX_ROOTS=1 -DRT_MAX_SETS=1 -DRT_MAX_REC=22 -DRT_MAX_LOOPS=1 -DRT_MAX_TORN=1"
 want_pe="$want_pe -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_JOINTS=10 -DRT_MAX_MBS_Z=30 -DRT_MAX_MBS_Q=30"
-want_pe="$want_pe -DRT_MAX_MBS_C=10 -DRT_MAX_MBS_BZ=3"
+want_pe="$want_pe -DRT_MAX_MBS_C=10 -DRT_MAX_MBS_BZ=3 -DRT_MAX_BG=1"
 [ "$(build/host/scenec --sizes models/scenes/pi_loop.scn)" = "$want_pi" ] && ok ||
     bad "scenec --sizes pi_loop: $(build/host/scenec --sizes models/scenes/pi_loop.scn)"
 [ "$(build/host/scenec --sizes models/scenes/pendulum10.scn)" = "$want_pe" ] && ok ||

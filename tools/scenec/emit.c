@@ -458,6 +458,8 @@ static void sets(FILE *f, const scn_scene *s)
                        " .tol = %s, .accuracy = %s}",
                     (unsigned)st->newton, (unsigned)st->substeps, (unsigned)st->jacobian,
                     R(st->tol), R(st->accuracy));
+        if (st->background)
+            fputs(", .background = 1", f);
         fputs("},\n", f);
     }
     fputs("};\n", f);

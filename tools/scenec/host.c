@@ -46,6 +46,7 @@ void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
             at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
             at_least_1(z.implicit_n));
     fprintf(f, " -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
-               "-DRT_MAX_MBS_BZ=%u\n", at_least_1(sc->njoints), at_least_1(z.mbs_z),
-            at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz));
+               "-DRT_MAX_MBS_BZ=%u -DRT_MAX_BG=%u\n", at_least_1(sc->njoints),
+            at_least_1(z.mbs_z), at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz),
+            at_least_1(z.bg));
 }
