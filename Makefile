@@ -275,6 +275,7 @@ foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@mkdir -p build/foot/$(T)$(XSUF)
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
 	  $(shell build/host/modrt sizes $(S)) \
+	  $(shell build/host/modrt info $(S) | grep -q '^ *background:' && echo -DFOOT_BG=1) \
 	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) build/gen/scenes/$(S).c \
 	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)

@@ -54,13 +54,8 @@ static uint32_t result_size(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     return n;
 }
 
-rt_status rti_bg_init(const rt_scene *sc, rt_sim *sim)
+static rt_status init(const rt_scene *sc, rt_sim *sim)
 {
-    sim->plan.bg_set = -1;
-    sim->bg = 0;
-    sim->bg_go = sim->bg_done = 0;
-    sim->state.bg_busy = 0;
-    sim->state.bg_due = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (!sc->sets[s].background)
             continue;
@@ -204,7 +199,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
         rti_xset_push(sc, sim, s, (real_t)sim->state.bg_due * sc->dt);
 }
 
-void rti_bg_release(const rt_scene *sc, rt_sim *sim)
+static void release_due(const rt_scene *sc, rt_sim *sim)
 {
     /* at the set's communication point, or at once after a late publication (its
        deadline stays on the set's schedule) */
@@ -213,7 +208,7 @@ void rti_bg_release(const rt_scene *sc, rt_sim *sim)
         release(sc, sim, (uint8_t)sim->plan.bg_set);
 }
 
-void rti_bg_publish(const rt_scene *sc, rt_sim *sim)
+static void publish_due(const rt_scene *sc, rt_sim *sim)
 {
     if (sim->plan.bg_set < 0 || !sim->state.bg_busy || sim->state.tick < sim->state.bg_due)
         return;
@@ -226,6 +221,12 @@ void rti_bg_publish(const rt_scene *sc, rt_sim *sim)
         sim->stats.bg_late++;
     }
 }
+
+const rt_bg_ops rt_bg = {
+    .init = init,
+    .release = release_due,
+    .publish = publish_due,
+};
 
 /* ------------------------------------------------------------------ API */
 

@@ -417,7 +417,23 @@ typedef struct rt_scene {
     uint8_t loop_iter_max; /* Broyden iterations per loop evaluation (0: default) */
     real_t loop_tol;       /* residual tolerance of torn inputs (0: default) */
     const rt_link *link;   /* the external controller's signals; NULL: none */
+    /* the background set's services (rt_bg, rt/bg.c): non-NULL exactly when a set is
+       declared background, so a scene without one links none of that code */
+    const struct rt_bg_ops *bg;
 } rt_scene;
+
+/* The background set's services (rt/bg.c), named by a scene that has one (rt_scene.bg). */
+typedef struct rt_bg_ops {
+    /* at rt_init: checks the background set (one per scene, no sampled blocks, no state
+       events, no recorded joint reactions) and its result's size */
+    rt_status (*init)(const rt_scene *sc, struct rt_sim *sim);
+    /* at the start of a tick: releases the set's next step when it is due */
+    void (*release)(const rt_scene *sc, struct rt_sim *sim);
+    /* when the tick count has advanced: publishes the step due now, or counts an
+       overrun when it has not finished (then publishes it at the first tick after) */
+    void (*publish)(const rt_scene *sc, struct rt_sim *sim);
+} rt_bg_ops;
+extern const rt_bg_ops rt_bg;
 
 /* Post-stabilization of multibody sets; declared once (rt_stab_name, rt_stab_find). */
 #define RT_STAB_LIST(X)                                                          \

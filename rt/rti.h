@@ -96,14 +96,7 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 /* Output v of set q reconstructed at time t by the scheme. */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
 
-/* ---- the background set (bg.c) ---- */
-/* Checks the background set, if any (one per scene, no sampled blocks, no events). */
-rt_status rti_bg_init(const rt_scene *sc, rt_sim *sim);
-/* At the start of a tick: releases the background set's next step if it is due. */
-void rti_bg_release(const rt_scene *sc, rt_sim *sim);
-/* When the tick count has advanced: publishes the background step due now (or counts an
-   overrun if it has not finished: it is published at the first tick after it has). */
-void rti_bg_publish(const rt_scene *sc, rt_sim *sim);
+/* ---- the background set (bg.c; the rest through rt_scene.bg) ---- */
 /* Reals of the background set's result (states and outputs), 0 without one. */
 uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim);
 

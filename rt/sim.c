@@ -94,7 +94,8 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
     rti_fault_sim = sim;
 #endif
     /* the background set's next step, from its communication point now (rt/bg.c) */
-    rti_bg_release(sc, sim);
+    if (sc->bg)
+        sc->bg->release(sc, sim);
     discrete_updates(sc, sim, t);
     /* fixed schedule: a set steps when the tick count is a multiple of its ratio,
        slowest first (rt/xset.c), and publishes its outputs for the other sets */
@@ -113,7 +114,8 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
     }
     sim->state.tick++;
     /* the background step due at the new time: before the other sets read its history */
-    rti_bg_publish(sc, sim);
+    if (sc->bg)
+        sc->bg->publish(sc, sim);
     rt_refresh(sc, sim);
     int bad = nonfinite_output(sc, sim);
     if (bad >= 0)

@@ -225,6 +225,9 @@ static void scene_set(FILE *f, const rt_scene *sc, uint8_t s)
             (unsigned)st->ratio, num(t, (double)sc->dt), (unsigned)n, (unsigned)w.rhs,
             (unsigned)w.lu,
             num(a, (double)(st->implicit.accuracy > 0 ? st->implicit.accuracy : RT_ERR_TOL)));
+    if (st->background)
+        fprintf(f, "  %-10s background: each step released at its communication point, "
+                   "published at the next (rt/bg.c)\n", "");
 }
 
 static void scene_wiring(FILE *f, const rt_scene *sc)
@@ -292,7 +295,9 @@ static void scene_schedule(FILE *f, const rt_scene *sc, const rt_sim *s)
                 sc->blocks[cn->to].kind->u_names[cn->u],
                 src == RT_SRC_HELD ? "zero-order hold from its sample instant (a sampled "
                                      "output is piecewise constant; no delay)"
-                                   : rt_interp_name(how));
+                : sc->sets[sc->blocks[cn->from].set].background && how != RT_INTERP_HOLD
+                    ? "extrapolation of the background set's history (its jumps faded)"
+                    : rt_interp_name(how));
     }
 }
 

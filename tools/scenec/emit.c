@@ -584,6 +584,11 @@ static void scene(FILE *f, const scn_ctx *c)
         fprintf(f, "    .loop_tol = %s,\n", R(s->loop_tol));
     if (s->link.name)
         fputs("    .link = &link,\n", f);
+    for (uint16_t i = 0; i < s->nset; i++)
+        if (s->set[i].background) {
+            fputs("    .bg = &rt_bg,\n", f);
+            break;
+        }
     fputs("};\n", f);
 }
 

@@ -204,6 +204,9 @@ int scn_build_image(scn_ctx *c)
     sc->loop_iter_max = (uint8_t)s->loop_iter;
     sc->loop_tol = (real_t)s->loop_tol;
     sc->link = s->link.name ? &s->link : NULL;
+    sc->bg = NULL;
+    for (uint16_t i = 0; i < s->nset; i++)
+        sc->bg = s->set[i].background ? &rt_bg : sc->bg;
     return init_check(c);
 }
 
