@@ -50,7 +50,11 @@ typedef struct timer_count {
 /* the scene's end, or RT_IMAGE_TICKS */
 static int finished(rt_status st)
 {
-    return st == RT_E_DONE || (RT_IMAGE_TICKS > 0 && sim.state.tick >= RT_IMAGE_TICKS);
+#if RT_IMAGE_TICKS > 0
+    if (sim.state.tick >= RT_IMAGE_TICKS)
+        return 1;
+#endif
+    return st == RT_E_DONE;
 }
 
 static void on_timer(void *ctx)
