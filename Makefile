@@ -330,6 +330,7 @@ bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot $(O)/modrt
 	    -x "host CPU s per run of 10 s" -y "largest position error at 10 s [m]" \
 	    -o build/bench/multirate_bench.svg build/bench/multirate.csv
 	@sh tools/bench/rt_bench.sh $(O)/modrt $(RT_BENCH_S)
+	@sh tools/bench/bg_bench.sh pendulum10_actuated m7
 	@echo "bench: figures in build/bench/ (make docs copies them into docs/)"
 
 # the committed references and figures: the block reference from the kinds' tables, and

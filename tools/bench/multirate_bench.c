@@ -512,6 +512,9 @@ int main(int argc, char **argv)
                    "dopri5 at %.0e s (doubling its step changes it by %.1e m).\n\n",
                 cpu, reps, final, REF_STEP, dref);
         summary(f, w, t, 1);
+        fprintf(f, "\nThe rate transitions of the declared schedule (\"Background sets\" "
+                   "above), against the reference:\n\n");
+        check_transition(f, 1);
         fprintf(f, "\n");
         print_rows(f, 1);
         fclose(f);
