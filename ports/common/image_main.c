@@ -77,6 +77,8 @@ static void on_timer(void *ctx)
 static void on_background(void *ctx)
 {
     timer_count *c = ctx;
+    if (!rt_bg_pending(&sim)) /* pended again by a tick while it ran: done already */
+        return;
     c->bg_running = 1;
     rt_background(&RT_SCENE, &sim);
     c->bg_running = 0;
