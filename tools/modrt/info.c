@@ -413,8 +413,9 @@ static void json_sets_wiring(FILE *f, const rt_scene *sc)
         jstr(f, sc->sets[s].name);
         fputs(", \"method\": ", f);
         jstr(f, sc->sets[s].method->name);
-        fprintf(f, ", \"step\": %s, \"ratio\": %u}",
-                num(b, (double)(sc->dt * (real_t)sc->sets[s].ratio)), (unsigned)sc->sets[s].ratio);
+        fprintf(f, ", \"step\": %s, \"ratio\": %u, \"background\": %s}",
+                num(b, (double)(sc->dt * (real_t)sc->sets[s].ratio)), (unsigned)sc->sets[s].ratio,
+                sc->sets[s].background ? "true" : "false");
     }
     fputs("], \"connections\": [", f);
     for (uint16_t c = 0; c < sc->nconns; c++) {
