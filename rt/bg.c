@@ -2,14 +2,14 @@
  * transition whose data dependencies are fixed (docs/multirate.md, "Background sets").
  *
  * The step of the background set S from kH to (k+1)H is released at the start of the
- * tick from kH and due at its end of the tick that reaches (k+1)H. It reads the other sets
- * only as they stood at its release: their history up to kH and their held (sampled)
- * outputs, copied at release. The other sets read S only from its history, which gains
- * the point (k+1)H when the step is published, as the tick count reaches (k+1)H; until
- * then they extrapolate S from its points up to kH (rt/xset.c), and the trace shows S's
- * state at kH. Each side therefore reads values fixed before the window
- * in which the step may run (a Jacobi coupling across the rate transition), so the trace
- * is a function of the data alone: the same whether the step runs at its release (the
+ * tick that begins at kH, and is due at the end of the tick that ends at (k+1)H. It reads
+ * the other sets only as they stood at its release: their history up to kH and their
+ * held (sampled) outputs, copied at release. The other sets read S only from its
+ * history, which gains the point (k+1)H when the step is published, as the tick count
+ * reaches (k+1)H; until then they extrapolate S from its points up to kH (rt/xset.c), and
+ * the trace shows S's state at kH. Each side thus reads values fixed before the window in
+ * which the step may run (a Jacobi coupling across the rate transition), so the trace is
+ * a function of the data alone: the same whether the step runs at its release (the
  * simulated clock, inline in the tick), in PendSV between ticks or in a thread the ticks
  * preempt at any point.
  *
@@ -108,22 +108,32 @@ static void copy_reals(real_t *dst, const real_t *src, uint32_t n)
         dst[i] = src[i];
 }
 
-/* what the step reads from the tick's side, as it stands at release: the time, the other
-   sets' outputs (held sampled ones among them), discrete states, parameters and history */
-static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg)
+/* what the step reads from the tick's side, as it stands at release: the time, its own
+   blocks' parameters (rt_set_param may change them between ticks), the held outputs of
+   sampled blocks and the history of the other sets' outputs its inputs read (its own
+   states, outputs and discrete states are the context's already) */
+static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8_t s)
 {
-    uint16_t nb = sc->nblocks;
     bg->state.tick = sim->state.tick;
-    for (uint8_t s = 0; s < sc->nsets; s++) {
-        bg->state.set_tick[s] = sim->state.set_tick[s];
-        bg->state.hist_n[s] = sim->state.hist_n[s];
-        copy_reals(bg->state.hist_t[s], sim->state.hist_t[s], RT_HIST);
+    for (uint8_t q = 0; q < sc->nsets; q++) {
+        bg->state.set_tick[q] = sim->state.set_tick[q];
+        bg->state.hist_n[q] = sim->state.hist_n[q];
+        copy_reals(bg->state.hist_t[q], sim->state.hist_t[q], RT_HIST);
     }
-    copy_reals(bg->state.y, sim->state.y, sim->plan.y_off[nb]);
-    copy_reals(bg->state.d, sim->state.d, sim->plan.d_off[nb]);
-    copy_reals(bg->state.p, sim->state.p, sim->plan.p_off[nb]);
-    for (int k = 0; k < RT_HIST; k++)
-        copy_reals(bg->state.hist_y[k], sim->state.hist_y[k], sim->plan.y_off[nb]);
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (sc->blocks[b].set != s)
+            continue;
+        copy_reals(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
+                   (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b]));
+        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
+            uint16_t v = sim->plan.src[i];
+            if (sim->plan.src_kind[i] == RT_SRC_HELD)
+                bg->state.y[v] = sim->state.y[v];
+            else if (sim->plan.src_kind[i] == RT_SRC_XSET)
+                for (int k = 0; k < RT_HIST; k++)
+                    bg->state.hist_y[k][v] = sim->state.hist_y[k][v];
+        }
+    }
 }
 
 /* the counters and high-water marks the step left in the context, into the tick's stats
@@ -178,7 +188,7 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
         move_result(sc, sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 2);
         return;
     }
-    copy_inputs(sc, sim, sim->bg);
+    copy_inputs(sc, sim, sim->bg, s);
     __atomic_store_n(&sim->bg_go, 1u, __ATOMIC_RELEASE);
 }
 
