@@ -116,7 +116,8 @@ cat <<HDR
 Background context of the scenes with a background set: per step of that set, the
 instructions between \`foot_bg_begin()\` and \`foot_bg_end()\` (the step and its outputs,
 run in PendSV on Cortex-M), and the tick context's slowest tick over its median (from the
-table above), which the background set keeps down: every tick does the same work.
+table above): with the slow set's step out of the tick, what remains is the fast sets'
+own variation (ROS2's Jacobian refresh every 64 steps) and the release and publication.
 
 | scene | target | real | tick context max/median | background steps | insn/step min | median | max |
 |---|---|---|---:|---:|---:|---:|---:|
