@@ -136,6 +136,11 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
     }
 }
 
+static uint32_t umax(uint32_t a, uint32_t b)
+{
+    return a > b ? a : b;
+}
+
 /* the counters and high-water marks the step left in the context, into the tick's stats
    (the context's counters restart from zero; its per-set entries are its own) */
 static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
@@ -155,8 +160,8 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
     b->status = RT_OK;
     a->growth[s] = b->growth[s], a->unstable[s] = b->unstable[s], a->errest[s] = b->errest[s];
     a->istats[s] = b->istats[s], a->rhs_evals[s] = b->rhs_evals[s];
-    a->event_iter_max = b->event_iter_max > a->event_iter_max ? b->event_iter_max : a->event_iter_max;
-    a->loop_iter_max = b->loop_iter_max > a->loop_iter_max ? b->loop_iter_max : a->loop_iter_max;
+    a->event_iter_max = umax(a->event_iter_max, b->event_iter_max);
+    a->loop_iter_max = umax(a->loop_iter_max, b->loop_iter_max);
     a->loop_residual = b->loop_residual > a->loop_residual ? b->loop_residual : a->loop_residual;
     for (int i = 0; i <= RT_LOOP_ITER_LIMIT; i++)
         a->loop_hist[i] += b->loop_hist[i], b->loop_hist[i] = 0;

@@ -127,7 +127,8 @@ static void test_bg_checks(void)
     rt_set sets[2] = {sc.sets[0], sc.sets[1]};
     sc.sets = sets;
     sets[0].background = sets[1].background = 1;
-    TH_CHECK(rt_init(&sc, &sims[0]) == RT_E_SCENE && th_has(rt_error_text(&sims[0]), "at most one"));
+    TH_CHECK(rt_init(&sc, &sims[0]) == RT_E_SCENE &&
+             th_has(rt_error_text(&sims[0]), "at most one"));
     sets[0].background = 0; /* the servo set holds the sampled controller */
     TH_CHECK(rt_init(&sc, &sims[0]) == RT_E_SCENE && th_has(rt_error_text(&sims[0]), "Ctrl"));
     rt_scene ball = mdl_scene_bouncing_ball;
@@ -139,7 +140,8 @@ static void test_bg_checks(void)
     /* a scene without one: nothing released, nothing pending */
     TH_CHECK(rt_init(&mdl_scene_pendulum10, &sims[0]) == RT_OK && rt_bg_set(&sims[0]) == -1);
     rt_tick(&mdl_scene_pendulum10, &sims[0]);
-    TH_CHECK(!rt_bg_pending(&sims[0]) && rt_background(&mdl_scene_pendulum10, &sims[0]) == RT_E_ARG);
+    TH_CHECK(!rt_bg_pending(&sims[0]) &&
+             rt_background(&mdl_scene_pendulum10, &sims[0]) == RT_E_ARG);
 }
 
 const th_test th_bg_tests[] = {
