@@ -194,7 +194,8 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
         return;
     }
     copy_inputs(sc, sim, sim->bg, s);
-    __atomic_store_n(&sim->bg_go, 1u, __ATOMIC_RELEASE);
+    /* the copies above become visible to the background context with the count */
+    __atomic_store_n(&sim->bg_released, sim->bg_released + 1u, __ATOMIC_RELEASE);
 }
 
 /* the result becomes the set's state and outputs, and the newest point of its history */
@@ -204,8 +205,6 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     if (bg) {
         move_result(sc, bg, s, bg->state.x, bg->state.y, sim->state.bg_new, 0);
         merge_stats(sim, bg, s);
-        __atomic_store_n(&sim->bg_go, 0u, __ATOMIC_RELAXED);
-        __atomic_store_n(&sim->bg_done, 0u, __ATOMIC_RELAXED);
     }
     move_result(sc, sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
     sim->state.set_tick[s] = sim->state.bg_due;
@@ -227,7 +226,8 @@ static void publish_due(const rt_scene *sc, rt_sim *sim)
 {
     if (sim->plan.bg_set < 0 || !sim->state.bg_busy || sim->state.tick < sim->state.bg_due)
         return;
-    if (!sim->bg || __atomic_load_n(&sim->bg_done, __ATOMIC_ACQUIRE)) {
+    /* finished: the context's writes are visible with its count (acquire) */
+    if (!sim->bg || __atomic_load_n(&sim->bg_finished, __ATOMIC_ACQUIRE) == sim->bg_released) {
         publish(sc, sim, (uint8_t)sim->plan.bg_set);
     } else if (sim->state.tick == sim->state.bg_due) {
         /* never wait (the step runs below this context): the other sets go on
@@ -257,23 +257,27 @@ rt_status rt_bg_attach(const rt_scene *sc, rt_sim *sim, rt_sim *bg)
     rti_zero(bg->stats.count, sizeof bg->stats.count);
     rti_zero(bg->stats.loop_hist, sizeof bg->stats.loop_hist);
     bg->stats.status = RT_OK;
-    sim->bg_go = sim->bg_done = 0;
+    sim->bg_released = sim->bg_finished = 0;
     sim->bg = bg;
     return RT_OK;
 }
 
 int rt_bg_pending(const rt_sim *sim)
 {
-    return sim->bg && __atomic_load_n(&sim->bg_go, __ATOMIC_ACQUIRE) &&
-           !__atomic_load_n(&sim->bg_done, __ATOMIC_ACQUIRE);
+    return sim->bg && __atomic_load_n(&sim->bg_released, __ATOMIC_ACQUIRE) !=
+                          __atomic_load_n(&sim->bg_finished, __ATOMIC_ACQUIRE);
 }
 
 rt_status rt_background(const rt_scene *sc, rt_sim *sim)
 {
-    if (!rt_bg_pending(sim) || sim->plan.bg_set < 0)
+    if (!sim->bg || sim->plan.bg_set < 0)
+        return RT_E_ARG;
+    /* the released count first (acquire: the tick's copies are visible), then the step */
+    uint32_t n = __atomic_load_n(&sim->bg_released, __ATOMIC_ACQUIRE);
+    if (n == __atomic_load_n(&sim->bg_finished, __ATOMIC_RELAXED))
         return RT_E_ARG;
     run_step(sc, sim->bg, (uint8_t)sim->plan.bg_set);
-    __atomic_store_n(&sim->bg_done, 1u, __ATOMIC_RELEASE);
+    __atomic_store_n(&sim->bg_finished, n, __ATOMIC_RELEASE);
     return RT_OK;
 }
 

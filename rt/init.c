@@ -279,7 +279,7 @@ static rt_status bg_init(const rt_scene *sc, rt_sim *sim)
 {
     sim->plan.bg_set = -1;
     sim->bg = 0;
-    sim->bg_go = sim->bg_done = 0;
+    sim->bg_released = sim->bg_finished = 0;
     for (uint8_t s = 0; s < sc->nsets; s++)
         if (sc->sets[s].background && !sc->bg)
             return rti_fail(sim, RT_E_SCENE, "set ", sc->sets[s].name, " is background but "

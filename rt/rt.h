@@ -644,10 +644,12 @@ typedef struct rt_sim {
     char err[RT_ERR_LEN];            /* what rt_init found wrong, and where */
     /* the background context (rt_bg_attach): a second rt_sim the background set steps
        in, so that it shares no memory with the tick; NULL: its steps run inline at
-       release (the simulated clock). bg_go is written by the tick only, bg_done by the
-       background context only (set) and by the tick (cleared after it has seen it). */
+       release (the simulated clock). Two counters hand a step over, each written by one
+       side only and never reset, so no side can see a stale pair: bg_released counts the
+       steps the tick released, bg_finished (written by the background context) the
+       released step it finished; a step is pending while they differ. */
     struct rt_sim *bg;
-    uint32_t bg_go, bg_done;
+    uint32_t bg_released, bg_finished;
 } rt_sim;
 
 /* ------------------------------------------------------------------ API */
