@@ -184,6 +184,13 @@ CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tes
                    $(wildcard tests/rt/*.c tests/models/*.c)
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := ports/common/image_main.c
+# the background set preempted for real (cross-test-<t> of these targets): pendulum10_actuated
+# ticked in SysTick every 100 us of virtual time (100,000 instructions under -icount), its
+# chain stepping in PendSV below it, preempted by the ticks that fall while it runs
+CROSS_BG_TARGETS := m7
+CROSS_BG_TICKS := 1000
+CROSS_BG_DEFS = -DRT_SCENE=mdl_scene_pendulum10_actuated -DRT_IMAGE_BG=1 \
+                -DRT_IMAGE_TICKS=$(CROSS_BG_TICKS) -DRT_IMAGE_PERIOD_US=100
 CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 cobj = $(patsubst %,build/$(1)$(XSUF)/obj/%.o,$(basename $(2)))
 
@@ -214,8 +221,13 @@ build/$(1)$(XSUF)/rt.elf: $$(call cobj,$(1),$$(CROSS_RT_SRCS) $$(RT_SRCS) $$(MOD
 	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
 build/$(1)$(XSUF)/softfloat.elf: $$(call cobj,$(1),$$(CROSS_SOFTFLOAT_SRCS) $$(TARGET_PORT_SRCS_$(1)))
 	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+build/$(1)$(XSUF)/rt_bg.elf: ports/common/image_main.c $$(call cobj,$(1),$$(RT_SRCS) $$(MODEL_SRCS) \
+                      $$(TARGET_PORT_SRCS_$(1)))
+	$(Q)$$(TARGET_CC_$(1)) $$(filter-out -MMD -MP,$$(CROSS_CFLAGS)) $$(TARGET_CFLAGS_$(1)) \
+	  $$(CROSS_BG_DEFS) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
 cross-test-$(1): build/$(1)$(XSUF)/tests.elf build/$(1)$(XSUF)/scenes.elf build/$(1)$(XSUF)/rt.elf \
-                 $(O)/scenes.log build/$(1)$(XSUF)/softfloat.elf $(O)/softfloat.log
+                 $(O)/scenes.log build/$(1)$(XSUF)/softfloat.elf $(O)/softfloat.log \
+                 $(if $(filter $(1),$(CROSS_BG_TARGETS)),build/$(1)$(XSUF)/rt_bg.elf)
 	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/softfloat.elf > build/$(1)$(XSUF)/softfloat.log 2>&1 || \
 	  { cat build/$(1)$(XSUF)/softfloat.log; echo "cross-test $(1): softfloat test failed"; exit 1; }
 	@if diff $(O)/softfloat.log build/$(1)$(XSUF)/softfloat.log; then \
@@ -238,6 +250,8 @@ cross-test-$(1): build/$(1)$(XSUF)/tests.elf build/$(1)$(XSUF)/scenes.elf build/
 	else cat build/$(1)$(XSUF)/rt.log; echo "cross-test $(1): timer-paced hash differs"; exit 1; fi
 	@if [ "$$(TARGET_VTIME_$(1))" = 1 ] && ! grep -q ' overruns 0 ' build/$(1)$(XSUF)/rt.log; then \
 	  echo "cross-test $(1): overruns in deterministic virtual time"; exit 1; fi
+	@$(if $(filter $(1),$(CROSS_BG_TARGETS)),sh tests/cross/check_bg.sh "$$(TARGET_RUN_$(1))" \
+	  build/$(1)$(XSUF)/rt_bg.elf $(O)/modrt $(CROSS_BG_TICKS) $(1),:)
 endef
 $(foreach t,$(CROSS_TARGETS),$(eval $(call CROSS_RULES,$(t))))
 
@@ -284,12 +298,14 @@ effects: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 FOOT_TICKS ?= 1000
 FOOT_GEN = $(if $(SCN),build/foot/gen/$(S).c,build/gen/scenes/$(S).c)
 FOOT_SIZES = $(if $(SCN),$(shell build/host/scenec --sizes $(SCN)),$(shell build/host/modrt sizes $(S)))
+# a scene with a background set runs it in PendSV (tests/cross/footprint_main.c)
+FOOT_BG = $(shell build/host/modrt info $(or $(SCN),$(S)) | grep -q '^ *background:' && echo -DFOOT_BG=1)
 foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@[ -n "$(T)" ] && [ -n "$(S)" ] || { echo "usage: make foot-elf T=<target> S=<scene> [SCN=<file.scn>]" >&2; exit 2; }
 	@mkdir -p build/foot/$(T)$(XSUF) build/foot/gen
 	@$(if $(SCN),build/host/scenec -o $(FOOT_GEN) $(SCN))
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
-	  $(FOOT_SIZES) \
+	  $(FOOT_SIZES) $(FOOT_BG) \
 	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) $(FOOT_GEN) \
 	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
@@ -340,6 +356,7 @@ bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot $(O)/modrt overhead
 	    -x "host CPU s per run of 10 s" -y "largest position error at 10 s [m]" \
 	    -o build/bench/multirate_bench.svg build/bench/multirate.csv
 	@sh tools/bench/rt_bench.sh $(O)/modrt $(RT_BENCH_S)
+	@sh tools/bench/bg_bench.sh pendulum10_actuated m7
 	@echo "bench: figures in build/bench/ (make docs copies them into docs/)"
 
 # the committed references and figures: the block reference from the kinds' tables, and

@@ -27,6 +27,14 @@ void port_timer_stop(void);
 /* Returns 1 if the tick now running has passed its deadline (an overrun), else 0. */
 int port_timer_late(void);
 
+/* Work below the tick (a background set's step, rt_background): port_bg_start registers
+   fn(ctx), which then runs at a priority below the timer's tick function each time
+   port_bg_request() is called (PendSV on Cortex-M: lowest priority, preempted by SysTick
+   at any instruction). Returns 0, or -1 where the port has no such level (RISC-V, POSIX:
+   the application runs the work itself, in its main loop or a thread of lower priority). */
+int port_bg_start(void (*fn)(void *ctx), void *ctx);
+void port_bg_request(void);
+
 /* The application's entry point, called by bare-metal startup code after .data/.bss
    are set up; its return value becomes the exit status. */
 int app_main(void);

@@ -131,6 +131,7 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
     for (uint8_t s = 0; s < sc->nsets; s++)
         if (sc->sets[s].method->implicit && rt_set_nx(sim, s) > z->implicit_n)
             z->implicit_n = rt_set_nx(sim, s);
+    z->bg = (uint16_t)rti_bg_size(sc, sim);
     z->mbs_z = z->mbs_q = z->mbs_c = z->mbs_bz = 0;
     for (uint16_t b = 0; b < nb; b++) {
         const rt_kind *k = sc->blocks[b].kind;

@@ -294,6 +294,20 @@ static rt_status tick_count(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+/* the background set, if the scene declares one: its services check it (rt/bg.c) */
+static rt_status bg_init(const rt_scene *sc, rt_sim *sim)
+{
+    sim->plan.bg_set = -1;
+    sim->bg = 0;
+    sim->bg_released = sim->bg_finished = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (sc->sets[s].background && !sc->bg)
+            return rti_fail(sim, RT_E_SCENE, "set ", sc->sets[s].name, " is background but "
+                            "the scene names no background services (rt_scene.bg)",
+                            (const char *)0);
+    return sc->bg ? sc->bg->init(sc, sim) : RT_OK;
+}
+
 rt_status rt_init(const rt_scene *sc, rt_sim *sim)
 {
     rt_status st;
@@ -317,7 +331,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
         (st = check_history(sc, sim)) != RT_OK || (st = rti_rhs_plan(sc, sim)) != RT_OK ||
-        (st = rti_link_check(sc, sim)) != RT_OK)
+        (st = rti_link_check(sc, sim)) != RT_OK || (st = bg_init(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */
     rti_zero(&sim->work.w, sizeof sim->work.w);

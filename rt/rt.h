@@ -339,6 +339,8 @@ typedef struct rt_set {
     uint32_t ratio;        /* step = ratio * base tick */
     uint8_t interp;        /* rt_interp of its inputs from other sets (0: hold) */
     rt_implicit_cfg implicit; /* settings of an implicit method; zeros: defaults */
+    uint8_t background;    /* 1: steps preemptible below the tick, Jacobi-coupled
+                              (rt/bg.c, docs/multirate.md "Background sets") */
 } rt_set;
 
 /* What a recorded signal reads. RT_SIG_MBS: a multibody quantity computed by the scene's
@@ -415,7 +417,23 @@ typedef struct rt_scene {
     uint8_t loop_iter_max; /* Broyden iterations per loop evaluation (0: default) */
     real_t loop_tol;       /* residual tolerance of torn inputs (0: default) */
     const rt_link *link;   /* the external controller's signals; NULL: none */
+    /* the background set's services (rt_bg, rt/bg.c): non-NULL exactly when a set is
+       declared background, so a scene without one links none of that code */
+    const struct rt_bg_ops *bg;
 } rt_scene;
+
+/* The background set's services (rt/bg.c), named by a scene that has one (rt_scene.bg). */
+typedef struct rt_bg_ops {
+    /* at rt_init: checks the background set (one per scene, no sampled blocks, no state
+       events, no recorded joint reactions) and its result's size */
+    rt_status (*init)(const rt_scene *sc, struct rt_sim *sim);
+    /* at the start of a tick: releases the set's next step when it is due */
+    void (*release)(const rt_scene *sc, struct rt_sim *sim);
+    /* when the tick count has advanced: publishes the step due now, or counts an
+       overrun when it has not finished (then publishes it at the first tick after) */
+    void (*publish)(const rt_scene *sc, struct rt_sim *sim);
+} rt_bg_ops;
+extern const rt_bg_ops rt_bg;
 
 /* Post-stabilization of multibody sets; declared once (rt_stab_name, rt_stab_find). */
 #define RT_STAB_LIST(X)                                                          \
@@ -542,6 +560,7 @@ typedef struct rt_plan {
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
     uint8_t set_xout[RT_MAX_SETS];   /* 1: the set has outputs read by other sets */
     uint8_t xsrc[RT_MAX_Y];          /* 1: output read by another set (keeps history) */
+    int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
 
     uint64_t n_ticks;                /* ticks to reach t_end */
 } rt_plan;
@@ -563,6 +582,12 @@ typedef struct rt_state {
     uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
     real_t hist_y[RT_HIST][RT_MAX_HIST_Y];/* cross-set outputs at those times */
     rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
+    /* the background set's step in flight (rt/bg.c): released at tick bg_due - ratio,
+       published at tick bg_due; bg_new holds its result (x slice, then the outputs of its
+       blocks) until then when it ran inline (no background context attached) */
+    uint8_t bg_busy;                 /* 1: a step is released and not yet published */
+    uint64_t bg_due;                 /* tick its result is due */
+    real_t bg_new[RT_MAX_BG];        /* inline result, published at bg_due */
     uint64_t hash;                   /* FNV-1a over recorded values */
 } rt_state;
 
@@ -585,6 +610,8 @@ typedef struct rt_stats {
     rt_istats istats[RT_MAX_SETS];   /* implicit methods' statistics per set */
     uint64_t rhs_evals[RT_MAX_SETS]; /* right-hand-side evaluations of each set (the cost
                                         measure of `modrt tune` and the benchmarks) */
+    uint32_t bg_late;                /* background steps not finished at their deadline
+                                        (also counted as RT_CNT_OVERRUN) */
 } rt_stats;
 
 /* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */
@@ -617,6 +644,14 @@ typedef struct rt_sim {
     rt_stats stats;
     rt_work work;
     char err[RT_ERR_LEN];            /* what rt_init found wrong, and where */
+    /* the background context (rt_bg_attach): a second rt_sim the background set steps
+       in, so that it shares no memory with the tick; NULL: its steps run inline at
+       release (the simulated clock). Two counters hand a step over, each written by one
+       side only and never reset, so no side can see a stale pair: bg_released counts the
+       steps the tick released, bg_finished (written by the background context) the
+       released step it finished; a step is pending while they differ. */
+    struct rt_sim *bg;
+    uint32_t bg_released, bg_finished;
 } rt_sim;
 
 /* ------------------------------------------------------------------ API */
@@ -650,6 +685,26 @@ const char *rt_rec_signal(const rt_scene *scene, uint16_t i);
 int rt_link_due(const rt_scene *scene, const rt_sim *sim);
 real_t rt_link_export(const rt_scene *scene, const rt_sim *sim, uint16_t i);
 void rt_link_apply(const rt_scene *scene, rt_sim *sim, const real_t *v);
+
+/* Background sets (rt/bg.c, docs/multirate.md "Background sets"). A set declared
+ * `background` steps from kH to (k+1)H on the inputs of tick kH (a copy), and its result
+ * becomes visible to the other sets and to the trace at tick (k+1)H, so the trace does not
+ * depend on when within that window the step runs. Without a context attached, rt_tick
+ * runs the step at its release (the simulated clock). rt_bg_attach makes bg (the
+ * caller's storage, never touched by the tick while a step runs) the context the step
+ * runs in: then rt_tick only releases it, the application runs rt_background from a
+ * context below the tick (PendSV, a low-priority thread), and the tick at (k+1)H
+ * publishes it, or counts an overrun (RT_CNT_OVERRUN, status RT_E_OVERRUN) and
+ * publishes it at the first tick after it finished. Attach between ticks, with no step
+ * in flight (after rt_init). */
+rt_status rt_bg_attach(const rt_scene *scene, rt_sim *sim, rt_sim *bg);
+/* 1 if a released background step waits for rt_background (call after rt_tick). */
+int rt_bg_pending(const rt_sim *sim);
+/* Runs the released background step to its end, in the attached context; returns RT_OK,
+ * or RT_E_ARG when none is pending. Call from the context below the tick only. */
+rt_status rt_background(const rt_scene *scene, rt_sim *sim);
+/* The scene's background set, -1 if it has none. */
+int rt_bg_set(const rt_sim *sim);
 
 /* Snapshots: the state part of rt_sim is everything a run needs to continue; one copy
  * out and one copy in (the plan must be the same scene's: restore after rt_init of it). */
@@ -706,6 +761,7 @@ typedef struct rt_sizes {
     uint16_t loop_hist;    /* the loops' iteration bound plus one (0 without loops) */
     /* multibody tables over all sets (rt_config.h, RT_MAX_MBS_*) */
     uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_ty, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
+    uint16_t bg;           /* states plus outputs of the background set (RT_MAX_BG) */
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

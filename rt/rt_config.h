@@ -106,6 +106,13 @@ typedef double real_t;
 #define RT_MAX_EVENT_X RT_MAX_X
 #endif
 
+/* ---- background sets (rt/bg.c) ---- */
+#ifndef RT_MAX_BG
+/* states plus outputs of the background set (rt/bg.c): the result of its step waits
+   there for its deadline */
+#define RT_MAX_BG 512
+#endif
+
 /* ---- multibody (rt/mbs.c) ---- */
 #ifndef RT_MAX_MBS_Z
 #define RT_MAX_MBS_Z 64 /* generalized velocities of the MBS blocks of one set */

@@ -101,6 +101,10 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 /* Output v of set q reconstructed at time t by the scheme. */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
 
+/* ---- the background set (bg.c; the rest through rt_scene.bg) ---- */
+/* Reals of the background set's result (states and outputs), 0 without one. */
+uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim);
+
 /* ---- set steps and events (step.c) ---- */
 /* Advances set s from t by its step h, handling state events; never stops half-way. */
 void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);

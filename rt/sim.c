@@ -29,10 +29,18 @@ static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
     rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
 }
 
+/* a background set's outputs change only when its step is published (rt/bg.c), except
+   at the start */
+static int refreshed(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    return !sc->sets[s].background || sim->state.tick == 0;
+}
+
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
     for (uint8_t i = 0; i < sc->nsets; i++)
-        refresh_set(sc, sim, sim->plan.sched[i]);
+        if (refreshed(sc, sim, sim->plan.sched[i]))
+            refresh_set(sc, sim, sim->plan.sched[i]);
     /* before the first tick the history starts afresh (parameters may have changed), and
        the sets are refreshed once more so each reads the others' initial outputs rather
        than an empty history */
@@ -85,13 +93,16 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
 #if RT_FAULT_INJECT
     rti_fault_sim = sim;
 #endif
+    /* the background set's next step, from its communication point now (rt/bg.c) */
+    if (sc->bg)
+        sc->bg->release(sc, sim);
     discrete_updates(sc, sim, t);
     /* fixed schedule: a set steps when the tick count is a multiple of its ratio,
        slowest first (rt/xset.c), and publishes its outputs for the other sets */
     for (uint8_t i = 0; i < sc->nsets; i++) {
         uint8_t s = sim->plan.sched[i];
         uint32_t ratio = sc->sets[s].ratio;
-        if (sim->state.tick % ratio != 0)
+        if (sim->state.tick % ratio != 0 || sc->sets[s].background)
             continue;
         rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
         sim->state.set_tick[s] = sim->state.tick + ratio;
@@ -102,6 +113,9 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
         }
     }
     sim->state.tick++;
+    /* the background step due at the new time: before the other sets read its history */
+    if (sc->bg)
+        sc->bg->publish(sc, sim);
     rt_refresh(sc, sim);
     int bad = nonfinite_output(sc, sim);
     if (bad >= 0)

@@ -39,6 +39,8 @@ build/host/scenec -o "$dir/$name.c" "$scene" || fail "scenec could not compile $
 sym=$(sed -n 's/^const rt_scene \(mdl_scene_[A-Za-z0-9_]*\) = {$/\1/p' "$dir/$name.c" | head -1)
 [ -n "$sym" ] || fail "no scene table in $dir/$name.c"
 sizes=$(build/host/scenec --sizes "$scene") || fail "scenec --sizes $scene failed (see above)"
+# a background set steps at the port's level below the timer, in a second rt_sim
+grep -q '\.bg = &rt_bg' "$dir/$name.c" && sizes="$sizes -DRT_IMAGE_BG=1"
 
 cc=$(make -s "print-TARGET_CC_$target")
 cflags="$(make -s print-CSTD) -O2 -ffunction-sections -fdata-sections $(make -s print-CINC) \

@@ -4,7 +4,14 @@
  * clock_nanosleep on POSIX) at its base step, counts the ticks that finished after their
  * deadline, and prints one line with the trace hash, which must equal the simulated-clock
  * run's: pacing changes when a tick runs, never what it computes. Needs only rt.h and
- * port.h: the scene's generated C brings its models. */
+ * port.h: the scene's generated C brings its models.
+ *
+ * A scene with a background set (docs/multirate.md, "Background sets") on a port with a
+ * level below the timer (PendSV on Cortex-M): the ticks run in the timer interrupt and
+ * the set's steps at that lower level, in a second rt_sim, preempted by every tick that
+ * falls while they run (the line reports how many did). Elsewhere the ticks run in the
+ * main loop and the steps inline. RT_IMAGE_TICKS ends the run early, RT_IMAGE_PERIOD_US
+ * ticks faster than the scene's base tick (the cross test: more preemptions). */
 #include "port.h"
 #include "rt.h"
 
@@ -13,14 +20,70 @@
 #endif
 extern const rt_scene RT_SCENE;
 
-static rt_sim sim;
+#ifndef RT_IMAGE_TICKS
+#define RT_IMAGE_TICKS 0 /* ticks to run (0: to the scene's end) */
+#endif
+#ifndef RT_IMAGE_PERIOD_US
+#define RT_IMAGE_PERIOD_US 0 /* timer period [us] (0: the scene's base tick) */
+#endif
 
-/* the timer callback's context: ticks it has counted */
+#ifndef RT_IMAGE_BG
+#define RT_IMAGE_BG 0 /* 1: the scene has a background set (tools/image.sh finds out) */
+#endif
+
+static rt_sim sim;
+#if RT_IMAGE_BG
+static rt_sim bg; /* the background context */
+#endif
+
+/* the timer callback's context: ticks it has counted, and with a background set the
+   ticking itself (the run's state, its end, the ticks that preempted a step) */
 typedef struct timer_count {
     volatile uint32_t ticks;
+    int in_irq;                 /* the scene ticks here, not in the main loop */
+    volatile int done;
+    volatile rt_status st;
+    volatile uint32_t overruns, preempted;
+    volatile int bg_running;    /* the background level is inside a step */
 } timer_count;
 
-static void on_timer(void *ctx) { ((timer_count *)ctx)->ticks++; }
+/* the scene's end, or RT_IMAGE_TICKS */
+static int finished(rt_status st)
+{
+#if RT_IMAGE_TICKS > 0
+    if (sim.state.tick >= RT_IMAGE_TICKS)
+        return 1;
+#endif
+    return st == RT_E_DONE;
+}
+
+static void on_timer(void *ctx)
+{
+    timer_count *c = ctx;
+    c->ticks++;
+    if (!c->in_irq || c->done)
+        return;
+    c->preempted += (uint32_t)c->bg_running;
+    c->st = rt_tick(&RT_SCENE, &sim);
+    rt_record(&RT_SCENE, &sim, 0);
+    c->overruns += (uint32_t)port_timer_late();
+    if (rt_bg_pending(&sim))
+        port_bg_request();
+    c->done = finished(c->st);
+}
+
+/* the background level: the released step of the background set */
+#if RT_IMAGE_BG
+static void on_background(void *ctx)
+{
+    timer_count *c = ctx;
+    if (!rt_bg_pending(&sim)) /* pended again by a tick while it ran: done already */
+        return;
+    c->bg_running = 1;
+    rt_background(&RT_SCENE, &sim);
+    c->bg_running = 0;
+}
+#endif
 
 static void put_u64(uint64_t v, unsigned base, int width)
 {
@@ -42,18 +105,29 @@ int app_main(void)
     if (rt_init(sc, &sim) != RT_OK)
         return 1;
     rt_record(sc, &sim, 0);
-    uint32_t us = (uint32_t)(sc->dt * (real_t)1e6 + (real_t)0.5);
+    uint32_t us = RT_IMAGE_PERIOD_US ? RT_IMAGE_PERIOD_US
+                                     : (uint32_t)(sc->dt * (real_t)1e6 + (real_t)0.5);
+#if RT_IMAGE_BG
+    if (sc->bg && port_bg_start(on_background, &count) == 0)
+        count.in_irq = rt_bg_attach(sc, &sim, &bg) == RT_OK;
+#endif
     if (port_timer_start(us, on_timer, &count) != 0) {
         port_write("rt: the port cannot tick at this period\n");
         return 1;
     }
-    rt_status st;
-    do {
-        port_timer_wait(); /* the work runs in the main loop, not in the interrupt */
-        st = rt_tick(sc, &sim);
-        rt_record(sc, &sim, 0);
-        overruns += (uint32_t)port_timer_late();
-    } while (st != RT_E_DONE);
+    rt_status st = RT_OK;
+    if (count.in_irq) {
+        while (!count.done)
+            port_timer_wait(); /* the ticks run in the interrupt, the steps below it */
+        overruns = count.overruns;
+    } else {
+        do {
+            port_timer_wait(); /* the work runs in the main loop, not in the interrupt */
+            st = rt_tick(sc, &sim);
+            rt_record(sc, &sim, 0);
+            overruns += (uint32_t)port_timer_late();
+        } while (!finished(st));
+    }
     port_timer_stop();
     port_write("rt scene ");
     port_write(sc->name);
@@ -63,6 +137,12 @@ int app_main(void)
     put_u64(count.ticks, 10, 1);
     port_write(" overruns ");
     put_u64(overruns, 10, 1);
+    if (count.in_irq) {
+        port_write(" preempted ");
+        put_u64(count.preempted, 10, 1);
+        port_write(" late ");
+        put_u64(sim.stats.bg_late, 10, 1);
+    }
     port_write(" hash ");
     put_u64(sim.state.hash, 16, 16);
     port_write(" status ");

@@ -20,6 +20,7 @@
 #define CM_SYST_CVR   CM_REG(0xE000E018u) /* current value */
 #define CM_ICSR       CM_REG(0xE000ED04u)
 #define CM_VTOR       CM_REG(0xE000ED08u)
+#define CM_SHPR3      CM_REG(0xE000ED20u) /* priorities of PendSV (bits 23:16), SysTick */
 #define CM_SHCSR      CM_REG(0xE000ED24u)
 #define CM_CFSR       CM_REG(0xE000ED28u)
 #define CM_HFSR       CM_REG(0xE000ED2Cu)
@@ -75,8 +76,9 @@
 
 /* port.c: starts the cost counter; called by the reset handler before app_main. */
 void cm_port_init(void);
-/* port.c: the SysTick exception handler (referenced by the vector table). */
+/* port.c: the SysTick and PendSV exception handlers (referenced by the vector table). */
 void SysTick_Handler(void);
+void PendSV_Handler(void);
 /* port.c: writes "label0xXXXXXXXX" to the console (used by the fault reports). */
 void cm_write_hex(const char *label, uint32_t v);
 

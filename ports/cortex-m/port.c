@@ -241,3 +241,32 @@ void port_timer_stop(void)
     cm_tick_fn = 0;
     cm_tick_flag = 0;
 }
+
+/* ------------------------------------------------------------------ background level */
+
+/* PendSV at the lowest priority (0xFF) and SysTick at the highest (0): the tick preempts
+   the background work anywhere, the background never delays a tick. A request while
+   PendSV runs pends it once more (the handler then finds nothing left to do). */
+static void (*volatile cm_bg_fn)(void *);
+static void *volatile cm_bg_ctx;
+
+void PendSV_Handler(void)
+{
+    void (*fn)(void *) = cm_bg_fn;
+    if (fn) fn(cm_bg_ctx);
+}
+
+int port_bg_start(void (*fn)(void *ctx), void *ctx)
+{
+    cm_bg_ctx = ctx;
+    cm_bg_fn = fn;
+    CM_SHPR3 = (CM_SHPR3 & 0x0000FFFFu) | (0xFFu << 16); /* PRI_14 PendSV lowest, PRI_15
+                                                            SysTick highest */
+    return 0;
+}
+
+void port_bg_request(void)
+{
+    CM_ICSR = 1u << 28; /* PENDSVSET */
+    __asm__ volatile("dsb\n\tisb" ::: "memory");
+}

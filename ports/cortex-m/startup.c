@@ -102,7 +102,7 @@ const cm_vector cm_vector_table[16 + CM_N_IRQ] = {
     [6] = Fault_Handler,   /* UsageFault */
     [11] = Fault_Handler,  /* SVCall: unused by the port */
     [12] = Fault_Handler,  /* DebugMonitor */
-    [14] = Fault_Handler,  /* PendSV: unused by the port */
+    [14] = PendSV_Handler, /* the background level (port_bg_start) */
     [15] = SysTick_Handler,
 #define CM_IRQ_FAULT(n) [16 + (n)] = Fault_Handler
     CM_IRQ_FAULT(0), CM_IRQ_FAULT(1), CM_IRQ_FAULT(2), CM_IRQ_FAULT(3),

@@ -77,3 +77,13 @@ int port_timer_late(void)
     return now.tv_sec > next_deadline.tv_sec ||
            (now.tv_sec == next_deadline.tv_sec && now.tv_nsec > next_deadline.tv_nsec);
 }
+
+/* no interrupt level below the timer's here: the application runs background work
+   itself (between ticks in its main loop, or in a thread of lower priority) */
+int port_bg_start(void (*fn)(void *ctx), void *ctx)
+{
+    (void)fn, (void)ctx;
+    return -1;
+}
+
+void port_bg_request(void) {}

@@ -221,3 +221,13 @@ void port_timer_stop(void)
     rv_tick_fn = 0;
     rv_tick_flag = 0;
 }
+
+/* no interrupt level below the timer's here: the application runs background work
+   itself (between ticks in its main loop, or in a thread of lower priority) */
+int port_bg_start(void (*fn)(void *ctx), void *ctx)
+{
+    (void)fn, (void)ctx;
+    return -1;
+}
+
+void port_bg_request(void) {}

@@ -1,8 +1,12 @@
 /* footprint_main.c - the one-scene image of `make footprint`: it links only the scene named
  * at compile time (-DFOOT_SCENE=mdl_scene_<name>) and the models that scene uses, paints
- * the stack, runs the scene to its end calling port_cycles() once before every tick (the
- * marker of the QEMU instruction-count plugin, tools/qemu/insn_count.c), and prints the
- * trace hash and the stack high-water mark. */
+ * the stack, runs the scene to its end calling port_cycles() before every tick and
+ * foot_tick_end() after it (the markers of the QEMU instruction-count plugin,
+ * tools/qemu/insn_count.c: the tick context), and prints the trace hash and the stack
+ * high-water mark. A scene with a background set gets a background context
+ * (rt_bg_attach): its step runs between ticks at the port's background level (PendSV on
+ * Cortex-M, else called from here), between foot_bg_begin() and foot_bg_end() (the
+ * background context's markers). */
 #include "harness.h"
 #include "port.h"
 #include "rt.h"
@@ -17,6 +21,28 @@ extern const rt_scene FOOT_SCENE;
 extern uint32_t __stack_bottom[], __stack_top[];
 
 static rt_sim sim;
+#ifndef FOOT_BG
+#define FOOT_BG 0 /* 1: the scene has a background set (the build asks modrt info) */
+#endif
+#if FOOT_BG
+static rt_sim bg; /* the background context */
+#endif
+
+/* markers for the plugin: never inlined, so each is one address the image executes */
+__attribute__((noinline)) void foot_tick_end(void) { __asm__ volatile("" ::: "memory"); }
+__attribute__((noinline)) void foot_bg_begin(void) { __asm__ volatile("" ::: "memory"); }
+__attribute__((noinline)) void foot_bg_end(void) { __asm__ volatile("" ::: "memory"); }
+
+/* the background level's work: the released step, between its markers */
+static void background(void *ctx)
+{
+    (void)ctx;
+    if (!rt_bg_pending(&sim))
+        return;
+    foot_bg_begin();
+    rt_background(&FOOT_SCENE, &sim);
+    foot_bg_end();
+}
 
 /* fills the unused stack below this frame with the pattern */
 static void paint(void)
@@ -46,11 +72,23 @@ int app_main(void)
         return 1;
     }
     rt_record(sc, &sim, 0);
+    int own_level = 0;
+#if FOOT_BG
+    rt_bg_attach(sc, &sim, &bg);
+    own_level = port_bg_start(background, 0) == 0;
+#endif
     paint(); /* after init: the mark measures ticks and recording only */
     do {
         (void)port_cycles(); /* marker: the plugin counts instructions between calls */
         st = rt_tick(sc, &sim);
         rt_record(sc, &sim, 0);
+        foot_tick_end();
+        if (FOOT_BG && rt_bg_pending(&sim)) {
+            if (own_level)
+                port_bg_request(); /* PendSV runs it now, before the next tick */
+            else
+                background(0);
+        }
     } while (st != RT_E_DONE && sim.state.tick < FOOT_TICKS);
     (void)port_cycles();
     th_put("scene ");

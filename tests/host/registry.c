@@ -8,6 +8,7 @@ static const th_test rmath_libm_tests[] = {{"rmath_libm", test_rmath_libm}, {0, 
 extern const th_test th_tune_tests[];
 extern const th_test th_kinds_doc_tests[];
 extern const th_test th_link_tests[];
+extern const th_test th_bg_host_tests[];
 
 const th_test *const th_host[] = {rmath_libm_tests, th_tune_tests, th_kinds_doc_tests,
-                                  th_link_tests, 0};
+                                  th_link_tests, th_bg_host_tests, 0};

@@ -61,6 +61,8 @@ typedef struct config {
     uint32_t ratio;                /* multirate: the chain's step in base ticks */
     uint16_t jac_every;            /* Jacobian refresh interval of the implicit set */
     uint8_t in_chain, in_servo;    /* multirate: interpolation schemes (0: the scene's) */
+    uint8_t bg;                    /* multirate: 1 the chain steps in the background
+                                      (rt/bg.c), 0 in the tick (the sweeps) */
 } config;
 
 typedef struct row {
@@ -99,6 +101,7 @@ static rt_scene make_scene(const config *c, rt_set *sets)
     sets[1].method = c->m[1];
     sets[1].ratio = 1;
     sets[1].implicit.jac_every = c->jac_every;
+    sets[0].background = c->bg;
     if (c->in_chain)
         sets[0].interp = c->in_chain;
     if (c->in_servo)
@@ -398,10 +401,41 @@ static void check_scenes(FILE *f)
     }
 }
 
+/* the rate transitions: the chain stepped in the tick (the classic schedule) or in the
+   background (rt/bg.c), against the reference at 10 s and over the run */
+static void check_transition(FILE *f, int md)
+{
+    static const struct {
+        uint8_t bg;
+        uint32_t ratio;
+        const char *how;
+    } t[] = {
+        {0, 16, "chain in the tick every 16 ms (it steps first, the servo set interpolates it)"},
+        {1, 16, "chain in the background every 16 ms (each set extrapolates the other)"},
+        {1, 8, "chain in the background every 8 ms"},
+        {1, 4, "chain in the background every 4 ms (pendulum10_actuated)"},
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        config c = {.multi = 1, .m = {&rt_bs3, &rt_ros2}, .h = TS, .ratio = t[i].ratio,
+                    .jac_every = 64, .bg = t[i].bg};
+        row r = {.c = c};
+        double p[3 * NB];
+        run(&c, p, &r.clean);
+        r.err = max_diff(p, ref_pos);
+        for (int k = 0; k < NSAMPLE; k++) {
+            double e = max_diff(run_pos[k], ref_run[k]);
+            r.err_run = e > r.err_run || e != e ? e : r.err_run;
+        }
+        fprintf(f, "%sbs3 + ros2 every 1 ms, %s: error at 10 s %.2e m, over the run %.2e m, "
+                   "status %s\n", md ? "- " : "transition: ", t[i].how, r.err, r.err_run,
+                rt_status_name(sim.stats.status));
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *csv = 0, *md = 0, *doc = 0;
-    int reps = 2, final = 9, quick = 0;
+    int reps = 2, final = 9, quick = 0, transition = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--csv") && i + 1 < argc)
             csv = argv[++i];
@@ -415,6 +449,8 @@ int main(int argc, char **argv)
             final = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--quick"))
             quick = 1;
+        else if (!strcmp(argv[i], "--transition"))
+            transition = 1;
         else {
             fprintf(stderr, "usage: multirate_bench [--csv FILE] [--md FILE] [--doc FILE] "
                             "[--reps N] [--final N] [--quick]\n");
@@ -434,6 +470,9 @@ int main(int argc, char **argv)
     double dref = max_diff(ref_pos, coarse);
     printf("reference: one set, dopri5 at %.1e s; |ref(h) - ref(2h)| = %.2e m\n", REF_STEP,
            dref);
+    check_transition(stdout, 0);
+    if (transition)
+        return 0;
 
     sweep_single(reps, quick);
     sweep_multi(reps, quick);
@@ -473,6 +512,9 @@ int main(int argc, char **argv)
                    "dopri5 at %.0e s (doubling its step changes it by %.1e m).\n\n",
                 cpu, reps, final, REF_STEP, dref);
         summary(f, w, t, 1);
+        fprintf(f, "\nThe rate transitions of the declared schedule (\"Background sets\" "
+                   "above), against the reference:\n\n");
+        check_transition(f, 1);
         fprintf(f, "\n");
         print_rows(f, 1);
         fclose(f);

@@ -225,6 +225,9 @@ static void scene_set(FILE *f, const rt_scene *sc, uint8_t s)
             (unsigned)st->ratio, num(t, (double)sc->dt), (unsigned)n, (unsigned)w.rhs,
             (unsigned)w.lu,
             num(a, (double)(st->implicit.accuracy > 0 ? st->implicit.accuracy : RT_ERR_TOL)));
+    if (st->background)
+        fprintf(f, "  %-10s background: each step released at its communication point, "
+                   "published at the next (rt/bg.c)\n", "");
 }
 
 static void scene_wiring(FILE *f, const rt_scene *sc)
@@ -292,7 +295,9 @@ static void scene_schedule(FILE *f, const rt_scene *sc, const rt_sim *s)
                 sc->blocks[cn->to].kind->u_names[cn->u],
                 src == RT_SRC_HELD ? "zero-order hold from its sample instant (a sampled "
                                      "output is piecewise constant; no delay)"
-                                   : rt_interp_name(how));
+                : sc->sets[sc->blocks[cn->from].set].background && how != RT_INTERP_HOLD
+                    ? "extrapolation of the background set's history (its jumps faded)"
+                    : rt_interp_name(how));
     }
 }
 
@@ -408,8 +413,9 @@ static void json_sets_wiring(FILE *f, const rt_scene *sc)
         jstr(f, sc->sets[s].name);
         fputs(", \"method\": ", f);
         jstr(f, sc->sets[s].method->name);
-        fprintf(f, ", \"step\": %s, \"ratio\": %u}",
-                num(b, (double)(sc->dt * (real_t)sc->sets[s].ratio)), (unsigned)sc->sets[s].ratio);
+        fprintf(f, ", \"step\": %s, \"ratio\": %u, \"background\": %s}",
+                num(b, (double)(sc->dt * (real_t)sc->sets[s].ratio)), (unsigned)sc->sets[s].ratio,
+                sc->sets[s].background ? "true" : "false");
     }
     fputs("], \"connections\": [", f);
     for (uint16_t c = 0; c < sc->nconns; c++) {

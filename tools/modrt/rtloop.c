@@ -5,7 +5,13 @@
  * thread asks for SCHED_FIFO and locks its memory when permitted (root or CAP_SYS_NICE /
  * CAP_IPC_LOCK), else says so once and runs soft real time. In the tick path: the clock,
  * the model, the exchange, and a row into the trace ring; no stdio, no allocation. Wake-up
- * latency and execution time go into fixed 1 us histograms for the percentiles. */
+ * latency and execution time go into fixed 1 us histograms for the percentiles.
+ *
+ * A scene with a background set (docs/multirate.md, "Background sets") gets a second
+ * rt_sim as its background context and a thread one priority below the tick's (or a
+ * normal thread without SCHED_FIFO) that runs each released step, woken by the tick
+ * that released it: the tick then does only its own sets' work, and the trace is the
+ * simulated clock's whatever the preemption (a step late at its deadline is counted). */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <pthread.h>
@@ -132,6 +138,72 @@ static void go_normal(const rtloop_stats *s)
         munlockall();
 }
 
+/* ------------------------------------------------------------------ background thread */
+
+static rt_sim bg_ctx; /* the background context (rt_bg_attach) */
+static struct {
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    pthread_t th;
+    int on, quit;
+    const rt_scene *sc;
+    rt_sim *sim;
+} bgt = {.mu = PTHREAD_MUTEX_INITIALIZER, .cv = PTHREAD_COND_INITIALIZER};
+
+static void *bg_main(void *arg)
+{
+    (void)arg;
+    for (;;) {
+        pthread_mutex_lock(&bgt.mu);
+        while (!bgt.quit && !rt_bg_pending(bgt.sim))
+            pthread_cond_wait(&bgt.cv, &bgt.mu);
+        int quit = bgt.quit;
+        pthread_mutex_unlock(&bgt.mu);
+        if (quit)
+            return NULL;
+        rt_background(bgt.sc, bgt.sim);
+    }
+}
+
+/* the background context and its thread, for a scene with a background set */
+static void bg_start(const rt_scene *sc, rt_sim *sim, int fifo)
+{
+    bgt.on = 0, bgt.quit = 0, bgt.sc = sc, bgt.sim = sim;
+    if (!sc->bg || rt_bg_attach(sc, sim, &bg_ctx) != RT_OK)
+        return;
+    pthread_attr_t at;
+    pthread_attr_init(&at);
+    struct sched_param sp = {.sched_priority = RT_FIFO_PRIO - 1};
+    if (fifo && pthread_attr_setinheritsched(&at, PTHREAD_EXPLICIT_SCHED) == 0 &&
+        pthread_attr_setschedpolicy(&at, SCHED_FIFO) == 0)
+        pthread_attr_setschedparam(&at, &sp);
+    bgt.on = pthread_create(&bgt.th, &at, bg_main, NULL) == 0 ||
+             pthread_create(&bgt.th, NULL, bg_main, NULL) == 0;
+    pthread_attr_destroy(&at);
+}
+
+/* after a tick: wake the thread for a step just released */
+static void bg_kick(void)
+{
+    if (!bgt.on)
+        return;
+    pthread_mutex_lock(&bgt.mu);
+    pthread_cond_signal(&bgt.cv);
+    pthread_mutex_unlock(&bgt.mu);
+}
+
+static void bg_stop(void)
+{
+    if (!bgt.on)
+        return;
+    pthread_mutex_lock(&bgt.mu);
+    bgt.quit = 1;
+    pthread_cond_signal(&bgt.cv);
+    pthread_mutex_unlock(&bgt.mu);
+    pthread_join(bgt.th, NULL);
+    bgt.on = 0;
+}
+
 /* ------------------------------------------------------------------ the loop */
 
 static int running(rt_status st) { return st == RT_OK; }
@@ -183,6 +255,7 @@ rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void 
     if (trace_start(sc, csv, log) != 0)
         return RT_E_ARG;
     go_realtime(warn, &s);
+    bg_start(sc, sim, s.fifo);
     int64_t period = (int64_t)((double)sc->dt * 1e9 + 0.5), d = now_ns() + period;
     while (running(st) && !s.stopped) {
         sleep_until(d);
@@ -197,7 +270,9 @@ rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void 
         d = next_deadline(d, period, end, policy, &s, r);
         if (in_ring)
             trace_publish();
+        bg_kick();
     }
+    bg_stop();
     go_normal(&s);
     s.dropped = trace_stop();
     s.latency = hist_dist(&lat_hist), s.exec = hist_dist(&exec_hist);

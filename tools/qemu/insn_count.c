@@ -9,6 +9,10 @@
  *                   tick (port_cycles is the natural one); Thumb bit 0 is ignored, so the
  *                   value printed by `nm` works. Prints the number of hits and
  *                   min/median/max of the instruction counts between successive hits.
+ *   stop=<hex|dec>  a second marker: an interval then runs from a hit of addr to the next
+ *                   hit of stop (instructions from stop to the next addr are not counted),
+ *                   e.g. the tick context only, without the background work that runs
+ *                   between ticks (tests/cross/footprint_main.c).
  *   first=<i>,count=<n>  statistics over intervals i .. i+n-1 only (0-based; default all),
  *                   e.g. to skip start-up and keep the steady-state ticks.
  *   dump=on         also print every interval ("insn_count: interval <i> <n>").
@@ -99,6 +103,9 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
 static uint64_t insn_total;     /* instructions executed (inline add) */
 static bool marker_on;
 static uint64_t marker_addr;
+static bool stop_on;
+static uint64_t stop_addr;
+static bool armed;              /* stop marker: an interval is open */
 static bool dump_on;
 static size_t stat_first;
 static size_t stat_count = SIZE_MAX;
@@ -107,6 +114,18 @@ static uint64_t marker_last;    /* insn_total before the previous hit */
 static uint64_t *intervals;
 static size_t n_intervals, cap_intervals;
 
+static void add_interval(uint64_t n)
+{
+    if (n_intervals == cap_intervals) {
+        size_t cap = cap_intervals ? 2 * cap_intervals : 1024;
+        uint64_t *p = realloc(intervals, cap * sizeof *p);
+        if (!p) return;
+        intervals = p;
+        cap_intervals = cap;
+    }
+    intervals[n_intervals++] = n;
+}
+
 static void on_marker(unsigned int vcpu_index, void *userdata)
 {
     (void)vcpu_index;
@@ -114,17 +133,20 @@ static void on_marker(unsigned int vcpu_index, void *userdata)
     /* The marker instruction has no inline add (whether an inline op runs before or
        after a callback of the same instruction is not part of the API): count it here. */
     uint64_t now = insn_total++;
-    if (marker_hits++ > 0) {
-        if (n_intervals == cap_intervals) {
-            size_t cap = cap_intervals ? 2 * cap_intervals : 1024;
-            uint64_t *p = realloc(intervals, cap * sizeof *p);
-            if (!p) return;
-            intervals = p;
-            cap_intervals = cap;
-        }
-        intervals[n_intervals++] = now - marker_last;
-    }
+    if (marker_hits++ > 0 && !stop_on)
+        add_interval(now - marker_last);
     marker_last = now;
+    armed = true;
+}
+
+static void on_stop(unsigned int vcpu_index, void *userdata)
+{
+    (void)vcpu_index;
+    (void)userdata;
+    uint64_t now = insn_total++;
+    if (armed)
+        add_interval(now - marker_last);
+    armed = false;
 }
 
 static void on_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
@@ -133,8 +155,11 @@ static void on_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     size_t n = qemu_plugin_tb_n_insns(tb);
     for (size_t i = 0; i < n; i++) {
         struct qemu_plugin_insn *insn = qemu_plugin_tb_get_insn(tb, i);
-        if (marker_on && qemu_plugin_insn_vaddr(insn) == marker_addr)
+        uint64_t va = qemu_plugin_insn_vaddr(insn);
+        if (marker_on && va == marker_addr)
             qemu_plugin_register_vcpu_insn_exec_cb(insn, on_marker, QEMU_PLUGIN_CB_NO_REGS, NULL);
+        else if (stop_on && va == stop_addr)
+            qemu_plugin_register_vcpu_insn_exec_cb(insn, on_stop, QEMU_PLUGIN_CB_NO_REGS, NULL);
         else
             qemu_plugin_register_vcpu_insn_exec_inline(insn, QEMU_PLUGIN_INLINE_ADD_U64, &insn_total, 1);
     }
@@ -190,6 +215,14 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
                 return -1;
             }
             marker_on = true;
+        } else if (strncmp(a, "stop=", 5) == 0) {
+            char *end;
+            stop_addr = strtoull(a + 5, &end, 0) & ~(uint64_t)1;
+            if (end == a + 5 || *end != '\0') {
+                fprintf(stderr, "insn_count: bad stop address '%s'\n", a + 5);
+                return -1;
+            }
+            stop_on = true;
         } else if (strncmp(a, "first=", 6) == 0 || strncmp(a, "count=", 6) == 0) {
             char *end;
             unsigned long long v = strtoull(a + 6, &end, 0);
@@ -204,7 +237,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
         } else if (strcmp(a, "dump=off") == 0) {
             dump_on = false;
         } else {
-            fprintf(stderr, "insn_count: unknown argument '%s' (expected addr=<address>, first=<i>, count=<n>, dump=on)\n", a);
+            fprintf(stderr, "insn_count: unknown argument '%s' (expected addr=<address>, stop=<address>, first=<i>, count=<n>, dump=on)\n", a);
             return -1;
         }
     }

@@ -458,6 +458,8 @@ static void sets(FILE *f, const scn_scene *s)
                        " .tol = %s, .accuracy = %s}",
                     (unsigned)st->newton, (unsigned)st->substeps, (unsigned)st->jacobian,
                     R(st->tol), R(st->accuracy));
+        if (st->background)
+            fputs(", .background = 1", f);
         fputs("},\n", f);
     }
     fputs("};\n", f);
@@ -582,6 +584,11 @@ static void scene(FILE *f, const scn_ctx *c)
         fprintf(f, "    .loop_tol = %s,\n", R(s->loop_tol));
     if (s->link.name)
         fputs("    .link = &link,\n", f);
+    for (uint16_t i = 0; i < s->nset; i++)
+        if (s->set[i].background) {
+            fputs("    .bg = &rt_bg,\n", f);
+            break;
+        }
     fputs("};\n", f);
 }
 

@@ -138,6 +138,7 @@ static void sets_recs(scn_ctx *c, rt_scene *sc)
         st[i].implicit.tol = (real_t)x->tol;
         st[i].implicit.substeps = (uint8_t)x->substeps;
         st[i].implicit.accuracy = (real_t)x->accuracy;
+        st[i].background = x->background;
     }
     rt_rec *r = scn_alloc(c, (s->nrec + 1u) * sizeof *r);
     for (uint16_t i = 0; i < s->nrec; i++)
@@ -203,6 +204,9 @@ int scn_build_image(scn_ctx *c)
     sc->loop_iter_max = (uint8_t)s->loop_iter;
     sc->loop_tol = (real_t)s->loop_tol;
     sc->link = s->link.name ? &s->link : NULL;
+    sc->bg = NULL;
+    for (uint16_t i = 0; i < s->nset; i++)
+        sc->bg = s->set[i].background ? &rt_bg : sc->bg;
     return init_check(c);
 }
 

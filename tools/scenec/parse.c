@@ -515,9 +515,12 @@ static void set_clause(scn_ctx *c, scn_set *st, uint8_t *seen)
         scn_next(c), st->substeps = paren_count(c, 128), st->has_substeps = 1;
     } else if (scn_is_word(c, "accuracy") && once(c, &seen[8])) {
         scn_next(c), st->accuracy = paren_const(c), st->has_accuracy = 1;
+    } else if (scn_is_word(c, "background") && once(c, &seen[9])) {
+        scn_next(c), st->background = 1; /* no argument: steps below the tick (rt/bg.c) */
     } else if (!c->err) {
         scn_fail_tok(c, "syntax error", "method, step, interpolation, members, newton, "
-                                        "jacobian, tolerance, substeps, accuracy (...) or ';'");
+                                        "jacobian, tolerance, substeps, accuracy (...), "
+                                        "background or ';'");
     }
 }
 
@@ -525,7 +528,7 @@ static void set_clause(scn_ctx *c, scn_set *st, uint8_t *seen)
 static void st_set(scn_ctx *c, scn_pos at)
 {
     scn_scene *s = &c->sc;
-    uint8_t seen[9] = {0};
+    uint8_t seen[10] = {0};
     if (s->nset >= RT_MAX_SETS) {
         scn_fail(c, at, "set", "too many sets", scn_limit(c, RT_MAX_SETS, "sets", "RT_MAX_SETS"));
         return;

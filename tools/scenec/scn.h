@@ -255,6 +255,7 @@ typedef struct scn_set {
     double tol, accuracy;
     uint32_t substeps;
     uint8_t has_newton, has_jacobian, has_tol, has_substeps, has_accuracy;
+    uint8_t background;         /* 1: steps below the tick (rt_set.background) */
     /* resolved */
     const rt_integrator *m;
     uint32_t ratio;

@@ -1,0 +1,287 @@
+/* bg.c - the background set: its step runs preemptible below the tick, with a rate
+ * transition whose data dependencies are fixed (docs/multirate.md, "Background sets").
+ *
+ * The step of the background set S from kH to (k+1)H is released at the start of the
+ * tick that begins at kH, and is due at the end of the tick that ends at (k+1)H. It reads
+ * the other sets only as they stood at its release: their history up to kH and their
+ * held (sampled) outputs, copied at release. The other sets read S only from its
+ * history, which gains the point (k+1)H when the step is published, as the tick count
+ * reaches (k+1)H; until then they extrapolate S from its points up to kH (rt/xset.c), and
+ * the trace shows S's state at kH. Each side thus reads values fixed before the window in
+ * which the step may run (a Jacobi coupling across the rate transition), so the trace is
+ * a function of the data alone: the same whether the step runs at its release (the
+ * simulated clock, inline in the tick), in PendSV between ticks or in a thread the ticks
+ * preempt at any point.
+ *
+ * Without a background context the step runs inline at release in the tick's own
+ * rt_sim, and its result (x slice and outputs) waits in rt_state.bg_new with the state
+ * the trace shows left as it was. With a context attached (rt_bg_attach, a second rt_sim
+ * of the caller's) the step runs there, in memory the tick never touches while it runs:
+ * the tick copies the inputs in at release and the result out at publication. */
+#include "rti.h"
+
+/* ------------------------------------------------------------------ checks at init */
+
+/* what a background set may not hold: discrete (sampled) blocks, whose outputs the tick
+   computes; state events, whose handlers change d where the trace reads it; recorded joint
+   reactions, kept in the multibody workspace of the context that stepped */
+static rt_status check_members(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (sc->blocks[b].set != s)
+            continue;
+        if (k->type == RT_KIND_DSS || k->nr > 0)
+            return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name, " of background set ",
+                            sc->sets[s].name, ": sampled blocks and state events must run in "
+                            "a set of the tick", (const char *)0);
+    }
+    for (uint16_t i = 0; i < sc->nrecs; i++)
+        if (sc->recs[i].what == RT_SIG_MBS && sc->recs[i].index >= RT_MBS_SIG_NSET &&
+            sc->blocks[sc->recs[i].block].set == s)
+            return rti_fail(sim, RT_E_SCENE, "background set ", sc->sets[s].name,
+                            ": its joint reactions cannot be recorded", (const char *)0);
+    return RT_OK;
+}
+
+/* reals of the background set's result: its states and its blocks' outputs */
+static uint32_t result_size(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    uint32_t n = (uint32_t)(sim->plan.set_x[s + 1] - sim->plan.set_x[s]);
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        if (sc->blocks[b].set == s)
+            n += (uint32_t)(sim->plan.y_off[b + 1] - sim->plan.y_off[b]);
+    return n;
+}
+
+static rt_status init(const rt_scene *sc, rt_sim *sim)
+{
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        if (!sc->sets[s].background)
+            continue;
+        if (sim->plan.bg_set >= 0)
+            return rti_fail(sim, RT_E_SCENE, "set ", sc->sets[s].name, ": a scene has at most "
+                            "one background set", (const char *)0);
+        rt_status st = check_members(sc, sim, s);
+        if (st != RT_OK)
+            return st;
+        if (result_size(sc, sim, s) > RT_MAX_BG)
+            return rti_fail(sim, RT_E_CAPACITY, "background set ", sc->sets[s].name,
+                            ": states and outputs exceed ", RTI_LIMIT(RT_MAX_BG), (const char *)0);
+        sim->plan.bg_set = s;
+    }
+    return RT_OK;
+}
+
+uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim)
+{
+    return sim->plan.bg_set < 0 ? 0 : result_size(sc, sim, (uint8_t)sim->plan.bg_set);
+}
+
+/* ------------------------------------------------------------------ copies */
+
+/* the set's result between rt_state arrays and a packed buffer: dir 0 packs x and y
+   into buf, 1 unpacks buf into them, 2 swaps the two */
+static void move_result(const rt_scene *sc, const rt_sim *sim, uint8_t s, real_t *x,
+                        real_t *y, real_t *buf, int dir)
+{
+    uint32_t n = 0;
+    for (uint16_t i = sim->plan.set_x[s]; i < sim->plan.set_x[s + 1]; i++, n++) {
+        real_t v = x[i];
+        x[i] = dir ? buf[n] : v;
+        buf[n] = dir == 1 ? buf[n] : v;
+    }
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (sc->blocks[b].set != s)
+            continue;
+        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++, n++) {
+            real_t v = y[j];
+            y[j] = dir ? buf[n] : v;
+            buf[n] = dir == 1 ? buf[n] : v;
+        }
+    }
+}
+
+static void copy_reals(real_t *dst, const real_t *src, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++)
+        dst[i] = src[i];
+}
+
+/* what the step reads from the tick's side, as it stands at release: the time, its own
+   blocks' parameters (rt_set_param may change them between ticks), the held outputs of
+   sampled blocks and the history of the other sets' outputs its inputs read (its own
+   states, outputs and discrete states are the context's already) */
+static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8_t s)
+{
+    bg->state.tick = sim->state.tick;
+    for (uint8_t q = 0; q < sc->nsets; q++) {
+        bg->state.set_tick[q] = sim->state.set_tick[q];
+        bg->state.hist_n[q] = sim->state.hist_n[q];
+        copy_reals(bg->state.hist_t[q], sim->state.hist_t[q], RT_HIST);
+    }
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (sc->blocks[b].set != s)
+            continue;
+        copy_reals(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
+                   (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b]));
+        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
+            uint16_t v = sim->plan.src[i];
+            if (sim->plan.src_kind[i] == RT_SRC_HELD)
+                bg->state.y[v] = sim->state.y[v];
+            else if (sim->plan.src_kind[i] == RT_SRC_XSET)
+                for (int k = 0; k < RT_HIST; k++)
+                    bg->state.hist_y[k][v] = sim->state.hist_y[k][v];
+        }
+    }
+}
+
+static uint32_t umax(uint32_t a, uint32_t b)
+{
+    return a > b ? a : b;
+}
+
+/* the counters and high-water marks the step left in the context, into the tick's stats
+   (the context's counters restart from zero; its per-set entries are its own) */
+static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
+{
+    rt_stats *a = &sim->stats, *b = &bg->stats;
+    for (int c = 0; c < RT_CNT_COUNT; c++) {
+        if (b->count[c] == 0)
+            continue;
+        if (a->count[c] == 0)
+            a->first_tick[c] = b->first_tick[c];
+        a->count[c] += b->count[c];
+        a->last_block[c] = b->last_block[c];
+        b->count[c] = 0;
+    }
+    if (rt_status_severity(b->status) > rt_status_severity(a->status))
+        a->status = b->status;
+    b->status = RT_OK;
+    a->growth[s] = b->growth[s], a->unstable[s] = b->unstable[s], a->errest[s] = b->errest[s];
+    a->istats[s] = b->istats[s], a->rhs_evals[s] = b->rhs_evals[s];
+    a->event_iter_max = umax(a->event_iter_max, b->event_iter_max);
+    a->loop_iter_max = umax(a->loop_iter_max, b->loop_iter_max);
+    a->loop_residual = b->loop_residual > a->loop_residual ? b->loop_residual : a->loop_residual;
+    for (int i = 0; i <= RT_LOOP_ITER_LIMIT; i++)
+        a->loop_hist[i] += b->loop_hist[i], b->loop_hist[i] = 0;
+}
+
+/* ------------------------------------------------------------------ the step */
+
+/* the step itself, in whichever rt_sim it runs: states to the end of the macro step,
+   then the outputs there (what the other sets will read) */
+static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
+{
+    uint32_t ratio = sc->sets[s].ratio;
+    real_t t = (real_t)ctx->state.set_tick[s] * sc->dt;
+    rti_step_set(sc, ctx, s, t, sc->dt * (real_t)ratio);
+    real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
+    rti_outputs(sc, ctx, (rti_at){te, s, RTI_IN_STEP});
+}
+
+/* release at the set's communication point: inline, the step runs now and its result is
+   swapped into bg_new (the trace keeps showing the state at release); with a context, the
+   inputs are copied there and the step is handed to rt_background */
+static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    sim->state.bg_busy = 1;
+    sim->state.bg_due = sim->state.set_tick[s] + sc->sets[s].ratio;
+    if (!sim->bg) {
+        move_result(sc, sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 0);
+        run_step(sc, sim, s);
+        move_result(sc, sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 2);
+        return;
+    }
+    copy_inputs(sc, sim, sim->bg, s);
+    /* the copies above become visible to the background context with the count */
+    __atomic_store_n(&sim->bg_released, sim->bg_released + 1u, __ATOMIC_RELEASE);
+}
+
+/* the result becomes the set's state and outputs, and the newest point of its history */
+static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    rt_sim *bg = sim->bg;
+    if (bg) {
+        move_result(sc, bg, s, bg->state.x, bg->state.y, sim->state.bg_new, 0);
+        merge_stats(sim, bg, s);
+    }
+    move_result(sc, sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
+    sim->state.set_tick[s] = sim->state.bg_due;
+    sim->state.bg_busy = 0;
+    if (sim->plan.set_xout[s])
+        rti_xset_push(sc, sim, s, (real_t)sim->state.bg_due * sc->dt);
+}
+
+static void release_due(const rt_scene *sc, rt_sim *sim)
+{
+    /* at the set's communication point, or at once after a late publication (its
+       deadline stays on the set's schedule) */
+    if (sim->plan.bg_set >= 0 && !sim->state.bg_busy &&
+        sim->state.set_tick[sim->plan.bg_set] <= sim->state.tick)
+        release(sc, sim, (uint8_t)sim->plan.bg_set);
+}
+
+static void publish_due(const rt_scene *sc, rt_sim *sim)
+{
+    if (sim->plan.bg_set < 0 || !sim->state.bg_busy || sim->state.tick < sim->state.bg_due)
+        return;
+    /* finished: the context's writes are visible with its count (acquire) */
+    if (!sim->bg || __atomic_load_n(&sim->bg_finished, __ATOMIC_ACQUIRE) == sim->bg_released) {
+        publish(sc, sim, (uint8_t)sim->plan.bg_set);
+    } else if (sim->state.tick == sim->state.bg_due) {
+        /* never wait (the step runs below this context): the other sets go on
+           extrapolating its history, and it is published when it has finished */
+        rti_count(sim, RT_CNT_OVERRUN, -1, RT_E_OVERRUN);
+        sim->stats.bg_late++;
+    }
+}
+
+const rt_bg_ops rt_bg = {
+    .init = init,
+    .release = release_due,
+    .publish = publish_due,
+};
+
+/* ------------------------------------------------------------------ API */
+
+rt_status rt_bg_attach(const rt_scene *sc, rt_sim *sim, rt_sim *bg)
+{
+    if (!sc || !sim || !bg || bg == sim || sim->state.bg_busy)
+        return RT_E_ARG;
+    const unsigned char *from = (const unsigned char *)sim;
+    unsigned char *to = (unsigned char *)bg;
+    for (size_t i = 0; i < sizeof *sim; i++)
+        to[i] = from[i];
+    bg->bg = 0;
+    rti_zero(bg->stats.count, sizeof bg->stats.count);
+    rti_zero(bg->stats.loop_hist, sizeof bg->stats.loop_hist);
+    bg->stats.status = RT_OK;
+    sim->bg_released = sim->bg_finished = 0;
+    sim->bg = bg;
+    return RT_OK;
+}
+
+int rt_bg_pending(const rt_sim *sim)
+{
+    return sim->bg && __atomic_load_n(&sim->bg_released, __ATOMIC_ACQUIRE) !=
+                          __atomic_load_n(&sim->bg_finished, __ATOMIC_ACQUIRE);
+}
+
+rt_status rt_background(const rt_scene *sc, rt_sim *sim)
+{
+    if (!sim->bg || sim->plan.bg_set < 0)
+        return RT_E_ARG;
+    /* the released count first (acquire: the tick's copies are visible), then the step */
+    uint32_t n = __atomic_load_n(&sim->bg_released, __ATOMIC_ACQUIRE);
+    if (n == __atomic_load_n(&sim->bg_finished, __ATOMIC_RELAXED))
+        return RT_E_ARG;
+    run_step(sc, sim->bg, (uint8_t)sim->plan.bg_set);
+    __atomic_store_n(&sim->bg_finished, n, __ATOMIC_RELEASE);
+    return RT_OK;
+}
+
+int rt_bg_set(const rt_sim *sim)
+{
+    return sim->plan.bg_set;
+}

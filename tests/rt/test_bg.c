@@ -1,0 +1,153 @@
+/* test_bg.c - the background set (rt/bg.c): its step run inline at release, in an attached
+ * context right after the release, or as late as its deadline allows gives the same trace
+ * bit for bit; a step not finished at its deadline is counted and published late; the
+ * scene checks. Portable (runs on the cross targets too); the tests with threads, the
+ * POSIX timer and the fine reference are in tests/host/test_bg.c. */
+#include "harness.h"
+#include "rt.h"
+#include "scenes/scenes.h"
+#include "testutil.h"
+
+/* three simulators of one scene: inline, context run at once, context run at the last
+   tick before the deadline; and the two contexts */
+static rt_sim sims[3], ctx[2];
+
+#ifndef TEST_BG_TICKS
+#define TEST_BG_TICKS 400 /* ticks compared (pendulum10_actuated: 100 background steps) */
+#endif
+
+/* the recorded values of a and b now, bit for bit */
+static int same_record(const rt_scene *sc, const rt_sim *a, const rt_sim *b)
+{
+    int same = rt_time(sc, a) == rt_time(sc, b);
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        real_t x = rt_rec_value(sc, a, i), y = rt_rec_value(sc, b, i);
+        same = same && (x == y || (x != x && y != y));
+    }
+    return same;
+}
+
+/* inline, eager and lazy background steps: the same trace at every tick */
+static void test_bg_same_trace(void)
+{
+    const rt_scene *sc = &mdl_scene_pendulum10_actuated;
+    int ok = 1, lazy_runs = 0, eager_runs = 0;
+    for (int i = 0; i < 3; i++)
+        ok = ok && rt_init(sc, &sims[i]) == RT_OK;
+    TH_CHECK(ok && rt_bg_set(&sims[0]) >= 0);
+    TH_CHECK(rt_bg_attach(sc, &sims[1], &ctx[0]) == RT_OK);
+    TH_CHECK(rt_bg_attach(sc, &sims[2], &ctx[1]) == RT_OK);
+    for (int i = 0; i < 3; i++)
+        rt_record(sc, &sims[i], 0);
+    for (int n = 0; ok && n < TEST_BG_TICKS; n++) {
+        /* lazy: the step runs only when the next tick would publish it */
+        if (rt_bg_pending(&sims[2]) && sims[2].state.tick + 1 >= sims[2].state.bg_due)
+            lazy_runs += rt_background(sc, &sims[2]) == RT_OK;
+        for (int i = 0; i < 3; i++) {
+            rt_tick(sc, &sims[i]);
+            rt_record(sc, &sims[i], 0);
+        }
+        TH_CHECK(!rt_bg_pending(&sims[0])); /* inline: nothing left to run */
+        if (rt_bg_pending(&sims[1]))
+            eager_runs += rt_background(sc, &sims[1]) == RT_OK;
+        ok = same_record(sc, &sims[0], &sims[1]) && same_record(sc, &sims[0], &sims[2]);
+    }
+    TH_CHECK(ok);
+    TH_EQ_U64(sims[1].state.hash, sims[0].state.hash);
+    TH_EQ_U64(sims[2].state.hash, sims[0].state.hash);
+    TH_CHECK(lazy_runs == TEST_BG_TICKS / (int)sc->sets[rt_bg_set(&sims[0])].ratio);
+    TH_CHECK(eager_runs == lazy_runs);
+    for (int i = 0; i < 3; i++)
+        TH_CHECK(sims[i].stats.status == RT_OK && sims[i].stats.bg_late == 0);
+    /* the step's statistics reach the tick's: same evaluations in every mode */
+    uint8_t s = (uint8_t)rt_bg_set(&sims[0]);
+    TH_EQ_U64(sims[1].stats.rhs_evals[s], sims[0].stats.rhs_evals[s]);
+    TH_EQ_U64(sims[2].stats.rhs_evals[s], sims[0].stats.rhs_evals[s]);
+    th_note("background steps compared", (double)lazy_runs);
+}
+
+/* the other sets see the step only from its deadline on: before, the trace shows the set
+   at its release, and its history ends there */
+static void test_bg_deadline(void)
+{
+    const rt_scene *sc = &mdl_scene_pendulum10_actuated;
+    rt_sim *sim = &sims[0];
+    TH_CHECK(rt_init(sc, sim) == RT_OK && rt_bg_attach(sc, sim, &ctx[0]) == RT_OK);
+    uint8_t s = (uint8_t)rt_bg_set(sim);
+    uint32_t r = sc->sets[s].ratio;
+    for (uint32_t n = 0; n < 2 * r; n++) {
+        rt_tick(sc, sim);
+        if (rt_bg_pending(sim))
+            rt_background(sc, sim);
+    }
+    TH_CHECK(sim->state.set_tick[s] == 2 * r && !rt_bg_pending(sim));
+    rt_tick(sc, sim);
+    TH_CHECK(rt_bg_pending(sim)); /* released at 2r */
+    TH_CHECK(rt_background(sc, sim) == RT_OK && !rt_bg_pending(sim));
+    TH_CHECK(rt_background(sc, sim) == RT_E_ARG); /* nothing left */
+    TH_CHECK(sim->state.set_tick[s] == 2 * r);    /* done, but not yet due */
+    TH_CHECK(sim->state.hist_t[s][0] == (real_t)(2 * r) * sc->dt);
+    while (sim->state.tick < 3 * r - 1)
+        rt_tick(sc, sim);
+    TH_CHECK(sim->state.set_tick[s] == 2 * r);
+    rt_tick(sc, sim);
+    TH_CHECK(sim->state.set_tick[s] == 3 * r); /* published as the tick reached 3r */
+    TH_CHECK(sim->state.hist_t[s][0] == (real_t)(3 * r) * sc->dt);
+    TH_CHECK(sim->stats.status == RT_OK);
+}
+
+/* a step not finished at its deadline: counted once, never waited for, published at the
+   first tick after it has finished, the next step released then with the same deadline */
+static void test_bg_overrun(void)
+{
+    const rt_scene *sc = &mdl_scene_pendulum10_actuated;
+    rt_sim *sim = &sims[0];
+    TH_CHECK(rt_init(sc, sim) == RT_OK && rt_bg_attach(sc, sim, &ctx[0]) == RT_OK);
+    uint8_t s = (uint8_t)rt_bg_set(sim);
+    uint32_t r = sc->sets[s].ratio;
+    for (uint32_t n = 0; n < r + 2; n++)
+        rt_tick(sc, sim); /* the step released at tick 0 never ran */
+    TH_CHECK(sim->stats.count[RT_CNT_OVERRUN] == 1 && sim->stats.bg_late == 1);
+    TH_CHECK(sim->stats.status == RT_E_OVERRUN);
+    TH_CHECK(sim->state.set_tick[s] == 0 && sim->state.hist_t[s][0] == 0);
+    TH_CHECK(rt_background(sc, sim) == RT_OK);
+    rt_tick(sc, sim);
+    TH_CHECK(sim->state.set_tick[s] == r && !sim->state.bg_busy); /* published late */
+    rt_tick(sc, sim);
+    /* the next step, released at the next tick, keeps its deadline on the schedule */
+    TH_CHECK(rt_bg_pending(sim) && sim->state.bg_due == 2 * r);
+    /* with r <= 4 that step (from r to 2r, released at tick r + 3) was due at once */
+    TH_CHECK(sim->stats.count[RT_CNT_OVERRUN] == (r + 4 >= 2 * r ? 2u : 1u));
+}
+
+/* what init refuses: two background sets, a sampled block or a state event in one */
+static void test_bg_checks(void)
+{
+    rt_scene sc = mdl_scene_pendulum10_actuated;
+    rt_set sets[2] = {sc.sets[0], sc.sets[1]};
+    sc.sets = sets;
+    sets[0].background = sets[1].background = 1;
+    TH_CHECK(rt_init(&sc, &sims[0]) == RT_E_SCENE &&
+             th_has(rt_error_text(&sims[0]), "at most one"));
+    sets[0].background = 0; /* the servo set holds the sampled controller */
+    TH_CHECK(rt_init(&sc, &sims[0]) == RT_E_SCENE && th_has(rt_error_text(&sims[0]), "Ctrl"));
+    rt_scene ball = mdl_scene_bouncing_ball;
+    rt_set one = ball.sets[0];
+    one.background = 1;
+    ball.sets = &one;
+    TH_CHECK(rt_init(&ball, &sims[0]) == RT_E_SCENE);
+    TH_CHECK(rt_bg_attach(&ball, &sims[0], &sims[0]) == RT_E_ARG);
+    /* a scene without one: nothing released, nothing pending */
+    TH_CHECK(rt_init(&mdl_scene_pendulum10, &sims[0]) == RT_OK && rt_bg_set(&sims[0]) == -1);
+    rt_tick(&mdl_scene_pendulum10, &sims[0]);
+    TH_CHECK(!rt_bg_pending(&sims[0]) &&
+             rt_background(&mdl_scene_pendulum10, &sims[0]) == RT_E_ARG);
+}
+
+const th_test th_bg_tests[] = {
+    {"bg_same_trace", test_bg_same_trace},
+    {"bg_deadline", test_bg_deadline},
+    {"bg_overrun", test_bg_overrun},
+    {"bg_checks", test_bg_checks},
+    {0, 0},
+};
