@@ -316,7 +316,7 @@ static void energy(const rt_args *a, real_t *e)
         const axle *xi = &ax[i < 2 ? 0 : 1];
         e[1] += (real_t)0.5 * xi->k * z[i] * z[i] - p[P_PRE] * xi->f0 * z[i];
     }
-    for (int j = 0; j < 2; j++) {
+    for (size_t j = 0; j < 2; j++) {
         real_t dz = z[2 * j] - z[2 * j + 1];
         e[1] += (real_t)0.5 * ax[j].kb * dz * dz;
     }

@@ -203,7 +203,7 @@ void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v)
     uint16_t base = w->rb[set], n = (uint16_t)(w->rb[set + 1] - base);
     const real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
     const uint16_t *lp = w->lp + base, *perm = w->perm + base;
-    real_t y[RT_MAX_MBS_C];
+    real_t y[RT_MAX_MBS_C] = {0}; /* row i reads y[j < i] only; gcc cannot see it */
     for (uint16_t i = 0; i < n; i++) { /* L y = P v */
         real_t t = v[perm[i]];
         for (uint16_t e = lp[i]; e < lp[i + 1]; e++)
