@@ -1,11 +1,14 @@
 #!/bin/sh
 # overhead.sh - modular overhead of modrt against the hand-written monolith
-# (tools/bench/pendulum_mono.c): instructions per simulated second of each side counted by
-# callgrind inside the run only (--toggle-collect on modrt_ticks or mono_steps: start-up
-# excluded), deterministic; prints one line per scene and method,
+# (tools/bench/pendulum_mono.c, actuated_mono.c): instructions per simulated second of
+# each side counted by callgrind inside the run only (--toggle-collect on modrt_ticks,
+# mono_steps or amono_steps: start-up excluded), deterministic; prints one line per scene
+# and method,
 #   modular overhead <scene> <method>: <modrt / monolith>
 # against the monolith with the dense Schur solve and the same embedded error estimate,
-# then the same against the monolith without the estimate and with the Thomas solve.
+# then the same against the monolith without the estimate and with the Thomas solve;
+# pendulum10_actuated_single with ROS2 last (its monolith with modrt's evaluations, then
+# without the f(t + h, x0) evaluation and with the Thomas solve).
 # Usage: sh tools/bench/overhead.sh build/host/overhead_bench [SECONDS]
 set -eu
 B=$1
@@ -27,3 +30,10 @@ for m in bs3 rk4 dopri5; do
         printf "modular overhead pendulum10 %s: %.2f\n", m, r / d
         printf "  instructions per simulated s: modrt %d, monolith %d (dense, with estimate), %d (no estimate: %.2fx), %d (Thomas: %.2fx)\n", r, d, n, r / n, t, r / t }'
 done
+r=$(count modrt ros2 modrt_ticks)
+d=$(count mono ros2 amono_steps)
+n=$(count mono-noest ros2 amono_steps)
+t=$(count thomas ros2 amono_steps)
+awk -v r=$r -v d=$d -v n=$n -v t=$t 'BEGIN {
+    printf "modular overhead pendulum10_actuated_single ros2: %.2f\n", r / d
+    printf "  instructions per simulated s: modrt %d, monolith %d (dense, as modrt evaluates), %d (no f(t + h, x0): %.2fx), %d (Thomas: %.2fx)\n", r, d, n, r / n, t, r / t }'

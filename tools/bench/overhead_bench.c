@@ -1,28 +1,36 @@
 /* overhead_bench.c - modrt against the hand-written monolith of the same formulation
- * (pendulum_mono.c): the trajectory check, and the runs that tools/bench/overhead.sh
- * counts with callgrind to print the modular overhead (docs/overhead.md).
+ * (pendulum_mono.c, actuated_mono.c): the trajectory checks, and the runs that
+ * tools/bench/overhead.sh counts with callgrind to print the modular overhead
+ * (docs/overhead.md).
  *
  * The modrt side is the library as an application runs it: rt_init, then rt_tick per
- * base tick (scene pendulum10 with its method replaced). The counted functions are
- * modrt_ticks and mono_steps; start-up (init, the first projection) is outside them.
+ * base tick (scene pendulum10 with its method replaced; with METHOD ros2 scene
+ * pendulum10_actuated_single as it is). The counted functions are modrt_ticks and
+ * mono_steps or amono_steps; start-up (init, the first projection) is outside them.
  *
- * Usage: overhead_bench check            both sides, every method, 2 s: the largest
- *                                        position difference must be below CHECK_TOL
- *                                        (exit 1 otherwise)
+ * Usage: overhead_bench check            both sides, every method, 2 s (pendulum10), and
+ *                                        pendulum10_actuated_single over its 10 s: the
+ *                                        largest position difference must be below
+ *                                        CHECK_TOL, ACT_TOL (exit 1 otherwise)
  *        overhead_bench count SIDE METHOD SECONDS
  *                                        SIDE modrt | mono | mono-noest | thomas;
- *                                        METHOD bs3 | rk4 | dopri5 */
+ *                                        METHOD bs3 | rk4 | dopri5 (pendulum10) or ros2
+ *                                        (pendulum10_actuated_single; SIDE mono-noest
+ *                                        there: without the f(t + h, x0) evaluation) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "actuated_mono.h"
 #include "pendulum_mono.h"
 #include "scenes/scenes.h"
 
 #define CHECK_T 2.0     /* simulated time of the trajectory check [s] */
 #define CHECK_TOL 1e-11 /* largest position difference accepted [m]: rounding grows in the
                            chaotic chain, a formulation error gives 1e-3 or more */
+#define ACT_T 10.0      /* pendulum10_actuated_single: the whole scene [s] */
+#define ACT_TOL 1e-9    /* and its bound [m] */
 
 static rt_sim sim;
 
@@ -78,6 +86,83 @@ static void mono_start(mono *m, int i, int solver, int estimate, const rt_scene 
     mono_init(m, x0);
 }
 
+/* ------------------------------------------------------------ pendulum10_actuated_single */
+
+static void act_init(rt_scene *sc, double t_end)
+{
+    *sc = mdl_scene_pendulum10_actuated_single;
+    sc->t_end = (real_t)t_end;
+    if (rt_init(sc, &sim) != RT_OK) {
+        fprintf(stderr, "overhead_bench: init: %s\n", rt_error_text(&sim));
+        exit(1);
+    }
+}
+
+/* the monolith from modrt's initial state: the chain's outputs, the servo's states */
+static void act_start(amono *m, int solver, int ft, const rt_scene *sc)
+{
+    double x0[AMONO_NX];
+    for (uint16_t b = 0; b < MONO_NB; b++)
+        for (uint16_t j = 0; j < 6; j++)
+            x0[6 * b + j] = (double)rt_output(&sim, b, j);
+    int sv = rt_block_index(sc, "Servo");
+    for (int j = 0; j < 2; j++)
+        x0[6 * MONO_NB + j] = (double)sim.state.x[sim.plan.x_off[sv] + j];
+    m->solver = solver, m->ft = ft;
+    m->h = (double)sc->dt;
+    amono_init(m, x0);
+}
+
+/* largest position difference of the chain; the servo's torque difference in *dy */
+static double act_diff(const amono *m, const rt_scene *sc, double *dy)
+{
+    double worst = 0;
+    for (uint16_t b = 0; b < MONO_NB; b++)
+        for (uint16_t j = 0; j < 3; j++) {
+            double d = fabs((double)rt_output(&sim, b, j) - m->x[6 * b + j]);
+            worst = d > worst || d != d ? d : worst;
+        }
+    int sv = rt_block_index(sc, "Servo");
+    *dy = fabs((double)sim.state.x[sim.plan.x_off[sv]] - m->x[6 * MONO_NB]);
+    return worst;
+}
+
+/* both sides over the whole scene; positions compared at 1, 2, 5 and 10 s */
+static int act_check(void)
+{
+    static const double at[] = {1, 2, 5, ACT_T};
+    int bad = 0;
+    /* dense and Thomas with f(t + h, x0); dense without it (the same bits expected) */
+    for (int v = 0; v < 3; v++) {
+        int solver = v == 1 ? MONO_THOMAS : MONO_DENSE, ft = v < 2;
+        const char *name = v == 0 ? "dense" : v == 1 ? "thomas" : "dense-noft";
+        rt_scene sc;
+        static amono m;
+        act_init(&sc, ACT_T);
+        act_start(&m, solver, ft, &sc);
+        long done = 0;
+        double worst = 0;
+        for (int i = 0; i < (int)(sizeof at / sizeof at[0]); i++) {
+            long n = lround(at[i] / (double)sc.dt) - done;
+            modrt_ticks(&sc, &sim, n);
+            amono_steps(&m, n);
+            done += n;
+            double dy, d = act_diff(&m, &sc, &dy);
+            worst = d > worst || d != d ? d : worst;
+            printf("trajectory pendulum10_actuated_single ros2 %s at %g s: largest position "
+                   "difference %.2e m, servo torque %.2e N m\n",
+                   name, at[i], d, dy);
+        }
+        int ok = worst <= ACT_TOL && m.over == 0 && sim.stats.status == RT_OK;
+        bad += !ok;
+        printf("trajectory pendulum10_actuated_single ros2 %s: largest %.2e m (tolerance "
+               "%.0e), %ld Jacobians, largest estimate %.3g, %ld steps above the accuracy "
+               "%s\n", name, worst, ACT_TOL,
+               m.jac_evals, m.err_max, m.over, ok ? "ok" : "FAILED");
+    }
+    return bad;
+}
+
 static int check(void)
 {
     int bad = 0;
@@ -106,6 +191,7 @@ static int check(void)
                    ok ? "ok" : "FAILED");
         }
     }
+    bad += act_check();
     return bad ? 1 : 0;
 }
 
@@ -117,9 +203,22 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: overhead_bench check | count SIDE METHOD SECONDS\n");
         return 2;
     }
-    int i = method_index(argv[3]);
     double secs = atof(argv[4]);
     rt_scene sc;
+    if (strcmp(argv[3], "ros2") == 0) {
+        act_init(&sc, secs);
+        long n = lround(secs / (double)sc.dt);
+        if (strcmp(argv[2], "modrt") == 0) {
+            modrt_ticks(&sc, &sim, n);
+            return sim.stats.status == RT_OK ? 0 : 1;
+        }
+        static amono m;
+        act_start(&m, strcmp(argv[2], "thomas") == 0 ? MONO_THOMAS : MONO_DENSE,
+                  strcmp(argv[2], "mono-noest") != 0, &sc);
+        amono_steps(&m, n);
+        return 0;
+    }
+    int i = method_index(argv[3]);
     rt_set set;
     modrt_init(&sc, &set, i, secs);
     long n = lround(secs / (double)sc.dt);

@@ -1,0 +1,195 @@
+/* actuated_mono.c - the hand-written monolith of scene pendulum10_actuated_single: the
+ * ten-body pendulum of pendulum10 (pendulum_chain.h, shared with pendulum_mono.c) whose
+ * first link a motor turns, driven by a second-order servo (models/actuator.c servo2,
+ * arm_motor) under a sampled computed-torque controller (arm_pd, 1 kHz), all in one set
+ * integrated by ROS2 at the base tick of 1 ms as rt/integ_implicit.c does it:
+ * M = I - gamma h J with J from forward differences at the step's first evaluation
+ * (x_j + sqrt(eps) max(|x_j|, 1), the increment re-measured), refreshed every 1024 steps
+ * and at the first; M factored by Gauss with partial pivoting;
+ *     M k1 = f(t, x0) + gamma (f(t + h, x0) - f(t, x0)),
+ *     M k2 = f(t + h, x0 + h k1) - 2 k1 - gamma (f(t + h, x0) - f(t, x0)),
+ *     x1 = x0 + h (3/2 k1 + 1/2 k2),
+ * the estimate h/2 (k1 + k2) against x0 + h k1 (modrt splits a step above the scene's
+ * accuracy 1e-2; in this scene none is: the monolith counts such steps instead, and the
+ * trajectory check fails if there is one), then the projection of the chain (eq. 10).
+ * Per tick, as rt/sim.c: the controller samples the arm at t (after the previous step's
+ * projection); the servo reads the controller's output, which is the command of the
+ * sample before (arm_pd's computation delay: the output is refreshed after the tick's
+ * steps) and holds over the step. Plain C. */
+#include "actuated_mono.h"
+
+#include <float.h>
+#include <string.h>
+
+#include "pendulum_chain.h"
+
+#define NA AMONO_NX
+#define SERVO NX /* index of the servo's y; its w follows */
+
+/* servo2 defaults: omega [rad/s], zeta, gain */
+static const double OMEGA = 6283.1853071795865, ZETA = 0.7, GAIN = 1;
+/* arm_pd defaults: reference from th0 to th1 over T from t0; PD, inertia, static moment */
+static const double TH0 = -1.57079632679489661923, TH1 = 0, T0 = 0, TR = 6;
+static const double KP = 400, KD = 40, JARM = 10, MG = 98.1;
+static const double GAMMA = 1.70710678118654752440; /* ROS2: 1 + 1/sqrt(2) */
+static const int JAC_EVERY = 1024;
+static const double ACCURACY = 1e-2;
+
+/* ------------------------------------------------------------------ right-hand side */
+
+/* x' of the chain with the motor's force on B1 and of the servo under the held command */
+static void rhs(const amono *m, const double *x, double *xd)
+{
+    chain c;
+    factors f;
+    double lam[NB];
+    /* motor: the servo's torque as the force tau / r^2 (-z, 0, x) on the arm's end B1 */
+    double bx = x[0], bz = x[2], rr = bx * bx + bz * bz;
+    double fm = rr > 0 ? x[SERVO] / rr : 0;
+    double a0x = -fm * bz / MASS, a0z = (MASS * G_Z + fm * bx) / MASS; /* B1's free accel */
+    geometry(x, &c, 1);
+    factor(&c, m->solver, &f);
+    /* W a + gam: link 1 sees e_1 . a_1, link 2 e_2 . (a_2 - a_1), the others none */
+    lam[0] = c.gam[0] + (c.e[0][0] * a0x + c.e[0][2] * a0z);
+    lam[1] = c.gam[1] + (c.e[1][0] * -a0x + c.e[1][2] * (G_Z - a0z));
+    for (int k = 2; k < NB; k++)
+        lam[k] = c.gam[k];
+    solve(&f, m->solver, lam);
+    for (int k = 0; k < NB; k++) {
+        xd[6 * k] = x[6 * k + 3], xd[6 * k + 1] = x[6 * k + 4], xd[6 * k + 2] = x[6 * k + 5];
+        xd[6 * k + 3] = 0, xd[6 * k + 4] = 0, xd[6 * k + 5] = G_Z;
+    }
+    xd[3] = a0x, xd[5] = a0z;
+    apply(&c, lam, xd, 1);
+    /* servo: y' = omega w, w' = omega (k u - y) - 2 zeta omega w */
+    xd[SERVO] = OMEGA * x[SERVO + 1];
+    xd[SERVO + 1] = OMEGA * (GAIN * m->u - x[SERVO]) - 2 * ZETA * OMEGA * x[SERVO + 1];
+}
+
+/* ------------------------------------------------------------------ controller */
+
+/* one sample at t: angle, backward-difference rate, computed torque on the quintic
+   reference (models/actuator.c arm_pd) */
+static void control(amono *m, double t)
+{
+    double th = atan2(m->x[2], m->x[0]);
+    double w = m->started ? (th - m->thp) / m->h : 0;
+    double s = (t - T0) / TR, d = TH1 - TH0;
+    s = s < 0 ? 0 : s > 1 ? 1 : s;
+    double s2 = s * s, s3 = s2 * s;
+    double r0 = TH0 + d * s3 * (10 - 15 * s + 6 * s2);
+    double r1 = d * 30 * s2 * (1 - 2 * s + s2) / TR;
+    double r2 = d * 60 * s * (1 - 3 * s + 2 * s2) / (TR * TR);
+    m->c = JARM * r2 + MG * cos(th) + KP * (r0 - th) + KD * (r1 - w);
+    m->thp = th;
+    m->started = 1;
+}
+
+/* ------------------------------------------------------------------ ROS2 */
+
+/* forward-difference Jacobian at x around fb = f(x); then M = I - h gamma J factored */
+static void jacobian(amono *m, const double *fb)
+{
+    double *x = m->x, fd[NA], sq = sqrt(DBL_EPSILON), hg = m->h * GAMMA;
+    for (int j = 0; j < NA; j++) {
+        double xj = x[j], ax = fabs(xj);
+        x[j] = xj + sq * (ax > 1 ? ax : 1);
+        double d = x[j] - xj;
+        rhs(m, x, fd);
+        x[j] = xj;
+        for (int i = 0; i < NA; i++)
+            m->jac[i * NA + j] = (fd[i] - fb[i]) / d;
+    }
+    double *a = m->lu;
+    for (int i = 0; i < NA; i++)
+        for (int j = 0; j < NA; j++)
+            a[i * NA + j] = (i == j ? 1 : 0) - hg * m->jac[i * NA + j];
+    for (int k = 0; k < NA; k++) {
+        int p = k;
+        for (int i = k + 1; i < NA; i++)
+            if (fabs(a[i * NA + k]) > fabs(a[p * NA + k]))
+                p = i;
+        m->piv[k] = p;
+        if (p != k)
+            for (int j = 0; j < NA; j++) {
+                double t = a[k * NA + j];
+                a[k * NA + j] = a[p * NA + j], a[p * NA + j] = t;
+            }
+        for (int i = k + 1; i < NA; i++) {
+            double l = a[i * NA + k] /= a[k * NA + k];
+            for (int j = k + 1; j < NA; j++)
+                a[i * NA + j] -= l * a[k * NA + j];
+        }
+    }
+    m->age = 0, m->valid = 1;
+    m->jac_evals++;
+}
+
+static void msolve(const amono *m, double *b)
+{
+    const double *a = m->lu;
+    for (int k = 0; k < NA; k++) {
+        double t = b[m->piv[k]];
+        b[m->piv[k]] = b[k], b[k] = t;
+    }
+    for (int i = 1; i < NA; i++)
+        for (int j = 0; j < i; j++)
+            b[i] -= a[i * NA + j] * b[j];
+    for (int i = NA - 1; i >= 0; i--) {
+        for (int j = i + 1; j < NA; j++)
+            b[i] -= a[i * NA + j] * b[j];
+        b[i] /= a[i * NA + i];
+    }
+}
+
+/* one ROS2 step of h, then the chain's projection */
+static void step(amono *m)
+{
+    double *x = m->x, x0[NA], k1[NA], k2[NA], ft[NA], h = m->h;
+    memcpy(x0, x, sizeof x0);
+    rhs(m, x, k1);
+    if (!m->valid || m->age >= JAC_EVERY)
+        jacobian(m, k1);
+    if (m->ft) {
+        rhs(m, x, ft); /* f(t + h, x0): the model does not read t */
+        for (int i = 0; i < NA; i++)
+            ft[i] = GAMMA * (ft[i] - k1[i]), k1[i] += ft[i];
+    }
+    msolve(m, k1);
+    for (int i = 0; i < NA; i++)
+        x[i] = x0[i] + h * k1[i];
+    rhs(m, x, k2);
+    for (int i = 0; i < NA; i++)
+        k2[i] -= 2 * k1[i] + (m->ft ? ft[i] : 0);
+    msolve(m, k2);
+    double err = 0;
+    for (int i = 0; i < NA; i++) {
+        x[i] = x0[i] + h * (1.5 * k1[i] + 0.5 * k2[i]);
+        double r = fabs(h * 0.5 * (k1[i] + k2[i])) / (1 + fabs(x[i]));
+        err = r > err ? r : err;
+    }
+    m->age++;
+    m->err_max = err > m->err_max ? err : m->err_max;
+    m->over += !(err <= ACCURACY);
+    project(x, m->solver);
+}
+
+/* ------------------------------------------------------------------ API */
+
+void amono_init(amono *m, const double *x0)
+{
+    memcpy(m->x, x0, sizeof m->x);
+    project(m->x, m->solver);
+    m->tick = 0, m->u = 0, m->c = 0, m->thp = TH0, m->started = 0;
+    m->age = 0, m->valid = 0, m->jac_evals = 0, m->over = 0, m->err_max = 0;
+}
+
+__attribute__((noinline)) void amono_steps(amono *m, long n)
+{
+    for (long i = 0; i < n; i++) {
+        m->u = m->c; /* the output held over this step: the previous sample's command */
+        control(m, (double)m->tick * m->h);
+        step(m);
+        m->tick++;
+    }
+}
