@@ -60,7 +60,7 @@ def decades(lo, hi):
 
 
 def plot(path, title, xlabel, ylabel, series, stars=(), band=None, top=None,
-         xrange=None, yrange=None, note=None, w=900, h=620):
+         xrange=None, yrange=None, note=None, w=960, h=620):
     """series: [{name, color, marker, dash, pts: [(x, y, label)]}]; stars: [(x, y, name)];
     band: (y_top, text) shaded from the bottom up to y_top; top: (factor, label) for a
     second x axis; ranges: (lo, hi) or None for automatic (whole decades)."""
@@ -76,7 +76,7 @@ def plot(path, title, xlabel, ylabel, series, stars=(), band=None, top=None,
         x1 = x0 * 10
     if y1 <= y0 * 1.0001:
         y1 = y0 * 10
-    ml, mr, mt, mb = 90, 250, 70 if top else 45, 65
+    ml, mr, mt, mb = 90, 300, 70 if top else 45, 65
     pw, ph = w - ml - mr, h - mt - mb
     lx0, lx1, ly0, ly1 = map(math.log10, (x0, x1, y0, y1))
 
@@ -150,9 +150,10 @@ def plot(path, title, xlabel, ylabel, series, stars=(), band=None, top=None,
     for x, y, name in stars:
         o.append(marker("*", X(x), Y(max(y, y0)), "#ffd700", r=11))
     o.append('</g>')
-    for x, y, name in stars:
+    for k, (x, y, name) in enumerate(stars):  # labels alternately above and below
+        dy = -8 if k % 2 == 0 else 18
         o.append('<text x="%.1f" y="%.1f" font-size="11" font-weight="bold">%s</text>'
-                 % (X(x) + 12, Y(max(y, y0)) - 8, esc(name)))
+                 % (X(x) + 12, Y(max(y, y0)) + dy, esc(name)))
     # legend
     lx, ly = ml + pw + 15, mt + 8
     for s in series:
