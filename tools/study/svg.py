@@ -146,7 +146,7 @@ def plot(path, title, xlabel, ylabel, series, stars=(), band=None, top=None,
         for p in pts:
             below = p[1] < y0
             o.append(marker(s["marker"], X(p[0]), Y(max(p[1], y0)), s["color"],
-                            filled=not s.get("dash") and not below))
+                            filled=not below))
     for x, y, name in stars:
         o.append(marker("*", X(x), Y(max(y, y0)), "#ffd700", r=11))
     o.append('</g>')
@@ -160,7 +160,7 @@ def plot(path, title, xlabel, ylabel, series, stars=(), band=None, top=None,
         o.append('<line x1="%d" y1="%d" x2="%d" y2="%d" stroke="%s" stroke-width="1.5"%s/>'
                  % (lx, ly, lx + 24, ly, s["color"],
                     ' stroke-dasharray="6,3"' if s.get("dash") else ""))
-        o.append(marker(s["marker"], lx + 12, ly, s["color"], filled=not s.get("dash")))
+        o.append(marker(s["marker"], lx + 12, ly, s["color"]))
         o.append('<text x="%d" y="%d" font-size="11">%s</text>' % (lx + 30, ly + 4,
                                                                    esc(s["name"])))
         ly += 17
