@@ -981,10 +981,9 @@ def main():
                 print("study: " + headline(ex, tol))
     for t in bad:
         print("study: FAILED: " + t)
-    print("study: %s mode, %d configurations, %d checks passed, %d failed, %.0f s; %s" % (
-        a.mode, len(futs), len(all_checks) - len(bad), len(bad), elapsed,
-        "wrote docs/study.md and docs/study/*.svg" if not quick else
-        "figures in " + out_dir))
+    print("study: %s mode, %d configurations, %.0f s, %s; checks: %d passed, %d failed" % (
+        a.mode, len(futs), elapsed, "wrote docs/study.md and docs/study/*.svg" if not quick
+        else "figures in " + out_dir, len(all_checks) - len(bad), len(bad)))
     return 1 if bad and quick else 0
 
 
