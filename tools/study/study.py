@@ -237,6 +237,7 @@ def plan_beltgear(quick):
     # the reference: tools/study/beltgear_ref.py; a fine run of modrt is compared with it
     ex.ref_fn = beltgear_refs
     ex.refs.append(("dopri5", 1e-6))
+    ex.note = beltgear_note
     ms = 1e-3
     if quick:
         explicit_sweep(ex, sc, [("rk4", [0.2 * ms, 0.1 * ms, 0.05 * ms])], order=False)
@@ -964,12 +965,12 @@ def main():
     for ex in exs:
         all_checks += checks(ex, quick)
     elapsed = time.time() - started
-    with open(B + "/results.json", "w") as f:
+    out_dir = (B + "/quick") if quick else "docs/study"
+    os.makedirs(out_dir, exist_ok=True)
+    with open((out_dir if quick else B) + "/results.json", "w") as f:
         json.dump([{"key": ex.key, "ref_err": ex.ref_err, "cfgs": [
             {k: v for k, v in c.items() if k != "text"} for c in ex.cfgs]} for ex in exs],
             f, indent=1, default=str)
-    out_dir = (B + "/quick") if quick else "docs/study"
-    os.makedirs(out_dir, exist_ok=True)
     for ex in exs:
         for key in (["host", "m7"] if quick else ["host", "m7", "m4f"]):
             fig(ex, key, out_dir)
