@@ -825,12 +825,12 @@ def machine():
                                            + os.uname().machine, rev)
 
 
-def write_doc(exs, out_dir, started, elapsed, all_checks, jobs):
+def write_doc(exs, out_dir, started, elapsed, all_checks, jobs, where):
     o = ["# What accuracy costs in time",
          "",
          "Written by `make study` (tools/study/study.py); do not edit by hand. Made %s UTC on "
          "%s, in %.0f s with %d jobs." % (time.strftime("%Y-%m-%d %H:%M", time.gmtime(started)),
-                                        machine(), elapsed, jobs),
+                                        where, elapsed, jobs),
          "",
          "For each of the four paper examples: the error against an independent reference "
          "versus the cost, over every applicable method and a range of steps, projection on, "
@@ -909,6 +909,7 @@ def main():
     a = ap.parse_args()
     quick = a.mode == "quick"
     started = time.time()
+    where = machine()  # before the run rewrites the committed figures (git describe --dirty)
     plans = [plan_pendulum10, plan_actuated, plan_beltgear, plan_lane_change]
     if quick:
         plans = [plan_pendulum10, plan_beltgear]
@@ -974,7 +975,7 @@ def main():
     for ex in exs:
         for key in (["host", "m7"] if quick else ["host", "m7", "m4f"]):
             fig(ex, key, out_dir)
-    write_doc(exs, out_dir, started, elapsed, all_checks, a.jobs)
+    write_doc(exs, out_dir, started, elapsed, all_checks, a.jobs, where)
     bad = [t for good, t in all_checks if not good]
     for ex in exs:
         for tol in (1e-3, 1e-6):
