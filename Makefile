@@ -86,6 +86,8 @@ help:
 	@echo "                  $(CROSS_TARGETS))"
 	@echo "make footprint    flash, RAM and instructions per tick of every scene on every target"
 	@echo "make effects      what each effect of the lane change costs (M7 and host; a few minutes)"
+	@echo "make study        what accuracy costs: docs/study.md and docs/study/*.svg, the four"
+	@echo "                  paper examples on the host, Cortex-M4F and M7 (STUDY=quick: a subset)"
 	@echo "make image TARGET=<t> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
 	@echo "                  a firmware image of one scene (docs/porting.md)"
 	@echo "make fuzz         the scene-language fuzzer for $(FUZZ_TIME) s"
@@ -410,3 +412,4 @@ include tests/link/link.mk
 include tests/hard/hard.mk
 include tests/static/static.mk
 include tests/vehicles/vehicles.mk
+include tools/study/study.mk
