@@ -163,8 +163,9 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
     a->event_iter_max = umax(a->event_iter_max, b->event_iter_max);
     a->loop_iter_max = umax(a->loop_iter_max, b->loop_iter_max);
     a->loop_residual = b->loop_residual > a->loop_residual ? b->loop_residual : a->loop_residual;
-    for (size_t i = 0; i < sizeof a->loop_hist / sizeof a->loop_hist[0]; i++)
-        a->loop_hist[i] += b->loop_hist[i], b->loop_hist[i] = 0; /* per-scene length */
+    /* the histogram's own size: a per-scene build without loops keeps one bin */
+    for (int i = 0; i < RT_MAX_LOOP_HIST; i++)
+        a->loop_hist[i] += b->loop_hist[i], b->loop_hist[i] = 0;
 }
 
 /* ------------------------------------------------------------------ the step */

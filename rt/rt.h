@@ -626,6 +626,7 @@ typedef struct rt_work {
     real_t xb[RT_MAX_EVENT_X];           /* state at the right end of an event bracket */
     real_t xs[RT_MAX_X];             /* saved state for event location */
     real_t rs[RT_MAX_ROOTS];         /* root values scratch */
+    real_t y_held[RT_MAX_Y];         /* a multi-tick set's outputs during its step (sim.c) */
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];
     rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
@@ -667,7 +668,9 @@ const char *rt_error_text(const rt_sim *sim);
 rt_status rt_tick(const rt_scene *scene, rt_sim *sim);
 /* Time of the current state [s]. */
 real_t rt_time(const rt_scene *scene, const rt_sim *sim);
-/* Re-evaluates all outputs at the current state (after changing parameters). */
+/* Re-evaluates the outputs and root values of every set whose state belongs to the current
+ * tick (all sets at t = 0; between its steps a set's outputs are held): call it after
+ * changing parameters or initial states before the run. */
 rt_status rt_refresh(const rt_scene *scene, rt_sim *sim);
 
 /* Recording: fills the nrecs recorded values at the current state and folds them into

@@ -10,13 +10,25 @@ real_t rt_time(const rt_scene *sc, const rt_sim *sim)
     return (real_t)sim->state.tick * sc->dt;
 }
 
-/* the first block whose outputs are not finite, or -1 */
+/* do set s's outputs belong to the current tick: it has just stepped to it (each tick
+   for a set of ratio 1), its background step was published at it (rt/bg.c), or the run
+   is at its start? Between those ticks the outputs are held (docs/multirate.md) */
+static int fresh(const rt_sim *sim, uint8_t s)
+{
+    return sim->state.set_tick[s] == sim->state.tick;
+}
+
+/* the first block of a set with new outputs whose outputs are not finite, or -1 (held
+   outputs were checked when they were new) */
 static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++)
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        if (!fresh(sim, sc->blocks[b].set))
+            continue;
         for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
             if (!rt_isfinite(sim->state.y[j]))
                 return b;
+    }
     return -1;
 }
 
@@ -26,14 +38,26 @@ static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
     real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
     rti_mode mode = sim->state.set_tick[s] == sim->state.tick ? RTI_AT_TICK : RTI_IN_STEP;
     rti_outputs(sc, sim, (rti_at){ts, s, mode});
-    rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
+    if (sim->plan.set_r[s + 1] > sim->plan.set_r[s])
+        rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
 }
 
-/* a background set's outputs change only when its step is published (rt/bg.c), except
-   at the start */
+/* a set's outputs are computed when its state reaches the tick and held until its next
+   step; a background set's change only when its step is published (rt/bg.c). Both are
+   computed at the start */
 static int refreshed(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
-    return !sc->sets[s].background || sim->state.tick == 0;
+    return sim->state.tick == 0 || (!sc->sets[s].background && fresh(sim, s));
+}
+
+/* copies the outputs of set s's blocks from one output vector to another */
+static void copy_outputs(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *from,
+                         real_t *to)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        if (sc->blocks[b].set == s)
+            for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
+                to[j] = from[j];
 }
 
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
@@ -104,6 +128,11 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
         uint32_t ratio = sc->sets[s].ratio;
         if (sim->state.tick % ratio != 0 || sc->sets[s].background)
             continue;
+        /* a set stepping over several ticks shows its outputs at this tick until its
+           state reaches the next one: the step's evaluations (at its stages and its end,
+           ahead of the tick) overwrite them, so they are kept aside */
+        if (ratio > 1)
+            copy_outputs(sc, sim, s, sim->state.y, sim->work.y_held);
         rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
         sim->state.set_tick[s] = sim->state.tick + ratio;
         if (sim->plan.set_xout[s]) {
@@ -111,11 +140,14 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
             rti_outputs(sc, sim, (rti_at){ts, s, RTI_IN_STEP});
             rti_xset_push(sc, sim, s, ts);
         }
+        if (ratio > 1)
+            copy_outputs(sc, sim, s, sim->work.y_held, sim->state.y);
     }
     sim->state.tick++;
     /* the background step due at the new time: before the other sets read its history */
     if (sc->bg)
         sc->bg->publish(sc, sim);
+    /* only the sets whose state reached the new tick are evaluated (and checked) */
     rt_refresh(sc, sim);
     int bad = nonfinite_output(sc, sim);
     if (bad >= 0)

@@ -1,6 +1,8 @@
 /* test_sim.c - tests of rt/sim.c, rt/lss.c and rt/util.c: integer time, deterministic
  * hashes, parameter setting, LSS against its closed form, NaN containment, and the
  * X-macro lists. */
+#include <string.h>
+
 #include "models.h"
 #include "scenes/scenes.h"
 #include "testutil.h"
@@ -180,6 +182,98 @@ static void test_reinit_replay(void)
         }
 }
 
+/* a multirate scene for the held outputs: a slow set (5 ticks) with a source, a lag of
+   it and a gain with throughput of the fast set's rotor; the fast set (1 tick) drives
+   its rotor by the lag. Every cross-set input reads the history (Hermite in the fast
+   set), so only recording sees the slow set's live outputs between its steps */
+enum { H_SRC, H_LAG, H_G, H_ROT, H_RATIO = 5 };
+static const real_t h_sine_p[] = {1, 7, (real_t)0.3, 0};
+static const real_t h_gain_p[] = {(real_t)0.5};
+static const rt_conn h_cn[] = {{H_SRC, 0, H_LAG, 0}, {H_ROT, 1, H_G, 0}, {H_LAG, 0, H_ROT, 0}};
+static const rt_block h_bl[] = {
+    [H_SRC] = {.name = "Src", .kind = &mdl_sine_kind, .p = h_sine_p, .set = 0},
+    [H_LAG] = {.name = "Lag", .kind = &mdl_pt1_kind, .set = 0},
+    [H_G] = {.name = "G", .kind = &mdl_gain_kind, .p = h_gain_p, .set = 0},
+    [H_ROT] = {.name = "Rot", .kind = &mdl_rotor_kind, .set = 1},
+};
+static const rt_set h_sets[] = {
+    {.name = "slow", .method = &rt_rk4, .ratio = H_RATIO},
+    {.name = "fast", .method = &rt_rk4, .ratio = 1, .interp = RT_INTERP_HERMITE},
+};
+static const rt_scene h_sc = {.name = "held", .dt = (real_t)1e-3, .t_end = (real_t)0.2,
+                              .blocks = h_bl, .nblocks = 4, .conns = h_cn, .nconns = 3,
+                              .sets = h_sets, .nsets = 2};
+static rt_sim h_fresh; /* a copy of tu_sim whose outputs are evaluated anew */
+
+/* the slow set's outputs, offset and count */
+static uint16_t slow_y0(void) { return tu_sim.plan.y_off[H_SRC]; }
+static uint16_t slow_ny(void) { return (uint16_t)(tu_sim.plan.y_off[H_G + 1] - slow_y0()); }
+
+/* a slow set's outputs are computed when it steps and held until its next step: between
+   its steps the trace repeats the value at its last step instant, and that value equals
+   the outputs evaluated afresh (from its state, with every output poisoned first) there */
+static void test_held_outputs(void)
+{
+    if (!tu_init(&h_sc))
+        return;
+    TH_CHECK(tu_sim.plan.y_off[H_G + 1] == tu_sim.plan.y_off[H_ROT]); /* slow set first */
+    real_t held[8];
+    for (uint16_t j = 0; j < slow_ny(); j++)
+        held[j] = tu_sim.state.y[slow_y0() + j]; /* the outputs at t = 0 */
+    int fresh_ok = 1, held_ok = 1, src_ok = 1, steps = 0;
+    for (rt_status st = RT_OK; st == RT_OK;) {
+        st = rt_tick(&h_sc, &tu_sim);
+        const real_t *y = tu_sim.state.y + slow_y0();
+        if (tu_sim.state.tick % H_RATIO == 0) {
+            h_fresh = tu_sim;
+            for (uint16_t j = 0; j < RT_MAX_Y; j++)
+                h_fresh.state.y[j] = (real_t)0 / (real_t)0;
+            rt_refresh(&h_sc, &h_fresh);
+            for (uint16_t j = 0; j < slow_ny(); j++) {
+                held[j] = y[j];
+                fresh_ok &= memcmp(&h_fresh.state.y[slow_y0() + j], &y[j], sizeof y[j]) == 0;
+            }
+            /* the source at the step instant, by its formula */
+            real_t t = rt_time(&h_sc, &tu_sim);
+            src_ok &= y[0] == h_sine_p[0] * rt_sin(h_sine_p[1] * t + h_sine_p[2]) + h_sine_p[3];
+            steps++;
+        } else {
+            for (uint16_t j = 0; j < slow_ny(); j++)
+                held_ok &= memcmp(&held[j], &y[j], sizeof y[j]) == 0;
+        }
+    }
+    TH_CHECK(steps == 200 / H_RATIO);
+    TH_CHECK(fresh_ok);
+    TH_CHECK(held_ok);
+    TH_CHECK(src_ok);
+    TH_CHECK(tu_sim.stats.status == RT_OK);
+}
+
+/* the fast set never reads the slow set's live outputs between its steps: poisoning them
+   after every tick that did not end a slow step leaves the fast set's trace bit for bit */
+static uint64_t fast_trace(int poison)
+{
+    if (!tu_init(&h_sc))
+        return 0;
+    uint64_t h = 0;
+    for (rt_status st = RT_OK; st == RT_OK;) {
+        st = rt_tick(&h_sc, &tu_sim);
+        const real_t *y = tu_sim.state.y + tu_sim.plan.y_off[H_ROT];
+        for (uint16_t j = 0; j < 2; j++)
+            h = rt_hash_real(h, y[j]);
+        if (poison && tu_sim.state.tick % H_RATIO != 0)
+            for (uint16_t j = 0; j < slow_ny(); j++)
+                tu_sim.state.y[slow_y0() + j] = (real_t)0 / (real_t)0;
+    }
+    TH_CHECK(tu_sim.stats.count[RT_CNT_NAN] == 0);
+    return h;
+}
+
+static void test_fast_reads_history(void)
+{
+    TH_EQ_U64(fast_trace(1), fast_trace(0));
+}
+
 const th_test th_sim_tests[] = {
     {"sim_reinit_replay", test_reinit_replay},
     {"sim_hash_determinism", test_hash_determinism},
@@ -188,5 +282,7 @@ const th_test th_sim_tests[] = {
     {"sim_lss", test_lss},
     {"sim_nan_contained", test_nan_contained},
     {"sim_lists", test_lists},
+    {"sim_held_outputs", test_held_outputs},
+    {"sim_fast_reads_history", test_fast_reads_history},
     {0, 0},
 };
