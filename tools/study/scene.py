@@ -77,8 +77,11 @@ class Scene:
             if re.match(r"set\s*\(", s):
                 name = re.match(r"set\s*\(\s*(\w+)\s*\)", s).group(1)
                 rest = s[re.match(r"set\s*\(\s*\w+\s*\)", s).end():]
-                clauses = re.findall(r"(\w+)\s*\(([^)]*)\)", rest)
-                self.sets.append((name, [(k, v.strip()) for k, v in clauses]))
+                clauses = [(k, v.strip()) for k, v in re.findall(r"(\w+)\s*\(([^)]*)\)", rest)]
+                # the one clause without an argument: the set steps in the background
+                if re.search(r"\bbackground\b", re.sub(r"\([^)]*\)", "", rest)):
+                    clauses.append(("background", None))
+                self.sets.append((name, clauses))
         if not self.sets:  # the language's default: one set main, rk4 at the base tick
             self.sets = [("main", [("method", "rk4"), ("step", "1 tick")])]
         self.name = re.search(r"scene\s*\(\s*(\w+)\s*\)", "\n".join(self.stmts))
@@ -127,7 +130,7 @@ def _set_stmt(name, clauses, tick, members=True):
             continue
         if k == "step":
             v = "%d ticks" % _ticks(v, tick)
-        out.append("%s (%s)" % (k, v))
+        out.append(k if v is None else "%s (%s)" % (k, v))
     return " ".join(out)
 
 
