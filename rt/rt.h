@@ -626,7 +626,7 @@ typedef struct rt_work {
     real_t xb[RT_MAX_EVENT_X];           /* state at the right end of an event bracket */
     real_t xs[RT_MAX_X];             /* saved state for event location */
     real_t rs[RT_MAX_ROOTS];         /* root values scratch */
-    real_t y_held[RT_MAX_Y];         /* a multi-tick set's outputs during its step (sim.c) */
+    real_t y_held[RT_MAX_HELD_Y];    /* a multi-tick set's outputs during its step (sim.c) */
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];
     rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
@@ -759,6 +759,7 @@ typedef struct rt_sizes {
     uint16_t mbs_qt;       /* ... coordinates with a q-dependent K or a kinb */
     uint16_t mbs_bz;       /* velocities of the largest multibody block */
     uint16_t hist_y;       /* highest output index read by another set, plus one */
+    uint16_t held_y;       /* highest output index of a multi-tick set, plus one */
     uint16_t event_x;      /* states of the largest set with roots */
     uint16_t seq;          /* entries of the evaluation sequence */
     uint16_t loop_hist;    /* the loops' iteration bound plus one (0 without loops) */

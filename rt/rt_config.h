@@ -99,6 +99,12 @@ typedef double real_t;
 #define RT_MAX_HIST_Y RT_MAX_Y
 #endif
 
+#ifndef RT_MAX_HELD_Y
+/* outputs kept aside while a set stepping over several ticks steps (rt/sim.c): the highest
+   output index of such a set, plus one (a scene without one needs 1) */
+#define RT_MAX_HELD_Y RT_MAX_Y
+#endif
+
 /* ---- state events (rt/step.c) ---- */
 #ifndef RT_MAX_EVENT_X
 /* states of the largest set with root functions: event location keeps the state at the

@@ -98,6 +98,8 @@ typedef struct rti_rhs_ctx {
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
 /* Pushes set s's outputs read by other sets, at time t, into their history. */
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
+/* the highest output index of a set stepping over several ticks, plus one (rt/sim.c) */
+uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim);
 /* Output v of set q reconstructed at time t by the scheme. */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
 

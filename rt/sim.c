@@ -60,6 +60,19 @@ static void copy_outputs(const rt_scene *sc, const rt_sim *sim, uint8_t s, const
                 to[j] = from[j];
 }
 
+/* the highest output index of a set the tick steps over several ticks (not in the
+   background), plus one: what y_held must hold (RT_MAX_HELD_Y) */
+uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim)
+{
+    uint16_t top = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_set *st = &sc->sets[sc->blocks[b].set];
+        if (st->ratio > 1 && !st->background && sim->plan.y_off[b + 1] > top)
+            top = sim->plan.y_off[b + 1];
+    }
+    return top;
+}
+
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
     for (uint8_t i = 0; i < sc->nsets; i++)
