@@ -204,11 +204,12 @@ typedef struct rt_rhs {
 typedef struct rt_implicit_ws {
     real_t lu[RT_MAX_IMPLICIT_N * RT_MAX_IMPLICIT_N]; /* LU factors, row-major */
     real_t jac[RT_MAX_IMPLICIT_N * RT_MAX_IMPLICIT_N];/* last Jacobian df/dx */
-    uint16_t piv[RT_MAX_IMPLICIT_N];                  /* row pivots of lu */
     real_t xs[RT_MAX_IMPLICIT_N];   /* the step's start, kept across its retries */
     real_t best[RT_MAX_IMPLICIT_N]; /* the retries' result with the smallest residual */
     real_t h_factored;        /* step (times method constant) lu belongs to */
     uint32_t age;             /* steps since the Jacobian was refreshed */
+    /* the narrow members last, so that no padding sits between wide ones */
+    uint16_t piv[RT_MAX_IMPLICIT_N];                  /* row pivots of lu */
     uint8_t valid;            /* lu holds a usable factorization */
 } rt_implicit_ws;
 
@@ -577,18 +578,19 @@ typedef struct rt_state {
     real_t r[RT_MAX_ROOTS];          /* root values at the end of the last step */
     real_t torn_val[RT_MAX_TORN];    /* torn inputs' values (warm start of the next solve) */
     real_t loop_h[RT_MAX_TORN * RT_MAX_TORN]; /* inverse Jacobians, Broyden-updated */
-    uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
     real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
-    uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
     real_t hist_y[RT_HIST][RT_MAX_HIST_Y];/* cross-set outputs at those times */
     rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
     /* the background set's step in flight (rt/bg.c): released at tick bg_due - ratio,
        published at tick bg_due; bg_new holds its result (x slice, then the outputs of its
        blocks) until then when it ran inline (no background context attached) */
-    uint8_t bg_busy;                 /* 1: a step is released and not yet published */
     uint64_t bg_due;                 /* tick its result is due */
     real_t bg_new[RT_MAX_BG];        /* inline result, published at bg_due */
     uint64_t hash;                   /* FNV-1a over recorded values */
+    /* the byte-wide members last, together: no padding after each (RAM of small targets) */
+    uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
+    uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
+    uint8_t bg_busy;                 /* 1: a step is released and not yet published */
 } rt_state;
 
 /* What a run has met: fault counters, the first fault, high-water marks and monitors.
