@@ -82,7 +82,7 @@ uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim)
 
 /* the set's result between rt_state arrays and a packed buffer: dir 0 packs x and y
    into buf, 1 unpacks buf into them, 2 swaps the two */
-static void move_result(const rt_scene *sc, const rt_sim *sim, uint8_t s, real_t *x,
+static void move_result(const rt_sim *sim, uint8_t s, real_t *x,
                         real_t *y, real_t *buf, int dir)
 {
     uint32_t n = 0;
@@ -91,9 +91,8 @@ static void move_result(const rt_scene *sc, const rt_sim *sim, uint8_t s, real_t
         x[i] = dir ? buf[n] : v;
         buf[n] = dir == 1 ? buf[n] : v;
     }
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (sc->blocks[b].set != s)
-            continue;
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
         for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++, n++) {
             real_t v = y[j];
             y[j] = dir ? buf[n] : v;
@@ -120,9 +119,8 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         bg->state.hist_n[q] = sim->state.hist_n[q];
         copy_reals(bg->state.hist_t[q], sim->state.hist_t[q], RT_HIST);
     }
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (sc->blocks[b].set != s)
-            continue;
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
         copy_reals(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
                    (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b]));
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
@@ -189,9 +187,9 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
     sim->state.bg_busy = 1;
     sim->state.bg_due = sim->state.set_tick[s] + sc->sets[s].ratio;
     if (!sim->bg) {
-        move_result(sc, sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 0);
+        move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 0);
         run_step(sc, sim, s);
-        move_result(sc, sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 2);
+        move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 2);
         return;
     }
     copy_inputs(sc, sim, sim->bg, s);
@@ -204,10 +202,10 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
     rt_sim *bg = sim->bg;
     if (bg) {
-        move_result(sc, bg, s, bg->state.x, bg->state.y, sim->state.bg_new, 0);
+        move_result(bg, s, bg->state.x, bg->state.y, sim->state.bg_new, 0);
         merge_stats(sim, bg, s);
     }
-    move_result(sc, sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
+    move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
     sim->state.set_tick[s] = sim->state.bg_due;
     sim->state.bg_busy = 0;
     if (sim->plan.set_xout[s])

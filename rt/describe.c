@@ -146,7 +146,7 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
         z->mbs_c = m->nc[s] > z->mbs_c ? m->nc[s] : z->mbs_c;
     }
     z->hist_y = z->event_x = 0;
-    for (uint16_t v = 0; v < z->y; v++)
+    for (uint16_t v = 0; v < z->y && v < RT_MAX_HIST_Y; v++)
         if (sim->plan.xsrc[v])
             z->hist_y = (uint16_t)(v + 1);
     z->held_y = rti_held_top(sc, sim);

@@ -62,13 +62,14 @@ void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end
         call_output(sc, sim, sim->plan.seq[s].index, at);
 }
 
-/* is block b evaluated in the pass under way (its set, or every set; in a right-hand
-   side only if its set reads its outputs)? */
-static int in_pass(const rt_scene *sc, const rt_sim *sim, rti_at at, uint16_t b)
+/* the set of sequence entry s: its block's, or for a loop its first block's (a loop lies
+   in one set: cross-set edges are no algebraic dependency) */
+static uint8_t entry_set(const rt_scene *sc, const rt_sim *sim, uint16_t s)
 {
-    if (at.mode == RTI_IN_RHS && sim->plan.rhs_skip[b])
-        return 0;
-    return at.set == RT_ALL_SETS || sc->blocks[b].set == at.set;
+    const rt_seq_step *st = &sim->plan.seq[s];
+    uint16_t b = st->kind == RT_SEQ_CALL ? st->index
+                                         : sim->plan.loop_blocks[sim->plan.loops[st->index].first];
+    return sc->blocks[b].set;
 }
 
 /* the block whose outputs hold global output index v */
@@ -80,8 +81,30 @@ static uint16_t writer(const rt_scene *sc, const rt_sim *sim, uint16_t v)
     return b;
 }
 
-rt_status rti_rhs_plan(const rt_scene *sc, rt_sim *sim)
+/* each set's entries of the sequence, in sequence order, and its blocks, in block order */
+static void set_lists(const rt_scene *sc, rt_sim *sim)
 {
+    uint16_t ne = 0, nb = 0;
+    for (uint8_t set = 0; set < sc->nsets; set++) {
+        sim->plan.seq_of[set] = ne;
+        for (uint16_t s = 0; s < sim->plan.nseq; s++) {
+            if (entry_set(sc, sim, s) == set)
+                sim->plan.set_seq[ne++] = s;
+            if (sim->plan.seq[s].kind == RT_SEQ_LOOP) /* its calls follow: the loop's own */
+                s = (uint16_t)(sim->plan.loops[sim->plan.seq[s].index].seq1 - 1);
+        }
+        sim->plan.blk_of[set] = nb;
+        for (uint16_t b = 0; b < sc->nblocks; b++)
+            if (sc->blocks[b].set == set)
+                sim->plan.set_blk[nb++] = b;
+    }
+    sim->plan.seq_of[sc->nsets] = ne;
+    sim->plan.blk_of[sc->nsets] = nb;
+}
+
+rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
+{
+    set_lists(sc, sim);
     for (uint16_t b = 0; b < sc->nblocks; b++)
         sim->plan.rhs_skip[b] = 1;
     /* a live read (RT_SRC_Y) from the reader's own set keeps the writer; cross-set inputs
@@ -94,33 +117,63 @@ rt_status rti_rhs_plan(const rt_scene *sc, rt_sim *sim)
             if (sc->blocks[wb].set == sc->blocks[b].set)
                 sim->plan.rhs_skip[wb] = 0;
         }
+    for (uint8_t set = 0; set < sc->nsets; set++) {
+        sim->plan.rhs_calls[set] = 0;
+        for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++) {
+            const rt_seq_step *st = &sim->plan.seq[sim->plan.set_seq[i]];
+            if (st->kind == RT_SEQ_LOOP || !sim->plan.rhs_skip[st->index])
+                sim->plan.rhs_calls[set]++;
+        }
+    }
     return RT_OK;
+}
+
+/* an actual loop: its solver runs the loop's segment until the torn inputs agree */
+static void solve_loop(const rt_scene *sc, rt_sim *sim, const rt_seq_step *st, rti_at at)
+{
+    sc->loop_solver->solve(sc, sim, (uint8_t)st->index, at.t, (int)at.mode);
+}
+
+/* the entries of one set (plan.set_seq); in a right-hand side only the blocks whose
+   outputs the set reads live */
+static void set_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
+{
+    const uint8_t *skip = at.mode == RTI_IN_RHS ? sim->plan.rhs_skip : 0;
+    if (skip && sim->plan.rhs_calls[at.set] == 0)
+        return;
+    for (uint16_t i = sim->plan.seq_of[at.set]; i < sim->plan.seq_of[at.set + 1]; i++) {
+        const rt_seq_step *st = &sim->plan.seq[sim->plan.set_seq[i]];
+        if (st->kind == RT_SEQ_LOOP)
+            solve_loop(sc, sim, st, at);
+        else if (!skip || !skip[st->index])
+            call_output(sc, sim, st->index, at);
+    }
 }
 
 void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
 {
+    if (at.set != RT_ALL_SETS) {
+        set_outputs(sc, sim, at);
+        return;
+    }
     for (uint16_t s = 0; s < sim->plan.nseq; s++) {
         const rt_seq_step *st = &sim->plan.seq[s];
         if (st->kind == RT_SEQ_CALL) {
-            if (in_pass(sc, sim, at, st->index))
-                call_output(sc, sim, st->index, at);
+            call_output(sc, sim, st->index, at);
             continue;
         }
-        /* an actual loop (all in one set: cross-set edges are no algebraic
-           dependency): the solver runs its segment until the torn inputs agree */
-        const rt_loop *l = &sim->plan.loops[st->index];
-        if (in_pass(sc, sim, (rti_at){at.t, at.set, RTI_IN_STEP}, sim->plan.loop_blocks[l->first]))
-            sc->loop_solver->solve(sc, sim, (uint8_t)st->index, at.t, (int)at.mode);
-        s = (uint16_t)(l->seq1 - 1);
+        solve_loop(sc, sim, st, at);
+        s = (uint16_t)(sim->plan.loops[st->index].seq1 - 1); /* its calls: the solver's */
     }
 }
 
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r)
 {
     uint16_t n = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
+    for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
+        uint16_t b = sim->plan.set_blk[i];
         const rt_kind *k = sc->blocks[b].kind;
-        if (k->nr == 0 || sc->blocks[b].set != s)
+        if (k->nr == 0)
             continue;
         rt_args a;
         rti_gather(sim, b, t);
@@ -139,9 +192,10 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
 
     sim->stats.rhs_evals[c->set]++;
     rti_outputs(sc, sim, (rti_at){t, c->set, RTI_IN_RHS});
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
+    for (uint16_t i = sim->plan.blk_of[c->set]; i < sim->plan.blk_of[c->set + 1]; i++) {
+        uint16_t b = sim->plan.set_blk[i];
         const rt_kind *k = sc->blocks[b].kind;
-        if (k->nx == 0 || !k->deriv || sc->blocks[b].set != c->set)
+        if (k->nx == 0 || !k->deriv)
             continue;
         rt_args a;
         rti_gather(sim, b, t);

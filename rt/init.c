@@ -151,7 +151,7 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
         sim->plan.src_kind[i] = RTI_SRC_UNSET, sim->plan.src[i] = 0, sim->plan.def[i] = 0, sim->work.u[i] = 0;
         sim->plan.interp[i] = 0, sim->plan.src_set[i] = 0;
     }
-    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++)
+    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks] && v < RT_MAX_HIST_Y; v++)
         sim->plan.xsrc[v] = 0; /* (the history hist_y was zeroed with the state) */
     for (uint16_t c = 0; c < sc->nconns; c++)
         if ((st = route_conn(sc, sim, &sc->conns[c])) != RT_OK)
@@ -183,12 +183,8 @@ static rt_status route(const rt_scene *sc, rt_sim *sim)
    which finds the torn inputs) and event location */
 static rt_status check_history(const rt_scene *sc, rt_sim *sim)
 {
-    uint32_t top = 0; /* the highest output index another set reads, plus one */
-    for (uint16_t v = 0; v < sim->plan.y_off[sc->nblocks]; v++)
-        top = sim->plan.xsrc[v] ? (uint32_t)v + 1 : top;
-    if (top > RT_MAX_HIST_Y)
-        return rti_fail(sim, RT_E_CAPACITY, "outputs read by another set exceed ",
-                        RTI_LIMIT(RT_MAX_HIST_Y), (const char *)0);
+    /* (the outputs read by another set were checked against RT_MAX_HIST_Y as they were
+       found, rti_xset_init) */
     if (rti_held_top(sc, sim) > RT_MAX_HELD_Y)
         return rti_fail(sim, RT_E_CAPACITY, "outputs of sets stepping over several ticks exceed ",
                         RTI_LIMIT(RT_MAX_HELD_Y), (const char *)0);
@@ -333,7 +329,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
-        (st = check_history(sc, sim)) != RT_OK || (st = rti_rhs_plan(sc, sim)) != RT_OK ||
+        (st = check_history(sc, sim)) != RT_OK || (st = rti_eval_plan(sc, sim)) != RT_OK ||
         (st = rti_link_check(sc, sim)) != RT_OK || (st = bg_init(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */

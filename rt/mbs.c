@@ -273,17 +273,10 @@ static real_t residual(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_
     for (uint16_t j = 0; j < sc->njoints; j++) {
         if (sc->blocks[sc->joints[j].b1].set != set)
             continue;
-        rt_mbs_node n1, n2;
-        rt_joint_eval e;
-        rti_mbs_joint(sc, sim, j, t, &n1, &n2, 0, 0, &e);
-        for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++) {
-            const real_t *C = e.C[i];
-            real_t gd = 0;
-            for (int k = 0; k < 3; k++)
-                gd += C[k] * n1.v[k] + C[3 + k] * n1.w[k] + C[6 + k] * n2.v[k] +
-                      C[9 + k] * n2.w[k];
-            worst = rt_fmax(worst, rt_fabs(pos ? e.g[i] : gd));
-        }
+        real_t g[RT_MBS_JOINT_NC_MAX], gd[RT_MBS_JOINT_NC_MAX];
+        rti_mbs_joint_g(sc, sim, j, t, g, gd);
+        for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
+            worst = rt_fmax(worst, rt_fabs(pos ? g[i] : gd[i]));
     }
     return worst;
 }

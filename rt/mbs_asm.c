@@ -95,6 +95,35 @@ void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
     j->kind->eval(j->p, n1, n2, e);
 }
 
+void rti_mbs_joint_g(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t, real_t *g,
+                     real_t *gd)
+{
+    const rt_joint *j = &sc->joints[ji];
+    const real_t *r1, *v1, *r2, *v2;
+    rt_joint_eval e;
+    if (j->kind->eval_points && point_of(sc, sim, j, 0, &r1, &v1) &&
+        point_of(sc, sim, j, 1, &r2, &v2)) {
+        j->kind->eval_points(j->p, r1, v1, r2, v2, &e);
+        for (uint16_t i = 0; i < j->kind->nc; i++) {
+            const real_t *C = e.C[i];
+            real_t s = 0; /* the general sum below, term by term: the angular terms are +0 */
+            for (int k = 0; k < 3; k++)
+                s += C[k] * v1[k] + C[6 + k] * v2[k];
+            g[i] = e.g[i], gd[i] = s;
+        }
+        return;
+    }
+    rt_mbs_node n1, n2;
+    rti_mbs_joint(sc, sim, ji, t, &n1, &n2, 0, 0, &e);
+    for (uint16_t i = 0; i < j->kind->nc; i++) {
+        const real_t *C = e.C[i];
+        real_t s = 0;
+        for (int k = 0; k < 3; k++)
+            s += C[k] * n1.v[k] + C[3 + k] * n1.w[k] + C[6 + k] * n2.v[k] + C[9 + k] * n2.w[k];
+        g[i] = e.g[i], gd[i] = s;
+    }
+}
+
 /* C_i . [x1; y1; x2; y2] for four 3-vectors; a translational joint kind (trans) has no
    angular coefficients, whose zero terms are left out (the same sum) */
 static real_t row_dot(const real_t *C, int trans, const real_t *x1, const real_t *y1,

@@ -546,6 +546,16 @@ typedef struct rt_plan {
     uint8_t rhs_skip[RT_MAX_BLOCKS]; /* 1: no input of the block's set reads its outputs
                                         live, so a right-hand side does not call it */
     uint16_t nseq;
+    /* per set, what a pass over that set alone walks (rti_eval_plan), so that the fast
+       set of a multirate scene does not scan the slow set's entries every stage: its
+       entries of seq in sequence order (a loop's entry stands for its calls), and its
+       blocks in block order */
+    uint16_t set_seq[RT_MAX_SEQ];    /* set s: set_seq[seq_of[s] .. seq_of[s + 1]) */
+    uint16_t seq_of[RT_MAX_SETS + 1];
+    uint16_t rhs_calls[RT_MAX_SETS]; /* entries of set s a right-hand side runs (0: none,
+                                        as in a multibody set without signal blocks) */
+    uint16_t set_blk[RT_MAX_BLOCKS]; /* set s: set_blk[blk_of[s] .. blk_of[s + 1]) */
+    uint16_t blk_of[RT_MAX_SETS + 1];
     rt_loop loops[RT_MAX_LOOPS];
     uint8_t nloops;
     uint16_t loop_blocks[2 * RT_MAX_BLOCKS]; /* blocks of each loop, see rt_loop */
@@ -560,7 +570,8 @@ typedef struct rt_plan {
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
     uint8_t set_xout[RT_MAX_SETS];   /* 1: the set has outputs read by other sets */
-    uint8_t xsrc[RT_MAX_Y];          /* 1: output read by another set (keeps history) */
+    uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);
+                                        sized like the history: higher outputs never are */
     int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
 
     uint64_t n_ticks;                /* ticks to reach t_end */

@@ -80,9 +80,11 @@ void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end
 void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at);
 /* Root values of the blocks of set s at time t (outputs must be current) into r. */
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
-/* Marks the blocks a right-hand side need not call (plan.rhs_skip): no input of their
-   own set reads their outputs live (after routing and rti_xset_init). Returns RT_OK. */
-rt_status rti_rhs_plan(const rt_scene *sc, rt_sim *sim);
+/* The evaluation tables of the passes over one set (after routing, rti_xset_init and
+   rti_order): each set's entries of the sequence and its blocks (plan.set_seq,
+   plan.set_blk), and the blocks a right-hand side need not call (plan.rhs_skip): no input
+   of their own set reads their outputs live. Returns RT_OK. */
+rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
 

@@ -22,14 +22,24 @@ static int fresh(const rt_sim *sim, uint8_t s)
    outputs were checked when they were new) */
 static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (!fresh(sim, sc->blocks[b].set))
+    int first = -1;
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        if (!fresh(sim, s))
             continue;
-        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
-            if (!rt_isfinite(sim->state.y[j]))
-                return b;
+        for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
+            uint16_t b = sim->plan.set_blk[i];
+            if (first >= 0 && b > first)
+                break; /* blocks ascend: an earlier set's find stands */
+            int bad = 0;
+            for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
+                bad |= !rt_isfinite(sim->state.y[j]);
+            if (bad) {
+                first = b;
+                break;
+            }
+        }
     }
-    return -1;
+    return first;
 }
 
 /* outputs and roots of set s at the time of its state */
@@ -51,13 +61,14 @@ static int refreshed(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 }
 
 /* copies the outputs of set s's blocks from one output vector to another */
-static void copy_outputs(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *from,
+static void copy_outputs(const rt_sim *sim, uint8_t s, const real_t *from,
                          real_t *to)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        if (sc->blocks[b].set == s)
-            for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
-                to[j] = from[j];
+    for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
+        uint16_t b = sim->plan.set_blk[i];
+        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
+            to[j] = from[j];
+    }
 }
 
 /* the highest output index of a set the tick steps over several ticks (not in the
@@ -145,7 +156,7 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
            state reaches the next one: the step's evaluations (at its stages and its end,
            ahead of the tick) overwrite them, so they are kept aside */
         if (ratio > 1)
-            copy_outputs(sc, sim, s, sim->state.y, sim->work.y_held);
+            copy_outputs(sim, s, sim->state.y, sim->work.y_held);
         rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
         sim->state.set_tick[s] = sim->state.tick + ratio;
         if (sim->plan.set_xout[s]) {
@@ -154,7 +165,7 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
             rti_xset_push(sc, sim, s, ts);
         }
         if (ratio > 1)
-            copy_outputs(sc, sim, s, sim->work.y_held, sim->state.y);
+            copy_outputs(sim, s, sim->work.y_held, sim->state.y);
     }
     sim->state.tick++;
     /* the background step due at the new time: before the other sets read its history */

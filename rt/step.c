@@ -244,9 +244,8 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
 /* the first block of the set holding a non-finite state, or -1 */
 static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (sc->blocks[b].set != s)
-            continue;
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
         for (uint16_t i = sim->plan.x_off[b]; i < sim->plan.x_off[b] + sc->blocks[b].kind->nx; i++)
             if (!rt_isfinite(sim->state.x[i]))
                 return b;

@@ -31,6 +31,9 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
             sim->plan.interp[gi] = RT_INTERP_HOLD;
             continue;
         }
+        if (sim->plan.src[gi] >= RT_MAX_HIST_Y)
+            return rti_fail(sim, RT_E_CAPACITY, "outputs read by another set exceed ",
+                            RTI_LIMIT(RT_MAX_HIST_Y), (const char *)0);
         sim->plan.src_kind[gi] = RT_SRC_XSET;
         sim->plan.src_set[gi] = sf;
         sim->plan.interp[gi] = scheme ? scheme : RT_INTERP_HOLD;
@@ -50,13 +53,13 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
 /* history slot 0 := the outputs of set s now; older points move down */
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
+    (void)sc; /* the plan's per-set lists say all it needs */
     if (!sim->plan.set_xout[s])
         return;
     real_t *T = sim->state.hist_t[s];
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        if (sc->blocks[b].set != s)
-            continue;
-        for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1]; v++) {
+    for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
+        uint16_t b = sim->plan.set_blk[i];
+        for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1] && v < RT_MAX_HIST_Y; v++) {
             if (!sim->plan.xsrc[v])
                 continue;
             /* monitor: how far the new point is from the line through the last two */
