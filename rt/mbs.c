@@ -258,10 +258,12 @@ static int init(const rt_scene *sc, rt_sim *sim)
 /* largest |g| (pos) or |g'| (!pos) of the set's constraints at the current state */
 static real_t residual(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_t t, int pos)
 {
+    const rt_mbs_work *w = &sim->work.mbs;
     real_t worst = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        const rt_mbs_spec *sp;
-        if (!rti_mbs_in_set(sc, b, set) || (sp = spec_of(sc, b))->nc == 0)
+    for (uint16_t i = w->sb[set]; i < w->sb[set + 1]; i++) {
+        uint16_t b = w->sblk[i];
+        const rt_mbs_spec *sp = spec_of(sc, b);
+        if (sp->nc == 0)
             continue;
         real_t g[RT_MAX_MBS_C], gd[RT_MAX_MBS_C];
         rt_args a;
@@ -270,9 +272,8 @@ static real_t residual(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_
         for (uint16_t i = 0; i < sp->nc; i++)
             worst = rt_fmax(worst, rt_fabs(pos ? g[i] : gd[i]));
     }
-    for (uint16_t j = 0; j < sc->njoints; j++) {
-        if (sc->blocks[sc->joints[j].b1].set != set)
-            continue;
+    for (uint16_t i = w->sj[set]; i < w->sj[set + 1]; i++) {
+        uint16_t j = w->sjnt[i];
         real_t g[RT_MBS_JOINT_NC_MAX], gd[RT_MBS_JOINT_NC_MAX];
         rti_mbs_joint_g(sc, sim, j, t, g, gd);
         for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
