@@ -80,24 +80,36 @@ uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim)
 
 /* ------------------------------------------------------------------ copies */
 
-/* the set's result between rt_state arrays and a packed buffer: dir 0 packs x and y
-   into buf, 1 unpacks buf into them, 2 swaps the two */
-static void move_result(const rt_sim *sim, uint8_t s, real_t *x,
-                        real_t *y, real_t *buf, int dir)
+/* n values between a and a packed buffer: dir 0 packs a into buf, 1 unpacks buf into a,
+   2 swaps the two (one loop per direction: this runs twice per background step) */
+static void move_range(real_t *a, real_t *buf, uint32_t n, int dir)
 {
-    uint32_t n = 0;
-    for (uint16_t i = sim->plan.set_x[s]; i < sim->plan.set_x[s + 1]; i++, n++) {
-        real_t v = x[i];
-        x[i] = dir ? buf[n] : v;
-        buf[n] = dir == 1 ? buf[n] : v;
+    if (dir == 0) {
+        for (uint32_t i = 0; i < n; i++)
+            buf[i] = a[i];
+    } else if (dir == 1) {
+        for (uint32_t i = 0; i < n; i++)
+            a[i] = buf[i];
+    } else {
+        for (uint32_t i = 0; i < n; i++) {
+            real_t v = a[i];
+            a[i] = buf[i], buf[i] = v;
+        }
     }
+}
+
+/* the set's result between rt_state arrays and a packed buffer (move_range's dir): its
+   states, then its blocks' outputs */
+static void move_result(const rt_sim *sim, uint8_t s, real_t *x, real_t *y, real_t *buf,
+                        int dir)
+{
+    uint32_t n = (uint32_t)(sim->plan.set_x[s + 1] - sim->plan.set_x[s]);
+    move_range(x + sim->plan.set_x[s], buf, n, dir);
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
-        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++, n++) {
-            real_t v = y[j];
-            y[j] = dir ? buf[n] : v;
-            buf[n] = dir == 1 ? buf[n] : v;
-        }
+        uint32_t m = (uint32_t)(sim->plan.y_off[b + 1] - sim->plan.y_off[b]);
+        move_range(y + sim->plan.y_off[b], buf + n, m, dir);
+        n += m;
     }
 }
 
