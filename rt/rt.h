@@ -308,7 +308,9 @@ typedef struct rt_block {
     X(RT_INTERP_EXTRAP, "extrapolate")/* linear extrapolation from the last two points */ \
     X(RT_INTERP_LINEAR, "linear")     /* linear interpolation between the points around t */ \
     X(RT_INTERP_HERMITE, "hermite")   /* cubic Hermite on the points around t, slopes from \
-                                         the parabola through the last three points */
+                                         the parabola through the last three points */  \
+    X(RT_INTERP_QUAD, "quadratic")    /* the parabola through the last three points, also \
+                                         ahead of them (a background set: third order) */
 
 typedef enum {
 #define RT_X_ENUM(id, name) id,
@@ -597,6 +599,10 @@ typedef struct rt_state {
        blocks) until then when it ran inline (no background context attached) */
     uint64_t bg_due;                 /* tick its result is due */
     real_t bg_new[RT_MAX_BG];        /* inline result, published at bg_due */
+    /* per output of the background set another set reads: what the parabolic
+       extrapolation showed at the newest point, minus that point; faded out over the next
+       macro step, so the value read stays continuous (rt/xset.c) */
+    real_t bg_jump[RT_MAX_HIST_Y];
     uint64_t hash;                   /* FNV-1a over recorded values */
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */

@@ -50,6 +50,8 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+static real_t parabola(const rt_sim *sim, const real_t *T, uint16_t v, real_t t);
+
 /* history slot 0 := the outputs of set s now; older points move down */
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
@@ -69,6 +71,12 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
                 e = rt_fabs(e);
                 sim->stats.xset_err[s] = e > sim->stats.xset_err[s] ? e : sim->stats.xset_err[s];
             }
+            /* quadratic readers of the background set were extrapolating to t by the
+               parabola through the last three points: what it showed there, minus the new
+               point, fades out over the next macro step (rti_xset_value) */
+            if (s == sim->plan.bg_set)
+                sim->state.bg_jump[v] = sim->state.hist_n[s] == RT_HIST
+                                            ? parabola(sim, T, v, t) - sim->state.y[v] : 0;
             for (int k = RT_HIST - 1; k > 0; k--)
                 sim->state.hist_y[k][v] = sim->state.hist_y[k - 1][v];
             sim->state.hist_y[0][v] = sim->state.y[v];
@@ -112,9 +120,14 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
        derivative: on pendulum10_actuated the error at 10 s is 4e-6 m with the fade and
        4.6e-4 m without, docs/multirate.md "Background sets") */
     if (q == sim->plan.bg_set && scheme != RT_INTERP_HOLD && n == RT_HIST && !bracket) {
-        real_t jump = line(sim, T, v, 1, 2, T[0]) - sim->state.hist_y[0][v];
         real_t fade = 1 - (t - T[0]) / (T[0] - T[1]);
-        extrap += jump * (fade > 0 ? fade : 0);
+        fade = fade > 0 ? fade : 0;
+        /* quadratic: the parabola through the last three points (third order), with the
+           jump it made at the newest point (rti_xset_push) */
+        if (scheme == RT_INTERP_QUAD)
+            return parabola(sim, T, v, t) + sim->state.bg_jump[v] * fade;
+        real_t jump = line(sim, T, v, 1, 2, T[0]) - sim->state.hist_y[0][v];
+        extrap += jump * fade;
     }
     switch (scheme) {
     case RT_INTERP_EXTRAP:
@@ -123,6 +136,10 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
         return bracket ? line(sim, T, v, k - 1, k, t) : extrap;
     case RT_INTERP_HERMITE:
         if (n == RT_HIST && bracket)
+            return parabola(sim, T, v, t);
+        return bracket ? line(sim, T, v, k - 1, k, t) : extrap;
+    case RT_INTERP_QUAD: /* inside the points and ahead of them */
+        if (n == RT_HIST)
             return parabola(sim, T, v, t);
         return bracket ? line(sim, T, v, k - 1, k, t) : extrap;
     default:

@@ -245,8 +245,12 @@ def multirate(modrt):
         print("vehicles: %s: largest position difference from the reference %.2g m, wheel "
               "angle %.2g rad, host %s s, status %s" % (name, e, ew, summ.get("wall_s"),
                                                         summ.get("status")))
-        check(rc == 0 and e < 1e-4 and ew < 1e-4,
-              "%s: %.3g m / %.3g rad from the reference" % (name, e, ew))
+        # the bound of issue 13 (1e-4); lane_change's background vehicles, read by the
+        # parabola through their last three points (interpolation quadratic), come within
+        # 1.3e-5 m (6.6e-5 m by linear extrapolation): 3e-5 m fails if that is lost
+        bound = 3e-5 if name == "lane_change" else 1e-4
+        check(rc == 0 and e < bound and ew < bound,
+              "%s: %.3g m / %.3g rad from the reference (bound %g)" % (name, e, ew, bound))
         check(e_ref < e / 4 and ew_ref < ew / 4,
               "%s: the reference's own error (%.3g m, %.3g rad) is not four times smaller "
               "than the error measured with it (%.3g m, %.3g rad)" % (name, e_ref, ew_ref,

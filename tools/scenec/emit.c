@@ -403,8 +403,9 @@ static void blocks(FILE *f, const scn_scene *s)
     fputs("};\n", f);
 }
 
-static const char *const interp_id[] = {"RT_INTERP_SET", "RT_INTERP_HOLD", "RT_INTERP_EXTRAP",
-                                        "RT_INTERP_LINEAR", "RT_INTERP_HERMITE"};
+#define SCN_X_ID(id, name) #id,
+static const char *const interp_id[] = {RT_INTERP_LIST(SCN_X_ID)};
+#undef SCN_X_ID
 
 static int any_conn_interp(const scn_scene *s)
 {
