@@ -333,7 +333,7 @@ $(O)/multirate_bench: $(call obj,tools/bench/multirate_bench.c tools/bench/bench
                      $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
 $(O)/overhead_bench: $(call obj,tools/bench/overhead_bench.c tools/bench/pendulum_mono.c \
-                    tools/bench/actuated_mono.c) \
+                    tools/bench/actuated_mono.c tools/bench/actuated_mr_mono.c) \
                     $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
 # modrt against the hand-written monolith (docs/overhead.md): the trajectory check (fails

@@ -1,14 +1,17 @@
 #!/bin/sh
 # overhead.sh - modular overhead of modrt against the hand-written monolith
-# (tools/bench/pendulum_mono.c, actuated_mono.c): instructions per simulated second of
-# each side counted by callgrind inside the run only (--toggle-collect on modrt_ticks,
-# mono_steps or amono_steps: start-up excluded), deterministic; prints one line per scene
-# and method,
+# (tools/bench/pendulum_mono.c, actuated_mono.c, actuated_mr_mono.c): instructions per
+# simulated second of each side counted by callgrind inside the run only (--toggle-collect
+# on modrt_ticks, mono_steps, amono_steps or amr_steps: start-up excluded), deterministic;
+# prints one line per scene and method,
 #   modular overhead <scene> <method>: <modrt / monolith>
 # against the monolith with the dense Schur solve and the same embedded error estimate,
 # then the same against the monolith without the estimate and with the Thomas solve;
-# pendulum10_actuated_single with ROS2 last (its monolith with modrt's evaluations, then
-# without the f(t + h, x0) evaluation and with the Thomas solve).
+# pendulum10_actuated_single with ROS2 (its monolith with modrt's evaluations, then
+# without the f(t + h, x0) evaluation and with the Thomas solve), and the multirate
+# pendulum10_actuated last (bs3 chain in the background, ROS2 servo; its monolith with
+# modrt's estimates, then without bs3's error estimate and the history monitors, and with
+# the Thomas solve).
 # Usage: sh tools/bench/overhead.sh build/host/overhead_bench [SECONDS]
 set -eu
 B=$1
@@ -37,3 +40,10 @@ t=$(count thomas ros2 amono_steps)
 awk -v r=$r -v d=$d -v n=$n -v t=$t 'BEGIN {
     printf "modular overhead pendulum10_actuated_single ros2: %.2f\n", r / d
     printf "  instructions per simulated s: modrt %d, monolith %d (dense, as modrt evaluates), %d (no f(t + h, x0): %.2fx), %d (Thomas: %.2fx)\n", r, d, n, r / n, t, r / t }'
+r=$(count modrt bs3+ros2 modrt_ticks)
+d=$(count mono bs3+ros2 amr_steps)
+n=$(count mono-noest bs3+ros2 amr_steps)
+t=$(count thomas bs3+ros2 amr_steps)
+awk -v r=$r -v d=$d -v n=$n -v t=$t 'BEGIN {
+    printf "modular overhead pendulum10_actuated bs3+ros2: %.2f\n", r / d
+    printf "  instructions per simulated s: modrt %d, monolith %d (dense, with the estimates), %d (no estimates: %.2fx), %d (Thomas: %.2fx)\n", r, d, n, r / n, t, r / t }'

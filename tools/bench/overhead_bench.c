@@ -1,35 +1,41 @@
 /* overhead_bench.c - modrt against the hand-written monolith of the same formulation
- * (pendulum_mono.c, actuated_mono.c): the trajectory checks, and the runs that
- * tools/bench/overhead.sh counts with callgrind to print the modular overhead
+ * (pendulum_mono.c, actuated_mono.c, actuated_mr_mono.c): the trajectory checks, and the
+ * runs that tools/bench/overhead.sh counts with callgrind to print the modular overhead
  * (docs/overhead.md).
  *
  * The modrt side is the library as an application runs it: rt_init, then rt_tick per
  * base tick (scene pendulum10 with its method replaced; with METHOD ros2 scene
- * pendulum10_actuated_single as it is). The counted functions are modrt_ticks and
- * mono_steps or amono_steps; start-up (init, the first projection) is outside them.
+ * pendulum10_actuated_single as it is, with METHOD bs3+ros2 the multirate scene
+ * pendulum10_actuated as it is, its background set stepped inline). The counted
+ * functions are modrt_ticks and mono_steps, amono_steps or amr_steps; start-up (init, the
+ * first projection) is outside them.
  *
  * Usage: overhead_bench check            both sides, every method, 2 s (pendulum10), and
- *                                        pendulum10_actuated_single over its 10 s: the
+ *                                        pendulum10_actuated_single and
+ *                                        pendulum10_actuated over their 10 s: the
  *                                        largest position difference must be below
  *                                        CHECK_TOL, ACT_TOL (exit 1 otherwise)
  *        overhead_bench count SIDE METHOD SECONDS
  *                                        SIDE modrt | mono | mono-noest | thomas;
- *                                        METHOD bs3 | rk4 | dopri5 (pendulum10) or ros2
+ *                                        METHOD bs3 | rk4 | dopri5 (pendulum10), ros2
  *                                        (pendulum10_actuated_single; SIDE mono-noest
- *                                        there: without the f(t + h, x0) evaluation) */
+ *                                        there: without the f(t + h, x0) evaluation) or
+ *                                        bs3+ros2 (pendulum10_actuated; mono-noest: without
+ *                                        bs3's error estimate and the history monitors) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "actuated_mono.h"
+#include "actuated_mr_mono.h"
 #include "pendulum_mono.h"
 #include "scenes/scenes.h"
 
 #define CHECK_T 2.0     /* simulated time of the trajectory check [s] */
 #define CHECK_TOL 1e-11 /* largest position difference accepted [m]: rounding grows in the
                            chaotic chain, a formulation error gives 1e-3 or more */
-#define ACT_T 10.0      /* pendulum10_actuated_single: the whole scene [s] */
+#define ACT_T 10.0      /* pendulum10_actuated(_single): the whole scene [s] */
 #define ACT_TOL 1e-9    /* and its bound [m] */
 
 static rt_sim sim;
@@ -88,9 +94,9 @@ static void mono_start(mono *m, int i, int solver, int estimate, const rt_scene 
 
 /* ------------------------------------------------------------ pendulum10_actuated_single */
 
-static void act_init(rt_scene *sc, double t_end)
+static void act_init(rt_scene *sc, const rt_scene *scene, double t_end)
 {
-    *sc = mdl_scene_pendulum10_actuated_single;
+    *sc = *scene;
     sc->t_end = (real_t)t_end;
     if (rt_init(sc, &sim) != RT_OK) {
         fprintf(stderr, "overhead_bench: init: %s\n", rt_error_text(&sim));
@@ -138,7 +144,7 @@ static int act_check(void)
         const char *name = v == 0 ? "dense" : v == 1 ? "thomas" : "dense-noft";
         rt_scene sc;
         static amono m;
-        act_init(&sc, ACT_T);
+        act_init(&sc, &mdl_scene_pendulum10_actuated_single, ACT_T);
         act_start(&m, solver, ft, &sc);
         long done = 0;
         double worst = 0;
@@ -159,6 +165,86 @@ static int act_check(void)
                "%.0e), %ld Jacobians, largest estimate %.3g, %ld steps above the accuracy "
                "%s\n", name, worst, ACT_TOL,
                m.jac_evals, m.err_max, m.over, ok ? "ok" : "FAILED");
+    }
+    return bad;
+}
+
+/* ------------------------------------------------------------ pendulum10_actuated */
+
+/* the multirate monolith from modrt's state after init: the chain's states (projected at
+   init), the servo's states */
+static void mr_start(amr *m, int solver, int estimate, const rt_scene *sc)
+{
+    double x0[6 * MONO_NB], s0[2];
+    for (uint16_t b = 0; b < MONO_NB; b++)
+        for (uint16_t j = 0; j < 6; j++)
+            x0[6 * b + j] = (double)sim.state.x[sim.plan.x_off[b] + j];
+    int sv = rt_block_index(sc, "Servo");
+    for (int j = 0; j < 2; j++)
+        s0[j] = (double)sim.state.x[sim.plan.x_off[sv] + j];
+    m->solver = solver, m->estimate = estimate;
+    m->dt = (double)sc->dt;
+    amr_init(m, x0, s0);
+}
+
+/* largest position difference of the chain (modrt's published state against the
+   monolith's, both at the chain's communication point now); servo torque and the
+   controller's command in dy, dc */
+static double mr_diff(const amr *m, const rt_scene *sc, double *dy, double *dc)
+{
+    double worst = 0;
+    for (uint16_t b = 0; b < MONO_NB; b++)
+        for (uint16_t j = 0; j < 3; j++) {
+            double d = fabs((double)rt_output(&sim, b, j) - m->x[6 * b + j]);
+            worst = d > worst || d != d ? d : worst;
+        }
+    int sv = rt_block_index(sc, "Servo"), ct = rt_block_index(sc, "Ctrl");
+    *dy = fabs((double)sim.state.x[sim.plan.x_off[sv]] - m->s[0]);
+    *dc = fabs((double)sim.state.d[sim.plan.d_off[ct]] - m->c);
+    return worst;
+}
+
+/* both sides over the whole scene; positions compared at 1, 2, 5 and 10 s (multiples of
+   the chain's ratio: its state is at the tick there on both sides) */
+static int mr_check(void)
+{
+    static const double at[] = {1, 2, 5, ACT_T};
+    int bad = 0;
+    for (int v = 0; v < 3; v++) {
+        int solver = v == 1 ? MONO_THOMAS : MONO_DENSE, est = v < 2;
+        const char *name = v == 0 ? "dense" : v == 1 ? "thomas" : "dense-noest";
+        rt_scene sc;
+        static amr m;
+        act_init(&sc, &mdl_scene_pendulum10_actuated, ACT_T);
+        mr_start(&m, solver, est, &sc);
+        long done = 0;
+        double worst = 0;
+        for (int i = 0; i < (int)(sizeof at / sizeof at[0]); i++) {
+            long n = lround(at[i] / (double)sc.dt) - done;
+            modrt_ticks(&sc, &sim, n);
+            amr_steps(&m, n);
+            done += n;
+            double dy, dc, d = mr_diff(&m, &sc, &dy, &dc);
+            worst = d > worst || d != d ? d : worst;
+            printf("trajectory pendulum10_actuated bs3+ros2 %s at %g s: largest position "
+                   "difference %.2e m, servo torque %.2e N m, command %.2e N m\n",
+                   name, at[i], d, dy, dc);
+        }
+        int sv = rt_block_index(&sc, "Servo"), ch = sc.blocks[0].set;
+        uint8_t ss = sc.blocks[sv].set;
+        long jac = (long)sim.stats.istats[ss].jac_evals;
+        int ok = worst <= ACT_TOL && m.over == 0 && sim.stats.status == RT_OK &&
+                 m.jac_evals == jac;
+        bad += !ok;
+        printf("trajectory pendulum10_actuated bs3+ros2 %s: largest %.2e m (tolerance %.0e), "
+               "Jacobians %ld (modrt %ld), largest estimate servo %.6g (modrt %.6g), %ld "
+               "steps above the accuracy %s\n", name, worst, ACT_TOL, m.jac_evals, jac,
+               m.err_servo, (double)sim.stats.istats[ss].err_max, m.over, ok ? "ok" : "FAILED");
+        if (est)
+            printf("  chain estimate %.6g (modrt %.6g), history monitors chain %.6g (modrt "
+                   "%.6g), servo %.6g (modrt %.6g)\n", m.err_chain,
+                   (double)sim.stats.istats[ch].err_max, m.xerr_chain,
+                   (double)sim.stats.xset_err[ch], m.xerr_servo, (double)sim.stats.xset_err[ss]);
     }
     return bad;
 }
@@ -192,6 +278,7 @@ static int check(void)
         }
     }
     bad += act_check();
+    bad += mr_check();
     return bad ? 1 : 0;
 }
 
@@ -206,7 +293,7 @@ int main(int argc, char **argv)
     double secs = atof(argv[4]);
     rt_scene sc;
     if (strcmp(argv[3], "ros2") == 0) {
-        act_init(&sc, secs);
+        act_init(&sc, &mdl_scene_pendulum10_actuated_single, secs);
         long n = lround(secs / (double)sc.dt);
         if (strcmp(argv[2], "modrt") == 0) {
             modrt_ticks(&sc, &sim, n);
@@ -216,6 +303,19 @@ int main(int argc, char **argv)
         act_start(&m, strcmp(argv[2], "thomas") == 0 ? MONO_THOMAS : MONO_DENSE,
                   strcmp(argv[2], "mono-noest") != 0, &sc);
         amono_steps(&m, n);
+        return 0;
+    }
+    if (strcmp(argv[3], "bs3+ros2") == 0) {
+        act_init(&sc, &mdl_scene_pendulum10_actuated, secs);
+        long n = lround(secs / (double)sc.dt);
+        if (strcmp(argv[2], "modrt") == 0) {
+            modrt_ticks(&sc, &sim, n);
+            return sim.stats.status == RT_OK ? 0 : 1;
+        }
+        static amr m;
+        mr_start(&m, strcmp(argv[2], "thomas") == 0 ? MONO_THOMAS : MONO_DENSE,
+                 strcmp(argv[2], "mono-noest") != 0, &sc);
+        amr_steps(&m, n);
         return 0;
     }
     int i = method_index(argv[3]);

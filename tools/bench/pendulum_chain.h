@@ -1,5 +1,6 @@
 /* pendulum_chain.h - the ten-body chain of the hand-written monoliths (pendulum_mono.c for
- * scene pendulum10, actuated_mono.c for pendulum10_actuated_single): constraint geometry,
+ * scene pendulum10, actuated_mono.c for pendulum10_actuated_single, actuated_mr_mono.c for
+ * the multirate pendulum10_actuated): constraint geometry,
  * the Schur complement A = W M^-1 W^T (eqs. 7b, 9) solved densely (Gauss with partial
  * pivoting, MONO_DENSE) or as the tridiagonal it is (Thomas, MONO_THOMAS), dz =
  * -M^-1 W^T lam, and the projection of eq. 10. Static functions: each monolith compiles
