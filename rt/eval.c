@@ -47,7 +47,8 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at)
     if (k->type == RT_KIND_DSS && !dss_hit(sim, b, at.mode))
         return;
     rt_args a;
-    rti_gather(sim, b, at.t);
+    if (k->feed != RT_FEED_NONE) /* no output reads an input: nothing to gather */
+        rti_gather(sim, b, at.t);
     rti_args(sc, sim, b, at.t, sc->dt * (real_t)sim->plan.period[b], &a);
     k->output(&a, sim->state.y + sim->plan.y_off[b]);
 #if RT_FAULT_INJECT
