@@ -658,12 +658,13 @@ typedef struct rt_work {
  *   stats  rt/ writes; applications read (summaries, tests)
  *   work   rt/ only */
 typedef struct rt_sim {
-    const rt_scene *sc;
     rt_plan plan;
     rt_state state;
     rt_stats stats;
     rt_work work;
     char err[RT_ERR_LEN];            /* what rt_init found wrong, and where */
+    const rt_scene *sc;              /* (the pointers last, beside each other: no padding
+                                        before the 8-byte-aligned plan on 32-bit targets) */
     /* the background context (rt_bg_attach): a second rt_sim the background set steps
        in, so that it shares no memory with the tick; NULL: its steps run inline at
        release (the simulated clock). Two counters hand a step over, each written by one
