@@ -88,8 +88,9 @@ def end_time(sc):
     raise SystemExit("speedup: %s has no end time" % sc.path)
 
 
-def single_sweep(ex, explicit, implicit, jacs):
-    """one set at the step (base tick = step); implicit methods at each Jacobian interval"""
+def single_sweep(ex, explicit, implicit, jacs, newton=None):
+    """one set at the step (base tick = step); implicit methods at each Jacobian interval
+    (and at most `newton` Newton iterations per stage, if given)"""
     for m, hs in explicit:
         for h in hs:
             ex.add("single", "%s %s" % (m, h_ms(h)),
@@ -98,25 +99,29 @@ def single_sweep(ex, explicit, implicit, jacs):
     for m, hs in implicit:
         for h in hs:
             for j in jacs:
-                ex.add("single", "%s %s, Jacobian every %d" % (m, h_ms(h), j),
-                       S.variant(ex.sc, tick=h, single=(m, {"jacobian": str(j),
-                                                            "accuracy": ACCURACY})),
-                       "single " + m)
+                cl = {"jacobian": str(j), "accuracy": ACCURACY}
+                if newton:
+                    cl["newton"] = str(newton)
+                ex.add("single", "%s %s, Jacobian every %d%s" % (
+                    m, h_ms(h), j, ", newton %d" % newton if newton else ""),
+                    S.variant(ex.sc, tick=h, single=(m, cl)), "single " + m)
 
 
 def no_background(text):
     return re.sub(r"(?m)^(set \(\w+\)[^;\n]*?)\s+background\b", r"\1", text)
 
 
-def multirate_sweep(ex, slow_methods, ratios, fast_methods, fast_jac, held=True):
-    """slow set: method x macro step x (tick, background) x (inputs extrapolated, and held
-    if held); fast set: method, Jacobian every fast_jac steps, at the scene's step"""
+def multirate_sweep(ex, slow_methods, ratios, fast_methods, fast_jac, held=True,
+                    bgs=(True, False), newton=None):
+    """slow set: method x macro step x (background, tick) x (inputs extrapolated, and held
+    if held); fast set: method, Jacobian every fast_jac steps (at most `newton` Newton
+    iterations per stage, if given), at the scene's step"""
     roles = ex.sc.roles()
     slow, fast = roles["slow"], roles["fast"]
     tick = ex.sc.tick
     for m in slow_methods:
         for r in ratios:
-            for bg in (True, False):
+            for bg in bgs:
                 for interp, how in (("extrapolate", "extrapolated"), ("hold", "held"))[
                         :2 if held else 1]:
                     for fm in fast_methods:
@@ -125,12 +130,15 @@ def multirate_sweep(ex, slow_methods, ratios, fast_methods, fast_jac, held=True)
                         for f in fast:
                             mods[f] = {"method": fm, "jacobian": str(fast_jac),
                                        "accuracy": ACCURACY}
+                            if newton:
+                                mods[f]["newton"] = str(newton)
                         text = S.variant(ex.sc, mods=mods)
                         if not bg:
                             text = no_background(text)
-                        desc = "%s %s %s %d ticks (%s), inputs %s; %s %s, Jacobian %d" % (
+                        desc = "%s %s %s %d ticks (%s), inputs %s; %s %s, Jacobian %d%s" % (
                             slow, "background" if bg else "in the tick", m, r, h_ms(r * tick),
-                            how, "+".join(fast), fm, fast_jac)
+                            how, "+".join(fast), fm, fast_jac,
+                            ", newton %d" % newton if newton else "")
                         ex.add("multirate", desc, text, "multirate %s %s" % (
                             m, "background" if bg else "tick"))
 
@@ -148,6 +156,12 @@ def plan_actuated(quick):
                  [(m, [1 * ms, 0.5 * ms]) for m in ("ros2", "trap", "sdirk2", "sdirk3",
                                                     "beuler")], [1, 32, 1024])
     multirate_sweep(ex, ["bs3", "rk4", "dopri5"], [4, 8, 16, 32], ["ros2", "trap"], 64)
+    # fewer Newton iterations (the default is 4 per stage): 2 saves work at the same error
+    # in the trapezoidal rule (1 does not converge and falls back to full Newton)
+    single_sweep(ex, [], [(m, [1 * ms]) for m in ("trap", "sdirk2", "beuler")], [32, 1024],
+                 newton=2)
+    multirate_sweep(ex, ["bs3", "rk4", "dopri5"], [8, 16], ["trap"], 64, held=False,
+                    bgs=(False,), newton=2)
     return ex
 
 
