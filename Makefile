@@ -81,6 +81,8 @@ help:
 	@echo "make test         every test suite, one line each, ending in 'N passed, N failed'"
 	@echo "                  (V=1: every command and all output; logs in build/test-logs/)"
 	@echo "make bench        benchmarks: figures into build/bench/ (make docs: into docs/)"
+	@echo "make speedup      the multirate speedup at equal accuracy from instruction counts"
+	@echo "                  (part of bench; a few minutes; SPEEDUP_JOBS=2)"
 	@echo "make docs         refresh the committed figures and references under docs/"
 	@echo "make cross-test   every cross target under QEMU (cross-test-<t>: one; targets:"
 	@echo "                  $(CROSS_TARGETS))"
@@ -343,22 +345,33 @@ overhead: $(O)/overhead_bench
 	$(O)/overhead_bench check
 	@sh tools/bench/overhead.sh $(O)/overhead_bench | tee build/bench/overhead.txt
 .PHONY: overhead
+# the multirate speedup at equal accuracy (issue 14, goal 4; docs/multirate.md, "The
+# benchmark"): single-rate and multirate sweeps of pendulum10_actuated and lane_change,
+# errors from the host binary, costs from callgrind's instruction counts; spliced into a
+# copy of docs/multirate.md in build/bench/, with the work-precision plot
+SPEEDUP_JOBS ?= 2
+speedup: $(O)/modrt $(O)/svgplot
+	@mkdir -p build/bench
+	@cp docs/multirate.md build/bench/
+	python3 tools/bench/speedup.py --modrt $(O)/modrt --jobs $(SPEEDUP_JOBS) \
+	    --doc build/bench/multirate.md
+	$(O)/svgplot --xy --logx --logy \
+	    -t "pendulum10_actuated: error against instructions" \
+	    -x "host instructions per simulated s (rt_tick + rt_record)" \
+	    -y "largest position error every 0.128 s [m]" \
+	    -o build/bench/multirate_bench.svg build/bench/speedup-pendulum10_actuated.csv
+.PHONY: speedup
 # benchmarks write into build/bench/ only (documents are spliced into copies there);
 # `make docs` runs them and copies the figures over the committed ones in docs/
 BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
-bench: $(O)/mbs_bench $(O)/multirate_bench $(O)/svgplot $(O)/modrt overhead
+bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup
 	@mkdir -p build/bench
-	@cp docs/mbs.md docs/multirate.md build/bench/
+	@cp docs/mbs.md build/bench/
 	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md
 	$(O)/svgplot --xy --logx --logy -t "pendulum10: position error at 2 s against host CPU time" \
 	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
 	    -o build/bench/mbs_bench.svg build/bench/mbs.csv
-	$(O)/multirate_bench --csv build/bench/multirate.csv --doc build/bench/multirate.md
-	$(O)/svgplot --xy --logx --logy \
-	    -t "pendulum10_actuated: position error at 10 s against host CPU time" \
-	    -x "host CPU s per run of 10 s" -y "largest position error at 10 s [m]" \
-	    -o build/bench/multirate_bench.svg build/bench/multirate.csv
 	@sh tools/bench/rt_bench.sh $(O)/modrt $(RT_BENCH_S)
 	@sh tools/bench/bg_bench.sh pendulum10_actuated m7
 	@echo "bench: figures in build/bench/ (make docs copies them into docs/)"

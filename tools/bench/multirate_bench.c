@@ -18,6 +18,11 @@
  * are then timed again in turn, best of --final rounds; the last line printed is the
  * speedup under the bound of issue 6.
  *
+ * `make bench` no longer runs this CPU-time sweep: the speedup it reports comes from
+ * deterministic instruction counts now (tools/bench/speedup.py, `make speedup`,
+ * docs/multirate.md "The benchmark"). The program remains for the table of rate
+ * transitions (--transition, docs/multirate.md "Background sets") and as a quick check.
+ *
  * Host program (libc, libm, POSIX CPU clock). Usage: multirate_bench [--csv FILE]
  * [--md FILE] [--doc FILE] [--reps N] [--final N] [--quick]
  *   --csv   work-precision table "series,x,y" (x: host CPU s per run of 10 s, y: largest
