@@ -174,14 +174,17 @@ static real_t vertical(const real_t *p, const axle *x, real_t z, real_t zd, real
 
 /* Magic Formula F = D sin(C atan(B a - E (B a - atan(B a)))), D = mu fz, with
    B C D = C_a(fz) = c1 sin(2 atan(fz / c2)) = c1 2 x / (1 + x^2), x = fz / c2:
-   B = 2 c1 / (c2 (1 + x^2) C mu) stays finite as fz goes to zero */
+   B = 2 c1 / (c2 (1 + x^2) C mu) stays finite as fz goes to zero. The inverse tangents
+   are the faithfully rounded ones: every stage calls them eight times per car, and a
+   last-bit difference in a tire force is far below the law's own fidelity */
 static real_t magic(const real_t *p, const axle *x, real_t alpha, real_t fz)
 {
     real_t d = p[P_MU] * fz;
     if (d <= 0)
         return 0;
     real_t r = fz * x->ic2, ba = x->bk / (1 + r * r) * alpha;
-    return d * rt_sin(p[P_SHAPE] * rt_atan(ba - p[P_CURV] * (ba - rt_atan(ba))));
+    real_t in = rt_atan_faithful(ba);
+    return d * rt_sin(p[P_SHAPE] * rt_atan_faithful(ba - p[P_CURV] * (ba - in)));
 }
 
 /* friction circle: the longitudinal demand limited to fmax = mu fz, the pure lateral
@@ -286,12 +289,13 @@ static void force(const rt_args *a, tire_law *law, real_t *k)
         k[3 + i] = tb[i] - gyro[i];
 }
 
-/* hitch i at d ahead of the centre of mass (d < 0: behind), at its height */
+/* hitch i at d ahead of the centre of mass (d < 0: behind), at its height: a node on the
+   body x axis */
 static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
 {
-    real_t R[9], s[3] = {i == 0 ? a->p[P_DF] : -a->p[P_DR], 0, 0};
+    real_t R[9];
     mdl_rotation(a->x + MDL_RB_P, R);
-    mdl_rigid_node(a->x, R, s, n, J);
+    mdl_rigid_node_x(a->x, R, i == 0 ? a->p[P_DF] : -a->p[P_DR], n, J);
 }
 
 /* T = m |v|^2 / 2 + w^T J w / 2; V = m g z + sum (k z_i^2 / 2 - pre F0_i z_i)
@@ -334,9 +338,10 @@ static void output(const rt_args *a, tire_law *law, real_t *y)
     const real_t *R = c.R;
     real_t cc = R[7] * R[7] + R[8] * R[8], sp = -R[6] > 1 ? 1 : -R[6] < -1 ? -1 : -R[6];
     y[Y_X] = x[0], y[Y_Y] = x[1], y[Y_Z] = x[2];
-    y[Y_PSI] = rt_atan2(R[3], R[0]);
-    y[Y_ROLL] = rt_atan2(R[7], R[8]);
-    y[Y_PITCH] = rt_asin(sp);
+    /* faithfully rounded: every output call (V1's twice per stage) computes all three */
+    y[Y_PSI] = rt_atan2_faithful(R[3], R[0]);
+    y[Y_ROLL] = rt_atan2_faithful(R[7], R[8]);
+    y[Y_PITCH] = rt_asin_faithful(sp);
     y[Y_U] = c.hx * x[MDL_RB_V] + c.hy * x[MDL_RB_V + 1];
     y[Y_V] = -c.hy * x[MDL_RB_V] + c.hx * x[MDL_RB_V + 1];
     y[Y_R] = cc > 0 ? (w[1] * R[7] + w[2] * R[8]) / cc : 0;
