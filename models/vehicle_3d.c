@@ -183,8 +183,8 @@ static real_t magic(const real_t *p, const axle *x, real_t alpha, real_t fz)
     if (d <= 0)
         return 0;
     real_t r = fz * x->ic2, ba = x->bk / (1 + r * r) * alpha;
-    real_t in = rt_atan_faithful(ba);
-    return d * rt_sin_faithful(p[P_SHAPE] * rt_atan_faithful(ba - p[P_CURV] * (ba - in)));
+    real_t inner = rt_atan_faithful(ba);
+    return d * rt_sin_faithful(p[P_SHAPE] * rt_atan_faithful(ba - p[P_CURV] * (ba - inner)));
 }
 
 /* friction circle: the longitudinal demand limited to fmax = mu fz, the pure lateral
