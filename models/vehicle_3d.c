@@ -174,14 +174,17 @@ static real_t vertical(const real_t *p, const axle *x, real_t z, real_t zd, real
 
 /* Magic Formula F = D sin(C atan(B a - E (B a - atan(B a)))), D = mu fz, with
    B C D = C_a(fz) = c1 sin(2 atan(fz / c2)) = c1 2 x / (1 + x^2), x = fz / c2:
-   B = 2 c1 / (c2 (1 + x^2) C mu) stays finite as fz goes to zero */
+   B = 2 c1 / (c2 (1 + x^2) C mu) stays finite as fz goes to zero. The sine and inverse
+   tangents are the faithfully rounded ones: every stage calls them twelve times per car,
+   and a last-bit difference in a tire force is far below the law's own fidelity */
 static real_t magic(const real_t *p, const axle *x, real_t alpha, real_t fz)
 {
     real_t d = p[P_MU] * fz;
     if (d <= 0)
         return 0;
     real_t r = fz * x->ic2, ba = x->bk / (1 + r * r) * alpha;
-    return d * rt_sin(p[P_SHAPE] * rt_atan(ba - p[P_CURV] * (ba - rt_atan(ba))));
+    real_t inner = rt_atan_faithful(ba);
+    return d * rt_sin_faithful(p[P_SHAPE] * rt_atan_faithful(ba - p[P_CURV] * (ba - inner)));
 }
 
 /* friction circle: the longitudinal demand limited to fmax = mu fz, the pure lateral
@@ -197,46 +200,62 @@ static void combine(real_t fmax, real_t fxd, real_t *fx, real_t *fy)
     *fy *= rt_sqrt(1 - q * q);
 }
 
-/* A tire law: wheel-frame forces (fx along the wheel, fy across) of a wheel of axle x
-   from its load fz and the slip tan(a) = -vy / vx of its contact point (vx >= umin), as
-   the Magic Formula of Pacejka (ch. 4.3) takes it, which needs no inverse tangent. Each
-   kind names its own law, so a scene of linear tires links no Magic Formula. */
-typedef void tire_law(const real_t *p, const axle *x, real_t fz, real_t slip, real_t *fx,
-                      real_t *fy);
+/* a wheel for its tire law: its axle, its vertical load and the slip tan(a) = -vy / vx
+   of its contact point in the wheel frame (vx >= umin), as the Magic Formula of Pacejka
+   (ch. 4.3) takes it, which needs no inverse tangent; the law writes the forces */
+typedef struct wheel {
+    const axle *ax;
+    real_t fz, slip; /* vertical load [N], tan of the slip angle */
+    real_t fx, fy;   /* wheel-frame forces, along and across the wheel [N] */
+} wheel;
+
+/* A tire law: the forces of the four wheels. Each kind names its own law, so a scene of
+   linear tires links no Magic Formula; it takes all four wheels in one call, so that
+   the corners' state stays in registers across a single indirect call, not four. */
+typedef void tire_law(const real_t *p, wheel *w);
 
 /* car3d: cornering stiffness proportional to the load, fx as demanded */
-static void tire_linear(const real_t *p, const axle *x, real_t fz, real_t slip, real_t *fx,
-                        real_t *fy)
+static void tire_linear(const real_t *p, wheel *w)
 {
     (void)p;
-    *fx = x->fxd;
-    *fy = x->ca0 * fz / x->f0 * slip;
+    for (int i = 0; i < NCORNER; i++) {
+        const axle *x = w[i].ax;
+        w[i].fx = x->fxd;
+        w[i].fy = x->ca0 * w[i].fz / x->f0 * w[i].slip;
+    }
 }
 
 /* car3d_mf: the Magic Formula, combined with fx by the friction circle */
-static void tire_mf(const real_t *p, const axle *x, real_t fz, real_t slip, real_t *fx,
-                    real_t *fy)
+static void tire_mf(const real_t *p, wheel *w)
 {
-    *fy = magic(p, x, slip, fz);
-    combine(p[P_MU] * fz, x->fxd, fx, fy);
+    for (int i = 0; i < NCORNER; i++) {
+        w[i].fy = magic(p, w[i].ax, w[i].slip, w[i].fz);
+        combine(p[P_MU] * w[i].fz, w[i].ax->fxd, &w[i].fx, &w[i].fy);
+    }
 }
 
-/* corner i at contact k, with the height zo of the other wheel on its axle: its vertical
-   load and tire forces at the contact point, added to w (the moment about the centre of
-   mass, r x F in the ground frame, only if torque is set: outputs need none) */
-static void corner(const rt_args *a, const chassis *c, int i, const contact *k, real_t zo,
-                   tire_law *law, int torque, wrench *w)
+/* corner i at contact k, with the height zo of the other wheel on its axle: its wheel's
+   vertical load and slip */
+static void wheel_of(const rt_args *a, const chassis *c, int i, const contact *k, real_t zo,
+                     wheel *wh)
 {
     const real_t *p = a->p, *vp = k->v;
     const axle *ax = &c->ax[i < 2 ? 0 : 1];
-    real_t F[3], tg[3], fx, fy;
-    real_t fz = vertical(p, ax, k->z, vp[2], zo);
     /* the contact point's velocity in the wheel frame (along and across the wheel) */
     real_t ex = ax->ex, ey = ax->ey;
     real_t vxw = ex * vp[0] + ey * vp[1], vyw = -ey * vp[0] + ex * vp[1];
-    law(p, ax, fz, -vyw / (vxw > p[P_UMIN] ? vxw : p[P_UMIN]), &fx, &fy);
+    wh->ax = ax;
+    wh->fz = vertical(p, ax, k->z, vp[2], zo);
+    wh->slip = -vyw / (vxw > p[P_UMIN] ? vxw : p[P_UMIN]);
+}
+
+/* wheel i's forces at its contact point k, added to w (the moment about the centre of
+   mass, r x F in the ground frame, only if torque is set: outputs need none) */
+static void apply(const contact *k, const wheel *wh, int i, int torque, wrench *w)
+{
+    real_t ex = wh->ax->ex, ey = wh->ax->ey, F[3], tg[3];
     /* wheel frame -> ground */
-    F[0] = ex * fx - ey * fy, F[1] = ey * fx + ex * fy, F[2] = fz;
+    F[0] = ex * wh->fx - ey * wh->fy, F[1] = ey * wh->fx + ex * wh->fy, F[2] = wh->fz;
     for (int j = 0; j < 3; j++)
         w->f[j] += F[j];
     if (torque) {
@@ -244,20 +263,24 @@ static void corner(const rt_args *a, const chassis *c, int i, const contact *k, 
         for (int j = 0; j < 3; j++)
             w->t[j] += tg[j];
     }
-    w->fz[i] = fz;
+    w->fz[i] = wh->fz;
 }
 
 /* the four corners with the kind's tire law: contacts first (each wheel's load needs the
-   other wheel's height on its axle, for the anti-roll bar) */
+   other wheel's height on its axle, for the anti-roll bar), then the law for all four */
 static void corners(const rt_args *a, const chassis *c, tire_law *law, int torque, wrench *w)
 {
     contact k[NCORNER];
+    wheel wh[NCORNER];
     for (int j = 0; j < 3; j++)
         w->f[j] = w->t[j] = 0;
     for (int i = 0; i < NCORNER; i++)
         contact_of(a, c, i, &k[i]);
     for (int i = 0; i < NCORNER; i++)
-        corner(a, c, i, &k[i], k[i ^ 1].z, law, torque, w);
+        wheel_of(a, c, i, &k[i], k[i ^ 1].z, &wh[i]);
+    law(a->p, wh);
+    for (int i = 0; i < NCORNER; i++)
+        apply(&k[i], &wh[i], i, torque, w);
 }
 
 static void kin(const rt_args *a, const real_t *v, real_t *qd) { mdl_rigid_kin(a->x, v, qd); }
@@ -286,12 +309,13 @@ static void force(const rt_args *a, tire_law *law, real_t *k)
         k[3 + i] = tb[i] - gyro[i];
 }
 
-/* hitch i at d ahead of the centre of mass (d < 0: behind), at its height */
+/* hitch i at d ahead of the centre of mass (d < 0: behind), at its height: a node on the
+   body x axis */
 static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
 {
-    real_t R[9], s[3] = {i == 0 ? a->p[P_DF] : -a->p[P_DR], 0, 0};
+    real_t R[9];
     mdl_rotation(a->x + MDL_RB_P, R);
-    mdl_rigid_node(a->x, R, s, n, J);
+    mdl_rigid_node_x(a->x, R, i == 0 ? a->p[P_DF] : -a->p[P_DR], n, J);
 }
 
 /* T = m |v|^2 / 2 + w^T J w / 2; V = m g z + sum (k z_i^2 / 2 - pre F0_i z_i)
@@ -334,9 +358,10 @@ static void output(const rt_args *a, tire_law *law, real_t *y)
     const real_t *R = c.R;
     real_t cc = R[7] * R[7] + R[8] * R[8], sp = -R[6] > 1 ? 1 : -R[6] < -1 ? -1 : -R[6];
     y[Y_X] = x[0], y[Y_Y] = x[1], y[Y_Z] = x[2];
-    y[Y_PSI] = rt_atan2(R[3], R[0]);
-    y[Y_ROLL] = rt_atan2(R[7], R[8]);
-    y[Y_PITCH] = rt_asin(sp);
+    /* faithfully rounded: every output call (V1's twice per stage) computes all three */
+    y[Y_PSI] = rt_atan2_faithful(R[3], R[0]);
+    y[Y_ROLL] = rt_atan2_faithful(R[7], R[8]);
+    y[Y_PITCH] = rt_asin_faithful(sp);
     y[Y_U] = c.hx * x[MDL_RB_V] + c.hy * x[MDL_RB_V + 1];
     y[Y_V] = -c.hy * x[MDL_RB_V] + c.hx * x[MDL_RB_V + 1];
     y[Y_R] = cc > 0 ? (w[1] * R[7] + w[2] * R[8]) / cc : 0;

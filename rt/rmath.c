@@ -32,6 +32,9 @@
  *   pow        integer |y| <= 64: dd repeated squaring; else exp(y log x) with log x and
  *              y log x in dd, so a product up to 745 costs no accuracy.
  *   tanh       Taylor below 1/16, else (e^2x - 1)/(e^2x + 1) in dd.
+ *   *_faithful sin, atan, atan2, asin rounded faithfully (< 1 ulp) in plain double where
+ *              the error analysis allows: the cars' tire law calls them in every stage
+ *              (section "faithful functions").
  *
  * Max error in ulp measured against the long double libm (tests/host/test_rmath_libm.c,
  * 20M points per function over the whole range incl. subnormals, huge trig arguments,
@@ -50,6 +53,9 @@
  *                       x < 0 needs an integer y, else NaN; C99 Annex F special
  *                       cases; |y| > 2^64 over/underflows directly          (0.51)
  *   tanh        0.503   (0.51)
+ *   sin_faithful                 0.79    (0.85)
+ *   atan_faithful atan2_faithful 0.525   (0.6)
+ *   asin_faithful                0.547   (0.6)
  *   fabs isfinite (inline in rt_math.h) floor fmin fmax: exact. fmin(-0, +0) = -0, fmax(-0, +0) = +0; a NaN
  *   argument of fmin/fmax is ignored unless both are NaN.
  * Cost, QEMU instruction counts per call (M3 soft-float / M7 double FPU): sqrt 1.8k/15,
@@ -831,6 +837,236 @@ static double acos_d(double x)
     return h + l;
 }
 
+/* ------------------------------------------------------------------ faithful functions */
+
+/* rt_atan_faithful, rt_atan2_faithful, rt_asin_faithful: faithfully rounded (the result
+   is one of the two doubles around the exact value), for models whose results need no
+   last-bit accuracy but call these in every stage (the tire law of a car, #13). The
+   same table reduction as atan_core, but carried in plain double wherever the error
+   analysis allows, so that no Dekker product is needed on the common paths:
+   - |v| < 1/8: the odd Taylor series to v^19 (the next term is below 2^-57 v);
+   - 1/8 <= v <= 1: atan v = atan c + atan t, c = i/64 nearest v, t = (n - c d)/(d + c n)
+     for v = n/d. c d is exact with d's last 6 bits split off (c has at most 6
+     significant bits), n - c d exact by Sterbenz (n/(c d) is within 1/16 of 1), so t
+     carries at most 4 roundings: |dt| <= 2^-51 |t| <= 2^-55 atan v (|t| <= 1/128,
+     atan v >= 1/8), below half an ulp with the table's 106 bits and one final rounding.
+   The errors measured against the long double libm are in tests/host/test_rmath_libm.c. */
+
+#define FA_SMALL 0.125        /* below: Taylor series in v */
+#define FA_STEPS 64.0         /* table spacing 1/64 */
+#define FA_FIRST 8            /* the first table entry, atan(8/64) */
+#define FA_SPLIT 0xffffffffffffffc0ull /* clears a double's last 6 mantissa bits */
+
+/* atan(i/64), i = 8..64, as dd */
+static const double ATAN64_T[57][2] = {
+    {0x1.fd5ba9aac2f6ep-4, -0x1.cd37686760c17p-59}, {0x1.1e1fafb043727p-3, -0x1.b485914dacf8cp-59},
+    {0x1.3d6eee8c6626cp-3, 0x1.61a3b0ce9281bp-57}, {0x1.5c9811e3ec26ap-3, -0x1.054ab2c010f3dp-58},
+    {0x1.7b97b4bce5b02p-3, 0x1.347b0b4f881cap-58}, {0x1.9a6a8e96c8626p-3, 0x1.cf601e7b4348ep-59},
+    {0x1.b90d7529260a2p-3, 0x1.17b10d2e0e5abp-61}, {0x1.d77d5df205736p-3, 0x1.c648d1534597ep-57},
+    {0x1.f5b75f92c80ddp-3, 0x1.8ab6e3cf7afbdp-57}, {0x1.09dc597d86362p-2, 0x1.62e47390cb865p-56},
+    {0x1.18bf5a30bf178p-2, 0x1.30ca4748b1bf9p-57}, {0x1.278372057ef46p-2, -0x1.077cdd36dfc81p-56},
+    {0x1.362773707ebccp-2, -0x1.963a544b672d8p-57}, {0x1.44aa436c2af0ap-2, -0x1.5d5e43c55b3bap-56},
+    {0x1.530ad9951cd4ap-2, -0x1.2566480884082p-57}, {0x1.614840309cfe2p-2, -0x1.a725715711f00p-56},
+    {0x1.6f61941e4def1p-2, -0x1.c63aae6f6e918p-56}, {0x1.7d5604b63b3f7p-2, 0x1.69c885c2b249ap-56},
+    {0x1.8b24d394a1b25p-2, 0x1.b6d0ba3748fa8p-56}, {0x1.98cd5454d6b18p-2, 0x1.9e6c988fd0a77p-56},
+    {0x1.a64eec3cc23fdp-2, -0x1.24dec1b50b7ffp-56}, {0x1.b3a911da65c6cp-2, 0x1.ae187b1ca5040p-56},
+    {0x1.c0db4c94ec9f0p-2, -0x1.cc1ce70934c34p-56}, {0x1.cde53432c1351p-2, -0x1.a2cfa4418f1adp-56},
+    {0x1.dac670561bb4fp-2, 0x1.a2b7f222f65e2p-56}, {0x1.e77eb7f175a34p-2, 0x1.0e53dc1bf3435p-56},
+    {0x1.f40dd0b541418p-2, -0x1.a3992dc382a23p-57}, {0x1.0039c73c1a40cp-1, -0x1.b32c949c9d593p-55},
+    {0x1.0657e94db30d0p-1, -0x1.d5b495f6349e6p-56}, {0x1.0c6145b5b43dap-1, 0x1.974fa13b5404fp-58},
+    {0x1.1255d9bfbd2a9p-1, -0x1.2bdaee1c0ee35p-58}, {0x1.1835a88be7c13p-1, 0x1.c621cec00c301p-55},
+    {0x1.1e00babdefeb4p-1, -0x1.928df287a668fp-58}, {0x1.23b71e2cc9e6ap-1, 0x1.c421c9f38224ep-57},
+    {0x1.2958e59308e31p-1, -0x1.09e73b0c6c087p-56}, {0x1.2ee628406cbcap-1, 0x1.c5d5e9ff0cf8dp-55},
+    {0x1.345f01cce37bbp-1, 0x1.1021137c71102p-55}, {0x1.39c391cd4171ap-1, -0x1.2304331d8bf46p-55},
+    {0x1.3f13fb89e96f4p-1, 0x1.ecf8b492644f0p-56}, {0x1.445065b795b56p-1, -0x1.f76d0163f79c8p-56},
+    {0x1.4978fa3269ee1p-1, 0x1.2419a87f2a458p-56}, {0x1.4e8de5bb6ec04p-1, 0x1.4a33dbeb3796cp-55},
+    {0x1.538f57b89061fp-1, -0x1.1bb74abda520cp-55}, {0x1.587d81f732fbbp-1, -0x1.5e5c9d8c5a950p-56},
+    {0x1.5d58987169b18p-1, 0x1.0028e4bc5e7cap-57}, {0x1.6220d115d7b8ep-1, -0x1.2b785350ee8c1p-57},
+    {0x1.66d663923e087p-1, -0x1.6ea6febe8bbbap-56}, {0x1.6b798920b3d99p-1, -0x1.a80386188c50ep-55},
+    {0x1.700a7c5784634p-1, -0x1.8c34d25aadef6p-56}, {0x1.748978fba8e0fp-1, 0x1.7b2a6165884a1p-59},
+    {0x1.78f6bbd5d315ep-1, 0x1.406a089803740p-55}, {0x1.7d528289fa093p-1, 0x1.560821e2f3aa9p-55},
+    {0x1.819d0b7158a4dp-1, -0x1.bf76229d3b917p-56}, {0x1.85d69576cc2c5p-1, 0x1.6b66e7fc8b8c3p-57},
+    {0x1.89ff5ff57f1f8p-1, -0x1.55b9a5e177a1bp-55}, {0x1.8e17aa99cc05ep-1, -0x1.ec182ab042f61p-56},
+    {0x1.921fb54442d18p-1, 0x1.1a62633145c07p-55}
+};
+
+/* atan(vh + vl) - vh for |vh| < 1/8, |vl| <= ulp(vh): the odd Taylor series (-1)^k
+   v^(2k+1)/(2k+1) from k = 1 to 9, plus the tail vl (its products are below 2^-58 vl) */
+static double fa_series(double vh, double vl)
+{
+    double z = vh * vh;
+    double p = -1.0 / 3 + z * (1.0 / 5 + z * (-1.0 / 7 + z * (1.0 / 9 + z * (-1.0 / 11
+               + z * (1.0 / 13 + z * (-1.0 / 15 + z * (1.0 / 17 + z * (-1.0 / 19))))))));
+    return vl + vh * z * p;
+}
+
+/* atan(n / (d + dl)) as *hi + *lo for 0 < n <= d, |dl| <= ulp(d), q = n/d rounded and
+   1/8 <= q <= 1: the table path above (dl, asin's root in dd, enters t to first order) */
+static void fa_table(double n, double d, double dl, double q, double *hi, double *lo)
+{
+    int32_t i = (int32_t)(q * FA_STEPS + 0.5);
+    double c = (double)i * (1.0 / FA_STEPS);
+    double dh = from_bits(bits_of(d) & FA_SPLIT), e;
+    double t = (((n - c * dh) - c * (d - dh)) - c * dl) / ((d + c * n) + dl);
+    double z = t * t;
+    double p = t * z * (-1.0 / 3 + z * (1.0 / 5 + z * (-1.0 / 7 + z * (1.0 / 9))));
+    fast_two_sum(ATAN64_T[i - FA_FIRST][0], t, hi, &e);
+    *lo = e + (ATAN64_T[i - FA_FIRST][1] + p);
+}
+
+/* atan(n / (d + dl)) as *hi + *lo for 0 <= n <= d (d > 0, |dl| <= ulp(d), operands
+   scaled as atan2_d does): the series with the quotient's remainder, or the table */
+static void fa_ratio(double n, double d, double dl, double *hi, double *lo)
+{
+    double q = n / d;
+    if (q >= FA_SMALL) {
+        fa_table(n, d, dl, q, hi, lo);
+        return;
+    }
+    double p, pe;
+    two_prod(q, d, &p, &pe); /* q's remainder: the series' result is as large as q */
+    *hi = q;
+    *lo = fa_series(q, (((n - p) - pe) - q * dl) / d);
+}
+
+/* pi/2 - (hi + lo) as *hi + *lo, for 0 <= hi + lo <= pi/4 */
+static void fa_complement(double *hi, double *lo)
+{
+    double s, e;
+    two_sum(PIO2_H, -*hi, &s, &e);
+    *lo = e + (PIO2_L - *lo);
+    *hi = s;
+}
+
+/* atan2 of y >= 0, x >= 0 (not both 0), scaled as in atan2_d, as *hi + *lo */
+static void fa_pos(double y, double x, double *hi, double *lo)
+{
+    if (y > x) {
+        fa_ratio(x, y, 0.0, hi, lo);
+        fa_complement(hi, lo);
+    } else {
+        fa_ratio(y, x, 0.0, hi, lo);
+    }
+}
+
+static double atan_fa(double x)
+{
+    double ax = abs_d(x), h, l;
+    if (x != x) return NAN_D;
+    if (ax < 0x1p-27) return x;
+    if (ax > 0x1p60) {
+        h = PIO2_H; /* pi/2 - 1/x rounds to PIO2_H */
+    } else if (ax < FA_SMALL) {
+        h = ax + fa_series(ax, 0.0);
+    } else if (ax <= 1.0) {
+        fa_table(ax, 1.0, 0.0, ax, &h, &l);
+        h += l;
+    } else {
+        /* pi/2 - atan(1/x): the error of 1/x moves the result by < 2^-56 of pi/2 */
+        double q = 1.0 / ax;
+        if (q < FA_SMALL) {
+            h = q, l = fa_series(q, 0.0);
+        } else {
+            fa_table(1.0, ax, 0.0, q, &h, &l);
+        }
+        fa_complement(&h, &l);
+        h += l;
+    }
+    return x < 0.0 ? -h : h;
+}
+
+static double atan2_fa(double y, double x)
+{
+    if (x != x || y != y) return NAN_D;
+    double ax = abs_d(x), ay = abs_d(y), h = 0.0, l = 0.0;
+    if (ax == INF_D && ay == INF_D) {
+        h = 0.5 * PIO2_H;
+        l = 0.5 * PIO2_L;
+    } else if (ay == INF_D) {
+        h = PIO2_H;
+        l = PIO2_L;
+    } else if (ax != INF_D && ay != 0.0) {
+        /* the scaling and the extreme ratios of atan2_d */
+        double mx = ax > ay ? ax : ay;
+        if (mx > 0x1p960) {
+            ax *= 0x1p-128;
+            ay *= 0x1p-128;
+        } else if (mx < 0x1p-900) {
+            ax *= 0x1p200;
+            ay *= 0x1p200;
+        }
+        if (ay < ax * 0x1p-30)
+            h = ay / ax;
+        else if (ax < ay * 0x1p-30)
+            fast_two_sum(PIO2_H, PIO2_L - ax / ay, &h, &l);
+        else
+            fa_pos(ay, ax, &h, &l);
+    }
+    if (bits_of(x) >> 63) { /* left half-plane: pi - angle */
+        double s, e;
+        two_sum(PI_H, -h, &s, &e);
+        fast_two_sum(s, e + (PI_L - l), &h, &l);
+    }
+    h += l;
+    return (bits_of(y) >> 63) ? -h : h;
+}
+
+/* asin x: below 1/8 its odd Taylor series to x^17 (the next term is below 2^-61 x);
+   above, atan2(x, sqrt(1 - x^2)) with the root in dd */
+static double asin_fa(double x)
+{
+    double ax = abs_d(x), h, l;
+    if (!(ax <= 1.0)) return NAN_D;
+    if (ax < 0x1p-27) return x;
+    if (ax < FA_SMALL) {
+        double z = ax * ax;
+        double p = 1.0 / 6 + z * (3.0 / 40 + z * (5.0 / 112 + z * (35.0 / 1152 + z * (63.0 / 2816
+                   + z * (231.0 / 13312 + z * (143.0 / 10240 + z * (6435.0 / 557056)))))));
+        h = ax + ax * z * p;
+    } else {
+        double ch, cl;
+        sqrt_1mx2(ax, &ch, &cl);
+        if (ax > ch) {
+            /* pi/2 - atan(c/x) with the root's tail cl to first order: on the unit
+               circle x^2 + c^2 = 1, d atan(c/x) / dc = x / (x^2 + c^2) = x */
+            fa_ratio(ch, ax, 0.0, &h, &l);
+            l += ax * cl;
+            fa_complement(&h, &l);
+        } else {
+            fa_ratio(ax, ch, cl, &h, &l);
+        }
+        h += l;
+    }
+    return x < 0.0 ? -h : h;
+}
+
+/* rt_sin_faithful: faithfully rounded sine, for the same models (the Magic Formula takes
+   the sine of C atan(...), |C atan| < pi for its C < 2). Below 3 pi/4 it needs no general
+   reduction: sin x by the minimax kernel in plain double up to pi/4, and cos(|x| - pi/2)
+   above, with |x| - pi/2 in two parts (|x| - PIO2_1 is exact by Sterbenz) and z = r^2
+   rounded: |error| < 0.31 ulp from z, the rest < 0.05 ulp, before the final rounding.
+   Beyond 3 pi/4 (and for inf, NaN) it is rt_sin. */
+#define SF_FAST_BITS 0x4002d97c7f3321d2ull /* 3 pi/4 */
+
+static double sin_fa(double x)
+{
+    uint64_t ix = bits_of(x) & ABS_MASK;
+    double ax = abs_d(x), h;
+    if (ix >= SF_FAST_BITS) return sin_cos_d(x, 0);
+    if (ix < TINY_BITS) return x;
+    if (ix <= PIO4_BITS) {
+        double z = ax * ax, w = z * z;
+        double r = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6);
+        h = ax + ax * z * (S1 + z * r);
+    } else {
+        double r0 = ax - PIO2_1, y0 = r0 - PIO2_1T, y1 = (r0 - y0) - PIO2_1T;
+        double z = y0 * y0, w = z * z, hz = 0.5 * z, c = 1.0 - hz;
+        double r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
+        h = c + (((1.0 - c) - hz) + (z * r - y0 * y1));
+    }
+    return x < 0.0 ? -h : h;
+}
+
 /* ------------------------------------------------------------------ tanh */
 
 static double tanh_d(double x)
@@ -975,3 +1211,7 @@ real_t rt_exp(real_t x) { return R(exp_d((double)x)); }
 real_t rt_log(real_t x) { return R(log_d((double)x)); }
 real_t rt_pow(real_t x, real_t y) { return R(pow_d((double)x, (double)y)); }
 real_t rt_tanh(real_t x) { return R(tanh_d((double)x)); }
+real_t rt_atan_faithful(real_t x) { return R(atan_fa((double)x)); }
+real_t rt_atan2_faithful(real_t y, real_t x) { return R(atan2_fa((double)y, (double)x)); }
+real_t rt_asin_faithful(real_t x) { return R(asin_fa((double)x)); }
+real_t rt_sin_faithful(real_t x) { return R(sin_fa((double)x)); }

@@ -9,6 +9,7 @@
  * servo at rest at the steady states computed by hand. Whole-scene checks of the cars are
  * in tests/vehicles/vehicles.py. */
 #include "models.h"
+#include "rigid.h"
 #include "testutil.h"
 
 static double absd(double v) { return v < 0 ? -v : v; }
@@ -87,6 +88,34 @@ static void test_nodes(void)
     th_note("hitch |dr/dt - v| (central difference)", worst_fd);
     TH_CHECK(worst_j < (RT_REAL_IS_FLOAT ? 1e-4 : 1e-12));
     TH_CHECK(worst_fd < (RT_REAL_IS_FLOAT ? 1e-2 : 1e-8));
+}
+
+/* mdl_rigid_node_x (the hitches) gives the values of the general mdl_rigid_node at
+   s = (d, 0, 0), to the bit (only a zero's sign may differ), in both states and both
+   directions; the general node is the one test_mbs_body checks against mbs_body */
+static void test_node_x(void)
+{
+    static const real_t d[2] = {2, (real_t)-1.75};
+    const real_t *states[2] = {moving, moving_low};
+    int differ = 0;
+    for (int k = 0; k < 2; k++)
+        for (int j = 0; j < 2; j++) {
+            real_t x[NX], R[9], J1[36], J2[36], s[3] = {d[j], 0, 0};
+            rt_mbs_node n1, n2;
+            for (int i = 0; i < NX; i++)
+                x[i] = states[k][i];
+            mdl_rotation(x + MDL_RB_P, R);
+            mdl_rigid_node(x, R, s, &n1, J1);
+            mdl_rigid_node_x(x, R, d[j], &n2, J2);
+            for (int i = 0; i < 3; i++)
+                differ += n1.r[i] != n2.r[i] || n1.v[i] != n2.v[i] || n1.w[i] != n2.w[i] ||
+                          n1.ar[i] != n2.ar[i] || n1.aw[i] != n2.aw[i];
+            for (int i = 0; i < 9; i++)
+                differ += n1.S[i] != n2.S[i];
+            for (int i = 0; i < 36; i++)
+                differ += J1[i] != J2[i];
+        }
+    TH_CHECK(differ == 0);
 }
 
 /* tires off (mu = 0), no dampers, no inputs: the generalized forces' power
@@ -226,6 +255,7 @@ static void test_chain_steady(void)
 
 const th_test th_vehicle_3d_tests[] = {
     {"vehicle_3d_nodes", test_nodes},
+    {"vehicle_3d_node_x", test_node_x},
     {"vehicle_3d_energy_power", test_energy_power},
     {"vehicle_3d_energy_power_bars", test_energy_power_bars},
     {"vehicle_3d_bar_energy", test_bar_energy},
