@@ -50,7 +50,22 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
-static real_t parabola(const rt_sim *sim, const real_t *T, uint16_t v, real_t t);
+/* the line through history points a and b of output v, at time t */
+static real_t line(const rt_sim *sim, const real_t *T, uint16_t v, int a, int b, real_t t)
+{
+    return sim->state.hist_y[b][v] +
+           (sim->state.hist_y[a][v] - sim->state.hist_y[b][v]) * (t - T[b]) / (T[a] - T[b]);
+}
+
+/* the parabola through the three points, at time t (Lagrange form): cubic Hermite with
+   both end slopes taken from this parabola reproduces it exactly */
+static real_t parabola(const rt_sim *sim, const real_t *T, uint16_t v, real_t t)
+{
+    real_t l0 = (t - T[1]) * (t - T[2]) / ((T[0] - T[1]) * (T[0] - T[2]));
+    real_t l1 = (t - T[0]) * (t - T[2]) / ((T[1] - T[0]) * (T[1] - T[2]));
+    real_t l2 = (t - T[0]) * (t - T[1]) / ((T[2] - T[0]) * (T[2] - T[1]));
+    return l0 * sim->state.hist_y[0][v] + l1 * sim->state.hist_y[1][v] + l2 * sim->state.hist_y[2][v];
+}
 
 /* history slot 0 := the outputs of set s now; older points move down */
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
@@ -86,23 +101,6 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
         T[k] = T[k - 1];
     T[0] = t;
     sim->state.hist_n[s] = (uint8_t)(sim->state.hist_n[s] < RT_HIST ? sim->state.hist_n[s] + 1 : RT_HIST);
-}
-
-/* the line through history points a and b of output v, at time t */
-static real_t line(const rt_sim *sim, const real_t *T, uint16_t v, int a, int b, real_t t)
-{
-    return sim->state.hist_y[b][v] +
-           (sim->state.hist_y[a][v] - sim->state.hist_y[b][v]) * (t - T[b]) / (T[a] - T[b]);
-}
-
-/* the parabola through the three points, at time t (Lagrange form): cubic Hermite with
-   both end slopes taken from this parabola reproduces it exactly */
-static real_t parabola(const rt_sim *sim, const real_t *T, uint16_t v, real_t t)
-{
-    real_t l0 = (t - T[1]) * (t - T[2]) / ((T[0] - T[1]) * (T[0] - T[2]));
-    real_t l1 = (t - T[0]) * (t - T[2]) / ((T[1] - T[0]) * (T[1] - T[2]));
-    real_t l2 = (t - T[0]) * (t - T[1]) / ((T[2] - T[0]) * (T[2] - T[1]));
-    return l0 * sim->state.hist_y[0][v] + l1 * sim->state.hist_y[1][v] + l2 * sim->state.hist_y[2][v];
 }
 
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t)
