@@ -95,6 +95,15 @@ static void sphdiff_points(const real_t *p, const real_t *r1, const real_t *v1,
     }
 }
 
+/* g alone: the first lines of sphdiff_points */
+static void sphdiff_g(const real_t *p, const real_t *r1, const real_t *r2, real_t *g)
+{
+    real_t d[3];
+    for (int i = 0; i < 3; i++)
+        d[i] = r1[i] - r2[i];
+    g[0] = rt_sqrt(dot3(d, d)) - p[0];
+}
+
 static void sphdiff_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,
                          rt_joint_eval *e)
 {
@@ -182,6 +191,7 @@ static const char *const sphdiff_p[] = {"l"};
 const rt_joint_kind rt_joint_sphdiff = {
     .name = "sphdiff", .nc = 1, .np = 1, .trans = 1, .p_names = sphdiff_p,
     .check = sphdiff_check, .eval = sphdiff_eval, .eval_points = sphdiff_points,
+    .g_points = sphdiff_g,
 };
 const rt_joint_kind rt_joint_spherical = {
     .name = "spherical", .nc = 3, .trans = 1, .eval = spherical_eval,

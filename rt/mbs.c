@@ -275,7 +275,7 @@ static real_t residual(const rt_scene *sc, const rt_sim *sim, uint8_t set, real_
     for (uint16_t i = w->sj[set]; i < w->sj[set + 1]; i++) {
         uint16_t j = w->sjnt[i];
         real_t g[RT_MBS_JOINT_NC_MAX], gd[RT_MBS_JOINT_NC_MAX];
-        rti_mbs_joint_g(sc, sim, j, t, g, gd);
+        rti_mbs_joint_g(sc, sim, j, t, g, pos ? 0 : gd);
         for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)
             worst = rt_fmax(worst, rt_fabs(pos ? g[i] : gd[i]));
     }

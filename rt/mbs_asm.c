@@ -101,15 +101,21 @@ void rti_mbs_joint_g(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t 
     const rt_joint *j = &sc->joints[ji];
     const real_t *r1, *v1, *r2, *v2;
     rt_joint_eval e;
-    if (j->kind->eval_points && point_of(sc, sim, j, 0, &r1, &v1) &&
-        point_of(sc, sim, j, 1, &r2, &v2)) {
+    int points = point_of(sc, sim, j, 0, &r1, &v1) && point_of(sc, sim, j, 1, &r2, &v2);
+    if (!gd && points && j->kind->g_points) {
+        j->kind->g_points(j->p, r1, r2, g);
+        return;
+    }
+    if (j->kind->eval_points && points) {
         j->kind->eval_points(j->p, r1, v1, r2, v2, &e);
         for (uint16_t i = 0; i < j->kind->nc; i++) {
             const real_t *C = e.C[i];
             real_t s = 0; /* the general sum below, term by term: the angular terms are +0 */
             for (int k = 0; k < 3; k++)
                 s += C[k] * v1[k] + C[6 + k] * v2[k];
-            g[i] = e.g[i], gd[i] = s;
+            g[i] = e.g[i];
+            if (gd)
+                gd[i] = s;
         }
         return;
     }
@@ -120,7 +126,9 @@ void rti_mbs_joint_g(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t 
         real_t s = 0;
         for (int k = 0; k < 3; k++)
             s += C[k] * n1.v[k] + C[3 + k] * n1.w[k] + C[6 + k] * n2.v[k] + C[9 + k] * n2.w[k];
-        g[i] = e.g[i], gd[i] = s;
+        g[i] = e.g[i];
+        if (gd)
+            gd[i] = s;
     }
 }
 

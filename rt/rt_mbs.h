@@ -130,6 +130,9 @@ typedef struct rt_joint_kind {
        the nodes and calls eval. Only for translational kinds (trans = 1). */
     void (*eval_points)(const real_t *p, const real_t *r1, const real_t *v1,
                         const real_t *r2, const real_t *v2, rt_joint_eval *e);
+    /* g alone between two points, the same bits as eval_points' g (the recorded position
+       residual, every tick: no C, c or g'). NULL: eval_points serves. */
+    void (*g_points)(const real_t *p, const real_t *r1, const real_t *r2, real_t *g);
 } rt_joint_kind;
 
 /* the library of joint kinds */

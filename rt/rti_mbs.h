@@ -19,8 +19,9 @@ void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t
                    rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2,
                    rt_joint_eval *e);
 /* g and g' of joint ji's rows at the current state (its kind's nc values each): between
-   two points straight from their coordinates (eval_points), else through the nodes; the
-   same bits either way (the residual signals of rt/mbs.c) */
+   two points straight from their coordinates (eval_points; g alone by g_points when gd is
+   NULL), else through the nodes; the same bits either way (the residual signals of
+   rt/mbs.c) */
 void rti_mbs_joint_g(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t ji, real_t t,
                      real_t *g, real_t *gd);
 /* Evaluates the set's MBS blocks and joints at the current state into sim->work.mbs. */

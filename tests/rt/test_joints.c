@@ -148,8 +148,44 @@ static void test_satisfied(void)
     TH_CHECK(rt_isfinite(e.g[0]) && rt_isfinite(e.c[0]) && e.C[0][0] == 1);
 }
 
+/* the kinds' shortcuts between two points give eval's bits: eval_points' g, C, c, and
+   g_points' g (the recorded residual), at scattered points, also coincident ones */
+static void test_points_paths(void)
+{
+    static const real_t l[] = {(real_t)1.3};
+    uint32_t seed = 12345;
+    int differ = 0;
+    for (int n = 0; n < 200; n++) {
+        real_t r1[3], r2[3], v1[3], v2[3];
+        for (int i = 0; i < 3; i++) {
+            seed = seed * 1664525u + 1013904223u, r1[i] = (real_t)(seed >> 8) / (1 << 22) - 2;
+            seed = seed * 1664525u + 1013904223u, r2[i] = (real_t)(seed >> 8) / (1 << 22) - 2;
+            seed = seed * 1664525u + 1013904223u, v1[i] = (real_t)(seed >> 8) / (1 << 22) - 2;
+            seed = seed * 1664525u + 1013904223u, v2[i] = (real_t)(seed >> 8) / (1 << 22) - 2;
+        }
+        if (n == 0)
+            for (int i = 0; i < 3; i++)
+                r2[i] = r1[i];
+        rt_mbs_node n1 = {.r = {r1[0], r1[1], r1[2]}, .v = {v1[0], v1[1], v1[2]},
+                          .S = {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+        rt_mbs_node n2 = {.r = {r2[0], r2[1], r2[2]}, .v = {v2[0], v2[1], v2[2]},
+                          .S = {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+        rt_joint_eval e, ep;
+        real_t g;
+        rt_joint_sphdiff.eval(l, &n1, &n2, &e);
+        rt_joint_sphdiff.eval_points(l, r1, v1, r2, v2, &ep);
+        rt_joint_sphdiff.g_points(l, r1, r2, &g);
+        int same = ep.g[0] == e.g[0] && g == e.g[0] && ep.c[0] == e.c[0];
+        for (int i = 0; i < 3; i++)
+            same = same && ep.C[0][i] == e.C[0][i] && ep.C[0][6 + i] == e.C[0][6 + i];
+        differ += !same;
+    }
+    TH_CHECK(differ == 0);
+}
+
 const th_test th_joint_tests[] = {
     {"joints_derivatives", test_derivatives},
     {"joints_satisfied", test_satisfied},
+    {"joints_points_paths", test_points_paths},
     {0, 0},
 };
