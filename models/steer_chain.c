@@ -52,13 +52,9 @@ static void mot_deriv(const rt_args *a, real_t *xdot)
 static rt_status mot_check(const real_t *p, const void *spec)
 {
     (void)spec;
-    int ok = 1;
-    for (int i = 0; i < M_NP; i++)
-        ok = ok && rt_isfinite(p[i]);
-    return ok && p[M_L] > 0 && p[M_J] > 0 && p[M_R] >= 0 && p[M_B] >= 0 && p[M_KS] >= 0 &&
-                   p[M_KP] >= 0 && p[M_KI] >= 0
-               ? RT_OK
-               : RT_E_PARAM;
+    int ok = rt_all_finite(p, M_NP) && p[M_L] > 0 && p[M_J] > 0 && p[M_R] >= 0 &&
+             p[M_B] >= 0 && p[M_KS] >= 0 && p[M_KP] >= 0 && p[M_KI] >= 0;
+    return ok ? RT_OK : RT_E_PARAM;
 }
 
 const rt_kind mdl_dc_motor_kind = {
@@ -119,14 +115,10 @@ static void hyd_deriv(const rt_args *a, real_t *xdot)
 static rt_status hyd_check(const real_t *p, const void *spec)
 {
     (void)spec;
-    int ok = 1;
-    for (int i = 0; i < H_NP; i++)
-        ok = ok && rt_isfinite(p[i]);
-    return ok && p[H_TS] > 0 && p[H_BETA] > 0 && p[H_VT] > 0 && p[H_A] > 0 && p[H_M] > 0 &&
-                   p[H_ARM] > 0 && p[H_KQ] >= 0 && p[H_KC] >= 0 && p[H_B] >= 0 &&
-                   p[H_KL] >= 0
-               ? RT_OK
-               : RT_E_PARAM;
+    int ok = rt_all_finite(p, H_NP) && p[H_TS] > 0 && p[H_BETA] > 0 && p[H_VT] > 0 &&
+             p[H_A] > 0 && p[H_M] > 0 && p[H_ARM] > 0 && p[H_KQ] >= 0 && p[H_KC] >= 0 &&
+             p[H_B] >= 0 && p[H_KL] >= 0;
+    return ok ? RT_OK : RT_E_PARAM;
 }
 
 const rt_kind mdl_hyd_servo_kind = {

@@ -385,9 +385,7 @@ static rt_status check(const real_t *p, const void *spec)
     static const uint8_t positive[] = {P_M, P_IXX, P_IYY, P_IZZ, P_LF, P_LR, P_TF, P_TR, P_H,
                                        P_CF, P_CR, P_FZPK, P_SHAPE, P_KF, P_KR, P_UMIN, P_G};
     static const uint8_t nonneg[] = {P_MU, P_CDF, P_CDR, P_PRE, P_DF, P_DR, P_KBF, P_KBR};
-    int ok = 1;
-    for (int i = 0; i < P_COUNT; i++)
-        ok = ok && rt_isfinite(p[i]);
+    int ok = rt_all_finite(p, P_COUNT);
     for (unsigned i = 0; i < sizeof positive; i++)
         ok = ok && p[positive[i]] > 0;
     for (unsigned i = 0; i < sizeof nonneg; i++)

@@ -151,13 +151,9 @@ static void output(const rt_args *a, real_t *y)
 
 static rt_status check_n(const real_t *p, int n)
 {
-    int ok = 1;
-    for (int i = 0; i < n; i++)
-        ok = ok && rt_isfinite(p[i]);
-    return ok && p[P_M] > 0 && p[P_IZ] > 0 && p[P_LF] > 0 && p[P_LR] > 0 && p[P_CF] > 0 &&
-                   p[P_CR] > 0 && p[P_DF] >= 0 && p[P_DR] >= 0 && p[P_UMIN] > 0
-               ? RT_OK
-               : RT_E_PARAM;
+    int ok = rt_all_finite(p, n) && p[P_M] > 0 && p[P_IZ] > 0 && p[P_LF] > 0 && p[P_LR] > 0 &&
+             p[P_CF] > 0 && p[P_CR] > 0 && p[P_DF] >= 0 && p[P_DR] >= 0 && p[P_UMIN] > 0;
+    return ok ? RT_OK : RT_E_PARAM;
 }
 
 static rt_status check(const real_t *p, const void *spec)

@@ -82,18 +82,23 @@ static uint16_t writer(const rt_scene *sc, const rt_sim *sim, uint16_t v)
     return b;
 }
 
+/* the sequence entry after entry s at the top level: a loop's calls follow its entry and
+   are its solver's, not the walk's */
+static uint16_t next_entry(const rt_sim *sim, uint16_t s)
+{
+    const rt_seq_step *st = &sim->plan.seq[s];
+    return st->kind == RT_SEQ_LOOP ? sim->plan.loops[st->index].seq1 : (uint16_t)(s + 1);
+}
+
 /* each set's entries of the sequence, in sequence order, and its blocks, in block order */
 static void set_lists(const rt_scene *sc, rt_sim *sim)
 {
     uint16_t ne = 0, nb = 0;
     for (uint8_t set = 0; set < sc->nsets; set++) {
         sim->plan.seq_of[set] = ne;
-        for (uint16_t s = 0; s < sim->plan.nseq; s++) {
+        for (uint16_t s = 0; s < sim->plan.nseq; s = next_entry(sim, s))
             if (entry_set(sc, sim, s) == set)
                 sim->plan.set_seq[ne++] = s;
-            if (sim->plan.seq[s].kind == RT_SEQ_LOOP) /* its calls follow: the loop's own */
-                s = (uint16_t)(sim->plan.loops[sim->plan.seq[s].index].seq1 - 1);
-        }
         sim->plan.blk_of[set] = nb;
         for (uint16_t b = 0; b < sc->nblocks; b++)
             if (sc->blocks[b].set == set)
@@ -157,14 +162,12 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
         set_outputs(sc, sim, at);
         return;
     }
-    for (uint16_t s = 0; s < sim->plan.nseq; s++) {
+    for (uint16_t s = 0; s < sim->plan.nseq; s = next_entry(sim, s)) {
         const rt_seq_step *st = &sim->plan.seq[s];
-        if (st->kind == RT_SEQ_CALL) {
+        if (st->kind == RT_SEQ_CALL)
             call_output(sc, sim, st->index, at);
-            continue;
-        }
-        solve_loop(sc, sim, st, at);
-        s = (uint16_t)(sim->plan.loops[st->index].seq1 - 1); /* its calls: the solver's */
+        else
+            solve_loop(sc, sim, st, at);
     }
 }
 

@@ -744,7 +744,14 @@ static void atan2_pos(double yh, double yl, double xh, double xl, double *hi, do
     *lo = l;
 }
 
-static double atan2_d(double y, double x)
+/* fa_pos, the faithful core of atan2_fa (below) */
+static void fa_pos(double y, double x, double *hi, double *lo);
+
+/* atan2 around a core for y >= 0, x >= 0: the special values, the scaling by 2^k (exact
+   when it matters: keeps two_prod from overflowing and the dd remainders of a ratio >=
+   2^-30 out of the subnormal range), the extreme ratios and the quadrants, shared by the
+   correctly rounded atan2_d (atan2_pos) and the faithful atan2_fa (fa_pos) */
+static double atan2_frame(double y, double x, int faithful)
 {
     if (x != x || y != y) return NAN_D;
     double ax = abs_d(x), ay = abs_d(y), h = 0.0, l = 0.0;
@@ -755,8 +762,6 @@ static double atan2_d(double y, double x)
         h = PIO2_H;
         l = PIO2_L;
     } else if (ax != INF_D && ay != 0.0) {
-        /* scale by 2^k (exact when it matters): keeps two_prod from overflowing and the
-           dd remainders of a ratio >= 2^-30 out of the subnormal range */
         double mx = ax > ay ? ax : ay;
         if (mx > 0x1p960) {
             ax *= 0x1p-128;
@@ -769,6 +774,8 @@ static double atan2_d(double y, double x)
             h = ay / ax; /* atan v = v (1 - v^2/3): one rounding, right even if subnormal */
         } else if (ax < ay * 0x1p-30) {
             fast_two_sum(PIO2_H, PIO2_L - ax / ay, &h, &l);
+        } else if (faithful) {
+            fa_pos(ay, ax, &h, &l);
         } else {
             atan2_pos(ay, 0.0, ax, 0.0, &h, &l);
         }
@@ -780,6 +787,11 @@ static double atan2_d(double y, double x)
     }
     h += l;
     return (bits_of(y) >> 63) ? -h : h;
+}
+
+static double atan2_d(double y, double x)
+{
+    return atan2_frame(y, x, 0);
 }
 
 static double atan_d(double x)
@@ -915,7 +927,7 @@ static void fa_table(double n, double d, double dl, double q, double *hi, double
 }
 
 /* atan(n / (d + dl)) as *hi + *lo for 0 <= n <= d (d > 0, |dl| <= ulp(d), operands
-   scaled as atan2_d does): the series with the quotient's remainder, or the table */
+   scaled as atan2_frame does): the series with the quotient's remainder, or the table */
 static void fa_ratio(double n, double d, double dl, double *hi, double *lo)
 {
     double q = n / d;
@@ -938,7 +950,7 @@ static void fa_complement(double *hi, double *lo)
     *hi = s;
 }
 
-/* atan2 of y >= 0, x >= 0 (not both 0), scaled as in atan2_d, as *hi + *lo */
+/* atan2 of y >= 0, x >= 0 (not both 0), scaled as in atan2_frame, as *hi + *lo */
 static void fa_pos(double y, double x, double *hi, double *lo)
 {
     if (y > x) {
@@ -977,38 +989,7 @@ static double atan_fa(double x)
 
 static double atan2_fa(double y, double x)
 {
-    if (x != x || y != y) return NAN_D;
-    double ax = abs_d(x), ay = abs_d(y), h = 0.0, l = 0.0;
-    if (ax == INF_D && ay == INF_D) {
-        h = 0.5 * PIO2_H;
-        l = 0.5 * PIO2_L;
-    } else if (ay == INF_D) {
-        h = PIO2_H;
-        l = PIO2_L;
-    } else if (ax != INF_D && ay != 0.0) {
-        /* the scaling and the extreme ratios of atan2_d */
-        double mx = ax > ay ? ax : ay;
-        if (mx > 0x1p960) {
-            ax *= 0x1p-128;
-            ay *= 0x1p-128;
-        } else if (mx < 0x1p-900) {
-            ax *= 0x1p200;
-            ay *= 0x1p200;
-        }
-        if (ay < ax * 0x1p-30)
-            h = ay / ax;
-        else if (ax < ay * 0x1p-30)
-            fast_two_sum(PIO2_H, PIO2_L - ax / ay, &h, &l);
-        else
-            fa_pos(ay, ax, &h, &l);
-    }
-    if (bits_of(x) >> 63) { /* left half-plane: pi - angle */
-        double s, e;
-        two_sum(PI_H, -h, &s, &e);
-        fast_two_sum(s, e + (PI_L - l), &h, &l);
-    }
-    h += l;
-    return (bits_of(y) >> 63) ? -h : h;
+    return atan2_frame(y, x, 1);
 }
 
 /* asin x: below 1/8 its odd Taylor series to x^17 (the next term is below 2^-61 x);

@@ -67,4 +67,13 @@ static inline int rt_isfinite(real_t x) /* 0 for NaN and +-inf */
     return (v.u & RT_EXP_BITS) != RT_EXP_BITS;
 }
 
+/* 1 if all n values are finite (a kind's parameter check, a new discrete state) */
+static inline int rt_all_finite(const real_t *v, int n)
+{
+    int ok = 1;
+    for (int i = 0; i < n; i++)
+        ok = ok && rt_isfinite(v[i]);
+    return ok;
+}
+
 #endif /* RT_MATH_H */

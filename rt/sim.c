@@ -121,10 +121,7 @@ static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
         k->update(&a, next);
         /* a non-finite next state (a NaN input at the sample) is not taken: the block
            keeps its discrete state, as a continuous set keeps its state (rt/step.c) */
-        int finite = 1;
-        for (uint16_t i = 0; i < k->nd; i++)
-            finite = finite && rt_isfinite(next[i]);
-        if (!finite) {
+        if (!rt_all_finite(next, k->nd)) {
             rti_count(sim, RT_CNT_NAN, (int)b, RT_E_NAN);
             continue;
         }

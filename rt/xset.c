@@ -111,22 +111,24 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
     while (k + 1 < n && T[k] > t)
         k++;
     int bracket = k > 0 && T[k] <= t; /* points k and k - 1 enclose t */
-    real_t extrap = k + 1 < n ? line(sim, T, v, k, k + 1, t) : sim->state.hist_y[k][v];
     /* the background set is always read ahead of its history (rt/bg.c): the jump its
        extrapolation makes at each new point fades out over the next macro step, so the
        value read stays continuous (a jump looks like a step of the signal to a sampled
        derivative: on pendulum10_actuated the error at 10 s is 4e-6 m with the fade and
        4.6e-4 m without, docs/multirate.md "Background sets") */
-    if (q == sim->plan.bg_set && scheme != RT_INTERP_HOLD && n == RT_HIST && !bracket) {
-        real_t fade = 1 - (t - T[0]) / (T[0] - T[1]);
+    int ahead = q == sim->plan.bg_set && scheme != RT_INTERP_HOLD && n == RT_HIST && !bracket;
+    real_t fade = 0;
+    if (ahead) {
+        fade = 1 - (t - T[0]) / (T[0] - T[1]);
         fade = fade > 0 ? fade : 0;
         /* quadratic: the parabola through the last three points (third order), with the
            jump it made at the newest point (rti_xset_push) */
         if (scheme == RT_INTERP_QUAD)
             return parabola(sim, T, v, t) + sim->state.bg_jump[v] * fade;
-        real_t jump = line(sim, T, v, 1, 2, T[0]) - sim->state.hist_y[0][v];
-        extrap += jump * fade;
     }
+    real_t extrap = k + 1 < n ? line(sim, T, v, k, k + 1, t) : sim->state.hist_y[k][v];
+    if (ahead) /* the line's jump at the newest point, faded */
+        extrap += (line(sim, T, v, 1, 2, T[0]) - sim->state.hist_y[0][v]) * fade;
     switch (scheme) {
     case RT_INTERP_EXTRAP:
         return extrap;

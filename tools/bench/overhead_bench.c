@@ -104,6 +104,27 @@ static void act_init(rt_scene *sc, const rt_scene *scene, double t_end)
     }
 }
 
+/* the servo's two states in modrt now */
+static void servo_states(const rt_scene *sc, double *s)
+{
+    int sv = rt_block_index(sc, "Servo");
+    for (int j = 0; j < 2; j++)
+        s[j] = (double)sim.state.x[sim.plan.x_off[sv] + j];
+}
+
+/* the largest position difference of the chain between modrt's outputs and the
+   monolith's states x (per body x, y, z, vx, vy, vz) */
+static double chain_diff(const double *x)
+{
+    double worst = 0;
+    for (uint16_t b = 0; b < MONO_NB; b++)
+        for (uint16_t j = 0; j < 3; j++) {
+            double d = fabs((double)rt_output(&sim, b, j) - x[6 * b + j]);
+            worst = d > worst || d != d ? d : worst;
+        }
+    return worst;
+}
+
 /* the monolith from modrt's initial state: the chain's outputs, the servo's states */
 static void act_start(amono *m, int solver, int ft, const rt_scene *sc)
 {
@@ -111,9 +132,7 @@ static void act_start(amono *m, int solver, int ft, const rt_scene *sc)
     for (uint16_t b = 0; b < MONO_NB; b++)
         for (uint16_t j = 0; j < 6; j++)
             x0[6 * b + j] = (double)rt_output(&sim, b, j);
-    int sv = rt_block_index(sc, "Servo");
-    for (int j = 0; j < 2; j++)
-        x0[6 * MONO_NB + j] = (double)sim.state.x[sim.plan.x_off[sv] + j];
+    servo_states(sc, x0 + 6 * MONO_NB);
     m->solver = solver, m->ft = ft;
     m->h = (double)sc->dt;
     amono_init(m, x0);
@@ -122,15 +141,10 @@ static void act_start(amono *m, int solver, int ft, const rt_scene *sc)
 /* largest position difference of the chain; the servo's torque difference in *dy */
 static double act_diff(const amono *m, const rt_scene *sc, double *dy)
 {
-    double worst = 0;
-    for (uint16_t b = 0; b < MONO_NB; b++)
-        for (uint16_t j = 0; j < 3; j++) {
-            double d = fabs((double)rt_output(&sim, b, j) - m->x[6 * b + j]);
-            worst = d > worst || d != d ? d : worst;
-        }
-    int sv = rt_block_index(sc, "Servo");
-    *dy = fabs((double)sim.state.x[sim.plan.x_off[sv]] - m->x[6 * MONO_NB]);
-    return worst;
+    double s[2];
+    servo_states(sc, s);
+    *dy = fabs(s[0] - m->x[6 * MONO_NB]);
+    return chain_diff(m->x);
 }
 
 /* both sides over the whole scene; positions compared at 1, 2, 5 and 10 s */
@@ -179,9 +193,7 @@ static void mr_start(amr *m, int solver, int estimate, const rt_scene *sc)
     for (uint16_t b = 0; b < MONO_NB; b++)
         for (uint16_t j = 0; j < 6; j++)
             x0[6 * b + j] = (double)sim.state.x[sim.plan.x_off[b] + j];
-    int sv = rt_block_index(sc, "Servo");
-    for (int j = 0; j < 2; j++)
-        s0[j] = (double)sim.state.x[sim.plan.x_off[sv] + j];
+    servo_states(sc, s0);
     m->solver = solver, m->estimate = estimate;
     m->dt = (double)sc->dt;
     amr_init(m, x0, s0);
@@ -192,16 +204,11 @@ static void mr_start(amr *m, int solver, int estimate, const rt_scene *sc)
    controller's command in dy, dc */
 static double mr_diff(const amr *m, const rt_scene *sc, double *dy, double *dc)
 {
-    double worst = 0;
-    for (uint16_t b = 0; b < MONO_NB; b++)
-        for (uint16_t j = 0; j < 3; j++) {
-            double d = fabs((double)rt_output(&sim, b, j) - m->x[6 * b + j]);
-            worst = d > worst || d != d ? d : worst;
-        }
-    int sv = rt_block_index(sc, "Servo"), ct = rt_block_index(sc, "Ctrl");
-    *dy = fabs((double)sim.state.x[sim.plan.x_off[sv]] - m->s[0]);
-    *dc = fabs((double)sim.state.d[sim.plan.d_off[ct]] - m->c);
-    return worst;
+    double s[2];
+    servo_states(sc, s);
+    *dy = fabs(s[0] - m->s[0]);
+    *dc = fabs((double)sim.state.d[sim.plan.d_off[rt_block_index(sc, "Ctrl")]] - m->c);
+    return chain_diff(m->x);
 }
 
 /* both sides over the whole scene; positions compared at 1, 2, 5 and 10 s (multiples of
