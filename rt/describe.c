@@ -150,6 +150,7 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
         if (sim->plan.xsrc[v])
             z->hist_y = (uint16_t)(v + 1);
     z->held_y = rti_held_top(sc, sim);
+    z->held_sig = rti_held_sigs(sc);
     for (uint8_t s = 0; s < sc->nsets; s++)
         if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] && rt_set_nx(sim, s) > z->event_x)
             z->event_x = rt_set_nx(sim, s);

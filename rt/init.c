@@ -188,6 +188,9 @@ static rt_status check_history(const rt_scene *sc, rt_sim *sim)
     if (rti_held_top(sc, sim) > RT_MAX_HELD_Y)
         return rti_fail(sim, RT_E_CAPACITY, "outputs of sets stepping over several ticks exceed ",
                         RTI_LIMIT(RT_MAX_HELD_Y), (const char *)0);
+    if (rti_held_sigs(sc) > RT_MAX_HELD_SIG)
+        return rti_fail(sim, RT_E_CAPACITY, "recorded multibody signals of sets stepping over "
+                        "several ticks exceed ", RTI_LIMIT(RT_MAX_HELD_SIG), (const char *)0);
     uint32_t iters = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
     if (sim->plan.ntorn > 0 && iters > RT_MAX_LOOP_HIST - 1)
         return rti_fail(sim, RT_E_CAPACITY, "the loops' iteration bound exceeds ",

@@ -603,7 +603,12 @@ typedef struct rt_state {
        extrapolation showed at the newest point, minus that point; faded out over the next
        macro step, so the value read stays continuous (rt/xset.c) */
     real_t bg_jump[RT_MAX_HIST_Y];
-    uint64_t hash;                   /* FNV-1a over recorded values */
+#if RT_MAX_HELD_SIG > 0
+    /* recorded multibody signals of the sets held between steps, in record order: they
+       change with the set's state only, so they are computed when its outputs are */
+    real_t held_sig[RT_MAX_HELD_SIG];
+#endif
+    uint64_t hash;                   /* trace hash of the recorded values (rt_hash_real) */
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
     uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
@@ -780,6 +785,7 @@ typedef struct rt_sizes {
     uint16_t mbs_bz;       /* velocities of the largest multibody block */
     uint16_t hist_y;       /* highest output index read by another set, plus one */
     uint16_t held_y;       /* highest output index of a multi-tick set, plus one */
+    uint16_t held_sig;     /* recorded multibody signals of held sets (may be 0) */
     uint16_t event_x;      /* states of the largest set with roots */
     uint16_t seq;          /* entries of the evaluation sequence */
     uint16_t loop_hist;    /* the loops' iteration bound plus one (0 without loops) */
@@ -789,8 +795,10 @@ typedef struct rt_sizes {
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 
-/* Trace hash: FNV-1a 64 over the IEEE bit pattern of each value, little-endian. */
+/* Trace hash: per value h = (h ^ bits) * RT_HASH_MUL, then h ^= h >> 32, over the IEEE bit
+ * pattern of each value as an integer (rt/util.c). */
 #define RT_HASH_INIT 0xcbf29ce484222325ull
+#define RT_HASH_MUL 0x9e3779b97f4a7c15ull /* odd: 2^64 / golden ratio */
 uint64_t rt_hash_real(uint64_t h, real_t v);
 
 /* Length-limited string helpers for freestanding code. */

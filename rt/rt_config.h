@@ -99,6 +99,13 @@ typedef double real_t;
 #define RT_MAX_HIST_Y RT_MAX_Y
 #endif
 
+#ifndef RT_MAX_HELD_SIG
+/* recorded multibody signals (energy, residual, reaction) of sets stepping over several
+   ticks or in the background, held between their steps like outputs (rt/sim.c). A
+   per-scene build may set 0: the scene then carries no such array */
+#define RT_MAX_HELD_SIG RT_MAX_REC
+#endif
+
 #ifndef RT_MAX_HELD_Y
 /* outputs kept aside while a set stepping over several ticks steps (rt/sim.c): the highest
    output index of such a set, plus one (a scene without one needs 1) */

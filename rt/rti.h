@@ -102,6 +102,10 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 /* the highest output index of a set stepping over several ticks, plus one (rt/sim.c) */
 uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim);
+/* recorded multibody signals held between their set's steps (rt/sim.c): how many; compute
+   set s's (when its state reaches the tick: refresh, background publication) */
+uint16_t rti_held_sigs(const rt_scene *sc);
+void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s);
 /* Output v of set q reconstructed at time t by the scheme. */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
 

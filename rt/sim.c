@@ -42,7 +42,54 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
     return first;
 }
 
-/* outputs and roots of set s at the time of its state */
+/* is recorded signal r held between its set's steps: a multibody signal (energy,
+   residual, reaction: worth computing once) of a set stepping over several ticks or in
+   the background. Its value changes with the set's state only, so it is computed when the
+   set's outputs are and held in state.held_sig, in record order (RT_MAX_HELD_SIG) */
+static int held_sig(const rt_scene *sc, const rt_rec *r)
+{
+    const rt_set *st = &sc->sets[sc->blocks[r->block].set];
+    return r->what == RT_SIG_MBS && (st->ratio > 1 || st->background);
+}
+
+uint16_t rti_held_sigs(const rt_scene *sc)
+{
+    uint16_t n = 0;
+    for (uint16_t i = 0; i < sc->nrecs; i++)
+        n = (uint16_t)(n + held_sig(sc, &sc->recs[i]));
+    return n;
+}
+
+void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+#if RT_MAX_HELD_SIG > 0
+    uint16_t slot = 0;
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        const rt_rec *r = &sc->recs[i];
+        if (!held_sig(sc, r))
+            continue;
+        if (sc->blocks[r->block].set == s)
+            sim->state.held_sig[slot] = rti_sig_value(sc, sim, r);
+        slot++;
+    }
+#else
+    (void)sc, (void)sim, (void)s;
+#endif
+}
+
+/* recorded signal r, the slot-th held one if it is held */
+static real_t rec_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r, uint16_t slot)
+{
+#if RT_MAX_HELD_SIG > 0
+    if (held_sig(sc, r))
+        return sim->state.held_sig[slot];
+#else
+    (void)slot;
+#endif
+    return rti_sig_value(sc, sim, r);
+}
+
+/* outputs and roots of set s at the time of its state (and its held signals) */
 static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
     real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
@@ -50,6 +97,8 @@ static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
     rti_outputs(sc, sim, (rti_at){ts, s, mode});
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s])
         rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
+    if (sc->sets[s].ratio > 1 || sc->sets[s].background)
+        rti_hold_signals(sc, sim, s);
 }
 
 /* a set's outputs are computed when its state reaches the tick and held until its next
@@ -192,7 +241,10 @@ real_t rti_sig_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r)
 
 real_t rt_rec_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
 {
-    return rti_sig_value(sc, sim, &sc->recs[i]);
+    uint16_t slot = 0;
+    for (uint16_t k = 0; k < i; k++)
+        slot = (uint16_t)(slot + held_sig(sc, &sc->recs[k]));
+    return rec_value(sc, sim, &sc->recs[i], slot);
 }
 
 const char *rt_rec_signal(const rt_scene *sc, uint16_t i)
@@ -209,8 +261,11 @@ const char *rt_rec_signal(const rt_scene *sc, uint16_t i)
 void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
 {
     sim->state.hash = rt_hash_real(sim->state.hash, rt_time(sc, sim));
+    uint16_t slot = 0;
     for (uint16_t i = 0; i < sc->nrecs; i++) {
-        real_t v = rt_rec_value(sc, sim, i);
+        const rt_rec *r = &sc->recs[i];
+        real_t v = rec_value(sc, sim, r, slot);
+        slot = (uint16_t)(slot + held_sig(sc, r));
         if (out)
             out[i] = v;
         sim->state.hash = rt_hash_real(sim->state.hash, v);

@@ -5,6 +5,7 @@
  * POSIX timer and the fine reference are in tests/host/test_bg.c. */
 #include "harness.h"
 #include "rt.h"
+#include "rt_math.h"
 #include "scenes/scenes.h"
 #include "testutil.h"
 
@@ -144,10 +145,69 @@ static void test_bg_checks(void)
              rt_background(&mdl_scene_pendulum10, &sims[0]) == RT_E_ARG);
 }
 
+/* B1..B10's largest link-length error, by hand from their positions in the state */
+static real_t chain_residual(const rt_scene *sc, const rt_sim *sim)
+{
+    real_t worst = 0, prev[3] = {0, 0, 0};
+    for (int k = 1; k <= 10; k++) {
+        char name[4] = {'B', (char)('0' + k % 10), 0, 0};
+        if (k == 10)
+            name[1] = '1', name[2] = '0';
+        const real_t *r = sim->state.x + sim->plan.x_off[rt_block_index(sc, name)];
+        real_t d[3] = {r[0] - prev[0], r[1] - prev[1], r[2] - prev[2]};
+        real_t g = rt_sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - 1;
+        worst = rt_fmax(worst, rt_fabs(g));
+        prev[0] = r[0], prev[1] = r[1], prev[2] = r[2];
+    }
+    return worst;
+}
+
+/* a recorded multibody signal of a set stepping every 4 ticks (B1.residual) is the
+   residual of the set's state when it last reached a tick, held in between like its
+   outputs: in the background (the published state) and in the tick (where the state is
+   a step ahead of the tick between steps) */
+static void test_bg_held_signals(void)
+{
+    rt_scene sc = mdl_scene_pendulum10_actuated;
+    rt_set sets[2] = {sc.sets[0], sc.sets[1]};
+    sc.sets = sets;
+    int chain = sets[0].background ? 0 : 1, rec = sc.nrecs - 1;
+    TH_CHECK(sets[chain].background && sets[chain].ratio == 4);
+    for (int bg = 1; bg >= 0; bg--) {
+        sets[chain].background = (uint8_t)bg;
+        if (!TH_CHECK(rt_init(&sc, &sims[0]) == RT_OK))
+            return;
+        rt_sizes z;
+        rt_sizes_of(&sc, &sims[0], &z);
+        TH_CHECK(z.held_sig == 1 && rt_rec_signal(&sc, (uint16_t)rec)[0] == 'r');
+        real_t want = chain_residual(&sc, &sims[0]);
+        int ok = rt_rec_value(&sc, &sims[0], (uint16_t)rec) == want, ahead = 0;
+        real_t out[RT_MAX_REC];
+        for (int i = 0; i < 200; i++) {
+            rt_tick(&sc, &sims[0]);
+            if (sims[0].state.tick % 4 == 0)
+                want = chain_residual(&sc, &sims[0]);
+            else
+                ahead |= chain_residual(&sc, &sims[0]) != want;
+            rt_record(&sc, &sims[0], out);
+            ok &= out[rec] == want && rt_rec_value(&sc, &sims[0], (uint16_t)rec) == want;
+        }
+        TH_CHECK(ok);
+        TH_CHECK(ahead == !bg); /* in the tick the state between steps is not the held one */
+        TH_CHECK(sims[0].stats.status == RT_OK);
+    }
+    /* a scene whose multibody set steps every tick holds none */
+    rt_sizes z;
+    TH_CHECK(rt_init(&mdl_scene_pendulum10, &sims[0]) == RT_OK);
+    rt_sizes_of(&mdl_scene_pendulum10, &sims[0], &z);
+    TH_CHECK(z.held_sig == 0);
+}
+
 const th_test th_bg_tests[] = {
     {"bg_same_trace", test_bg_same_trace},
     {"bg_deadline", test_bg_deadline},
     {"bg_overrun", test_bg_overrun},
     {"bg_checks", test_bg_checks},
+    {"bg_held_signals", test_bg_held_signals},
     {0, 0},
 };

@@ -44,14 +44,17 @@ static void test_hash_determinism(void)
     uint64_t a = run_hash(0), b = run_hash(0), c = run_hash(1);
     TH_EQ_U64(a, b);
     TH_CHECK(a != c);
-    /* the hash of one value: FNV-1a over 8 (or 4) bytes, independently folded here */
-    uint64_t h = RT_HASH_INIT;
-    union { real_t r; uint64_t u; } one;
-    one.u = 0;
-    one.r = 1;
-    for (unsigned i = 0; i < sizeof(real_t); i++)
-        h = (h ^ ((one.u >> (8 * i)) & 0xFF)) * 0x100000001b3ull;
+    /* the hash of one value, folded here by hand: 1.0 is 0x3ff0000000000000 in double,
+       0x3f800000 in float; the product by hand in 32-bit halves, so not by the same
+       expression as rt/util.c */
+    uint64_t bits = sizeof(real_t) == 8 ? 0x3ff0000000000000ull : 0x3f800000ull;
+    uint64_t x = 0xcbf29ce484222325ull ^ bits;
+    uint64_t m = 0x9e3779b97f4a7c15ull;
+    uint64_t xl = x & 0xffffffffu, xh = x >> 32, ml = m & 0xffffffffu, mh = m >> 32;
+    uint64_t h = xl * ml + (((xl * mh + xh * ml) & 0xffffffffu) << 32);
+    h ^= h >> 32;
     TH_EQ_U64(rt_hash_real(RT_HASH_INIT, 1), h);
+    TH_CHECK(rt_hash_real(RT_HASH_INIT, 1) != rt_hash_real(RT_HASH_INIT, -1)); /* sign bit */
 }
 
 /* t is tick * dt: after 10^6 ticks of 1 ms it is exactly the product, not a sum */

@@ -45,9 +45,11 @@ void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
             at_least_1(z.y), at_least_1(z.p), at_least_1(z.roots), at_least_1(z.sets),
             at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
             at_least_1(z.implicit_n));
-    fprintf(f, " -DRT_MAX_HIST_Y=%u -DRT_MAX_HELD_Y=%u -DRT_MAX_EVENT_X=%u -DRT_MAX_SEQ=%u "
-               "-DRT_MAX_LOOP_HIST=%u -DRT_MAX_BG=%u",
-            at_least_1(z.hist_y), at_least_1(z.held_y), at_least_1(z.event_x), at_least_1(z.seq),
+    /* (RT_MAX_HELD_SIG may be 0: the array is left out of the scene's rt_state) */
+    fprintf(f, " -DRT_MAX_HIST_Y=%u -DRT_MAX_HELD_Y=%u -DRT_MAX_HELD_SIG=%u -DRT_MAX_EVENT_X=%u "
+               "-DRT_MAX_SEQ=%u -DRT_MAX_LOOP_HIST=%u -DRT_MAX_BG=%u",
+            at_least_1(z.hist_y), at_least_1(z.held_y), z.held_sig, at_least_1(z.event_x),
+            at_least_1(z.seq),
             at_least_1(z.loop_hist), at_least_1(z.bg));
     fprintf(f, " -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
                "-DRT_MAX_MBS_BZ=%u", at_least_1(sc->njoints), at_least_1(z.mbs_z),
