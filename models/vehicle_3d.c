@@ -125,14 +125,20 @@ static void axle_of(const rt_args *a, int j, real_t delta, real_t share, axle *x
     }
 }
 
-/* the rotation, the heading, the angular velocity in the ground frame and both axles,
-   once per evaluation */
-static void frame(const rt_args *a, chassis *c)
+/* the rotation and the heading */
+static void pose(const rt_args *a, chassis *c)
 {
     mdl_rotation(a->x + MDL_RB_P, c->R);
     real_t n = rt_sqrt(c->R[0] * c->R[0] + c->R[3] * c->R[3]);
     /* a car standing on its nose has no heading: keep the ground x axis (finite) */
     c->hx = n > 0 ? c->R[0] / n : 1, c->hy = n > 0 ? c->R[3] / n : 0;
+}
+
+/* the pose, the angular velocity in the ground frame and both axles, once per
+   evaluation */
+static void frame(const rt_args *a, chassis *c)
+{
+    pose(a, c);
     mdl_mul3(c->R, a->x + MDL_RB_W, c->wg);
     for (int j = 0; j < 2; j++) {
         axle *x = &c->ax[j];
@@ -346,29 +352,48 @@ static void energy(const rt_args *a, real_t *e)
     }
 }
 
-/* yaw, roll, pitch (z-y-x angles of R), the yaw rate psi' = (wy sin(roll) +
-   wz cos(roll)) / cos(pitch), the speeds in the heading frame, a_y from the tire forces */
+/* the position, yaw (z-y-x angle of R), the yaw rate psi' = (wy sin(roll) + wz cos(roll))
+   / cos(pitch) and the speeds in the heading frame: what a right-hand side reads (the
+   driver, the drag, the tow bar). Faithfully rounded yaw: every stage computes it */
+static void motion(const rt_args *a, const chassis *c, real_t *y)
+{
+    const real_t *x = a->x, *w = x + MDL_RB_W, *R = c->R;
+    real_t cc = R[7] * R[7] + R[8] * R[8];
+    y[Y_X] = x[0], y[Y_Y] = x[1], y[Y_Z] = x[2];
+    y[Y_PSI] = rt_atan2_faithful(R[3], R[0]);
+    y[Y_U] = c->hx * x[MDL_RB_V] + c->hy * x[MDL_RB_V + 1];
+    y[Y_V] = -c->hy * x[MDL_RB_V] + c->hx * x[MDL_RB_V + 1];
+    y[Y_R] = cc > 0 ? (w[1] * R[7] + w[2] * R[8]) / cc : 0;
+}
+
+/* the motion, roll and pitch (z-y-x angles of R), a_y and the corner loads from the tire
+   forces */
 static void output(const rt_args *a, tire_law *law, real_t *y)
 {
-    const real_t *x = a->x, *w = x + MDL_RB_W;
     chassis c;
     wrench t;
     frame(a, &c);
     corners(a, &c, law, 0, &t);
     const real_t *R = c.R;
-    real_t cc = R[7] * R[7] + R[8] * R[8], sp = -R[6] > 1 ? 1 : -R[6] < -1 ? -1 : -R[6];
-    y[Y_X] = x[0], y[Y_Y] = x[1], y[Y_Z] = x[2];
-    /* faithfully rounded: every output call (V1's twice per stage) computes all three */
-    y[Y_PSI] = rt_atan2_faithful(R[3], R[0]);
+    real_t sp = -R[6] > 1 ? 1 : -R[6] < -1 ? -1 : -R[6];
+    motion(a, &c, y);
     y[Y_ROLL] = rt_atan2_faithful(R[7], R[8]);
     y[Y_PITCH] = rt_asin_faithful(sp);
-    y[Y_U] = c.hx * x[MDL_RB_V] + c.hy * x[MDL_RB_V + 1];
-    y[Y_V] = -c.hy * x[MDL_RB_V] + c.hx * x[MDL_RB_V + 1];
-    y[Y_R] = cc > 0 ? (w[1] * R[7] + w[2] * R[8]) / cc : 0;
     y[Y_AY] = (-c.hy * t.f[0] + c.hx * t.f[1]) / a->p[P_M];
     for (int i = 0; i < NCORNER; i++)
         y[Y_FZ + i] = t.fz[i];
 }
+
+/* a right-hand side's outputs: the motion alone, without the tires (rt_kind.output_lean;
+   the others are recorded at the ticks) */
+static void output_lean(const rt_args *a, real_t *y)
+{
+    chassis c;
+    pose(a, &c);
+    motion(a, &c, y);
+}
+static const uint8_t lean_skip[NY] = {[Y_AY] = 1, [Y_ROLL] = 1, [Y_PITCH] = 1, [Y_FZ] = 1,
+                                      [Y_FZ + 1] = 1, [Y_FZ + 2] = 1, [Y_FZ + 3] = 1};
 
 /* the hooks of each kind with its tire law */
 static void force_linear(const rt_args *a, real_t *k) { force(a, tire_linear, k); }
@@ -413,7 +438,8 @@ const rt_kind mdl_car3d_kind = {
     .name = "car3d", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
-    .check = check, .output = output_linear, .spec = &spec,
+    .check = check, .output = output_linear, .output_lean = output_lean,
+    .lean_skip = lean_skip, .spec = &spec,
     .doc = RT_DOC(
         "Spatial car (eq. (6)): chassis a rigid body, q = [r, p] (unit quaternion), z =\n"
         "[v ground, w body], M = diag(m, m, m, Ixx, Iyy, Izz); corners (lf|-lr, +-t/2, -h)\n"
@@ -431,7 +457,8 @@ const rt_kind mdl_car3d_mf_kind = {
     .name = "car3d_mf", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
-    .check = check, .output = output_mf, .spec = &spec_mf,
+    .check = check, .output = output_mf, .output_lean = output_lean,
+    .lean_skip = lean_skip, .spec = &spec_mf,
     .doc = RT_DOC(
         "Spatial car with Magic-Formula tires (the ports, states and nodes of car3d):\n"
         "F_y0 = D sin(C atan(B a - E (B a - atan(B a)))), a = tan(slip) = -V_y/V_x,\n"

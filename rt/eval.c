@@ -40,8 +40,8 @@ static int dss_hit(const rt_sim *sim, uint16_t b, rti_mode mode)
     return mode == RTI_AT_TICK && sim->state.tick % sim->plan.period[b] == 0;
 }
 
-/* calls the output equation of block b */
-static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at)
+/* calls the output equation of block b (its lean one if lean, rt_kind.output_lean) */
+static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at, int lean)
 {
     const rt_kind *k = sc->blocks[b].kind;
     if (k->type == RT_KIND_DSS && !dss_hit(sim, b, at.mode))
@@ -50,7 +50,7 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at)
     if (k->feed != RT_FEED_NONE) /* no output reads an input: nothing to gather */
         rti_gather(sim, b, at.t);
     rti_args(sc, sim, b, at.t, sc->dt * (real_t)sim->plan.period[b], &a);
-    k->output(&a, sim->state.y + sim->plan.y_off[b]);
+    (lean ? k->output_lean : k->output)(&a, sim->state.y + sim->plan.y_off[b]);
 #if RT_FAULT_INJECT
     if (rti_fault_due(RTI_FAULT_NAN) && rti_fault_plan.block == (int16_t)b && k->ny > 0)
         sim->state.y[sim->plan.y_off[b]] = (real_t)0 / (real_t)0;
@@ -60,7 +60,7 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at)
 void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, rti_at at)
 {
     for (uint16_t s = begin; s < end; s++)
-        call_output(sc, sim, sim->plan.seq[s].index, at);
+        call_output(sc, sim, sim->plan.seq[s].index, at, 0);
 }
 
 /* the set of sequence entry s: its block's, or for a loop its first block's (a loop lies
@@ -108,28 +108,70 @@ static void set_lists(const rt_scene *sc, rt_sim *sim)
     sim->plan.blk_of[sc->nsets] = nb;
 }
 
-rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
+/* does output j of kind k depend directly on any of its inputs */
+static int fed(const rt_kind *k, uint16_t j)
 {
-    set_lists(sc, sim);
+    for (uint16_t i = 0; i < k->nu; i++)
+        if (rti_feeds(k, j, i))
+            return 1;
+    return 0;
+}
+
+/* what a right-hand side reads of each block's outputs, live (RT_SRC_Y) from the block's
+   own set: LIVE_ANY some output, LIVE_FED an output that depends on the block's inputs,
+   LIVE_RICH one its lean output equation leaves out. Cross-set inputs read the history
+   and sampled (DSS) outputs are held: neither needs a call in the right-hand side */
+enum { LIVE_ANY = 1, LIVE_FED = 2, LIVE_RICH = 4 };
+static void live_reads(const rt_scene *sc, const rt_sim *sim, uint8_t *live)
+{
     for (uint16_t b = 0; b < sc->nblocks; b++)
-        sim->plan.rhs_skip[b] = 1;
-    /* a live read (RT_SRC_Y) from the reader's own set keeps the writer; cross-set inputs
-       read the history, sampled (DSS) outputs are held: neither needs the call */
+        live[b] = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++)
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             if (sim->plan.src_kind[i] != RT_SRC_Y)
                 continue;
-            uint16_t wb = writer(sc, sim, sim->plan.src[i]);
-            if (sc->blocks[wb].set == sc->blocks[b].set)
-                sim->plan.rhs_skip[wb] = 0;
+            uint16_t v = sim->plan.src[i], wb = writer(sc, sim, v);
+            if (sc->blocks[wb].set != sc->blocks[b].set)
+                continue;
+            const rt_kind *k = sc->blocks[wb].kind;
+            uint16_t j = (uint16_t)(v - sim->plan.y_off[wb]);
+            live[wb] |= LIVE_ANY;
+            if (fed(k, j))
+                live[wb] |= LIVE_FED;
+            if (!k->output_lean || k->lean_skip[j])
+                live[wb] |= LIVE_RICH;
         }
+}
+
+rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
+{
+    uint8_t live[RT_MAX_BLOCKS], seen[RT_MAX_BLOCKS];
+    set_lists(sc, sim);
+    live_reads(sc, sim, live);
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        seen[b] = 0;
+    /* a block's first call gives the outputs that do not depend on its inputs; a repeated
+       call (the sequence calls a block again once an algebraic chain has set its inputs,
+       as lane_change's V1 after its driver) renews only those that do (its a_y), which
+       the set may record but no right-hand side reads. A call whose readers read only
+       what the kind's lean output equation gives calls that */
+    for (uint16_t s = 0; s < sim->plan.nseq; s++) {
+        const rt_seq_step *st = &sim->plan.seq[s];
+        sim->plan.rhs_skip[s] = RTI_RHS_CALL;
+        if (st->kind != RT_SEQ_CALL)
+            continue;
+        uint8_t need = seen[st->index] ? LIVE_FED : LIVE_ANY;
+        seen[st->index] = 1;
+        if (!(live[st->index] & need))
+            sim->plan.rhs_skip[s] = RTI_RHS_SKIP;
+        else if (!(live[st->index] & LIVE_RICH))
+            sim->plan.rhs_skip[s] = RTI_RHS_LEAN;
+    }
     for (uint8_t set = 0; set < sc->nsets; set++) {
         sim->plan.rhs_calls[set] = 0;
-        for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++) {
-            const rt_seq_step *st = &sim->plan.seq[sim->plan.set_seq[i]];
-            if (st->kind == RT_SEQ_LOOP || !sim->plan.rhs_skip[st->index])
-                sim->plan.rhs_calls[set]++;
-        }
+        for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
+            sim->plan.rhs_calls[set] = (uint16_t)(sim->plan.rhs_calls[set] +
+                (sim->plan.rhs_skip[sim->plan.set_seq[i]] != RTI_RHS_SKIP));
     }
     return RT_OK;
 }
@@ -148,11 +190,14 @@ static void set_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
     if (skip && sim->plan.rhs_calls[at.set] == 0)
         return;
     for (uint16_t i = sim->plan.seq_of[at.set]; i < sim->plan.seq_of[at.set + 1]; i++) {
-        const rt_seq_step *st = &sim->plan.seq[sim->plan.set_seq[i]];
+        uint16_t s = sim->plan.set_seq[i];
+        const rt_seq_step *st = &sim->plan.seq[s];
         if (st->kind == RT_SEQ_LOOP)
             solve_loop(sc, sim, st, at);
-        else if (!skip || !skip[st->index])
-            call_output(sc, sim, st->index, at);
+        else if (!skip)
+            call_output(sc, sim, st->index, at, 0);
+        else if (skip[s] != RTI_RHS_SKIP)
+            call_output(sc, sim, st->index, at, skip[s] == RTI_RHS_LEAN);
     }
 }
 
@@ -165,7 +210,7 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
     for (uint16_t s = 0; s < sim->plan.nseq; s = next_entry(sim, s)) {
         const rt_seq_step *st = &sim->plan.seq[s];
         if (st->kind == RT_SEQ_CALL)
-            call_output(sc, sim, st->index, at);
+            call_output(sc, sim, st->index, at, 0);
         else
             solve_loop(sc, sim, st, at);
     }

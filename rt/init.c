@@ -12,6 +12,7 @@ static rt_status check_kind(rt_sim *sim, const rt_block *b)
     ok = ok && (k->ny == 0 || k->output != 0);
     ok = ok && (k->nr == 0 || (k->roots != 0 && k->event != 0));
     ok = ok && (k->feed != RT_FEED_TABLE || k->feed_table != 0);
+    ok = ok && (k->output_lean == 0 || k->lean_skip != 0);
     if (ok && (k->type == RT_KIND_NSS || k->type == RT_KIND_LSS))
         ok = k->deriv != 0;
     if (ok && k->type == RT_KIND_DSS)

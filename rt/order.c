@@ -30,7 +30,7 @@ typedef struct graph_ctx {
 } graph_ctx;
 
 /* 1 if output j of kind k depends directly on its input i (a throughput) */
-static int feeds(const rt_kind *k, uint16_t j, uint16_t i)
+int rti_feeds(const rt_kind *k, uint16_t j, uint16_t i)
 {
     switch (k->feed) {
     case RT_FEED_ALL:
@@ -65,7 +65,7 @@ static int port_next(const void *ctx, uint16_t v, uint32_t *cursor)
         if (src == RT_SRC_TORN || src == RT_SRC_XSET || src == RT_SRC_HELD)
             j = k->ny; /* a torn or cross-set input carries no algebraic edge */
         for (; j < k->ny; j++) {
-            if (feeds(k, (uint16_t)j, cn->u)) {
+            if (rti_feeds(k, (uint16_t)j, cn->u)) {
                 *cursor = (c << CURSOR_CONN_SHIFT) | (j + 1);
                 return g->sim->plan.y_off[cn->to] + (int)j;
             }
@@ -174,7 +174,7 @@ static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, 
     uint16_t req = 0;
     for (uint16_t i = 0; i < k->nu; i++) {
         uint16_t gi = (uint16_t)(sim->plan.u_off[b] + i);
-        if (sim->plan.src_kind[gi] != RT_SRC_Y || !feeds(k, j, i))
+        if (sim->plan.src_kind[gi] != RT_SRC_Y || !rti_feeds(k, j, i))
             continue;
         uint16_t d = sim->work.w.scc.done[sim->plan.src[gi]];
         if (d > req)

@@ -150,6 +150,13 @@ typedef struct rt_kind {
     /* Output equation: writes ny outputs. Called in evaluation order at every stage;
        for DSS only at sample hits (outputs are held in between). NULL iff ny == 0. */
     void (*output)(const rt_args *a, real_t *y);
+    /* Lean output equation, for outputs that cost what the state equation costs again (a
+       car's lateral acceleration and wheel loads need its tire forces): writes the
+       outputs not flagged in lean_skip (ny flags) and leaves the flagged ones as they
+       were. A right-hand side calls it instead of output where no input of the set reads
+       a flagged output live (rt/eval.c); at ticks and step ends output runs. NULL: none */
+    void (*output_lean)(const rt_args *a, real_t *y);
+    const uint8_t *lean_skip;
     /* State equation: writes nx derivatives. NSS and LSS; NULL otherwise. */
     void (*deriv)(const rt_args *a, real_t *xdot);
     /* Discrete update: writes nd next states from a->d and a->u at a sample hit. DSS only. */
@@ -545,8 +552,8 @@ typedef struct rt_plan {
 
     /* evaluation order (rt/order.c) */
     rt_seq_step seq[RT_MAX_SEQ];
-    uint8_t rhs_skip[RT_MAX_BLOCKS]; /* 1: no input of the block's set reads its outputs
-                                        live, so a right-hand side does not call it */
+    uint8_t rhs_skip[RT_MAX_SEQ];    /* per entry of seq, what a right-hand side does with
+                                        it: rti_rhs_call (rti_eval_plan) */
     uint16_t nseq;
     /* per set, what a pass over that set alone walks (rti_eval_plan), so that the fast
        set of a multirate scene does not scan the slow set's entries every stage: its

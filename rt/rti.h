@@ -10,7 +10,9 @@ typedef enum {
     RTI_AT_TICK = 0, /* at a tick boundary: DSS blocks whose sample hits are called */
     RTI_IN_STEP,     /* inside a set step: DSS outputs are held, not called */
     RTI_IN_RHS       /* inside a right-hand side: as RTI_IN_STEP, and blocks whose outputs
-                        no input of their set reads are not called (plan.rhs_skip) */
+                        no input of their set reads are not called, nor a block's
+                        repeated call if none reads an output that depends on its
+                        inputs (plan.rhs_skip) */
 } rti_mode;
 
 /* An evaluation instant, passed down explicitly (no ambient "current set/time" in
@@ -54,6 +56,8 @@ void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status);
 /* Builds sim->plan.seq and sim->plan.loops from the port-level throughput graph; RT_E_LOOP when an
    actual loop is found (its blocks are in sim->plan.loops). */
 rt_status rti_order(const rt_scene *sc, rt_sim *sim);
+/* 1 if output j of kind k depends directly on its input i (a throughput) */
+int rti_feeds(const rt_kind *k, uint16_t j, uint16_t i);
 
 /* ---- evaluation (eval.c) ---- */
 /* Fills an argument record for block b at time t. Always inline: the record holds
@@ -82,9 +86,12 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at);
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
 /* The evaluation tables of the passes over one set (after routing, rti_xset_init and
    rti_order): each set's entries of the sequence and its blocks (plan.set_seq,
-   plan.set_blk), and the blocks a right-hand side need not call (plan.rhs_skip): no input
-   of their own set reads their outputs live. Returns RT_OK. */
+   plan.set_blk), and the entries a right-hand side need not call (plan.rhs_skip): a
+   block's first call if no input of its own set reads its outputs live, a repeated call
+   (after its inputs changed) if none reads one that depends on them. Returns RT_OK. */
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
+/* what a right-hand side does with an entry of the sequence (plan.rhs_skip) */
+typedef enum { RTI_RHS_CALL = 0, RTI_RHS_SKIP, RTI_RHS_LEAN } rti_rhs_call;
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
 

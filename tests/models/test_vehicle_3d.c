@@ -253,6 +253,34 @@ static void test_chain_steady(void)
     TH_NEAR(hy[0], (double)hx[2] / (double)hp[9], 1e-6);
 }
 
+/* the lean output equation (a right-hand side's): the motion outputs as the full one
+   gives them, bit for bit, and the tire-dependent ones (a_y, roll, pitch, loads)
+   untouched; both kinds, a moving car */
+static void test_lean_output(void)
+{
+    const rt_kind *kinds[2] = {&mdl_car3d_kind, &mdl_car3d_mf_kind};
+    static const real_t u[3] = {(real_t)0.05, 300, -150};
+    for (int n = 0; n < 2; n++) {
+        const rt_kind *k = kinds[n];
+        real_t full[14], lean[14];
+        rt_args a;
+        car_args(k, moving, u, k->p_default, &a);
+        k->output(&a, full);
+        for (int i = 0; i < 14; i++)
+            lean[i] = -12345;
+        if (!TH_CHECK(k->output_lean && k->lean_skip && k->ny == 14))
+            return;
+        k->output_lean(&a, lean);
+        int ok = 1, skipped = 0;
+        for (int i = 0; i < 14; i++) {
+            ok &= k->lean_skip[i] ? lean[i] == -12345 : lean[i] == full[i];
+            skipped += k->lean_skip[i];
+        }
+        TH_CHECK(ok && skipped == 7); /* ay, roll, pitch, four loads */
+        TH_CHECK(!k->lean_skip[0] && !k->lean_skip[1] && !k->lean_skip[2] && !k->lean_skip[3]);
+    }
+}
+
 const th_test th_vehicle_3d_tests[] = {
     {"vehicle_3d_nodes", test_nodes},
     {"vehicle_3d_node_x", test_node_x},
@@ -261,5 +289,6 @@ const th_test th_vehicle_3d_tests[] = {
     {"vehicle_3d_bar_energy", test_bar_energy},
     {"vehicle_3d_static_loads", test_static_loads},
     {"steer_chain_steady", test_chain_steady},
+    {"vehicle_3d_lean_output", test_lean_output},
     {0, 0},
 };

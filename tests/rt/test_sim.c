@@ -286,6 +286,88 @@ static void test_fast_reads_history(void)
     TH_EQ_U64(fast_trace(1), fast_trace(0));
 }
 
+/* a probe kind for the right-hand side's calls (rt/eval.c): x' = u - x; y0 = x, y1 = x + u
+   (depends on its input), y2 = 2 x; its lean output equation gives y0 alone. It counts
+   its calls */
+static uint32_t lp_full, lp_lean;
+static void lp_output(const rt_args *a, real_t *y)
+{
+    lp_full++;
+    y[0] = a->x[0], y[1] = a->x[0] + a->u[0], y[2] = 2 * a->x[0];
+}
+static void lp_output_lean(const rt_args *a, real_t *y)
+{
+    lp_lean++;
+    y[0] = a->x[0];
+}
+static void lp_deriv(const rt_args *a, real_t *xdot) { xdot[0] = a->u[0] - a->x[0]; }
+static const uint8_t lp_feed[3] = {0, 1, 0}, lp_skip[3] = {0, 1, 1};
+static const char *const lp_u[] = {"u"}, *const lp_y[] = {"y0", "y1", "y2"};
+static const char *const lp_x[] = {"x"};
+static const real_t lp_x0[] = {1};
+static const rt_kind lp_kind = {
+    .name = "lean_probe", .type = RT_KIND_NSS, .nu = 1, .ny = 3, .nx = 1,
+    .u_names = lp_u, .y_names = lp_y, .x_names = lp_x, .x_default = lp_x0,
+    .feed = RT_FEED_TABLE, .feed_table = lp_feed, .output = lp_output,
+    .output_lean = lp_output_lean, .lean_skip = lp_skip, .deriv = lp_deriv};
+
+/* A (the probe) feeds gain B by y0, B feeds A's input: the sequence calls A, B, A (its y1
+   after B). Reader C (a gain) reads B (0), A.y2 (1: not in the lean equation) or
+   A.y1 (2: that, and it depends on A's input). Returns A's x after 50 ticks of RK4 and
+   the counts: a right-hand side calls the lean equation once while no reader needs more,
+   else the full one, and the repeat only for a reader of y1 */
+static real_t lean_run(int reader, int lean, uint32_t *full, uint32_t *lean_calls,
+                       uint64_t *rhs)
+{
+    static const real_t half[] = {(real_t)0.5};
+    rt_kind k = lp_kind;
+    if (!lean)
+        k.output_lean = 0;
+    rt_block bl[3] = {{.name = "A", .kind = &k},
+                      {.name = "B", .kind = &mdl_gain_kind, .p = half},
+                      {.name = "C", .kind = &mdl_gain_kind, .p = half}};
+    rt_conn cn[3] = {{0, 0, 1, 0}, {1, 0, 0, 0}, {0, (uint16_t)(reader == 1 ? 2 : 1), 2, 0}};
+    if (!reader)
+        cn[2].from = 1, cn[2].y = 0; /* C reads B */
+    rt_set set = {.name = "s", .method = &rt_rk4, .ratio = 1};
+    rt_rec rec = {.block = 0, .what = RT_SIG_Y, .index = 1};
+    rt_scene sc = {.name = "lean", .dt = (real_t)0.01, .t_end = 1, .blocks = bl,
+                   .nblocks = 3, .conns = cn, .nconns = 3, .sets = &set,
+                   .nsets = 1, .recs = &rec, .nrecs = 1};
+    if (!tu_init(&sc))
+        return -1;
+    lp_full = lp_lean = 0;
+    int y1_ok = 1;
+    for (int i = 0; i < 50; i++) {
+        rt_tick(&sc, &tu_sim);
+        /* at the tick y1 is x + u, u = B's 0.5 x: every output is current */
+        real_t x = tu_sim.state.x[0];
+        y1_ok &= rt_rec_value(&sc, &tu_sim, 0) == x + (real_t)0.5 * x;
+    }
+    TH_CHECK(y1_ok && tu_sim.stats.status == RT_OK);
+    *full = lp_full, *lean_calls = lp_lean, *rhs = tu_sim.stats.rhs_evals[0];
+    return tu_sim.state.x[0];
+}
+
+static void test_rhs_lean_calls(void)
+{
+    uint32_t full, lean;
+    uint64_t rhs;
+    real_t plain = lean_run(0, 0, &full, &lean, &rhs);
+    /* without a lean equation: A once per right-hand side (the repeat skipped), and both
+       calls at each of the 50 ticks */
+    TH_CHECK(lean == 0 && rhs >= 200 && full == rhs + 2 * 50);
+    /* with it: the lean call in every right-hand side, the same state bit for bit */
+    TH_CHECK(same_bits(lean_run(0, 1, &full, &lean, &rhs), plain));
+    TH_CHECK(lean == rhs && full == 2 * 50);
+    /* a reader of y2: the full equation, once */
+    TH_CHECK(same_bits(lean_run(1, 1, &full, &lean, &rhs), plain));
+    TH_CHECK(lean == 0 && full == rhs + 2 * 50);
+    /* a reader of y1: the full equation, and again after B */
+    TH_CHECK(same_bits(lean_run(2, 1, &full, &lean, &rhs), plain));
+    TH_CHECK(lean == 0 && full == 2 * rhs + 2 * 50);
+}
+
 const th_test th_sim_tests[] = {
     {"sim_reinit_replay", test_reinit_replay},
     {"sim_hash_determinism", test_hash_determinism},
@@ -296,5 +378,6 @@ const th_test th_sim_tests[] = {
     {"sim_lists", test_lists},
     {"sim_held_outputs", test_held_outputs},
     {"sim_fast_reads_history", test_fast_reads_history},
+    {"sim_rhs_lean_calls", test_rhs_lean_calls},
     {0, 0},
 };
