@@ -258,18 +258,25 @@ const char *rt_rec_signal(const rt_scene *sc, uint16_t i)
     return names ? names[r->index] : "?";
 }
 
+/* every tick, every recorded value: an output (the common case) without a call */
 void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
 {
-    sim->state.hash = rt_hash_real(sim->state.hash, rt_time(sc, sim));
+    uint64_t h = rti_hash(sim->state.hash, rt_time(sc, sim));
     uint16_t slot = 0;
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         const rt_rec *r = &sc->recs[i];
-        real_t v = rec_value(sc, sim, r, slot);
-        slot = (uint16_t)(slot + held_sig(sc, r));
+        real_t v;
+        if (r->what == RT_SIG_Y) {
+            v = sim->state.y[sim->plan.y_off[r->block] + r->index];
+        } else {
+            v = rec_value(sc, sim, r, slot);
+            slot = (uint16_t)(slot + held_sig(sc, r));
+        }
         if (out)
             out[i] = v;
-        sim->state.hash = rt_hash_real(sim->state.hash, v);
+        h = rti_hash(h, v);
     }
+    sim->state.hash = h;
 }
 
 int rt_block_index(const rt_scene *sc, const char *name)

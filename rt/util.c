@@ -130,23 +130,7 @@ void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status)
         sim->stats.status = status; /* the worst; the first of equally bad ones */
 }
 
-/* One multiply and one xor-shift per value, on the value's bit pattern as an integer (a
-   float's zero-extended), so the hash does not depend on the target's byte order. Every
-   bit of a value reaches the high half through the odd multiplier and the high half the
-   low half through the shift, ahead of the next value's multiply. The trace hash runs at
-   every tick over every recorded value: the byte-wise FNV-1a it replaces cost 8
-   multiplies per value (13 % of a multirate tick, docs/overhead.md). */
 uint64_t rt_hash_real(uint64_t h, real_t v)
 {
-    union {
-        real_t r;
-#if RT_REAL_IS_FLOAT
-        uint32_t u;
-#else
-        uint64_t u;
-#endif
-    } bits;
-    bits.r = v;
-    h = (h ^ (uint64_t)bits.u) * RT_HASH_MUL;
-    return h ^ (h >> 32);
+    return rti_hash(h, v);
 }
