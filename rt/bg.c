@@ -220,7 +220,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
     sim->state.set_tick[s] = sim->state.bg_due;
     sim->state.bg_busy = 0;
-    rti_hold_signals(sc, sim, s);
+    rti_stale_signals(sim);
     if (sim->plan.set_xout[s])
         rti_xset_push(sc, sim, s, (real_t)sim->state.bg_due * sc->dt);
 }

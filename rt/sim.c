@@ -72,16 +72,30 @@ void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s)
             sim->state.held_sig[slot] = rti_sig_value(sc, sim, r);
         slot++;
     }
+    if (sc->sets[s].background)
+        sim->state.bg_sig_stale = 0;
 #else
     (void)sc, (void)sim, (void)s;
 #endif
 }
 
-/* recorded signal r, the slot-th held one if it is held */
+/* is held signal r due: its set is in the background and was published since */
+static int stale(const rt_scene *sc, const rt_sim *sim, const rt_rec *r)
+{
+#if RT_MAX_HELD_SIG > 0
+    return sim->state.bg_sig_stale && sc->sets[sc->blocks[r->block].set].background;
+#else
+    (void)sc, (void)sim, (void)r;
+    return 0;
+#endif
+}
+
+/* recorded signal r, the slot-th held one if it is held (a due one from the published
+   state, which is the state until the set's next publication) */
 static real_t rec_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r, uint16_t slot)
 {
 #if RT_MAX_HELD_SIG > 0
-    if (held_sig(sc, r))
+    if (held_sig(sc, r) && !stale(sc, sim, r))
         return sim->state.held_sig[slot];
 #else
     (void)slot;
@@ -269,6 +283,8 @@ void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
         if (r->what == RT_SIG_Y) {
             v = sim->state.y[sim->plan.y_off[r->block] + r->index];
         } else {
+            if (held_sig(sc, r) && stale(sc, sim, r))
+                rti_hold_signals(sc, sim, sc->blocks[r->block].set);
             v = rec_value(sc, sim, r, slot);
             slot = (uint16_t)(slot + held_sig(sc, r));
         }

@@ -189,6 +189,8 @@ static void test_bg_held_signals(void)
                 want = chain_residual(&sc, &sims[0]);
             else
                 ahead |= chain_residual(&sc, &sims[0]) != want;
+            /* before recording (a published value not yet held) and after */
+            ok &= rt_rec_value(&sc, &sims[0], (uint16_t)rec) == want;
             rt_record(&sc, &sims[0], out);
             ok &= out[rec] == want && rt_rec_value(&sc, &sims[0], (uint16_t)rec) == want;
         }
