@@ -120,7 +120,8 @@ static int fed(const rt_kind *k, uint16_t j)
 /* what a right-hand side reads of each block's outputs, live (RT_SRC_Y) from the block's
    own set: LIVE_ANY some output, LIVE_FED an output that depends on the block's inputs,
    LIVE_RICH one its lean output equation leaves out. Cross-set inputs read the history
-   and sampled (DSS) outputs are held: neither needs a call in the right-hand side */
+   and sampled (DSS) outputs are held: neither needs a call in the right-hand side; nor
+   does a sampled reader, which reads its inputs only at its sample hits, at a tick */
 enum { LIVE_ANY = 1, LIVE_FED = 2, LIVE_RICH = 4 };
 static void live_reads(const rt_scene *sc, const rt_sim *sim, uint8_t *live)
 {
@@ -128,7 +129,7 @@ static void live_reads(const rt_scene *sc, const rt_sim *sim, uint8_t *live)
         live[b] = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++)
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
-            if (sim->plan.src_kind[i] != RT_SRC_Y)
+            if (sim->plan.src_kind[i] != RT_SRC_Y || sc->blocks[b].kind->type == RT_KIND_DSS)
                 continue;
             uint16_t v = sim->plan.src[i], wb = writer(sc, sim, v);
             if (sc->blocks[wb].set != sc->blocks[b].set)
@@ -162,7 +163,8 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
             continue;
         uint8_t need = seen[st->index] ? LIVE_FED : LIVE_ANY;
         seen[st->index] = 1;
-        if (!(live[st->index] & need))
+        /* a sampled block's outputs are held inside a step: its call would return */
+        if (!(live[st->index] & need) || sc->blocks[st->index].kind->type == RT_KIND_DSS)
             sim->plan.rhs_skip[s] = RTI_RHS_SKIP;
         else if (!(live[st->index] & LIVE_RICH))
             sim->plan.rhs_skip[s] = RTI_RHS_LEAN;

@@ -313,9 +313,11 @@ static const rt_kind lp_kind = {
 
 /* A (the probe) feeds gain B by y0, B feeds A's input: the sequence calls A, B, A (its y1
    after B). Reader C (a gain) reads B (0), A.y2 (1: not in the lean equation) or
-   A.y1 (2: that, and it depends on A's input). Returns A's x after 50 ticks of RK4 and
-   the counts: a right-hand side calls the lean equation once while no reader needs more,
-   else the full one, and the repeat only for a reader of y1 */
+   A.y1 (2: that, and it depends on A's input); with 3, C reads B and a sampled block D
+   (a PI every tick) reads A.y2 and A.y1, which it reads only at its sample hits. Returns
+   A's x after 50 ticks of RK4 and the counts: a right-hand side calls the lean equation
+   once while no reader needs more, else the full one, and the repeat only for a reader
+   of y1 */
 static real_t lean_run(int reader, int lean, uint32_t *full, uint32_t *lean_calls,
                        uint64_t *rhs)
 {
@@ -323,16 +325,19 @@ static real_t lean_run(int reader, int lean, uint32_t *full, uint32_t *lean_call
     rt_kind k = lp_kind;
     if (!lean)
         k.output_lean = 0;
-    rt_block bl[3] = {{.name = "A", .kind = &k},
+    rt_block bl[4] = {{.name = "A", .kind = &k},
                       {.name = "B", .kind = &mdl_gain_kind, .p = half},
-                      {.name = "C", .kind = &mdl_gain_kind, .p = half}};
-    rt_conn cn[3] = {{0, 0, 1, 0}, {1, 0, 0, 0}, {0, (uint16_t)(reader == 1 ? 2 : 1), 2, 0}};
-    if (!reader)
+                      {.name = "C", .kind = &mdl_gain_kind, .p = half},
+                      {.name = "D", .kind = &mdl_pi_kind, .ts = (real_t)0.01}};
+    rt_conn cn[5] = {{0, 0, 1, 0}, {1, 0, 0, 0}, {0, (uint16_t)(reader == 1 ? 2 : 1), 2, 0},
+                     {0, 2, 3, 0}, {0, 1, 3, 1}};
+    if (!reader || reader == 3)
         cn[2].from = 1, cn[2].y = 0; /* C reads B */
     rt_set set = {.name = "s", .method = &rt_rk4, .ratio = 1};
     rt_rec rec = {.block = 0, .what = RT_SIG_Y, .index = 1};
     rt_scene sc = {.name = "lean", .dt = (real_t)0.01, .t_end = 1, .blocks = bl,
-                   .nblocks = 3, .conns = cn, .nconns = 3, .sets = &set,
+                   .nblocks = reader == 3 ? 4 : 3, .conns = cn,
+                   .nconns = reader == 3 ? 5 : 3, .sets = &set,
                    .nsets = 1, .recs = &rec, .nrecs = 1};
     if (!tu_init(&sc))
         return -1;
@@ -366,6 +371,9 @@ static void test_rhs_lean_calls(void)
     /* a reader of y1: the full equation, and again after B */
     TH_CHECK(same_bits(lean_run(2, 1, &full, &lean, &rhs), plain));
     TH_CHECK(lean == 0 && full == 2 * rhs + 2 * 50);
+    /* a sampled reader of both: the lean call, as with none */
+    TH_CHECK(same_bits(lean_run(3, 1, &full, &lean, &rhs), plain));
+    TH_CHECK(lean == rhs && full == 2 * 50);
 }
 
 const th_test th_sim_tests[] = {
