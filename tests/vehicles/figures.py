@@ -23,7 +23,7 @@ SCHEDULES = (
      ["lane_change", "--step=vehicles=0.005"]),
     ("lane_change: vehicles RK4 20 ms, steering ROS2 1 ms",
      ["lane_change", "--method=vehicles=rk4"]),
-    ("lane_change: vehicles RK4 5 ms, steering ROS2 1 ms at accuracy 1e-3 (until 2e75a51)",
+    ("lane_change: vehicles RK4 5 ms, steering ROS2 1 ms at accuracy 1e-3 (until 852175e)",
      ["lane_change", "--method=vehicles=rk4", "--step=vehicles=0.005",
       "--accuracy=steering=1e-3"]),
     ("lane_change: vehicles BS3 20 ms, steering BS3 1 ms",

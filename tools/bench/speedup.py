@@ -518,6 +518,10 @@ def split_md(ex, c, label, total, edges, incl):
     def into(*fns, frm=None):
         return sum(v for (a, b), v in edges.items() if b in fns and (frm is None or a in frm))
     rec = incl.get("rt_record", 0)
+    # the recorded multibody signals: a multi-tick set's computed in its refresh, a
+    # background set's in the first rt_record after its publication (rt/sim.c)
+    sig = into("signal", frm=("rti_sig_value",))
+    sig_refresh = into("rti_hold_signals", frm=("refresh_set",))
     rows = [
         ("%s: method stages (erk_step: right-hand sides, multibody solve)" % slow,
          into("erk_step")),
@@ -528,17 +532,17 @@ def split_md(ex, c, label, total, edges, incl):
         ("outputs at step ends and held copies (rti_outputs, copy_outputs from rt_tick "
          "and run_step)", into("rti_outputs", "copy_outputs.isra.0", "copy_outputs",
                                frm=("rt_tick", "run_step"))),
-        ("outputs at the tick (rt_refresh)", into("rt_refresh")),
+        ("outputs at the tick (rt_refresh, without the held multibody signals)",
+         into("rt_refresh") - sig_refresh),
         ("histories (rti_xset_push)", into("rti_xset_push")),
         ("background transition without the step (release_due, publish_due: copies)",
          incl.get("release_due", 0) + incl.get("publish_due", 0) - incl.get("run_step", 0)
          - into("rti_xset_push", frm=("publish_due", "publish"))),
-        ("recording: recorded multibody signals (residuals, energies: rt/mbs.c signal)",
-         into("signal", frm=("rti_sig_value",))),
-        ("recording: the trace hash (rt_hash_real)", into("rt_hash_real", frm=("rt_record",))),
+        ("recording: recorded multibody signals (residuals, energies: rt/mbs.c signal; "
+         "once per step of a set held between steps)", sig),
+        ("recording: rt_record without them (the values read, the trace hash inline)",
+         rec - (sig - sig_refresh)),
     ]
-    rows.append(("recording: the rest of rt_record",
-                 rec - rows[-1][1] - rows[-2][1]))
     rows.append(("rest of rt_tick (schedule, set overhead, checks)",
                  total - sum(v for _, v in rows)))
     o = ["Where the instructions of the cheapest multirate configuration within %g m "
