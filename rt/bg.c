@@ -189,6 +189,8 @@ static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
     rti_step_set(sc, ctx, s, t, sc->dt * (real_t)ratio);
     real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
     rti_outputs(sc, ctx, (rti_at){te, s, RTI_IN_STEP});
+    /* its recorded multibody signals (a residual): here, not in a tick */
+    rti_hold_bg_signals(sc, ctx, s, ctx->state.set_tick[s] + ratio);
 }
 
 /* release at the set's communication point: inline, the step runs now and its result is
@@ -220,7 +222,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
     sim->state.set_tick[s] = sim->state.bg_due;
     sim->state.bg_busy = 0;
-    rti_stale_signals(sim);
+    rti_publish_signals(sc, sim, bg ? bg : sim, s);
     if (sim->plan.set_xout[s])
         rti_xset_push(sc, sim, s, (real_t)sim->state.bg_due * sc->dt);
 }

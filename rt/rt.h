@@ -612,20 +612,17 @@ typedef struct rt_state {
     real_t bg_jump[RT_MAX_HIST_Y];
 #if RT_MAX_HELD_SIG > 0
     /* recorded multibody signals of the sets held between steps, in record order: they
-       change with the set's state only, so they are computed when its outputs are (a
-       background set's when first recorded after its publication: bg_sig_stale) */
+       change with the set's state only, so they are computed when its outputs are; a
+       background set's by its step, at the step's end, into bg_sig_new (in the context
+       the step runs in), taken over at its publication (rt/bg.c) */
     real_t held_sig[RT_MAX_HELD_SIG];
+    real_t bg_sig_new[RT_MAX_HELD_SIG];
 #endif
     uint64_t hash;                   /* trace hash of the recorded values (rt_hash_real) */
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
     uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
     uint8_t bg_busy;                 /* 1: a step is released and not yet published */
-#if RT_MAX_HELD_SIG > 0
-    uint8_t bg_sig_stale;            /* 1: the background set's held signals are due (its
-                                        published state holds until its next publication,
-                                        so the first recording after it computes them) */
-#endif
 } rt_state;
 
 /* What a run has met: fault counters, the first fault, high-water marks and monitors.

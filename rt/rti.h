@@ -133,15 +133,10 @@ uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim);
    set s's (when its state reaches the tick: refresh, background publication) */
 uint16_t rti_held_sigs(const rt_scene *sc);
 void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s);
-/* the background set's held signals are due: its state was published (rt/bg.c) */
-static inline void rti_stale_signals(rt_sim *sim)
-{
-#if RT_MAX_HELD_SIG > 0
-    sim->state.bg_sig_stale = 1;
-#else
-    (void)sim;
-#endif
-}
+/* set s's held signals at the end of its background step, into bg_sig_new of the context
+   it ran in (tick: the tick there), and at its publication from there into held_sig */
+void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t tick);
+void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s);
 /* Output v of set q reconstructed at time t by the scheme. */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
 

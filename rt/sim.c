@@ -60,7 +60,44 @@ uint16_t rti_held_sigs(const rt_scene *sc)
     return n;
 }
 
+#if RT_MAX_HELD_SIG > 0
+/* set s's held signals at the current state into dst (slots in record order) */
+static void held_values(const rt_scene *sc, const rt_sim *sim, uint8_t s, real_t *dst)
+{
+    uint16_t slot = 0;
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        const rt_rec *r = &sc->recs[i];
+        if (!held_sig(sc, r))
+            continue;
+        if (sc->blocks[r->block].set == s)
+            dst[slot] = rti_sig_value(sc, sim, r);
+        slot++;
+    }
+}
+#endif
+
 void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+#if RT_MAX_HELD_SIG > 0
+    held_values(sc, sim, s, sim->state.held_sig);
+#else
+    (void)sc, (void)sim, (void)s;
+#endif
+}
+
+void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t tick)
+{
+#if RT_MAX_HELD_SIG > 0
+    uint64_t now = ctx->state.tick; /* the signals' time: the step's end */
+    ctx->state.tick = tick;
+    held_values(sc, ctx, s, ctx->state.bg_sig_new);
+    ctx->state.tick = now;
+#else
+    (void)sc, (void)ctx, (void)s, (void)tick;
+#endif
+}
+
+void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s)
 {
 #if RT_MAX_HELD_SIG > 0
     uint16_t slot = 0;
@@ -69,33 +106,19 @@ void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s)
         if (!held_sig(sc, r))
             continue;
         if (sc->blocks[r->block].set == s)
-            sim->state.held_sig[slot] = rti_sig_value(sc, sim, r);
+            sim->state.held_sig[slot] = ctx->state.bg_sig_new[slot];
         slot++;
     }
-    if (sc->sets[s].background)
-        sim->state.bg_sig_stale = 0;
 #else
-    (void)sc, (void)sim, (void)s;
+    (void)sc, (void)sim, (void)ctx, (void)s;
 #endif
 }
 
-/* is held signal r due: its set is in the background and was published since */
-static int stale(const rt_scene *sc, const rt_sim *sim, const rt_rec *r)
-{
-#if RT_MAX_HELD_SIG > 0
-    return sim->state.bg_sig_stale && sc->sets[sc->blocks[r->block].set].background;
-#else
-    (void)sc, (void)sim, (void)r;
-    return 0;
-#endif
-}
-
-/* recorded signal r, the slot-th held one if it is held (a due one from the published
-   state, which is the state until the set's next publication) */
+/* recorded signal r, the slot-th held one if it is held */
 static real_t rec_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r, uint16_t slot)
 {
 #if RT_MAX_HELD_SIG > 0
-    if (held_sig(sc, r) && !stale(sc, sim, r))
+    if (held_sig(sc, r))
         return sim->state.held_sig[slot];
 #else
     (void)slot;
@@ -283,8 +306,6 @@ void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
         if (r->what == RT_SIG_Y) {
             v = sim->state.y[sim->plan.y_off[r->block] + r->index];
         } else {
-            if (held_sig(sc, r) && stale(sc, sim, r))
-                rti_hold_signals(sc, sim, sc->blocks[r->block].set);
             v = rec_value(sc, sim, r, slot);
             slot = (uint16_t)(slot + held_sig(sc, r));
         }
