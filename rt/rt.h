@@ -806,7 +806,7 @@ typedef struct rt_sizes {
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 
 /* Trace hash: per value h = (h ^ bits) * RT_HASH_MUL, then h ^= h >> 32, over the IEEE bit
- * pattern of each value as an integer (rt/util.c). */
+ * pattern of each value as an integer (rti_hash, rt/rti.h). */
 #define RT_HASH_INIT 0xcbf29ce484222325ull
 #define RT_HASH_MUL 0x9e3779b97f4a7c15ull /* odd: 2^64 / golden ratio */
 uint64_t rt_hash_real(uint64_t h, real_t v);

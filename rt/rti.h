@@ -10,9 +10,10 @@ typedef enum {
     RTI_AT_TICK = 0, /* at a tick boundary: DSS blocks whose sample hits are called */
     RTI_IN_STEP,     /* inside a set step: DSS outputs are held, not called */
     RTI_IN_RHS       /* inside a right-hand side: as RTI_IN_STEP, and blocks whose outputs
-                        no input of their set reads are not called, nor a block's
-                        repeated call if none reads an output that depends on its
-                        inputs (plan.rhs_skip) */
+                        no continuous block of their set reads are not called, nor a
+                        block's repeated call if none reads an output that depends on
+                        its inputs, nor a sampled block; a kind's lean output equation
+                        where it gives all that is read (plan.rhs_skip) */
 } rti_mode;
 
 /* An evaluation instant, passed down explicitly (no ambient "current set/time" in
@@ -130,7 +131,8 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 /* the highest output index of a set stepping over several ticks, plus one (rt/sim.c) */
 uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim);
 /* recorded multibody signals held between their set's steps (rt/sim.c): how many; compute
-   set s's (when its state reaches the tick: refresh, background publication) */
+   set s's into held_sig (when a multi-tick set's state reaches the tick, and every set's
+   at the start: rt_refresh) */
 uint16_t rti_held_sigs(const rt_scene *sc);
 void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s);
 /* set s's held signals at the end of its background step, into bg_sig_new of the context
