@@ -61,8 +61,10 @@ uint16_t rti_held_sigs(const rt_scene *sc)
 }
 
 #if RT_MAX_HELD_SIG > 0
-/* set s's held signals at the current state into dst (slots in record order) */
-static void held_values(const rt_scene *sc, const rt_sim *sim, uint8_t s, real_t *dst)
+/* set s's held signals into dst, slot by slot in record order: copied from the same slots
+   of src, or computed at sim's state when src is NULL */
+static void held_slots(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *src,
+                       real_t *dst)
 {
     uint16_t slot = 0;
     for (uint16_t i = 0; i < sc->nrecs; i++) {
@@ -70,7 +72,7 @@ static void held_values(const rt_scene *sc, const rt_sim *sim, uint8_t s, real_t
         if (!held_sig(sc, r))
             continue;
         if (sc->blocks[r->block].set == s)
-            dst[slot] = rti_sig_value(sc, sim, r);
+            dst[slot] = src ? src[slot] : rti_sig_value(sc, sim, r);
         slot++;
     }
 }
@@ -79,7 +81,7 @@ static void held_values(const rt_scene *sc, const rt_sim *sim, uint8_t s, real_t
 void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
 #if RT_MAX_HELD_SIG > 0
-    held_values(sc, sim, s, sim->state.held_sig);
+    held_slots(sc, sim, s, 0, sim->state.held_sig);
 #else
     (void)sc, (void)sim, (void)s;
 #endif
@@ -90,7 +92,7 @@ void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t ti
 #if RT_MAX_HELD_SIG > 0
     uint64_t now = ctx->state.tick; /* the signals' time: the step's end */
     ctx->state.tick = tick;
-    held_values(sc, ctx, s, ctx->state.bg_sig_new);
+    held_slots(sc, ctx, s, 0, ctx->state.bg_sig_new);
     ctx->state.tick = now;
 #else
     (void)sc, (void)ctx, (void)s, (void)tick;
@@ -100,15 +102,7 @@ void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t ti
 void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s)
 {
 #if RT_MAX_HELD_SIG > 0
-    uint16_t slot = 0;
-    for (uint16_t i = 0; i < sc->nrecs; i++) {
-        const rt_rec *r = &sc->recs[i];
-        if (!held_sig(sc, r))
-            continue;
-        if (sc->blocks[r->block].set == s)
-            sim->state.held_sig[slot] = ctx->state.bg_sig_new[slot];
-        slot++;
-    }
+    held_slots(sc, sim, s, ctx->state.bg_sig_new, sim->state.held_sig);
 #else
     (void)sc, (void)sim, (void)ctx, (void)s;
 #endif
