@@ -63,8 +63,8 @@ uint16_t rti_held_sigs(const rt_scene *sc)
 #if RT_MAX_HELD_SIG > 0
 /* set s's held signals into dst, slot by slot in record order: copied from the same slots
    of src, or computed at sim's state when src is NULL */
-static void held_slots(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *src,
-                       real_t *dst)
+static inline void held_slots(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *src,
+                              real_t *dst)
 {
     uint16_t slot = 0;
     for (uint16_t i = 0; i < sc->nrecs; i++) {
