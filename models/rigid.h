@@ -88,6 +88,17 @@ static inline void mdl_rigid_jacobian(const real_t *R, const real_t *s, real_t *
     }
 }
 
+/* what both node functions below give alike: w_I = R w, ar = R (w x (w x s)) from
+   wws = w x (w x s), and the frame S = R */
+static inline void rigid_node_frame(const real_t *R, const real_t *w, const real_t *wws,
+                                    rt_mbs_node *n)
+{
+    mdl_mul3(R, w, n->w);
+    mdl_mul3(R, wws, n->ar);
+    for (int k = 0; k < 9; k++)
+        n->S[k] = R[k];
+}
+
 /* the node at body offset s of the body in state x with rotation R: r = r0 + R s,
    v = v0 + R (w x s), w_I = R w, ar = R (w x (w x s)), aw = 0, frame S = R; if J is not
    NULL the 6 x 6 Jacobians Jr = [I, -R [s]x], Jw = [0, R] */
@@ -104,10 +115,7 @@ static inline void mdl_rigid_node(const real_t *x, const real_t *R, const real_t
     mdl_mul3(R, ws, t);
     for (int k = 0; k < 3; k++)
         n->v[k] = x[MDL_RB_V + k] + t[k], n->aw[k] = 0;
-    mdl_mul3(R, w, n->w);
-    mdl_mul3(R, wws, n->ar);
-    for (int k = 0; k < 9; k++)
-        n->S[k] = R[k];
+    rigid_node_frame(R, w, wws, n);
     if (!J)
         return;
     mdl_rigid_jacobian(R, s, J);
@@ -130,10 +138,7 @@ static inline void mdl_rigid_node_x(const real_t *x, const real_t *R, real_t d, 
         n->v[k] = x[MDL_RB_V + k] + (Rk[1] * ws1 + Rk[2] * ws2);
         n->aw[k] = 0;
     }
-    mdl_mul3(R, w, n->w);
-    mdl_mul3(R, wws, n->ar);
-    for (int k = 0; k < 9; k++)
-        n->S[k] = R[k];
+    rigid_node_frame(R, w, wws, n);
     if (!J)
         return;
     for (int r = 0; r < 3; r++) {

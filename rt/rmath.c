@@ -794,20 +794,6 @@ static double atan2_d(double y, double x)
     return atan2_frame(y, x, 0);
 }
 
-static double atan_d(double x)
-{
-    double ax = abs_d(x), h, l;
-    if (x != x) return NAN_D;
-    if (ax < 0x1p-27) return x;
-    if (ax > 0x1p60) {
-        h = PIO2_H; /* pi/2 - 1/x rounds to PIO2_H */
-    } else {
-        atan2_pos(ax, 0.0, 1.0, 0.0, &h, &l);
-        h += l;
-    }
-    return x < 0.0 ? -h : h;
-}
-
 /* sqrt(1 - x^2) as *hi + *lo for |x| <= 1: 1 - x^2 exactly in dd, one Newton correction
    on the rounded root. */
 static void sqrt_1mx2(double ax, double *hi, double *lo)
@@ -961,30 +947,52 @@ static void fa_pos(double y, double x, double *hi, double *lo)
     }
 }
 
-static double atan_fa(double x)
+/* atan of 2^-27 <= ax <= 2^60, faithfully, as *h + *l: the series, the table, or
+   pi/2 - atan(1/ax) */
+static void atan_fa_core(double ax, double *h, double *l)
 {
-    double ax = abs_d(x), h, l;
-    if (x != x) return NAN_D;
-    if (ax < 0x1p-27) return x;
-    if (ax > 0x1p60) {
-        h = PIO2_H; /* pi/2 - 1/x rounds to PIO2_H */
-    } else if (ax < FA_SMALL) {
-        h = ax + fa_series(ax, 0.0);
+    if (ax < FA_SMALL) {
+        *h = ax, *l = fa_series(ax, 0.0);
     } else if (ax <= 1.0) {
-        fa_table(ax, 1.0, 0.0, ax, &h, &l);
-        h += l;
+        fa_table(ax, 1.0, 0.0, ax, h, l);
     } else {
         /* pi/2 - atan(1/x): the error of 1/x moves the result by < 2^-56 of pi/2 */
         double q = 1.0 / ax;
         if (q < FA_SMALL) {
-            h = q, l = fa_series(q, 0.0);
+            *h = q, *l = fa_series(q, 0.0);
         } else {
-            fa_table(1.0, ax, 0.0, q, &h, &l);
+            fa_table(1.0, ax, 0.0, q, h, l);
         }
-        fa_complement(&h, &l);
-        h += l;
+        fa_complement(h, l);
     }
+}
+
+/* atan(x), correctly rounded or faithfully: one frame (NaN, tiny and huge arguments, the
+   sign) around either core, as atan2_frame */
+static double atan_frame(double x, int faithful)
+{
+    double ax = abs_d(x), h, l = 0.0;
+    if (x != x) return NAN_D;
+    if (ax < 0x1p-27) return x;
+    if (ax > 0x1p60) {
+        h = PIO2_H; /* pi/2 - 1/x rounds to PIO2_H */
+    } else if (faithful) {
+        atan_fa_core(ax, &h, &l);
+    } else {
+        atan2_pos(ax, 0.0, 1.0, 0.0, &h, &l);
+    }
+    h += l;
     return x < 0.0 ? -h : h;
+}
+
+static double atan_d(double x)
+{
+    return atan_frame(x, 0);
+}
+
+static double atan_fa(double x)
+{
+    return atan_frame(x, 1);
 }
 
 static double atan2_fa(double y, double x)

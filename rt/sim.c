@@ -42,14 +42,20 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
     return first;
 }
 
+/* does the set hold its outputs between ticks: it steps over several ticks or in the
+   background */
+static int held_set(const rt_set *st)
+{
+    return st->ratio > 1 || st->background;
+}
+
 /* is recorded signal r held between its set's steps: a multibody signal (energy,
-   residual, reaction: worth computing once) of a set stepping over several ticks or in
-   the background. Its value changes with the set's state only, so it is computed when the
-   set's outputs are and held in state.held_sig, in record order (RT_MAX_HELD_SIG) */
+   residual, reaction: worth computing once) of a set that holds. Its value changes with
+   the set's state only, so it is computed when the set's outputs are and held in
+   state.held_sig, in record order (RT_MAX_HELD_SIG) */
 static int held_sig(const rt_scene *sc, const rt_rec *r)
 {
-    const rt_set *st = &sc->sets[sc->blocks[r->block].set];
-    return r->what == RT_SIG_MBS && (st->ratio > 1 || st->background);
+    return r->what == RT_SIG_MBS && held_set(&sc->sets[sc->blocks[r->block].set]);
 }
 
 uint16_t rti_held_sigs(const rt_scene *sc)
@@ -128,7 +134,7 @@ static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
     rti_outputs(sc, sim, (rti_at){ts, s, mode});
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s])
         rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
-    if (sc->sets[s].ratio > 1 || sc->sets[s].background)
+    if (held_set(&sc->sets[s]))
         rti_hold_signals(sc, sim, s);
 }
 

@@ -148,12 +148,11 @@ static void test_bg_checks(void)
 /* B1..B10's largest link-length error, by hand from their positions in the state */
 static real_t chain_residual(const rt_scene *sc, const rt_sim *sim)
 {
+    static const char *const names[10] = {"B1", "B2", "B3", "B4", "B5",
+                                          "B6", "B7", "B8", "B9", "B10"};
     real_t worst = 0, prev[3] = {0, 0, 0};
-    for (int k = 1; k <= 10; k++) {
-        char name[4] = {'B', (char)('0' + k % 10), 0, 0};
-        if (k == 10)
-            name[1] = '1', name[2] = '0';
-        const real_t *r = sim->state.x + sim->plan.x_off[rt_block_index(sc, name)];
+    for (int k = 0; k < 10; k++) {
+        const real_t *r = sim->state.x + sim->plan.x_off[rt_block_index(sc, names[k])];
         real_t d[3] = {r[0] - prev[0], r[1] - prev[1], r[2] - prev[2]};
         real_t g = rt_sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - 1;
         worst = rt_fmax(worst, rt_fabs(g));
