@@ -21,6 +21,49 @@ typedef struct erk_tab {
     uint8_t fsal;       /* the embedded solution needs the derivative at the step's end */
 } erk_tab;
 
+/* out = base + h acc (base NULL: out = acc), acc = sum_{j<nk} c_j k_j summed from j = 0:
+   a stage's state, the new state, the estimate's sum. The coefficients and the stage
+   pointers are read once into locals (stores into out could alias them, so the compiler
+   would reload both for every term) and the sum is unrolled for the stage count, which
+   combine passes as a constant; the same sum, term by term */
+static RTI_INLINE real_t stage_sum(const real_t *cj, const real_t *const *kj, uint8_t nk,
+                                   uint16_t m)
+{
+    real_t acc = 0;
+#pragma GCC unroll 6
+    for (uint8_t j = 0; j < nk; j++)
+        acc += cj[j] * kj[j][m];
+    return acc;
+}
+
+static RTI_INLINE void combine_k(real_t *out, const real_t *base, real_t h, const real_t *c,
+                                 const rt_iwork *w, uint16_t n, uint8_t nk)
+{
+    real_t cj[RT_MAX_STAGES];
+    const real_t *kj[RT_MAX_STAGES];
+    for (uint8_t j = 0; j < nk; j++)
+        cj[j] = c[j], kj[j] = w->k[j];
+    if (base)
+        for (uint16_t m = 0; m < n; m++)
+            out[m] = base[m] + h * stage_sum(cj, kj, nk, m);
+    else
+        for (uint16_t m = 0; m < n; m++)
+            out[m] = stage_sum(cj, kj, nk, m);
+}
+
+static void combine(real_t *out, const real_t *base, real_t h, const real_t *c, uint8_t nk,
+                    const rt_iwork *w, uint16_t n)
+{
+    switch (nk) { /* every stage count of the tableaus (RT_MAX_STAGES >= 6, rt_config.h) */
+    case 1: combine_k(out, base, h, c, w, n, 1); break;
+    case 2: combine_k(out, base, h, c, w, n, 2); break;
+    case 3: combine_k(out, base, h, c, w, n, 3); break;
+    case 4: combine_k(out, base, h, c, w, n, 4); break;
+    case 5: combine_k(out, base, h, c, w, n, 5); break;
+    default: combine_k(out, base, h, c, w, n, nk); break;
+    }
+}
+
 /* max_i |h sum_j e_j k_ij| / (1 + |x_i|): the local error of the embedded solution of
    one order less, which bounds the method's own from above. The pairs that need the
    derivative at the step's end (FSAL) pay one more right-hand side for it: at a fixed
@@ -34,12 +77,7 @@ static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, re
 {
     const erk_tab *tab = m->tab;
     uint8_t s = tab->s;
-    for (uint16_t i = 0; i < n; i++) {
-        real_t acc = 0;
-        for (uint8_t j = 0; j < s; j++)
-            acc += tab->e[j] * w->k[j][i];
-        w->x0[i] = acc;
-    }
+    combine(w->x0, 0, 0, tab->e, s, w, n);
     if (tab->fsal) {
         rt_status st = f->eval(f->ctx, t + h, w->k[0]);
         if (st != RT_OK) /* no derivative at the end: nothing to vouch for the step */
@@ -56,17 +94,6 @@ static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, re
     return mx;
 }
 
-/* x = x0 + h * sum_{j<i} a_ij k_j, the state of stage i */
-static void stage_state(const erk_tab *t, uint8_t i, real_t h, real_t *x, uint16_t n,
-                        const rt_iwork *w)
-{
-    for (uint16_t m = 0; m < n; m++) {
-        real_t acc = 0;
-        for (uint8_t j = 0; j < i; j++)
-            acc += t->a[i * t->s + j] * w->k[j][m];
-        x[m] = w->x0[m] + h * acc;
-    }
-}
 
 static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
                           real_t *x, uint16_t n, const rt_iwork *w)
@@ -76,18 +103,13 @@ static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, rea
     for (uint16_t i = 0; i < n; i++)
         w->x0[i] = x[i];
     for (uint8_t i = 0; i < tab->s; i++) {
-        if (i > 0)
-            stage_state(tab, i, h, x, n, w);
+        if (i > 0) /* x = x0 + h sum_{j<i} a_ij k_j, the state of stage i */
+            combine(x, w->x0, h, tab->a + i * tab->s, i, w, n);
         rt_status si = f->eval(f->ctx, t + tab->c[i] * h, w->k[i]);
         if (st == RT_OK)
             st = si;
     }
-    for (uint16_t i = 0; i < n; i++) {
-        real_t acc = 0;
-        for (uint8_t j = 0; j < tab->s; j++)
-            acc += tab->b[j] * w->k[j][i];
-        x[i] = w->x0[i] + h * acc;
-    }
+    combine(x, w->x0, h, tab->b, tab->s, w, n);
     if (w->stats) { /* no statistics (a bare step): no estimate, no extra evaluation */
         real_t e = erk_estimate(m, f, t, h, x, n, w);
         w->stats->last_err = e;

@@ -318,13 +318,15 @@ static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     /* embedded first-order solution x0 + h k_s: e = h sum_j (a_sj - [j = s]) k_j;
        backward Euler is its own companion: against the trapezoidal rule,
        e = h/2 (k_1 - f(t + h, x0)), about h^2/2 x'' */
-    real_t *e = w->k[IMP_BUF_V];
+    real_t *e = w->k[IMP_BUF_V], ce[IMP_MAX_S];
+    for (uint8_t i = 0; i < tab->s; i++) /* the weights once, not per component */
+        ce[i] = tab->a[(tab->s - 1) * tab->s + i] - (i + 1 == tab->s ? 1 : 0);
     for (uint16_t j = 0; j < c->n; j++) {
         real_t acc = 0;
         if (tab->s == 1)
             acc = R(0.5) * (w->k[0][j] - w->k[1][j]);
         for (uint8_t i = 0; tab->s > 1 && i < tab->s; i++)
-            acc += (tab->a[(tab->s - 1) * tab->s + i] - (i + 1 == tab->s ? 1 : 0)) * w->k[i][j];
+            acc += ce[i] * w->k[i][j];
         e[j] = h * acc;
     }
     /* an A-stable method that does not damp stiff modes (trap: R(-inf) = -1) carries

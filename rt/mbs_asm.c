@@ -173,7 +173,7 @@ static void map_row(const rt_mbs_spec *sp, const real_t *C6, const real_t *J, re
 
 /* sum_c a_c b_c / m_c (m NULL: no division), in the order of a loop from c = 0; three
    velocities (a point, a planar body) spelled out, the common case of the inner loops */
-static real_t dot(const real_t *a, const real_t *b, const real_t *m, uint16_t n)
+static inline real_t dot(const real_t *a, const real_t *b, const real_t *m, uint16_t n)
 {
     real_t acc = 0;
     if (n == 3 && m) {
@@ -194,19 +194,28 @@ static real_t dot(const real_t *a, const real_t *b, const real_t *m, uint16_t n)
 /* the rows of joint ji between two points by its kind's eval_points (0 if that does not
    apply): g, g' = C1 v1 + C2 v2, and with jac gam = c (points have no acceleration
    terms: the general path adds a zero sum, +0) and W's rows C1, C2 (a point node's
-   Jacobian is [I; 0]); the same bits as the general path below, without node structs */
-static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int jac)
+   Jacobian is [I; 0]); the same bits as the general path below, without node structs.
+   RTI_MBS_G alone: g by the kind's g_points if it has one (the same bits again) */
+static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int what)
 {
     const rt_joint *j = &sc->joints[ji];
+    const rt_joint_kind *jk = j->kind;
     const real_t *r1, *v1, *r2, *v2;
-    if (!j->kind->eval_points || !point_of(sc, sim, j, 0, &r1, &v1) ||
+    if (!jk->eval_points || !point_of(sc, sim, j, 0, &r1, &v1) ||
         !point_of(sc, sim, j, 1, &r2, &v2))
         return 0;
     rt_mbs_work *w = &sim->work.mbs;
+    if (what == RTI_MBS_G && jk->g_points) { /* g alone, the same bits */
+        jk->g_points(j->p, r1, r2, w->g + w->jrow[ji]);
+        return 1;
+    }
+    int jac = what & RTI_MBS_JAC;
     rt_joint_eval e;
-    j->kind->eval_points(j->p, r1, v1, r2, v2, &e);
-    for (uint16_t i = 0; i < j->kind->nc; i++) {
-        uint16_t r = (uint16_t)(w->jrow[ji] + i);
+    jk->eval_points(j->p, r1, v1, r2, v2, &e);
+    unsigned nc = jk->nc, r = w->jrow[ji];
+    real_t *W1 = w->W + w->jw[ji][0], *W2 = w->W + w->jw[ji][1];
+    int one = j->b2 < 0, same = j->b2 == j->b1;
+    for (unsigned i = 0; i < nc; i++, r++, W1 += 3, W2 += 3) {
         const real_t *C = e.C[i];
         real_t s = 0; /* the sum of the general path's row_dot, term by term */
         s += C[0] * v1[0] + C[6] * v2[0];
@@ -217,12 +226,10 @@ static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int jac
         if (!jac)
             continue;
         w->gam[r] = (real_t)0 + e.c[i];
-        real_t *W1 = w->W + w->jw[ji][0] + (size_t)3 * i;
         W1[0] = C[0], W1[1] = C[1], W1[2] = C[2];
-        if (j->b2 < 0)
+        if (one)
             continue;
-        real_t *W2 = w->W + w->jw[ji][1] + (size_t)3 * i;
-        if (j->b2 == j->b1)
+        if (same)
             W2[0] += C[6], W2[1] += C[7], W2[2] += C[8];
         else
             W2[0] = C[6], W2[1] = C[7], W2[2] = C[8];
@@ -238,7 +245,7 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t 
     int jac = what & RTI_MBS_JAC;
     rt_mbs_node n1, n2;
     rt_joint_eval e;
-    if (assemble_points(sc, sim, ji, jac))
+    if (assemble_points(sc, sim, ji, what))
         return;
     rti_mbs_joint(sc, sim, ji, t, &n1, &n2, jac ? w->J[0] : 0, jac ? w->J[1] : 0, &e);
     uint16_t b1 = (uint16_t)j->b1, nz1 = spec_of(sc, b1)->nz;
@@ -286,10 +293,10 @@ static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *
 }
 
 /* v <- M^-1 v with the factors of mass_factor */
-static void mass_solve(const rt_mbs_spec *sp, const real_t *M, real_t *v)
+static inline void mass_solve(const rt_mbs_spec *sp, const real_t *M, real_t *v)
 {
     if (sp->flags & RT_MBS_M_DIAG) {
-        for (uint16_t i = 0; i < sp->nz; i++)
+        for (unsigned i = 0, n = sp->nz; i < n; i++)
             v[i] /= M[i];
         return;
     }
@@ -305,6 +312,8 @@ static void assemble_block(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t
 {
     rt_mbs_work *w = &sim->work.mbs;
     const rt_mbs_spec *sp = spec_of(sc, b);
+    if (what == RTI_MBS_G && sp->nc == 0) /* nothing of the block's own */
+        return;
     uint16_t zo = w->zo[b];
     real_t *M = w->M + w->mo[b];
     rt_args a;
@@ -362,6 +371,20 @@ static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
     const real_t *M = w->M + w->mo[b];
     const real_t *W = w->W + w->wo[b], *Wi = W;
     const uint16_t *ps = w->pslot + w->po[b];
+    if ((sp->flags & RT_MBS_M_DIAG) && nz == 3) { /* a point: dot's sum, inline */
+        real_t *lv = w->lv;
+        for (unsigned i = t0; i < t1; i++, Wi += 3) {
+            const real_t *Wk = Wi;
+            for (unsigned k = i; k < t1; k++, Wk += 3) {
+                real_t acc = 0;
+                acc += Wi[0] * (Wk[0] / M[0]);
+                acc += Wi[1] * (Wk[1] / M[1]);
+                acc += Wi[2] * (Wk[2] / M[2]);
+                lv[*ps++] += acc;
+            }
+        }
+        return;
+    }
     if (sp->flags & RT_MBS_M_DIAG) {
         for (uint16_t i = t0; i < t1; i++, Wi += nz) {
             const real_t *Wk = Wi;
@@ -406,23 +429,30 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
                      real_t *dz, int add)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
-        uint16_t b = w->sblk[k];
-        uint16_t nz = spec_of(sc, b)->nz;
+    const uint16_t *trow = w->trow;
+    for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
+        unsigned b = w->sblk[k], i = w->to[b], i1 = w->to[b + 1];
+        const rt_mbs_spec *sp = spec_of(sc, (uint16_t)b);
+        unsigned nz = sp->nz;
         real_t *d = dz + w->zo[b];
-        for (uint16_t c = 0; c < nz && !add; c++)
-            d[c] = 0;
         const real_t *M = w->M + w->mo[b], *Wi = w->W + w->wo[b], *Yi = w->Y + w->yo[b];
-        int diag = spec_of(sc, b)->flags & RT_MBS_M_DIAG;
-        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++, Wi += nz, Yi += nz) {
-            real_t vi = v[w->trow[i]];
-            if (diag && nz == 3) {
-                d[0] -= (Wi[0] / M[0]) * vi;
-                d[1] -= (Wi[1] / M[1]) * vi;
-                d[2] -= (Wi[2] / M[2]) * vi;
-                continue;
+        int diag = sp->flags & RT_MBS_M_DIAG;
+        if (diag && nz == 3) { /* a point: the same sums, kept in registers */
+            real_t d0 = add ? d[0] : 0, d1 = add ? d[1] : 0, d2 = add ? d[2] : 0;
+            for (; i < i1; i++, Wi += 3) {
+                real_t vi = v[trow[i]];
+                d0 -= (Wi[0] / M[0]) * vi;
+                d1 -= (Wi[1] / M[1]) * vi;
+                d2 -= (Wi[2] / M[2]) * vi;
             }
-            for (uint16_t c = 0; c < nz; c++)
+            d[0] = d0, d[1] = d1, d[2] = d2;
+            continue;
+        }
+        for (unsigned c = 0; c < nz && !add; c++)
+            d[c] = 0;
+        for (; i < i1; i++, Wi += nz, Yi += nz) {
+            real_t vi = v[trow[i]];
+            for (unsigned c = 0; c < nz; c++)
                 d[c] -= (diag ? Wi[c] / M[c] : Yi[c]) * vi;
         }
     }
@@ -444,13 +474,12 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     if (sc->stab == RT_STAB_BAUMGARTE)
         for (uint16_t r = 0; r < m; r++)
             lam[r] += sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r];
-    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
-        uint16_t b = w->sblk[k];
-        uint16_t nz = spec_of(sc, b)->nz;
+    for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
+        unsigned b = w->sblk[k], nz = spec_of(sc, (uint16_t)b)->nz;
         const real_t *ab = w->a + w->zo[b];
         const real_t *Wi = w->W + w->wo[b];
-        for (uint16_t i = w->to[b]; i < w->to[b + 1]; i++, Wi += nz)
-            lam[w->trow[i]] += dot(Wi, ab, 0, nz);
+        for (unsigned i = w->to[b], i1 = w->to[b + 1]; i < i1; i++, Wi += nz)
+            lam[w->trow[i]] += dot(Wi, ab, 0, (uint16_t)nz);
     }
     rti_mbs_solve(sim, set, lam);
     rti_mbs_correct(sc, sim, set, lam, w->a, 1); /* z' = M^-1 k - Y lambda, into a */
@@ -472,6 +501,12 @@ void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_
         uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
         real_t *qd = xdot + (sim->plan.x_off[b] - sim->plan.set_x[set]);
+        if (sp->flags & RT_MBS_NODE_POINT) { /* q' = v, v' = a: copies, no call */
+            const real_t *x = sim->state.x + sim->plan.x_off[b], *ab = w->a + w->zo[b];
+            qd[0] = x[3], qd[1] = x[4], qd[2] = x[5];
+            qd[3] = ab[0], qd[4] = ab[1], qd[5] = ab[2];
+            continue;
+        }
         rt_args a;
         rti_args(sc, sim, b, t, 0, &a);
         sp->kin(&a, a.x + sp->nq, qd);

@@ -162,31 +162,34 @@ void rti_mbs_ldl_clear(rt_mbs_work *w, uint8_t set)
 
 int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
 {
-    uint16_t base = w->rb[set], n = (uint16_t)(w->rb[set + 1] - base);
+    unsigned base = w->rb[set], n = w->rb[set + 1] - base;
     real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
-    const uint16_t *lp = w->lp + base;
+    const uint16_t *lp = w->lp + base, *lj = w->lj;
     real_t u[RT_MAX_MBS_C]; /* row i so far: u[j] = L_ij D_j, zero outside its pattern */
     real_t big = 0;
-    for (uint16_t i = 0; i < n; i++) {
+    for (unsigned i = 0; i < n; i++) {
         big = D[i] > big ? D[i] : big; /* positive definite: the largest entry is on it */
         u[i] = 0;
     }
     real_t floor_ = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);
     int bad = -1;
-    for (uint16_t i = 0; i < n; i++) {
+    for (unsigned i = 0; i < n; i++) {
         real_t d = D[i];
-        for (uint16_t e = lp[i]; e < lp[i + 1]; e++) {
-            uint16_t j = w->lj[e];
+        unsigned e0 = lp[i], e1 = lp[i + 1];
+        for (unsigned e = e0; e < e1; e++) {
+            unsigned j = lj[e];
             real_t t = L[e];
-            /* L_jk D_k L_ik over row j's columns k < j; u is zero where row i has none */
-            for (uint16_t f = lp[j]; f < lp[j + 1]; f++)
-                t -= L[f] * u[w->lj[f]];
+            /* L_jk D_k L_ik over row j's columns k < j; u is zero where row i has none,
+               so all of it for row i's first entry (a chain's only one): skipped there,
+               the same sum (t is never -0: A's slots sum from +0) */
+            for (unsigned f = lp[j], f1 = e > e0 ? lp[j + 1] : f; f < f1; f++)
+                t -= L[f] * u[lj[f]];
             u[j] = t;
             L[e] = t / D[j];
             d -= L[e] * t;
         }
-        for (uint16_t e = lp[i]; e < lp[i + 1]; e++)
-            u[w->lj[e]] = 0;
+        for (unsigned e = e0; e < e1; e++)
+            u[lj[e]] = 0;
         if (i == 0 && rti_fault_due(RTI_FAULT_SINGULAR))
             d = 0;
         if (!(d > floor_)) { /* singular, indefinite or NaN: go on with the threshold */
@@ -200,22 +203,22 @@ int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
 
 void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v)
 {
-    uint16_t base = w->rb[set], n = (uint16_t)(w->rb[set + 1] - base);
+    unsigned base = w->rb[set], n = w->rb[set + 1] - base;
     const real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
-    const uint16_t *lp = w->lp + base, *perm = w->perm + base;
-    real_t y[RT_MAX_MBS_C] = {0}; /* row i reads y[j < i] only; gcc cannot see it */
-    for (uint16_t i = 0; i < n; i++) { /* L y = P v */
+    const uint16_t *lp = w->lp + base, *perm = w->perm + base, *lj = w->lj;
+    real_t y[RT_MAX_MBS_C]; /* row i reads y[j < i] only, written before */
+    for (unsigned i = 0; i < n; i++) { /* L y = P v */
         real_t t = v[perm[i]];
-        for (uint16_t e = lp[i]; e < lp[i + 1]; e++)
-            t -= L[e] * y[w->lj[e]];
+        for (unsigned e = lp[i], e1 = lp[i + 1]; e < e1; e++)
+            t -= L[e] * y[lj[e]];
         y[i] = t;
     }
-    for (uint16_t i = 0; i < n; i++)
+    for (unsigned i = 0; i < n; i++)
         y[i] /= D[i];
-    for (uint16_t i = n; i-- > 0;) { /* L^T x = y */
+    for (unsigned i = n; i-- > 0;) { /* L^T x = y */
         real_t t = y[i];
-        for (uint16_t e = lp[i]; e < lp[i + 1]; e++)
-            y[w->lj[e]] -= L[e] * t;
+        for (unsigned e = lp[i], e1 = lp[i + 1]; e < e1; e++)
+            y[lj[e]] -= L[e] * t;
         v[perm[i]] = t;
     }
 }

@@ -59,7 +59,9 @@ typedef struct rt_mbs_node {
 #define RT_MBS_K_CONST 0x08    /* K does not depend on q (kin reads no coordinate): the
                                   projection keeps no predicted q for the block */
 #define RT_MBS_NODE_POINT 0x04 /* every node is the point itself: x = [r, v], nq = nz = 3,
-                                  Jr = I, Jw = 0, S = I, no acceleration terms; the
+                                  r' = v (K = I, no kinb: the runtime copies instead of
+                                  calling kin), Jr = I, Jw = 0, S = I, no acceleration
+                                  terms; the
                                   assembly fills such nodes itself, asks for no Jacobian
                                   and takes a joint's translational coefficients as the
                                   row of W */

@@ -36,6 +36,14 @@ typedef struct rti_at {
 #define RTI_NOIPA
 #endif
 
+/* asks for a small hot function to be inlined where a constant argument lets the
+   compiler specialize it (unrolled loops); plain inline elsewhere */
+#if defined(__GNUC__)
+#define RTI_INLINE inline __attribute__((always_inline))
+#else
+#define RTI_INLINE inline
+#endif
+
 /* ---- text (util.c) ---- */
 /* Writes the NULL-terminated list of strings into sim->err and returns status. */
 rt_status rti_fail(rt_sim *sim, rt_status status, ...);

@@ -8,7 +8,8 @@
 
 /* What rti_mbs_assemble evaluates (rt/mbs_asm.c defines the functions below): */
 enum {
-    RTI_MBS_G = 0,     /* g and g' only */
+    RTI_MBS_G = 0,     /* g (g' need not be: joint rows between points whose kind has
+                          g_points get g alone and keep their old g') */
     RTI_MBS_JAC = 1,   /* also M (factored), W and gam */
     RTI_MBS_FORCE = 2  /* also the free accelerations M^-1 k (needs RTI_MBS_JAC) */
 };

@@ -300,17 +300,19 @@ void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
 {
     uint64_t h = rti_hash(sim->state.hash, rt_time(sc, sim));
     uint16_t slot = 0;
-    for (uint16_t i = 0; i < sc->nrecs; i++) {
-        const rt_rec *r = &sc->recs[i];
+    const rt_rec *r = sc->recs, *end = r + sc->nrecs;
+    const real_t *y = sim->state.y;
+    const uint16_t *y_off = sim->plan.y_off;
+    for (; r < end; r++) {
         real_t v;
         if (r->what == RT_SIG_Y) {
-            v = sim->state.y[sim->plan.y_off[r->block] + r->index];
+            v = y[y_off[r->block] + r->index];
         } else {
             v = rec_value(sc, sim, r, slot);
             slot = (uint16_t)(slot + held_sig(sc, r));
         }
         if (out)
-            out[i] = v;
+            *out++ = v;
         h = rti_hash(h, v);
     }
     sim->state.hash = h;
