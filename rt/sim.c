@@ -300,7 +300,7 @@ void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
 {
     uint64_t h = rti_hash(sim->state.hash, rt_time(sc, sim));
     uint16_t slot = 0;
-    const rt_rec *r = sc->recs, *end = r + sc->nrecs;
+    const rt_rec *r = sc->recs, *end = r ? r + sc->nrecs : r; /* no records: NULL */
     const real_t *y = sim->state.y;
     const uint16_t *y_off = sim->plan.y_off;
     for (; r < end; r++) {

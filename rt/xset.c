@@ -73,34 +73,38 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
     (void)sc; /* the plan's per-set lists say all it needs */
     if (!sim->plan.set_xout[s])
         return;
-    real_t *T = sim->state.hist_t[s];
-    for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
-        uint16_t b = sim->plan.set_blk[i];
-        for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1] && v < RT_MAX_HIST_Y; v++) {
-            if (!sim->plan.xsrc[v])
+    real_t *T = sim->state.hist_t[s], *y = sim->state.y;
+    real_t(*hy)[RT_MAX_HIST_Y] = sim->state.hist_y;
+    const uint8_t *xsrc = sim->plan.xsrc;
+    uint8_t n = sim->state.hist_n[s];
+    int bg = s == sim->plan.bg_set;
+    real_t err = sim->stats.xset_err[s];
+    for (unsigned i = sim->plan.blk_of[s], i1 = sim->plan.blk_of[s + 1]; i < i1; i++) {
+        unsigned b = sim->plan.set_blk[i], v1 = sim->plan.y_off[b + 1];
+        for (unsigned v = sim->plan.y_off[b]; v < v1 && v < RT_MAX_HIST_Y; v++) {
+            if (!xsrc[v])
                 continue;
             /* monitor: how far the new point is from the line through the last two */
-            if (sim->state.hist_n[s] >= 2) {
-                real_t e = sim->state.hist_y[0][v] + (sim->state.hist_y[0][v] - sim->state.hist_y[1][v]) *
-                                                   (t - T[0]) / (T[0] - T[1]) - sim->state.y[v];
+            if (n >= 2) {
+                real_t e = hy[0][v] + (hy[0][v] - hy[1][v]) * (t - T[0]) / (T[0] - T[1]) - y[v];
                 e = rt_fabs(e);
-                sim->stats.xset_err[s] = e > sim->stats.xset_err[s] ? e : sim->stats.xset_err[s];
+                err = e > err ? e : err;
             }
             /* quadratic readers of the background set were extrapolating to t by the
                parabola through the last three points: what it showed there, minus the new
                point, fades out over the next macro step (rti_xset_value) */
-            if (s == sim->plan.bg_set)
-                sim->state.bg_jump[v] = sim->state.hist_n[s] == RT_HIST
-                                            ? parabola(sim, T, v, t) - sim->state.y[v] : 0;
+            if (bg)
+                sim->state.bg_jump[v] = n == RT_HIST ? parabola(sim, T, v, t) - y[v] : 0;
             for (int k = RT_HIST - 1; k > 0; k--)
-                sim->state.hist_y[k][v] = sim->state.hist_y[k - 1][v];
-            sim->state.hist_y[0][v] = sim->state.y[v];
+                hy[k][v] = hy[k - 1][v];
+            hy[0][v] = y[v];
         }
     }
+    sim->stats.xset_err[s] = err;
     for (int k = RT_HIST - 1; k > 0; k--)
         T[k] = T[k - 1];
     T[0] = t;
-    sim->state.hist_n[s] = (uint8_t)(sim->state.hist_n[s] < RT_HIST ? sim->state.hist_n[s] + 1 : RT_HIST);
+    sim->state.hist_n[s] = (uint8_t)(n < RT_HIST ? n + 1 : RT_HIST);
 }
 
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t)
