@@ -239,11 +239,13 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     const rti_rhs_ctx *c = ctx;
     const rt_scene *sc = c->sc;
     rt_sim *sim = c->sim;
-    uint16_t base = sim->plan.set_x[c->set];
+    uint8_t set = c->set;
+    uint16_t base = sim->plan.set_x[set];
 
-    sim->stats.rhs_evals[c->set]++;
-    rti_outputs(sc, sim, (rti_at){t, c->set, RTI_IN_RHS});
-    for (uint16_t i = sim->plan.blk_of[c->set]; i < sim->plan.blk_of[c->set + 1]; i++) {
+    sim->stats.rhs_evals[set]++;
+    if (sim->plan.rhs_calls[set] > 0) /* else no output of the set is read live */
+        set_outputs(sc, sim, (rti_at){t, set, RTI_IN_RHS});
+    for (unsigned i = sim->plan.blk_of[set], i1 = sim->plan.blk_of[set + 1]; i < i1; i++) {
         uint16_t b = sim->plan.set_blk[i];
         const rt_kind *k = sc->blocks[b].kind;
         if (k->nx == 0 || !k->deriv)
@@ -254,7 +256,7 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
         k->deriv(&a, xdot + (sim->plan.x_off[b] - base));
     }
     /* multibody blocks of the set are solved together (eqs. 6, 7b, 9) */
-    if (sc->mbs)
-        sc->mbs->accel(sc, sim, c->set, t, xdot);
+    if (sc->mbs && sim->work.mbs.nz[set] > 0)
+        sc->mbs->accel(sc, sim, set, t, xdot);
     return RT_OK;
 }

@@ -26,15 +26,16 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (!fresh(sim, s))
             continue;
-        for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
-            uint16_t b = sim->plan.set_blk[i];
-            if (first >= 0 && b > first)
+        for (unsigned i = sim->plan.blk_of[s], i1 = sim->plan.blk_of[s + 1]; i < i1; i++) {
+            unsigned b = sim->plan.set_blk[i];
+            if (first >= 0 && b > (unsigned)first)
                 break; /* blocks ascend: an earlier set's find stands */
             int bad = 0;
-            for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
-                bad |= !rt_isfinite(sim->state.y[j]);
+            const real_t *y = sim->state.y;
+            for (unsigned j = sim->plan.y_off[b], j1 = sim->plan.y_off[b + 1]; j < j1; j++)
+                bad |= !rt_isfinite(y[j]);
             if (bad) {
-                first = b;
+                first = (int)b;
                 break;
             }
         }

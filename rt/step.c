@@ -12,7 +12,7 @@
 static real_t norm(const real_t *x, uint16_t n)
 {
     real_t m = 1;
-    for (uint16_t i = 0; i < n; i++) {
+    for (unsigned i = 0; i < n; i++) {
         real_t a = rt_fabs(x[i]);
         if (a != a)
             return a;
@@ -244,10 +244,11 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
 /* the first block of the set holding a non-finite state, or -1 */
 static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
-    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+    const real_t *x = sim->state.x;
+    for (unsigned k = sim->plan.blk_of[s], k1 = sim->plan.blk_of[s + 1]; k < k1; k++) {
         uint16_t b = sim->plan.set_blk[k];
-        for (uint16_t i = sim->plan.x_off[b]; i < sim->plan.x_off[b] + sc->blocks[b].kind->nx; i++)
-            if (!rt_isfinite(sim->state.x[i]))
+        for (unsigned i = sim->plan.x_off[b], i1 = i + sc->blocks[b].kind->nx; i < i1; i++)
+            if (!rt_isfinite(x[i]))
                 return b;
     }
     return -1;
@@ -259,8 +260,9 @@ void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
         step_with_events(sc, sim, s, t, h);
     } else {
-        for (uint16_t i = 0; i < n; i++)
-            sim->work.xs[i] = sim->state.x[x0 + i];
+        real_t *xs = sim->work.xs, *x = sim->state.x + x0;
+        for (unsigned i = 0; i < n; i++)
+            xs[i] = x[i];
         integrate(sc, sim, s, t, h);
     }
     /* a non-finite state is not propagated: the set keeps its state from before the step
