@@ -213,8 +213,8 @@ static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int wha
     rt_joint_eval e;
     jk->eval_points(j->p, r1, v1, r2, v2, &e);
     unsigned nc = jk->nc, r = w->jrow[ji];
-    real_t *W1 = w->W + w->jw[ji][0], *W2 = w->W + w->jw[ji][1];
-    int one = j->b2 < 0, same = j->b2 == j->b1;
+    int one = j->b2 < 0, same = j->b2 == j->b1; /* one: b2 is the inertial frame */
+    real_t *W1 = w->W + w->jw[ji][0], *W2 = one ? W1 : w->W + w->jw[ji][1];
     for (unsigned i = 0; i < nc; i++, r++, W1 += 3, W2 += 3) {
         const real_t *C = e.C[i];
         real_t s = 0; /* the sum of the general path's row_dot, term by term */
