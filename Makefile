@@ -189,13 +189,15 @@ CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tes
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := ports/common/image_main.c
 # the background set preempted for real (cross-test-<t> of these targets): pendulum10_actuated
-# ticked in SysTick every 80 us of virtual time (80,000 instructions under -icount), its
-# chain stepping in PendSV below it, preempted by the ticks that fall while it runs (at 100 us
-# every step fits between two ticks since a tick checks and roots only the sets it evaluated)
+# ticked in SysTick every 40 us of virtual time (40,000 instructions under -icount), its
+# chain stepping in PendSV below it (68,000 instructions a step), preempted by the ticks
+# that fall while it runs (at 80 us every step has fitted between two ticks since the
+# multibody path got faster, d3a6ffb; at 100 us since a tick checks and roots only the sets
+# it evaluated)
 CROSS_BG_TARGETS := m7
 CROSS_BG_TICKS := 1000
 CROSS_BG_DEFS = -DRT_SCENE=mdl_scene_pendulum10_actuated -DRT_IMAGE_BG=1 \
-                -DRT_IMAGE_TICKS=$(CROSS_BG_TICKS) -DRT_IMAGE_PERIOD_US=80
+                -DRT_IMAGE_TICKS=$(CROSS_BG_TICKS) -DRT_IMAGE_PERIOD_US=40
 CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 cobj = $(patsubst %,build/$(1)$(XSUF)/obj/%.o,$(basename $(2)))
 
