@@ -578,9 +578,10 @@ typedef struct rt_plan {
     uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
-    uint8_t set_xout[RT_MAX_SETS];   /* 1: the set has outputs read by other sets */
     uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);
                                         sized like the history: higher outputs never are */
+    uint16_t set_xout[RT_MAX_SETS];  /* the set's highest output read by other sets, plus
+                                        one (0: none): its history push stops there */
     int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
 
     uint64_t n_ticks;                /* ticks to reach t_end */

@@ -38,7 +38,8 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
         sim->plan.src_set[gi] = sf;
         sim->plan.interp[gi] = scheme ? scheme : RT_INTERP_HOLD;
         sim->plan.xsrc[sim->plan.src[gi]] = 1;
-        sim->plan.set_xout[sf] = 1;
+        if (sim->plan.src[gi] >= sim->plan.set_xout[sf])
+            sim->plan.set_xout[sf] = (uint16_t)(sim->plan.src[gi] + 1);
     }
     /* schedule: by ratio, largest first; equal ratios keep their scene order */
     for (uint8_t i = 0; i < sc->nsets && i < RT_MAX_SETS; i++) { /* init checked nsets */
@@ -79,9 +80,12 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
     uint8_t n = sim->state.hist_n[s];
     int bg = s == sim->plan.bg_set;
     real_t err = sim->stats.xset_err[s];
-    for (unsigned i = sim->plan.blk_of[s], i1 = sim->plan.blk_of[s + 1]; i < i1; i++) {
+    unsigned vend = sim->plan.set_xout[s]; /* <= RT_MAX_HIST_Y (rti_xset_init) */
+    /* the set's blocks ascend, and so do their outputs: none past vend keeps history */
+    for (unsigned i = sim->plan.blk_of[s], i1 = sim->plan.blk_of[s + 1];
+         i < i1 && sim->plan.y_off[sim->plan.set_blk[i]] < vend; i++) {
         unsigned b = sim->plan.set_blk[i], v1 = sim->plan.y_off[b + 1];
-        for (unsigned v = sim->plan.y_off[b]; v < v1 && v < RT_MAX_HIST_Y; v++) {
+        for (unsigned v = sim->plan.y_off[b]; v < v1 && v < vend; v++) {
             if (!xsrc[v])
                 continue;
             /* monitor: how far the new point is from the line through the last two */
