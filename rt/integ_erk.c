@@ -104,7 +104,7 @@ static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, rea
         w->x0[i] = x[i];
     for (uint8_t i = 0; i < tab->s; i++) {
         if (i > 0) /* x = x0 + h sum_{j<i} a_ij k_j, the state of stage i */
-            combine(x, w->x0, h, tab->a + i * tab->s, i, w, n);
+            combine(x, w->x0, h, tab->a + (size_t)i * tab->s, i, w, n);
         rt_status si = f->eval(f->ctx, t + tab->c[i] * h, w->k[i]);
         if (st == RT_OK)
             st = si;
