@@ -190,8 +190,9 @@ static rt_status check_history(const rt_scene *sc, rt_sim *sim)
         return rti_fail(sim, RT_E_CAPACITY, "outputs of sets stepping over several ticks exceed ",
                         RTI_LIMIT(RT_MAX_HELD_Y), (const char *)0);
     if (rti_held_sigs(sc) > RT_MAX_HELD_SIG)
-        return rti_fail(sim, RT_E_CAPACITY, "recorded multibody signals of sets stepping over "
-                        "several ticks exceed ", RTI_LIMIT(RT_MAX_HELD_SIG), (const char *)0);
+        return rti_fail(sim, RT_E_CAPACITY, "recorded and exported multibody signals of sets "
+                        "stepping over several ticks exceed ", RTI_LIMIT(RT_MAX_HELD_SIG),
+                        (const char *)0);
     uint32_t iters = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
     if (sim->plan.ntorn > 0 && iters > RT_MAX_LOOP_HIST - 1)
         return rti_fail(sim, RT_E_CAPACITY, "the loops' iteration bound exceeds ",
@@ -333,8 +334,9 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
-        (st = check_history(sc, sim)) != RT_OK || (st = rti_eval_plan(sc, sim)) != RT_OK ||
-        (st = rti_link_check(sc, sim)) != RT_OK || (st = bg_init(sc, sim)) != RT_OK)
+        /* the link's exports count among the held signals (check_history) */
+        (st = rti_link_check(sc, sim)) != RT_OK || (st = check_history(sc, sim)) != RT_OK ||
+        (st = rti_eval_plan(sc, sim)) != RT_OK || (st = bg_init(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */
     rti_zero(&sim->work.w, sizeof sim->work.w);

@@ -55,7 +55,8 @@ int rt_link_due(const rt_scene *sc, const rt_sim *sim)
 
 real_t rt_link_export(const rt_scene *sc, const rt_sim *sim, uint16_t i)
 {
-    return sc->link && i < sc->link->nexp ? rti_sig_value(sc, sim, &sc->link->exp[i]) : 0;
+    /* a multibody signal of a set held between steps: its held value, as recorded */
+    return sc->link && i < sc->link->nexp ? rti_export_value(sc, sim, i) : 0;
 }
 
 void rt_link_apply(const rt_scene *sc, rt_sim *sim, const real_t *v)

@@ -612,10 +612,11 @@ typedef struct rt_state {
        macro step, so the value read stays continuous (rt/xset.c) */
     real_t bg_jump[RT_MAX_HIST_Y];
 #if RT_MAX_HELD_SIG > 0
-    /* recorded multibody signals of the sets held between steps, in record order: they
-       change with the set's state only, so they are computed when its outputs are; a
-       background set's by its step, at the step's end, into bg_sig_new (in the context
-       the step runs in), taken over at its publication (rt/bg.c) */
+    /* recorded (in record order), then link-exported (in export order) multibody signals
+       of the sets held between steps: they change with the set's state only, so they are
+       computed when its outputs are; a background set's by its step, at the step's end,
+       into bg_sig_new (in the context the step runs in), taken over at its publication
+       (rt/bg.c) */
     real_t held_sig[RT_MAX_HELD_SIG];
     real_t bg_sig_new[RT_MAX_HELD_SIG];
 #endif
@@ -796,7 +797,8 @@ typedef struct rt_sizes {
     uint16_t mbs_bz;       /* velocities of the largest multibody block */
     uint16_t hist_y;       /* highest output index read by another set, plus one */
     uint16_t held_y;       /* highest output index of a multi-tick set, plus one */
-    uint16_t held_sig;     /* recorded multibody signals of held sets (may be 0) */
+    uint16_t held_sig;     /* recorded and exported multibody signals of held sets (may
+                              be 0) */
     uint16_t event_x;      /* states of the largest set with roots */
     uint16_t seq;          /* entries of the evaluation sequence */
     uint16_t loop_hist;    /* the loops' iteration bound plus one (0 without loops) */

@@ -100,9 +100,9 @@ typedef double real_t;
 #endif
 
 #ifndef RT_MAX_HELD_SIG
-/* recorded multibody signals (energy, residual, reaction) of sets stepping over several
-   ticks or in the background, held between their steps like outputs (rt/sim.c). A
-   per-scene build may set 0: the scene then carries no such array */
+/* recorded and link-exported multibody signals (energy, residual, reaction) of sets
+   stepping over several ticks or in the background, held between their steps like
+   outputs (rt/sim.c). A per-scene build may set 0: the scene then carries no such array */
 #define RT_MAX_HELD_SIG RT_MAX_REC
 #endif
 

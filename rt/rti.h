@@ -76,6 +76,9 @@ static inline uint64_t rti_hash(uint64_t h, real_t v)
 }
 /* the value of a signal reference (recorded or exported) at the current state (sim.c) */
 real_t rti_sig_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r);
+/* the link's exported signal i (i < nexp): its held value if it is a multibody signal of
+   a set held between steps, as recording shows it, else its value now (sim.c) */
+real_t rti_export_value(const rt_scene *sc, const rt_sim *sim, uint16_t i);
 /* checks the scene's controller link (link.c), at init */
 rt_status rti_link_check(const rt_scene *sc, rt_sim *sim);
 /* Bumps counter c and remembers block b (-1: none); keeps the first fault in sim->stats.status. */
@@ -138,7 +141,8 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 /* the highest output index of a set stepping over several ticks, plus one (rt/sim.c) */
 uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim);
-/* recorded multibody signals held between their set's steps (rt/sim.c): how many; compute
+/* recorded and exported multibody signals held between their set's steps (rt/sim.c): how
+   many; compute
    set s's into held_sig (when a multi-tick set's state reaches the tick, and every set's
    at the start: rt_refresh) */
 uint16_t rti_held_sigs(const rt_scene *sc);

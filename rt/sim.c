@@ -50,38 +50,55 @@ static int held_set(const rt_set *st)
     return st->ratio > 1 || st->background;
 }
 
-/* is recorded signal r held between its set's steps: a multibody signal (energy,
-   residual, reaction: worth computing once) of a set that holds. Its value changes with
-   the set's state only, so it is computed when the set's outputs are and held in
-   state.held_sig, in record order (RT_MAX_HELD_SIG) */
+/* is recorded (or exported) signal r held between its set's steps: a multibody signal
+   (energy, residual, reaction: worth computing once) of a set that holds. Its value
+   changes with the set's state only, so it is computed when the set's outputs are and
+   held in state.held_sig: the recorded ones in record order, then the link's exported
+   ones in export order (RT_MAX_HELD_SIG), so a controller reads what the trace shows */
 static int held_sig(const rt_scene *sc, const rt_rec *r)
 {
     return r->what == RT_SIG_MBS && held_set(&sc->sets[sc->blocks[r->block].set]);
 }
 
+/* held signals among n signals from r */
+static uint16_t count_held(const rt_scene *sc, const rt_rec *r, uint16_t n)
+{
+    uint16_t k = 0;
+    for (uint16_t i = 0; i < n; i++)
+        k = (uint16_t)(k + held_sig(sc, &r[i]));
+    return k;
+}
+
 uint16_t rti_held_sigs(const rt_scene *sc)
 {
-    uint16_t n = 0;
-    for (uint16_t i = 0; i < sc->nrecs; i++)
-        n = (uint16_t)(n + held_sig(sc, &sc->recs[i]));
-    return n;
+    return (uint16_t)(count_held(sc, sc->recs, sc->nrecs) +
+                      (sc->link ? count_held(sc, sc->link->exp, sc->link->nexp) : 0));
 }
 
 #if RT_MAX_HELD_SIG > 0
-/* set s's held signals into dst, slot by slot in record order: copied from the same slots
-   of src, or computed at sim's state when src is NULL */
+/* set s's held signals among n signals from r, slot by slot from `slot` into dst: copied
+   from the same slots of src, or computed at sim's state when src is NULL; returns the
+   slot after them */
+static uint16_t held_walk(const rt_scene *sc, const rt_sim *sim, uint8_t s, const rt_rec *r,
+                          uint16_t n, const real_t *src, real_t *dst, uint16_t slot)
+{
+    for (uint16_t i = 0; i < n; i++) {
+        if (!held_sig(sc, &r[i]))
+            continue;
+        if (sc->blocks[r[i].block].set == s)
+            dst[slot] = src ? src[slot] : rti_sig_value(sc, sim, &r[i]);
+        slot++;
+    }
+    return slot;
+}
+
+/* set s's held signals, recorded then exported */
 static inline void held_slots(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *src,
                               real_t *dst)
 {
-    uint16_t slot = 0;
-    for (uint16_t i = 0; i < sc->nrecs; i++) {
-        const rt_rec *r = &sc->recs[i];
-        if (!held_sig(sc, r))
-            continue;
-        if (sc->blocks[r->block].set == s)
-            dst[slot] = src ? src[slot] : rti_sig_value(sc, sim, r);
-        slot++;
-    }
+    uint16_t slot = held_walk(sc, sim, s, sc->recs, sc->nrecs, src, dst, 0);
+    if (sc->link)
+        held_walk(sc, sim, s, sc->link->exp, sc->link->nexp, src, dst, slot);
 }
 #endif
 
@@ -113,6 +130,17 @@ void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uin
 #else
     (void)sc, (void)sim, (void)ctx, (void)s;
 #endif
+}
+
+real_t rti_export_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
+{
+    const rt_rec *r = &sc->link->exp[i];
+#if RT_MAX_HELD_SIG > 0
+    if (held_sig(sc, r))
+        return sim->state.held_sig[count_held(sc, sc->recs, sc->nrecs) +
+                                   count_held(sc, sc->link->exp, i)];
+#endif
+    return rti_sig_value(sc, sim, r);
 }
 
 /* recorded signal r, the slot-th held one if it is held */

@@ -164,23 +164,29 @@ static real_t chain_residual(const rt_scene *sc, const rt_sim *sim)
 /* a recorded multibody signal of a set stepping every 4 ticks (B1.residual) is the
    residual of the set's state when it last reached a tick, held in between like its
    outputs: in the background (the published state) and in the tick (where the state is
-   a step ahead of the tick between steps) */
+   a step ahead of the tick between steps); a controller link exporting it reads the same
+   held value, whether the signal is also recorded or only exported */
 static void test_bg_held_signals(void)
 {
     rt_scene sc = mdl_scene_pendulum10_actuated;
     rt_set sets[2] = {sc.sets[0], sc.sets[1]};
     sc.sets = sets;
     int chain = sets[0].background ? 0 : 1, rec = sc.nrecs - 1;
+    rt_link lk = {.name = "ctl", .period = 1, .exp = &sc.recs[rec], .nexp = 1};
+    sc.link = &lk;
     TH_CHECK(sets[chain].background && sets[chain].ratio == 4);
-    for (int bg = 1; bg >= 0; bg--) {
+    for (int run = 0; run < 4; run++) {
+        int bg = run < 2, exp_only = run % 2;
         sets[chain].background = (uint8_t)bg;
+        sc.nrecs = (uint16_t)(mdl_scene_pendulum10_actuated.nrecs - exp_only);
         if (!TH_CHECK(rt_init(&sc, &sims[0]) == RT_OK))
             return;
         rt_sizes z;
         rt_sizes_of(&sc, &sims[0], &z);
-        TH_CHECK(z.held_sig == 1 && rt_rec_signal(&sc, (uint16_t)rec)[0] == 'r');
+        TH_CHECK(z.held_sig == (exp_only ? 1 : 2) && rt_rec_signal(&sc, (uint16_t)rec)[0] == 'r');
         real_t want = chain_residual(&sc, &sims[0]);
-        int ok = rt_rec_value(&sc, &sims[0], (uint16_t)rec) == want, ahead = 0;
+        int ok = rt_link_export(&sc, &sims[0], 0) == want, ahead = 0;
+        ok &= exp_only || rt_rec_value(&sc, &sims[0], (uint16_t)rec) == want;
         real_t out[RT_MAX_REC];
         for (int i = 0; i < 200; i++) {
             rt_tick(&sc, &sims[0]);
@@ -188,6 +194,9 @@ static void test_bg_held_signals(void)
                 want = chain_residual(&sc, &sims[0]);
             else
                 ahead |= chain_residual(&sc, &sims[0]) != want;
+            ok &= rt_link_export(&sc, &sims[0], 0) == want;
+            if (exp_only)
+                continue;
             /* before recording (a published value not yet held) and after */
             ok &= rt_rec_value(&sc, &sims[0], (uint16_t)rec) == want;
             rt_record(&sc, &sims[0], out);
