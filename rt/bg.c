@@ -81,7 +81,8 @@ uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim)
 /* ------------------------------------------------------------------ copies */
 
 /* n values between a and a packed buffer: dir 0 packs a into buf, 1 unpacks buf into a,
-   2 swaps the two (one loop per direction: this runs twice per background step) */
+   2 swaps the two (one loop per direction: without a context this runs three times per
+   background step) */
 static void move_range(real_t *a, real_t *buf, uint32_t n, int dir)
 {
     if (dir == 0) {

@@ -185,12 +185,10 @@ static void solve_loop(const rt_scene *sc, rt_sim *sim, const rt_seq_step *st, r
 }
 
 /* the entries of one set (plan.set_seq); in a right-hand side only the blocks whose
-   outputs the set reads live */
+   outputs the set reads live (rti_rhs calls it only when there is one, plan.rhs_calls) */
 static void set_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
 {
     const uint8_t *skip = at.mode == RTI_IN_RHS ? sim->plan.rhs_skip : 0;
-    if (skip && sim->plan.rhs_calls[at.set] == 0)
-        return;
     for (uint16_t i = sim->plan.seq_of[at.set]; i < sim->plan.seq_of[at.set + 1]; i++) {
         uint16_t s = sim->plan.set_seq[i];
         const rt_seq_step *st = &sim->plan.seq[s];

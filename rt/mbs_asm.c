@@ -363,6 +363,18 @@ int rti_mbs_row_block(const rt_scene *sc, const rt_sim *sim, uint8_t set, uint16
     return -1;
 }
 
+/* a diagonal M's shares W_i M^-1 W_k^T of nt touches (nz columns each) into the slots ps */
+static RTI_INLINE void diag_shares(real_t *lv, const real_t *W, const real_t *M,
+                                   const uint16_t *ps, unsigned nt, uint16_t nz)
+{
+    const real_t *Wi = W;
+    for (unsigned i = 0; i < nt; i++, Wi += nz) {
+        const real_t *Wk = Wi;
+        for (unsigned k = i; k < nt; k++, Wk += nz)
+            lv[*ps++] += dot(Wi, Wk, M, nz);
+    }
+}
+
 /* block b's share of A = W Y over the pairs of rows it touches, Y = M^-1 W^T: a diagonal
    M divides on the fly (Y is kept only for a dense M, RT_MAX_MBS_TY) */
 static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
@@ -371,26 +383,11 @@ static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
     const real_t *M = w->M + w->mo[b];
     const real_t *W = w->W + w->wo[b], *Wi = W;
     const uint16_t *ps = w->pslot + w->po[b];
-    if ((sp->flags & RT_MBS_M_DIAG) && nz == 3) { /* a point: dot's sum, inline */
-        real_t *lv = w->lv;
-        for (unsigned i = t0; i < t1; i++, Wi += 3) {
-            const real_t *Wk = Wi;
-            for (unsigned k = i; k < t1; k++, Wk += 3) {
-                real_t acc = 0;
-                acc += Wi[0] * (Wk[0] / M[0]);
-                acc += Wi[1] * (Wk[1] / M[1]);
-                acc += Wi[2] * (Wk[2] / M[2]);
-                lv[*ps++] += acc;
-            }
-        }
-        return;
-    }
-    if (sp->flags & RT_MBS_M_DIAG) {
-        for (uint16_t i = t0; i < t1; i++, Wi += nz) {
-            const real_t *Wk = Wi;
-            for (uint16_t k = i; k < t1; k++, Wk += nz)
-                w->lv[*ps++] += dot(Wi, Wk, M, nz);
-        }
+    if (sp->flags & RT_MBS_M_DIAG) { /* a point's nz = 3 specialized at compile time */
+        if (nz == 3)
+            diag_shares(w->lv, W, M, ps, t1 - t0, 3);
+        else
+            diag_shares(w->lv, W, M, ps, t1 - t0, nz);
         return;
     }
     real_t *Y = w->Y + w->yo[b], *Yi = Y;

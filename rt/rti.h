@@ -142,9 +142,8 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 /* the highest output index of a set stepping over several ticks, plus one (rt/sim.c) */
 uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim);
 /* recorded and exported multibody signals held between their set's steps (rt/sim.c): how
-   many; compute
-   set s's into held_sig (when a multi-tick set's state reaches the tick, and every set's
-   at the start: rt_refresh) */
+   many; compute set s's into held_sig (when a multi-tick set's state reaches the tick, and
+   every set's at the start: rt_refresh) */
 uint16_t rti_held_sigs(const rt_scene *sc);
 void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s);
 /* set s's held signals at the end of its background step, into bg_sig_new of the context

@@ -143,12 +143,12 @@ real_t rti_export_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
     return rti_sig_value(sc, sim, r);
 }
 
-/* recorded signal r, the slot-th held one if it is held */
-static real_t rec_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r, uint16_t slot)
+/* recorded signal r: the *slot-th held one if it is held (then *slot moves on) */
+static real_t rec_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r, uint16_t *slot)
 {
 #if RT_MAX_HELD_SIG > 0
     if (held_sig(sc, r))
-        return sim->state.held_sig[slot];
+        return sim->state.held_sig[(*slot)++];
 #else
     (void)slot;
 #endif
@@ -307,10 +307,8 @@ real_t rti_sig_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r)
 
 real_t rt_rec_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)
 {
-    uint16_t slot = 0;
-    for (uint16_t k = 0; k < i; k++)
-        slot = (uint16_t)(slot + held_sig(sc, &sc->recs[k]));
-    return rec_value(sc, sim, &sc->recs[i], slot);
+    uint16_t slot = count_held(sc, sc->recs, i);
+    return rec_value(sc, sim, &sc->recs[i], &slot);
 }
 
 const char *rt_rec_signal(const rt_scene *sc, uint16_t i)
@@ -334,12 +332,10 @@ void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
     const uint16_t *y_off = sim->plan.y_off;
     for (; r < end; r++) {
         real_t v;
-        if (r->what == RT_SIG_Y) {
+        if (r->what == RT_SIG_Y)
             v = y[y_off[r->block] + r->index];
-        } else {
-            v = rec_value(sc, sim, r, slot);
-            slot = (uint16_t)(slot + held_sig(sc, r));
-        }
+        else
+            v = rec_value(sc, sim, r, &slot);
         if (out)
             *out++ = v;
         h = rti_hash(h, v);
