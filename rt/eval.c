@@ -170,6 +170,11 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
             sim->plan.rhs_skip[s] = RTI_RHS_LEAN;
     }
     for (uint8_t set = 0; set < sc->nsets; set++) {
+        sim->plan.set_deriv[set] = 0;
+        for (uint16_t i = sim->plan.blk_of[set]; i < sim->plan.blk_of[set + 1]; i++) {
+            const rt_kind *k = sc->blocks[sim->plan.set_blk[i]].kind;
+            sim->plan.set_deriv[set] |= k->nx > 0 && k->deriv;
+        }
         sim->plan.rhs_calls[set] = 0;
         for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
             sim->plan.rhs_calls[set] = (uint16_t)(sim->plan.rhs_calls[set] +
@@ -243,7 +248,9 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     sim->stats.rhs_evals[set]++;
     if (sim->plan.rhs_calls[set] > 0) /* else no output of the set is read live */
         set_outputs(sc, sim, (rti_at){t, set, RTI_IN_RHS});
-    for (unsigned i = sim->plan.blk_of[set], i1 = sim->plan.blk_of[set + 1]; i < i1; i++) {
+    /* a multibody set's blocks have none (rti_mbs_accel gives their derivatives) */
+    unsigned i1 = sim->plan.set_deriv[set] ? sim->plan.blk_of[set + 1] : 0;
+    for (unsigned i = sim->plan.blk_of[set]; i < i1; i++) {
         uint16_t b = sim->plan.set_blk[i];
         const rt_kind *k = sc->blocks[b].kind;
         if (k->nx == 0 || !k->deriv)

@@ -173,6 +173,27 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+/* does set s hold points only: each MBS block a point node (RT_MBS_NODE_POINT) with a
+   constant diagonal M, no constraints of its own and nothing to normalize, each joint one between such points
+   or a point and the inertial frame whose kind evaluates points (eval_points)? Its
+   assembly then takes a lean path (rt/mbs_asm.c assemble_point_set) */
+static uint8_t points_only(const rt_scene *sc, const rt_mbs_work *w, uint8_t s)
+{
+    const uint8_t need = RT_MBS_NODE_POINT | RT_MBS_M_DIAG | RT_MBS_M_CONST;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        const rt_mbs_spec *sp = spec_of(sc, w->sblk[k]);
+        if ((sp->flags & need) != need || sp->nc > 0 || sp->normalize)
+            return 0;
+    }
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
+        const rt_joint *jt = &sc->joints[w->sjnt[k]];
+        if (!jt->kind->eval_points || (jt->b2 >= 0 && !is_mbs(sc, (uint16_t)jt->b2)) ||
+            (jt->b2 >= 0 && !(spec_of(sc, (uint16_t)jt->b2)->flags & RT_MBS_NODE_POINT)))
+            return 0;
+    }
+    return 1;
+}
+
 /* each set's MBS blocks and joints, in scene order: what the evaluations loop over */
 static rt_status set_lists(const rt_scene *sc, rt_sim *sim)
 {
@@ -188,6 +209,8 @@ static rt_status set_lists(const rt_scene *sc, rt_sim *sim)
                 w->sjnt[nj++] = j;
     }
     w->sb[sc->nsets] = nb, w->sj[sc->nsets] = nj;
+    for (uint8_t s = 0; s < RT_MAX_SETS; s++)
+        w->points[s] = s < sc->nsets && points_only(sc, w, s);
     return RT_OK;
 }
 

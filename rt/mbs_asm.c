@@ -191,23 +191,19 @@ static inline real_t dot(const real_t *a, const real_t *b, const real_t *m, uint
     return acc;
 }
 
-/* the rows of joint ji between two points by its kind's eval_points (0 if that does not
-   apply): g, g' = C1 v1 + C2 v2, and with jac gam = c (points have no acceleration
+/* the rows of joint ji between two points (r1, v1) and (r2, v2) by its kind's
+   eval_points: g, g' = C1 v1 + C2 v2, and with jac gam = c (points have no acceleration
    terms: the general path adds a zero sum, +0) and W's rows C1, C2 (a point node's
    Jacobian is [I; 0]); the same bits as the general path below, without node structs.
    RTI_MBS_G alone: g by the kind's g_points if it has one (the same bits again) */
-static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int what)
+static RTI_INLINE void point_rows(const rt_joint *j, uint16_t ji, rt_mbs_work *w, int what,
+                                  const real_t *r1, const real_t *v1, const real_t *r2,
+                                  const real_t *v2)
 {
-    const rt_joint *j = &sc->joints[ji];
     const rt_joint_kind *jk = j->kind;
-    const real_t *r1, *v1, *r2, *v2;
-    if (!jk->eval_points || !point_of(sc, sim, j, 0, &r1, &v1) ||
-        !point_of(sc, sim, j, 1, &r2, &v2))
-        return 0;
-    rt_mbs_work *w = &sim->work.mbs;
     if (what == RTI_MBS_G && jk->g_points) { /* g alone, the same bits */
         jk->g_points(j->p, r1, r2, w->g + w->jrow[ji]);
-        return 1;
+        return;
     }
     int jac = what & RTI_MBS_JAC;
     rt_joint_eval e;
@@ -234,6 +230,18 @@ static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int wha
         else
             W2[0] = C[6], W2[1] = C[7], W2[2] = C[8];
     }
+}
+
+/* the rows of joint ji by point_rows if its kind has eval_points and both sides are
+   points (else 0: the general path) */
+static int assemble_points(const rt_scene *sc, rt_sim *sim, uint16_t ji, int what)
+{
+    const rt_joint *j = &sc->joints[ji];
+    const real_t *r1, *v1, *r2, *v2;
+    if (!j->kind->eval_points || !point_of(sc, sim, j, 0, &r1, &v1) ||
+        !point_of(sc, sim, j, 1, &r2, &v2))
+        return 0;
+    point_rows(j, ji, &sim->work.mbs, what, r1, v1, r2, v2);
     return 1;
 }
 
@@ -336,9 +344,52 @@ static void assemble_block(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t
     }
 }
 
+/* a set of points only (rt_mbs_work.points, rt/mbs.c): assemble_block and
+   assemble_points without looking up a spec per block and joint side. Such a block has a
+   constant diagonal M, factored by assemble_block at its first assembly, and no rows of
+   its own: all the block part does is k and M^-1 k; the same calls, the same bits */
+static void assemble_point_set(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, int what)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    const real_t *x = sim->state.x;
+    for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1 && what != RTI_MBS_G; k++) {
+        uint16_t b = w->sblk[k];
+        if (!w->m_valid[b]) { /* the first assembly factors M */
+            assemble_block(sc, sim, b, t, what);
+            continue;
+        }
+        if (!(what & RTI_MBS_FORCE))
+            continue;
+        const rt_kind *kd = sc->blocks[b].kind;
+        real_t *ab = w->a + w->zo[b];
+        const real_t *M = w->M + w->mo[b];
+        rt_args a;
+        if (kd->nu > 0)
+            rti_gather(sim, b, t); /* the inputs are applied forces (eq. 6b) */
+        rti_args(sc, sim, b, t, 0, &a);
+        ((const rt_mbs_spec *)kd->spec)->force(&a, ab);
+        ab[0] /= M[0], ab[1] /= M[1], ab[2] /= M[2];
+    }
+    for (unsigned k = w->sj[set], k1 = w->sj[set + 1]; k < k1; k++) {
+        static const real_t zero[3] = {0, 0, 0};
+        uint16_t ji = w->sjnt[k];
+        const rt_joint *j = &sc->joints[ji];
+        const real_t *x1 = x + sim->plan.x_off[j->b1], *r2 = zero, *v2 = zero;
+        if (j->b2 >= 0)
+            r2 = x + sim->plan.x_off[j->b2], v2 = r2 + 3;
+        else if (j->at)
+            r2 = j->at;
+        point_rows(j, ji, w, what, x1, x1 + 3, r2, v2);
+    }
+}
+
 void rti_mbs_assemble(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, int what)
 {
     const rt_mbs_work *w = &sim->work.mbs;
+    if (w->points[set]) {
+        assemble_point_set(sc, sim, set, t, what);
+        return;
+    }
     for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
         assemble_block(sc, sim, w->sblk[k], t, what);
     for (uint16_t k = w->sj[set]; k < w->sj[set + 1]; k++)
@@ -409,8 +460,15 @@ void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
     if (w->nc[set] == 0)
         return;
     rti_mbs_ldl_clear(w, set);
-    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
-        schur_block(w, spec_of(sc, w->sblk[k]), w->sblk[k]);
+    if (w->points[set]) /* points only: schur_block's diagonal case with nz = 3 */
+        for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
+            unsigned b = w->sblk[k];
+            diag_shares(w->lv, w->W + w->wo[b], w->M + w->mo[b], w->pslot + w->po[b],
+                        (unsigned)(w->to[b + 1] - w->to[b]), 3);
+        }
+    else
+        for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
+            schur_block(w, spec_of(sc, w->sblk[k]), w->sblk[k]);
     int bad = rti_mbs_ldl_factor(w, set);
     if (bad >= 0) /* counted with the block owning the first offending row */
         rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, set, (uint16_t)bad),
@@ -427,13 +485,14 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
 {
     rt_mbs_work *w = &sim->work.mbs;
     const uint16_t *trow = w->trow;
+    int points = w->points[set]; /* points only: no spec to look up */
     for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
         unsigned b = w->sblk[k], i = w->to[b], i1 = w->to[b + 1];
-        const rt_mbs_spec *sp = spec_of(sc, (uint16_t)b);
-        unsigned nz = sp->nz;
+        const rt_mbs_spec *sp = points ? 0 : spec_of(sc, (uint16_t)b);
+        unsigned nz = points ? 3 : sp->nz;
         real_t *d = dz + w->zo[b];
         const real_t *M = w->M + w->mo[b], *Wi = w->W + w->wo[b], *Yi = w->Y + w->yo[b];
-        int diag = sp->flags & RT_MBS_M_DIAG;
+        int diag = points || (sp->flags & RT_MBS_M_DIAG);
         if (diag && nz == 3) { /* a point: the same sums, kept in registers */
             real_t d0 = add ? d[0] : 0, d1 = add ? d[1] : 0, d2 = add ? d[2] : 0;
             for (; i < i1; i++, Wi += 3) {
@@ -472,7 +531,7 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
         for (uint16_t r = 0; r < m; r++)
             lam[r] += sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r];
     for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
-        unsigned b = w->sblk[k], nz = spec_of(sc, (uint16_t)b)->nz;
+        unsigned b = w->sblk[k], nz = w->points[set] ? 3 : spec_of(sc, (uint16_t)b)->nz;
         const real_t *ab = w->a + w->zo[b];
         const real_t *Wi = w->W + w->wo[b];
         for (unsigned i = w->to[b], i1 = w->to[b + 1]; i < i1; i++, Wi += nz)
@@ -496,14 +555,15 @@ void rti_mbs_accel(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_
     rti_mbs_lambda(sc, sim, set, t);
     for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
         uint16_t b = w->sblk[k];
-        const rt_mbs_spec *sp = spec_of(sc, b);
         real_t *qd = xdot + (sim->plan.x_off[b] - sim->plan.set_x[set]);
-        if (sp->flags & RT_MBS_NODE_POINT) { /* q' = v, v' = a: copies, no call */
+        if (w->points[set] || (spec_of(sc, b)->flags & RT_MBS_NODE_POINT)) {
+            /* q' = v, v' = a: copies, no call */
             const real_t *x = sim->state.x + sim->plan.x_off[b], *ab = w->a + w->zo[b];
             qd[0] = x[3], qd[1] = x[4], qd[2] = x[5];
             qd[3] = ab[0], qd[4] = ab[1], qd[5] = ab[2];
             continue;
         }
+        const rt_mbs_spec *sp = spec_of(sc, b);
         rt_args a;
         rti_args(sc, sim, b, t, 0, &a);
         sp->kin(&a, a.x + sp->nq, qd);

@@ -22,6 +22,8 @@ static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
 static void save_q(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     const rt_mbs_work *w = &sim->work.mbs;
+    if (w->points[set]) /* a point's K is I */
+        return;
     for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
         uint16_t b = w->sblk[k];
         if (spec_of(sc, b)->flags & RT_MBS_K_CONST)
@@ -31,10 +33,44 @@ static void save_q(const rt_scene *sc, rt_sim *sim, uint8_t set)
     }
 }
 
+/* x[from .. from + 3) += dz (in a) for every block of a set of points (rt_mbs_work.points):
+   from 0 their q (K = I), from 3 their z */
+static void points_add(rt_sim *sim, uint8_t set, unsigned from)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
+        unsigned b = w->sblk[k];
+        real_t *x = sim->state.x + sim->plan.x_off[b] + from;
+        const real_t *dz = w->a + w->zo[b];
+        x[0] += dz[0], x[1] += dz[1], x[2] += dz[2];
+    }
+}
+
+/* z += dz (in a) for every MBS block of the set */
+static void move_z(const rt_scene *sc, rt_sim *sim, uint8_t set)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    if (w->points[set]) {
+        points_add(sim, set, 3);
+        return;
+    }
+    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        const rt_mbs_spec *sp = spec_of(sc, b);
+        real_t *z = sim->state.x + sim->plan.x_off[b] + sp->nq;
+        for (uint16_t c = 0; c < sp->nz; c++)
+            z[c] += w->a[w->zo[b] + c];
+    }
+}
+
 /* q += K(q~) dz (in a), block by block: the velocity-space correction mapped to coordinates */
 static void move_q(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
     rt_mbs_work *w = &sim->work.mbs;
+    if (w->points[set]) { /* K = I: kin copies dz, so q += dz */
+        points_add(sim, set, 0);
+        return;
+    }
     for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
         uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
@@ -49,23 +85,12 @@ static void move_q(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     }
 }
 
-/* z += dz (in a) for every MBS block of the set */
-static void move_z(const rt_scene *sc, rt_sim *sim, uint8_t set)
-{
-    rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
-        uint16_t b = w->sblk[k];
-        const rt_mbs_spec *sp = spec_of(sc, b);
-        real_t *z = sim->state.x + sim->plan.x_off[b] + sp->nq;
-        for (uint16_t c = 0; c < sp->nz; c++)
-            z[c] += w->a[w->zo[b] + c];
-    }
-}
-
 /* the kinds' own normalization (unit quaternions) */
 static void normalize(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     const rt_mbs_work *w = &sim->work.mbs;
+    if (w->points[set]) /* a point has nothing to normalize */
+        return;
     for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
         if (spec_of(sc, w->sblk[k])->normalize)
             spec_of(sc, w->sblk[k])->normalize(sim->state.x + sim->plan.x_off[w->sblk[k]]);

@@ -576,6 +576,8 @@ typedef struct rt_plan {
 
     /* multirate (rt/xset.c) */
     uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
+    uint8_t set_deriv[RT_MAX_SETS];  /* 1: a block of set s has its own derivative (an NSS
+                                        or LSS kind): a right-hand side walks its blocks */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
     uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);
