@@ -190,10 +190,10 @@ CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := ports/common/image_main.c
 # the background set preempted for real (cross-test-<t> of these targets): pendulum10_actuated
 # ticked in SysTick every 40 us of virtual time (40,000 instructions under -icount), its
-# chain stepping in PendSV below it (68,000 instructions a step), preempted by the ticks
-# that fall while it runs (at 80 us every step has fitted between two ticks since the
-# multibody path got faster, d3a6ffb; at 100 us since a tick checks and roots only the sets
-# it evaluated)
+# chain stepping in PendSV below it (58,500 instructions a step since the points-only
+# multibody path; 68,000 before), preempted by the ticks that fall while it runs (at 80 us
+# every step has fitted between two ticks since the multibody path got faster, d3a6ffb; at
+# 100 us since a tick checks and roots only the sets it evaluated)
 CROSS_BG_TARGETS := m7
 CROSS_BG_TICKS := 1000
 CROSS_BG_DEFS = -DRT_SCENE=mdl_scene_pendulum10_actuated -DRT_IMAGE_BG=1 \

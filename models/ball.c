@@ -64,7 +64,7 @@ const rt_kind mdl_ball_kind = {
     .ny = 2, .nx = 2, .nd = 4, .np = 3, .nr = 1,
     .y_names = x_names, .x_names = x_names, .d_names = d_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default, .root_dir = root_dir,
-    .root_guard = root_guard, .feed = RT_FEED_NONE,
+    .root_guard = root_guard, .feed = RT_FEED_NONE, .autonomous = 1,
     .check = check, .output = output, .deriv = deriv, .roots = roots, .event = event,
     .doc = RT_DOC(
         "Ball bouncing on the ground (eq. (3) with one state event): h' = v, v' = -g.\n"

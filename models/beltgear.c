@@ -29,7 +29,7 @@ const rt_kind mdl_pulley_kind = {
     .name = "pulley", .type = RT_KIND_OUTPUT,
     .nu = 2, .ny = 1, .np = 3,
     .u_names = pul_u, .y_names = pul_y, .p_names = pul_p, .p_default = pul_def,
-    .feed = RT_FEED_ALL, .check = pul_check, .output = pul_out,
+    .feed = RT_FEED_ALL, .autonomous = 1, .check = pul_check, .output = pul_out,
     .doc = RT_DOC(
         "Pulley of the belt gear (Fig. 6), output only with throughput (eq. (1)):\n"
         "angular acceleration a = (M + s r F) / J from drive torque M and belt force F.\n"
@@ -58,7 +58,7 @@ const rt_kind mdl_rotor_kind = {
     .name = "rotor", .type = RT_KIND_NSS,
     .nu = 1, .ny = 2, .nx = 2,
     .u_names = rot_u, .y_names = rot_x, .x_names = rot_x,
-    .feed = RT_FEED_NONE, .output = rot_out, .deriv = rot_deriv,
+    .feed = RT_FEED_NONE, .autonomous = 1, .output = rot_out, .deriv = rot_deriv,
     .doc = RT_DOC(
         "Rotor of the belt gear (Fig. 6, eq. (3)): integrates the angular acceleration a,\n"
         "phi' = omega, omega' = a; outputs phi and omega (no throughput). No parameters."),
@@ -90,7 +90,7 @@ const rt_kind mdl_belt_kind = {
     .name = "belt", .type = RT_KIND_OUTPUT,
     .nu = 6, .ny = 1, .np = 5,
     .u_names = belt_u, .y_names = belt_y, .p_names = belt_p, .p_default = belt_def,
-    .feed = RT_FEED_TABLE, .feed_table = belt_feed,
+    .feed = RT_FEED_TABLE, .autonomous = 1, .feed_table = belt_feed,
     .check = belt_check, .output = belt_out,
     .doc = RT_DOC(
         "Elastic belt of the belt gear (Fig. 6), output only (eq. (1)): force difference\n"

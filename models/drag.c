@@ -27,7 +27,7 @@ static rt_status check(const real_t *p, const void *spec)
 const rt_kind mdl_drag_kind = {
     .name = "drag", .type = RT_KIND_OUTPUT, .nu = 1, .ny = 1, .np = 3,
     .u_names = u_names, .y_names = y_names, .p_names = p_names, .p_default = p_default,
-    .feed = RT_FEED_ALL, .check = check, .output = output,
+    .feed = RT_FEED_ALL, .autonomous = 1, .check = check, .output = output,
     .doc = RT_DOC(
         "Aerodynamic drag along the body's forward axis: F = -1/2 rho cd A u |u| from the\n"
         "forward speed u. rho: air density (1.2041 kg/m^3 at 20 C); cd, A: drag\n"

@@ -67,7 +67,7 @@ static rt_status drv_check(const real_t *p, const void *spec)
 const rt_kind mdl_iso_driver_kind = {
     .name = "iso_driver", .type = RT_KIND_OUTPUT, .nu = 4, .ny = 2, .np = D_NP,
     .u_names = drv_u, .y_names = drv_y, .p_names = drv_p, .p_default = drv_def,
-    .feed = RT_FEED_ALL, .check = drv_check, .output = drv_output,
+    .feed = RT_FEED_ALL, .autonomous = 1, .check = drv_check, .output = drv_output,
     .doc = RT_DOC(
         "Preview driver on the ISO 3888-1 double lane change (pure pursuit): the course\n"
         "starts at x0 (sections 15, 30, 25, 25, 15, 15 m; centre line 0, the offset over\n"
@@ -118,7 +118,7 @@ static rt_status tow_check(const real_t *p, const void *spec)
 const rt_kind mdl_tow_steer_kind = {
     .name = "tow_steer", .type = RT_KIND_OUTPUT, .nu = 6, .ny = 3, .np = T_NP,
     .u_names = tow_u, .y_names = tow_y, .p_names = tow_p, .p_default = tow_def,
-    .feed = RT_FEED_ALL, .check = tow_check, .output = tow_output,
+    .feed = RT_FEED_ALL, .autonomous = 1, .check = tow_check, .output = tow_output,
     .doc = RT_DOC(
         "Steering principle of a towed vehicle from the tow-bar angles (the paper's\n"
         "SteeringPrinciple): the bar from the second vehicle's front hitch (df2 ahead of\n"

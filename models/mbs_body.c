@@ -144,7 +144,8 @@ static const rt_mbs_spec spec_u = {
 const rt_kind mdl_mbs_body_kind = {
     .name = "mbs_body", .type = RT_KIND_MBS, .ny = 21, .nx = 13, .np = NP,
     .y_names = y_names, .x_names = x_names, .p_names = p_names, .p_default = p_default,
-    .x_default = x_default, .feed = RT_FEED_NONE, .check = check, .output = output,
+    .x_default = x_default, .feed = RT_FEED_NONE,
+    .autonomous = 1, .check = check, .output = output,
     .spec = &spec,
     .doc = RT_DOC(
         "Spatial rigid body (eq. (6)): q = [r, p], p = (p0, p1, p2, p3) a unit quaternion\n"
@@ -161,7 +162,8 @@ const rt_kind mdl_mbs_body_kind = {
 const rt_kind mdl_mbs_bodyf_kind = {
     .name = "mbs_bodyf", .type = RT_KIND_MBS, .nu = 6, .ny = 21, .nx = 13, .np = NP,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
-    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_NONE, .check = check,
+    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_NONE,
+    .autonomous = 1, .check = check,
     .output = output, .spec = &spec_u,
     .doc = RT_DOC(
         "Spatial rigid body with inputs (eq. (6)): q = [r, p], p a unit quaternion\n"

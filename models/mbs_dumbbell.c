@@ -104,7 +104,7 @@ static const rt_mbs_spec spec = {
 const rt_kind mdl_mbs_dumbbell_kind = {
     .name = "mbs_dumbbell", .type = RT_KIND_MBS, .ny = 6, .nx = 12, .np = NP,
     .y_names = x_names, .x_names = x_names, .p_names = p_names, .p_default = p_default,
-    .feed = RT_FEED_NONE, .check = check, .output = output, .spec = &spec,
+    .feed = RT_FEED_NONE, .autonomous = 1, .check = check, .output = output, .spec = &spec,
     .doc = RT_DOC(
         "Two mass points joined by a massless rod: eq. (6) with one internal constraint\n"
         "g = |r1 - r2| - l = 0 (6c), the spherical difference joint of eq. (8).\n"

@@ -97,7 +97,7 @@ static const rt_mbs_spec spec_u = {
 const rt_kind mdl_mbs_point_kind = {
     .name = "mbs_point", .type = RT_KIND_MBS, .ny = 6, .nx = 6, .np = 4,
     .y_names = x_names, .x_names = x_names, .p_names = p_names, .p_default = p_default,
-    .feed = RT_FEED_NONE, .check = check, .output = output, .spec = &spec,
+    .feed = RT_FEED_NONE, .autonomous = 1, .check = check, .output = output, .spec = &spec,
     .doc = RT_DOC(
         "Mass point as a multibody module (eq. (6): K = I, b = 0, M = m I, no internal\n"
         "constraints): coordinates q = r = (x, y, z), velocities z = v = (vx, vy, vz);\n"
@@ -108,7 +108,8 @@ const rt_kind mdl_mbs_point_kind = {
 const rt_kind mdl_mbs_pointf_kind = {
     .name = "mbs_pointf", .type = RT_KIND_MBS, .nu = 3, .ny = 6, .nx = 6, .np = 4,
     .u_names = u_names, .y_names = x_names, .x_names = x_names, .p_names = p_names,
-    .p_default = p_default, .feed = RT_FEED_NONE, .check = check, .output = output,
+    .p_default = p_default, .feed = RT_FEED_NONE,
+    .autonomous = 1, .check = check, .output = output,
     .spec = &spec_u,
     .doc = RT_DOC(
         "Mass point with an applied force as a multibody module (eq. (6): K = I, b = 0,\n"

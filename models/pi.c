@@ -26,7 +26,7 @@ const rt_kind mdl_pi_kind = {
     .nu = 2, .ny = 1, .nd = 1, .np = 2,
     .u_names = u_names, .y_names = y_names, .d_names = d_names, .p_names = p_names,
     .p_default = p_default,
-    .feed = RT_FEED_ALL,
+    .feed = RT_FEED_ALL, .autonomous = 1,
     .output = output, .update = update,
     .doc = RT_DOC(
         "Sampled PI controller (DSS, eq. (5)) with sample period Ts (the block's step):\n"

@@ -60,7 +60,8 @@ static rt_status mot_check(const real_t *p, const void *spec)
 const rt_kind mdl_dc_motor_kind = {
     .name = "dc_motor", .type = RT_KIND_NSS, .nu = 1, .ny = 4, .nx = 4, .np = M_NP,
     .u_names = mot_u, .y_names = mot_y, .x_names = mot_x, .p_names = mot_p,
-    .p_default = mot_def, .feed = RT_FEED_NONE, .check = mot_check, .output = mot_output,
+    .p_default = mot_def, .feed = RT_FEED_NONE,
+    .autonomous = 1, .check = mot_check, .output = mot_output,
     .deriv = mot_deriv,
     .doc = RT_DOC(
         "DC torque motor with a PI current loop (eq. (3)): u = Kp (iref - i) + Ki e,\n"
@@ -124,7 +125,8 @@ static rt_status hyd_check(const real_t *p, const void *spec)
 const rt_kind mdl_hyd_servo_kind = {
     .name = "hyd_servo", .type = RT_KIND_NSS, .nu = 1, .ny = 3, .nx = 4, .np = H_NP,
     .u_names = hyd_u, .y_names = hyd_y, .x_names = hyd_x, .p_names = hyd_p,
-    .p_default = hyd_def, .feed = RT_FEED_NONE, .check = hyd_check, .output = hyd_output,
+    .p_default = hyd_def, .feed = RT_FEED_NONE,
+    .autonomous = 1, .check = hyd_check, .output = hyd_output,
     .deriv = hyd_deriv,
     .doc = RT_DOC(
         "Valve-controlled hydraulic cylinder on a steering rack (eq. (3)): spool lag\n"

@@ -32,7 +32,7 @@ const rt_kind mdl_vanderpol_kind = {
     .ny = 2, .nx = 2, .np = 1,
     .y_names = x_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default,
-    .feed = RT_FEED_NONE,
+    .feed = RT_FEED_NONE, .autonomous = 1,
     .check = check, .output = output, .deriv = deriv,
     .doc = RT_DOC(
         "Van der Pol oscillator x'' = mu (1 - x^2) x' - x (eq. (3)) in time scaled to\n"

@@ -437,7 +437,8 @@ static const rt_mbs_spec spec_mf = {
 const rt_kind mdl_car3d_kind = {
     .name = "car3d", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
-    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
+    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE,
+    .autonomous = 1, .feed_table = feed,
     .check = check, .output = output_linear, .output_lean = output_lean,
     .lean_skip = lean_skip, .spec = &spec,
     .doc = RT_DOC(
@@ -456,7 +457,8 @@ const rt_kind mdl_car3d_kind = {
 const rt_kind mdl_car3d_mf_kind = {
     .name = "car3d_mf", .type = RT_KIND_MBS, .nu = NU, .ny = NY, .nx = NX, .np = P_COUNT,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
-    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
+    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE,
+    .autonomous = 1, .feed_table = feed,
     .check = check, .output = output_mf, .output_lean = output_lean,
     .lean_skip = lean_skip, .spec = &spec_mf,
     .doc = RT_DOC(

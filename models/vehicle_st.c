@@ -181,7 +181,8 @@ static const rt_mbs_spec spec = {
 const rt_kind mdl_st_car_kind = {
     .name = "st_car", .type = RT_KIND_MBS, .nu = 2, .ny = 7, .nx = 6, .np = P_COUNT,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
-    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE, .feed_table = feed,
+    .p_default = p_default, .x_default = x_default, .feed = RT_FEED_TABLE,
+    .autonomous = 1, .feed_table = feed,
     .check = check, .output = output, .spec = &spec,
     .doc = RT_DOC(
         "Planar single-track car with linear tires as a multibody module (eq. (6)):\n"
@@ -205,7 +206,7 @@ static const rt_mbs_spec spec_mf = {
 const rt_kind mdl_st_car_mf_kind = {
     .name = "st_car_mf", .type = RT_KIND_MBS, .nu = 2, .ny = 7, .nx = 6, .np = P_COUNT_MF,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
-    .p_default = p_default_mf, .x_default = x_default, .feed = RT_FEED_TABLE,
+    .p_default = p_default_mf, .x_default = x_default, .feed = RT_FEED_TABLE, .autonomous = 1,
     .feed_table = feed, .check = check_mf, .output = output, .spec = &spec_mf,
     .doc = RT_DOC(
         "Planar single-track car with Magic-Formula tires (the same ports, states and\n"

@@ -99,16 +99,27 @@ static void move_range(real_t *a, real_t *buf, uint32_t n, int dir)
     }
 }
 
+/* the next run of consecutive blocks of set s from its k-th (plan.set_blk, ascending):
+   their outputs are one range of y, [y_off[b], y_off[*end]); returns b, advances k */
+static uint16_t block_run(const rt_sim *sim, uint8_t s, uint16_t *k, uint16_t *end)
+{
+    uint16_t b = sim->plan.set_blk[(*k)++], e = (uint16_t)(b + 1);
+    while (*k < sim->plan.blk_of[s + 1] && sim->plan.set_blk[*k] == e)
+        (*k)++, e++;
+    *end = e;
+    return b;
+}
+
 /* the set's result between rt_state arrays and a packed buffer (move_range's dir): its
-   states, then its blocks' outputs */
+   states, then its blocks' outputs, a run of consecutive blocks at a time */
 static void move_result(const rt_sim *sim, uint8_t s, real_t *x, real_t *y, real_t *buf,
                         int dir)
 {
     uint32_t n = (uint32_t)(sim->plan.set_x[s + 1] - sim->plan.set_x[s]);
     move_range(x + sim->plan.set_x[s], buf, n, dir);
-    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
-        uint16_t b = sim->plan.set_blk[k];
-        uint32_t m = (uint32_t)(sim->plan.y_off[b + 1] - sim->plan.y_off[b]);
+    for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
+        uint16_t b = block_run(sim, s, &k, &e);
+        uint32_t m = (uint32_t)(sim->plan.y_off[e] - sim->plan.y_off[b]);
         move_range(y + sim->plan.y_off[b], buf + n, m, dir);
         n += m;
     }
@@ -127,10 +138,9 @@ static void copy_result(const rt_sim *from, rt_sim *to, uint8_t s)
 {
     uint16_t x0 = from->plan.set_x[s];
     copy_reals(to->state.x + x0, from->state.x + x0, (uint32_t)(from->plan.set_x[s + 1] - x0));
-    for (uint16_t k = from->plan.blk_of[s]; k < from->plan.blk_of[s + 1]; k++) {
-        uint16_t b = from->plan.set_blk[k], y0 = from->plan.y_off[b];
-        copy_reals(to->state.y + y0, from->state.y + y0,
-                   (uint32_t)(from->plan.y_off[b + 1] - y0));
+    for (uint16_t k = from->plan.blk_of[s], e; k < from->plan.blk_of[s + 1];) {
+        uint16_t y0 = from->plan.y_off[block_run(from, s, &k, &e)];
+        copy_reals(to->state.y + y0, from->state.y + y0, (uint32_t)(from->plan.y_off[e] - y0));
     }
 }
 

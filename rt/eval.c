@@ -144,6 +144,29 @@ static void live_reads(const rt_scene *sc, const rt_sim *sim, uint8_t *live)
         }
 }
 
+/* the rti_set_flag bits of set `set` */
+static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set)
+{
+    uint8_t deriv = 0, autonomous = RTI_SET_AUTONOMOUS;
+    for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
+        if (sim->plan.seq[sim->plan.set_seq[i]].kind == RT_SEQ_LOOP)
+            autonomous = 0;
+    for (uint16_t i = sim->plan.blk_of[set]; i < sim->plan.blk_of[set + 1]; i++) {
+        uint16_t b = sim->plan.set_blk[i];
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nx > 0 && k->deriv)
+            deriv = RTI_SET_DERIV;
+        if (k->type == RT_KIND_DSS) /* its outputs hold between its sample hits */
+            continue;
+        if (!k->autonomous)
+            autonomous = 0;
+        for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++)
+            if (sim->plan.src_kind[j] == RT_SRC_XSET || sim->plan.src_kind[j] == RT_SRC_TORN)
+                autonomous = 0;
+    }
+    return (uint8_t)(deriv | autonomous);
+}
+
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
 {
     uint8_t live[RT_MAX_BLOCKS], seen[RT_MAX_BLOCKS];
@@ -170,11 +193,7 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
             sim->plan.rhs_skip[s] = RTI_RHS_LEAN;
     }
     for (uint8_t set = 0; set < sc->nsets; set++) {
-        sim->plan.set_deriv[set] = 0;
-        for (uint16_t i = sim->plan.blk_of[set]; i < sim->plan.blk_of[set + 1]; i++) {
-            const rt_kind *k = sc->blocks[sim->plan.set_blk[i]].kind;
-            sim->plan.set_deriv[set] |= k->nx > 0 && k->deriv;
-        }
+        sim->plan.set_flags[set] = set_flags(sc, sim, set);
         sim->plan.rhs_calls[set] = 0;
         for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
             sim->plan.rhs_calls[set] = (uint16_t)(sim->plan.rhs_calls[set] +
@@ -249,7 +268,7 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     if (sim->plan.rhs_calls[set] > 0) /* else no output of the set is read live */
         set_outputs(sc, sim, (rti_at){t, set, RTI_IN_RHS});
     /* a multibody set's blocks have none (rti_mbs_accel gives their derivatives) */
-    unsigned i1 = sim->plan.set_deriv[set] ? sim->plan.blk_of[set + 1] : 0;
+    unsigned i1 = (sim->plan.set_flags[set] & RTI_SET_DERIV) ? sim->plan.blk_of[set + 1] : 0;
     for (unsigned i = sim->plan.blk_of[set]; i < i1; i++) {
         uint16_t b = sim->plan.set_blk[i];
         const rt_kind *k = sc->blocks[b].kind;

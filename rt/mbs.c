@@ -174,9 +174,10 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
 }
 
 /* does set s hold points only: each MBS block a point node (RT_MBS_NODE_POINT) with a
-   constant diagonal M, no constraints of its own and nothing to normalize, each joint one between such points
-   or a point and the inertial frame whose kind evaluates points (eval_points)? Its
-   assembly then takes a lean path (rt/mbs_asm.c assemble_point_set) */
+   constant diagonal M, no constraints of its own and nothing to normalize, each joint one
+   between such points or a point and the inertial frame whose kind evaluates points
+   (eval_points)? Its multibody path then looks up no spec (rt/mbs_asm.c
+   assemble_point_set, rt/mbs_project.c points_add) */
 static uint8_t points_only(const rt_scene *sc, const rt_mbs_work *w, uint8_t s)
 {
     const uint8_t need = RT_MBS_NODE_POINT | RT_MBS_M_DIAG | RT_MBS_M_CONST;
@@ -228,28 +229,39 @@ static rt_status factor_tables(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
-/* recorded MBS signals: an MBS block, a known quantity, a joint acting on that block */
+/* a multibody signal (recorded or exported): an MBS block, a known quantity, a joint
+   acting on that block; a joint's reaction sets need_lambda (the multipliers are kept
+   per joint, and again at each step end: rt/mbs_project.c) */
+static rt_status check_signal(const rt_scene *sc, rt_sim *sim, const rt_rec *r,
+                              const char *what)
+{
+    int ok = is_mbs(sc, r->block);
+    if (ok && r->index >= RT_MBS_SIG_NSET) {
+        uint16_t j = (uint16_t)((r->index - RT_MBS_SIG_JOINT) / RT_MBS_JSIG_COUNT);
+        uint16_t c = (uint16_t)((r->index - RT_MBS_SIG_JOINT) % RT_MBS_JSIG_COUNT);
+        ok = r->index >= RT_MBS_SIG_JOINT && j < sc->njoints &&
+             sc->joints[j].b1 == (int16_t)r->block &&
+             (c < RT_MBS_JSIG_LAMBDA || c - RT_MBS_JSIG_LAMBDA < sc->joints[j].kind->nc);
+        sim->work.mbs.need_lambda = 1;
+    }
+    if (!ok)
+        return rti_fail(sim, RT_E_SCENE, "a ", what, " MBS signal of ",
+                        sc->blocks[r->block < sc->nblocks ? r->block : 0].name,
+                        " names no MBS quantity of that block", (const char *)0);
+    return RT_OK;
+}
+
+/* the recorded and the link's exported multibody signals */
 static rt_status check_recs(const rt_scene *sc, rt_sim *sim)
 {
     sim->work.mbs.need_lambda = 0;
-    for (uint16_t i = 0; i < sc->nrecs; i++) {
-        const rt_rec *r = &sc->recs[i];
-        if (r->what != RT_SIG_MBS)
-            continue;
-        int ok = is_mbs(sc, r->block);
-        if (ok && r->index >= RT_MBS_SIG_NSET) {
-            uint16_t j = (uint16_t)((r->index - RT_MBS_SIG_JOINT) / RT_MBS_JSIG_COUNT);
-            uint16_t c = (uint16_t)((r->index - RT_MBS_SIG_JOINT) % RT_MBS_JSIG_COUNT);
-            ok = r->index >= RT_MBS_SIG_JOINT && j < sc->njoints &&
-                 sc->joints[j].b1 == (int16_t)r->block &&
-                 (c < RT_MBS_JSIG_LAMBDA || c - RT_MBS_JSIG_LAMBDA < sc->joints[j].kind->nc);
-            sim->work.mbs.need_lambda = 1;
-        }
-        if (!ok)
-            return rti_fail(sim, RT_E_SCENE, "a recorded MBS signal of ",
-                            sc->blocks[r->block < sc->nblocks ? r->block : 0].name,
-                            " names no MBS quantity of that block", (const char *)0);
-    }
+    for (uint16_t i = 0; i < sc->nrecs; i++)
+        if (sc->recs[i].what == RT_SIG_MBS && check_signal(sc, sim, &sc->recs[i], "recorded") != RT_OK)
+            return RT_E_SCENE;
+    for (uint16_t i = 0; sc->link && i < sc->link->nexp; i++)
+        if (sc->link->exp[i].what == RT_SIG_MBS &&
+            check_signal(sc, sim, &sc->link->exp[i], "exported") != RT_OK)
+            return RT_E_SCENE;
     return RT_OK;
 }
 

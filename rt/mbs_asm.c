@@ -539,6 +539,8 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     }
     rti_mbs_solve(sim, set, lam);
     rti_mbs_correct(sc, sim, set, lam, w->a, 1); /* z' = M^-1 k - Y lambda, into a */
+    if (!w->need_lambda) /* nobody reads a joint's multipliers */
+        return;
     for (uint16_t k = w->sj[set]; k < w->sj[set + 1]; k++) {
         uint16_t j = w->sjnt[k];
         for (uint16_t i = 0; i < sc->joints[j].kind->nc; i++)

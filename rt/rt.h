@@ -136,6 +136,11 @@ typedef struct rt_kind {
     const real_t *x_default;    /* nx default initial states; NULL: all zero */
     const real_t *d_default;    /* nd default initial discrete states; NULL: all zero */
     rt_feed feed;               /* throughput class */
+    uint8_t autonomous;         /* 1: no service of the kind reads a->t (output, deriv,
+                                   and an MBS kind's spec): its equations do not depend on
+                                   time explicitly, which spares ROS2 its f_t evaluation
+                                   in a set whose inputs hold over the step (rt/eval.c).
+                                   0, the default: they may */
     const uint8_t *feed_table;  /* ny*nu row-major, only for RT_FEED_TABLE */
     const int8_t *root_dir;     /* nr crossing directions: -1 falling, +1 rising, 0 both;
                                    NULL: both */
@@ -247,6 +252,7 @@ typedef struct rt_implicit_cfg {
 /* Workspace an integrator may use for one step of one set (carved from rt_sim). */
 typedef struct rt_iwork {
     real_t *k[RT_MAX_STAGES]; /* stage derivatives, n values each */
+    uint8_t autonomous;       /* 1: f(t, x) does not depend on t over the step */
     real_t *x0;               /* state at the start of the step */
     rt_implicit_ws *imp;      /* persistent implicit data of this set */
     rt_istats *stats;         /* statistics of this set */
@@ -576,8 +582,7 @@ typedef struct rt_plan {
 
     /* multirate (rt/xset.c) */
     uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
-    uint8_t set_deriv[RT_MAX_SETS];  /* 1: a block of set s has its own derivative (an NSS
-                                        or LSS kind): a right-hand side walks its blocks */
+    uint8_t set_flags[RT_MAX_SETS];  /* rti_set_flag bits of each set (rti_eval_plan) */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
     uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);

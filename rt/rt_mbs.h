@@ -235,7 +235,7 @@ typedef struct rt_mbs_work {
     uint16_t nz[RT_MAX_SETS];       /* velocities of each set's MBS blocks */
     uint16_t nq[RT_MAX_SETS];       /* coordinates of each set's MBS blocks */
     uint16_t nc[RT_MAX_SETS];       /* constraint rows of each set */
-    uint8_t need_lambda;            /* the scene records joint reactions */
+    uint8_t need_lambda;            /* the scene records or exports joint reactions */
     uint8_t m_valid[RT_MAX_BLOCKS]; /* 1: M of a block with RT_MBS_M_CONST is factored */
     uint8_t points[RT_MAX_SETS];    /* 1: the set holds points only (rt/mbs.c points_only) */
     /* the sparse LDL^T of each set's A (rt/mbs_ldl.c): rows in elimination order */

@@ -122,6 +122,12 @@ void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
    block's first call if no input of its own set reads its outputs live, a repeated call
    (after its inputs changed) if none reads one that depends on them. Returns RT_OK. */
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
+/* what rti_eval_plan found of a set (plan.set_flags): a block of it has its own
+   derivative (an NSS or LSS kind: a right-hand side walks its blocks; a multibody set's
+   have none), and its right-hand side does not depend on t over a step (each block not
+   sampled of an autonomous kind, no input from another set's history, no actual loop,
+   whose solver carries its estimates from one evaluation to the next) */
+enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2 };
 /* what a right-hand side does with an entry of the sequence (plan.rhs_skip) */
 typedef enum { RTI_RHS_CALL = 0, RTI_RHS_SKIP, RTI_RHS_LEAN } rti_rhs_call;
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */

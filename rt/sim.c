@@ -226,9 +226,11 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
 {
     for (uint16_t b = 0; b < sc->nblocks; b++) {
-        const rt_kind *k = sc->blocks[b].kind;
-        if (k->type != RT_KIND_DSS || sim->state.tick % sim->plan.period[b] != 0)
+        /* a DSS block's period only is not 0 (rt/init.c): no kind to look up for others */
+        uint32_t period = sim->plan.period[b];
+        if (period == 0 || sim->state.tick % period != 0)
             continue;
+        const rt_kind *k = sc->blocks[b].kind;
         real_t next[RT_MAX_D];
         rt_args a;
         rti_gather(sim, b, t);

@@ -49,6 +49,7 @@ static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
     w.imp = &sim->state.imp[s];
     w.stats = &sim->stats.istats[s];
     w.cfg = &sc->sets[s].implicit;
+    w.autonomous = (sim->plan.set_flags[s] & RTI_SET_AUTONOMOUS) != 0;
     uint32_t split = w.stats->substepped;
     real_t before = norm(sim->state.x + x0, n);
     w.stats->last_err = 0;

@@ -422,6 +422,7 @@ static rt_iwork direct_work(const rt_implicit_cfg *cfg)
     w.imp = &tu_sim.state.imp[0];
     w.stats = &tu_sim.stats.istats[0];
     w.cfg = cfg;
+    w.autonomous = 0;
     tu_sim.state.imp[0].valid = 0, tu_sim.state.imp[0].age = 0;
     tu_sim.stats.istats[0] = (rt_istats){0};
     return w;

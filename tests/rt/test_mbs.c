@@ -556,6 +556,73 @@ static void test_init_errors(void)
     sc.recs = bad_rec, sc.nrecs = 1;
     TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_SCENE);
     TH_CHECK(th_has(rt_error_text(&tu_sim), "recorded MBS signal of P"));
+    /* so must an exported one (it was checked for an MBS scene only) */
+    static const rt_link bad_link = {.name = "ctl", .period = 1, .exp = bad_rec, .nexp = 1};
+    sc.recs = p1_recs, sc.nrecs = NREC, sc.link = &bad_link;
+    TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_SCENE);
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "exported MBS signal of P names no MBS quantity"));
+}
+
+/* a joint reaction exported to a controller and not recorded is kept as a recorded one:
+   the rod of a pendulum hanging at rest carries m g, at init and at the end of a step */
+static void test_export_reaction(void)
+{
+    static const real_t hang[6] = {0, 0, -1, 0, 0, 0};
+    static const rt_block blocks[] = {{.name = "P", .kind = &mdl_mbs_point_kind, .x0 = hang}};
+    static const rt_rec exp[] = {{0, RT_SIG_MBS, RT_MBS_SIG_JOINT_AT(0, RT_MBS_JSIG_FZ)}};
+    static const rt_link lk = {.name = "ctl", .period = 1, .exp = exp, .nexp = 1};
+    rt_scene sc = pendulum(&rt_rk4, (real_t)1e-3, 1, RT_STAB_PROJECT, 1);
+    sc.blocks = blocks, sc.recs = 0, sc.nrecs = 0, sc.link = &lk;
+    if (!tu_init(&sc))
+        return;
+    double tol = RT_REAL_IS_FLOAT ? 1e-4 : 1e-12;
+    TH_NEAR(rt_link_export(&sc, &tu_sim, 0), G, tol);
+    tu_run_to(&sc, (real_t)0.1);
+    TH_NEAR(rt_link_export(&sc, &tu_sim, 0), G, tol);
+}
+
+/* a set of point masses takes the lean multibody path (rt_mbs_work.points) with the bits
+   of the general one: a spatial double pendulum of mbs_point blocks against the same blocks
+   of a copy of the kind that does not declare its nodes points (RT_MBS_NODE_POINT), which
+   the general path evaluates through its node and kin services */
+static void test_points_path(void)
+{
+    static const real_t x1[6] = {1, 0, 0, 0, (real_t)0.8, 0};
+    static const real_t x2[6] = {1, (real_t)0.42, (real_t)0.56, (real_t)-0.4, 0, (real_t)0.2};
+    static const real_t m1[] = {(real_t)1.3, 0, 0, (real_t)-9.81}; /* m, g */
+    static const real_t m2[] = {(real_t)0.7, 0, 0, (real_t)-9.81};
+    static rt_mbs_spec spec;
+    static rt_kind kind;
+    static rt_block blocks[2];
+    spec = *(const rt_mbs_spec *)mdl_mbs_point_kind.spec;
+    spec.flags = (uint8_t)(spec.flags & ~RT_MBS_NODE_POINT);
+    kind = mdl_mbs_point_kind, kind.spec = &spec;
+    real_t x[12], lam[2];
+    for (int v = 0; v < 2; v++) {
+        rt_scene sc = double_pendulum(&rt_bs3, (real_t)1e-3, 1, 0);
+        sc.recs = p1_recs + REC_LAMBDA, sc.nrecs = 1; /* lambda of rod1 on P1 */
+        blocks[0] = dp_blocks[0], blocks[1] = dp_blocks[1];
+        blocks[0].x0 = x1, blocks[1].x0 = x2, blocks[0].p = m1, blocks[1].p = m2;
+        if (v == 1)
+            blocks[0].kind = blocks[1].kind = &kind;
+        sc.blocks = blocks;
+        if (!tu_init(&sc))
+            return;
+        TH_CHECK(tu_sim.work.mbs.points[0] == (v == 0));
+        tu_run_to(&sc, 1);
+        TH_CHECK(tu_sim.stats.status == RT_OK);
+        if (v == 0) {
+            for (int i = 0; i < 12; i++)
+                x[i] = tu_sim.state.x[i];
+            lam[0] = rt_rec_value(&sc, &tu_sim, 0);
+            continue;
+        }
+        int same = 1;
+        for (int i = 0; i < 12; i++)
+            same &= x[i] == tu_sim.state.x[i];
+        lam[1] = rt_rec_value(&sc, &tu_sim, 0);
+        TH_CHECK(same && lam[0] == lam[1] && lam[0] > 0);
+    }
 }
 
 const th_test th_mbs_tests[] = {
@@ -569,5 +636,7 @@ const th_test th_mbs_tests[] = {
     {"mbs_force_input", test_force_input},
     {"mbs_signals", test_signals},
     {"mbs_init_errors", test_init_errors},
+    {"mbs_export_reaction", test_export_reaction},
+    {"mbs_points_path", test_points_path},
     {0, 0},
 };

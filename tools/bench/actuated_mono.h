@@ -10,9 +10,6 @@
 
 typedef struct amono {
     int solver;            /* MONO_DENSE or MONO_THOMAS (the chain's Schur complement) */
-    int ft;                /* 1: ROS2's f_t term from f(t + h, x0) as modrt evaluates it;
-                              0: skipped (the model is autonomous over a step: the
-                              controller's output is held), same bits */
     double h;              /* step = base tick = the controller's period [s] */
     long tick;             /* steps taken */
     double x[AMONO_NX];    /* per body x, y, z [m], vx, vy, vz [m/s]; servo y, w */

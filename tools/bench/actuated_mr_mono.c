@@ -20,7 +20,8 @@
  *    and is held over the servo's step;
  *  - the servo: ROS2 as rt/integ_implicit.c (forward-difference Jacobian at the step's
  *    first evaluation, refreshed every 64 steps and at the first; I - gamma h J factored
- *    by Gauss with partial pivoting; the f(t + h, x0) evaluation of the f_t term; the
+ *    by Gauss with partial pivoting; no f_t term (the servo is autonomous under its held
+ *    command, as modrt finds too); the
  *    estimate h/2 (k1 + k2), which decides whether modrt splits the step: it never does
  *    in this scene, the monolith counts such steps instead and the check fails on one).
  *
@@ -191,19 +192,18 @@ static void msolve(const amr *m, double *b)
 /* one ROS2 step of dt of the servo */
 static void servo_step(amr *m)
 {
-    double *x = m->s, x0[2] = {x[0], x[1]}, k1[2], k2[2], ft[2], h = m->dt, err = 0;
+    double *x = m->s, x0[2] = {x[0], x[1]}, k1[2], k2[2], h = m->dt, err = 0;
     srhs(m, x, k1);
     if (!m->valid || m->age >= JAC_EVERY)
         jacobian(m, k1);
-    srhs(m, x, ft); /* f(t + h, x0): the command is held over the step */
-    for (int i = 0; i < 2; i++)
-        ft[i] = GAMMA * (ft[i] - k1[i]), k1[i] += ft[i];
+    /* no f_t term: the servo does not read t and its command holds over the step (modrt
+       finds the same and skips f(t + h, x0): rt/eval.c RTI_SET_AUTONOMOUS) */
     msolve(m, k1);
     for (int i = 0; i < 2; i++)
         x[i] = x0[i] + h * k1[i];
     srhs(m, x, k2);
     for (int i = 0; i < 2; i++)
-        k2[i] -= 2 * k1[i] + ft[i];
+        k2[i] -= 2 * k1[i];
     msolve(m, k2);
     for (int i = 0; i < 2; i++) {
         x[i] = x0[i] + h * (1.5 * k1[i] + 0.5 * k2[i]);

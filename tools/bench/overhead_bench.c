@@ -18,8 +18,9 @@
  *        overhead_bench count SIDE METHOD SECONDS
  *                                        SIDE modrt | mono | mono-noest | thomas;
  *                                        METHOD bs3 | rk4 | dopri5 (pendulum10), ros2
- *                                        (pendulum10_actuated_single; SIDE mono-noest
- *                                        there: without the f(t + h, x0) evaluation) or
+ *                                        (pendulum10_actuated_single; mono-noest is mono
+ *                                        there: neither side evaluates f(t + h, x0) for
+ *                                        the f_t term of the autonomous model) or
  *                                        bs3+ros2 (pendulum10_actuated; mono-noest: without
  *                                        bs3's error estimate and the history monitors) */
 #include <math.h>
@@ -129,14 +130,14 @@ static double chain_diff(const double *x)
 }
 
 /* the monolith from modrt's initial state: the chain's outputs, the servo's states */
-static void act_start(amono *m, int solver, int ft, const rt_scene *sc)
+static void act_start(amono *m, int solver, const rt_scene *sc)
 {
     double x0[AMONO_NX];
     for (uint16_t b = 0; b < MONO_NB; b++)
         for (uint16_t j = 0; j < 6; j++)
             x0[6 * b + j] = (double)rt_output(&sim, b, j);
     servo_states(sc, x0 + 6 * MONO_NB);
-    m->solver = solver, m->ft = ft;
+    m->solver = solver;
     m->h = (double)sc->dt;
     amono_init(m, x0);
 }
@@ -155,14 +156,13 @@ static int act_check(void)
 {
     static const double at[] = {1, 2, 5, ACT_T};
     int bad = 0;
-    /* dense and Thomas with f(t + h, x0); dense without it (the same bits expected) */
-    for (int v = 0; v < 3; v++) {
-        int solver = v == 1 ? MONO_THOMAS : MONO_DENSE, ft = v < 2;
-        const char *name = v == 0 ? "dense" : v == 1 ? "thomas" : "dense-noft";
+    for (int v = 0; v < 2; v++) { /* dense and Thomas */
+        int solver = v == 1 ? MONO_THOMAS : MONO_DENSE;
+        const char *name = v == 0 ? "dense" : "thomas";
         rt_scene sc;
         static amono m;
         act_init(&sc, &mdl_scene_pendulum10_actuated_single, ACT_T);
-        act_start(&m, solver, ft, &sc);
+        act_start(&m, solver, &sc);
         long done = 0;
         double worst = 0;
         for (int i = 0; i < (int)(sizeof at / sizeof at[0]); i++) {
@@ -310,8 +310,7 @@ int main(int argc, char **argv)
             return sim.stats.status == RT_OK ? 0 : 1;
         }
         static amono m;
-        act_start(&m, strcmp(argv[2], "thomas") == 0 ? MONO_THOMAS : MONO_DENSE,
-                  strcmp(argv[2], "mono-noest") != 0, &sc);
+        act_start(&m, strcmp(argv[2], "thomas") == 0 ? MONO_THOMAS : MONO_DENSE, &sc);
         amono_steps(&m, n);
         return 0;
     }
