@@ -206,7 +206,11 @@ void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v)
     unsigned base = w->rb[set], n = w->rb[set + 1] - base;
     const real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
     const uint16_t *lp = w->lp + base, *perm = w->perm + base, *lj = w->lj;
-    real_t y[RT_MAX_MBS_C]; /* row i reads y[j < i] only, each written before */
+    /* row i reads y[j < i] only, each written before; gcc cannot see it where the limit
+       is one row (the array becomes a scalar): y[0] is set for it, not the whole array
+       (40 stores per solve at the default limit) */
+    real_t y[RT_MAX_MBS_C];
+    y[0] = 0;
     for (unsigned i = 0; i < n; i++) { /* L y = P v */
         real_t t = v[perm[i]];
         for (unsigned e = lp[i], e1 = lp[i + 1]; e < e1; e++)
