@@ -4,6 +4,7 @@
  * counter, Jacobian reuse, a singular iteration matrix, multibody sets with projection
  * (a stand-in pendulum and the library's ten-body pendulum), state events, and
  * bit-identical replays. */
+#include "rti.h" /* plan.set_flags' bits */
 #include "scenes/scenes.h"
 #include "testutil.h"
 
@@ -645,11 +646,54 @@ static void test_registry(void)
     }
 }
 
+/* ROS2 skips f(t + h, x0) in an autonomous set (docs/solvers.md) with the bits of the
+   evaluation it skips (f_t = +0): Dahlquist's equation declared autonomous against the
+   same kind undeclared, 100 steps; what is not autonomous: a kind that does not declare it
+   (the growth equation, whose order with time test implicit_orders checks) and, in the
+   library's pendulum10_actuated, the chain, which reads the servo's torque from its
+   history, while the servo set (a controller sampled, a servo under its held command) is */
+static void test_ros2_autonomous(void)
+{
+    static const real_t lam[] = {-2}, one[] = {1}; /* no step above the accuracy: no split */
+    static rt_kind auto_dahl;
+    auto_dahl = dahl, auto_dahl.autonomous = 1;
+    real_t x[2];
+    uint32_t evals[2];
+    uint8_t flags[2];
+    for (int v = 0; v < 2; v++) {
+        if (!run(v ? &auto_dahl : &dahl, lam, one, &rt_ros2, (rt_implicit_cfg){.jac_every = 8},
+                 (real_t)0.01, 1))
+            return;
+        x[v] = tu_sim.state.x[0];
+        evals[v] = tu_sim.stats.rhs_evals[0];
+        flags[v] = tu_sim.plan.set_flags[0];
+    }
+    TH_CHECK(!(flags[0] & RTI_SET_AUTONOMOUS) && (flags[1] & RTI_SET_AUTONOMOUS));
+    TH_CHECK(x[0] == x[1] && x[1] != 0);
+    TH_CHECK(evals[0] == evals[1] + 100); /* one evaluation fewer per step */
+    TH_NEAR(x[1], 0.1353352832366127, 5e-4); /* e^-2 (ROS2 at h = 0.01: 1.4e-4 off) */
+    static const real_t x1[] = {1};
+    TH_CHECK(setup(&growth, 0, x1, &rt_ros2, (rt_implicit_cfg){0}, (real_t)0.01, 1) &&
+             !(tu_sim.plan.set_flags[0] & RTI_SET_AUTONOMOUS));
+    const rt_scene *sc = &mdl_scene_pendulum10_actuated;
+    if (!tu_init(sc))
+        return;
+    int chain = -1, servo = -1;
+    for (int i = 0; i < sc->nsets; i++) {
+        chain = rt_streq(sc->sets[i].name, "chain") ? i : chain;
+        servo = rt_streq(sc->sets[i].name, "servo") ? i : servo;
+    }
+    TH_CHECK(chain >= 0 && servo >= 0);
+    TH_CHECK(!(tu_sim.plan.set_flags[chain] & RTI_SET_AUTONOMOUS) &&
+             (tu_sim.plan.set_flags[servo] & RTI_SET_AUTONOMOUS));
+}
+
 const th_test th_implicit_tests[] = {
     {"implicit_dahlquist", test_dahlquist},
     {"implicit_orders", test_orders},
     {"implicit_stiff_linear", test_stiff_linear},
     {"implicit_ros2_split", test_ros2_split},
+    {"implicit_ros2_autonomous", test_ros2_autonomous},
     {"implicit_degraded", test_degraded},
     {"implicit_jac_reuse", test_jac_reuse},
     {"implicit_singular", test_singular},

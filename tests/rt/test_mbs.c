@@ -581,6 +581,32 @@ static void test_export_reaction(void)
     TH_NEAR(rt_link_export(&sc, &tu_sim, 0), G, tol);
 }
 
+/* a mass changed by rt_set_param during the run is factored anew (RT_MBS_M_CONST), also
+   on the lean path of a set of points: a free point pushed by 1 N, 1 kg for 1 s, 2 kg
+   after, x = t^2 / 2, then 1/2 + (t - 1) + (t - 1)^2 / 4 (RK4 is exact on these) */
+static void test_mass_change(void)
+{
+    static const real_t no_g[] = {1, 0, 0, 0};
+    static const real_t rest[6] = {0, 0, 0, 0, 0, 0};
+    static const rt_block blocks[] = {
+        {.name = "P", .kind = &mdl_mbs_pointf_kind, .x0 = rest, .p = no_g},
+    };
+    static const rt_default push[] = {{0, 0, 1}, {0, 1, 0}, {0, 2, 0}};
+    rt_scene sc = pendulum(&rt_rk4, (real_t)1e-3, 2, RT_STAB_PROJECT, 0);
+    sc.blocks = blocks, sc.recs = 0, sc.nrecs = 0;
+    sc.defaults = push, sc.ndefaults = 3;
+    if (!tu_init(&sc))
+        return;
+    TH_CHECK(tu_sim.work.mbs.points[0] == 1);
+    double tol = RT_REAL_IS_FLOAT ? 2e-4 : 1e-12; /* float: 2000 steps' rounding, 5e-5 */
+    tu_run_to(&sc, 1);
+    TH_NEAR(tu_sim.state.x[0], 0.5, tol);
+    TH_CHECK(rt_set_param(&sc, &tu_sim, "P", "m", 2) == RT_OK);
+    tu_run_to(&sc, 2);
+    TH_NEAR(tu_sim.state.x[0], 1.75, tol);
+    TH_NEAR(tu_sim.state.x[3], 1.5, tol);
+}
+
 /* a set of point masses takes the lean multibody path (rt_mbs_work.points) with the bits
    of the general one: a spatial double pendulum of mbs_point blocks against the same blocks
    of a copy of the kind that does not declare its nodes points (RT_MBS_NODE_POINT), which
@@ -638,5 +664,6 @@ const th_test th_mbs_tests[] = {
     {"mbs_init_errors", test_init_errors},
     {"mbs_export_reaction", test_export_reaction},
     {"mbs_points_path", test_points_path},
+    {"mbs_mass_change", test_mass_change},
     {0, 0},
 };
