@@ -144,10 +144,22 @@ static void copy_result(const rt_sim *from, rt_sim *to, uint8_t s)
     }
 }
 
+/* copies n values; 1 if any changed (parameters are finite: rt_set_param checks them) */
+static int copy_changed(real_t *dst, const real_t *src, uint32_t n)
+{
+    int changed = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        changed |= dst[i] != src[i];
+        dst[i] = src[i];
+    }
+    return changed;
+}
+
 /* what the step reads from the tick's side, as it stands at release: the time, its own
-   blocks' parameters (rt_set_param may change them between ticks), the held outputs of
-   sampled blocks and the history of the other sets' outputs its inputs read (its own
-   states, outputs and discrete states are the context's already) */
+   blocks' parameters (rt_set_param may change them between ticks: a block whose changed
+   has its constant mass matrix factored anew in the context, as rt_set_param makes the
+   tick's), the held outputs of sampled blocks and the history of the other sets' outputs
+   its inputs read (its own states, outputs and discrete states are the context's already) */
 static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8_t s)
 {
     bg->state.tick = sim->state.tick;
@@ -158,8 +170,9 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
     }
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
-        copy_reals(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
-                   (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b]));
+        if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
+                         (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
+            bg->work.mbs.m_valid[b] = 0;
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             uint16_t v = sim->plan.src[i];
             if (sim->plan.src_kind[i] == RT_SRC_HELD)

@@ -148,9 +148,6 @@ static void live_reads(const rt_scene *sc, const rt_sim *sim, uint8_t *live)
 static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set)
 {
     uint8_t deriv = 0, autonomous = RTI_SET_AUTONOMOUS;
-    for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
-        if (sim->plan.seq[sim->plan.set_seq[i]].kind == RT_SEQ_LOOP)
-            autonomous = 0;
     for (uint16_t i = sim->plan.blk_of[set]; i < sim->plan.blk_of[set + 1]; i++) {
         uint16_t b = sim->plan.set_blk[i];
         const rt_kind *k = sc->blocks[b].kind;
@@ -160,6 +157,8 @@ static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set)
             continue;
         if (!k->autonomous)
             autonomous = 0;
+        /* a history input changes over the step; a torn one is an actual loop's, whose
+           solver carries its estimates from one evaluation to the next */
         for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++)
             if (sim->plan.src_kind[j] == RT_SRC_XSET || sim->plan.src_kind[j] == RT_SRC_TORN)
                 autonomous = 0;

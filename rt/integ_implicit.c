@@ -436,11 +436,12 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     rhs(c, t, k1);
     at_base(c, t, k1);
     /* h gamma df/dt ~ gamma (f(t + h, x0) - f(t, x0)): over the whole step, so an input
-       that jumps inside it costs no more than the jump itself. An autonomous set's is
-       +0, what the difference of two equal evaluations gives (the same bits) */
+       that jumps inside it costs no more than the jump itself. An autonomous set's two
+       evaluations are equal: their difference is k1 - k1 (+0, or NaN where k1 is not
+       finite), the same bits without the second one */
     if (w->autonomous)
         for (uint16_t i = 0; i < n; i++)
-            ft[i] = 0, k1[i] += ft[i];
+            ft[i] = g * (k1[i] - k1[i]), k1[i] += ft[i];
     else {
         rhs(c, t + h, ft);
         for (uint16_t i = 0; i < n; i++)

@@ -136,8 +136,9 @@ typedef struct rt_kind {
     const real_t *x_default;    /* nx default initial states; NULL: all zero */
     const real_t *d_default;    /* nd default initial discrete states; NULL: all zero */
     rt_feed feed;               /* throughput class */
-    uint8_t autonomous;         /* 1: no service of the kind reads a->t (output, deriv,
-                                   and an MBS kind's spec): its equations do not depend on
+    uint8_t autonomous;         /* 1: none of the services a right-hand side calls reads
+                                   a->t (output, output_lean, deriv, an MBS kind's spec;
+                                   an event handler may): its equations do not depend on
                                    time explicitly, which spares ROS2 its f_t evaluation
                                    in a set whose inputs hold over the step (rt/eval.c).
                                    0, the default: they may */

@@ -258,7 +258,8 @@ typedef struct rt_mbs_work {
     real_t gam[RT_MAX_MBS_C];       /* acceleration term of eq. 7b, then the multipliers */
     real_t qt[RT_MAX_MBS_QT];       /* predicted coordinates (projection), kinb scratch */
     real_t J[2][6 * RT_MAX_MBS_JZ]; /* Jacobians of a joint's two nodes */
-    real_t jlam[RT_MAX_MBS_JROWS];  /* multipliers of each joint (at jlo) */
+    real_t jlam[RT_MAX_MBS_JROWS];  /* multipliers of each joint (at jlo), kept only where
+                                       a reaction is read (need_lambda) */
 
     /* statistics (high-water marks for sizing and reports) */
     real_t res_max;       /* largest |g| right after a projection */

@@ -125,8 +125,8 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
 /* what rti_eval_plan found of a set (plan.set_flags): a block of it has its own
    derivative (an NSS or LSS kind: a right-hand side walks its blocks; a multibody set's
    have none), and its right-hand side does not depend on t over a step (each block not
-   sampled of an autonomous kind, no input from another set's history, no actual loop,
-   whose solver carries its estimates from one evaluation to the next) */
+   sampled of an autonomous kind, no input from another set's history and no torn one:
+   an actual loop's solver carries its estimates from one evaluation to the next) */
 enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2 };
 /* what a right-hand side does with an entry of the sequence (plan.rhs_skip) */
 typedef enum { RTI_RHS_CALL = 0, RTI_RHS_SKIP, RTI_RHS_LEAN } rti_rhs_call;

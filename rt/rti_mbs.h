@@ -51,7 +51,7 @@ void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v);
 /* The block owning constraint row `row` of the set (a joint's b1), or -1. */
 int rti_mbs_row_block(const struct rt_scene *sc, const struct rt_sim *sim, uint8_t set,
                       uint16_t row);
-/* The index-1 solve at the current state: lambda into gam and jlam, and
+/* The index-1 solve at the current state: lambda into gam (and jlam if need_lambda), and
    z' = M^-1 k - Y lambda into a. */
 void rti_mbs_lambda(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
 /* The accel service (see rt_mbs_ops) and the project service (rt/mbs_project.c). */

@@ -686,6 +686,11 @@ static void test_ros2_autonomous(void)
     TH_CHECK(chain >= 0 && servo >= 0);
     TH_CHECK(!(tu_sim.plan.set_flags[chain] & RTI_SET_AUTONOMOUS) &&
              (tu_sim.plan.set_flags[servo] & RTI_SET_AUTONOMOUS));
+    /* pi_loop: kinds that all declare it, but an actual loop in its one set */
+    if (!tu_init(&mdl_scene_pi_loop))
+        return;
+    TH_CHECK(tu_sim.plan.nloops > 0 && mdl_scene_pi_loop.nsets == 1 &&
+             !(tu_sim.plan.set_flags[0] & RTI_SET_AUTONOMOUS));
 }
 
 const th_test th_implicit_tests[] = {

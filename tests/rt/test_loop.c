@@ -2,6 +2,7 @@
  * solved in one iteration at every evaluation, a nonlinear one against its root found by
  * bisection inside the test, and bounded non-convergence without NaN. */
 #include "models.h"
+#include "rti.h" /* plan.set_flags' bits */
 #include "testutil.h"
 
 static const rt_set one_set[] = {{.name = "s", .method = &rt_rk4, .ratio = 1}};
@@ -120,9 +121,29 @@ static void test_loop_bound(void)
     TH_NEAR(tu_y(&sc, "Sum", 0), cubic_root(40, 50), RT_REAL_IS_FLOAT ? 1e-5 : 1e-10);
 }
 
+/* a set with an actual loop is never autonomous for ROS2 (rt/eval.c): its solver carries
+   its estimates from one evaluation to the next, so f(t + h, x0) need not repeat f(t, x0)
+   bit for bit even where every kind declares it reads no time (an oscillator, a sum and
+   a gain here) */
+static void test_loop_not_autonomous(void)
+{
+    static const real_t sum_p[] = {1, (real_t)-0.5}, g_p[] = {3};
+    static const rt_block bl[] = {
+        [SRC] = {.name = "Src", .kind = &mdl_oscillator_kind},
+        [SUM] = {.name = "Sum", .kind = &mdl_sum_kind, .p = sum_p},
+        [FB] = {.name = "G", .kind = &mdl_gain_kind, .p = g_p},
+    };
+    rt_scene sc = loop_scene(bl);
+    if (!tu_init(&sc))
+        return;
+    TH_CHECK(bl[SRC].kind->autonomous && bl[SUM].kind->autonomous && bl[FB].kind->autonomous);
+    TH_CHECK(tu_sim.plan.nloops == 1 && !(tu_sim.plan.set_flags[0] & RTI_SET_AUTONOMOUS));
+}
+
 const th_test th_loop_tests[] = {
     {"loop_linear_one_iteration", test_linear_loop},
     {"loop_nonlinear", test_nonlinear_loop},
     {"loop_bound", test_loop_bound},
+    {"loop_not_autonomous", test_loop_not_autonomous},
     {0, 0},
 };

@@ -608,46 +608,61 @@ static void test_mass_change(void)
 }
 
 /* a set of point masses takes the lean multibody path (rt_mbs_work.points) with the bits
-   of the general one: a spatial double pendulum of mbs_point blocks against the same blocks
-   of a copy of the kind that does not declare its nodes points (RT_MBS_NODE_POINT), which
-   the general path evaluates through its node and kin services */
+   of the general one: a spatial double pendulum hung from an anchor off the origin, its
+   first point pushed by an input force, against the same blocks of copies of the kinds
+   that do not declare their nodes points (RT_MBS_NODE_POINT), which the general path
+   evaluates through their node and kin services; projected and with Baumgarte's terms */
 static void test_points_path(void)
 {
-    static const real_t x1[6] = {1, 0, 0, 0, (real_t)0.8, 0};
-    static const real_t x2[6] = {1, (real_t)0.42, (real_t)0.56, (real_t)-0.4, 0, (real_t)0.2};
+    static const real_t at[3] = {(real_t)0.2, (real_t)-0.1, (real_t)0.3};
+    static const real_t x1[6] = {(real_t)1.2, (real_t)-0.1, (real_t)0.3, 0, (real_t)0.8, 0};
+    static const real_t x2[6] = {(real_t)1.2, (real_t)0.32, (real_t)0.86,
+                                 (real_t)-0.4, 0, (real_t)0.2};
     static const real_t m1[] = {(real_t)1.3, 0, 0, (real_t)-9.81}; /* m, g */
     static const real_t m2[] = {(real_t)0.7, 0, 0, (real_t)-9.81};
-    static rt_mbs_spec spec;
-    static rt_kind kind;
+    static const rt_default push[] = {{0, 0, (real_t)0.3}, {0, 1, (real_t)-0.5}, {0, 2, 0}};
+    static const rt_joint joints[] = {
+        {.name = "rod1", .kind = &rt_joint_sphdiff, .b1 = 0, .b2 = -1, .p = one, .at = at},
+        {.name = "rod2", .kind = &rt_joint_sphdiff, .b1 = 1, .b2 = 0, .p = len2},
+    };
+    static rt_mbs_spec spec[2];
+    static rt_kind kind[2];
     static rt_block blocks[2];
-    spec = *(const rt_mbs_spec *)mdl_mbs_point_kind.spec;
-    spec.flags = (uint8_t)(spec.flags & ~RT_MBS_NODE_POINT);
-    kind = mdl_mbs_point_kind, kind.spec = &spec;
-    real_t x[12], lam[2];
-    for (int v = 0; v < 2; v++) {
-        rt_scene sc = double_pendulum(&rt_bs3, (real_t)1e-3, 1, 0);
-        sc.recs = p1_recs + REC_LAMBDA, sc.nrecs = 1; /* lambda of rod1 on P1 */
-        blocks[0] = dp_blocks[0], blocks[1] = dp_blocks[1];
-        blocks[0].x0 = x1, blocks[1].x0 = x2, blocks[0].p = m1, blocks[1].p = m2;
-        if (v == 1)
-            blocks[0].kind = blocks[1].kind = &kind;
-        sc.blocks = blocks;
-        if (!tu_init(&sc))
-            return;
-        TH_CHECK(tu_sim.work.mbs.points[0] == (v == 0));
-        tu_run_to(&sc, 1);
-        TH_CHECK(tu_sim.stats.status == RT_OK);
-        if (v == 0) {
+    const rt_kind *lib[2] = {&mdl_mbs_pointf_kind, &mdl_mbs_point_kind};
+    for (int i = 0; i < 2; i++) {
+        spec[i] = *(const rt_mbs_spec *)lib[i]->spec;
+        spec[i].flags = (uint8_t)(spec[i].flags & ~RT_MBS_NODE_POINT);
+        kind[i] = *lib[i], kind[i].spec = &spec[i];
+    }
+    for (uint8_t stab = RT_STAB_PROJECT; stab <= RT_STAB_BAUMGARTE; stab++) {
+        real_t x[12], lam[2];
+        for (int v = 0; v < 2; v++) {
+            rt_scene sc = double_pendulum(&rt_bs3, (real_t)1e-3, 1, 0);
+            sc.recs = p1_recs + REC_LAMBDA, sc.nrecs = 1; /* lambda of rod1 on P1 */
+            sc.joints = joints, sc.defaults = push, sc.ndefaults = 3, sc.stab = stab;
+            sc.baumgarte[0] = 20, sc.baumgarte[1] = 100;
+            blocks[0] = dp_blocks[0], blocks[1] = dp_blocks[1];
+            blocks[0].x0 = x1, blocks[1].x0 = x2, blocks[0].p = m1, blocks[1].p = m2;
+            blocks[0].kind = v ? &kind[0] : lib[0];
+            blocks[1].kind = v ? &kind[1] : lib[1];
+            sc.blocks = blocks;
+            if (!tu_init(&sc))
+                return;
+            TH_CHECK(tu_sim.work.mbs.points[0] == (v == 0));
+            tu_run_to(&sc, 1);
+            TH_CHECK(tu_sim.stats.status == RT_OK);
+            if (v == 0) {
+                for (int i = 0; i < 12; i++)
+                    x[i] = tu_sim.state.x[i];
+                lam[0] = rt_rec_value(&sc, &tu_sim, 0);
+                continue;
+            }
+            int same = 1;
             for (int i = 0; i < 12; i++)
-                x[i] = tu_sim.state.x[i];
-            lam[0] = rt_rec_value(&sc, &tu_sim, 0);
-            continue;
+                same &= x[i] == tu_sim.state.x[i];
+            lam[1] = rt_rec_value(&sc, &tu_sim, 0);
+            TH_CHECK(same && lam[0] == lam[1] && lam[0] > 0);
         }
-        int same = 1;
-        for (int i = 0; i < 12; i++)
-            same &= x[i] == tu_sim.state.x[i];
-        lam[1] = rt_rec_value(&sc, &tu_sim, 0);
-        TH_CHECK(same && lam[0] == lam[1] && lam[0] > 0);
     }
 }
 
