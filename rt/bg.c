@@ -23,8 +23,9 @@
 /* ------------------------------------------------------------------ checks at init */
 
 /* what a background set may not hold: discrete (sampled) blocks, whose outputs the tick
-   computes; state events, whose handlers change d where the trace reads it; recorded joint
-   reactions, kept in the multibody workspace of the context that stepped */
+   computes; state events, whose handlers change d where the trace reads it. (Its recorded
+   or exported multibody signals, joint reactions too, are held: the step computes them at
+   its end in the context that stepped, rti_hold_bg_signals) */
 static rt_status check_members(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
     for (uint16_t b = 0; b < sc->nblocks; b++) {
@@ -36,11 +37,6 @@ static rt_status check_members(const rt_scene *sc, rt_sim *sim, uint8_t s)
                             sc->sets[s].name, ": sampled blocks and state events must run in "
                             "a set of the tick", (const char *)0);
     }
-    for (uint16_t i = 0; i < sc->nrecs; i++)
-        if (sc->recs[i].what == RT_SIG_MBS && sc->recs[i].index >= RT_MBS_SIG_NSET &&
-            sc->blocks[sc->recs[i].block].set == s)
-            return rti_fail(sim, RT_E_SCENE, "background set ", sc->sets[s].name,
-                            ": its joint reactions cannot be recorded", (const char *)0);
     return RT_OK;
 }
 
