@@ -174,10 +174,10 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
 }
 
 /* does set s hold points only: each MBS block a point node (RT_MBS_NODE_POINT) with a
-   constant diagonal M, no constraints of its own and nothing to normalize, each joint one
-   between such points or a point and the inertial frame whose kind evaluates points
-   (eval_points)? Its multibody path then looks up no spec (rt/mbs_asm.c
-   assemble_point_set, rt/mbs_project.c points_add) */
+   constant diagonal M, no constraints of its own and nothing to normalize, each joint's
+   kind one that evaluates points (eval_points; its ends are blocks of the set, so points,
+   or the inertial frame: check_joint)? Its multibody path then looks up no spec
+   (rt/mbs_asm.c assemble_point_set, rt/mbs_project.c points_add) */
 static uint8_t points_only(const rt_scene *sc, const rt_mbs_work *w, uint8_t s)
 {
     const uint8_t need = RT_MBS_NODE_POINT | RT_MBS_M_DIAG | RT_MBS_M_CONST;
@@ -186,12 +186,9 @@ static uint8_t points_only(const rt_scene *sc, const rt_mbs_work *w, uint8_t s)
         if ((sp->flags & need) != need || sp->nc > 0 || sp->normalize)
             return 0;
     }
-    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
-        const rt_joint *jt = &sc->joints[w->sjnt[k]];
-        if (!jt->kind->eval_points || (jt->b2 >= 0 && !is_mbs(sc, (uint16_t)jt->b2)) ||
-            (jt->b2 >= 0 && !(spec_of(sc, (uint16_t)jt->b2)->flags & RT_MBS_NODE_POINT)))
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++)
+        if (!sc->joints[w->sjnt[k]].kind->eval_points)
             return 0;
-    }
     return 1;
 }
 

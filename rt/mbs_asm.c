@@ -70,20 +70,27 @@ static void joint_node(const rt_scene *sc, const rt_sim *sim, const rt_joint *j,
     sp->node(&a, (uint16_t)(side ? j->n2 : j->n1), n, J);
 }
 
+/* position r and velocity v of block b's point (its coordinates x = [r, v]), or for
+   b < 0 of joint j's anchor, at rest (the origin without one) */
+static RTI_INLINE void side_rv(const rt_sim *sim, const rt_joint *j, int16_t b,
+                               const real_t **r, const real_t **v)
+{
+    static const real_t zero[3] = {0, 0, 0};
+    if (b < 0) {
+        *r = j->at ? j->at : zero, *v = zero;
+        return;
+    }
+    *r = sim->state.x + sim->plan.x_off[b], *v = *r + 3;
+}
+
 /* the position and velocity of side `side` of joint j if that node is a point (a point
    node or an anchor: 1), else 0 */
 static int point_of(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, int side,
                     const real_t **r, const real_t **v)
 {
-    static const real_t zero[3] = {0, 0, 0};
     int16_t b = (int16_t)(side ? j->b2 : j->b1);
-    if (b < 0) {
-        *r = j->at ? j->at : zero, *v = zero;
-        return 1;
-    }
-    const real_t *x = sim->state.x + sim->plan.x_off[b];
-    *r = x, *v = x + 3;
-    return (spec_of(sc, (uint16_t)b)->flags & RT_MBS_NODE_POINT) != 0;
+    side_rv(sim, j, b, r, v);
+    return b < 0 || (spec_of(sc, (uint16_t)b)->flags & RT_MBS_NODE_POINT) != 0;
 }
 
 void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
@@ -351,7 +358,6 @@ static void assemble_block(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t
 static void assemble_point_set(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, int what)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    const real_t *x = sim->state.x;
     for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1 && what != RTI_MBS_G; k++) {
         uint16_t b = w->sblk[k];
         if (!w->m_valid[b]) { /* the first assembly factors M */
@@ -371,15 +377,12 @@ static void assemble_point_set(const rt_scene *sc, rt_sim *sim, uint8_t set, rea
         ab[0] /= M[0], ab[1] /= M[1], ab[2] /= M[2];
     }
     for (unsigned k = w->sj[set], k1 = w->sj[set + 1]; k < k1; k++) {
-        static const real_t zero[3] = {0, 0, 0};
         uint16_t ji = w->sjnt[k];
         const rt_joint *j = &sc->joints[ji];
-        const real_t *x1 = x + sim->plan.x_off[j->b1], *r2 = zero, *v2 = zero;
-        if (j->b2 >= 0)
-            r2 = x + sim->plan.x_off[j->b2], v2 = r2 + 3;
-        else if (j->at)
-            r2 = j->at;
-        point_rows(j, ji, w, what, x1, x1 + 3, r2, v2);
+        const real_t *r1, *v1, *r2, *v2;
+        side_rv(sim, j, j->b1, &r1, &v1);
+        side_rv(sim, j, j->b2, &r2, &v2);
+        point_rows(j, ji, w, what, r1, v1, r2, v2);
     }
 }
 
