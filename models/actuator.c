@@ -53,7 +53,7 @@ const rt_kind mdl_servo2_kind = {
     .nu = 1, .ny = 2, .nx = 2, .np = 3,
     .u_names = servo_u, .y_names = servo_y, .x_names = servo_x, .p_names = servo_p,
     .p_default = servo_p_default,
-    .feed = RT_FEED_NONE, .autonomous = 1,
+    .feed = RT_FEED_NONE, .autonomous = 1, .linear = 1,
     .check = servo_check, .output = servo_output, .deriv = servo_deriv,
     .doc = RT_DOC(
         "Servo y'' + 2 zeta omega y' + omega^2 y = omega^2 k u (eq. (3)), states y and\n"

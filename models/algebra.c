@@ -15,7 +15,7 @@ const rt_kind mdl_gain_kind = {
     .name = "gain", .type = RT_KIND_OUTPUT,
     .nu = 1, .ny = 1, .np = 1,
     .u_names = gain_u, .y_names = y_names, .p_names = gain_p, .p_default = gain_def,
-    .feed = RT_FEED_ALL, .autonomous = 1, .output = gain_out,
+    .feed = RT_FEED_ALL, .autonomous = 1, .linear = 1, .output = gain_out,
     .doc = RT_DOC(
         "Static gain (output only, eq. (1)): y = k u, with throughput from u.\n"
         "k: gain, any value (no check)."),
@@ -33,7 +33,7 @@ const rt_kind mdl_sum_kind = {
     .name = "sum", .type = RT_KIND_OUTPUT,
     .nu = 2, .ny = 1, .np = 2,
     .u_names = sum_u, .y_names = y_names, .p_names = sum_p, .p_default = sum_def,
-    .feed = RT_FEED_ALL, .autonomous = 1, .output = sum_out,
+    .feed = RT_FEED_ALL, .autonomous = 1, .linear = 1, .output = sum_out,
     .doc = RT_DOC(
         "Weighted sum (output only, eq. (1)): y = c1 u1 + c2 u2, with throughput from\n"
         "both inputs. c1, c2: weights, any values (no check; c2 = -1 gives a difference)."),

@@ -25,7 +25,7 @@ const rt_kind mdl_oscillator_kind = {
     .ny = 2, .nx = 2, .np = 1,
     .y_names = x_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default, .x_default = x_default,
-    .feed = RT_FEED_NONE, .autonomous = 1,
+    .feed = RT_FEED_NONE, .autonomous = 1, .linear = 1,
     .output = output, .deriv = deriv,
     .doc = RT_DOC(
         "Harmonic oscillator x'' = -omega^2 x in nonlinear state space (eq. (3)):\n"

@@ -25,7 +25,7 @@ const rt_kind mdl_pt1_kind = {
     .nu = 1, .ny = 1, .nx = 1, .np = 2,
     .u_names = u_names, .y_names = y_names, .x_names = y_names, .p_names = p_names,
     .p_default = p_default,
-    .feed = RT_FEED_NONE, .autonomous = 1,
+    .feed = RT_FEED_NONE, .autonomous = 1, .linear = 1,
     .check = check, .output = output, .deriv = deriv,
     .doc = RT_DOC(
         "First-order lag T y' = K u - y (eq. (3)); state and output y (no throughput).\n"

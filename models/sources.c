@@ -13,7 +13,7 @@ const rt_kind mdl_step_kind = {
     .name = "step", .type = RT_KIND_OUTPUT,
     .ny = 1, .np = 3,
     .y_names = y_names, .p_names = step_p, .p_default = step_def,
-    .feed = RT_FEED_NONE, .output = step_out,
+    .feed = RT_FEED_NONE, .linear = 1, .output = step_out,
     .doc = RT_DOC(
         "Step source (output only, eq. (1)): y = y0 for t < t0, y = y1 from t0 on.\n"
         "t0: switching time; y0, y1: the levels; any values (no check)."),
@@ -33,7 +33,7 @@ const rt_kind mdl_sine_kind = {
     .name = "sine", .type = RT_KIND_OUTPUT,
     .ny = 1, .np = 4,
     .y_names = y_names, .p_names = sine_p, .p_default = sine_def,
-    .feed = RT_FEED_NONE, .output = sine_out,
+    .feed = RT_FEED_NONE, .linear = 1, .output = sine_out,
     .doc = RT_DOC(
         "Sine source (output only, eq. (1)): y = amp sin(omega t + phase) + offset.\n"
         "amp: amplitude; omega: angular frequency; phase: phase at t = 0; offset: mean\n"

@@ -95,17 +95,6 @@ static void move_range(real_t *a, real_t *buf, uint32_t n, int dir)
     }
 }
 
-/* the next run of consecutive blocks of set s from its k-th (plan.set_blk, ascending):
-   their outputs are one range of y, [y_off[b], y_off[*end]); returns b, advances k */
-static uint16_t block_run(const rt_sim *sim, uint8_t s, uint16_t *k, uint16_t *end)
-{
-    uint16_t b = sim->plan.set_blk[(*k)++], e = (uint16_t)(b + 1);
-    while (*k < sim->plan.blk_of[s + 1] && sim->plan.set_blk[*k] == e)
-        (*k)++, e++;
-    *end = e;
-    return b;
-}
-
 /* the set's result between rt_state arrays and a packed buffer (move_range's dir): its
    states, then its blocks' outputs, a run of consecutive blocks at a time */
 static void move_result(const rt_sim *sim, uint8_t s, real_t *x, real_t *y, real_t *buf,
@@ -114,7 +103,7 @@ static void move_result(const rt_sim *sim, uint8_t s, real_t *x, real_t *y, real
     uint32_t n = (uint32_t)(sim->plan.set_x[s + 1] - sim->plan.set_x[s]);
     move_range(x + sim->plan.set_x[s], buf, n, dir);
     for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
-        uint16_t b = block_run(sim, s, &k, &e);
+        uint16_t b = rti_block_run(sim, s, &k, &e);
         uint32_t m = (uint32_t)(sim->plan.y_off[e] - sim->plan.y_off[b]);
         move_range(y + sim->plan.y_off[b], buf + n, m, dir);
         n += m;
@@ -135,7 +124,7 @@ static void copy_result(const rt_sim *from, rt_sim *to, uint8_t s)
     uint16_t x0 = from->plan.set_x[s];
     copy_reals(to->state.x + x0, from->state.x + x0, (uint32_t)(from->plan.set_x[s + 1] - x0));
     for (uint16_t k = from->plan.blk_of[s], e; k < from->plan.blk_of[s + 1];) {
-        uint16_t y0 = from->plan.y_off[block_run(from, s, &k, &e)];
+        uint16_t y0 = from->plan.y_off[rti_block_run(from, s, &k, &e)];
         copy_reals(to->state.y + y0, from->state.y + y0, (uint32_t)(from->plan.y_off[e] - y0));
     }
 }
@@ -168,7 +157,7 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         uint16_t b = sim->plan.set_blk[k];
         if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
                          (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
-            bg->work.mbs.m_valid[b] = 0;
+            bg->work.mbs.m_valid[b] = 0, bg->state.imp[s].valid = 0;
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             uint16_t v = sim->plan.src[i];
             if (sim->plan.src_kind[i] == RT_SRC_HELD)

@@ -127,10 +127,13 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
     z->roots = sim->plan.set_r[sc->nsets];
     z->sets = sc->nsets, z->recs = sc->nrecs;
     z->loops = sim->plan.nloops, z->torn = sim->plan.ntorn;
-    z->implicit_n = 0;
-    for (uint8_t s = 0; s < sc->nsets; s++)
+    z->implicit_n = z->transition_n = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++) {
         if (sc->sets[s].method->implicit && rt_set_nx(sim, s) > z->implicit_n)
             z->implicit_n = rt_set_nx(sim, s);
+        if (sc->sets[s].method->linear && rt_set_nx(sim, s) > z->transition_n)
+            z->transition_n = rt_set_nx(sim, s);
+    }
     z->bg = (uint16_t)rti_bg_size(sc, sim);
     z->mbs_z = z->mbs_q = z->mbs_c = z->mbs_bz = 0;
     for (uint16_t b = 0; b < nb; b++) {

@@ -37,19 +37,24 @@ RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b, real_t t)
 /* a DSS block produces new outputs only at its sample hits */
 static int dss_hit(const rt_sim *sim, uint16_t b, rti_mode mode)
 {
-    return mode == RTI_AT_TICK && sim->state.tick % sim->plan.period[b] == 0;
+    return (mode == RTI_AT_TICK || mode == RTI_RENEW) &&
+           sim->state.tick % sim->plan.period[b] == 0;
 }
 
 /* calls the output equation of block b (its lean one if lean, rt_kind.output_lean) */
 static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at, int lean)
 {
     const rt_kind *k = sc->blocks[b].kind;
-    if (k->type == RT_KIND_DSS && !dss_hit(sim, b, at.mode))
-        return;
+    real_t h = 0; /* a sampled block's is its sample period */
+    if (k->type == RT_KIND_DSS) {
+        if (!dss_hit(sim, b, at.mode))
+            return;
+        h = sc->dt * (real_t)sim->plan.period[b];
+    }
     rt_args a;
     if (k->feed != RT_FEED_NONE) /* no output reads an input: nothing to gather */
         rti_gather(sim, b, at.t);
-    rti_args(sc, sim, b, at.t, sc->dt * (real_t)sim->plan.period[b], &a);
+    rti_args(sc, sim, b, at.t, h, &a);
     (lean ? k->output_lean : k->output)(&a, sim->state.y + sim->plan.y_off[b]);
 #if RT_FAULT_INJECT
     if (rti_fault_due(RTI_FAULT_NAN) && rti_fault_plan.block == (int16_t)b && k->ny > 0)
@@ -144,10 +149,12 @@ static void live_reads(const rt_scene *sc, const rt_sim *sim, uint8_t *live)
         }
 }
 
-/* the rti_set_flag bits of set `set` */
-static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set)
+/* the rti_set_flag bits of set `set`; *nonlinear: its first block that is not linear,
+   or -1 */
+static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set, int *nonlinear)
 {
     uint8_t deriv = 0, autonomous = RTI_SET_AUTONOMOUS;
+    *nonlinear = -1;
     for (uint16_t i = sim->plan.blk_of[set]; i < sim->plan.blk_of[set + 1]; i++) {
         uint16_t b = sim->plan.set_blk[i];
         const rt_kind *k = sc->blocks[b].kind;
@@ -157,14 +164,80 @@ static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set)
             continue;
         if (!k->autonomous)
             autonomous = 0;
+        int torn = 0;
         /* a history input changes over the step; a torn one is an actual loop's, whose
            solver carries its estimates from one evaluation to the next */
-        for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++)
+        for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++) {
             if (sim->plan.src_kind[j] == RT_SRC_XSET || sim->plan.src_kind[j] == RT_SRC_TORN)
                 autonomous = 0;
+            torn |= sim->plan.src_kind[j] == RT_SRC_TORN;
+        }
+        if ((!k->linear || k->type == RT_KIND_MBS || torn) && *nonlinear < 0)
+            *nonlinear = b;
     }
-    return (uint8_t)(deriv | autonomous);
+    return (uint8_t)(deriv | autonomous | (*nonlinear < 0 ? RTI_SET_LINEAR : 0));
 }
+
+/* a set whose method needs a linear set is one (rt_integrator.linear), small enough */
+static rt_status check_linear(const rt_scene *sc, rt_sim *sim, uint8_t set, int nonlinear)
+{
+    const rt_set *st = &sc->sets[set];
+    if (!st->method->linear)
+        return RT_OK;
+    if (nonlinear >= 0)
+        return rti_fail(sim, RT_E_SCENE, "set ", st->name, ": method ", st->method->name,
+                        " needs a set linear in its state, but block ",
+                        sc->blocks[nonlinear].name, " (", sc->blocks[nonlinear].kind->name,
+                        ") is not a linear kind (rt_kind.linear), is a multibody module or "
+                        "has a torn input", (const char *)0);
+    if (sim->plan.set_x[set + 1] - sim->plan.set_x[set] > RT_MAX_TRANSITION_N)
+        return rti_fail(sim, RT_E_CAPACITY, "set ", st->name, ": method ", st->method->name,
+                        " takes at most ", RTI_LIMIT(RT_MAX_TRANSITION_N), " states",
+                        (const char *)0);
+    return RT_OK;
+}
+
+/* the block whose outputs hold global output index v */
+static uint16_t out_block(const rt_scene *sc, const rt_sim *sim, uint16_t v)
+{
+    uint16_t b = 0;
+    while (b + 1 < sc->nblocks && sim->plan.y_off[b + 1] <= v)
+        b++;
+    return b;
+}
+
+/* rti_eval_plan's marks per block: called once in the sequence; renewed by a tick */
+enum { SEEN_CALLED = 1, SEEN_RENEWED = 2 };
+
+/* does a tick's renewal call block b: sampled (its outputs change at sample hits, which
+   the step's end evaluation does not call), or with throughput and an input that may
+   have changed since that evaluation (another set's history or sampled output, a torn
+   value, a renewed block's output). One without throughput gives what it gave there */
+static int renewed(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint8_t *seen)
+{
+    const rt_kind *k = sc->blocks[b].kind;
+    if (k->type == RT_KIND_DSS)
+        return 1;
+    if (k->feed == RT_FEED_NONE)
+        return 0;
+    for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++) {
+        uint8_t src = sim->plan.src_kind[j];
+        if (src == RT_SRC_XSET || src == RT_SRC_HELD || src == RT_SRC_TORN)
+            return 1;
+        if (src == RT_SRC_Y && (seen[out_block(sc, sim, sim->plan.src[j])] & SEEN_RENEWED))
+            return 1;
+    }
+    return 0;
+}
+
+/* a loop is solved again in a renewal; its blocks count as renewed for those after it */
+static void renew_loop(const rt_sim *sim, uint16_t l, uint8_t *seen)
+{
+    const rt_loop *lp = &sim->plan.loops[l];
+    for (uint16_t i = lp->first; i < lp->first + lp->nblocks; i++)
+        seen[sim->plan.loop_blocks[i]] |= SEEN_RENEWED;
+}
+
 
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
 {
@@ -180,23 +253,35 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
        what the kind's lean output equation gives calls that */
     for (uint16_t s = 0; s < sim->plan.nseq; s++) {
         const rt_seq_step *st = &sim->plan.seq[s];
-        sim->plan.rhs_skip[s] = RTI_RHS_CALL;
-        if (st->kind != RT_SEQ_CALL)
+        uint8_t *fl = &sim->plan.seq_flags[s];
+        *fl = RTI_RHS_CALL;
+        if (st->kind != RT_SEQ_CALL) {
+            *fl |= RTI_SEQ_RENEW;
+            renew_loop(sim, st->index, seen);
             continue;
-        uint8_t need = seen[st->index] ? LIVE_FED : LIVE_ANY;
-        seen[st->index] = 1;
+        }
+        uint8_t need = (seen[st->index] & SEEN_CALLED) ? LIVE_FED : LIVE_ANY;
+        seen[st->index] |= SEEN_CALLED;
         /* a sampled block's outputs are held inside a step: its call would return */
         if (!(live[st->index] & need) || sc->blocks[st->index].kind->type == RT_KIND_DSS)
-            sim->plan.rhs_skip[s] = RTI_RHS_SKIP;
+            *fl = RTI_RHS_SKIP;
         else if (!(live[st->index] & LIVE_RICH))
-            sim->plan.rhs_skip[s] = RTI_RHS_LEAN;
+            *fl = RTI_RHS_LEAN;
+        if (renewed(sc, sim, st->index, seen)) {
+            *fl |= RTI_SEQ_RENEW;
+            seen[st->index] |= SEEN_RENEWED;
+        }
     }
     for (uint8_t set = 0; set < sc->nsets; set++) {
-        sim->plan.set_flags[set] = set_flags(sc, sim, set);
+        int nonlinear;
+        sim->plan.set_flags[set] = set_flags(sc, sim, set, &nonlinear);
+        rt_status st = check_linear(sc, sim, set, nonlinear);
+        if (st != RT_OK)
+            return st;
         sim->plan.rhs_calls[set] = 0;
         for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
             sim->plan.rhs_calls[set] = (uint16_t)(sim->plan.rhs_calls[set] +
-                (sim->plan.rhs_skip[sim->plan.set_seq[i]] != RTI_RHS_SKIP));
+                ((sim->plan.seq_flags[sim->plan.set_seq[i]] & RTI_SEQ_RHS) != RTI_RHS_SKIP));
     }
     return RT_OK;
 }
@@ -208,19 +293,22 @@ static void solve_loop(const rt_scene *sc, rt_sim *sim, const rt_seq_step *st, r
 }
 
 /* the entries of one set (plan.set_seq); in a right-hand side only the blocks whose
-   outputs the set reads live (rti_rhs calls it only when there is one, plan.rhs_calls) */
+   outputs the set reads live (rti_rhs calls it only when there is one, plan.rhs_calls),
+   in a renewal only those that may have changed */
 static void set_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
 {
-    const uint8_t *skip = at.mode == RTI_IN_RHS ? sim->plan.rhs_skip : 0;
+    const uint8_t *fl = sim->plan.seq_flags;
     for (uint16_t i = sim->plan.seq_of[at.set]; i < sim->plan.seq_of[at.set + 1]; i++) {
         uint16_t s = sim->plan.set_seq[i];
         const rt_seq_step *st = &sim->plan.seq[s];
+        if (at.mode == RTI_RENEW && !(fl[s] & RTI_SEQ_RENEW))
+            continue;
         if (st->kind == RT_SEQ_LOOP)
             solve_loop(sc, sim, st, at);
-        else if (!skip)
+        else if (at.mode != RTI_IN_RHS)
             call_output(sc, sim, st->index, at, 0);
-        else if (skip[s] != RTI_RHS_SKIP)
-            call_output(sc, sim, st->index, at, skip[s] == RTI_RHS_LEAN);
+        else if ((fl[s] & RTI_SEQ_RHS) != RTI_RHS_SKIP)
+            call_output(sc, sim, st->index, at, (fl[s] & RTI_SEQ_RHS) == RTI_RHS_LEAN);
     }
 }
 

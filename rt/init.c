@@ -97,6 +97,7 @@ static void fill(real_t *dst, const real_t *src, const real_t *fallback, uint16_
 /* parameters, initial states, sample periods; each block's parameter check */
 static rt_status initial_values(const rt_scene *sc, rt_sim *sim)
 {
+    sim->plan.dss_first = sim->plan.dss_end = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_block *bl = &sc->blocks[b];
         const rt_kind *k = bl->kind;
@@ -106,6 +107,9 @@ static rt_status initial_values(const rt_scene *sc, rt_sim *sim)
         for (uint16_t j = 0; j < k->ny; j++)
             sim->state.y[sim->plan.y_off[b] + j] = 0;
         sim->plan.period[b] = 0;
+        if (k->type == RT_KIND_DSS)
+            sim->plan.dss_first = sim->plan.dss_end ? sim->plan.dss_first : b,
+            sim->plan.dss_end = (uint16_t)(b + 1);
         if (k->type == RT_KIND_DSS && (sim->plan.period[b] = period_ticks(sc, bl)) == 0)
             return rti_fail(sim, RT_E_SCENE, "block ", bl->name,
                             ": sample period is not a positive multiple of the base tick",

@@ -1,4 +1,5 @@
-/* linalg.c - dense LU with partial pivoting and its solves, on caller-owned storage.
+/* linalg.c - dense LU with partial pivoting and its solves, and the phi functions of a
+ * matrix (the transition method's), on caller-owned storage.
  *
  * Used by the multibody index-1 solve and projection and by the implicit integrators.
  * Loops run in a fixed order, so the same matrix gives the same bits on every target. */
@@ -111,4 +112,84 @@ void rti_lu_solve_cols(const real_t *lu, uint16_t n, const uint16_t *piv, real_t
             b[i * m + c] /= lu[i * n + i];
         }
     }
+}
+
+/* ------------------------------------------------------------------ phi functions */
+
+/* the largest column sum of |a| (NaN if an entry is) */
+static real_t norm_1(const real_t *a, uint16_t n)
+{
+    real_t m = 0;
+    for (uint16_t j = 0; j < n; j++) {
+        real_t c = 0;
+        for (uint16_t i = 0; i < n; i++)
+            c += rt_fabs(a[i * n + j]);
+        if (c != c)
+            return c;
+        m = c > m ? c : m;
+    }
+    return m;
+}
+
+/* c = a b (n x n; c distinct from both) */
+static void mat_mul(real_t *c, const real_t *a, const real_t *b, uint16_t n)
+{
+    for (uint16_t i = 0; i < n; i++)
+        for (uint16_t j = 0; j < n; j++) {
+            real_t s = 0;
+            for (uint16_t k = 0; k < n; k++)
+                s += a[i * n + k] * b[k * n + j];
+            c[i * n + j] = s;
+        }
+}
+
+/* d = (t + p d + q I) r, entrywise over n x n */
+static void combine(real_t *d, const real_t *t, real_t p, real_t q, real_t r, uint16_t n)
+{
+    for (uint16_t i = 0; i < n; i++)
+        for (uint16_t j = 0; j < n; j++)
+            d[i * n + j] = (t[i * n + j] + p * d[i * n + j] + (i == j ? q : 0)) * r;
+}
+
+rt_status rti_phi12(real_t *a, uint16_t n, real_t *p1, real_t *p2, real_t *t, real_t theta,
+                    unsigned degree, unsigned max_halvings)
+{
+    real_t norm = norm_1(a, n), scale = 1;
+    unsigned s = 0;
+    if (!rt_isfinite(norm))
+        return RT_E_SINGULAR;
+    while (norm * scale > theta) { /* halvings are exact (barring underflow) */
+        if (++s > max_halvings)
+            return RT_E_SINGULAR;
+        scale *= (real_t)0.5;
+    }
+    for (uint32_t i = 0; i < (uint32_t)n * n; i++)
+        a[i] *= scale;
+    /* phi2 = sum_k A^k / (k + 2)!, k = 0..degree, by Horner from the highest term */
+    real_t c = 1;
+    for (unsigned k = 2; k <= degree + 2; k++)
+        c /= (real_t)k;
+    for (uint32_t i = 0; i < (uint32_t)n * n; i++)
+        p2[i] = 0;
+    combine(p2, p2, 0, c, 1, n);
+    for (unsigned k = degree; k-- > 0;) {
+        c *= (real_t)(k + 3); /* 1 / (k + 3)! -> 1 / (k + 2)! */
+        mat_mul(t, p2, a, n);
+        combine(p2, t, 0, c, 1, n);
+    }
+    mat_mul(t, a, p2, n); /* phi1 = I + A phi2 */
+    combine(p1, t, 0, 1, 1, n);
+    mat_mul(t, a, p1, n); /* e^A = I + A phi1, in a */
+    combine(a, t, 0, 1, 1, n);
+    for (unsigned i = 0; i < s; i++) {
+        mat_mul(t, p1, p1, n); /* phi2(2A) = (phi1^2 + 2 phi2) / 4 */
+        combine(p2, t, 2, 0, (real_t)0.25, n);
+        mat_mul(t, a, p1, n); /* phi1(2A) = (e^A phi1 + phi1) / 2 */
+        combine(p1, t, 1, 0, (real_t)0.5, n);
+        if (i + 1 < s) { /* e^2A = (e^A)^2 */
+            mat_mul(t, a, a, n);
+            combine(a, t, 0, 0, 1, n);
+        }
+    }
+    return RT_OK;
 }

@@ -20,6 +20,21 @@ void rti_lu_solve(const real_t *lu, uint16_t n, const uint16_t *piv, real_t *b);
 void rti_lu_solve_cols(const real_t *lu, uint16_t n, const uint16_t *piv, real_t *b,
                        uint16_t m);
 
+/* phi1(A) = (e^A - I) A^-1 and phi2(A) = (e^A - I - A) A^-2 of the n x n row-major A,
+   written to p1 and p2 (the transition method's matrices, rt/integ_transition.c): A is
+   halved s times until its 1-norm is at most theta, the Taylor polynomial of phi2 of the
+   given degree is summed there (phi1 = I + A phi2, e^A = I + A phi1), and the doubling
+   formulas e^2A = (e^A)^2, phi1(2A) = (e^A + I) phi1(A) / 2,
+   phi2(2A) = (phi1(A)^2 + 2 phi2(A)) / 4 (Skaflestad & Wright 2009) lead back. a is
+   overwritten; t is n x n scratch; about (degree + 2 + 3 s) n^3 multiply-adds. Every
+   entry is halved as often as the largest needs, so the squarings of e^A amplify the
+   rounding of the slow modes by about the spread of A's eigenvalues (A = diag(-1e4, -50):
+   70 ulp in phi1(-50)). Returns
+   RT_E_SINGULAR, p1 and p2 unset, when A is not finite or needs more than max_halvings,
+   else RT_OK. */
+rt_status rti_phi12(real_t *a, uint16_t n, real_t *p1, real_t *p2, real_t *t, real_t theta,
+                    unsigned degree, unsigned max_halvings);
+
 /* Largest magnitude of n values (the infinity norm of a vector). */
 real_t rti_norm_inf(const real_t *v, uint16_t n);
 

@@ -12,6 +12,7 @@ const rt_integrator_entry rt_integrators[] = {
     {"sdirk2", &rt_sdirk2},
     {"sdirk3", &rt_sdirk3},
     {"ros2", &rt_ros2},
+    {"transition", &rt_transition},
     {0, 0},
 };
 

@@ -142,6 +142,13 @@ typedef struct rt_kind {
                                    time explicitly, which spares ROS2 its f_t evaluation
                                    in a set whose inputs hold over the step (rt/eval.c).
                                    0, the default: they may */
+    uint8_t linear;             /* 1: output and deriv are affine in x and u,
+                                   x' = A x + B u + c(t), y = C x + D u + e(t), with A,
+                                   B, C, D functions of the parameters alone (a source
+                                   of t, c and e only): a set of such blocks is linear
+                                   in its state and may be stepped by its transition
+                                   matrix (method transition, rt/integ_transition.c).
+                                   0, the default: they may not */
     const uint8_t *feed_table;  /* ny*nu row-major, only for RT_FEED_TABLE */
     const int8_t *root_dir;     /* nr crossing directions: -1 falling, +1 rising, 0 both;
                                    NULL: both */
@@ -254,7 +261,8 @@ typedef struct rt_implicit_cfg {
 typedef struct rt_iwork {
     real_t *k[RT_MAX_STAGES]; /* stage derivatives, n values each */
     uint8_t autonomous;       /* 1: f(t, x) does not depend on t over the step */
-    real_t *x0;               /* state at the start of the step */
+    real_t *x0;
+    real_t *tm;               /* 2 RT_MAX_TRANSITION_N^2 scratch (method transition) */               /* state at the start of the step */
     rt_implicit_ws *imp;      /* persistent implicit data of this set */
     rt_istats *stats;         /* statistics of this set */
     const rt_implicit_cfg *cfg; /* settings of this set */
@@ -272,6 +280,8 @@ typedef struct rt_integrator {
     uint8_t order;     /* classical order of convergence */
     uint8_t stages;    /* stages per step (explicit: right-hand-side evaluations) */
     uint8_t implicit;  /* 1: needs rt_iwork.imp (n <= RT_MAX_IMPLICIT_N) */
+    uint8_t linear;    /* 1: only for a set linear in its state (n <= RT_MAX_TRANSITION_N;
+                          checked at rt_init) */
     /* Advances x (n values) from t to t+h in place. Returns RT_OK, RT_E_NOCONV when the
        step ended with a residual above tolerance (counted as degraded), or the first
        error of the right-hand side; the step is always completed. */
@@ -291,7 +301,7 @@ typedef struct rt_integrator_entry {
 } rt_integrator_entry;
 extern const rt_integrator_entry rt_integrators[];
 extern const rt_integrator rt_euler, rt_heun, rt_bs3, rt_rk4, rt_dopri5;
-extern const rt_integrator rt_beuler, rt_trap, rt_sdirk2, rt_sdirk3, rt_ros2;
+extern const rt_integrator rt_beuler, rt_trap, rt_sdirk2, rt_sdirk3, rt_ros2, rt_transition;
 /* Returns the integrator registered under name, or NULL. */
 const rt_integrator *rt_integrator_find(const char *name);
 /* the worst-case work of one step of set s of sc (n states) */
@@ -551,6 +561,7 @@ typedef struct rt_plan {
     uint16_t u_off[RT_MAX_BLOCKS + 1], y_off[RT_MAX_BLOCKS + 1];
     uint16_t p_off[RT_MAX_BLOCKS + 1];
     uint32_t period[RT_MAX_BLOCKS]; /* DSS sample period in base ticks, 0 otherwise */
+    uint16_t dss_first, dss_end;    /* the DSS blocks lie in [dss_first, dss_end) */
 
     /* signal routing: each input reads y[src[i]] or def[i] */
     uint8_t src_kind[RT_MAX_U];      /* rt_src_kind */
@@ -559,8 +570,9 @@ typedef struct rt_plan {
 
     /* evaluation order (rt/order.c) */
     rt_seq_step seq[RT_MAX_SEQ];
-    uint8_t rhs_skip[RT_MAX_SEQ];    /* per entry of seq, what a right-hand side does with
-                                        it: rti_rhs_call (rti_eval_plan) */
+    uint8_t seq_flags[RT_MAX_SEQ];   /* per entry of seq, what a right-hand side does with
+                                        it (rti_rhs_call) and whether a tick's renewal
+                                        calls it (rti_eval_plan) */
     uint16_t nseq;
     /* per set, what a pass over that set alone walks (rti_eval_plan), so that the fast
        set of a multirate scene does not scan the slow set's entries every stage: its
@@ -667,6 +679,9 @@ typedef struct rt_work {
         rt_scc_work scc;
     } w;
     real_t x0[RT_MAX_X];
+#if RT_MAX_TRANSITION_N > 0
+    real_t tm[2 * RT_MAX_TRANSITION_N * RT_MAX_TRANSITION_N]; /* method transition */
+#endif
     real_t xb[RT_MAX_EVENT_X];           /* state at the right end of an event bracket */
     real_t xs[RT_MAX_X];             /* saved state for event location */
     real_t rs[RT_MAX_ROOTS];         /* root values scratch */
@@ -800,6 +815,7 @@ rt_torn rt_torn_at(const rt_scene *scene, const rt_sim *sim, uint16_t k);
 typedef struct rt_sizes {
     uint16_t blocks, x, d, u, y, p, roots, sets, recs, loops, torn;
     uint16_t implicit_n;   /* states of the largest set with an implicit method */
+    uint16_t transition_n; /* ... with the transition method */
     uint16_t mbs_z, mbs_q, mbs_c; /* largest multibody set: velocities, coordinates, rows */
     uint16_t mbs_qt;       /* ... coordinates with a q-dependent K or a kinb */
     uint16_t mbs_bz;       /* velocities of the largest multibody block */

@@ -244,6 +244,25 @@ typedef double real_t;
 #ifndef RT_MAX_IMPLICIT_N
 #define RT_MAX_IMPLICIT_N 64 /* states of a set integrated by an implicit method */
 #endif
+#ifndef RT_MAX_TRANSITION_N
+/* states of a set stepped by its transition matrix (method transition, a linear set):
+   its two n x n scratch matrices in rt_work */
+#define RT_MAX_TRANSITION_N 8
+#endif
+#ifndef RT_TRANSITION_THETA
+/* the transition method's phi functions: h J is halved until its 1-norm is at most this,
+   a Taylor polynomial of degree RT_TRANSITION_TAYLOR is summed there (truncation
+   theta^13 / 15! = 9e-17) and doubled back (integ_transition.c) */
+#define RT_TRANSITION_THETA ((real_t)0.5)
+#endif
+#ifndef RT_TRANSITION_TAYLOR
+#define RT_TRANSITION_TAYLOR 12
+#endif
+#ifndef RT_TRANSITION_HALVINGS
+/* the most halvings: a set with |h J|_1 above theta 2^this is refused at its first step
+   (singular), which bounds the refresh's work */
+#define RT_TRANSITION_HALVINGS 40
+#endif
 #ifndef RT_MAX_TORN
 #define RT_MAX_TORN 16 /* torn inputs over all actual loops */
 #endif

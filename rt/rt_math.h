@@ -70,10 +70,10 @@ static inline int rt_isfinite(real_t x) /* 0 for NaN and +-inf */
 /* 1 if all n values are finite (a kind's parameter check, a new discrete state) */
 static inline int rt_all_finite(const real_t *v, int n)
 {
-    int ok = 1;
+    int bad = 0; /* no early exit: a branch per value costs more than the tests */
     for (int i = 0; i < n; i++)
-        ok = ok && rt_isfinite(v[i]);
-    return ok;
+        bad |= !rt_isfinite(v[i]);
+    return !bad;
 }
 
 #endif /* RT_MATH_H */

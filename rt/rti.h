@@ -9,11 +9,15 @@
 typedef enum {
     RTI_AT_TICK = 0, /* at a tick boundary: DSS blocks whose sample hits are called */
     RTI_IN_STEP,     /* inside a set step: DSS outputs are held, not called */
-    RTI_IN_RHS       /* inside a right-hand side: as RTI_IN_STEP, and blocks whose outputs
+    RTI_IN_RHS,      /* inside a right-hand side: as RTI_IN_STEP, and blocks whose outputs
                         no continuous block of their set reads are not called, nor a
                         block's repeated call if none reads an output that depends on
                         its inputs, nor a sampled block; a kind's lean output equation
-                        where it gives all that is read (plan.rhs_skip) */
+                        where it gives all that is read (plan.seq_flags) */
+    RTI_RENEW        /* at a tick boundary, right after the step's end evaluation at the
+                        same time (RTI_IN_STEP, for the history): as RTI_AT_TICK, but only
+                        the entries whose outputs may differ from that evaluation's are
+                        called (RTI_SEQ_RENEW, rti_eval_plan) */
 } rti_mode;
 
 /* An evaluation instant, passed down explicitly (no ambient "current set/time" in
@@ -118,18 +122,36 @@ void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at);
 void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
 /* The evaluation tables of the passes over one set (after routing, rti_xset_init and
    rti_order): each set's entries of the sequence and its blocks (plan.set_seq,
-   plan.set_blk), and the entries a right-hand side need not call (plan.rhs_skip): a
+   plan.set_blk), the entries a right-hand side need not call (plan.seq_flags): a
    block's first call if no input of its own set reads its outputs live, a repeated call
-   (after its inputs changed) if none reads one that depends on them. Returns RT_OK. */
+   (after its inputs changed) if none reads one that depends on them, and those a tick's
+   renewal calls (RTI_SEQ_RENEW); the set flags (plan.set_flags). Returns RT_OK, or
+   RT_E_SCENE / RT_E_CAPACITY when a set's method needs a linear set it is not. */
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
 /* what rti_eval_plan found of a set (plan.set_flags): a block of it has its own
    derivative (an NSS or LSS kind: a right-hand side walks its blocks; a multibody set's
    have none), and its right-hand side does not depend on t over a step (each block not
    sampled of an autonomous kind, no input from another set's history and no torn one:
-   an actual loop's solver carries its estimates from one evaluation to the next) */
-enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2 };
-/* what a right-hand side does with an entry of the sequence (plan.rhs_skip) */
+   an actual loop's solver carries its estimates from one evaluation to the next), and
+   it is linear in its state (each block not sampled of a linear kind, no multibody
+   block, no torn input: the transition method's condition, checked at init) */
+enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2, RTI_SET_LINEAR = 4 };
+/* what a right-hand side does with an entry of the sequence (plan.seq_flags, the bits
+   under RTI_SEQ_RHS), and whether a tick's renewal calls it (RTI_SEQ_RENEW: a loop, a
+   sampled block, or a block with throughput reading an input from another set's history
+   or a sampled output of another set, a torn value, or a renewed entry's output) */
 typedef enum { RTI_RHS_CALL = 0, RTI_RHS_SKIP, RTI_RHS_LEAN } rti_rhs_call;
+enum { RTI_SEQ_RHS = 3, RTI_SEQ_RENEW = 4 };
+/* The next run of consecutive blocks of set s from its k-th (plan.set_blk, ascending):
+   their outputs are one range of y, [y_off[b], y_off[*end]); returns b, advances k. */
+static inline uint16_t rti_block_run(const rt_sim *sim, uint8_t s, uint16_t *k, uint16_t *end)
+{
+    uint16_t b = sim->plan.set_blk[(*k)++], e = (uint16_t)(b + 1);
+    while (*k < sim->plan.blk_of[s + 1] && sim->plan.set_blk[*k] == e)
+        (*k)++, e++;
+    *end = e;
+    return b;
+}
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
 

@@ -22,7 +22,16 @@ static int fresh(const rt_sim *sim, uint8_t s)
    outputs were checked when they were new) */
 static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 {
-    int first = -1;
+    int first = -1, bad = 0;
+    const real_t *y = sim->state.y;
+    for (uint8_t s = 0; s < sc->nsets; s++) /* at once first; by block when one is not */
+        for (uint16_t k = sim->plan.blk_of[s], e; fresh(sim, s) && k < sim->plan.blk_of[s + 1];) {
+            uint16_t b = rti_block_run(sim, s, &k, &e);
+            for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[e]; j++)
+                bad |= !rt_isfinite(y[j]);
+        }
+    if (!bad)
+        return -1;
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (!fresh(sim, s))
             continue;
@@ -30,8 +39,7 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
             unsigned b = sim->plan.set_blk[i];
             if (first >= 0 && b > (unsigned)first)
                 break; /* blocks ascend: an earlier set's find stands */
-            int bad = 0;
-            const real_t *y = sim->state.y;
+            bad = 0;
             for (unsigned j = sim->plan.y_off[b], j1 = sim->plan.y_off[b + 1]; j < j1; j++)
                 bad |= !rt_isfinite(y[j]);
             if (bad) {
@@ -155,11 +163,14 @@ static real_t rec_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r, 
     return rti_sig_value(sc, sim, r);
 }
 
-/* outputs and roots of set s at the time of its state (and its held signals) */
-static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
+/* outputs and roots of set s at the time of its state (and its held signals); renew: its
+   step's end evaluated its outputs at this time already (for its history), so only the
+   entries that may give something else now are called (RTI_RENEW) */
+static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int renew)
 {
     real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
-    rti_mode mode = sim->state.set_tick[s] == sim->state.tick ? RTI_AT_TICK : RTI_IN_STEP;
+    rti_mode mode = renew ? RTI_RENEW
+                  : sim->state.set_tick[s] == sim->state.tick ? RTI_AT_TICK : RTI_IN_STEP;
     rti_outputs(sc, sim, (rti_at){ts, s, mode});
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s])
         rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
@@ -179,9 +190,9 @@ static int refreshed(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 static void copy_outputs(const rt_sim *sim, uint8_t s, const real_t *from,
                          real_t *to)
 {
-    for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
-        uint16_t b = sim->plan.set_blk[i];
-        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
+    for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
+        uint16_t b = rti_block_run(sim, s, &k, &e);
+        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[e]; j++)
             to[j] = from[j];
     }
 }
@@ -199,11 +210,23 @@ uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim)
     return top;
 }
 
+#if RT_MAX_SETS > 32
+#error "rt_tick keeps a bit per set in a uint32_t (renew): RT_MAX_SETS must be at most 32"
+#endif
+
+/* rt_refresh; renew: a bit per set whose outputs its step's end evaluated at this time */
+static void refresh(const rt_scene *sc, rt_sim *sim, uint32_t renew)
+{
+    for (uint8_t i = 0; i < sc->nsets; i++) {
+        uint8_t s = sim->plan.sched[i];
+        if (refreshed(sc, sim, s))
+            refresh_set(sc, sim, s, ((renew >> s) & 1u) != 0);
+    }
+}
+
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
-    for (uint8_t i = 0; i < sc->nsets; i++)
-        if (refreshed(sc, sim, sim->plan.sched[i]))
-            refresh_set(sc, sim, sim->plan.sched[i]);
+    refresh(sc, sim, 0);
     /* before the first tick the history starts afresh (parameters may have changed), and
        the sets are refreshed once more so each reads the others' initial outputs rather
        than an empty history */
@@ -213,7 +236,7 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
             rti_xset_push(sc, sim, s, 0);
         }
         for (uint8_t i = 0; i < sc->nsets; i++)
-            refresh_set(sc, sim, sim->plan.sched[i]);
+            refresh_set(sc, sim, sim->plan.sched[i], 0);
         for (uint8_t s = 0; s < sc->nsets; s++) {
             sim->state.hist_n[s] = 0;
             rti_xset_push(sc, sim, s, 0);
@@ -225,7 +248,7 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 /* x[k+1] = f(x[k], u[k]) for every DSS block whose sample hits at this tick (eq. 5) */
 static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
 {
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
+    for (uint16_t b = sim->plan.dss_first; b < sim->plan.dss_end; b++) {
         /* a DSS block's period only is not 0 (rt/init.c): no kind to look up for others */
         uint32_t period = sim->plan.period[b];
         if (period == 0 || sim->state.tick % period != 0)
@@ -261,6 +284,7 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
     discrete_updates(sc, sim, t);
     /* fixed schedule: a set steps when the tick count is a multiple of its ratio,
        slowest first (rt/xset.c), and publishes its outputs for the other sets */
+    uint32_t renew = 0;
     for (uint8_t i = 0; i < sc->nsets; i++) {
         uint8_t s = sim->plan.sched[i];
         uint32_t ratio = sc->sets[s].ratio;
@@ -277,6 +301,7 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
             real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
             rti_outputs(sc, sim, (rti_at){ts, s, RTI_IN_STEP});
             rti_xset_push(sc, sim, s, ts);
+            renew |= (uint32_t)(ratio == 1) << s; /* y holds them until the refresh */
         }
         if (ratio > 1)
             copy_outputs(sim, s, sim->work.y_held, sim->state.y);
@@ -286,7 +311,7 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
     if (sc->bg)
         sc->bg->publish(sc, sim);
     /* only the sets whose state reached the new tick are evaluated (and checked) */
-    rt_refresh(sc, sim);
+    refresh(sc, sim, renew);
     int bad = nonfinite_output(sc, sim);
     if (bad >= 0)
         rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);
@@ -332,14 +357,16 @@ void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
     const rt_rec *r = sc->recs, *end = r ? r + sc->nrecs : r; /* no records: NULL */
     const real_t *y = sim->state.y;
     const uint16_t *y_off = sim->plan.y_off;
-    for (; r < end; r++) {
+    real_t discard = 0; /* no output buffer: every value lands here */
+    int step = out != 0;
+    out = out ? out : &discard;
+    for (; r < end; r++, out += step) {
         real_t v;
         if (r->what == RT_SIG_Y)
             v = y[y_off[r->block] + r->index];
         else
             v = rec_value(sc, sim, r, &slot);
-        if (out)
-            *out++ = v;
+        *out = v;
         h = rti_hash(h, v);
     }
     sim->state.hash = h;
@@ -384,6 +411,7 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
             return RT_E_PARAM;
         }
         sim->work.mbs.m_valid[b] = 0; /* a constant mass matrix is factored anew (#14) */
+        sim->state.imp[sc->blocks[b].set].valid = 0; /* and the set's Jacobian formed */
         return RT_OK;
     }
     /* before the first tick, initial states can be set by name too */

@@ -36,8 +36,10 @@ static void watch_growth(rt_sim *sim, uint8_t s, real_t before, real_t after)
 }
 
 /* integrates the set from t by h in place, then post-stabilizes its multibody part
-   (eq. 10); a step that ended above its residual tolerance is counted as degraded */
-static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+   (eq. 10); a step that ended above its residual tolerance is counted as degraded.
+   Returns the final state's norm (NaN or inf if a value is not finite), or -1 if the
+   projection moved it after the norm was taken */
+static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
     rti_rhs_ctx ctx = {sc, sim, s, h};
     rt_rhs f = {rti_rhs, &ctx};
@@ -46,6 +48,11 @@ static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
     for (int i = 0; i < RT_MAX_STAGES; i++)
         w.k[i] = sim->work.w.k[i];
     w.x0 = sim->work.x0;
+#if RT_MAX_TRANSITION_N > 0
+    w.tm = sim->work.tm;
+#else
+    w.tm = 0; /* no set of this build's scene takes the transition method (rt/eval.c) */
+#endif
     w.imp = &sim->state.imp[s];
     w.stats = &sim->stats.istats[s];
     w.cfg = &sc->sets[s].implicit;
@@ -67,10 +74,14 @@ static void integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
                   w.stats->last_err <= RT_ERR_LOST ? RT_E_ACCURACY : RT_E_LOST);
         sim->stats.errest[s]++;
     }
-    watch_growth(sim, s, before, norm(sim->state.x + x0, n));
+    real_t after = norm(sim->state.x + x0, n);
+    watch_growth(sim, s, before, after);
     /* projects when stab is RT_STAB_PROJECT; otherwise refreshes recorded reactions */
-    if (sc->mbs)
+    if (sc->mbs && sim->work.mbs.nz[s] > 0) {
         sc->mbs->project(sc, sim, s, t + h);
+        return -1;
+    }
+    return after;
 }
 
 /* does root i cross from ra to rb in its declared direction? */
@@ -242,10 +253,16 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         r[i] = sim->work.rs[i];
 }
 
-/* the first block of the set holding a non-finite state, or -1 */
+/* the first block of the set holding a non-finite state, or -1 (the set's states are
+   one slice: checked at once, and walked by block only when one is not finite) */
 static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const real_t *x = sim->state.x;
+    int bad = 0;
+    for (unsigned i = sim->plan.set_x[s], i1 = sim->plan.set_x[s + 1]; i < i1; i++)
+        bad |= !rt_isfinite(x[i]);
+    if (!bad)
+        return -1;
     for (unsigned k = sim->plan.blk_of[s], k1 = sim->plan.blk_of[s + 1]; k < k1; k++) {
         uint16_t b = sim->plan.set_blk[k];
         for (unsigned i = sim->plan.x_off[b], i1 = i + sc->blocks[b].kind->nx; i < i1; i++)
@@ -258,17 +275,19 @@ static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    real_t after = -1; /* unknown */
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
         step_with_events(sc, sim, s, t, h);
     } else {
         real_t *xs = sim->work.xs, *x = sim->state.x + x0;
         for (unsigned i = 0; i < n; i++)
             xs[i] = x[i];
-        integrate(sc, sim, s, t, h);
+        after = integrate(sc, sim, s, t, h);
     }
     /* a non-finite state is not propagated: the set keeps its state from before the step
-       (deterministic degradation) and the fault is counted with the block */
-    int bad = nonfinite_block(sc, sim, s);
+       (deterministic degradation) and the fault is counted with the block (a finite norm
+       of the final state says there is none) */
+    int bad = after >= 0 && rt_isfinite(after) ? -1 : nonfinite_block(sc, sim, s);
     if (bad >= 0) {
         for (uint16_t i = 0; i < n; i++)
             sim->state.x[x0 + i] = sim->work.xs[i];

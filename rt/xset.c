@@ -111,6 +111,18 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
     sim->state.hist_n[s] = (uint8_t)(n < RT_HIST ? n + 1 : RT_HIST);
 }
 
+/* the line through points k + 1 and k at t (point k held if it is the only one), and
+   ahead of the background set's history the jump the line made at the newest point,
+   faded */
+static real_t extrap(const rt_sim *sim, const real_t *T, uint16_t v, int n, int k, real_t t,
+                     int ahead, real_t fade)
+{
+    real_t e = k + 1 < n ? line(sim, T, v, k, k + 1, t) : sim->state.hist_y[k][v];
+    if (ahead)
+        e += (line(sim, T, v, 1, 2, T[0]) - sim->state.hist_y[0][v]) * fade;
+    return e;
+}
+
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t)
 {
     const real_t *T = sim->state.hist_t[q];
@@ -134,23 +146,22 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
         if (scheme == RT_INTERP_QUAD)
             return parabola(sim, T, v, t) + sim->state.bg_jump[v] * fade;
     }
-    real_t extrap = k + 1 < n ? line(sim, T, v, k, k + 1, t) : sim->state.hist_y[k][v];
-    if (ahead) /* the line's jump at the newest point, faded */
-        extrap += (line(sim, T, v, 1, 2, T[0]) - sim->state.hist_y[0][v]) * fade;
     switch (scheme) {
     case RT_INTERP_EXTRAP:
-        return extrap;
-    case RT_INTERP_LINEAR: /* without a newer point: extrapolate */
-        return bracket ? line(sim, T, v, k - 1, k, t) : extrap;
+        break;
     case RT_INTERP_HERMITE:
         if (n == RT_HIST && bracket)
             return parabola(sim, T, v, t);
-        return bracket ? line(sim, T, v, k - 1, k, t) : extrap;
-    case RT_INTERP_QUAD: /* inside the points and ahead of them */
-        if (n == RT_HIST)
+        return bracket ? line(sim, T, v, k - 1, k, t) : extrap(sim, T, v, n, k, t, ahead, fade);
+    case RT_INTERP_QUAD: /* inside the points and ahead of them; with fewer, as linear */
+    case RT_INTERP_LINEAR: /* without a newer point: extrapolate */
+        if (scheme == RT_INTERP_QUAD && n == RT_HIST)
             return parabola(sim, T, v, t);
-        return bracket ? line(sim, T, v, k - 1, k, t) : extrap;
+        if (bracket)
+            return line(sim, T, v, k - 1, k, t);
+        break;
     default:
         return sim->state.hist_y[k][v];
     }
+    return extrap(sim, T, v, n, k, t, ahead, fade);
 }

@@ -40,12 +40,14 @@ void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
     rt_sizes_of(sc, sim, &z);
     fprintf(f, "-DRT_MAX_BLOCKS=%u -DRT_MAX_X=%u -DRT_MAX_D=%u -DRT_MAX_U=%u -DRT_MAX_Y=%u "
                "-DRT_MAX_P=%u -DRT_MAX_ROOTS=%u -DRT_MAX_SETS=%u -DRT_MAX_REC=%u "
-               "-DRT_MAX_LOOPS=%u -DRT_MAX_TORN=%u -DRT_MAX_IMPLICIT_N=%u",
+               "-DRT_MAX_LOOPS=%u -DRT_MAX_TORN=%u -DRT_MAX_IMPLICIT_N=%u "
+               "-DRT_MAX_TRANSITION_N=%u",
             at_least_1(z.blocks), at_least_1(z.x), at_least_1(z.d), at_least_1(z.u),
             at_least_1(z.y), at_least_1(z.p), at_least_1(z.roots), at_least_1(z.sets),
             at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
-            at_least_1(z.implicit_n));
-    /* (RT_MAX_HELD_SIG may be 0: the array is left out of the scene's rt_state) */
+            at_least_1(z.implicit_n), z.transition_n);
+    /* (RT_MAX_TRANSITION_N and RT_MAX_HELD_SIG may be 0: their arrays are left out of the
+       scene's rt_work and rt_state) */
     fprintf(f, " -DRT_MAX_HIST_Y=%u -DRT_MAX_HELD_Y=%u -DRT_MAX_HELD_SIG=%u -DRT_MAX_EVENT_X=%u "
                "-DRT_MAX_SEQ=%u -DRT_MAX_LOOP_HIST=%u -DRT_MAX_BG=%u",
             at_least_1(z.hist_y), at_least_1(z.held_y), z.held_sig, at_least_1(z.event_x),

@@ -42,8 +42,9 @@ static void set_method(scn_ctx *c, scn_set *st)
         scn_fail(c, st->method.pos, st->method.s, "unknown integration method", method_list(c));
         return;
     }
-    if (!st->m->implicit && (st->has_newton || st->has_jacobian || st->has_tol ||
-                             st->has_substeps))
+    /* the transition method forms its matrices when it must and iterates nothing */
+    if ((!st->m->implicit || st->m->linear) &&
+        (st->has_newton || st->has_jacobian || st->has_tol || st->has_substeps))
         scn_fail(c, st->method.pos, st->method.s,
                  "newton, jacobian, tolerance and substeps apply to implicit methods only",
                  "an implicit method (beuler, trap, sdirk2, sdirk3, ros2) or no such clause");
