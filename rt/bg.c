@@ -143,7 +143,7 @@ static int copy_changed(real_t *dst, const real_t *src, uint32_t n)
 /* what the step reads from the tick's side, as it stands at release: the time, its own
    blocks' parameters (rt_set_param may change them between ticks: a block whose changed
    has its constant mass matrix factored anew in the context, as rt_set_param makes the
-   tick's), the held outputs of sampled blocks and the history of the other sets' outputs
+   tick's; the Jacobian follows the tick's imp_stale, release), the held outputs of sampled blocks and the history of the other sets' outputs
    its inputs read (its own states, outputs and discrete states are the context's already) */
 static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8_t s)
 {
@@ -157,7 +157,7 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         uint16_t b = sim->plan.set_blk[k];
         if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
                          (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
-            bg->work.mbs.m_valid[b] = 0, bg->state.imp[s].valid = 0;
+            bg->work.mbs.m_valid[b] = 0;
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             uint16_t v = sim->plan.src[i];
             if (sim->plan.src_kind[i] == RT_SRC_HELD)
@@ -230,6 +230,10 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
         return;
     }
     copy_inputs(sc, sim, sim->bg, s);
+    /* a parameter set since the last release: the context's step forms the Jacobian
+       anew, the step this release runs, as the inline step does (rt/step.c) */
+    sim->bg->state.imp_stale[s] = sim->state.imp_stale[s];
+    sim->state.imp_stale[s] = 0;
     /* the copies above become visible to the background context with the count */
     __atomic_store_n(&sim->bg_released, sim->bg_released + 1u, __ATOMIC_RELEASE);
 }

@@ -149,12 +149,26 @@ static void live_reads(const rt_scene *sc, const rt_sim *sim, uint8_t *live)
         }
 }
 
-/* the rti_set_flag bits of set `set`; *nonlinear: its first block that is not linear,
-   or -1 */
-static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set, int *nonlinear)
+int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t set)
+{
+    for (uint16_t i = sim->plan.blk_of[set]; i < sim->plan.blk_of[set + 1]; i++) {
+        uint16_t b = sim->plan.set_blk[i];
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->type == RT_KIND_DSS) /* its outputs hold between its sample hits */
+            continue;
+        if (!k->linear || k->type == RT_KIND_MBS)
+            return b;
+        for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++)
+            if (sim->plan.src_kind[j] == RT_SRC_TORN) /* a loop's solver is no matrix */
+                return b;
+    }
+    return -1;
+}
+
+/* the rti_set_flag bits of set `set` */
+static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set)
 {
     uint8_t deriv = 0, autonomous = RTI_SET_AUTONOMOUS;
-    *nonlinear = -1;
     for (uint16_t i = sim->plan.blk_of[set]; i < sim->plan.blk_of[set + 1]; i++) {
         uint16_t b = sim->plan.set_blk[i];
         const rt_kind *k = sc->blocks[b].kind;
@@ -164,46 +178,14 @@ static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set, int
             continue;
         if (!k->autonomous)
             autonomous = 0;
-        int torn = 0;
         /* a history input changes over the step; a torn one is an actual loop's, whose
            solver carries its estimates from one evaluation to the next */
-        for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++) {
+        for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++)
             if (sim->plan.src_kind[j] == RT_SRC_XSET || sim->plan.src_kind[j] == RT_SRC_TORN)
                 autonomous = 0;
-            torn |= sim->plan.src_kind[j] == RT_SRC_TORN;
-        }
-        if ((!k->linear || k->type == RT_KIND_MBS || torn) && *nonlinear < 0)
-            *nonlinear = b;
     }
-    return (uint8_t)(deriv | autonomous | (*nonlinear < 0 ? RTI_SET_LINEAR : 0));
-}
-
-/* a set whose method needs a linear set is one (rt_integrator.linear), small enough */
-static rt_status check_linear(const rt_scene *sc, rt_sim *sim, uint8_t set, int nonlinear)
-{
-    const rt_set *st = &sc->sets[set];
-    if (!st->method->linear)
-        return RT_OK;
-    if (nonlinear >= 0)
-        return rti_fail(sim, RT_E_SCENE, "set ", st->name, ": method ", st->method->name,
-                        " needs a set linear in its state, but block ",
-                        sc->blocks[nonlinear].name, " (", sc->blocks[nonlinear].kind->name,
-                        ") is not a linear kind (rt_kind.linear), is a multibody module or "
-                        "has a torn input", (const char *)0);
-    if (sim->plan.set_x[set + 1] - sim->plan.set_x[set] > RT_MAX_TRANSITION_N)
-        return rti_fail(sim, RT_E_CAPACITY, "set ", st->name, ": method ", st->method->name,
-                        " takes at most ", RTI_LIMIT(RT_MAX_TRANSITION_N), " states",
-                        (const char *)0);
-    return RT_OK;
-}
-
-/* the block whose outputs hold global output index v */
-static uint16_t out_block(const rt_scene *sc, const rt_sim *sim, uint16_t v)
-{
-    uint16_t b = 0;
-    while (b + 1 < sc->nblocks && sim->plan.y_off[b + 1] <= v)
-        b++;
-    return b;
+    return (uint8_t)(deriv | autonomous |
+                     (rti_nonlinear_block(sc, sim, set) < 0 ? RTI_SET_LINEAR : 0));
 }
 
 /* rti_eval_plan's marks per block: called once in the sequence; renewed by a tick */
@@ -211,8 +193,9 @@ enum { SEEN_CALLED = 1, SEEN_RENEWED = 2 };
 
 /* does a tick's renewal call block b: sampled (its outputs change at sample hits, which
    the step's end evaluation does not call), or with throughput and an input that may
-   have changed since that evaluation (another set's history or sampled output, a torn
-   value, a renewed block's output). One without throughput gives what it gave there */
+   have changed since that evaluation (another set's history or sampled output, a renewed
+   block's output). One without throughput gives what it gave there. (A torn input is a
+   loop's, whose entry a renewal always solves: renew_loop) */
 static int renewed(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint8_t *seen)
 {
     const rt_kind *k = sc->blocks[b].kind;
@@ -222,9 +205,9 @@ static int renewed(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint
         return 0;
     for (uint16_t j = sim->plan.u_off[b]; j < sim->plan.u_off[b + 1]; j++) {
         uint8_t src = sim->plan.src_kind[j];
-        if (src == RT_SRC_XSET || src == RT_SRC_HELD || src == RT_SRC_TORN)
+        if (src == RT_SRC_XSET || src == RT_SRC_HELD)
             return 1;
-        if (src == RT_SRC_Y && (seen[out_block(sc, sim, sim->plan.src[j])] & SEEN_RENEWED))
+        if (src == RT_SRC_Y && (seen[writer(sc, sim, sim->plan.src[j])] & SEEN_RENEWED))
             return 1;
     }
     return 0;
@@ -237,7 +220,6 @@ static void renew_loop(const rt_sim *sim, uint16_t l, uint8_t *seen)
     for (uint16_t i = lp->first; i < lp->first + lp->nblocks; i++)
         seen[sim->plan.loop_blocks[i]] |= SEEN_RENEWED;
 }
-
 
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
 {
@@ -267,17 +249,15 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
             *fl = RTI_RHS_SKIP;
         else if (!(live[st->index] & LIVE_RICH))
             *fl = RTI_RHS_LEAN;
-        if (renewed(sc, sim, st->index, seen)) {
+        /* with fault injection every call is renewed: a NaN injected at a call then lands
+           at the tick it did before renewals (tests/faults) */
+        if (RT_FAULT_INJECT || renewed(sc, sim, st->index, seen)) {
             *fl |= RTI_SEQ_RENEW;
             seen[st->index] |= SEEN_RENEWED;
         }
     }
     for (uint8_t set = 0; set < sc->nsets; set++) {
-        int nonlinear;
-        sim->plan.set_flags[set] = set_flags(sc, sim, set, &nonlinear);
-        rt_status st = check_linear(sc, sim, set, nonlinear);
-        if (st != RT_OK)
-            return st;
+        sim->plan.set_flags[set] = set_flags(sc, sim, set);
         sim->plan.rhs_calls[set] = 0;
         for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
             sim->plan.rhs_calls[set] = (uint16_t)(sim->plan.rhs_calls[set] +

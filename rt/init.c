@@ -302,6 +302,27 @@ static rt_status tick_count(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+/* a set whose method needs a set linear in its state (rt_integrator.linear) is one, and
+   small enough (after rti_eval_plan: the sets' blocks and routes) */
+static rt_status check_methods(const rt_scene *sc, rt_sim *sim)
+{
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        const rt_set *st = &sc->sets[s];
+        int b = st->method->linear ? rti_nonlinear_block(sc, sim, s) : -1;
+        if (b >= 0)
+            return rti_fail(sim, RT_E_SCENE, "set ", st->name, ": method ", st->method->name,
+                            " needs a set linear in its state, but block ",
+                            sc->blocks[b].name, " (", sc->blocks[b].kind->name,
+                            ") is not a linear kind (rt_kind.linear), is a multibody "
+                            "module or has a torn input", (const char *)0);
+        if (st->method->linear && rt_set_nx(sim, s) > RT_MAX_TRANSITION_N)
+            return rti_fail(sim, RT_E_CAPACITY, "set ", st->name, ": method ",
+                            st->method->name, " takes at most ",
+                            RTI_LIMIT(RT_MAX_TRANSITION_N), " states", (const char *)0);
+    }
+    return RT_OK;
+}
+
 /* the background set, if the scene declares one: its services check it (rt/bg.c) */
 static rt_status bg_init(const rt_scene *sc, rt_sim *sim)
 {
@@ -340,7 +361,8 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
         /* the link's exports count among the held signals (check_history) */
         (st = rti_link_check(sc, sim)) != RT_OK || (st = check_history(sc, sim)) != RT_OK ||
-        (st = rti_eval_plan(sc, sim)) != RT_OK || (st = bg_init(sc, sim)) != RT_OK)
+        (st = rti_eval_plan(sc, sim)) != RT_OK || (st = check_methods(sc, sim)) != RT_OK ||
+        (st = bg_init(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */
     rti_zero(&sim->work.w, sizeof sim->work.w);

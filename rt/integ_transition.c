@@ -13,11 +13,12 @@
  * is zero and left out: one evaluation per step.
  *
  * J is exact to rounding: f is linear in x, so differences over large increments
- * (TRANS_INC max(1, |x_j|), re-measured as the representable difference) have no
+ * (RT_TRANSITION_INC max(1, |x_j|), re-measured as the representable difference) have no
  * truncation error. J is formed, and h phi1, h phi2 with it (rti_phi12; kept in the set's
  * rt_implicit_ws, lu and jac), at the first step, when h changes, and after a parameter of
  * one of the set's blocks changed (rt_set_param clears ws->valid); the set's `jacobian`
- * interval is not used. The refresh costs n evaluations and about
+ * interval is not used; a located event re-forms them for its partial step, and for the
+ * full step after it. The refresh costs n evaluations and about
  * (RT_TRANSITION_TAYLOR + 2 + 3 s) n^3 multiply-adds, s the halvings that bring |h J|_1
  * to RT_TRANSITION_THETA (5 for the servo of pendulum10_actuated at 1 ms); a step, one or
  * two evaluations and 2 n^2.
@@ -32,27 +33,26 @@
  * d: a held command that changes at each sample is not read as an error.
  *
  * A refresh that would need more than RT_TRANSITION_HALVINGS halvings (|h J|_1 above
- * 5e11) or meets a non-finite J leaves the state at x0 and returns RT_E_SINGULAR; the next
- * step tries again. */
+ * 5e11), meets a non-finite J or whose matrices overflow (a mode growing by e^1000 over
+ * the step) leaves the state at x0 and returns RT_E_SINGULAR; the next step tries again.
+ * A right-hand side that is not finite when a refresh is due (a NaN input) is put into the
+ * state instead, which rt/step.c puts back and counts as NaN with its block. */
 #include "rti.h"
 
 #include "linalg.h"
 
 #define R(v) ((real_t)(v))
-/* the increments of the differences, relative to max(1, |x_j|): large, so the rounding
-   of f (about eps |f|) is small against the change J_ij d_j */
-#define TRANS_INC R(1024)
 
 /* n x n matrices in the set's rt_implicit_ws: h phi1(h J) in lu, h phi2(h J) in jac */
 static rt_status refresh(const rt_rhs *f, real_t t, real_t h, real_t *x, uint16_t n,
                          const rt_iwork *w, const real_t *f0)
 {
     rt_implicit_ws *ws = w->imp;
-    real_t *fd = w->k[2], *a = w->tm, *scratch = w->tm + (size_t)n * n;
+    real_t *fd = w->k[2], *a = w->tm, *scratch = n ? w->tm + (size_t)n * n : w->tm;
     rt_status st = RT_OK;
     for (uint16_t j = 0; j < n; j++) {
         real_t xj = x[j], ax = rt_fabs(xj);
-        x[j] = xj + TRANS_INC * (ax > 1 ? ax : 1);
+        x[j] = xj + RT_TRANSITION_INC * (ax > 1 ? ax : 1);
         real_t d = x[j] - xj;
         rt_status sj = f->eval(f->ctx, t, fd);
         st = st == RT_OK ? sj : st;
@@ -117,6 +117,13 @@ static rt_status transition_step(const rt_integrator *m, const rt_rhs *f, real_t
     if (!(h != 0))
         return RT_OK;
     rt_status st = f->eval(f->ctx, t, f0);
+    if ((!ws->valid || ws->h_factored != h) && !rt_all_finite(f0, n)) {
+        /* a NaN input: no Jacobian to form; the NaN goes into the state, which rt/step.c
+           puts back and counts with its block */
+        for (uint16_t i = 0; i < n; i++)
+            x[i] += f0[i];
+        return st;
+    }
     if (!ws->valid || ws->h_factored != h) {
         rt_status sr = refresh(f, t, h, x, n, w, f0);
         if (sr == RT_E_SINGULAR)
@@ -154,6 +161,8 @@ static void transition_bound(const rt_integrator *m, const rt_implicit_cfg *cfg,
     w->lu = 3u * (RT_TRANSITION_TAYLOR + 2u + 3u * RT_TRANSITION_HALVINGS);
 }
 
-const rt_integrator rt_transition = {.name = "transition", .order = 2, .stages = 2,
+/* stages: the evaluations of a step in an autonomous set (the tuner's lower bound); it
+   uses the stage buffers k[0..2] (RT_MAX_STAGES >= 6) */
+const rt_integrator rt_transition = {.name = "transition", .order = 2, .stages = 1,
                                      .implicit = 1, .linear = 1, .step = transition_step,
                                      .bound = transition_bound};

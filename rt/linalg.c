@@ -143,12 +143,20 @@ static void mat_mul(real_t *c, const real_t *a, const real_t *b, uint16_t n)
         }
 }
 
-/* d = (t + p d + q I) r, entrywise over n x n */
-static void combine(real_t *d, const real_t *t, real_t p, real_t q, real_t r, uint16_t n)
+/* d = (t + p d) r, entrywise over n x n (d's old entries are read) */
+static void combine(real_t *d, const real_t *t, real_t p, real_t r, uint16_t n)
+{
+    for (uint32_t i = 0; i < (uint32_t)n * n; i++)
+        d[i] = (t[i] + p * d[i]) * r;
+}
+
+/* d = t + q I, n x n (d's old entries are not read: an overflow of the last refresh
+   leaves no infinity to multiply by zero) */
+static void shift(real_t *d, const real_t *t, real_t q, uint16_t n)
 {
     for (uint16_t i = 0; i < n; i++)
         for (uint16_t j = 0; j < n; j++)
-            d[i * n + j] = (t[i * n + j] + p * d[i * n + j] + (i == j ? q : 0)) * r;
+            d[i * n + j] = t[i * n + j] + (i == j ? q : 0);
 }
 
 rt_status rti_phi12(real_t *a, uint16_t n, real_t *p1, real_t *p2, real_t *t, real_t theta,
@@ -170,26 +178,30 @@ rt_status rti_phi12(real_t *a, uint16_t n, real_t *p1, real_t *p2, real_t *t, re
     for (unsigned k = 2; k <= degree + 2; k++)
         c /= (real_t)k;
     for (uint32_t i = 0; i < (uint32_t)n * n; i++)
-        p2[i] = 0;
-    combine(p2, p2, 0, c, 1, n);
+        t[i] = 0;
+    shift(p2, t, c, n);
     for (unsigned k = degree; k-- > 0;) {
         c *= (real_t)(k + 3); /* 1 / (k + 3)! -> 1 / (k + 2)! */
         mat_mul(t, p2, a, n);
-        combine(p2, t, 0, c, 1, n);
+        shift(p2, t, c, n);
     }
     mat_mul(t, a, p2, n); /* phi1 = I + A phi2 */
-    combine(p1, t, 0, 1, 1, n);
+    shift(p1, t, 1, n);
     mat_mul(t, a, p1, n); /* e^A = I + A phi1, in a */
-    combine(a, t, 0, 1, 1, n);
+    shift(a, t, 1, n);
     for (unsigned i = 0; i < s; i++) {
         mat_mul(t, p1, p1, n); /* phi2(2A) = (phi1^2 + 2 phi2) / 4 */
-        combine(p2, t, 2, 0, (real_t)0.25, n);
+        combine(p2, t, 2, (real_t)0.25, n);
         mat_mul(t, a, p1, n); /* phi1(2A) = (e^A phi1 + phi1) / 2 */
-        combine(p1, t, 1, 0, (real_t)0.5, n);
+        combine(p1, t, 1, (real_t)0.5, n);
         if (i + 1 < s) { /* e^2A = (e^A)^2 */
             mat_mul(t, a, a, n);
-            combine(a, t, 0, 0, 1, n);
+            shift(a, t, 0, n);
         }
     }
-    return RT_OK;
+    /* a growing mode overflows (e^1000): no usable matrices */
+    int bad = 0;
+    for (uint32_t i = 0; i < (uint32_t)n * n; i++)
+        bad |= !rt_isfinite(p1[i]) || !rt_isfinite(p2[i]);
+    return bad ? RT_E_SINGULAR : RT_OK;
 }

@@ -29,9 +29,9 @@ void rti_lu_solve_cols(const real_t *lu, uint16_t n, const uint16_t *piv, real_t
    overwritten; t is n x n scratch; about (degree + 2 + 3 s) n^3 multiply-adds. Every
    entry is halved as often as the largest needs, so the squarings of e^A amplify the
    rounding of the slow modes by about the spread of A's eigenvalues (A = diag(-1e4, -50):
-   70 ulp in phi1(-50)). Returns
-   RT_E_SINGULAR, p1 and p2 unset, when A is not finite or needs more than max_halvings,
-   else RT_OK. */
+   70 ulp in phi1(-50)). Returns RT_E_SINGULAR, p1 and p2 unset, when A is not finite or
+   needs more than max_halvings, RT_E_SINGULAR with p1 and p2 not finite when they
+   overflow (a growing mode, e^1000), else RT_OK. */
 rt_status rti_phi12(real_t *a, uint16_t n, real_t *p1, real_t *p2, real_t *t, real_t theta,
                     unsigned degree, unsigned max_halvings);
 

@@ -220,7 +220,9 @@ typedef struct rt_rhs {
 } rt_rhs;
 
 /* What an implicit method keeps from step to step for one set: the factored iteration
- * matrix is reused until its age reaches the set's refresh interval or h changes. */
+ * matrix is reused until its age reaches the set's refresh interval or h changes. The
+ * transition method keeps h phi1(hJ) in lu, h phi2(hJ) in jac and the last step's change
+ * of f in best (rt/integ_transition.c). */
 typedef struct rt_implicit_ws {
     real_t lu[RT_MAX_IMPLICIT_N * RT_MAX_IMPLICIT_N]; /* LU factors, row-major */
     real_t jac[RT_MAX_IMPLICIT_N * RT_MAX_IMPLICIT_N];/* last Jacobian df/dx */
@@ -261,8 +263,8 @@ typedef struct rt_implicit_cfg {
 typedef struct rt_iwork {
     real_t *k[RT_MAX_STAGES]; /* stage derivatives, n values each */
     uint8_t autonomous;       /* 1: f(t, x) does not depend on t over the step */
-    real_t *x0;
-    real_t *tm;               /* 2 RT_MAX_TRANSITION_N^2 scratch (method transition) */               /* state at the start of the step */
+    real_t *x0;               /* state at the start of the step */
+    real_t *tm;               /* 2 RT_MAX_TRANSITION_N^2 scratch (method transition) */
     rt_implicit_ws *imp;      /* persistent implicit data of this set */
     rt_istats *stats;         /* statistics of this set */
     const rt_implicit_cfg *cfg; /* settings of this set */
@@ -644,6 +646,9 @@ typedef struct rt_state {
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
     uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
+    uint8_t imp_stale[RT_MAX_SETS];  /* a parameter of the set changed (rt_set_param):
+                                        its next step forms its Jacobian anew (rt/step.c;
+                                        a background set's in the context that runs it) */
     uint8_t bg_busy;                 /* 1: a step is released and not yet published */
 } rt_state;
 

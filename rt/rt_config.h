@@ -256,7 +256,13 @@ typedef double real_t;
 #define RT_TRANSITION_THETA ((real_t)0.5)
 #endif
 #ifndef RT_TRANSITION_TAYLOR
-#define RT_TRANSITION_TAYLOR 12
+#define RT_TRANSITION_TAYLOR 12 /* degree of that Taylor polynomial of phi2 */
+#endif
+#ifndef RT_TRANSITION_INC
+/* the transition method's Jacobian comes from differences over increments of this times
+   max(1, |x_j|): large, since f is linear (no truncation error), so that the rounding of
+   f (about eps |f|) is small against the change */
+#define RT_TRANSITION_INC ((real_t)1024)
 #endif
 #ifndef RT_TRANSITION_HALVINGS
 /* the most halvings: a set with |h J|_1 above theta 2^this is refused at its first step
@@ -296,6 +302,9 @@ typedef double real_t;
 #endif
 #if RT_MAX_STAGES < 6
 #error "RT_MAX_STAGES must be at least 6: the fifth-order Dormand-Prince method has six stages."
+#endif
+#if RT_MAX_SETS > 32
+#error "rt_tick keeps a bit per set in a 32-bit word (its renewals): RT_MAX_SETS at most 32."
 #endif
 
 #endif /* RT_CONFIG_H */

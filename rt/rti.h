@@ -125,8 +125,7 @@ void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
    plan.set_blk), the entries a right-hand side need not call (plan.seq_flags): a
    block's first call if no input of its own set reads its outputs live, a repeated call
    (after its inputs changed) if none reads one that depends on them, and those a tick's
-   renewal calls (RTI_SEQ_RENEW); the set flags (plan.set_flags). Returns RT_OK, or
-   RT_E_SCENE / RT_E_CAPACITY when a set's method needs a linear set it is not. */
+   renewal calls (RTI_SEQ_RENEW); the set flags (plan.set_flags). Returns RT_OK. */
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
 /* what rti_eval_plan found of a set (plan.set_flags): a block of it has its own
    derivative (an NSS or LSS kind: a right-hand side walks its blocks; a multibody set's
@@ -136,10 +135,12 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
    it is linear in its state (each block not sampled of a linear kind, no multibody
    block, no torn input: the transition method's condition, checked at init) */
 enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2, RTI_SET_LINEAR = 4 };
+/* The first block of set s that keeps it from being linear in its state, or -1. */
+int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t s);
 /* what a right-hand side does with an entry of the sequence (plan.seq_flags, the bits
    under RTI_SEQ_RHS), and whether a tick's renewal calls it (RTI_SEQ_RENEW: a loop, a
    sampled block, or a block with throughput reading an input from another set's history
-   or a sampled output of another set, a torn value, or a renewed entry's output) */
+   or a sampled output of another set, or a renewed entry's output) */
 typedef enum { RTI_RHS_CALL = 0, RTI_RHS_SKIP, RTI_RHS_LEAN } rti_rhs_call;
 enum { RTI_SEQ_RHS = 3, RTI_SEQ_RENEW = 4 };
 /* The next run of consecutive blocks of set s from its k-th (plan.set_blk, ascending):

@@ -210,10 +210,6 @@ uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim)
     return top;
 }
 
-#if RT_MAX_SETS > 32
-#error "rt_tick keeps a bit per set in a uint32_t (renew): RT_MAX_SETS must be at most 32"
-#endif
-
 /* rt_refresh; renew: a bit per set whose outputs its step's end evaluated at this time */
 static void refresh(const rt_scene *sc, rt_sim *sim, uint32_t renew)
 {
@@ -411,7 +407,8 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
             return RT_E_PARAM;
         }
         sim->work.mbs.m_valid[b] = 0; /* a constant mass matrix is factored anew (#14) */
-        sim->state.imp[sc->blocks[b].set].valid = 0; /* and the set's Jacobian formed */
+        if (value != old) /* and the set's Jacobian formed at its next step */
+            sim->state.imp_stale[sc->blocks[b].set] = 1;
         return RT_OK;
     }
     /* before the first tick, initial states can be set by name too */

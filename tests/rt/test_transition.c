@@ -3,8 +3,8 @@
  * diagonal and of a rotation generator; the 1 kHz servo of pendulum10_actuated under a
  * held command (the step response of a damped oscillator), exact at omega h = 6.3 where
  * the trapezoidal rule and ROS2 are off by percents; a first-order lag under a sine,
- * second order with an estimate that bounds its error; a time constant changed mid-run;
- * and the scenes it refuses. */
+ * second order with an estimate of the size of its error; a time constant changed
+ * mid-run; matrices that overflow, then recover; a NaN input; the scenes it refuses. */
 #include "linalg.h"
 #include "rti.h"
 #include "scenes/scenes.h"
@@ -225,6 +225,47 @@ static void test_param_change(void)
     TH_CHECK(tu_sim.stats.istats[0].jac_evals == 2);
 }
 
+/* a mode growing by e^1990 over a step (a lag fed back through a gain of 200): its
+   matrices overflow, each step is refused (singular) and leaves the state; once the gain
+   is 0 the next refresh forms finite matrices again (no infinity of the last one
+   multiplied into them) and the lag decays as it should */
+static void test_overflow_recovers(void)
+{
+    static const real_t p_lag[] = {1, (real_t)1e-3}, p_gain[] = {200};
+    blks[0] = (rt_block){.name = "Lag", .kind = &mdl_pt1_kind, .p = p_lag, .x0 = p_lag};
+    blks[1] = (rt_block){.name = "G", .kind = &mdl_gain_kind, .p = p_gain};
+    static const rt_conn loop[] = {{0, 0, 1, 0}, {1, 0, 0, 0}};
+    set = (rt_set){.name = "s", .method = &rt_transition, .ratio = 1};
+    scene = (rt_scene){.name = "transition", .dt = (real_t)0.01, .t_end = 1, .blocks = blks,
+                       .nblocks = 2, .conns = loop, .nconns = 2, .sets = &set, .nsets = 1};
+    if (!tu_init(&scene))
+        return;
+    tu_run_to(&scene, (real_t)0.1);
+    uint32_t singular = tu_sim.stats.count[RT_CNT_SINGULAR];
+    TH_CHECK(singular == 10 && tu_sim.state.x[0] == 1);
+    TH_CHECK(rt_set_param(&scene, &tu_sim, "G", "k", 0) == RT_OK);
+    tu_run_to(&scene, (real_t)0.2);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] == singular);
+    /* x' = -x / T from 1 at t = 0.1: e^-100. Each step forms e^-10 x0 as x0 + h phi1 f
+       (the decay by cancellation): an error of about eps |x0| per step, 6e-11 relative
+       after ten */
+    TH_NEAR(tu_sim.state.x[0], 3.720075976020836e-44, 3.7e-44 * (FLT ? 1e-3 : 1e-9));
+}
+
+/* a NaN command when the matrices are due: counted as NaN with the servo, the state kept
+   (rt/step.c), not a singular matrix */
+static void test_nan_input(void)
+{
+    blks[0] = (rt_block){.name = "Servo", .kind = &mdl_servo2_kind};
+    dflt = (rt_default){0, 0, (real_t)0 / (real_t)0};
+    if (!setup(1, &rt_transition, (real_t)1e-3, (real_t)0.01, 0, 1))
+        return;
+    rt_tick(&scene, &tu_sim);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_NAN] >= 1 && tu_sim.stats.last_block[RT_CNT_NAN] == 0);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] == 0);
+    TH_CHECK(tu_sim.state.x[0] == 0 && tu_sim.state.x[1] == 0);
+}
+
 /* refused at init, with the block named: a nonlinear block, a multibody module (the
    library's pendulum in one set of its own method), more states than
    RT_MAX_TRANSITION_N */
@@ -265,6 +306,8 @@ const th_test th_transition_tests[] = {
     {"transition_servo_exact", test_servo_exact},
     {"transition_lag_second_order", test_lag_second_order},
     {"transition_param_change", test_param_change},
+    {"transition_overflow_recovers", test_overflow_recovers},
+    {"transition_nan_input", test_nan_input},
     {"transition_refused", test_refused},
     {0, 0},
 };

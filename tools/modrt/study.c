@@ -115,10 +115,10 @@ int study_apply(const study_args *a, rt_scene *sc)
         size_t len = strcspn(a->val[i], "=");
         for (uint8_t s = 0; s < sc->nsets; s++)
             if (strncmp(sets[s].name, a->val[i], len) == 0 && sets[s].name[len] == 0 &&
-                !sets[s].method->implicit &&
+                (!sets[s].method->implicit || sets[s].method->linear) &&
                 (strcmp(o, "tol") == 0 || strcmp(o, "newton") == 0 ||
                  strcmp(o, "substeps") == 0))
-                return bad(o, "applies to implicit methods only; the set's method is",
+                return bad(o, "applies to iterating implicit methods only; the set's method is",
                            sets[s].method->name);
     }
     return CLI_OK;
