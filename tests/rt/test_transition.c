@@ -248,8 +248,8 @@ static void test_overflow_recovers(void)
     TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] == singular);
     /* x' = -x / T from 1 at t = 0.1: e^-100. Each step forms e^-10 x0 as x0 + h phi1 f
        (the decay by cancellation): an error of about eps |x0| per step, 6e-11 relative
-       after ten */
-    TH_NEAR(tu_sim.state.x[0], 3.720075976020836e-44, 3.7e-44 * (FLT ? 1e-3 : 1e-9));
+       after ten (in float 2 % and a subnormal result, resolved to 4 % of itself) */
+    TH_NEAR(tu_sim.state.x[0], 3.720075976020836e-44, 3.7e-44 * (FLT ? 0.2 : 1e-9));
 }
 
 /* a NaN command when the matrices are due: counted as NaN with the servo, the state kept
