@@ -117,14 +117,14 @@ static rt_status transition_step(const rt_integrator *m, const rt_rhs *f, real_t
     if (!(h != 0))
         return RT_OK;
     rt_status st = f->eval(f->ctx, t, f0);
-    if ((!ws->valid || ws->h_factored != h) && !rt_all_finite(f0, n)) {
-        /* a NaN input: no Jacobian to form; the NaN goes into the state, which rt/step.c
-           puts back and counts with its block */
-        for (uint16_t i = 0; i < n; i++)
-            x[i] += f0[i];
-        return st;
-    }
     if (!ws->valid || ws->h_factored != h) {
+        if (!rt_all_finite(f0, n)) {
+            /* a NaN input: no Jacobian to form; the NaN goes into the state, which
+               rt/step.c puts back and counts with its block */
+            for (uint16_t i = 0; i < n; i++)
+                x[i] += f0[i];
+            return st;
+        }
         rt_status sr = refresh(f, t, h, x, n, w, f0);
         if (sr == RT_E_SINGULAR)
             return sr;

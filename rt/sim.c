@@ -24,12 +24,15 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 {
     int first = -1, bad = 0;
     const real_t *y = sim->state.y;
-    for (uint8_t s = 0; s < sc->nsets; s++) /* at once first; by block when one is not */
-        for (uint16_t k = sim->plan.blk_of[s], e; fresh(sim, s) && k < sim->plan.blk_of[s + 1];) {
+    for (uint8_t s = 0; s < sc->nsets; s++) { /* at once first; by block when one is not */
+        if (!fresh(sim, s))
+            continue;
+        for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
             uint16_t b = rti_block_run(sim, s, &k, &e);
-            for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[e]; j++)
+            for (uint16_t j = sim->plan.y_off[b], j1 = sim->plan.y_off[e]; j < j1; j++)
                 bad |= !rt_isfinite(y[j]);
         }
+    }
     if (!bad)
         return -1;
     for (uint8_t s = 0; s < sc->nsets; s++) {
@@ -261,8 +264,9 @@ static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
             rti_count(sim, RT_CNT_NAN, (int)b, RT_E_NAN);
             continue;
         }
-        for (uint16_t i = 0; i < k->nd; i++)
-            sim->state.d[sim->plan.d_off[b] + i] = next[i];
+        real_t *d = sim->state.d + sim->plan.d_off[b];
+        for (uint16_t i = 0, nd = k->nd; i < nd; i++)
+            d[i] = next[i];
     }
 }
 

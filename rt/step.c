@@ -21,6 +21,21 @@ static real_t norm(const real_t *x, uint16_t n)
     return m;
 }
 
+/* norm(x, n), and x kept in xs (the state a failed step goes back to, rti_step_set, and
+   an event's re-steps start from, trial): one pass */
+static real_t keep_norm(const real_t *x, real_t *xs, uint16_t n)
+{
+    real_t m = 1;
+    int nan = 0;
+    for (unsigned i = 0; i < n; i++) {
+        real_t a = rt_fabs(x[i]);
+        xs[i] = x[i];
+        nan |= a != a;
+        m = a > m ? a : m;
+    }
+    return nan ? (real_t)0 / (real_t)0 : m;
+}
+
 /* an explicit method past its stability limit multiplies the state by |R(h lambda)| > 1
    every step: RT_GROWTH_STEPS steps in a row of growth by RT_GROWTH_FACTOR are counted
    (unstable) long before the values overflow */
@@ -35,8 +50,9 @@ static void watch_growth(rt_sim *sim, uint8_t s, real_t before, real_t after)
     }
 }
 
-/* integrates the set from t by h in place, then post-stabilizes its multibody part
-   (eq. 10); a step that ended above its residual tolerance is counted as degraded.
+/* integrates the set from t by h in place (its state before the step kept in work.xs),
+   then post-stabilizes its multibody part (eq. 10); a step that ended above its residual
+   tolerance is counted as degraded.
    Returns the final state's norm (NaN or inf if a value is not finite), or -1 if the
    projection moved it after the norm was taken */
 static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
@@ -60,7 +76,7 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
     if (sim->state.imp_stale[s]) /* a parameter changed since the last step */
         sim->state.imp[s].valid = 0, sim->state.imp_stale[s] = 0;
     uint32_t split = w.stats->substepped;
-    real_t before = norm(sim->state.x + x0, n);
+    real_t before = keep_norm(sim->state.x + x0, sim->work.xs, n);
     w.stats->last_err = 0;
     rt_status st = sc->sets[s].method->step(sc->sets[s].method, &f, t, h, sim->state.x + x0, n, &w);
     if (st == RT_E_NOCONV)
@@ -222,9 +238,7 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
     real_t *r = sim->state.r + sim->plan.set_r[s];
     real_t t0 = t, span = h;
     for (int ev = 0;; ev++) {
-        for (uint16_t i = 0; i < n; i++)
-            sim->work.xs[i] = sim->state.x[x0 + i];
-        integrate(sc, sim, s, t0, span);
+        integrate(sc, sim, s, t0, span); /* keeps the span's start in work.xs */
         rti_outputs(sc, sim, (rti_at){t0 + span, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0 + span, sim->work.rs);
         uint16_t blk, which;
@@ -281,10 +295,7 @@ void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
         step_with_events(sc, sim, s, t, h);
     } else {
-        real_t *xs = sim->work.xs, *x = sim->state.x + x0;
-        for (unsigned i = 0; i < n; i++)
-            xs[i] = x[i];
-        after = integrate(sc, sim, s, t, h);
+        after = integrate(sc, sim, s, t, h); /* keeps the state before it in work.xs */
     }
     /* a non-finite state is not propagated: the set keeps its state from before the step
        (deterministic degradation) and the fault is counted with the block (a finite norm
