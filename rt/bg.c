@@ -143,8 +143,9 @@ static int copy_changed(real_t *dst, const real_t *src, uint32_t n)
 /* what the step reads from the tick's side, as it stands at release: the time, its own
    blocks' parameters (rt_set_param may change them between ticks: a block whose changed
    has its constant mass matrix factored anew in the context, as rt_set_param makes the
-   tick's; the Jacobian follows the tick's imp_stale, release), the held outputs of sampled blocks and the history of the other sets' outputs
-   its inputs read (its own states, outputs and discrete states are the context's already) */
+   tick's, and the set's Jacobian formed anew), the held outputs of sampled blocks and the
+   history of the other sets' outputs its inputs read (its own states, outputs and
+   discrete states are the context's already) */
 static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8_t s)
 {
     bg->state.tick = sim->state.tick;
@@ -157,7 +158,7 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         uint16_t b = sim->plan.set_blk[k];
         if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
                          (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
-            bg->work.mbs.m_valid[b] = 0;
+            bg->work.mbs.m_valid[b] = 0, bg->state.imp_stale[s] = 1;
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             uint16_t v = sim->plan.src[i];
             if (sim->plan.src_kind[i] == RT_SRC_HELD)
@@ -229,11 +230,12 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
         move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 2);
         return;
     }
-    copy_inputs(sc, sim, sim->bg, s);
     /* a parameter set since the last release: the context's step forms the Jacobian
-       anew, the step this release runs, as the inline step does (rt/step.c) */
+       anew, the step this release runs, as the inline step does (rt/step.c); copy_inputs
+       adds parameters that changed another way (a restored snapshot) */
     sim->bg->state.imp_stale[s] = sim->state.imp_stale[s];
     sim->state.imp_stale[s] = 0;
+    copy_inputs(sc, sim, sim->bg, s);
     /* the copies above become visible to the background context with the count */
     __atomic_store_n(&sim->bg_released, sim->bg_released + 1u, __ATOMIC_RELEASE);
 }

@@ -249,9 +249,7 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
             *fl = RTI_RHS_SKIP;
         else if (!(live[st->index] & LIVE_RICH))
             *fl = RTI_RHS_LEAN;
-        /* with fault injection every call is renewed: a NaN injected at a call then lands
-           at the tick it did before renewals (tests/faults) */
-        if (RT_FAULT_INJECT || renewed(sc, sim, st->index, seen)) {
+        if (renewed(sc, sim, st->index, seen)) {
             *fl |= RTI_SEQ_RENEW;
             seen[st->index] |= SEEN_RENEWED;
         }

@@ -775,9 +775,13 @@ rt_status rt_background(const rt_scene *scene, rt_sim *sim);
 int rt_bg_set(const rt_sim *sim);
 
 /* Snapshots: the state part of rt_sim is everything a run needs to continue; one copy
- * out and one copy in (the plan must be the same scene's: restore after rt_init of it). */
+ * out and one copy in (the plan must be the same scene's: restore after rt_init of it).
+ * With a background context attached the step in flight lives in the context: rt_restore
+ * then takes only a snapshot without one (bg_busy 0, e.g. right after a publication)
+ * while none runs, and re-attaches the context from the restored state; else RT_E_ARG,
+ * nothing changed. */
 void rt_snapshot(const rt_sim *sim, rt_state *out);
-void rt_restore(rt_sim *sim, const rt_state *in);
+rt_status rt_restore(rt_sim *sim, const rt_state *in);
 
 /* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */
 int rt_block_index(const rt_scene *scene, const char *name);

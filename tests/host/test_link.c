@@ -217,7 +217,7 @@ static void test_snapshot(void)
     TH_CHECK(tu_sim.state.hash == straight);
     if (!tu_init(sc)) /* a fresh simulator of the same scene, then the snapshot */
         return;
-    rt_restore(&tu_sim, &snap);
+    TH_CHECK(rt_restore(&tu_sim, &snap) == RT_OK);
     TH_CHECK(tu_sim.state.tick == 1200);
     while (rt_tick(sc, &tu_sim) != RT_E_DONE)
         rt_record(sc, &tu_sim, 0);

@@ -139,6 +139,44 @@ static void test_bg_param_jacobian(void)
     TH_CHECK(sims[0].stats.status == RT_OK && sims[1].stats.status == RT_OK);
 }
 
+/* a snapshot between two background steps (right after a publication), restored into a
+   run with a context attached after a parameter changed there: the context is re-attached
+   from the restored state and the run continues as one that never left it (the same
+   records 40 ticks on as the inline run without the change); a snapshot with a step in
+   flight is refused there (the step is the context's), and the run is left as it was */
+static void test_bg_restore(void)
+{
+    static rt_state snap, busy;
+    const rt_scene *sc = &mdl_scene_pendulum10_actuated;
+    int ok = rt_init(sc, &sims[0]) == RT_OK && rt_init(sc, &sims[1]) == RT_OK &&
+             rt_bg_attach(sc, &sims[1], &ctx[0]) == RT_OK;
+    if (!TH_CHECK(ok))
+        return;
+    for (int n = 1; ok && n <= 100; n++) {
+        rt_tick(sc, &sims[1]);
+        if (rt_bg_pending(&sims[1]))
+            rt_background(sc, &sims[1]);
+        if (n == 40)
+            rt_snapshot(&sims[1], &snap);
+        if (n == 41)
+            ok = rt_set_param(sc, &sims[1], "B5", "m", 2) == RT_OK;
+        if (n == 42)
+            rt_snapshot(&sims[1], &busy);
+    }
+    TH_CHECK(ok && !snap.bg_busy && busy.bg_busy);
+    uint64_t tick = sims[1].state.tick;
+    TH_CHECK(rt_restore(&sims[1], &busy) == RT_E_ARG && sims[1].state.tick == tick);
+    TH_CHECK(rt_restore(&sims[1], &snap) == RT_OK && sims[1].state.tick == 40);
+    for (int n = 1; n <= 80; n++)
+        rt_tick(sc, &sims[0]);
+    for (int n = 1; n <= 40; n++) {
+        rt_tick(sc, &sims[1]);
+        if (rt_bg_pending(&sims[1]))
+            rt_background(sc, &sims[1]);
+    }
+    TH_CHECK(sims[1].state.tick == 80 && same_record(sc, &sims[0], &sims[1]));
+}
+
 /* a joint reaction of the background set, recorded: held like its residual (computed by
    the step at its end, in whichever context ran it), the same bits inline and in a
    context, and at the first publications the rod J1 carries the hanging chain, 10 m g
@@ -326,6 +364,7 @@ const th_test th_bg_tests[] = {
     {"bg_same_trace", test_bg_same_trace},
     {"bg_param", test_bg_param},
     {"bg_param_jacobian", test_bg_param_jacobian},
+    {"bg_restore", test_bg_restore},
     {"bg_reaction", test_bg_reaction},
     {"bg_deadline", test_bg_deadline},
     {"bg_overrun", test_bg_overrun},
