@@ -121,22 +121,30 @@ static void rhs(imp_step *c, real_t t, real_t *xdot)
         c->rhs_st = st;
 }
 
-/* forward-difference Jacobian at (tb, x) around fb = f(tb, x), column by column; the
-   increment is re-measured as the representable difference x_j + d - x_j */
-static void fd_jacobian(imp_step *c, real_t tb, const real_t *fb)
+rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, const real_t *fb,
+                          real_t inc, real_t *fd, real_t *jac)
 {
-    uint16_t n = c->n;
-    real_t *x = c->x, *fd = c->w->k[IMP_BUF_D], *jac = c->w->imp->jac;
-    real_t sq = rt_sqrt(RT_EPS);
+    rt_status st = RT_OK;
     for (uint16_t j = 0; j < n; j++) {
         real_t xj = x[j], ax = rt_fabs(xj);
-        x[j] = xj + sq * (ax > 1 ? ax : 1);
+        x[j] = xj + inc * (ax > 1 ? ax : 1);
         real_t d = x[j] - xj;
-        rhs(c, tb, fd);
+        rt_status sj = f->eval(f->ctx, t, fd);
+        st = st == RT_OK ? sj : st;
         x[j] = xj;
         for (uint16_t i = 0; i < n; i++)
             jac[i * n + j] = (fd[i] - fb[i]) / d;
     }
+    return st;
+}
+
+/* the iteration's Jacobian at (tb, x) around fb = f(tb, x): increments sqrt(eps) */
+static void fd_jacobian(imp_step *c, real_t tb, const real_t *fb)
+{
+    rt_status st = rti_fd_jacobian(c->f, tb, c->x, c->n, fb, rt_sqrt(RT_EPS),
+                                   c->w->k[IMP_BUF_D], c->w->imp->jac);
+    if (c->rhs_st == RT_OK)
+        c->rhs_st = st;
 }
 
 /* factors M = I - hg J from the stored J; a singular M is completed at the pivot

@@ -48,18 +48,10 @@ static rt_status refresh(const rt_rhs *f, real_t t, real_t h, real_t *x, uint16_
                          const rt_iwork *w, const real_t *f0)
 {
     rt_implicit_ws *ws = w->imp;
-    real_t *fd = w->k[2], *a = w->tm, *scratch = n ? w->tm + (size_t)n * n : w->tm;
-    rt_status st = RT_OK;
-    for (uint16_t j = 0; j < n; j++) {
-        real_t xj = x[j], ax = rt_fabs(xj);
-        x[j] = xj + RT_TRANSITION_INC * (ax > 1 ? ax : 1);
-        real_t d = x[j] - xj;
-        rt_status sj = f->eval(f->ctx, t, fd);
-        st = st == RT_OK ? sj : st;
-        x[j] = xj;
-        for (uint16_t i = 0; i < n; i++)
-            a[i * n + j] = h * ((fd[i] - f0[i]) / d);
-    }
+    real_t *a = w->tm, *scratch = n ? w->tm + (size_t)n * n : w->tm;
+    rt_status st = rti_fd_jacobian(f, t, x, n, f0, RT_TRANSITION_INC, w->k[2], a);
+    for (uint32_t i = 0; i < (uint32_t)n * n; i++) /* h J, what phi takes */
+        a[i] *= h;
     w->stats->jac_evals++;
     ws->age = 0;
     ws->valid = 0;

@@ -200,8 +200,5 @@ rt_status rti_phi12(real_t *a, uint16_t n, real_t *p1, real_t *p2, real_t *t, re
         }
     }
     /* a growing mode overflows (e^1000): no usable matrices */
-    int bad = 0;
-    for (uint32_t i = 0; i < (uint32_t)n * n; i++)
-        bad |= !rt_isfinite(p1[i]) || !rt_isfinite(p2[i]);
-    return bad ? RT_E_SINGULAR : RT_OK;
+    return rt_all_finite(p1, n * n) && rt_all_finite(p2, n * n) ? RT_OK : RT_E_SINGULAR;
 }

@@ -155,6 +155,12 @@ static inline uint16_t rti_block_run(const rt_sim *sim, uint8_t s, uint16_t *k, 
 }
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
+/* Forward-difference Jacobian of f at (t, x) around fb = f(t, x) into the n x n row-major
+   jac, column by column: x_j moves in place by inc max(1, |x_j|), re-measured as the
+   representable difference, and is restored bit for bit; fd is n scratch. Returns the
+   first error of f, or RT_OK (rt/integ_implicit.c; the transition method's too). */
+rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, const real_t *fb,
+                          real_t inc, real_t *fd, real_t *jac);
 
 typedef struct rti_rhs_ctx {
     const rt_scene *sc;

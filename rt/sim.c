@@ -18,19 +18,24 @@ static int fresh(const rt_sim *sim, uint8_t s)
     return sim->state.set_tick[s] == sim->state.tick;
 }
 
+/* are the outputs of blocks [b, e) finite (one range of y) */
+static int outputs_finite(const rt_sim *sim, uint16_t b, uint16_t e)
+{
+    const uint16_t *off = sim->plan.y_off;
+    return rt_all_finite(sim->state.y + off[b], off[e] - off[b]);
+}
+
 /* the first block of a set with new outputs whose outputs are not finite, or -1 (held
    outputs were checked when they were new) */
 static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 {
     int first = -1, bad = 0;
-    const real_t *y = sim->state.y;
     for (uint8_t s = 0; s < sc->nsets; s++) { /* at once first; by block when one is not */
         if (!fresh(sim, s))
             continue;
         for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
             uint16_t b = rti_block_run(sim, s, &k, &e);
-            for (uint16_t j = sim->plan.y_off[b], j1 = sim->plan.y_off[e]; j < j1; j++)
-                bad |= !rt_isfinite(y[j]);
+            bad |= !outputs_finite(sim, b, e);
         }
     }
     if (!bad)
@@ -39,13 +44,10 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
         if (!fresh(sim, s))
             continue;
         for (unsigned i = sim->plan.blk_of[s], i1 = sim->plan.blk_of[s + 1]; i < i1; i++) {
-            unsigned b = sim->plan.set_blk[i];
+            uint16_t b = sim->plan.set_blk[i];
             if (first >= 0 && b > (unsigned)first)
                 break; /* blocks ascend: an earlier set's find stands */
-            bad = 0;
-            for (unsigned j = sim->plan.y_off[b], j1 = sim->plan.y_off[b + 1]; j < j1; j++)
-                bad |= !rt_isfinite(y[j]);
-            if (bad) {
+            if (!outputs_finite(sim, b, (uint16_t)(b + 1))) {
                 first = (int)b;
                 break;
             }

@@ -274,10 +274,7 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
 static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const real_t *x = sim->state.x;
-    int bad = 0;
-    for (unsigned i = sim->plan.set_x[s], i1 = sim->plan.set_x[s + 1]; i < i1; i++)
-        bad |= !rt_isfinite(x[i]);
-    if (!bad)
+    if (rt_all_finite(x + sim->plan.set_x[s], sim->plan.set_x[s + 1] - sim->plan.set_x[s]))
         return -1;
     for (unsigned k = sim->plan.blk_of[s], k1 = sim->plan.blk_of[s + 1]; k < k1; k++) {
         uint16_t b = sim->plan.set_blk[k];
