@@ -224,6 +224,10 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
     sim->state.bg_busy = 1;
     sim->state.bg_due = sim->state.set_tick[s] + sc->sets[s].ratio;
+    /* its inputs from the faster sets against their prediction, from the tick's history
+       (the context's copy is the same, rather than the other way round) */
+    rti_xset_predict(sc, sim, s, (real_t)sim->state.set_tick[s] * sc->dt,
+                     sc->dt * (real_t)sc->sets[s].ratio);
     if (!sim->bg) {
         move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 0);
         run_step(sc, sim, s);

@@ -41,6 +41,7 @@
     X(RT_E_STOPPED, 2, "run stopped at a missed deadline (--overrun stop)")       \
     X(RT_E_ACCURACY, 1, "local error estimate above the set's accuracy")         \
     X(RT_E_LOST, 2, "local error estimate above RT_ERR_LOST: no correct digit left") \
+    X(RT_E_COUPLING, 2, "input extrapolated from a faster set with no correct digit (above RT_XSET_LOST)") \
     X(RT_E_OVERRUN, 1, "tick deadline overrun")                                  \
     X(RT_E_DONE, 0, "end time reached")
 
@@ -61,7 +62,7 @@ typedef enum {
     X(RT_CNT_SINGULAR, "singular", "singular matrix met")                        \
     X(RT_CNT_DEGRADED, "degraded", "step accepted with residual above tolerance")\
     X(RT_CNT_SUBSTEP, "substep", "implicit step that converged only in substeps") \
-    X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy") \
+    X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy (or an input it extrapolated from a faster set lost every digit)") \
     X(RT_CNT_INVARIANT, "invariant", "step ending further below a guard root (a floor) without a located crossing: the model tunnels") \
     X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
     X(RT_CNT_OVERRUN, "overrun", "tick finished after its deadline")             \
@@ -605,6 +606,12 @@ typedef struct rt_plan {
     uint16_t set_xout[RT_MAX_SETS];  /* the set's highest output read by other sets, plus
                                         one (0: none): its history push stops there */
     int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
+#if RT_MAX_XPRED > 0
+    /* inputs a set reads from a faster set, whose prediction is checked (rti_xset_predict),
+       and the block each belongs to */
+    uint16_t xpred_in[RT_MAX_XPRED], xpred_blk[RT_MAX_XPRED];
+    uint16_t nxpred;
+#endif
 
     uint64_t n_ticks;                /* ticks to reach t_end */
 } rt_plan;
@@ -633,6 +640,11 @@ typedef struct rt_state {
        extrapolation showed at the newest point, minus that point; faded out over the next
        macro step, so the value read stays continuous (rt/xset.c) */
     real_t bg_jump[RT_MAX_HIST_Y];
+#if RT_MAX_XPRED > 0
+    /* per input of plan.xpred_in: the value its scheme gave for the end of its set's step,
+       made at the step's start (NaN: none yet); checked at the next (rti_xset_predict) */
+    real_t xpred[RT_MAX_XPRED];
+#endif
 #if RT_MAX_HELD_SIG > 0
     /* recorded (in record order), then link-exported (in export order) multibody signals
        of the sets held between steps: they change with the set's state only, so they are
@@ -667,7 +679,9 @@ typedef struct rt_stats {
     uint32_t loop_iter_max;          /* high-water mark of iterations per loop solve */
     real_t loop_residual;            /* largest residual left by a loop solve that failed */
     real_t xset_err[RT_MAX_SETS];    /* monitor: largest change of a set's cross-set
-                                        outputs against their linear extrapolation */
+                                        outputs against their linear extrapolation over
+                                        its step, and against what a slower reader's
+                                        scheme predicted over the reader's step */
     rt_istats istats[RT_MAX_SETS];   /* implicit methods' statistics per set */
     uint64_t rhs_evals[RT_MAX_SETS]; /* right-hand-side evaluations of each set (the cost
                                         measure of `modrt tune` and the benchmarks) */
@@ -838,6 +852,7 @@ typedef struct rt_sizes {
     /* multibody tables over all sets (rt_config.h, RT_MAX_MBS_*) */
     uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_ty, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
     uint16_t bg;           /* states plus outputs of the background set (RT_MAX_BG) */
+    uint16_t xpred;        /* inputs read from a faster set (RT_MAX_XPRED; may be 0) */
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

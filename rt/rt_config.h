@@ -99,6 +99,13 @@ typedef double real_t;
 #define RT_MAX_HIST_Y RT_MAX_Y
 #endif
 
+#ifndef RT_MAX_XPRED
+/* inputs a set reads from a faster set (rt/xset.c, rti_xset_predict): for each, what its
+   scheme predicted for the end of the reader's step, checked against the source's value
+   there. A per-scene build may set 0: the scene then carries no such array */
+#define RT_MAX_XPRED RT_MAX_HIST_Y
+#endif
+
 #ifndef RT_MAX_HELD_SIG
 /* recorded and link-exported multibody signals (energy, residual, reaction) of sets
    stepping over several ticks or in the background, held between their steps like
@@ -220,6 +227,15 @@ typedef double real_t;
    max_i |e_i| / (1 + |x_i|), unless the set says `accuracy (...)`; a step above it is
    counted (errest) and the status says so: it reports, the fixed schedule never changes */
 #define RT_ERR_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-2 : (real_t)1e-3)
+#endif
+#ifndef RT_XSET_LOST
+/* an input a set extrapolates over its step from a faster set, off at the step's end by
+   more than this in the same scaled measure |e| / (1 + |u|) (rti_xset_predict): the set
+   integrated an input with no correct digit, a coupling past its stability limit. Counted
+   as errest, status failed. A bound, not an accuracy: a sound coupling stays far below
+   (pendulum10_actuated: 0.008 as shipped, 0.08 with its chain at 16 ms; 26 to 195 at
+   32 ms, where it is 0.13 to 0.19 m off, docs/multirate.md) */
+#define RT_XSET_LOST ((real_t)1)
 #endif
 #ifndef RT_ERR_LOST
 /* a step whose estimate exceeds this (an error as large as the state's scale 1 + |x|)

@@ -187,6 +187,11 @@ void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t ti
 void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s);
 /* Output v of set q reconstructed at time t by the scheme. */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
+/* at the start of set s's step over [t, t + h]: its inputs from faster sets against what
+   their schemes predicted at its last step (counted as RT_E_COUPLING above its accuracy),
+   and their predictions for t + h kept. _reset: no predictions (the run's start) */
+void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
+void rti_xset_predict_reset(rt_sim *sim);
 
 /* ---- the background set (bg.c; the rest through rt_scene.bg) ---- */
 /* Reals of the background set's result (states and outputs), 0 without one. */

@@ -242,6 +242,7 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
             sim->state.hist_n[s] = 0;
             rti_xset_push(sc, sim, s, 0);
         }
+        rti_xset_predict_reset(sim);
     }
     return RT_OK;
 }
@@ -295,8 +296,10 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
         /* a set stepping over several ticks shows its outputs at this tick until its
            state reaches the next one: the step's evaluations (at its stages and its end,
            ahead of the tick) overwrite them, so they are kept aside */
-        if (ratio > 1)
+        if (ratio > 1) {
             copy_outputs(sim, s, sim->state.y, sim->work.y_held);
+            rti_xset_predict(sc, sim, s, t, sc->dt * (real_t)ratio);
+        }
         rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
         sim->state.set_tick[s] = sim->state.tick + ratio;
         if (sim->plan.set_xout[s]) {

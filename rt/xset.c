@@ -6,8 +6,39 @@
  * short history (RT_HIST points, newest first). An input from another set is never read
  * from the live output: it is reconstructed from that history at the time of the
  * evaluation, by the scheme of its connection (rt_interp). So each set's right-hand side
- * evaluates only its own blocks, and a cross-set edge is no algebraic dependency. */
+ * evaluates only its own blocks, and a cross-set edge is no algebraic dependency.
+ *
+ * Communication error: a set reading a faster one extrapolates it over its whole step
+ * (slowest first). At each step's start the value its scheme gives for the step's end is
+ * kept, and at the next start compared with the source's value there (a predictor-
+ * corrector indicator, kept in the monitor xset_err of the source). Off by more than the
+ * value's own scale (RT_XSET_LOST), the reader's step is counted like one whose own
+ * estimate lost every digit: the coupling is past its stability limit (RT_E_COUPLING). */
 #include "rti.h"
+
+/* inputs of a slower set from a faster one: their predictions are checked (xset_predict) */
+static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
+{
+#if RT_MAX_XPRED > 0
+    sim->plan.nxpred = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        uint8_t st = sc->blocks[b].set;
+        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
+            if (sim->plan.src_kind[i] != RT_SRC_XSET ||
+                sc->sets[sim->plan.src_set[i]].ratio >= sc->sets[st].ratio)
+                continue;
+            if (sim->plan.nxpred >= RT_MAX_XPRED)
+                return rti_fail(sim, RT_E_CAPACITY, "inputs read from a faster set exceed ",
+                                RTI_LIMIT(RT_MAX_XPRED), (const char *)0);
+            sim->plan.xpred_in[sim->plan.nxpred] = i;
+            sim->plan.xpred_blk[sim->plan.nxpred++] = b;
+        }
+    }
+#else
+    (void)sc, (void)sim;
+#endif
+    return RT_OK;
+}
 
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
 {
@@ -48,7 +79,7 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
             sim->plan.sched[j] = sim->plan.sched[j - 1];
         sim->plan.sched[j] = i;
     }
-    return RT_OK;
+    return collect_predicted(sc, sim);
 }
 
 /* the line through history points a and b of output v, at time t */
@@ -164,4 +195,42 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
         return sim->state.hist_y[k][v];
     }
     return extrap(sim, T, v, n, k, t, ahead, fade);
+}
+
+void rti_xset_predict_reset(rt_sim *sim)
+{
+#if RT_MAX_XPRED > 0
+    for (uint16_t k = 0; k < sim->plan.nxpred; k++)
+        sim->state.xpred[k] = (real_t)0 / (real_t)0;
+#else
+    (void)sim;
+#endif
+}
+
+void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+{
+#if RT_MAX_XPRED > 0
+    for (uint16_t k = 0; k < sim->plan.nxpred; k++) {
+        uint16_t b = sim->plan.xpred_blk[k], i = sim->plan.xpred_in[k];
+        if (sc->blocks[b].set != s)
+            continue;
+        uint16_t v = sim->plan.src[i];
+        uint8_t q = sim->plan.src_set[i];
+        real_t p = sim->state.xpred[k], y = sim->state.hist_y[0][v];
+        /* the source has a point at this step's start (its ratio divides the time since the
+           reader's last step): how far the reader's prediction of it was off */
+        if (p == p && y == y && sim->state.hist_n[q] > 0 && sim->state.hist_t[q][0] == t) {
+            real_t e = rt_fabs(y - p);
+            if (!(e <= sim->stats.xset_err[q]))
+                sim->stats.xset_err[q] = e;
+            if (!(e <= RT_XSET_LOST * (1 + rt_fabs(y)))) {
+                rti_count(sim, RT_CNT_ERREST, (int)b, RT_E_COUPLING);
+                sim->stats.errest[s]++;
+            }
+        }
+        sim->state.xpred[k] = rti_xset_value(sim, v, q, sim->plan.interp[i], t + h);
+    }
+#else
+    (void)sc, (void)sim, (void)s, (void)t, (void)h;
+#endif
 }

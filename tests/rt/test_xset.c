@@ -6,7 +6,11 @@
  * so omega = 1 - cos t exactly. Within one fast step the reconstructed input is a
  * polynomial of degree <= 2, which RK4 integrates exactly, so the error in omega is the
  * integral of the reconstruction error: order 1 for hold, 2 for linear extrapolation and
- * interpolation, 3 for Hermite. */
+ * interpolation, 3 for Hermite.
+ *
+ * The other way round (a slow set reading a fast source, which it extrapolates over its
+ * whole step): the prediction check of rti_xset_predict against the same extrapolation
+ * formed here from sin t alone. */
 #include "models.h"
 #include "testutil.h"
 
@@ -144,7 +148,111 @@ static void test_no_loop_across_sets(void)
     TH_CHECK(tu_sim.plan.nloops == 0 && tu_sim.plan.ntorn == 0);
 }
 
+/* the fast source y = amp sin(w t + ph) (ratio 1, 1 ms) read by a slow rotor (ratio m, linear
+   extrapolation, in the tick or in the background) */
+static int run_slow_reader(real_t amp, real_t w, real_t ph, uint32_t m, int bg, real_t t_end)
+{
+    static real_t p[4];
+    static const rt_conn cn[] = {{SRC, 0, ROT, 0}};
+    static rt_block bl[2];
+    static rt_set sets[2];
+    p[0] = amp, p[1] = w, p[2] = ph, p[3] = 0;
+    bl[SRC] = (rt_block){.name = "Src", .kind = &mdl_sine_kind, .p = p, .set = 0};
+    bl[ROT] = (rt_block){.name = "Rot", .kind = &mdl_rotor_kind, .set = 1};
+    sets[0] = (rt_set){.name = "fast", .method = &rt_rk4, .ratio = 1};
+    sets[1] = (rt_set){.name = "slow", .method = &rt_rk4, .ratio = m,
+                       .interp = RT_INTERP_EXTRAP, .background = (uint8_t)bg};
+    static rt_scene sc;
+    sc = (rt_scene){.name = "reader", .dt = (real_t)1e-3, .t_end = t_end, .blocks = bl,
+                    .nblocks = 2, .conns = cn, .nconns = 1, .sets = sets, .nsets = 2,
+                    .bg = bg ? &rt_bg : 0};
+    if (!tu_init(&sc))
+        return 0;
+    while (rt_tick(&sc, &tu_sim) == RT_OK)
+        ;
+    return 1;
+}
+
+/* what the slow set's extrapolation misses at each of its step starts kH after the
+   first, formed from sin t alone: from (k-1)H, the line through the source's points there
+   and 1 ms before (at t = 0 the one point, held); worst absolute miss, and the steps
+   where the miss exceeds RT_XSET_LOST (1 + |y|) */
+static double predicted_miss(double amp, double w, double ph, uint32_t m, double t_end,
+                             uint32_t *lost)
+{
+    double worst = 0;
+    *lost = 0;
+    for (uint32_t k = 1; (double)(k * m) * 1e-3 < t_end - 0.5e-3; k++) {
+        /* the times as the runtime forms them (tick count times the base tick) */
+        double t0 = (double)((real_t)((k - 1) * m) * (real_t)1e-3);
+        double tp = (double)((real_t)((k - 1) * m - 1) * (real_t)1e-3);
+        double t1 = (double)((real_t)(k * m) * (real_t)1e-3);
+        double y0 = amp * (double)rt_sin((real_t)(w * t0 + ph));
+        double slope = k == 1 ? 0 : (y0 - amp * (double)rt_sin((real_t)(w * tp + ph))) / (t0 - tp);
+        double y = amp * (double)rt_sin((real_t)(w * t1 + ph)), e = y - (y0 + (t1 - t0) * slope);
+        e = e < 0 ? -e : e;
+        worst = e > worst ? e : worst;
+        *lost += e > (double)RT_XSET_LOST * (1 + (y < 0 ? -y : y));
+    }
+    return worst;
+}
+
+/* the monitor keeps the worst miss of the slow reader's prediction as the source set's
+   xset_err (its own 1 ms extrapolation misses far less), and a sound coupling stays ok
+   (at the phase pi/2 the start's hold misses amp (1 - cos w H), no more than the lines) */
+static void test_prediction_monitor(void)
+{
+    uint32_t lost;
+    double want = predicted_miss(1, 1, 1.5707963, 40, 2.4, &lost);
+    TH_CHECK(lost == 0);
+    for (int bg = 0; bg <= 1; bg++) {
+        if (!run_slow_reader(1, 1, (real_t)1.5707963, 40, bg, (real_t)2.4))
+            return;
+        th_note(bg ? "bg monitor" : "monitor", (double)tu_sim.stats.xset_err[0]);
+        TH_NEAR((double)tu_sim.stats.xset_err[0], want, want * (RT_REAL_IS_FLOAT ? 1e-3 : 1e-9));
+        TH_CHECK(tu_sim.stats.status == RT_OK && tu_sim.stats.count[RT_CNT_ERREST] == 0);
+        TH_CHECK(tu_sim.plan.nxpred == 1);
+    }
+}
+
+/* an input extrapolated over 50 ms at 20 rad/s misses by more than its own size: every such
+   step is counted (errest, the reader's block and set) and the status is failed; the same
+   in the background, whose prediction the tick checks from the same history */
+static void test_coupling_lost(void)
+{
+    uint32_t lost;
+    predicted_miss(10, 20, 0, 50, 2.0, &lost);
+    th_note("steps lost", lost);
+    TH_CHECK(lost >= 3);
+    for (int bg = 0; bg <= 1; bg++) {
+        if (!run_slow_reader(10, 20, 0, 50, bg, (real_t)2.0))
+            return;
+        TH_CHECK(tu_sim.stats.count[RT_CNT_ERREST] == lost);
+        TH_CHECK(tu_sim.stats.errest[1] == lost && tu_sim.stats.errest[0] == 0);
+        TH_CHECK(tu_sim.stats.status == RT_E_COUPLING && rt_status_severity(RT_E_COUPLING) == 2);
+        TH_CHECK(tu_sim.stats.last_block[RT_CNT_ERREST] == ROT);
+    }
+    /* a source no faster than its reader is not extrapolated over the reader's step by
+       this rule: nothing to check */
+    static const rt_conn cn[] = {{SRC, 0, ROT, 0}};
+    static const real_t p[] = {10, 20, 0, 0};
+    const rt_block bl[] = {
+        [SRC] = {.name = "Src", .kind = &mdl_sine_kind, .p = p, .set = 0},
+        [ROT] = {.name = "Rot", .kind = &mdl_rotor_kind, .set = 1},
+    };
+    const rt_set sets[] = {
+        {.name = "a", .method = &rt_rk4, .ratio = 50},
+        {.name = "b", .method = &rt_rk4, .ratio = 50, .interp = RT_INTERP_EXTRAP},
+    };
+    rt_scene sc = {.name = "same", .dt = (real_t)1e-3, .t_end = (real_t)0.5, .blocks = bl,
+                   .nblocks = 2, .conns = cn, .nconns = 1, .sets = sets, .nsets = 2};
+    if (tu_init(&sc))
+        TH_CHECK(tu_sim.plan.nxpred == 0);
+}
+
 const th_test th_xset_tests[] = {
+    {"xset_prediction_monitor", test_prediction_monitor},
+    {"xset_coupling_lost", test_coupling_lost},
     {"xset_orders", test_orders},
     {"xset_background_orders", test_background_orders},
     {"xset_schedule", test_schedule},
