@@ -92,24 +92,37 @@ static const real_t pd_p_default[] = {
 };
 static const real_t pd_d_default[] = {0, -(real_t)RT_HALF_PI, 0};
 
+/* the blend's argument s at time t, clipped to [0, 1] */
+static real_t pd_s(const real_t *p, real_t t)
+{
+    real_t s = (t - p[2]) / p[3];
+    return s < 0 ? 0 : s > 1 ? 1 : s;
+}
+
+/* reference angle at blend argument s */
+static real_t pd_angle(const real_t *p, real_t s)
+{
+    real_t s2 = s * s, s3 = s2 * s;
+    return p[0] + (p[1] - p[0]) * s3 * (10 - 15 * s + 6 * s2);
+}
+
 /* reference angle, rate and acceleration at time t */
 static void pd_reference(const real_t *p, real_t t, real_t r[3])
 {
-    real_t T = p[3], s = (t - p[2]) / T, d = p[1] - p[0];
-    s = s < 0 ? 0 : s > 1 ? 1 : s;
-    real_t s2 = s * s, s3 = s2 * s;
-    r[0] = p[0] + d * s3 * (10 - 15 * s + 6 * s2);
+    real_t T = p[3], s = pd_s(p, t), d = p[1] - p[0];
+    real_t s2 = s * s;
+    r[0] = pd_angle(p, s);
     r[1] = d * 30 * s2 * (1 - 2 * s + s2) / T;
     r[2] = d * 60 * s * (1 - 3 * s + 2 * s2) / (T * T);
 }
 
+/* at every tick the output shows the reference angle only: its rate and acceleration,
+   two divisions, are the update's */
 static void pd_output(const rt_args *a, real_t *y)
 {
-    real_t r[3];
-    pd_reference(a->p, a->t, r);
     y[0] = a->d[0];
     y[1] = a->d[1];
-    y[2] = r[0];
+    y[2] = pd_angle(a->p, pd_s(a->p, a->t));
 }
 
 /* one sample: measure, compute the command applied from the next sample on */

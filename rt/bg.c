@@ -192,7 +192,9 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
     if (rt_status_severity(b->status) > rt_status_severity(a->status))
         a->status = b->status;
     b->status = RT_OK;
-    a->growth[s] = b->growth[s], a->unstable[s] = b->unstable[s], a->errest[s] = b->errest[s];
+    a->growth[s] = b->growth[s], a->unstable[s] = b->unstable[s];
+    /* added, not taken over: the tick counts the set's couplings lost (rti_xset_predict) */
+    a->errest[s] += b->errest[s], b->errest[s] = 0;
     a->istats[s] = b->istats[s], a->rhs_evals[s] = b->rhs_evals[s];
     a->event_iter_max = umax(a->event_iter_max, b->event_iter_max);
     a->loop_iter_max = umax(a->loop_iter_max, b->loop_iter_max);
@@ -224,10 +226,11 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
     sim->state.bg_busy = 1;
     sim->state.bg_due = sim->state.set_tick[s] + sc->sets[s].ratio;
-    /* its inputs from the faster sets against their prediction, from the tick's history
+    /* the inputs it extrapolates against their prediction, from the tick's history
        (the context's copy is the same, rather than the other way round) */
-    rti_xset_predict(sc, sim, s, (real_t)sim->state.set_tick[s] * sc->dt,
-                     sc->dt * (real_t)sc->sets[s].ratio);
+    if (sim->plan.set_flags[s] & RTI_SET_XPRED)
+        rti_xset_predict(sc, sim, s, (real_t)sim->state.set_tick[s] * sc->dt,
+                         sc->dt * (real_t)sc->sets[s].ratio);
     if (!sim->bg) {
         move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 0);
         run_step(sc, sim, s);
@@ -304,6 +307,7 @@ rt_status rt_bg_attach(const rt_scene *sc, rt_sim *sim, rt_sim *bg)
     bg->bg = 0;
     rti_zero(bg->stats.count, sizeof bg->stats.count);
     rti_zero(bg->stats.loop_hist, sizeof bg->stats.loop_hist);
+    rti_zero(bg->stats.errest, sizeof bg->stats.errest);
     bg->stats.status = RT_OK;
     sim->bg_released = sim->bg_finished = 0;
     sim->bg = bg;

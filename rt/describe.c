@@ -158,11 +158,7 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
         if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] && rt_set_nx(sim, s) > z->event_x)
             z->event_x = rt_set_nx(sim, s);
     z->seq = sim->plan.nseq;
-#if RT_MAX_XPRED > 0
-    z->xpred = sim->plan.nxpred;
-#else
-    z->xpred = 0;
-#endif
+    z->xpred = rti_xset_npred(sc, sim);
     z->loop_hist = 0;
     if (sim->plan.ntorn > 0)
         z->loop_hist = (uint16_t)((sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX) + 1);

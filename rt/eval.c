@@ -260,6 +260,13 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
         for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
             sim->plan.rhs_calls[set] = (uint16_t)(sim->plan.rhs_calls[set] +
                 ((sim->plan.seq_flags[sim->plan.set_seq[i]] & RTI_SEQ_RHS) != RTI_RHS_SKIP));
+        if (rt_set_nx(sim, set) == 0 && sim->plan.set_r[set + 1] == sim->plan.set_r[set] &&
+            sim->plan.rhs_calls[set] == 0)
+            sim->plan.set_flags[set] |= RTI_SET_STATIC;
+        if (rti_set_holds(sc, set))
+            sim->plan.set_flags[set] |= RTI_SET_HELD_SIG;
+        if (rti_xset_reads_faster(sc, sim, set))
+            sim->plan.set_flags[set] |= RTI_SET_XPRED;
     }
     return RT_OK;
 }

@@ -41,7 +41,7 @@
     X(RT_E_STOPPED, 2, "run stopped at a missed deadline (--overrun stop)")       \
     X(RT_E_ACCURACY, 1, "local error estimate above the set's accuracy")         \
     X(RT_E_LOST, 2, "local error estimate above RT_ERR_LOST: no correct digit left") \
-    X(RT_E_COUPLING, 2, "input extrapolated from a faster set with no correct digit (above RT_XSET_LOST)") \
+    X(RT_E_COUPLING, 2, "input extrapolated from another set with no correct digit (above RT_XSET_LOST)") \
     X(RT_E_OVERRUN, 1, "tick deadline overrun")                                  \
     X(RT_E_DONE, 0, "end time reached")
 
@@ -62,7 +62,7 @@ typedef enum {
     X(RT_CNT_SINGULAR, "singular", "singular matrix met")                        \
     X(RT_CNT_DEGRADED, "degraded", "step accepted with residual above tolerance")\
     X(RT_CNT_SUBSTEP, "substep", "implicit step that converged only in substeps") \
-    X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy (or an input it extrapolated from a faster set lost every digit)") \
+    X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy (or an input it extrapolated from another set lost every digit)") \
     X(RT_CNT_INVARIANT, "invariant", "step ending further below a guard root (a floor) without a located crossing: the model tunnels") \
     X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
     X(RT_CNT_OVERRUN, "overrun", "tick finished after its deadline")             \
@@ -607,8 +607,8 @@ typedef struct rt_plan {
                                         one (0: none): its history push stops there */
     int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
 #if RT_MAX_XPRED > 0
-    /* inputs a set reads from a faster set, whose prediction is checked (rti_xset_predict),
-       and the block each belongs to */
+    /* inputs a set extrapolates over its step from another set, whose prediction is
+       checked (rti_xset_predict), and the block each belongs to */
     uint16_t xpred_in[RT_MAX_XPRED], xpred_blk[RT_MAX_XPRED];
     uint16_t nxpred;
 #endif
@@ -640,10 +640,17 @@ typedef struct rt_state {
        extrapolation showed at the newest point, minus that point; faded out over the next
        macro step, so the value read stays continuous (rt/xset.c) */
     real_t bg_jump[RT_MAX_HIST_Y];
+#if RT_MAX_HELD_Y > 0
+    /* a set stepping over several ticks in the tick whose outputs another set reads: its
+       outputs at its step's end, evaluated then for its history and renewed from here when
+       its state reaches the tick (rt/sim.c) */
+    real_t y_next[RT_MAX_HELD_Y];
+#endif
 #if RT_MAX_XPRED > 0
     /* per input of plan.xpred_in: the value its scheme gave for the end of its set's step,
-       made at the step's start (NaN: none yet); checked at the next (rti_xset_predict) */
-    real_t xpred[RT_MAX_XPRED];
+       made at the step's start (NaN: none yet), checked at the next, and the largest |u|
+       the input has had at those checks, its scale (rti_xset_predict) */
+    real_t xpred[RT_MAX_XPRED], xscale[RT_MAX_XPRED];
 #endif
 #if RT_MAX_HELD_SIG > 0
     /* recorded (in record order), then link-exported (in export order) multibody signals
@@ -704,7 +711,9 @@ typedef struct rt_work {
     real_t xb[RT_MAX_EVENT_X];           /* state at the right end of an event bracket */
     real_t xs[RT_MAX_X];             /* saved state for event location */
     real_t rs[RT_MAX_ROOTS];         /* root values scratch */
+#if RT_MAX_HELD_Y > 0
     real_t y_held[RT_MAX_HELD_Y];    /* a multi-tick set's outputs during its step (sim.c) */
+#endif
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];
     rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
@@ -852,7 +861,7 @@ typedef struct rt_sizes {
     /* multibody tables over all sets (rt_config.h, RT_MAX_MBS_*) */
     uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_ty, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
     uint16_t bg;           /* states plus outputs of the background set (RT_MAX_BG) */
-    uint16_t xpred;        /* inputs read from a faster set (RT_MAX_XPRED; may be 0) */
+    uint16_t xpred;        /* inputs extrapolated from another set (RT_MAX_XPRED; may be 0) */
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

@@ -100,10 +100,11 @@ typedef double real_t;
 #endif
 
 #ifndef RT_MAX_XPRED
-/* inputs a set reads from a faster set (rt/xset.c, rti_xset_predict): for each, what its
-   scheme predicted for the end of the reader's step, checked against the source's value
-   there. A per-scene build may set 0: the scene then carries no such array */
-#define RT_MAX_XPRED RT_MAX_HIST_Y
+/* inputs a set extrapolates over its step from another set (rt/xset.c, rti_xset_predict):
+   for each, what its scheme predicted for the end of the reader's step, checked against
+   the source's value there, and the input's scale. A per-scene build may set 0 (a scene
+   with no such input; rt_init refuses one that has some) */
+#define RT_MAX_XPRED RT_MAX_U
 #endif
 
 #ifndef RT_MAX_HELD_SIG
@@ -114,8 +115,10 @@ typedef double real_t;
 #endif
 
 #ifndef RT_MAX_HELD_Y
-/* outputs kept aside while a set stepping over several ticks steps (rt/sim.c): the highest
-   output index of such a set, plus one (a scene without one needs 1) */
+/* outputs kept aside while a set stepping over several ticks steps, and its step's end
+   outputs kept for its renewal when its state reaches the tick (rt/sim.c): the highest
+   output index of such a set, plus one. A per-scene build may set 0 (no such set): the
+   scene then carries neither array */
 #define RT_MAX_HELD_Y RT_MAX_Y
 #endif
 
@@ -229,12 +232,13 @@ typedef double real_t;
 #define RT_ERR_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-2 : (real_t)1e-3)
 #endif
 #ifndef RT_XSET_LOST
-/* an input a set extrapolates over its step from a faster set, off at the step's end by
-   more than this in the same scaled measure |e| / (1 + |u|) (rti_xset_predict): the set
-   integrated an input with no correct digit, a coupling past its stability limit. Counted
-   as errest, status failed. A bound, not an accuracy: a sound coupling stays far below
-   (pendulum10_actuated: 0.008 as shipped, 0.08 with its chain at 16 ms; 26 to 195 at
-   32 ms, where it is 0.13 to 0.19 m off, docs/multirate.md) */
+/* an input a set extrapolates over its step from another set, off at the step's end by
+   more than this times 1 + the largest |u| it has had (rti_xset_predict): the set
+   integrated an input with no correct digit of the signal's range, a coupling past its
+   stability limit. Counted as errest, status failed. A bound, not an accuracy: a sound
+   coupling stays far below (pendulum10_actuated: 0.008 as shipped, 0.07 to 0.08 with its
+   chain at 16 ms; 2.6 to 47 at 32 ms, where it is 0.13 to 0.19 m off or diverges,
+   docs/multirate.md) */
 #define RT_XSET_LOST ((real_t)1)
 #endif
 #ifndef RT_ERR_LOST

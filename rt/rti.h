@@ -133,8 +133,17 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
    sampled of an autonomous kind, no input from another set's history and no torn one:
    an actual loop's solver carries its estimates from one evaluation to the next), and
    it is linear in its state (each block not sampled of a linear kind, no multibody
-   block, no torn input: the transition method's condition, checked at init) */
-enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2, RTI_SET_LINEAR = 4 };
+   block, no torn input: the transition method's condition, checked at init), and it has
+   nothing to integrate (no continuous state, no root, no entry its right-hand side calls:
+   a set of sampled blocks, such as a controller in a set of its own, whose step would
+   only evaluate nothing at its stages; rt_tick skips it), and it holds recorded or exported
+   multibody signals between its steps (rti_set_holds: its refresh walks the records for
+   them, a walk the other sets skip), and it extrapolates another set (rti_xset_predict checks
+   its predictions) */
+enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2, RTI_SET_LINEAR = 4, RTI_SET_STATIC = 8,
+       RTI_SET_HELD_SIG = 16, RTI_SET_XPRED = 32 };
+/* does set s hold a recorded or exported signal between its steps (rt/sim.c) */
+int rti_set_holds(const rt_scene *sc, uint8_t s);
 /* The first block of set s that keeps it from being linear in its state, or -1. */
 int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t s);
 /* what a right-hand side does with an entry of the sequence (plan.seq_flags, the bits
@@ -187,11 +196,15 @@ void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t ti
 void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s);
 /* Output v of set q reconstructed at time t by the scheme. */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
-/* at the start of set s's step over [t, t + h]: its inputs from faster sets against what
-   their schemes predicted at its last step (counted as RT_E_COUPLING above its accuracy),
-   and their predictions for t + h kept. _reset: no predictions (the run's start) */
+/* at the start of set s's step over [t, t + h]: the inputs it extrapolates from other sets
+   against what their schemes predicted at its last step (RT_E_COUPLING past
+   RT_XSET_LOST), and their predictions for t + h kept. _reset: none (the run's start) */
 void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
 void rti_xset_predict_reset(rt_sim *sim);
+/* does set s extrapolate another set over its step (its predictions are checked);
+   _npred: the inputs that do, of every set (RT_MAX_XPRED) */
+int rti_xset_reads_faster(const rt_scene *sc, const rt_sim *sim, uint8_t s);
+uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim);
 
 /* ---- the background set (bg.c; the rest through rt_scene.bg) ---- */
 /* Reals of the background set's result (states and outputs), 0 without one. */

@@ -82,6 +82,17 @@ static uint16_t count_held(const rt_scene *sc, const rt_rec *r, uint16_t n)
     return k;
 }
 
+int rti_set_holds(const rt_scene *sc, uint8_t s)
+{
+    const rt_rec *lists[2] = {sc->recs, sc->link ? sc->link->exp : 0};
+    uint16_t n[2] = {sc->nrecs, sc->link ? sc->link->nexp : 0};
+    for (int l = 0; l < 2; l++)
+        for (uint16_t i = 0; i < n[l]; i++)
+            if (held_sig(sc, &lists[l][i]) && sc->blocks[lists[l][i].block].set == s)
+                return 1;
+    return 0;
+}
+
 uint16_t rti_held_sigs(const rt_scene *sc)
 {
     return (uint16_t)(count_held(sc, sc->recs, sc->nrecs) +
@@ -179,7 +190,7 @@ static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int renew)
     rti_outputs(sc, sim, (rti_at){ts, s, mode});
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s])
         rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
-    if (held_set(&sc->sets[s]))
+    if (sim->plan.set_flags[s] & RTI_SET_HELD_SIG)
         rti_hold_signals(sc, sim, s);
 }
 
@@ -191,6 +202,7 @@ static int refreshed(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     return sim->state.tick == 0 || (!sc->sets[s].background && fresh(sim, s));
 }
 
+#if RT_MAX_HELD_Y > 0
 /* copies the outputs of set s's blocks from one output vector to another */
 static void copy_outputs(const rt_sim *sim, uint8_t s, const real_t *from,
                          real_t *to)
@@ -201,6 +213,43 @@ static void copy_outputs(const rt_sim *sim, uint8_t s, const real_t *from,
             to[j] = from[j];
     }
 }
+
+/* set s's outputs: next := y (its step's end), y := held (what it shows until then) */
+static void keep_next(rt_sim *sim, uint8_t s)
+{
+    real_t *y = sim->state.y, *next = sim->state.y_next;
+    const real_t *held = sim->work.y_held;
+    for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
+        uint16_t b = rti_block_run(sim, s, &k, &e);
+        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[e]; j++)
+            next[j] = y[j], y[j] = held[j];
+    }
+}
+
+/* set s's outputs from its step's end (state.y_next) back into y, but a sampled block's:
+   its step's end does not evaluate them, and the link may have written one since (an
+   import, rt_link_apply) */
+static void take_next(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (sc->blocks[b].kind->type == RT_KIND_DSS)
+            continue;
+        for (uint16_t j = sim->plan.y_off[b]; j < sim->plan.y_off[b + 1]; j++)
+            sim->state.y[j] = sim->state.y_next[j];
+    }
+}
+
+/* does set s, reaching the tick now, renew its outputs from its step's end (state.y_next)
+   rather than evaluate them: it steps over several ticks in the tick, other sets read it
+   (so its step's end evaluated them), and no parameter of it changed since (imp_stale) */
+static int renews_later(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    return sc->sets[s].ratio > 1 && !sc->sets[s].background && sim->plan.set_xout[s] &&
+           !sim->state.imp_stale[s] && sim->state.tick > 0;
+}
+#endif
+
 
 /* the highest output index of a set the tick steps over several ticks (not in the
    background), plus one: what y_held must hold (RT_MAX_HELD_Y) */
@@ -215,19 +264,29 @@ uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim)
     return top;
 }
 
-/* rt_refresh; renew: a bit per set whose outputs its step's end evaluated at this time */
-static void refresh(const rt_scene *sc, rt_sim *sim, uint32_t renew)
+/* rt_refresh; renew: a bit per set whose outputs its step's end evaluated at this time;
+   in_tick: rt_tick's (rt_refresh evaluates every set in full) */
+static void refresh(const rt_scene *sc, rt_sim *sim, uint32_t renew, int in_tick)
 {
     for (uint8_t i = 0; i < sc->nsets; i++) {
         uint8_t s = sim->plan.sched[i];
-        if (refreshed(sc, sim, s))
-            refresh_set(sc, sim, s, ((renew >> s) & 1u) != 0);
+        if (!refreshed(sc, sim, s))
+            continue;
+#if RT_MAX_HELD_Y > 0
+        if (in_tick && renews_later(sc, sim, s)) {
+            take_next(sc, sim, s);
+            renew |= 1u << s;
+        }
+#else
+        (void)in_tick; /* no set steps over several ticks in the tick */
+#endif
+        refresh_set(sc, sim, s, ((renew >> s) & 1u) != 0);
     }
 }
 
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
-    refresh(sc, sim, 0);
+    refresh(sc, sim, 0, 0);
     /* before the first tick the history starts afresh (parameters may have changed), and
        the sets are refreshed once more so each reads the others' initial outputs rather
        than an empty history */
@@ -296,27 +355,40 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
         /* a set stepping over several ticks shows its outputs at this tick until its
            state reaches the next one: the step's evaluations (at its stages and its end,
            ahead of the tick) overwrite them, so they are kept aside */
-        if (ratio > 1) {
+#if RT_MAX_HELD_Y > 0
+        if (ratio > 1)
             copy_outputs(sim, s, sim->state.y, sim->work.y_held);
+#endif
+        if (sim->plan.set_flags[s] & RTI_SET_XPRED)
             rti_xset_predict(sc, sim, s, t, sc->dt * (real_t)ratio);
-        }
-        rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
+        if (!(sim->plan.set_flags[s] & RTI_SET_STATIC))
+            rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
+        else /* nothing to integrate; a parameter change is taken (renews_later) */
+            sim->state.imp_stale[s] = 0;
         sim->state.set_tick[s] = sim->state.tick + ratio;
         if (sim->plan.set_xout[s]) {
             real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
             rti_outputs(sc, sim, (rti_at){ts, s, RTI_IN_STEP});
             rti_xset_push(sc, sim, s, ts);
-            renew |= (uint32_t)(ratio == 1) << s; /* y holds them until the refresh */
+            /* y holds them until the refresh; a set over several ticks keeps them in
+               y_next until its state reaches the tick (renews_later) */
+            renew |= (uint32_t)(ratio == 1) << s;
         }
-        if (ratio > 1)
-            copy_outputs(sim, s, sim->work.y_held, sim->state.y);
+#if RT_MAX_HELD_Y > 0
+        if (ratio > 1) {
+            if (sim->plan.set_xout[s])
+                keep_next(sim, s);
+            else
+                copy_outputs(sim, s, sim->work.y_held, sim->state.y);
+        }
+#endif
     }
     sim->state.tick++;
     /* the background step due at the new time: before the other sets read its history */
     if (sc->bg)
         sc->bg->publish(sc, sim);
     /* only the sets whose state reached the new tick are evaluated (and checked) */
-    refresh(sc, sim, renew);
+    refresh(sc, sim, renew, 1);
     int bad = nonfinite_output(sc, sim);
     if (bad >= 0)
         rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);

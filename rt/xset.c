@@ -8,34 +8,56 @@
  * evaluation, by the scheme of its connection (rt_interp). So each set's right-hand side
  * evaluates only its own blocks, and a cross-set edge is no algebraic dependency.
  *
- * Communication error: a set reading a faster one extrapolates it over its whole step
- * (slowest first). At each step's start the value its scheme gives for the step's end is
- * kept, and at the next start compared with the source's value there (a predictor-
- * corrector indicator, kept in the monitor xset_err of the source). Off by more than the
- * value's own scale (RT_XSET_LOST), the reader's step is counted like one whose own
- * estimate lost every digit: the coupling is past its stability limit (RT_E_COUPLING). */
+ * Communication error: a set reading a faster one (or one of its own rate that steps after
+ * it, or the background set) extrapolates it over its whole step. At each step's start
+ * the value its scheme gives for the step's end is kept, and at the next start compared
+ * with the source's point there (a predictor-corrector indicator, kept in the monitor
+ * xset_err of the source). Off by more than the input's range (RT_XSET_LOST), the input
+ * is counted like a step whose own estimate lost every digit: the coupling is past its
+ * stability limit (RT_E_COUPLING). */
 #include "rti.h"
 
-/* inputs of a slower set from a faster one: their predictions are checked (xset_predict) */
+/* does input i, of a block of set st, extrapolate its source over st's step: a source
+   faster than st, or of st's ratio and behind it (the background set and any set it
+   reads or that reads it: rt/bg.c; a set of the tick that steps after st) */
+static int extrapolated(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint8_t st)
+{
+    if (sim->plan.src_kind[i] != RT_SRC_XSET)
+        return 0;
+    uint8_t q = sim->plan.src_set[i];
+    if (sc->sets[q].ratio != sc->sets[st].ratio)
+        return sc->sets[q].ratio < sc->sets[st].ratio;
+    if (sc->sets[q].background || sc->sets[st].background)
+        return 1;
+    for (uint8_t k = 0; k < sc->nsets; k++) /* which of the two steps first */
+        if (sim->plan.sched[k] == q || sim->plan.sched[k] == st)
+            return sim->plan.sched[k] == st;
+    return 0;
+}
+
+uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim)
+{
+    uint16_t n = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++)
+            n = (uint16_t)(n + extrapolated(sc, sim, i, sc->blocks[b].set));
+    return n;
+}
+
+/* the extrapolated inputs, whose predictions are checked (rti_xset_predict) */
 static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
 {
+    if (rti_xset_npred(sc, sim) > RT_MAX_XPRED)
+        return rti_fail(sim, RT_E_CAPACITY, "inputs extrapolated from another set exceed ",
+                        RTI_LIMIT(RT_MAX_XPRED), (const char *)0);
 #if RT_MAX_XPRED > 0
     sim->plan.nxpred = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        uint8_t st = sc->blocks[b].set;
-        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
-            if (sim->plan.src_kind[i] != RT_SRC_XSET ||
-                sc->sets[sim->plan.src_set[i]].ratio >= sc->sets[st].ratio)
-                continue;
-            if (sim->plan.nxpred >= RT_MAX_XPRED)
-                return rti_fail(sim, RT_E_CAPACITY, "inputs read from a faster set exceed ",
-                                RTI_LIMIT(RT_MAX_XPRED), (const char *)0);
-            sim->plan.xpred_in[sim->plan.nxpred] = i;
-            sim->plan.xpred_blk[sim->plan.nxpred++] = b;
-        }
-    }
-#else
-    (void)sc, (void)sim;
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++)
+            if (extrapolated(sc, sim, i, sc->blocks[b].set)) {
+                sim->plan.xpred_in[sim->plan.nxpred] = i;
+                sim->plan.xpred_blk[sim->plan.nxpred++] = b;
+            }
 #endif
     return RT_OK;
 }
@@ -158,6 +180,13 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
 {
     const real_t *T = sim->state.hist_t[q];
     int n = sim->state.hist_n[q], k = 0;
+    /* the common case first: a slower source has stepped past t, which lies between its
+       two newest points, and the scheme interpolates (what the general path below gives
+       there: k = 1, a bracket, never ahead) */
+    if (n >= 2 && T[1] <= t && t < T[0] &&
+        (scheme == RT_INTERP_LINEAR || scheme == RT_INTERP_HERMITE || scheme == RT_INTERP_QUAD))
+        return n == RT_HIST && scheme != RT_INTERP_LINEAR ? parabola(sim, T, v, t)
+                                                          : line(sim, T, v, 0, 1, t);
     /* the newest point at or before t (the source may have stepped past t already) */
     while (k + 1 < n && T[k] > t)
         k++;
@@ -197,11 +226,23 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
     return extrap(sim, T, v, n, k, t, ahead, fade);
 }
 
+int rti_xset_reads_faster(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+#if RT_MAX_XPRED > 0
+    for (uint16_t k = 0; k < sim->plan.nxpred; k++)
+        if (sc->blocks[sim->plan.xpred_blk[k]].set == s)
+            return 1;
+#else
+    (void)sc, (void)sim, (void)s;
+#endif
+    return 0;
+}
+
 void rti_xset_predict_reset(rt_sim *sim)
 {
 #if RT_MAX_XPRED > 0
     for (uint16_t k = 0; k < sim->plan.nxpred; k++)
-        sim->state.xpred[k] = (real_t)0 / (real_t)0;
+        sim->state.xpred[k] = (real_t)0 / (real_t)0, sim->state.xscale[k] = 0;
 #else
     (void)sim;
 #endif
@@ -217,15 +258,19 @@ void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
         uint16_t v = sim->plan.src[i];
         uint8_t q = sim->plan.src_set[i];
         real_t p = sim->state.xpred[k], y = sim->state.hist_y[0][v];
-        /* the source has a point at this step's start (its ratio divides the time since the
-           reader's last step): how far the reader's prediction of it was off */
-        if (p == p && y == y && sim->state.hist_n[q] > 0 && sim->state.hist_t[q][0] == t) {
-            real_t e = rt_fabs(y - p);
-            if (!(e <= sim->stats.xset_err[q]))
-                sim->stats.xset_err[q] = e;
-            if (!(e <= RT_XSET_LOST * (1 + rt_fabs(y)))) {
-                rti_count(sim, RT_CNT_ERREST, (int)b, RT_E_COUPLING);
-                sim->stats.errest[s]++;
+        /* where the source has a point at this step's start (at every common multiple of
+           the two sets' steps): how far the prediction made at the last start was off,
+           against the largest size the input has had there */
+        if (rt_isfinite(y) && sim->state.hist_n[q] > 0 && sim->state.hist_t[q][0] == t) {
+            real_t e = rt_fabs(y - p), a = rt_fabs(y);
+            sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
+            if (p == p && e == e) {
+                if (!(e <= sim->stats.xset_err[q]))
+                    sim->stats.xset_err[q] = e;
+                if (!(e <= RT_XSET_LOST * (1 + sim->state.xscale[k]))) {
+                    rti_count(sim, RT_CNT_ERREST, (int)b, RT_E_COUPLING);
+                    sim->stats.errest[s]++;
+                }
             }
         }
         sim->state.xpred[k] = rti_xset_value(sim, v, q, sim->plan.interp[i], t + h);

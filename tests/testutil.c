@@ -1,7 +1,7 @@
 /* testutil.c - helpers shared by the tests (see testutil.h). */
 #include "testutil.h"
 
-rt_sim tu_sim;
+rt_sim tu_sim, tu_spare;
 
 int tu_init(const rt_scene *sc)
 {

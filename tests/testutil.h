@@ -6,8 +6,10 @@
 #include "harness.h"
 #include "rt.h"
 
-/* one simulator for all tests (large: it holds every static limit) */
-extern rt_sim tu_sim;
+/* one simulator for all tests (large: it holds every static limit), and a second one a
+   test may use for anything (a copy, a background context): the cross targets' RAM
+   holds few */
+extern rt_sim tu_sim, tu_spare;
 
 /* Initialises sc into tu_sim and checks it returned RT_OK. */
 int tu_init(const rt_scene *sc);

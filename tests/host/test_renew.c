@@ -1,7 +1,8 @@
 /* test_renew.c - the tick's renewal of a set's outputs (rt_tick: only the entries that may
  * differ from its step's end evaluation are called again, RTI_RENEW) against a full
  * evaluation: after every tick of every library scene, and of three scenes built for the
- * renewal's conditions, the outputs must be the bits that rt_refresh, which evaluates
+ * renewal's conditions (and sets stepping over several ticks), the outputs must be the
+ * bits that rt_refresh, which evaluates
  * every entry of every set whose state is at the tick, gives (an actual loop's outputs
  * within its tolerance: its solver re-solves from a new warm start). */
 #include "../../models/models.h"
@@ -13,9 +14,19 @@
 static real_t before[RT_MAX_Y];
 static uint8_t in_loop[RT_MAX_BLOCKS];
 
+/* called before tick k (a parameter change), or none */
+typedef void (*renew_hook)(const rt_scene *sc, unsigned k);
+
+/* renewed by rt_tick: a set of ratio 1, or stepping over several ticks in the tick, that
+   other sets read (its step's end evaluated its outputs) */
+static int renewed_set(const rt_scene *sc, uint8_t s)
+{
+    return !sc->sets[s].background && tu_sim.plan.set_xout[s];
+}
+
 /* the outputs of one scene after each tick, renewed and then evaluated in full: the
    number of outputs that differed; *left: entries of renewed sets a renewal leaves out */
-static unsigned mismatches(const rt_scene *sc, unsigned *left)
+static unsigned mismatches_hook(const rt_scene *sc, unsigned *left, renew_hook hook)
 {
     unsigned bad = 0;
     if (!tu_init(sc)) {
@@ -29,6 +40,8 @@ static unsigned mismatches(const rt_scene *sc, unsigned *left)
             in_loop[tu_sim.plan.loop_blocks[tu_sim.plan.loops[l].first + i]] = 1;
     uint16_t ny = tu_sim.plan.y_off[sc->nblocks];
     for (unsigned k = 0; k < RENEW_TICKS; k++) {
+        if (hook)
+            hook(sc, k);
         rt_status st = rt_tick(sc, &tu_sim);
         for (uint16_t j = 0; j < ny; j++)
             before[j] = tu_sim.state.y[j];
@@ -44,12 +57,17 @@ static unsigned mismatches(const rt_scene *sc, unsigned *left)
             break;
     }
     for (uint8_t s = 0; s < sc->nsets; s++) {
-        if (sc->sets[s].ratio != 1 || sc->sets[s].background || !tu_sim.plan.set_xout[s])
-            continue; /* not renewed */
+        if (!renewed_set(sc, s))
+            continue;
         for (uint16_t i = tu_sim.plan.seq_of[s]; i < tu_sim.plan.seq_of[s + 1]; i++)
             *left += !(tu_sim.plan.seq_flags[tu_sim.plan.set_seq[i]] & RTI_SEQ_RENEW);
     }
     return bad;
+}
+
+static unsigned mismatches(const rt_scene *sc, unsigned *left)
+{
+    return mismatches_hook(sc, left, 0);
 }
 
 /* another set's history: Gain (set a, stepping first) reads the oscillator of set b,
@@ -104,6 +122,134 @@ static const rt_scene loop_scene = {.name = "loop", .dt = (real_t)0.01, .t_end =
                                     .nconns = 4, .sets = two_sets, .nsets = 2,
                                     .loop_solver = &rt_broyden};
 
+/* sets stepping over several ticks in the tick (rt_tick keeps their step's end outputs
+   in state.y_next and renews from them when their state reaches the tick): set b (every
+   3 ticks, stepping first) holds Osc, read by Gain of set a (every tick), and Gain3,
+   which reads Gain's history, so its renewal must call Gain3; Sine (b) is read by set
+   a's Gain4: its amplitude changes between b's step and the tick its state reaches,
+   so that tick must evaluate b in full (renew_amp) */
+static const real_t sine_p[] = {1, 3, 0, 0};
+static const rt_block multi_blocks[] = {
+    {.name = "Gain", .kind = &mdl_gain_kind, .set = 0},
+    {.name = "Osc", .kind = &mdl_oscillator_kind, .set = 1},
+    {.name = "Gain3", .kind = &mdl_gain_kind, .set = 1},
+    {.name = "Sine", .kind = &mdl_sine_kind, .p = sine_p, .set = 1},
+    {.name = "Gain4", .kind = &mdl_gain_kind, .set = 0},
+    {.name = "Lag", .kind = &mdl_pt1_kind, .set = 1},
+};
+static const rt_conn multi_conns[] = {{1, 0, 0, 0}, {0, 0, 2, 0}, {3, 0, 4, 0}, {2, 0, 5, 0}};
+static const rt_set multi_sets[] = {
+    {.name = "a", .method = &rt_rk4, .ratio = 1},
+    {.name = "b", .method = &rt_rk4, .ratio = 3},
+};
+static const rt_scene multi_scene = {.name = "multi", .dt = (real_t)0.01, .t_end = 40,
+                                     .blocks = multi_blocks, .nblocks = 6,
+                                     .conns = multi_conns, .nconns = 4, .sets = multi_sets,
+                                     .nsets = 2};
+
+static void renew_amp(const rt_scene *sc, unsigned k)
+{
+    if (k % 3 == 1) /* after b's step, before its state reaches the tick */
+        TH_CHECK(rt_set_param(sc, &tu_sim, "Sine", "amp", (real_t)(1 + k % 7)) == RT_OK);
+}
+
+/* the renewal of a multi-tick set against its full evaluation (the tick's path when a
+   parameter of the set changed, imp_stale), run side by side: set b (every 2 ticks) holds
+   Osc, read by set a, and a PI sampled every 4 ticks whose output the test writes between
+   ticks as the link writes an import (rt_link_apply: d and y), read by GainI (b) and
+   GainH (a). The renewal must not put the PI's output from b's step's end back */
+static const rt_block mdss_blocks[] = {
+    {.name = "Osc", .kind = &mdl_oscillator_kind, .set = 1},
+    {.name = "Pi", .kind = &mdl_pi_kind, .p = pi_p, .set = 1, .ts = (real_t)0.04},
+    {.name = "GainI", .kind = &mdl_gain_kind, .set = 1},
+    {.name = "GainH", .kind = &mdl_gain_kind, .set = 0},
+    {.name = "Lag", .kind = &mdl_pt1_kind, .set = 0},
+};
+static const rt_conn mdss_conns[] = {{0, 0, 1, 0}, {1, 0, 2, 0}, {1, 0, 3, 0}, {0, 0, 4, 0}};
+static const rt_set mdss_sets[] = {
+    {.name = "a", .method = &rt_rk4, .ratio = 1},
+    {.name = "b", .method = &rt_rk4, .ratio = 2},
+};
+static const rt_scene mdss_scene = {.name = "mdss", .dt = (real_t)0.01, .t_end = 40,
+                                    .blocks = mdss_blocks, .nblocks = 5,
+                                    .conns = mdss_conns, .nconns = 4,
+                                    .defaults = held_defaults, .ndefaults = 1,
+                                    .sets = mdss_sets, .nsets = 2};
+static rt_sim full_sim;
+
+/* what rt_link_apply does to an import: the PI's discrete state and output := v */
+static void write_pi(rt_sim *sim, real_t v)
+{
+    sim->state.d[sim->plan.d_off[1]] = v;
+    sim->state.y[sim->plan.y_off[1]] = v;
+}
+
+static void test_renew_multi_vs_full(void)
+{
+    if (!tu_init(&mdss_scene) || rt_init(&mdss_scene, &full_sim) != RT_OK)
+        return;
+    TH_CHECK(tu_sim.plan.set_xout[1] > 0); /* b is read: it is renewed */
+    unsigned bad = 0;
+    uint16_t ny = tu_sim.plan.y_off[mdss_scene.nblocks];
+    for (unsigned k = 0; k < RENEW_TICKS; k++) {
+        if (k % 4 == 1) { /* mid-step of b, between the PI's samples */
+            write_pi(&tu_sim, (real_t)k);
+            write_pi(&full_sim, (real_t)k);
+        }
+        full_sim.state.imp_stale[1] = 1; /* its full evaluation */
+        rt_tick(&mdss_scene, &tu_sim);
+        rt_tick(&mdss_scene, &full_sim);
+        for (uint16_t j = 0; j < ny; j++)
+            bad += !(tu_sim.state.y[j] == full_sim.state.y[j] ||
+                     (tu_sim.state.y[j] != tu_sim.state.y[j] &&
+                      full_sim.state.y[j] != full_sim.state.y[j]));
+    }
+    TH_CHECK(bad == 0);
+}
+
+/* a set with nothing to integrate (the PI sampled alone, as a controller in a set of
+   its own) is not stepped: the same bits at every tick as with the PI in set a, and no
+   right-hand side evaluated for it */
+static const rt_block alone_blocks[] = {
+    {.name = "Osc", .kind = &mdl_oscillator_kind, .set = 1},
+    {.name = "Pi", .kind = &mdl_pi_kind, .p = pi_p, .set = 0, .ts = (real_t)0.01},
+    {.name = "Gain", .kind = &mdl_gain_kind, .set = 2},
+    {.name = "Lag", .kind = &mdl_pt1_kind, .set = 2},
+    {.name = "Lag2", .kind = &mdl_pt1_kind, .set = 1},
+};
+/* (the PI's set first, as set a is in held_scene: a set's sampled outputs are refreshed
+   with its set, in schedule order, and a later set's throughput reads them then) */
+static const rt_set three_sets[] = {
+    {.name = "pi", .method = &rt_rk4, .ratio = 1},
+    {.name = "a", .method = &rt_rk4, .ratio = 1},
+    {.name = "b", .method = &rt_rk4, .ratio = 1},
+};
+static const rt_scene alone_scene = {.name = "alone", .dt = (real_t)0.01, .t_end = 40,
+                                     .blocks = alone_blocks, .nblocks = 5,
+                                     .conns = held_conns, .nconns = 4,
+                                     .defaults = held_defaults, .ndefaults = 1,
+                                     .sets = three_sets, .nsets = 3};
+static rt_sim alone_sim;
+
+static void test_static_set(void)
+{
+    TH_CHECK(rt_init(&alone_scene, &alone_sim) == RT_OK);
+    TH_CHECK(alone_sim.plan.set_flags[0] & RTI_SET_STATIC);
+    TH_CHECK(!(alone_sim.plan.set_flags[1] & RTI_SET_STATIC));
+    if (!tu_init(&held_scene))
+        return;
+    unsigned bad = 0;
+    uint16_t ny = tu_sim.plan.y_off[held_scene.nblocks];
+    for (unsigned k = 0; k < RENEW_TICKS; k++) {
+        rt_tick(&held_scene, &tu_sim);
+        rt_tick(&alone_scene, &alone_sim);
+        for (uint16_t j = 0; j < ny; j++)
+            bad += tu_sim.state.y[j] != alone_sim.state.y[j];
+    }
+    TH_CHECK(bad == 0);
+    TH_CHECK(alone_sim.stats.rhs_evals[0] == 0 && alone_sim.stats.rhs_evals[1] > 0);
+}
+
 static void test_renew_full(void)
 {
     unsigned left = 0;
@@ -123,6 +269,17 @@ static void test_renew_full(void)
         TH_CHECK(bad == 0 && left > 0);
     }
     TH_CHECK(tu_sim.plan.nloops == 1 && tu_sim.plan.loops[0].actual);
+    /* sets over several ticks, with a parameter changed between a step and the tick its
+       state reaches (not renewed then: the trace would show the old amplitude) */
+    left = 0;
+    TH_CHECK(mismatches(&multi_scene, &left) == 0 && left > 0);
+    left = 0;
+    TH_CHECK(mismatches_hook(&multi_scene, &left, renew_amp) == 0);
 }
 
-const th_test th_renew_tests[] = {{"renew_full", test_renew_full}, {0, 0}};
+const th_test th_renew_tests[] = {
+    {"renew_full", test_renew_full},
+    {"renew_static_set", test_static_set},
+    {"renew_multi_vs_full", test_renew_multi_vs_full},
+    {0, 0},
+};

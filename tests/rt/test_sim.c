@@ -215,7 +215,7 @@ static const rt_set h_sets[] = {
 static const rt_scene h_sc = {.name = "held", .dt = (real_t)1e-3, .t_end = (real_t)0.2,
                               .blocks = h_bl, .nblocks = 4, .conns = h_cn, .nconns = 3,
                               .sets = h_sets, .nsets = 2};
-static rt_sim h_fresh; /* a copy of tu_sim whose outputs are evaluated anew */
+#define h_fresh tu_spare /* a copy of tu_sim whose outputs are evaluated anew */
 
 /* the slow set's outputs, offset and count */
 static uint16_t slow_y0(void) { return tu_sim.plan.y_off[H_SRC]; }

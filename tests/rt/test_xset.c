@@ -12,6 +12,7 @@
  * whole step): the prediction check of rti_xset_predict against the same extrapolation
  * formed here from sin t alone. */
 #include "models.h"
+#include "rti.h"
 #include "testutil.h"
 
 enum { SRC, ROT };
@@ -148,109 +149,208 @@ static void test_no_loop_across_sets(void)
     TH_CHECK(tu_sim.plan.nloops == 0 && tu_sim.plan.ntorn == 0);
 }
 
-/* the fast source y = amp sin(w t + ph) (ratio 1, 1 ms) read by a slow rotor (ratio m, linear
-   extrapolation, in the tick or in the background) */
-static int run_slow_reader(real_t amp, real_t w, real_t ph, uint32_t m, int bg, real_t t_end)
+/* a source y = amp sin(w t + ph) + off (ratio rs, 1 ms ticks) read by a rotor (ratio rr,
+   linear extrapolation; in the tick, after the source in the scene's order unless
+   first, or in the background, with a context attached if attach) */
+typedef struct reader_case {
+    real_t amp, w, ph, off;
+    uint32_t rs, rr;
+    int first, bg, attach;
+    real_t t_end;
+} reader_case;
+
+#define reader_ctx tu_spare /* the background context */
+
+static int run_reader(const reader_case *c)
 {
     static real_t p[4];
-    static const rt_conn cn[] = {{SRC, 0, ROT, 0}};
+    static rt_conn cn[1];
     static rt_block bl[2];
     static rt_set sets[2];
-    p[0] = amp, p[1] = w, p[2] = ph, p[3] = 0;
-    bl[SRC] = (rt_block){.name = "Src", .kind = &mdl_sine_kind, .p = p, .set = 0};
-    bl[ROT] = (rt_block){.name = "Rot", .kind = &mdl_rotor_kind, .set = 1};
-    sets[0] = (rt_set){.name = "fast", .method = &rt_rk4, .ratio = 1};
-    sets[1] = (rt_set){.name = "slow", .method = &rt_rk4, .ratio = m,
-                       .interp = RT_INTERP_EXTRAP, .background = (uint8_t)bg};
+    p[0] = c->amp, p[1] = c->w, p[2] = c->ph, p[3] = c->off;
+    int src = c->first ? 1 : 0, rot = 1 - src;
+    cn[0] = (rt_conn){(uint16_t)src, 0, (uint16_t)rot, 0};
+    bl[src] = (rt_block){.name = "Src", .kind = &mdl_sine_kind, .p = p, .set = (uint8_t)src};
+    bl[rot] = (rt_block){.name = "Rot", .kind = &mdl_rotor_kind, .set = (uint8_t)rot};
+    sets[src] = (rt_set){.name = "source", .method = &rt_rk4, .ratio = c->rs};
+    /* (its own estimates never counted: errest is the coupling's alone here) */
+    sets[rot] = (rt_set){.name = "reader", .method = &rt_rk4, .ratio = c->rr,
+                         .interp = RT_INTERP_EXTRAP, .background = (uint8_t)c->bg,
+                         .implicit = {.accuracy = (real_t)1e30}};
     static rt_scene sc;
-    sc = (rt_scene){.name = "reader", .dt = (real_t)1e-3, .t_end = t_end, .blocks = bl,
+    sc = (rt_scene){.name = "reader", .dt = (real_t)1e-3, .t_end = c->t_end, .blocks = bl,
                     .nblocks = 2, .conns = cn, .nconns = 1, .sets = sets, .nsets = 2,
-                    .bg = bg ? &rt_bg : 0};
+                    .bg = c->bg ? &rt_bg : 0};
     if (!tu_init(&sc))
-        return 0;
+        return -1;
+    if (c->attach && rt_bg_attach(&sc, &tu_sim, &reader_ctx) != RT_OK)
+        return -1;
     while (rt_tick(&sc, &tu_sim) == RT_OK)
-        ;
-    return 1;
+        if (c->attach && rt_bg_pending(&tu_sim))
+            rt_background(&sc, &tu_sim);
+    return rot;
 }
 
-/* what the slow set's extrapolation misses at each of its step starts kH after the
-   first, formed from sin t alone: from (k-1)H, the line through the source's points there
-   and 1 ms before (at t = 0 the one point, held); worst absolute miss, and the steps
-   where the miss exceeds RT_XSET_LOST (1 + |y|) */
-static double predicted_miss(double amp, double w, double ph, uint32_t m, double t_end,
-                             uint32_t *lost)
+/* the source's value at tick k, as the runtime forms its time */
+static double source_at(const reader_case *c, uint64_t k)
 {
-    double worst = 0;
-    *lost = 0;
-    for (uint32_t k = 1; (double)(k * m) * 1e-3 < t_end - 0.5e-3; k++) {
-        /* the times as the runtime forms them (tick count times the base tick) */
-        double t0 = (double)((real_t)((k - 1) * m) * (real_t)1e-3);
-        double tp = (double)((real_t)((k - 1) * m - 1) * (real_t)1e-3);
-        double t1 = (double)((real_t)(k * m) * (real_t)1e-3);
-        double y0 = amp * (double)rt_sin((real_t)(w * t0 + ph));
-        double slope = k == 1 ? 0 : (y0 - amp * (double)rt_sin((real_t)(w * tp + ph))) / (t0 - tp);
-        double y = amp * (double)rt_sin((real_t)(w * t1 + ph)), e = y - (y0 + (t1 - t0) * slope);
+    double t = (double)((real_t)k * (real_t)1e-3);
+    return (double)c->amp * (double)rt_sin((real_t)((double)c->w * t + (double)c->ph)) +
+           (double)c->off;
+}
+
+/* formed from the sine alone: at each reader step start T (a multiple of rr) where the
+   source has a point (a multiple of rs), the miss of the line the reader drew at its last
+   start through the source's two newest points then (the one point at t = 0: held); the
+   worst miss (with the source's own, below), and the misses above RT_XSET_LOST (1 + the
+   largest |y| at such points) */
+static double predicted_miss(const reader_case *c, uint32_t *lost, uint32_t *checks)
+{
+    uint64_t n = (uint64_t)((double)c->t_end / 1e-3 + 0.5);
+    double worst = 0, scale = 0, pred = 0;
+    *lost = *checks = 0;
+    for (uint64_t T = 0; T < n; T += c->rr) {
+        if (T % c->rs == 0) {
+            double y = source_at(c, T), e = y - pred;
+            scale = (y < 0 ? -y : y) > scale ? (y < 0 ? -y : y) : scale;
+            e = e < 0 ? -e : e;
+            if (T > 0) {
+                worst = e > worst ? e : worst;
+                *lost += e > (double)RT_XSET_LOST * (1 + scale);
+                ++*checks;
+            }
+        }
+        /* the source's newest point: it steps at the start of its own step, so it is
+           ahead of T unless both step at T, where the reader steps first */
+        uint64_t t0 = (T + c->rs - 1) / c->rs * c->rs;
+        double y0 = source_at(c, t0), tn = (double)((real_t)(T + c->rr) * (real_t)1e-3);
+        double ta = (double)((real_t)t0 * (real_t)1e-3);
+        double slope = t0 == 0 ? 0 : (y0 - source_at(c, t0 - c->rs)) /
+                                         (ta - (double)((real_t)(t0 - c->rs) * (real_t)1e-3));
+        pred = y0 + (tn - ta) * slope;
+    }
+    /* the monitor also holds the source's own extrapolation over its step: each new point
+       against the line through the two before it (rti_xset_push), up to the last point */
+    for (uint64_t t = 2 * c->rs; t < n + c->rs; t += c->rs) {
+        double line = 2 * source_at(c, t - c->rs) - source_at(c, t - 2 * c->rs);
+        double e = source_at(c, t) - line;
         e = e < 0 ? -e : e;
         worst = e > worst ? e : worst;
-        *lost += e > (double)RT_XSET_LOST * (1 + (y < 0 ? -y : y));
     }
     return worst;
 }
 
-/* the monitor keeps the worst miss of the slow reader's prediction as the source set's
-   xset_err (its own 1 ms extrapolation misses far less), and a sound coupling stays ok
-   (at the phase pi/2 the start's hold misses amp (1 - cos w H), no more than the lines) */
-static void test_prediction_monitor(void)
+/* the run's monitor and counts against predicted_miss */
+static void check_reader(const char *what, const reader_case *c, int want_lost)
 {
-    uint32_t lost;
-    double want = predicted_miss(1, 1, 1.5707963, 40, 2.4, &lost);
-    TH_CHECK(lost == 0);
-    for (int bg = 0; bg <= 1; bg++) {
-        if (!run_slow_reader(1, 1, (real_t)1.5707963, 40, bg, (real_t)2.4))
-            return;
-        th_note(bg ? "bg monitor" : "monitor", (double)tu_sim.stats.xset_err[0]);
-        TH_NEAR((double)tu_sim.stats.xset_err[0], want, want * (RT_REAL_IS_FLOAT ? 1e-3 : 1e-9));
-        TH_CHECK(tu_sim.stats.status == RT_OK && tu_sim.stats.count[RT_CNT_ERREST] == 0);
-        TH_CHECK(tu_sim.plan.nxpred == 1);
-    }
+    uint32_t lost, checks;
+    double want = predicted_miss(c, &lost, &checks);
+    int rot = run_reader(c);
+    if (rot < 0)
+        return;
+    int src = 1 - rot;
+    th_note(what, (double)tu_sim.stats.xset_err[src]);
+    TH_CHECK(checks > 0 && (want_lost ? lost >= 3 : lost == 0));
+    TH_NEAR((double)tu_sim.stats.xset_err[src], want, want * (RT_REAL_IS_FLOAT ? 1e-3 : 1e-9));
+    TH_CHECK(tu_sim.stats.count[RT_CNT_ERREST] == lost);
+    TH_CHECK(tu_sim.stats.errest[rot] == lost && tu_sim.stats.errest[src] == 0);
+    TH_CHECK(lost ? tu_sim.stats.status == RT_E_COUPLING &&
+                        tu_sim.stats.last_block[RT_CNT_ERREST] == rot
+                  : tu_sim.stats.status == RT_OK);
+    TH_CHECK(tu_sim.plan.nxpred == 1);
 }
 
-/* an input extrapolated over 50 ms at 20 rad/s misses by more than its own size: every such
-   step is counted (errest, the reader's block and set) and the status is failed; the same
-   in the background, whose prediction the tick checks from the same history */
+/* the monitor keeps the worst miss of the slower reader's prediction as the source set's
+   xset_err (its own 1 ms extrapolation misses far less), and a sound coupling stays ok
+   (at the phase pi/2 the start's hold misses amp (1 - cos w H), no more than the lines);
+   in the tick, in the background inline and with a context; with steps that do not
+   divide each other (30 and 40 ms: checked where both meet, every 120 ms); and with an
+   amplitude of 1000 around an offset, whose misses near its zero crossings are large
+   against the value there but not against its range */
+/* the case in the tick, in the background inline, and with a context attached */
+static void check_modes(reader_case c, int want_lost)
+{
+    check_reader("in the tick", &c, want_lost);
+    c.bg = 1;
+    check_reader("background", &c, want_lost);
+    c.attach = 1;
+    check_reader("background, context", &c, want_lost);
+}
+
+static void test_prediction_monitor(void)
+{
+    reader_case c = {1, 1, (real_t)1.5707963, 0, 1, 40, 0, 0, 0, (real_t)2.4};
+    check_modes(c, 0);
+    reader_case d = {10, 3, 0, 0, 30, 40, 0, 0, 0, (real_t)2.4};
+    check_reader("30 ms read every 40 ms", &d, 0);
+    reader_case e = {1000, 2, (real_t)0.3, 500, 1, 50, 0, 0, 0, (real_t)4.0};
+    check_reader("amplitude 1000", &e, 0);
+}
+
+/* an input extrapolated over 50 ms at 60 rad/s misses by more than its range: every such
+   step is counted (errest, the reader's block and set) and the status is failed; in the
+   tick, in the background (inline and with a context: the tick checks the prediction and
+   keeps the set's count), and from a source of the reader's own rate that steps after it */
 static void test_coupling_lost(void)
 {
-    uint32_t lost;
-    predicted_miss(10, 20, 0, 50, 2.0, &lost);
-    th_note("steps lost", lost);
-    TH_CHECK(lost >= 3);
-    for (int bg = 0; bg <= 1; bg++) {
-        if (!run_slow_reader(10, 20, 0, 50, bg, (real_t)2.0))
-            return;
-        TH_CHECK(tu_sim.stats.count[RT_CNT_ERREST] == lost);
-        TH_CHECK(tu_sim.stats.errest[1] == lost && tu_sim.stats.errest[0] == 0);
-        TH_CHECK(tu_sim.stats.status == RT_E_COUPLING && rt_status_severity(RT_E_COUPLING) == 2);
-        TH_CHECK(tu_sim.stats.last_block[RT_CNT_ERREST] == ROT);
+    reader_case c = {10, 60, 0, 0, 1, 50, 0, 0, 0, (real_t)2.0};
+    check_modes(c, 1);
+    reader_case d = {10, 60, 0, 0, 50, 50, 1, 0, 0, (real_t)2.0};
+    check_reader("same rate, reader first", &d, 1);
+    TH_CHECK(rt_status_severity(RT_E_COUPLING) == 2);
+    /* the source first: the reader interpolates its fresh point, nothing to check */
+    d.first = 0;
+    if (run_reader(&d) >= 0)
+        TH_CHECK(tu_sim.plan.nxpred == 0 && tu_sim.stats.count[RT_CNT_ERREST] == 0);
+}
+
+/* rti_xset_value on a history filled by hand (points at 0.3, 0.2, 0.1 s of a source
+   that has stepped past t): the line through the two points around t (linear) and the
+   parabola through the three (hermite, quadratic), formed here in Lagrange's form, from
+   the oldest point to the newest (between the two newest the tick's shortcut answers,
+   elsewhere the general path); with two points, the line */
+static void test_value_between_points(void)
+{
+    reader_case c = {1, 1, 0, 0, 1, 40, 0, 0, 0, (real_t)0.1};
+    if (run_reader(&c) < 0)
+        return;
+    rt_sim *sim = &tu_sim;
+    uint8_t q = 0; /* the source (set 0 when not first) */
+    double T[3] = {0.3, 0.2, 0.1}, Y[3] = {2.0, -1.0, 0.5};
+    for (int k = 0; k < 3; k++)
+        sim->state.hist_t[q][k] = (real_t)T[k], sim->state.hist_y[k][0] = (real_t)Y[k];
+    sim->state.hist_n[q] = 3;
+    int ok = 1;
+    for (int i = 0; i <= 20; i++) {
+        double t = 0.1 + 0.01 * i; /* 0.1 .. 0.3 */
+        double t_r = (double)(real_t)t;
+        double line01 = Y[1] + (Y[0] - Y[1]) * (t_r - T[1]) / (T[0] - T[1]);
+        double line12 = Y[2] + (Y[1] - Y[2]) * (t_r - T[2]) / (T[1] - T[2]);
+        double par = 0;
+        for (int a = 0; a < 3; a++) {
+            double l = Y[a];
+            for (int b = 0; b < 3; b++)
+                if (b != a)
+                    l *= (t_r - T[b]) / (T[a] - T[b]);
+            par += l;
+        }
+        double lin = t_r >= T[1] ? line01 : line12;
+        double tol = RT_REAL_IS_FLOAT ? 1e-5 : 1e-13;
+        double got_l = (double)rti_xset_value(sim, 0, q, RT_INTERP_LINEAR, (real_t)t);
+        double got_h = (double)rti_xset_value(sim, 0, q, RT_INTERP_HERMITE, (real_t)t);
+        double got_q = (double)rti_xset_value(sim, 0, q, RT_INTERP_QUAD, (real_t)t);
+        ok &= rt_fabs((real_t)(got_l - lin)) <= tol && rt_fabs((real_t)(got_q - par)) <= tol &&
+              rt_fabs((real_t)(got_h - par)) <= tol;
     }
-    /* a source no faster than its reader is not extrapolated over the reader's step by
-       this rule: nothing to check */
-    static const rt_conn cn[] = {{SRC, 0, ROT, 0}};
-    static const real_t p[] = {10, 20, 0, 0};
-    const rt_block bl[] = {
-        [SRC] = {.name = "Src", .kind = &mdl_sine_kind, .p = p, .set = 0},
-        [ROT] = {.name = "Rot", .kind = &mdl_rotor_kind, .set = 1},
-    };
-    const rt_set sets[] = {
-        {.name = "a", .method = &rt_rk4, .ratio = 50},
-        {.name = "b", .method = &rt_rk4, .ratio = 50, .interp = RT_INTERP_EXTRAP},
-    };
-    rt_scene sc = {.name = "same", .dt = (real_t)1e-3, .t_end = (real_t)0.5, .blocks = bl,
-                   .nblocks = 2, .conns = cn, .nconns = 1, .sets = sets, .nsets = 2};
-    if (tu_init(&sc))
-        TH_CHECK(tu_sim.plan.nxpred == 0);
+    TH_CHECK(ok);
+    sim->state.hist_n[q] = 2; /* two points: the line for every interpolating scheme */
+    double t = 0.25, line01 = Y[1] + (Y[0] - Y[1]) * ((double)(real_t)t - T[1]) / (T[0] - T[1]);
+    TH_NEAR((double)rti_xset_value(sim, 0, q, RT_INTERP_HERMITE, (real_t)t), line01, 1e-5);
+    TH_NEAR((double)rti_xset_value(sim, 0, q, RT_INTERP_QUAD, (real_t)t), line01, 1e-5);
 }
 
 const th_test th_xset_tests[] = {
+    {"xset_value_between_points", test_value_between_points},
     {"xset_prediction_monitor", test_prediction_monitor},
     {"xset_coupling_lost", test_coupling_lost},
     {"xset_orders", test_orders},
