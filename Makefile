@@ -375,6 +375,8 @@ bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup
 	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
 	    -o build/bench/mbs_bench.svg build/bench/mbs.csv
 	@sh tools/bench/rt_bench.sh $(O)/modrt $(RT_BENCH_S)
+	@rm -f build/bench/bg.txt
+	@sh tools/bench/bg_bench.sh pendulum10 m7
 	@sh tools/bench/bg_bench.sh pendulum10_actuated m7
 	@echo "bench: figures in build/bench/ (make docs copies them into docs/)"
 

@@ -1,28 +1,32 @@
 #!/bin/sh
-# bg_bench.sh - bounded work per tick (issue 14): instructions per tick of scene
-# pendulum10_actuated on the Cortex-M7 under QEMU (the footprint image, deterministic
-# counts), in the tick context (port_cycles() to foot_tick_end(): the tick interrupt's
-# work) and in the background context (each step of the background set, run in PendSV),
-# with the max/median of each; kept in build/bench/bg.txt. Skipped when the M7 toolchain
-# or QEMU is missing. Usage: sh tools/bench/bg_bench.sh [SCENE] [TARGET]
+# bg_bench.sh - bounded work per tick and footprint (issue 14): the scene's per-scene image
+# on the Cortex-M7 under QEMU (the footprint image, deterministic counts): its flash, RAM
+# and stack, and its instructions per tick in the tick context (port_cycles() to
+# foot_tick_end(): the tick interrupt's work) and in the background context (each step of
+# the background set, run in PendSV), with the max/median of each; appended to
+# build/bench/bg.txt. Skipped when the M7 toolchain or QEMU is missing.
+# Usage: sh tools/bench/bg_bench.sh [SCENE] [TARGET]
 set -u
 S=${1:-pendulum10_actuated}
 T=${2:-m7}
 O=build/bench
 mkdir -p $O
 if ! make -s "check-target-$T" 2>/dev/null; then
-    echo "bench: $S on $T skipped (toolchain or QEMU missing)" | tee $O/bg.txt
+    echo "bench: $S on $T skipped (toolchain or QEMU missing)" | tee -a $O/bg.txt
     exit 0
 fi
 make -s build/host/libinsn_count.so
 out=$(FOOT_SCENES=$S sh tools/footprint.sh "$T")
-# the scene's row of each table: the tick context's min | median | max, then the
-# background table's max/median | steps | min | median | max
+# the scene's row of each table: flash | RAM | stack and the tick context's min | median |
+# max, then the background table's max/median | steps | min | median | max
 tick=$(echo "$out" | awk -F' [|] ' -v s="$S" '$1 == "| " s && NF > 10 {print $7, $8, $9; exit}')
+mem=$(echo "$out" | awk -F' [|] ' -v s="$S" '$1 == "| " s && NF > 10 {print $4, $5, $6; exit}')
 bg=$(echo "$out" | awk -F' [|] ' -v s="$S" '$1 == "| " s && NF < 10 {print $5, $6, $7, $8; exit}')
 {
-    set -- $tick
+    set -- $mem
     echo "== $S on $T (QEMU, instructions, first 1000 ticks)"
+    echo "footprint: flash $1 B, RAM $2 B, stack $3 B"
+    set -- $tick
     awk -v a="$1" -v b="$2" -v c="$3" 'BEGIN { printf "tick context: per tick min %d median %d max %d, max/median %.2f\n", a, b, c, c / b }'
     if [ -n "$bg" ]; then
         set -- $bg
@@ -30,4 +34,4 @@ bg=$(echo "$out" | awk -F' [|] ' -v s="$S" '$1 == "| " s && NF < 10 {print $5, $
     else
         echo "background context: none (the scene has no background set)"
     fi
-} | tee $O/bg.txt
+} | tee -a $O/bg.txt
