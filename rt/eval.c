@@ -265,8 +265,10 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
             sim->plan.set_flags[set] |= RTI_SET_STATIC;
         if (rti_set_holds(sc, set))
             sim->plan.set_flags[set] |= RTI_SET_HELD_SIG;
-        if (rti_xset_reads_faster(sc, sim, set))
+        if (rti_xset_extrapolates(sc, sim, set))
             sim->plan.set_flags[set] |= RTI_SET_XPRED;
+        if (sc->sets[set].ratio > 1 && !sc->sets[set].background && sim->plan.set_xout[set])
+            sim->plan.set_flags[set] |= RTI_SET_NEXT;
     }
     return RT_OK;
 }

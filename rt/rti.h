@@ -139,9 +139,11 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
    only evaluate nothing at its stages; rt_tick skips it), and it holds recorded or exported
    multibody signals between its steps (rti_set_holds: its refresh walks the records for
    them, a walk the other sets skip), and it extrapolates another set (rti_xset_predict checks
-   its predictions) */
+   its predictions), and it steps over several ticks in the tick and other sets read it
+   (its step's end evaluates its outputs for its history: kept in state.y_next, they are
+   renewed when its state reaches the tick, rt/sim.c) */
 enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2, RTI_SET_LINEAR = 4, RTI_SET_STATIC = 8,
-       RTI_SET_HELD_SIG = 16, RTI_SET_XPRED = 32 };
+       RTI_SET_HELD_SIG = 16, RTI_SET_XPRED = 32, RTI_SET_NEXT = 64 };
 /* does set s hold a recorded or exported signal between its steps (rt/sim.c) */
 int rti_set_holds(const rt_scene *sc, uint8_t s);
 /* The first block of set s that keeps it from being linear in its state, or -1. */
@@ -203,7 +205,7 @@ void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
 void rti_xset_predict_reset(rt_sim *sim);
 /* does set s extrapolate another set over its step (its predictions are checked);
    _npred: the inputs that do, of every set (RT_MAX_XPRED) */
-int rti_xset_reads_faster(const rt_scene *sc, const rt_sim *sim, uint8_t s);
+int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s);
 uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim);
 
 /* ---- the background set (bg.c; the rest through rt_scene.bg) ---- */

@@ -241,15 +241,13 @@ static void take_next(const rt_scene *sc, rt_sim *sim, uint8_t s)
 }
 
 /* does set s, reaching the tick now, renew its outputs from its step's end (state.y_next)
-   rather than evaluate them: it steps over several ticks in the tick, other sets read it
-   (so its step's end evaluated them), and no parameter of it changed since (imp_stale) */
-static int renews_later(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+   rather than evaluate them: it keeps them (RTI_SET_NEXT) and no parameter of it changed
+   since (imp_stale) */
+static int renews_later(const rt_sim *sim, uint8_t s)
 {
-    return sc->sets[s].ratio > 1 && !sc->sets[s].background && sim->plan.set_xout[s] &&
-           !sim->state.imp_stale[s] && sim->state.tick > 0;
+    return (sim->plan.set_flags[s] & RTI_SET_NEXT) && !sim->state.imp_stale[s];
 }
 #endif
-
 
 /* the highest output index of a set the tick steps over several ticks (not in the
    background), plus one: what y_held must hold (RT_MAX_HELD_Y) */
@@ -273,7 +271,7 @@ static void refresh(const rt_scene *sc, rt_sim *sim, uint32_t renew, int in_tick
         if (!refreshed(sc, sim, s))
             continue;
 #if RT_MAX_HELD_Y > 0
-        if (in_tick && renews_later(sc, sim, s)) {
+        if (in_tick && renews_later(sim, s)) {
             take_next(sc, sim, s);
             renew |= 1u << s;
         }
@@ -376,7 +374,7 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
         }
 #if RT_MAX_HELD_Y > 0
         if (ratio > 1) {
-            if (sim->plan.set_xout[s])
+            if (sim->plan.set_flags[s] & RTI_SET_NEXT)
                 keep_next(sim, s);
             else
                 copy_outputs(sim, s, sim->work.y_held, sim->state.y);

@@ -226,7 +226,7 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
     return extrap(sim, T, v, n, k, t, ahead, fade);
 }
 
-int rti_xset_reads_faster(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
 #if RT_MAX_XPRED > 0
     for (uint16_t k = 0; k < sim->plan.nxpred; k++)
@@ -264,7 +264,7 @@ void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
         if (rt_isfinite(y) && sim->state.hist_n[q] > 0 && sim->state.hist_t[q][0] == t) {
             real_t e = rt_fabs(y - p), a = rt_fabs(y);
             sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
-            if (p == p && e == e) {
+            if (p == p) { /* (y is finite: e is NaN only without a prediction) */
                 if (!(e <= sim->stats.xset_err[q]))
                     sim->stats.xset_err[q] = e;
                 if (!(e <= RT_XSET_LOST * (1 + sim->state.xscale[k]))) {
