@@ -15,6 +15,8 @@ forms:
     flagged (exit 3, or 1 when no digit is left): x' = x with euler and beuler, the Kepler
     ellipse with rk4 at coarse steps, the library ball with euler; the same check on fine
     runs says ok (no false alarm).
+  * tune: `modrt tune` picks a schedule whose true error is within its tolerance where the
+    difference to its reference alone would not (global_tune.scn).
 """
 import math
 import os
@@ -143,8 +145,22 @@ def flags(s):
                                                                     summ.get("global_status")))
 
 
+def tune(s):
+    """`modrt tune` on x' = x by Euler to 1 s at tolerance 0.025: the schedule it picks has
+    a true error within the tolerance (20 ms is 0.0233 from its reference, 0.0269 from e)"""
+    p = subprocess.run([s.modrt, "tune", os.path.join(HERE, "global_tune.scn"), "--tol",
+                        "0.025"], capture_output=True, text=True, timeout=600)
+    line = [v for v in p.stdout.splitlines() if v.startswith("schedule: main=")]
+    h = int(line[0].split("=")[1]) * 0.01 if line else math.nan
+    tru = math.e - (1 + h) ** (1 / h)
+    print("  global tune: step %g s, true error %.4f (tolerance 0.025)" % (h, tru))
+    s.check(p.returncode == 0 and tru <= 0.025, "tune picked %g s, true error %.4g above the "
+            "tolerance 0.025" % (h, tru))
+
+
 def extra(s, long):
     """every case above; the same with --long (they take seconds)"""
     factor(s)
     couplings(s)
     flags(s)
+    tune(s)

@@ -687,7 +687,9 @@ static const cli_cmd commands[] = {
      replay_opts, 1, 1, &replay_ctx, cmd_replay},
     {"tune", "SCENE|FILE.scn", "find the cheapest fixed multirate schedule within a tolerance",
      "Runs a fine reference, then candidate schedules (nested power-of-two step ratios),\n"
-     "and prints the cheapest that stays within --tol of it (docs/multirate.md).",
+     "and prints the cheapest that stays within --tol of it and whose own estimated global\n"
+     "error (modrt check: the schedule again at half its steps) is within --tol too\n"
+     "(docs/multirate.md).",
      tune_cli_opts, 1, 1, &tune_cli_ctx, tune_cli_run},
     {"sizes", "SCENE|FILE.scn", "print the exact compile-time limits of a per-scene build "
      "as -D flags", NULL, NULL, 1, 1, NULL, cmd_sizes},
