@@ -186,6 +186,16 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
     if (C.r.nsig == 0)
         return refuse(RT_E_ARG, "no recorded signal to check", o->only);
     find_order(sc, sim);
+    if (o->csv) {
+        fputs("t", o->csv);
+        for (uint16_t i = 0; i < sc->nrecs; i++) {
+            char name[96];
+            sig_name(sc, i, name, sizeof name);
+            if (C.r.sig[i].on)
+                fprintf(o->csv, ",%s", name);
+        }
+        fputc('\n', o->csv);
+    }
     C.sc = *sc;
     C.sc.dt = sc->dt / 2; /* every set keeps its ratio: its step halves */
     if (sc->link) {
@@ -219,6 +229,8 @@ static void compare(const rt_scene *sc, const rt_sim *sim)
     C.differ = differ;
     C.r.nshift += (uint64_t)differ;
     C.r.ncmp += (uint64_t)!differ;
+    if (C.o.csv && !differ)
+        fprintf(C.o.csv, "%.17g", t);
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         check_sig *g = &C.r.sig[i];
         if (!g->on)
@@ -231,10 +243,15 @@ static void compare(const rt_scene *sc, const rt_sim *sim)
         if (differ) {
             if (d > g->err_ev)
                 g->err_ev = d, g->t_ev = t;
-        } else if (factor * d > g->err) {
-            g->err = factor * d, g->t = t;
+        } else {
+            if (factor * d > g->err)
+                g->err = factor * d, g->t = t;
+            if (C.o.csv)
+                fprintf(C.o.csv, ",%.3e", factor * d);
         }
     }
+    if (C.o.csv && !differ)
+        fputc('\n', C.o.csv);
 }
 
 void check_tick(const rt_scene *sc, const rt_sim *sim)

@@ -19,6 +19,8 @@ typedef struct check_opts {
                              signal's set (the runtime's |e| / (1 + |x|) <= accuracy) */
     const char *only;     /* comma-separated prefixes of "Block.signal" names to check;
                              NULL: every recorded signal */
+    FILE *csv;            /* the estimate of every checked signal at every compared
+                             instant (t, then one column per signal), or NULL */
 } check_opts;
 
 /* Applies a run's --set overrides to sim, just initialised for sc, and refreshes it (as

@@ -172,6 +172,7 @@ typedef struct run_args {
     int overrun;      /* rtloop_policy */
     const char *rt_log;
     int check;        /* 1: estimate the global error (check.h) */
+    const char *check_csv; /* its estimates at every compared instant, or NULL */
     check_opts global; /* its tolerance and signals */
 } run_args;
 
@@ -296,12 +297,20 @@ static int opt_only(void *ctx, const char *v)
     return CLI_OK;
 }
 
+static int opt_check_csv(void *ctx, const char *v)
+{
+    ((run_args *)ctx)->check_csv = v;
+    return CLI_OK;
+}
+
 #define CHECK_OPTS                                                                          \
     {"global-tol", "E|ATOL,RTOL", "with the check: a signal's estimated global error must "  \
      "stay below ATOL + RTOL * its largest |y| (E: both; default: the accuracy of the "       \
      "signal's set)", opt_global_tol},                                                      \
     {"only", "P,...", "with the check: check only recorded signals starting with these "    \
-     "prefixes", opt_only}
+     "prefixes", opt_only},                                                                 \
+    {"check-csv", "FILE", "with the check: write the estimate of every checked signal at "  \
+     "every compared instant as CSV to FILE", opt_check_csv}
 
 static const cli_opt run_opts[] = {
     {"t-end", "S", "end time [s] instead of the scene's", opt_t_end},
@@ -432,8 +441,8 @@ static int setup_sets(void *ctx, const rt_scene *sc, rt_sim *s)
 static int check_refused(const run_args *a)
 {
     if (!a->check)
-        return a->global.only || a->global.atol >= 0
-                   ? cli_fail("--global-tol and --only apply with --check", NULL)
+        return a->global.only || a->global.atol >= 0 || a->check_csv
+                   ? cli_fail("--global-tol, --only and --check-csv apply with --check", NULL)
                    : CLI_OK;
     if (a->realtime)
         return cli_fail("--check", "a run paced by the wall clock cannot be run again at half "
@@ -487,6 +496,8 @@ static int cmd_run(void *ctx, int npos, char **pos)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
     if (setup_sets(a, &sc, &sim) != CLI_OK)
         return CLI_USAGE;
+    if (a->check_csv && !(a->global.csv = fopen(a->check_csv, "w")))
+        return cli_fail("cannot write the --check-csv file", a->check_csv);
     if (a->check && check_begin(&sc, &sim, &a->global, setup_sets, a) != RT_OK)
         return cli_fail("--check", check_error());
     FILE *csv = NULL;
@@ -519,6 +530,8 @@ static int cmd_run(void *ctx, int npos, char **pos)
         return exit_code(&sim);
     static check_result cr;
     check_end(&sc, &sim, &cr);
+    if (a->global.csv && fclose(a->global.csv) != 0)
+        return cli_fail("error writing the --check-csv file", a->check_csv);
     check_print(out, &sc, &cr);
     int sev = rt_status_severity(sim.stats.status);
     sev = cr.severity > sev ? cr.severity : sev;
@@ -627,8 +640,8 @@ static int cmd_sizes(void *ctx, int npos, char **pos)
 /* ------------------------------------------------------------------ subcommands */
 
 static info_args info_ctx;
-static run_args run_ctx = {.every = 1, .global = {-1, -1, NULL}};
-static run_args check_ctx = {.every = 1, .global = {-1, -1, NULL}};
+static run_args run_ctx = {.every = 1, .global = {-1, -1, NULL, NULL}};
+static run_args check_ctx = {.every = 1, .global = {-1, -1, NULL, NULL}};
 static replay_args replay_ctx;
 static const cli_opt info_opts[] = {
     {"json", NULL, "print JSON (one object) for scripts", opt_json},
