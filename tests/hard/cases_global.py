@@ -9,6 +9,8 @@ forms:
     size of the next term, O(h) here (steps of 1/40 to 1/10 of the time scale): 4/3 holds
     with room, and a wrong order fails it for the first-order methods (p + 1 instead of p
     scales their estimate by 2/3, p - 1 for a second-order one by 3/2).
+  * observed: where the error converges more slowly than the methods' order (x' = sqrt t:
+    h^1.5), --observe measures the order from a third run and the estimate follows it.
   * couplings: a held input across sets (global_hold.scn) makes the error first order
     although both sets use rk4; the check takes p = 1 and its estimate stays within FACTOR.
   * flags: runs with status ok whose true error is more than ten times the tolerance are
@@ -89,6 +91,44 @@ def factor(s):
                     % (scene, m, est, FACTOR, tru))
 
 
+def observed(s):
+    """x' = sqrt(t) (global_sqrt.scn): the error is C h^1.5 for every method of order
+    above 1.5. With p the estimate is (1 - 2^-p) / (1 - 2^-1.5) too small (0.69 for rk4);
+    --observe measures q from a third run at h/4 and is within FACTOR. On the smooth
+    x' = sin t - x it measures each method's own order (within CHECK_Q_SLACK) and leaves
+    the estimate alone. And at a tolerance between the two, the plain check says ok on an
+    answer above it, --observe does not."""
+    exact = lambda t: 2 / 3 * t ** 1.5  # noqa: E731
+    for m in ("bs3", "rk4", "dopri5", "sdirk3"):
+        _, summ, rows = check(s.modrt, "global_sqrt.scn", ["--method", "main=" + m])
+        _, summ_q, _ = check(s.modrt, "global_sqrt.scn", ["--method", "main=" + m, "--observe"])
+        tru = true_err(rows, exact)
+        est, est_q = estimate(summ, "R.y")[0], estimate(summ_q, "R.y")[0]
+        print("  global sqrt %s: true %.3e, estimate %.3e (%.2f), observed %.3e (%.2f; %s)"
+              % (m, tru, est, est / tru, est_q, est_q / tru,
+                 summ_q.get("global_err.R.y", "").split("; ")[-1]))
+        s.check(est / tru < 1 / FACTOR, "sqrt %s: the estimate with p is %.2f of the error: "
+                "no order reduction to show" % (m, est / tru))
+        s.check(1 / FACTOR <= est_q / tru <= FACTOR, "sqrt %s --observe: estimate %.3g, true "
+                "%.3g" % (m, est_q, tru))
+    for m in ALL + ["transition"]:
+        _, summ, _ = check(s.modrt, "global_forced.scn", ["--method", "main=" + m, "--observe"])
+        v = summ.get("global_err.Lag.y", "")
+        q = float(v.split("observed order ")[1].split()[0].rstrip(",")) if "observed" in v \
+            else math.nan
+        p = int(summ.get("check_order", "0").split()[0])
+        # (dopri5's error, 1.4e-12, is within rounding at h/4: no order, nothing replaced)
+        s.check((q != q or abs(q - p) <= 0.5) and "below p" not in v and "converge" not in v,
+                "forced %s --observe: observed order %.2f, method order %d" % (m, q, p))
+    args = ["--method", "main=rk4", "--global-tol", "2.4e-5,0"]
+    rc, summ, rows = check(s.modrt, "global_sqrt.scn", args)
+    rc_q, summ_q, _ = check(s.modrt, "global_sqrt.scn", args + ["--observe"])
+    print("  global sqrt rk4 at tol 2.4e-5: true %.3e; plain %s, --observe %s"
+          % (true_err(rows, exact), summ.get("global_status"), summ_q.get("global_status")))
+    s.check(true_err(rows, exact) > 2.4e-5 and rc_q == 3, "sqrt rk4 --observe at 2.4e-5: "
+            "exit %d" % rc_q)
+
+
 def couplings(s):
     rc, summ, rows = check(s.modrt, "global_hold.scn", [])
     est, _ = estimate(summ, "Lag.y")
@@ -161,6 +201,7 @@ def tune(s):
 def extra(s, long):
     """every case above; the same with --long (they take seconds)"""
     factor(s)
+    observed(s)
     couplings(s)
     flags(s)
     tune(s)

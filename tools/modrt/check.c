@@ -30,7 +30,14 @@
  * the same thing, and the difference is 0): a run with substeps has no estimate, and the
  * check says so (severity 1).
  *
- * Host only: libc, no libm. */
+ * Observed order (--observe): a third run at a quarter of the steps gives each signal's
+ * q = log2(max |y_h - y_h/2| / max |y_h/2 - y_h/4|). A discontinuity inside a step, a
+ * source read one step early, a step size outside the asymptotic range lower it below
+ * the methods' p, and the formula with p then reads the error too small (by up to
+ * (1 - 2^-p) / (1 - 2^-q): 1.9 for p = 4, q = 1); q below p - CHECK_Q_SLACK takes p's
+ * place, and q below CHECK_Q_MIN (the differences do not shrink) leaves no estimate.
+ *
+ * Host only: libc, no libm (rt_log, rt_exp of the runtime). */
 #include <float.h>
 #include <math.h> /* HUGE_VAL only: modrt links without libm */
 #include <stdio.h>
@@ -39,11 +46,14 @@
 #include "check.h"
 
 static rt_sim half;  /* the run at half the steps */
+static rt_sim quarter; /* --observe: the run at a quarter of the steps */
 static rt_sim own;   /* the run at the scene's steps, for check_scene */
 
 static struct {
     rt_scene sc;          /* the half scene */
     rt_link link;         /* its link, with the period doubled */
+    rt_scene sc4;         /* the quarter scene */
+    rt_link link4;
     check_opts o;
     check_result r;
     int differ;           /* the event counts differ since shift_from */
@@ -209,6 +219,23 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
         return refuse(st, "the scene at half the steps", rt_error_text(&half));
     if (setup && setup(ctx, &C.sc, &half) != 0)
         return refuse(RT_E_ARG, "the scene at half the steps: an override failed", NULL);
+    C.r.observe = o->observe;
+    if (!o->observe)
+        return RT_OK;
+    if (n > RT_MAX_TICKS / 4)
+        return refuse(RT_E_CAPACITY, "the check's quarter run exceeds RT_MAX_TICKS", NULL);
+    C.sc4 = C.sc;
+    C.sc4.dt = C.sc.dt / 2;
+    if (sc->link) {
+        C.link4 = C.link;
+        C.link4.period *= 2;
+        C.sc4.link = &C.link4;
+    }
+    if ((st = rt_init(&C.sc4, &quarter)) != RT_OK)
+        return refuse(st, "the scene at a quarter of the steps", rt_error_text(&quarter));
+    if (setup && setup(ctx, &C.sc4, &quarter) != 0)
+        return refuse(RT_E_ARG, "the scene at a quarter of the steps: an override failed",
+                      NULL);
     return RT_OK;
 }
 
@@ -219,7 +246,9 @@ static void compare(const rt_scene *sc, const rt_sim *sim)
     uint8_t p = C.r.order < 8 ? C.r.order : 8;
     double factor = p ? 1 / (1 - 1 / two[p]) : 1; /* nothing integrated: exact difference */
     double t = (double)rt_time(sc, sim);
-    int differ = sim->stats.count[RT_CNT_EVENTS] != half.stats.count[RT_CNT_EVENTS];
+    uint32_t ev = sim->stats.count[RT_CNT_EVENTS];
+    int differ = ev != half.stats.count[RT_CNT_EVENTS] ||
+                 (C.r.observe && ev != quarter.stats.count[RT_CNT_EVENTS]);
     if (differ && !C.differ)
         C.shift_from = sim->state.tick;
     if (differ || C.differ) { /* the stretch ends at the first instant they agree again */
@@ -246,6 +275,11 @@ static void compare(const rt_scene *sc, const rt_sim *sim)
         } else {
             if (factor * d > g->err)
                 g->err = factor * d, g->t = t;
+            if (C.r.observe) {
+                double d2 = fabs_(yh - (double)rt_rec_value(&C.sc4, &quarter, i));
+                g->d1 = d > g->d1 ? d : g->d1;
+                g->d2 = d2 > g->d2 || !(d2 <= DBL_MAX) ? d2 : g->d2;
+            }
             if (C.o.csv)
                 fprintf(C.o.csv, ",%.3e", factor * d);
         }
@@ -260,8 +294,29 @@ void check_tick(const rt_scene *sc, const rt_sim *sim)
         return;
     for (int k = 0; k < 2 && half.state.tick < rt_tick_count(&half); k++)
         rt_tick(&C.sc, &half);
+    for (int k = 0; C.r.observe && k < 4 && quarter.state.tick < rt_tick_count(&quarter); k++)
+        rt_tick(&C.sc4, &quarter);
     if (sim->state.tick % C.r.every == 0)
         compare(sc, sim);
+}
+
+/* observe: the observed order of signal g, and the estimate by it where it is below p.
+   Differences within a few thousand roundings of the signal's size carry no order. */
+static void observed(check_sig *g)
+{
+    double noise = 1e3 * (double)RT_EPS * (1 + g->range);
+    if (!(g->d1 > noise && g->d2 > noise) || !(g->d1 <= DBL_MAX && g->d2 <= DBL_MAX))
+        return;
+    g->q = (double)(rt_log((real_t)(g->d1 / g->d2)) / rt_log((real_t)2));
+    if (g->q < CHECK_Q_MIN) {
+        g->q_none = 1;
+        return;
+    }
+    if (g->q < C.r.order - CHECK_Q_SLACK) {
+        /* the largest difference over (1 - 2^-q): d1 is max |y_h - y_h/2| */
+        g->err = g->d1 / (1 - (double)rt_exp((real_t)(-g->q) * rt_log((real_t)2)));
+        g->q_used = 1;
+    }
 }
 
 void check_end(const rt_scene *sc, const rt_sim *sim, check_result *r)
@@ -271,6 +326,11 @@ void check_end(const rt_scene *sc, const rt_sim *sim, check_result *r)
     C.r.status_half = half.stats.status;
     C.r.substeps = sim->stats.count[RT_CNT_SUBSTEP];
     C.r.substeps_half = half.stats.count[RT_CNT_SUBSTEP];
+    if (C.r.observe) {
+        C.r.status_quarter = quarter.stats.status;
+        C.r.events_quarter = quarter.stats.count[RT_CNT_EVENTS];
+        C.r.substeps_quarter = quarter.stats.count[RT_CNT_SUBSTEP];
+    }
     int sev = 0;
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         check_sig *g = &C.r.sig[i];
@@ -279,12 +339,18 @@ void check_end(const rt_scene *sc, const rt_sim *sim, check_result *r)
             continue;
         sig_tol(sc, i, &C.o, &atol, &rtol);
         g->tol = atol + rtol * g->range;
-        int s = g->err > (double)RT_ERR_LOST * (1 + g->range) ? 2 : g->err > g->tol;
+        if (C.r.observe)
+            observed(g);
+        int s = g->err > (double)RT_ERR_LOST * (1 + g->range) ? 2
+                : g->err > g->tol || g->q_none;
         sev = s > sev ? s : sev;
     }
     if ((C.r.events != C.r.events_half || C.r.substeps || C.r.substeps_half) && sev < 1)
         sev = 1;
-    if (rt_status_severity(C.r.status_half) >= 2)
+    if (C.r.observe && (C.r.events != C.r.events_quarter || C.r.substeps_quarter) && sev < 1)
+        sev = 1;
+    if (rt_status_severity(C.r.status_half) >= 2 ||
+        (C.r.observe && rt_status_severity(C.r.status_quarter) >= 2))
         sev = 2;
     C.r.severity = sev;
     *r = C.r;
@@ -313,6 +379,7 @@ rt_status check_scene(const rt_scene *sc, const check_opts *o, check_setup setup
 static const char *verdict(const check_result *r, const check_sig *g)
 {
     return r->substeps || r->substeps_half ? "no estimate (substeps)"
+           : g->q_none                       ? "no estimate (the runs do not converge)"
            : g->err > (double)RT_ERR_LOST * (1 + g->range) ? "no correct digit"
            : g->err > g->tol                             ? "above tolerance"
                                                           : "ok";
@@ -339,6 +406,10 @@ void check_print(FILE *f, const rt_scene *sc, const check_result *r)
     fprintf(f, "check_compared: %llu instants every %g s\n", (unsigned long long)r->ncmp,
             r->every_s);
     fprintf(f, "check_half_status: %s\n", rt_status_name(r->status_half));
+    if (r->observe)
+        fprintf(f, "check_quarter_status: %s (base tick %g s: each signal's observed order "
+                   "log2(max |y_h - y_h/2| / max |y_h/2 - y_h/4|))\n",
+                rt_status_name(r->status_quarter), r->dt_half / 2);
     if (r->events || r->events_half)
         fprintf(f, "check_events: %u, at half the steps %u%s; %llu instants between the "
                    "runs' event times left out (longest stretch %g s)\n",
@@ -356,8 +427,12 @@ void check_print(FILE *f, const rt_scene *sc, const check_result *r)
         if (!g->on)
             continue;
         sig_name(sc, i, name, sizeof name);
-        fprintf(f, "global_err.%s: %.3g at t = %.6g s (tol %.3g): %s\n", name, g->err, g->t,
+        fprintf(f, "global_err.%s: %.3g at t = %.6g s (tol %.3g): %s", name, g->err, g->t,
                 g->tol, verdict(r, g));
+        if (r->observe && g->q > 0)
+            fprintf(f, "; observed order %.2f%s", g->q,
+                    g->q_used ? ", below p: the estimate takes it" : "");
+        fputc('\n', f);
         if (g->err_ev > 0)
             fprintf(f, "event_shift_diff.%s: %.3g at t = %.6g s (between the runs' events: "
                        "not an estimate)\n", name, g->err_ev, g->t_ev);

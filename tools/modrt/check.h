@@ -11,6 +11,8 @@
 #include "rt.h"
 
 #define CHECK_WHY_LEN 256 /* the text saying where the order comes from */
+#define CHECK_Q_SLACK 0.5 /* an observed order this far below p replaces it */
+#define CHECK_Q_MIN 0.3   /* below this observed order the runs do not converge */
 
 /* What the check compares against (negative tolerances select the defaults). */
 typedef struct check_opts {
@@ -21,6 +23,8 @@ typedef struct check_opts {
                              NULL: every recorded signal */
     FILE *csv;            /* the estimate of every checked signal at every compared
                              instant (t, then one column per signal), or NULL */
+    int observe;          /* 1: a third run at a quarter of the steps gives each signal's
+                             observed order; below p it takes p's place */
 } check_opts;
 
 /* Applies a run's --set overrides to sim, just initialised for sc, and refreshes it (as
@@ -35,6 +39,11 @@ typedef struct check_sig {
     double tol;           /* atol + rtol * range */
     double err_ev, t_ev;  /* largest |difference| where the runs had handled different
                              numbers of events (a shifted event: not an estimate) */
+    double d1, d2;        /* observe: largest |y_h - y_h/2| and |y_h/2 - y_h/4| */
+    double q;             /* observe: the observed order log2(d1 / d2) (0: none, the
+                             differences at rounding level) */
+    int q_used;           /* observe: q below p - CHECK_Q_SLACK took p's place */
+    int q_none;           /* observe: no convergence (q below CHECK_Q_MIN): no estimate */
 } check_sig;
 
 typedef struct check_result {
@@ -50,6 +59,9 @@ typedef struct check_result {
     uint32_t substeps, substeps_half; /* steps that split into substeps in each run: their
                              steps were not h and h/2 (no estimate, severity 1) */
     rt_status status_half;/* the half run's status */
+    int observe;          /* 1: the quarter run took place */
+    rt_status status_quarter;
+    uint32_t events_quarter, substeps_quarter;
     uint16_t nsig;
     check_sig sig[RT_MAX_REC];
     int severity;         /* 0 within the tolerance; 1 above it, the event sequence not

@@ -316,7 +316,7 @@ static void log_try(FILE *log, const tune_sched *m, double lb, int ok)
 static rt_status global_check(tune_sched *m)
 {
     static check_result cr;
-    check_opts o = {T.o.tol, 0, T.o.only, NULL};
+    check_opts o = {T.o.tol, 0, T.o.only, NULL, 0};
     rt_status st = check_scene(&T.work, &o, NULL, NULL, &cr);
     if (st != RT_OK)
         return st;
