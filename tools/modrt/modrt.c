@@ -701,8 +701,9 @@ static const cli_cmd commands[] = {
      "when an estimate leaves no correct digit (above 1 + |y|) or the half run failed.\n"
      "Exit status: the worse of the run's status and global_status (0, 3, 1; 2 for bad\n"
      "arguments, or a scene that cannot be checked). The estimate holds where the error\n"
-     "behaves like C h^p: far from that regime (a step near a stability limit, a\n"
-     "discontinuity inside a step) it is a rough guide (docs/solvers.md).",
+     "behaves like C h^p: a right-hand side that is not smooth lowers the order, and\n"
+     "--observe (a third run at a quarter of the steps) measures it per signal and uses\n"
+     "it where it is below p (docs/solvers.md).",
      check_opts_tab, 1, 1, &check_ctx, cmd_check},
     {"replay", "FILE.mrl", "re-run a recorded live run from its log, without the controller",
      "Applies every recorded import at its tick on the simulated clock: the summary and its\n"

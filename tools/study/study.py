@@ -355,16 +355,29 @@ def error_of(ex, rows):
 
 
 def estimate_of(ex, path, real, every, te):
-    """`modrt check` on the variant: its largest estimated global error over the error's
-    signals at the reference's instants, or None when the check did not run"""
+    """`modrt check --observe` on the variant: its largest estimated global error over the
+    error's signals at the reference's instants, with the methods' order p and with each
+    signal's observed order where that is lower (None when the check did not run), and
+    its global_status"""
     est_csv = path[:-4] + ".est.csv"
     r = sh([MODRT[real], "check", path, "--t-end=%.17g" % te, "--every=%d" % every,
-            "--check-csv=" + est_csv])
+            "--observe", "--check-csv=" + est_csv])
+    s = summary(r.stdout)
     if r.returncode not in (0, 1, 3) or not os.path.exists(est_csv):
-        return None, summary(r.stdout).get("global_status")
+        return None, None, s.get("global_status")
+    p = int(s.get("check_order", "0").split()[0] or 0)
+    scale = []  # per signal: (1 - 2^-p) / (1 - 2^-q) where q took p's place
+    for sig in ex.signals:
+        m = re.search(r"observed order ([\d.]+), below p", s.get("global_err." + sig, ""))
+        q = float(m.group(1)) if m else None
+        scale.append((1 - 2 ** -p) / (1 - 2 ** -q) if q and p else 1.0)
     rows = read_csv(est_csv, ex.signals)
-    vals = [max(rows[k]) for k in ex.ref_rows if k in rows and rows[k]]
-    return (max(vals) if vals else None), summary(r.stdout).get("global_status")
+    keys = [k for k in ex.ref_rows if k in rows and rows[k]]
+    if not keys:
+        return None, None, s.get("global_status")
+    est = max(max(rows[k]) for k in keys)
+    est_q = max(max(v * f for v, f in zip(rows[k], scale)) for k in keys)
+    return est, est_q, s.get("global_status")
 
 
 def t_err(ex):
@@ -463,7 +476,7 @@ def run_cfg(ex, c, cross, sc_end):
         return c
     c["wall"] = float(s.get("wall_s", "nan")) / te
     c["err"], c["err_at"], c["n_cmp"] = error_of(ex, read_csv(path[:-4] + ".csv", ex.signals))
-    c["est"], c["global_status"] = estimate_of(ex, path, c["real"], every, te)
+    c["est_p"], c["est"], c["global_status"] = estimate_of(ex, path, c["real"], every, te)
     c["rhs_per_s"] = sum(float(v) for k, v in s.items() if k.startswith("rhs_evals.")) / te
     # host instructions
     n = window_of(ex, sc, rhs_per_s=c["rhs_per_s"])
@@ -843,25 +856,32 @@ def reading(ex, key):
 
 def tracking(ex):
     """how the estimated global error (modrt check) tracks the error against the
-    reference: est / err over the configurations whose error is resolved"""
+    reference: est / err over the configurations whose error is resolved, with the
+    methods' order and with the observed one"""
     fl = floor_of(ex)
-    pts = [(c["est"] / c["err"], c) for c in ex.cfgs if ok(c) and c.get("est") is not None
-           and c["err"] > 10 * fl]
-    if not pts:
+    cs = [c for c in ex.cfgs if ok(c) and c.get("est") is not None and c["err"] > 10 * fl]
+    if not cs:
         return "No configuration has a resolved error to compare the estimate with."
-    q = sorted(p for p, _ in pts)
-    within = sum(1 for p in q if 0.5 <= p <= 2)
-    low = sorted(pts, key=lambda p: p[0])[:3]
-    flagged = [c for _, c in pts if c["err"] > 1e-3]
-    said = sum(1 for c in flagged if c.get("est") is not None and c["est"] > 1e-3)
-    return ("**The estimate of `modrt check`** (the variant again at half its steps, "
-            "Richardson with its lowest order, read at the same instants and signals) over "
-            "the %d configurations whose error is resolved: estimate / error median %.2f, "
-            "from %.2g to %.2g; within a factor 2 in %d of them. Of the %d with an error "
-            "above 1e-3 %s, the estimate is above 1e-3 in %d. Farthest below: %s." % (
-                len(q), q[len(q) // 2], q[0], q[-1], within, len(flagged), ex.unit, said,
-                "; ".join("%s (%.2g: %s against %s)" % (describe(c), p, fmt(c["est"]),
-                                                          fmt(c["err"])) for p, c in low)))
+
+    def stats(key):
+        q = sorted(c[key] / c["err"] for c in cs)
+        return q[len(q) // 2], q[0], q[-1], sum(1 for v in q if 0.5 <= v <= 2)
+
+    low = sorted(cs, key=lambda c: c["est"] / c["err"])[:3]
+    flagged = [c for c in cs if c["err"] > 1e-3]
+    said = sum(1 for c in flagged if c["est"] > 1e-3)
+    return ("**The estimate of `modrt check --observe`** (the variant again at half and at "
+            "a quarter of its steps, Richardson with the lowest order of its sets and "
+            "couplings, or each signal's observed order where that is lower; read at the "
+            "same instants and signals as the error) over the %d configurations whose error "
+            "is resolved: estimate / error median %.2f, from %.2g to %.2g, within a factor 2 "
+            "in %d; with the methods' order alone median %.2f, from %.2g to %.2g, within a "
+            "factor 2 in %d. Of the %d with an error above 1e-3 %s, the estimate is above "
+            "1e-3 in %d. Farthest below: %s." % ((len(cs),) + stats("est") + stats("est_p") + (
+                len(flagged), ex.unit, said, "; ".join(
+                    "%s (%.2g: %s against %s)" % (describe(c), c["est"] / c["err"],
+                                                  fmt(c["est"]), fmt(c["err"]))
+                    for c in low))))
 
 
 def headline(ex, tol):
