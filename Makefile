@@ -432,3 +432,4 @@ include tests/hard/hard.mk
 include tests/static/static.mk
 include tests/vehicles/vehicles.mk
 include tools/study/study.mk
+include tests/sweep/sweep.mk

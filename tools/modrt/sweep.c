@@ -263,6 +263,30 @@ static void svgplot_path(char *buf, size_t n)
     snprintf(slash ? slash + 1 : buf, 16, "svgplot");
 }
 
+/* run 0 set up as its task line says: a wrong name fails here, not in every task */
+static int check_first(void)
+{
+    static char buf[SWEEP_LINE];
+    static sweep_exec_args e;
+    char *argv[SWEEP_ARGS];
+    sweep_point p;
+    sweep_point_of(&camp, 0, &p);
+    int n = sweep_argv(&camp, &p, "modrt", "c", "o", buf, sizeof buf, argv);
+    if (n < 0)
+        return cli_fail("sweep: a task line longer than SWEEP_LINE", NULL);
+    for (int i = 8; i + 1 < n; i += 2) { /* after modrt sweep exec C --out O --index K */
+        if (!strcmp(argv[i], "--set"))
+            e.sets[e.nsets++] = argv[i + 1];
+        else if (!strcmp(argv[i], "--method"))
+            e.method[e.nmethod++] = argv[i + 1];
+        else if (!strcmp(argv[i], "--step"))
+            e.step[e.nstep++] = argv[i + 1];
+        else
+            e.replay = argv[i + 1];
+    }
+    return sweep_check(&camp, &e);
+}
+
 int sweep_cli_run(void *ctx, int npos, char **pos)
 {
     sweep_cli_args *a = ctx;
@@ -284,7 +308,7 @@ int sweep_cli_run(void *ctx, int npos, char **pos)
                             "gives them)", NULL);
         return sweep_exec(&camp, &a->exec);
     }
-    if (paths(a, pos[1]) != CLI_OK)
+    if (paths(a, pos[1]) != CLI_OK || check_first() != CLI_OK)
         return CLI_USAGE;
     if (strcmp(act, "plan") == 0)
         return plan(a);

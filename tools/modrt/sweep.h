@@ -66,7 +66,7 @@ typedef struct sweep_metric {
     char sig[2][SWEEP_NAME];   /* signal, and the one subtracted ("" none) */
     double p[2];               /* settle: band lo, hi; overshoot: target */
     double from;               /* samples before this time [s] are left out */
-    int line, col;             /* where it is declared (errors against the scene) */
+    int line[2], col[2];        /* where its signals are named (errors against the scene) */
 } sweep_metric;
 
 /* A parsed campaign: small and fixed in size, whatever its number of runs. */
@@ -119,6 +119,8 @@ double sweep_floor(double x);
 double sweep_exp(double x);
 
 /* ---- sweep_plan.c: run index -> values -> task line ---- */
+/* v in the shortest form that reads back the same (a whole number without exponent) */
+const char *sweep_fmt(char *buf, size_t n, double v);
 /* Fills p with run k's values (k < c->nruns). */
 void sweep_point_of(const sweep_campaign *c, uint64_t k, sweep_point *p);
 /* The number value of grid dimension i at position j (params and steps). */
@@ -165,6 +167,9 @@ typedef struct sweep_exec_args {
 /* `modrt sweep exec`: runs the run in a child, writes DIR/runs/K.txt (always: a crash or
    a timeout is a result too); returns the run's exit code. */
 int sweep_exec(const sweep_campaign *c, const sweep_exec_args *a);
+/* Sets up run a (scene, overrides, metrics' signals) without running it: CLI_OK, or
+   CLI_USAGE after one error line; what plan, run and slurm check before any task. */
+int sweep_check(const sweep_campaign *c, const sweep_exec_args *a);
 /* The result file of run k in dir. */
 void sweep_result_path(char *buf, size_t n, const char *dir, uint64_t k);
 /* Writes a result that says only why the run has none (crashed, timeout...). */

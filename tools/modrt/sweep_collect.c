@@ -173,10 +173,14 @@ static void row(FILE *f, uint64_t k)
     fputc('\n', f);
 }
 
-/* metric i of the loaded run, or NaN */
+/* metric i of the loaded run, or NaN: none, or the run failed (its values are not
+   answers: the figures leave them out, the CSV has them with the run's status) */
 static double metric_of(int i)
 {
     char key[SWEEP_NAME + 8];
+    const char *code = get(&rec, "exit");
+    if (!code || (strcmp(code, "0") != 0 && strcmp(code, "3") != 0))
+        return NAN;
     snprintf(key, sizeof key, "metric.%s", inf.metric[i]);
     const char *v = get(&rec, key);
     return v ? strtod(v, NULL) : NAN;
@@ -229,7 +233,7 @@ static int histogram(const char *dir, const char *svgplot, int i)
     fprintf(f, "%s,%.17g,0\n", inf.metric[i], lo + SWEEP_HIST_BINS * w);
     fclose(f);
     snprintf(svg, sizeof svg, "%s/plots/%s-hist.svg", dir, inf.metric[i]);
-    snprintf(title, sizeof title, "%s: %s over %llu runs (%llu without a value)", inf.name,
+    snprintf(title, sizeof title, "%s: %s over %llu runs (%llu failed or without a value)", inf.name,
              inf.metric[i], (unsigned long long)have, (unsigned long long)(inf.runs - have));
     snprintf(ylab, sizeof ylab, "runs per bin of %.3g", w);
     char *argv[] = {(char *)svgplot, "--xy", "--lines", "-t", title, "-x", inf.metric[i], "-y",
@@ -256,7 +260,9 @@ static int scatter(const char *dir, const char *svgplot, int i, int j)
                          series[0] ? " " : "", get(&rec, inf.col[c]));
         for (char *s = series; *s; s++)
             *s = *s == ',' ? ';' : *s;
-        fprintf(f, "%s,%s,%.17g\n", series[0] ? series : "runs", x ? x : "nan", metric_of(i));
+        double y = metric_of(i);
+        if (x && isfinite(y)) /* a gap would only make svgplot warn */
+            fprintf(f, "%s,%s,%.17g\n", series[0] ? series : "runs", x, y);
     }
     fclose(f);
     snprintf(svg, sizeof svg, "%s/plots/%s-vs-%s.svg", dir, inf.metric[i], inf.col[j]);

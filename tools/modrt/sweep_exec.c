@@ -207,6 +207,16 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
     return write_result(c, a, &sc, st, r.wall_s, code) != CLI_OK ? CLI_USAGE : code;
 }
 
+int sweep_check(const sweep_campaign *c, const sweep_exec_args *a)
+{
+    rt_scene sc;
+    int rc = setup(c, a, &sc) != CLI_OK || sweep_metrics_bind(c, &sc, acc) != 0 ? CLI_USAGE
+                                                                               : CLI_OK;
+    if (a->replay)
+        mrl_close();
+    return rc;
+}
+
 int sweep_write_status(const char *dir, uint64_t k, const char *status, const char *why)
 {
     char path[SWEEP_PATH + 40], tmp[SWEEP_PATH + 64];

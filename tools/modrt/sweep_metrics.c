@@ -44,7 +44,7 @@ int sweep_metrics_bind(const sweep_campaign *c, const rt_scene *sc, sweep_acc *a
                 char recs[600];
                 list_recs(sc, recs, sizeof recs);
                 fprintf(stderr, "%s:%d:%d: error: scene %s records no signal '%s' (it "
-                        "records: %s)\n", c->path, m->line, m->col, sc->name, m->sig[j], recs);
+                        "records: %s)\n", c->path, m->line[j], m->col[j], sc->name, m->sig[j], recs);
                 return -1;
             }
         }

@@ -37,6 +37,13 @@ static int fail(lexer *L, const char *fmt, ...)
     return -1;
 }
 
+/* fail at an earlier position (line, col) of the statement */
+static int fail_at(lexer *L, int line, int col, const char *what, const char *near)
+{
+    fprintf(stderr, "%s:%d:%d: error: %s near '%s'\n", L->path, line, col, what, near);
+    return -1;
+}
+
 static void adv(lexer *L)
 {
     if (L->s[L->i] == '\n')
@@ -251,10 +258,11 @@ static int st_grid(lexer *L, sweep_campaign *c)
         return fail(L, "a grid parameter is Block.param, got '%s'", d->name);
     if (d->kind == SWEEP_DIM_PARAM && is_kw(L, "range")) {
         double v[3];
+        int line = L->tline, col = L->tcol;
         if (next(L) || numbers(L, v, 3, 0))
             return -1;
         if (!(v[2] >= 2 && v[2] <= 1e9 && v[2] == sweep_floor(v[2])))
-            return fail(L, "range (lo, hi, n) needs a whole n >= 2");
+            return fail_at(L, line, col, "range (lo, hi, n) needs a whole n >= 2", "range");
         d->is_range = 1, d->lo = v[0], d->hi = v[1], d->n = (uint32_t)v[2];
         return 0;
     }
@@ -305,6 +313,7 @@ static int st_draw(lexer *L, sweep_campaign *c)
         return -1;
     v->dist = uni ? SWEEP_UNIFORM : logu ? SWEEP_LOGUNIFORM : SWEEP_NORMAL;
     v->a = v->lo = p[0], v->b = v->hi = p[1];
+    int line = L->tline, col = L->tcol;
     if (nor) {
         if (!is_kw(L, "within"))
             return fail(L, "a normal draw needs its bounds: within (lo, hi)");
@@ -318,9 +327,12 @@ static int st_draw(lexer *L, sweep_campaign *c)
         return fail(L, "the bounds must have lo < hi");
     if (logu && !(v->lo > 0))
         return fail(L, "loguniform bounds must be > 0");
-    if (nor && !(normal_mass(v->a, v->b, v->lo, v->hi) >= SWEEP_NORMAL_MASS))
-        return fail(L, "the bounds hold less than %g of the normal's probability",
-                    SWEEP_NORMAL_MASS);
+    if (nor && !(normal_mass(v->a, v->b, v->lo, v->hi) >= SWEEP_NORMAL_MASS)) {
+        char what[96];
+        snprintf(what, sizeof what, "the bounds hold less than %g of the normal's probability",
+                 SWEEP_NORMAL_MASS);
+        return fail_at(L, line, col, what, "within");
+    }
     uint64_t h = 1469598103934665603ull; /* FNV-1a of the name */
     for (const char *s = v->name; *s; s++)
         h = (h ^ (uint8_t)*s) * 1099511628211ull;
@@ -334,6 +346,7 @@ static int signal_expr(lexer *L, sweep_metric *m)
 {
     if (L->k != T_WORD || !strchr(L->text, '.'))
         return fail(L, "expected a recorded signal Block.signal");
+    m->line[0] = L->tline, m->col[0] = L->tcol;
     if (name_tok(L, m->sig[0], sizeof m->sig[0], "a signal"))
         return -1;
     if (is_punct(L, '-')) {
@@ -341,6 +354,7 @@ static int signal_expr(lexer *L, sweep_metric *m)
             return -1;
         if (L->k != T_WORD || !strchr(L->text, '.'))
             return fail(L, "expected the recorded signal Block.signal to subtract");
+        m->line[1] = L->tline, m->col[1] = L->tcol;
         return name_tok(L, m->sig[1], sizeof m->sig[1], "a signal");
     }
     return 0;
@@ -369,7 +383,6 @@ static int st_metric(lexer *L, sweep_campaign *c)
     m->kind = (uint8_t)k;
     if (next(L) || expect(L, '('))
         return -1;
-    m->line = L->tline, m->col = L->tcol;
     if (signal_expr(L, m) || expect(L, ')'))
         return -1;
     if (k == SWEEP_M_SETTLE) {
@@ -421,6 +434,7 @@ static int statement(lexer *L, sweep_campaign *c)
         return fail(L, "expected a statement (campaign, scene, seed, draws, end time, "
                        "timeout, grid, draw, replay, metric)");
     char kw[SWEEP_NAME];
+    int line = L->tline, col = L->tcol;
     snprintf(kw, sizeof kw, "%s", L->text);
     if (next(L))
         return -1;
@@ -456,8 +470,7 @@ static int statement(lexer *L, sweep_campaign *c)
         return st_replay(L, c);
     if (!strcmp(kw, "metric"))
         return st_metric(L, c);
-    L->k = T_WORD, snprintf(L->text, sizeof L->text, "%s", kw);
-    return fail(L, "unknown statement");
+    return fail_at(L, line, col, "unknown statement", kw);
 }
 
 /* the product of the grid sizes and the draws, within SWEEP_MAX_RUNS */

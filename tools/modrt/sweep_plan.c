@@ -5,6 +5,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -39,17 +40,47 @@ const char *sweep_dim_str(const sweep_campaign *c, int i, uint32_t j)
     return c->arena + c->str[c->dims[i].first + j];
 }
 
-/* appends one word to buf at *used; its start into argv[*n] */
+const char *sweep_fmt(char *buf, size_t n, double v)
+{
+    if (v == sweep_floor(v) && v > -1e15 && v < 1e15) { /* whole: 50, not 5e+01 */
+        snprintf(buf, n, "%.0f", v);
+        return buf;
+    }
+    if (v != v || v - v != 0)
+        return cli_fmt(buf, n, v);
+    /* the fewest digits that read back v; random draws need 16 or 17, listed values few:
+       try 15, then bisect below it or step above it (a plan prints millions of values) */
+    int lo = 1, hi = 15;
+    snprintf(buf, n, "%.15g", v);
+    if (strtod(buf, NULL) != v)
+        lo = hi = 16 + (snprintf(buf, n, "%.16g", v), strtod(buf, NULL) != v);
+    while (lo < hi) { /* round-tripping is monotone in the precision */
+        int mid = (lo + hi) / 2;
+        snprintf(buf, n, "%.*g", mid, v);
+        if (strtod(buf, NULL) == v)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    snprintf(buf, n, "%.*g", lo, v);
+    return buf;
+}
+
+/* appends the word a (fmt "%s%s") or a=b (fmt "%s=%s") to buf at *used; its start into
+   argv[*n] */
 static int word(char *buf, size_t nbuf, size_t *used, char **argv, int *n, const char *fmt,
                 const char *a, const char *b)
 {
-    if (*n + 1 >= SWEEP_ARGS)
+    size_t la = strlen(a), lb = strlen(b), eq = fmt[2] == '=';
+    if (*n + 1 >= SWEEP_ARGS || la + eq + lb + 1 > nbuf - *used)
         return -1;
-    int len = snprintf(buf + *used, nbuf - *used, fmt, a, b);
-    if (len < 0 || (size_t)len + 1 > nbuf - *used)
-        return -1;
-    argv[(*n)++] = buf + *used;
-    *used += (size_t)len + 1;
+    char *w = buf + *used;
+    memcpy(w, a, la);
+    if (eq)
+        w[la] = '=';
+    memcpy(w + la + eq, b, lb + 1);
+    argv[(*n)++] = w;
+    *used += la + eq + lb + 1;
     return 0;
 }
 
@@ -79,22 +110,31 @@ int sweep_argv(const sweep_campaign *c, const sweep_point *p, const char *modrt,
                         sweep_dim_str(c, i, p->at[i]));
         else
             bad |= word(buf, nbuf, &used, argv, &n, "%s=%s", d->name,
-                        cli_fmt(v, sizeof v, sweep_dim_num(c, i, p->at[i])));
+                        sweep_fmt(v, sizeof v, sweep_dim_num(c, i, p->at[i])));
     }
     for (int i = 0; i < c->nvars && !bad; i++) {
         bad |= word(buf, nbuf, &used, argv, &n, "%s%s", "--set", "");
         bad |= word(buf, nbuf, &used, argv, &n, "%s=%s", c->vars[i].name,
-                    cli_fmt(v, sizeof v, p->var[i]));
+                    sweep_fmt(v, sizeof v, p->var[i]));
     }
     argv[n] = NULL;
     return bad ? -1 : n;
 }
 
+/* may a character stand bare in a word for sh? */
+static int safe(char ch)
+{
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+           (ch && strchr("_./=:,+-@%", ch));
+}
+
 /* one word for sh: bare when it has only safe characters, else in single quotes */
 static void quoted(FILE *f, const char *w)
 {
-    if (*w && strspn(w, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
-                        "_./=:,+-@%") == strlen(w)) {
+    const char *p = w;
+    while (safe(*p))
+        p++;
+    if (*w && !*p) {
         fputs(w, f);
         return;
     }
