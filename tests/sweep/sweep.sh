@@ -119,6 +119,10 @@ EOF
 $M sweep plan "$T/big.swp" --out "$T/big" | awk -F'\t' 'END { print NR, $1 }' > "$T/bigcount"
 [ "$(cat "$T/bigcount")" = "100000 99999" ] && ok || bad "100 000-run plan: $(cat "$T/bigcount")"
 
+# the example of docs/sweeps.md plans its 1000 runs
+[ "$($M sweep plan "$D/../../docs/sweeps/pi_loop_mc.swp" --out "$T/doc" | wc -l)" -eq 1000 ] && ok || \
+    bad "docs/sweeps/pi_loop_mc.swp does not plan 1000 runs"
+
 # ---- located errors ----
 # expect_err NAME PATTERN CAMPAIGN-TEXT: plan fails with exit 2 and one line matching
 expect_err() {
@@ -182,67 +186,10 @@ else
     echo "sweep: GNU parallel is not installed (sh tools/install-deps.sh): its engine not tested"
 fi
 
-# a single-node Slurm cluster in $T/slurm: 0 when it is up, else 1 with the reason in $why
-slurm_up() {
-    S=$T/slurm why=""
-    for c in slurmctld slurmd munged munge sbatch; do
-        command -v $c > /dev/null || { why="$c is not installed (sh tools/install-deps.sh)"; return 1; }
-    done
-    mkdir -p "$S/state" "$S/spool" && chmod 700 "$S"
-    head -c 1024 /dev/urandom > "$S/munge.key" && chmod 400 "$S/munge.key"
-    timeout 120 munged -F -f -S "$S/munge.sock" --key-file="$S/munge.key" --log-file="$S/munged.log" \
-        --pid-file="$S/munged.pid" --seed-file="$S/munged.seed" > "$S/munged.out" 2>&1 &
-    pids="$pids $!"
-    port=$((20000 + $$ % 20000))
-    cat > "$S/slurm.conf" <<EOF
-ClusterName=modrt
-SlurmctldHost=localhost(127.0.0.1)
-SlurmUser=$(id -un)
-SlurmdUser=$(id -un)
-SlurmctldPort=$port
-SlurmdPort=$((port + 1))
-AuthType=auth/munge
-AuthInfo=socket=$S/munge.sock
-CredType=cred/munge
-StateSaveLocation=$S/state
-SlurmdSpoolDir=$S/spool
-SlurmctldPidFile=$S/slurmctld.pid
-SlurmdPidFile=$S/slurmd.pid
-ProctrackType=proctrack/linuxproc
-TaskPlugin=task/none
-SchedulerType=sched/builtin
-SchedulerParameters=sched_min_interval=0
-SelectType=select/cons_tres
-SelectTypeParameters=CR_Core
-ReturnToService=2
-MpiDefault=none
-JobCompType=jobcomp/none
-JobAcctGatherType=jobacct_gather/none
-AccountingStorageType=accounting_storage/none
-SlurmctldLogFile=$S/slurmctld.log
-SlurmdLogFile=$S/slurmd.log
-NodeName=localhost NodeAddr=127.0.0.1 CPUs=2 State=UNKNOWN
-PartitionName=sweep Nodes=localhost Default=YES MaxTime=10 State=UP
-EOF
-    export SLURM_CONF="$S/slurm.conf"
-    i=0; while [ ! -S "$S/munge.sock" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
-    [ -S "$S/munge.sock" ] || { why="munged did not start: $(tail -1 "$S/munged.out")"; return 1; }
-    timeout 120 slurmctld -D -f "$S/slurm.conf" > "$S/ctld.out" 2>&1 &
-    pids="$pids $!"
-    timeout 120 slurmd -D -f "$S/slurm.conf" -N localhost > "$S/d.out" 2>&1 &
-    pids="$pids $!"
-    i=0; while ! sinfo -h -o %t 2>/dev/null | grep -q idle && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
-    sinfo -h -o %t 2>/dev/null | grep -q idle && return 0
-    why="the node did not come up within 10 s: $(tail -1 "$S/ctld.out") / $(tail -1 "$S/d.out")"
-    return 1
-}
+. "$D/slurm.sh"
 if slurm_up; then
     $M sweep slurm "$D/engines.swp" --out "$T/slurm-out" --per-task 6 > /dev/null 2>&1
-    # sbatch --wait polls at growing intervals (tens of seconds): squeue every 0.1 s
-    job=$(sbatch --parsable "$T/slurm-out/sweep.sbatch" 2> "$T/sbatch.err")
-    i=0; while [ -n "$job" ] && [ -n "$(squeue -h -j "$job" 2>/dev/null)" ] && [ $i -lt 600 ]; do
-        sleep 0.1; i=$((i + 1)); done
-    [ -n "$job" ] || echo "sweep: sbatch: $(cat "$T/sbatch.err")"
+    slurm_run "$T/slurm-out/sweep.sbatch"
     $M sweep collect "$T/slurm-out" > /dev/null 2>&1
     cmp -s "$T/local/results.csv" "$T/slurm-out/results.csv" && ok || bad "Slurm's CSV differs from the local one"
 else
