@@ -34,13 +34,26 @@ import math, sys
 got = dict(l.split(": ", 1) for l in open(sys.argv[1]).read().splitlines() if ": " in l)
 zeta = 0.3
 over = math.exp(-math.pi * zeta / math.sqrt(1 - zeta * zeta))
+# the servo's closed form y = 1 - exp(-zeta w t) (cos wd t + zeta/sqrt(1-zeta^2) sin wd t)
+# at the ticks: it settles at the tick after the last one outside the band (the margin
+# to the band's edges at the ticks is far above the integration error)
+w, wd = 10, 10 * math.sqrt(1 - zeta * zeta)
+y = [1 - math.exp(-zeta * w * k / 1000) * (math.cos(wd * k / 1000) + zeta /
+     math.sqrt(1 - zeta * zeta) * math.sin(wd * k / 1000)) for k in range(2001)]
+last_out = max(k for k in range(2001) if abs(y[k] - 1) > 0.02)
+assert min(abs(abs(v - 1) - 0.02) for v in y) > 1e-7
 checks = [
+    ("servo_settle", (last_out + 1) / 1000, 1e-9),
     # first-order lag y = 1 - exp(-t/0.5): enters [0.98, 1.02] at T ln 50, seen at the
     # next tick (1 ms)
     ("lag_settle", 0.5 * math.log(50) + 0.0005, 0.0005),
     ("lag_settle_late", 0.5 * math.log(50) - 0.5 + 0.0005, 0.0005),
     ("lag_final", 1 - math.exp(-4), 1e-9),
     ("lag_over", 0, 0),
+    # over time, not per sample: (1/2) int_0^2 y dt and its RMS; the trapezoid's error is
+    # below 2 h^2 max|f''| / 12 / 2 < 1e-6 (a rectangle rule's would be 2.5e-4)
+    ("lag_mean", 0.5 * (2 - 0.5 * (1 - math.exp(-4))), 1e-6),
+    ("lag_rms", math.sqrt(0.5 * (2 - 2 * 0.5 * (1 - math.exp(-4)) + 0.25 * (1 - math.exp(-8)))), 1e-6),
     # second-order servo: the peak falls between ticks; the sampled maximum is below it
     # by at most |y''| (dt/2)^2 / 2 < 5e-6
     ("servo_over", over - 2.5e-6, 2.5e-6),
