@@ -435,7 +435,7 @@ static int statement(lexer *L, sweep_campaign *c)
                        "timeout, grid, draw, replay, metric)");
     char kw[SWEEP_NAME];
     int line = L->tline, col = L->tcol;
-    snprintf(kw, sizeof kw, "%s", L->text);
+    snprintf(kw, sizeof kw, "%.*s", SWEEP_NAME - 1, L->text);
     if (next(L))
         return -1;
     if (!strcmp(kw, "campaign"))
