@@ -160,8 +160,13 @@ expect_err "unterminated string" "bad.swp:1:8: error: string without its closing
     "scene (\"x.scn);"
 expect_err "bad range" "bad.swp:1:31: error: range (lo, hi, n) needs a whole n >= 2" \
     "scene (pi_loop); grid (PI.Kp) range (1, 2, 1.5);"
-expect_err "unknown block" "unknown block: Plnt" \
+expect_err "unknown block" "bad.swp:1:24: error: scene pi_loop has no block 'Plnt'" \
     "scene (pi_loop); grid (Plnt.K) values (1, 2);"
+expect_err "unknown parameter" "bad.swp:2:7: error: scene pi_loop has no parameter or state 'Plant.KK'" \
+    "scene (pi_loop); draws (3);
+draw (Plant.KK) uniform (1, 2);"
+expect_err "a listed value out of range" "bad.swp:1:24: error: scene pi_loop refuses Plant.T = -1 (out of the parameter's range)" \
+    "scene (pi_loop); grid (Plant.T) values (0.5, -1);"
 expect_err "no scene" "error: the campaign names no scene" "seed (1);"
 
 # ---- failed and timed-out runs are rows; --only-missing completes a table ----

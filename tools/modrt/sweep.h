@@ -48,6 +48,7 @@ typedef struct sweep_dim {
     char name[SWEEP_NAME];     /* Block.param or set name; "" for replay */
     uint32_t first, n;         /* listed: values first..first+n-1 of the pools */
     double lo, hi;             /* range */
+    int line, col;             /* where its name is (errors against the scene) */
 } sweep_dim;
 
 /* One Monte-Carlo variable (a parameter or initial state, Block.name). */
@@ -57,6 +58,7 @@ typedef struct sweep_var {
     double a, b;               /* uniform, loguniform: bounds; normal: mean, sd */
     double lo, hi;             /* bounds of every draw */
     uint64_t key;              /* hash of the name: the draw does not depend on order */
+    int line, col;             /* where its name is */
 } sweep_var;
 
 /* One metric over a recorded signal or the difference of two. */

@@ -207,11 +207,55 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
     return write_result(c, a, &sc, st, r.wall_s, code) != CLI_OK ? CLI_USAGE : code;
 }
 
+/* B.p (at line:col of the campaign) set to v on the initialised scene, or one located
+   error line */
+static int check_param(const sweep_campaign *c, const rt_scene *sc, const char *name, double v,
+                       int line, int col)
+{
+    char block[SWEEP_NAME];
+    const char *dot = strchr(name, '.'), *why = NULL;
+    snprintf(block, sizeof block, "%.*s", (int)(dot - name), name);
+    rt_status st = RT_OK;
+    if (rt_block_index(sc, block) < 0)
+        why = "has no block";
+    else if ((st = rt_set_param(sc, &sim, block, dot + 1, (real_t)v)) == RT_E_PARAM)
+        why = "refuses the value";
+    else if (st != RT_OK)
+        why = "has no parameter or state";
+    char val[40];
+    if (why && st == RT_E_PARAM)
+        fprintf(stderr, "%s:%d:%d: error: scene %s refuses %s = %s (out of the parameter's "
+                "range)\n", c->path, line, col, sc->name, name, sweep_fmt(val, sizeof val, v));
+    else if (why)
+        fprintf(stderr, "%s:%d:%d: error: scene %s %s '%s'\n", c->path, line, col, sc->name,
+                why, st == RT_OK ? block : name);
+    return why ? CLI_USAGE : CLI_OK;
+}
+
 int sweep_check(const sweep_campaign *c, const sweep_exec_args *a)
 {
     rt_scene sc;
-    int rc = setup(c, a, &sc) != CLI_OK || sweep_metrics_bind(c, &sc, acc) != 0 ? CLI_USAGE
-                                                                               : CLI_OK;
+    sweep_exec_args bare = *a;
+    bare.nsets = 0; /* the scene first, then each varied name where the campaign names it */
+    int rc = setup(c, &bare, &sc);
+    /* every listed value, a range's ends, a draw's bounds: the scene accepts them all */
+    for (int i = 0; i < c->ndims && rc == CLI_OK; i++) {
+        const sweep_dim *d = &c->dims[i];
+        for (uint32_t j = 0; d->kind == SWEEP_DIM_PARAM && j < d->n && rc == CLI_OK;
+             j = d->is_range && j == 0 ? d->n - 1 : j + 1)
+            rc = check_param(c, &sc, d->name, sweep_dim_num(c, i, j), d->line, d->col);
+    }
+    for (int i = 0; i < c->nvars && rc == CLI_OK; i++) {
+        const sweep_var *v = &c->vars[i];
+        rc = check_param(c, &sc, v->name, v->lo, v->line, v->col);
+        if (rc == CLI_OK)
+            rc = check_param(c, &sc, v->name, v->hi, v->line, v->col);
+    }
+    if (a->replay)
+        mrl_close();
+    if (rc == CLI_OK) /* all of run 0 together, as its task will */
+        rc = setup(c, a, &sc) != CLI_OK || sweep_metrics_bind(c, &sc, acc) != 0 ? CLI_USAGE
+                                                                                : CLI_OK;
     if (a->replay)
         mrl_close();
     return rc;

@@ -251,6 +251,7 @@ static int st_grid(lexer *L, sweep_campaign *c)
                                                                         : SWEEP_DIM_PARAM;
     if (d->kind != SWEEP_DIM_PARAM && next(L))
         return -1;
+    d->line = L->tline, d->col = L->tcol + 1; /* the name after '(' */
     if (paren_name(L, d->name, sizeof d->name, d->kind == SWEEP_DIM_PARAM ? "Block.param"
                                                                            : "a set name"))
         return -1;
@@ -298,6 +299,7 @@ static int st_draw(lexer *L, sweep_campaign *c)
         return fail(L, "more than %d drawn variables (SWEEP_MAX_VARS)", SWEEP_MAX_VARS);
     sweep_var *v = &c->vars[c->nvars];
     memset(v, 0, sizeof *v);
+    v->line = L->tline, v->col = L->tcol + 1;
     if (paren_name(L, v->name, sizeof v->name, "Block.param"))
         return -1;
     if (!strchr(v->name, '.'))
