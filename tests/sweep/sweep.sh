@@ -181,6 +181,17 @@ $M sweep collect "$T/slow" > /dev/null 2>&1
 [ "$(cut -d, -f2 "$T/slow/results.csv" | tail -n +2 | sort -u)" = timeout ] && ok || \
     bad "timed-out runs: $(cat "$T/slow/results.csv")"
 
+# a run that dies by a signal (here SIGXCPU: one second of CPU time, inherited by the
+# run's process; the supervisor sleeps) is a row "crashed" naming the signal
+cat > "$T/crash.swp" <<'EOF'
+scene (pendulum10);
+end time (4000 s);
+grid (B1.m) values (1);
+EOF
+(ulimit -t 1; exec $M sweep run "$T/crash.swp" --out "$T/crash" -j 1 2>/dev/null)
+grep -q '^status: crashed$' "$T/crash/runs/000000.txt" && grep -q '^why: the run ended by signal' "$T/crash/runs/000000.txt" && ok || \
+    bad "a run killed by a signal: $(cat "$T/crash/runs/000000.txt")"
+
 # ---- one campaign, three engines, identical CSVs ----
 $M sweep run "$D/engines.swp" --out "$T/local" -j 2 2>/dev/null
 $M sweep collect "$T/local" > "$T/local.out" 2>/dev/null
