@@ -181,6 +181,19 @@ $M sweep collect "$T/slow" > /dev/null 2>&1
 [ "$(cut -d, -f2 "$T/slow/results.csv" | tail -n +2 | sort -u)" = timeout ] && ok || \
     bad "timed-out runs: $(cat "$T/slow/results.csv")"
 
+# results of an earlier version of a campaign are stale: collect refuses until the runs
+# are redone, --only-missing redoes them
+mkdir -p "$T/st" && cp "$D/metrics.swp" "$D/metrics.scn" "$T/st/"
+$M sweep run "$T/st/metrics.swp" --out "$T/st/out" -j 1 2>/dev/null
+echo 'metric (extra) max (Lag.y);' >> "$T/st/metrics.swp"
+$M sweep collect "$T/st/out" > /dev/null 2> "$T/err"; rc=$?
+[ $rc -eq 2 ] && grep -q 'the campaign file has changed since sweep.info' "$T/err" && ok || \
+    bad "collect after an edit of the campaign: exit $rc, $(cat "$T/err")"
+$M sweep run "$T/st/metrics.swp" --out "$T/st/out" -j 1 --only-missing 2> "$T/err"
+grep -q '^sweep: 1 of 1 runs' "$T/err" && ok || bad "--only-missing after an edit: $(cat "$T/err")"
+$M sweep collect "$T/st/out" 2>/dev/null | grep -q '^missing_or_stale: 0$' && \
+    grep -q '^metric.extra: ' "$T/st/out/runs/000000.txt" && ok || bad "the edited campaign's run was not redone"
+
 # a run that dies by a signal (here SIGXCPU: one second of CPU time, inherited by the
 # run's process; the supervisor sleeps) is a row "crashed" naming the signal
 cat > "$T/crash.swp" <<'EOF'
@@ -195,7 +208,7 @@ grep -q '^status: crashed$' "$T/crash/runs/000000.txt" && grep -q '^why: the run
 # ---- one campaign, three engines, identical CSVs ----
 $M sweep run "$D/engines.swp" --out "$T/local" -j 2 2>/dev/null
 $M sweep collect "$T/local" > "$T/local.out" 2>/dev/null
-grep -q '^missing: 0$' "$T/local.out" && ok || bad "local: $(cat "$T/local.out")"
+grep -q '^missing_or_stale: 0$' "$T/local.out" && ok || bad "local: $(cat "$T/local.out")"
 [ "$(grep -c ',"non-finite value",' "$T/local/results.csv")" -eq 24 ] && ok || \
     bad "local: the failing tuning's 24 runs are not rows with their status"
 rm "$T/local/runs/000003.txt" "$T/local/runs/000030.txt" "$T/local/runs/000047.txt"

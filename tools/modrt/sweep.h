@@ -93,6 +93,7 @@ typedef struct sweep_campaign {
     char arena[SWEEP_ARENA];
     uint32_t narena;
     uint64_t nruns;            /* product of the grid sizes times draws */
+    uint64_t hash;             /* FNV-1a of the file: a result of another version is stale */
 } sweep_campaign;
 
 /* One run's values, computed from its index alone. */
@@ -174,8 +175,10 @@ int sweep_exec(const sweep_campaign *c, const sweep_exec_args *a);
 int sweep_check(const sweep_campaign *c, const sweep_exec_args *a);
 /* The result file of run k in dir. */
 void sweep_result_path(char *buf, size_t n, const char *dir, uint64_t k);
-/* Writes a result that says only why the run has none (crashed, timeout...). */
-int sweep_write_status(const char *dir, uint64_t k, const char *status, const char *why);
+/* Writes a result that says only why the run has none (crashed, timeout...), of the
+   campaign version hash. */
+int sweep_write_status(const char *dir, uint64_t k, uint64_t hash, const char *status,
+                       const char *why);
 
 /* ---- sweep_run.c: the local engine ---- */
 /* Runs the campaign's task lines on jobs local processes; only_missing: only the runs

@@ -25,7 +25,7 @@ typedef struct record {
 } record;
 
 typedef struct info {
-    char campaign[SWEEP_PATH], name[SWEEP_NAME];
+    char campaign[SWEEP_PATH], name[SWEEP_NAME], hash[24];
     uint64_t runs;
     char col[COLS_MAX][SWEEP_NAME + 8];
     int ncols;
@@ -76,6 +76,11 @@ static void load(const char *dir, uint64_t k)
     }
     if (f)
         fclose(f);
+    const char *h = get(&rec, "campaign_hash");
+    if (h && strcmp(h, inf.hash) != 0) { /* a result of an earlier version of the campaign */
+        rec.n = 0;
+        put(&rec, "status", "stale");
+    }
     put(&rec, "status", "missing");
     if (k >= camp.nruns)
         return;
@@ -108,6 +113,8 @@ static int read_info(const char *dir)
             snprintf(inf.campaign, sizeof inf.campaign, "%.*s", SWEEP_PATH - 1, line + 10);
         else if (!strncmp(line, "name: ", 6))
             snprintf(inf.name, sizeof inf.name, "%.*s", SWEEP_NAME - 1, line + 6);
+        else if (!strncmp(line, "campaign_hash: ", 15))
+            snprintf(inf.hash, sizeof inf.hash, "%.16s", line + 15);
         else if (!strncmp(line, "runs: ", 6))
             inf.runs = strtoull(line + 6, NULL, 10);
         else if (!strncmp(line, "column: ", 8) && inf.ncols < COLS_MAX)
@@ -119,9 +126,12 @@ static int read_info(const char *dir)
     fclose(f);
     if (sweep_parse(inf.campaign, &camp) != 0)
         return cli_fail("collect: cannot read the campaign named in", path), -1;
-    if (camp.nruns != inf.runs)
-        return cli_fail("collect: the campaign file has changed since the runs (run count "
-                        "differs from sweep.info)", inf.campaign), -1;
+    char now[24];
+    snprintf(now, sizeof now, "%016llx", (unsigned long long)camp.hash);
+    if (camp.nruns != inf.runs || strcmp(now, inf.hash) != 0)
+        return cli_fail("collect: the campaign file has changed since sweep.info was written "
+                        "(modrt sweep run --only-missing runs what the new version needs)",
+                        inf.campaign), -1;
     return 0;
 }
 
@@ -311,13 +321,14 @@ int sweep_collect(const char *dir, const char *svgplot)
     for (uint64_t k = 0; k < inf.runs; k++) {
         load(dir, k);
         const char *st = get(&rec, "status"), *w = get(&rec, "wall_s");
-        ok += strcmp(st, "ok") == 0, missing += strcmp(st, "missing") == 0;
+        ok += strcmp(st, "ok") == 0;
+        missing += strcmp(st, "missing") == 0 || strcmp(st, "stale") == 0;
         wall += w ? strtod(w, NULL) : 0;
         row(f, k);
     }
     if (fclose(f) != 0 || rename(tmp, path) != 0)
         return cli_fail("cannot write", path);
-    printf("runs: %llu\nok: %llu\nnot_ok: %llu\nmissing: %llu\nrun_wall_s_sum: %.6f\n"
+    printf("runs: %llu\nok: %llu\nnot_ok: %llu\nmissing_or_stale: %llu\nrun_wall_s_sum: %.6f\n"
            "csv: %s\n", (unsigned long long)inf.runs, (unsigned long long)ok,
            (unsigned long long)(inf.runs - ok - missing), (unsigned long long)missing, wall,
            path);

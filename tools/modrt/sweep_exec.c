@@ -171,7 +171,8 @@ static int write_result(const sweep_campaign *c, const sweep_exec_args *a, const
             sim.stats.status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
                                       : rt_status_name(sim.stats.status),
             code, sc->name, (unsigned long long)sim.state.tick, wall);
-    fprintf(f, "hash: %016llx\n", (unsigned long long)sim.state.hash);
+    fprintf(f, "hash: %016llx\ncampaign_hash: %016llx\n", (unsigned long long)sim.state.hash,
+            (unsigned long long)c->hash);
     for (int i = 0; i < RT_CNT_COUNT; i++)
         fprintf(f, "count.%s: %u\n", rt_counter_key((rt_counter)i), (unsigned)sim.stats.count[i]);
     values(f, a);
@@ -261,7 +262,8 @@ int sweep_check(const sweep_campaign *c, const sweep_exec_args *a)
     return rc;
 }
 
-int sweep_write_status(const char *dir, uint64_t k, const char *status, const char *why)
+int sweep_write_status(const char *dir, uint64_t k, uint64_t hash, const char *status,
+                       const char *why)
 {
     char path[SWEEP_PATH + 40], tmp[SWEEP_PATH + 64];
     sweep_result_path(path, sizeof path, dir, k);
@@ -269,7 +271,8 @@ int sweep_write_status(const char *dir, uint64_t k, const char *status, const ch
     FILE *f = fopen(tmp, "w");
     if (!f)
         return cli_fail("cannot write the run's result", tmp);
-    fprintf(f, "index: %llu\nstatus: %s\nwhy: %s\n", (unsigned long long)k, status, why);
+    fprintf(f, "index: %llu\nstatus: %s\nwhy: %s\ncampaign_hash: %016llx\n",
+            (unsigned long long)k, status, why, (unsigned long long)hash);
     if (fclose(f) != 0 || rename(tmp, path) != 0)
         return remove(tmp), cli_fail("cannot write the run's result", path);
     return CLI_OK;
@@ -318,13 +321,13 @@ int sweep_exec(const sweep_campaign *c, const sweep_exec_args *a)
         kill(pid, SIGKILL);
         waitpid(pid, &wst, 0);
         snprintf(why, sizeof why, "no result after %g s (timeout)", c->timeout);
-        sweep_write_status(a->out, a->index, "timeout", why);
+        sweep_write_status(a->out, a->index, c->hash, "timeout", why);
         return CLI_FAULTS;
     }
     if (WIFSIGNALED(wst)) {
         snprintf(why, sizeof why, "the run ended by signal %d (%s)", WTERMSIG(wst),
                  strsignal(WTERMSIG(wst)));
-        sweep_write_status(a->out, a->index, "crashed", why);
+        sweep_write_status(a->out, a->index, c->hash, "crashed", why);
         return CLI_FAULTS;
     }
     int code = WEXITSTATUS(wst);
@@ -332,7 +335,7 @@ int sweep_exec(const sweep_campaign *c, const sweep_exec_args *a)
     if (code == CLI_USAGE || access(path, F_OK) != 0) { /* it said why on stderr */
         snprintf(why, sizeof why, "the run could not start (exit %d; its error is on its "
                  "stderr)", code);
-        sweep_write_status(a->out, a->index, "error", why);
+        sweep_write_status(a->out, a->index, c->hash, "error", why);
         return CLI_USAGE;
     }
     return code;

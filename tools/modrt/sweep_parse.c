@@ -520,6 +520,9 @@ int sweep_parse(const char *path, sweep_campaign *c)
         return strlen(path) >= sizeof c->path ? fprintf(stderr, "campaign path too long\n"), -1
                                               : -1;
     strcpy(c->path, path);
+    c->hash = 1469598103934665603ull; /* FNV-1a of the text */
+    for (const char *s = src; *s; s++)
+        c->hash = (c->hash ^ (uint8_t)*s) * 1099511628211ull;
     const char *slash = strrchr(path, '/');
     snprintf(c->dir, sizeof c->dir, "%.*s", slash ? (int)(slash - path) : 1,
              slash ? path : ".");

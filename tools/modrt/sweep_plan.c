@@ -174,8 +174,8 @@ int sweep_write_info(const sweep_campaign *c, const char *campaign, const char *
     FILE *f = fopen(tmp, "w");
     if (!f)
         return cli_fail("cannot write", tmp), -1;
-    fprintf(f, "campaign: %s\nname: %s\nruns: %llu\n", campaign, c->name,
-            (unsigned long long)c->nruns);
+    fprintf(f, "campaign: %s\nname: %s\nruns: %llu\ncampaign_hash: %016llx\n", campaign,
+            c->name, (unsigned long long)c->nruns, (unsigned long long)c->hash);
     for (int i = 0; i < c->ndims; i++)
         column(f, &c->dims[i]);
     for (int i = 0; i < c->nvars; i++)

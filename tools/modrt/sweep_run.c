@@ -28,28 +28,31 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* does run k need running: no result, or one that says nothing about the scene? */
-static int missing(const char *out, uint64_t k)
+/* does run k need running: no result, one of another version of the campaign, or one
+   that says nothing about the scene? */
+static int missing(const sweep_campaign *c, const char *out, uint64_t k)
 {
-    char path[SWEEP_PATH + 40], line[128];
+    char path[SWEEP_PATH + 40], line[128], want[40];
+    snprintf(want, sizeof want, "campaign_hash: %016llx\n", (unsigned long long)c->hash);
     sweep_result_path(path, sizeof path, out, k);
     FILE *f = fopen(path, "r");
     if (!f)
         return 1;
-    int need = 1;
-    while (fgets(line, sizeof line, f))
+    int need = 0, same = 0;
+    while (fgets(line, sizeof line, f)) {
+        same |= strcmp(line, want) == 0;
         if (strncmp(line, "status: ", 8) == 0) {
             line[strcspn(line, "\n")] = 0;
             need = !strcmp(line + 8, "timeout") || !strcmp(line + 8, "crashed") ||
                    !strcmp(line + 8, "error") || !strcmp(line + 8, "lost");
-            break;
         }
+    }
     fclose(f);
-    return need;
+    return need || !same;
 }
 
 /* reaps one ended task; a task without a result leaves a "lost" row */
-static void reap(const char *out, int *active)
+static void reap(const sweep_campaign *c, const char *out, int *active)
 {
     int wst;
     pid_t pid = wait(&wst);
@@ -64,7 +67,7 @@ static void reap(const char *out, int *active)
             snprintf(why, sizeof why, "its task ended without a result (%s %d)",
                      WIFSIGNALED(wst) ? "signal" : "exit",
                      WIFSIGNALED(wst) ? WTERMSIG(wst) : WEXITSTATUS(wst));
-            sweep_write_status(out, slots[i].k, "lost", why);
+            sweep_write_status(out, slots[i].k, c->hash, "lost", why);
         }
         slots[i].pid = 0;
         (*active)--;
@@ -104,19 +107,19 @@ int sweep_run_local(const sweep_campaign *c, const char *campaign, const char *o
     if (sweep_write_info(c, campaign, out) != 0)
         return CLI_USAGE;
     for (uint64_t k = 0; k < c->nruns; k++) {
-        if (only_missing && !missing(out, k))
+        if (only_missing && !missing(c, out, k))
             continue;
         sweep_point_of(c, k, &p);
         if (sweep_argv(c, &p, modrt, campaign, out, buf, sizeof buf, argv) < 0)
             return cli_fail("sweep: a task line longer than SWEEP_LINE", NULL);
         while (active >= jobs)
-            reap(out, &active);
+            reap(c, out, &active);
         if (start(argv, k) != 0)
             break;
         active++, started++;
     }
     while (active > 0)
-        reap(out, &active);
+        reap(c, out, &active);
     double wall = now_s() - t0;
     fprintf(stderr, "sweep: %llu of %llu runs in %.3f s on %d jobs (%.1f runs/s); "
             "modrt sweep collect %s merges them\n", (unsigned long long)started,
