@@ -206,7 +206,8 @@ static int plan(const sweep_cli_args *a)
     uint64_t k0 = a->exec.has_index ? a->exec.index : 0, k1 = camp.nruns;
     if (a->count && a->count < k1 - (k0 < k1 ? k0 : k1))
         k1 = k0 + a->count;
-    if (!a->exec.has_index && sweep_write_info(&camp, camp_path, out_path) != 0)
+    /* only when asked: printing a plan leaves no trace by default */
+    if (a->exec.out && !a->exec.has_index && sweep_write_info(&camp, camp_path, out_path) != 0)
         return CLI_USAGE;
     for (uint64_t k = k0; k < k1; k++) {
         sweep_point_of(&camp, k, &p);

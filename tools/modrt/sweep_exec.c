@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -305,6 +306,9 @@ static int wait_child(pid_t pid, double timeout, int *wst)
 int sweep_exec(const sweep_campaign *c, const sweep_exec_args *a)
 {
     char why[160], path[SWEEP_PATH + 40];
+    snprintf(path, sizeof path, "%s/runs", a->out); /* a plan printed without --out */
+    if ((mkdir(a->out, 0777) != 0 && errno != EEXIST) || (mkdir(path, 0777) != 0 && errno != EEXIST))
+        return cli_fail("cannot create the output directory", path);
     sigset_t set, old;
     sigemptyset(&set), sigaddset(&set, SIGCHLD);
     sigprocmask(SIG_BLOCK, &set, &old);
