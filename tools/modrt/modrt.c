@@ -17,6 +17,7 @@
 #include "mrlog.h"
 #include "scn_host.h"
 #include "study.h"
+#include "sweep.h"
 #include "runner.h"
 #include "tune.h"
 #include "version.h"
@@ -716,6 +717,9 @@ static const cli_cmd commands[] = {
      "error (modrt check: the schedule again at half its steps) is within --tol too\n"
      "(docs/multirate.md).",
      tune_cli_opts, 1, 1, &tune_cli_ctx, tune_cli_run},
+    {"sweep", "plan|run|exec|slurm CAMPAIGN, or collect DIR", "parameter sweeps and "
+     "Monte-Carlo campaigns of a scene: local cores, GNU parallel, Slurm (docs/sweeps.md)",
+     sweep_cli_help, sweep_cli_opts, 2, 2, &sweep_cli_ctx, sweep_cli_run},
     {"sizes", "SCENE|FILE.scn", "print the exact compile-time limits of a per-scene build "
      "as -D flags", NULL, NULL, 1, 1, NULL, cmd_sizes},
     {"docs-blocks", "", "print the block reference (docs/blocks.md) of every kind", NULL,
@@ -746,6 +750,8 @@ int main(int argc, char **argv)
         printf("modrt %s (%s)\n", MODRT_VERSION, RT_REAL_IS_FLOAT ? "float" : "double");
         return CLI_OK;
     }
+    if (strcmp(argv[1], "sweep") == 0)
+        sweep_short_opts(argc, argv);
     for (const cli_cmd *c = commands; c->name; c++)
         if (strcmp(argv[1], c->name) == 0)
             return cli_dispatch(c, argc - 2, argv + 2);
