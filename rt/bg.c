@@ -211,8 +211,7 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
 static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
 {
     uint32_t ratio = sc->sets[s].ratio;
-    real_t t = (real_t)ctx->state.set_tick[s] * sc->dt;
-    rti_step_set(sc, ctx, s, t, sc->dt * (real_t)ratio);
+    rti_tev_step(sc, ctx, s, ctx->state.set_tick[s], ratio); /* parts at time events */
     real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
     rti_outputs(sc, ctx, (rti_at){te, s, RTI_IN_STEP});
     /* its recorded multibody signals (a residual): here, not in a tick */

@@ -118,7 +118,17 @@ typedef struct rt_args {
     const real_t *u;   /* inputs, nu values */
     const real_t *p;   /* parameters, np values */
     const void *spec;  /* the kind's type-specific const data (rt_kind.spec) */
+    /* a time strictly between the known time events (rt_kind.next_event) on either side
+       of this evaluation [s]: the midpoint of the step part being integrated, or half a
+       base tick after t at a tick. A kind whose outputs switch at its instants picks its
+       piece by t_piece, never by t: the step ending at an instant then sees the left
+       limit at its end (t == the instant), the step starting there the right limit, and
+       rounding of t near an instant cannot pick the wrong side (rt/tev.c) */
+    real_t t_piece;
 } rt_args;
+
+/* what rt_kind.next_event returns when no known time event follows */
+#define RT_TEV_NEVER ((real_t)1e30)
 
 /* A block kind: sizes, names and services, like the paper's system_descr (Fig. 3).
  * Every slot may be NULL where the comment says so; the runtime checks the rest at init. */
@@ -187,6 +197,15 @@ typedef struct rt_kind {
     const char *units;          /* units of inputs, outputs, states, discrete states and
                                    parameters in that order, separated by spaces ("-":
                                    dimensionless); NULL: not given */
+    /* Known time events: returns the block's first instant strictly after a->t [s] at
+       which its outputs or derivatives switch (a step, a pulse edge, a scheduled change;
+       an FMU's next time event), or RT_TEV_NEVER (any time at or past the end time reads
+       as none). Reads a->t and a->p only. The runtime ends every step of the block's set
+       at each instant (splitting a step of several ticks), evaluates the step before it
+       with the left limit and the one after with the right limit (rt_args.t_piece); the
+       instants must lie on the base tick grid (rt_init refuses the scene otherwise,
+       rt/tev.c). NULL: none (the kind has no switch in time) */
+    real_t (*next_event)(const rt_args *a);
 } rt_kind;
 
 /* A reference text of a kind: kept on hosts, dropped from embedded images. */
@@ -717,6 +736,9 @@ typedef struct rt_work {
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];
     rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
+    real_t t_piece;                  /* midpoint of the step part a set with known time
+                                        events is integrating [s] (rt_args.t_piece); 0:
+                                        none, at a tick (rt/tev.c) */
 } rt_work;
 
 /* One running scene. The caller owns it (static storage); rt_init fills every part.

@@ -316,6 +316,12 @@ typedef double real_t;
    far below any model's time scale, yet reached in a few Illinois iterations */
 #define RT_EVENT_TTOL (RT_REAL_IS_FLOAT ? (real_t)1e-6 : (real_t)1e-12)
 #endif
+#ifndef RT_TEV_PARTS_MAX
+/* parts one set step may be split into at known time events strictly inside it (rt/tev.c):
+   each part is a step of the set's method, so a step's work is at most this many times
+   its bound (rt_step_bound); a scene needing more is refused at rt_init */
+#define RT_TEV_PARTS_MAX 4
+#endif
 
 #if RT_MAX_BLOCKS > 65535 || RT_MAX_Y > 65535 || RT_MAX_U > 65535 || RT_MAX_X > 65535
 #error "modrt indexes blocks, states and ports with 16-bit integers: keep every RT_MAX_* below 65536."

@@ -102,8 +102,10 @@ static int apply_set(const rt_scene *sc, const char *arg)
     if (rt_block_index(sc, buf) < 0)
         return cli_fail("--set: unknown block", buf);
     rt_status st = rt_set_param(sc, &sim, buf, dot + 1, (real_t)v);
-    if (st == RT_E_PARAM)
-        return cli_fail("--set: value out of range for the parameter", arg);
+    if (st == RT_E_PARAM) /* the runtime may say why (a time event off the grid) */
+        return cli_fail(rt_error_text(&sim)[0] ? rt_error_text(&sim)
+                                               : "--set: value out of range for the parameter",
+                        arg);
     if (st != RT_OK)
         return cli_fail("--set: block has no parameter or state named", dot + 1);
     return 0;
