@@ -211,6 +211,10 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
 static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
 {
     uint32_t ratio = sc->sets[s].ratio;
+    /* its sensitivity to the inputs it extrapolates, when due (here, not in the tick) */
+    if (ctx->plan.set_flags[s] & RTI_SET_XPRED)
+        rti_xset_gain(sc, ctx, s, (real_t)ctx->state.set_tick[s] * sc->dt,
+                      sc->dt * (real_t)ratio);
     rti_tev_step(sc, ctx, s, ctx->state.set_tick[s], ratio); /* parts at time events */
     real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
     rti_outputs(sc, ctx, (rti_at){te, s, RTI_IN_STEP});
@@ -253,6 +257,10 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     if (bg) {
         copy_result(bg, sim, s);
         merge_stats(sim, bg, s);
+#if RT_MAX_XPRED > 0
+        /* the sensitivity its step measured, for the tick's check at the next release */
+        copy_reals(sim->state.xgain, bg->state.xgain, sim->plan.nxpred);
+#endif
     } else {
         move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
     }

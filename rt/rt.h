@@ -670,6 +670,11 @@ typedef struct rt_state {
        made at the step's start (NaN: none yet), checked at the next, and the largest |u|
        the input has had at those checks, its scale (rti_xset_predict) */
     real_t xpred[RT_MAX_XPRED], xscale[RT_MAX_XPRED];
+    /* per input of plan.xpred_in: the sensitivity of its set's derivatives to it, the
+       largest |df_i/du| / (1 + |x_i|) [1/s per unit of u], measured by a difference every
+       RT_XSET_GAIN_EVERY steps of the set (NaN: not yet), which turns a missed
+       prediction into an error of the set's state (rti_xset_predict) */
+    real_t xgain[RT_MAX_XPRED];
 #endif
 #if RT_MAX_HELD_SIG > 0
     /* recorded (in record order), then link-exported (in export order) multibody signals
@@ -713,6 +718,11 @@ typedef struct rt_stats {
                                         measure of `modrt tune` and the benchmarks) */
     uint32_t bg_late;                /* background steps not finished at their deadline
                                         (also counted as RT_CNT_OVERRUN) */
+    real_t xset_est[RT_MAX_SETS];    /* the largest local error a set's step took from the
+                                        inputs it extrapolates from other sets, estimated
+                                        from the missed prediction and the set's
+                                        sensitivity to it (state.xgain), in the scaled
+                                        norm of its accuracy (rti_xset_predict) */
 } rt_stats;
 
 /* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */

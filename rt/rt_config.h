@@ -241,6 +241,16 @@ typedef double real_t;
    docs/multirate.md) */
 #define RT_XSET_LOST ((real_t)1)
 #endif
+#ifndef RT_XSET_GAIN_EVERY
+/* a set that extrapolates another measures its sensitivity to those inputs (two
+   right-hand sides each) at every this many of its steps: what turns a missed prediction
+   into an error of its state, compared with its accuracy (rti_xset_predict) */
+#define RT_XSET_GAIN_EVERY 16
+#endif
+#ifndef RT_XSET_FD
+/* the input's difference for that sensitivity, relative to 1 + its range */
+#define RT_XSET_FD (RT_REAL_IS_FLOAT ? (real_t)1e-3 : (real_t)1e-7)
+#endif
 #ifndef RT_ERR_LOST
 /* a step whose estimate exceeds this (an error as large as the state's scale 1 + |x|)
    has no correct digit: counted as errest too, but the status is failed, not doubtful */

@@ -212,6 +212,7 @@ def main():
     s.robertson_order(errs)
     import hard_cases
     hard_cases.extra(s, long)
+    __import__("cases_multirate").extra(s, long)  # multirate coupling (docs/multirate.md)
     if "--table" in sys.argv:
         with open(sys.argv[sys.argv.index("--table") + 1], "w") as f:
             f.write("\n".join(s.table) + "\n")
