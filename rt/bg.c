@@ -154,6 +154,10 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         bg->state.hist_n[q] = sim->state.hist_n[q];
         copy_reals(bg->state.hist_t[q], sim->state.hist_t[q], RT_HIST);
     }
+#if RT_MAX_XPRED > 0
+    /* its sensitivities, as the tick last judged them (NaN: measure afresh, rt/xset.c) */
+    copy_reals(bg->state.xgain, sim->state.xgain, sim->plan.nxpred);
+#endif
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
         if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],

@@ -672,8 +672,9 @@ typedef struct rt_state {
     real_t xpred[RT_MAX_XPRED], xscale[RT_MAX_XPRED];
     /* per input of plan.xpred_in: the sensitivity of its set's derivatives to it, the
        largest |df_i/du| / (1 + |x_i|) [1/s per unit of u], measured by a difference every
-       RT_XSET_GAIN_EVERY steps of the set (NaN: not yet), which turns a missed
-       prediction into an error of the set's state (rti_xset_predict) */
+       RT_XSET_GAIN_EVERY steps of the set and before a miss near its accuracy is judged
+       (NaN: due), which turns a missed prediction into an error of the set's state
+       (rti_xset_predict) */
     real_t xgain[RT_MAX_XPRED];
 #endif
 #if RT_MAX_HELD_SIG > 0

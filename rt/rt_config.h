@@ -245,7 +245,12 @@ typedef double real_t;
 /* a set that extrapolates another measures its sensitivity to those inputs (two
    right-hand sides each) at every this many of its steps: what turns a missed prediction
    into an error of its state, compared with its accuracy (rti_xset_predict) */
-#define RT_XSET_GAIN_EVERY 16
+#define RT_XSET_GAIN_EVERY 256
+#endif
+#ifndef RT_XSET_FRESH
+/* and afresh before it judges a miss whose estimate from the last measurement exceeds
+   this fraction of its accuracy */
+#define RT_XSET_FRESH ((real_t)0.25)
 #endif
 #ifndef RT_XSET_FD
 /* the input's difference for that sensitivity, relative to 1 + its range */

@@ -206,7 +206,8 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
 void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
 void rti_xset_predict_reset(rt_sim *sim);
 /* set s's sensitivity to the inputs it extrapolates, at its step's start t (step h), when
-   due (every RT_XSET_GAIN_EVERY steps of it, or none yet): two right-hand sides per input,
+   due (every RT_XSET_GAIN_EVERY steps of it, or NaN: none yet, or marked by a miss near
+   the accuracy): two right-hand sides per input,
    in the context that runs the step (rti_xset_predict calls it for a set of the tick,
    rt/bg.c for the background set) */
 void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);

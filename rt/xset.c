@@ -16,7 +16,7 @@
  * is counted like a step whose own estimate lost every digit: the coupling is past its
  * stability limit (RT_E_COUPLING). Below that, the miss times the reader's sensitivity to
  * the input (its derivatives' change per unit of it, measured every RT_XSET_GAIN_EVERY
- * steps) and half its step estimates the local error the coupling put into its state,
+ * steps and afresh near the accuracy) and half its step estimates the local error the coupling put into its state,
  * which is held to the reader's accuracy like its own estimate (doubtful above it). */
 #include "rti.h"
 
@@ -279,19 +279,25 @@ static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, real_
 }
 #endif
 
+#if RT_MAX_XPRED > 0
+/* input k's sensitivity, measured now (set s at its step's start t, step h) */
+static void measure(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real_t t, real_t h)
+{
+    /* a set without states (sampled blocks alone) takes no error from it */
+    real_t d = RT_XSET_FD * (1 + sim->state.xscale[k]);
+    uint16_t v = sim->plan.src[sim->plan.xpred_in[k]];
+    sim->state.xgain[k] = rt_set_nx(sim, s) ? gain(sc, sim, s, v, t, h, d) : 0;
+}
+#endif
+
 void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
 #if RT_MAX_XPRED > 0
     uint64_t step = sim->state.set_tick[s] / sc->sets[s].ratio;
-    for (uint16_t k = 0; k < sim->plan.nxpred; k++) {
-        uint16_t i = sim->plan.xpred_in[k];
-        if (sc->blocks[sim->plan.xpred_blk[k]].set != s ||
-            (step % RT_XSET_GAIN_EVERY != 0 && sim->state.xgain[k] == sim->state.xgain[k]))
-            continue;
-        /* a set without states (sampled blocks alone) takes no error from it */
-        real_t d = RT_XSET_FD * (1 + sim->state.xscale[k]);
-        sim->state.xgain[k] = rt_set_nx(sim, s) ? gain(sc, sim, s, sim->plan.src[i], t, h, d) : 0;
-    }
+    for (uint16_t k = 0; k < sim->plan.nxpred; k++)
+        if (sc->blocks[sim->plan.xpred_blk[k]].set == s &&
+            (step % RT_XSET_GAIN_EVERY == 0 || sim->state.xgain[k] != sim->state.xgain[k]))
+            measure(sc, sim, s, k, t, h);
 #else
     (void)sc, (void)sim, (void)s, (void)t, (void)h;
 #endif
@@ -302,12 +308,23 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
    local error it put into the set's state, at most e h / 2 times the set's sensitivity
    (the miss grows from 0 at the step's start to e at its end, no faster than linearly
    for a hold and slower for the schemes that extrapolate a slope), against the set's
-   accuracy; above it the step is counted as one whose estimate exceeds its accuracy */
+   accuracy; above it the step is counted as one whose estimate exceeds its accuracy. Near
+   the accuracy (RT_XSET_FRESH) the sensitivity, measured up to RT_XSET_GAIN_EVERY steps
+   ago, is measured afresh first: now for a set of the tick (t: this step's start), by its
+   next step for the background set (which never evaluates in the tick) */
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
-                  real_t e, real_t h)
+                  real_t e, real_t t, real_t h)
 {
-    real_t g = sim->state.xgain[k], est = (real_t)0.5 * h * g * e;
     real_t acc = sc->sets[s].implicit.accuracy > 0 ? sc->sets[s].implicit.accuracy : RT_ERR_TOL;
+    real_t est = (real_t)0.5 * h * sim->state.xgain[k] * e;
+    if (!(est <= RT_XSET_FRESH * acc)) {
+        if (!sc->sets[s].background) {
+            measure(sc, sim, s, k, t, h);
+            est = (real_t)0.5 * h * sim->state.xgain[k] * e;
+        } else {
+            sim->state.xgain[k] = (real_t)0 / (real_t)0;
+        }
+    }
     if (!(est == est))
         return; /* no sensitivity measured (its right-hand side was not finite) */
     if (est > sim->stats.xset_est[s])
@@ -342,7 +359,7 @@ void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
                     rti_count(sim, RT_CNT_ERREST, (int)b, RT_E_COUPLING);
                     sim->stats.errest[s]++;
                 } else {
-                    judge(sc, sim, s, b, k, e, h);
+                    judge(sc, sim, s, b, k, e, t, h);
                 }
             }
         }
