@@ -213,6 +213,7 @@ def main():
     import hard_cases
     hard_cases.extra(s, long)
     __import__("cases_multirate").extra(s, long)  # multirate coupling (docs/multirate.md)
+    __import__("cases_tev").extra(s, long)  # known time events (rt/tev.c)
     if "--table" in sys.argv:
         with open(sys.argv[sys.argv.index("--table") + 1], "w") as f:
             f.write("\n".join(s.table) + "\n")
