@@ -218,6 +218,48 @@ static void test_refused(void)
     TH_CHECK(th_has(rt_error_text(&tu_sim), "RT_TEV_PARTS_MAX"));
 }
 
+/* a root that crosses by the jump alone (a relay on the step's level): x counts its
+   events, z' = 1 is reset by each, so z at the end dates it. Fired once, at the instant
+   to rounding, in a set of 1 tick (the tick keeps the step end's roots, rt/sim.c) and
+   of 8 (the split's second part sees the crossing from its start) */
+static const char *const cnt_x[] = {"x", "z"};
+static const char *const cnt_u[] = {"u"};
+static const int8_t cnt_dir[] = {1};
+static void cnt_out(const rt_args *a, real_t *y) { y[0] = a->x[0]; }
+static void cnt_deriv(const rt_args *a, real_t *xd) { (void)a, xd[0] = 0, xd[1] = 1; }
+static void cnt_roots(const rt_args *a, real_t *r) { r[0] = a->u[0] - (real_t)0.5; }
+static void cnt_event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
+{
+    (void)a, (void)which, (void)d;
+    x[0] += 1, x[1] = 0;
+}
+static const rt_kind counter = {
+    .name = "counter", .type = RT_KIND_NSS, .nu = 1, .ny = 1, .nx = 2, .nr = 1,
+    .u_names = cnt_u, .y_names = cnt_x, .x_names = cnt_x, .feed = RT_FEED_NONE,
+    .root_dir = cnt_dir, .output = cnt_out, .deriv = cnt_deriv, .roots = cnt_roots,
+    .event = cnt_event,
+};
+
+static void test_root_at_instant(void)
+{
+    for (uint32_t r = 1; r <= 8; r *= 8) {
+        rt_block bl[2];
+        rt_set set;
+        rt_scene sc = scene(LAG, &rt_rk4, r, 0, bl, &set);
+        bl[1] = (rt_block){.name = "Cnt", .kind = &counter};
+        step_p[0] = r == 1 ? (real_t)0.5 : (real_t)0.501;
+        if (!TH_CHECK(rt_init(&sc, &tu_sim) == RT_OK))
+            return;
+        tu_run_to(&sc, 1);
+        double z = (double)tu_sim.state.x[1], at = 1 - z - (double)step_p[0];
+        th_note(r == 1 ? "set of 1 tick: event after the instant by [s]"
+                       : "set of 8 ticks: event after the instant by [s]", at);
+        TH_CHECK(tu_sim.state.x[0] == 1 && tu_sim.stats.count[RT_CNT_EVENTS] == 1);
+        TH_CHECK(at < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12) && at > -(RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
+        TH_CHECK(tu_sim.stats.status == RT_OK);
+    }
+}
+
 const th_test th_tev_tests[] = {
     {"tev_lag_boundary", test_lag_boundary},
     {"tev_lag_inside", test_lag_inside},
@@ -227,5 +269,6 @@ const th_test th_tev_tests[] = {
     {"tev_background", test_background},
     {"tev_no_change_before", test_no_change_before},
     {"tev_refused", test_refused},
+    {"tev_root_at_instant", test_root_at_instant},
     {0, 0},
 };
