@@ -140,6 +140,19 @@ static int copy_changed(real_t *dst, const real_t *src, uint32_t n)
     return changed;
 }
 
+/* set s's sensitivities to the inputs it extrapolates (state.xgain, rt/xset.c) from one
+   rt_sim to the other: the tick judges the misses, the step measures them */
+static void copy_gains(const rt_scene *sc, const rt_sim *from, rt_sim *to, uint8_t s)
+{
+#if RT_MAX_XPRED > 0
+    for (uint16_t k = 0; k < from->plan.nxpred; k++)
+        if (sc->blocks[from->plan.xpred_blk[k]].set == s)
+            to->state.xgain[k] = from->state.xgain[k];
+#else
+    (void)sc, (void)from, (void)to, (void)s;
+#endif
+}
+
 /* what the step reads from the tick's side, as it stands at release: the time, its own
    blocks' parameters (rt_set_param may change them between ticks: a block whose changed
    has its constant mass matrix factored anew in the context, as rt_set_param makes the
@@ -154,10 +167,7 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         bg->state.hist_n[q] = sim->state.hist_n[q];
         copy_reals(bg->state.hist_t[q], sim->state.hist_t[q], RT_HIST);
     }
-#if RT_MAX_XPRED > 0
-    /* its sensitivities, as the tick last judged them (NaN: measure afresh, rt/xset.c) */
-    copy_reals(bg->state.xgain, sim->state.xgain, sim->plan.nxpred);
-#endif
+    copy_gains(sc, sim, bg, s); /* as the tick last judged them (NaN: measure afresh) */
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
         if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
@@ -261,10 +271,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     if (bg) {
         copy_result(bg, sim, s);
         merge_stats(sim, bg, s);
-#if RT_MAX_XPRED > 0
-        /* the sensitivity its step measured, for the tick's check at the next release */
-        copy_reals(sim->state.xgain, bg->state.xgain, sim->plan.nxpred);
-#endif
+        copy_gains(sc, bg, sim, s); /* its step's, for the tick's check at the next release */
     } else {
         move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
     }
