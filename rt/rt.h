@@ -123,7 +123,8 @@ typedef struct rt_args {
        base tick after t at a tick. A kind whose outputs switch at its instants picks its
        piece by t_piece, never by t: the step ending at an instant then sees the left
        limit at its end (t == the instant), the step starting there the right limit, and
-       rounding of t near an instant cannot pick the wrong side (rt/tev.c) */
+       rounding of t near an instant cannot pick the wrong side (rt/tev.c). Given to the
+       output, derivative and roots of a kind with rt_kind.next_event; t elsewhere */
     real_t t_piece;
 } rt_args;
 
@@ -686,6 +687,10 @@ typedef struct rt_state {
     real_t held_sig[RT_MAX_HELD_SIG];
     real_t bg_sig_new[RT_MAX_HELD_SIG];
 #endif
+    /* per set holding a kind with known time events: the base tick of its next instant,
+       UINT64_MAX: none before the end, 0: to be found (at the start, after a parameter
+       change); so a step walks the set's blocks only at an instant (rt/tev.c) */
+    uint64_t tev_next[RT_MAX_SETS];
     uint64_t hash;                   /* trace hash of the recorded values (rt_hash_real) */
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */

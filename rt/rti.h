@@ -110,7 +110,15 @@ static inline void rti_args(const rt_scene *sc, const rt_sim *sim, uint16_t b, r
     a->u = sim->work.u + sim->plan.u_off[b];
     a->p = sim->state.p + sim->plan.p_off[b];
     a->spec = sc->blocks[b].kind->spec;
-    a->t_piece = sim->work.t_piece > 0 ? sim->work.t_piece : t + (real_t)0.5 * sc->dt;
+    a->t_piece = t; /* a kind with known time events gets its piece: rti_piece */
+}
+/* the time of the piece between known time events an evaluation at t lies in
+   (rt_args.t_piece): the midpoint of the step part being integrated (rt/tev.c), else half
+   a base tick after t. Set where a kind with rt_kind.next_event is called (its output,
+   derivative and roots, rt/eval.c): the others never read it */
+static inline real_t rti_piece(const rt_scene *sc, const rt_sim *sim, real_t t)
+{
+    return sim->work.t_piece > 0 ? sim->work.t_piece : t + (real_t)0.5 * sc->dt;
 }
 /* Gathers the inputs of block b at time t from the outputs that feed them (y = P u; an
    input from another set is reconstructed at t). */

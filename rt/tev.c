@@ -65,30 +65,46 @@ static instant next_after(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k
     return in;
 }
 
+/* set s's first instant after base tick k, from state.tev_next while it lies after k
+   (none can lie between the tick it was found from and it), else found anew */
+static uint64_t next_tick(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k)
+{
+    uint64_t *next = &sim->state.tev_next[s];
+    if (*next == 0 || *next <= k)
+        *next = next_after(sc, sim, s, k).tick;
+    return *next;
+}
+
+/* set s's step from tick k to ke (one part), its evaluations on their side of the
+   instants around it (rt_args.t_piece) */
+static void part(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k, uint64_t ke)
+{
+    real_t t = (real_t)k * sc->dt, h = sc->dt * (real_t)(ke - k);
+    sim->work.t_piece = t + (real_t)0.5 * h;
+    rti_step_set(sc, sim, s, t, h);
+}
+
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
 {
+    uint64_t end = tick + ratio, k = tick, ke;
     if (!(sim->plan.set_flags[s] & RTI_SET_TEV)) {
         rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sc->dt * (real_t)ratio);
         return;
     }
-    uint64_t end = tick + ratio, k = tick;
-    /* part by part to the next instant; the last part ends at the step's end whatever
-       lies inside it (rti_tev_init refused a scene needing more parts) */
-    for (int part = 1; k < end; part++) {
-        uint64_t ke = part < RT_TEV_PARTS_MAX ? next_after(sc, sim, s, k).tick : end;
-        ke = ke < end ? ke : end;
-        real_t t = (real_t)k * sc->dt, h = sc->dt * (real_t)(ke - k);
-        sim->work.t_piece = t + (real_t)0.5 * h;
-        rti_step_set(sc, sim, s, t, h);
+    /* part by part to each instant inside the step; the last part ends at the step's end
+       whatever lies inside it (rti_tev_init refused a scene needing more parts) */
+    for (int n = 1; n < RT_TEV_PARTS_MAX && (ke = next_tick(sc, sim, s, k)) < end; n++) {
+        part(sc, sim, s, k, ke);
         k = ke;
     }
+    part(sc, sim, s, k, end);
     sim->work.t_piece = 0;
 }
 
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
 {
     return tick > 0 && (sim->plan.set_flags[s] & RTI_SET_TEV) &&
-           next_after(sc, sim, s, tick - 1).tick == tick;
+           next_tick(sc, sim, s, tick - 1) == tick;
 }
 
 /* ------------------------------------------------------------------ checks at init */
@@ -189,5 +205,8 @@ rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
 
 rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b)
 {
-    return sc->blocks[b].kind->next_event ? check_set(sc, sim, sc->blocks[b].set) : RT_OK;
+    if (!sc->blocks[b].kind->next_event)
+        return RT_OK;
+    sim->state.tev_next[sc->blocks[b].set] = 0; /* its instants may have moved */
+    return check_set(sc, sim, sc->blocks[b].set);
 }
