@@ -12,9 +12,9 @@
  * the ticks of its fixed schedule, and a step holds at most RT_TEV_PARTS_MAX parts, so
  * its work stays bounded. rt_init walks every instant up to the end time: each must lie on
  * the base tick grid (the rule of the end time, RT_TICK_SLACK), else the scene is refused
- * with the block and the instant. Without this, every method whose stages reach t + h
- * (rk4, dopri5, sdirk3, ...) read the new value one step early and converged at first
- * order whatever its own. */
+ * with the block and the instant. (A switch inside a step instead would be read one
+ * step early by every method whose stages reach t + h, rk4, dopri5, sdirk3, ..., which
+ * then converges at first order whatever its own.) */
 #include "rti.h"
 
 #define NEVER UINT64_MAX
