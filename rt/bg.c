@@ -173,7 +173,7 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
                          (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
             bg->work.mbs.m_valid[b] = 0, bg->state.imp_stale[s] = 1,
-            bg->state.tev_next[s] = 0; /* its time events may have moved (rt/tev.c) */
+            rti_tev_moved(bg, s); /* its time events may have moved (rt/tev.c) */
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             uint16_t v = sim->plan.src[i];
             if (sim->plan.src_kind[i] == RT_SRC_HELD)

@@ -687,10 +687,12 @@ typedef struct rt_state {
     real_t held_sig[RT_MAX_HELD_SIG];
     real_t bg_sig_new[RT_MAX_HELD_SIG];
 #endif
+#if RT_MAX_TEV > 0
     /* per set holding a kind with known time events: the base tick of its next instant,
        UINT64_MAX: none before the end, 0: to be found (at the start, after a parameter
        change); so a step walks the set's blocks only at an instant (rt/tev.c) */
     uint64_t tev_next[RT_MAX_SETS];
+#endif
     uint64_t hash;                   /* trace hash of the recorded values (rt_hash_real) */
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
@@ -724,11 +726,13 @@ typedef struct rt_stats {
                                         measure of `modrt tune` and the benchmarks) */
     uint32_t bg_late;                /* background steps not finished at their deadline
                                         (also counted as RT_CNT_OVERRUN) */
+#if RT_MAX_XPRED > 0
     real_t xset_est[RT_MAX_SETS];    /* the largest local error a set's step took from the
                                         inputs it extrapolates from other sets, estimated
                                         from the missed prediction and the set's
                                         sensitivity to it (state.xgain), in the scaled
                                         norm of its accuracy (rti_xset_predict) */
+#endif
 } rt_stats;
 
 /* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */
@@ -752,9 +756,11 @@ typedef struct rt_work {
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];
     rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
+#if RT_MAX_TEV > 0
     real_t t_piece;                  /* midpoint of the step part a set with known time
                                         events is integrating [s] (rt_args.t_piece); 0:
                                         none, at a tick (rt/tev.c) */
+#endif
 } rt_work;
 
 /* One running scene. The caller owns it (static storage); rt_init fills every part.
@@ -900,6 +906,7 @@ typedef struct rt_sizes {
     uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_ty, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
     uint16_t bg;           /* states plus outputs of the background set (RT_MAX_BG) */
     uint16_t xpred;        /* inputs extrapolated from another set (RT_MAX_XPRED; may be 0) */
+    uint16_t tev;          /* sets with known time events (RT_MAX_TEV; may be 0) */
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

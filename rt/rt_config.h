@@ -107,6 +107,14 @@ typedef double real_t;
 #define RT_MAX_XPRED RT_MAX_U
 #endif
 
+#ifndef RT_MAX_TEV
+/* sets holding a kind with known time events (rt/tev.c): where any, each set keeps the
+   tick of its next instant (rt_state.tev_next) and a step part its midpoint
+   (rt_work.t_piece). A per-scene build may set 0 (a scene with none; rt_init refuses one
+   that has some) */
+#define RT_MAX_TEV RT_MAX_SETS
+#endif
+
 #ifndef RT_MAX_HELD_SIG
 /* recorded and link-exported multibody signals (energy, residual, reaction) of sets
    stepping over several ticks or in the background, held between their steps like

@@ -118,7 +118,13 @@ static inline void rti_args(const rt_scene *sc, const rt_sim *sim, uint16_t b, r
    derivative and roots, rt/eval.c): the others never read it */
 static inline real_t rti_piece(const rt_scene *sc, const rt_sim *sim, real_t t)
 {
-    return sim->work.t_piece > 0 ? sim->work.t_piece : t + (real_t)0.5 * sc->dt;
+#if RT_MAX_TEV > 0
+    if (sim->work.t_piece > 0)
+        return sim->work.t_piece;
+#else
+    (void)sim; /* no set has known time events: never inside a part */
+#endif
+    return t + (real_t)0.5 * sc->dt;
 }
 /* Gathers the inputs of block b at time t from the outputs that feed them (y = P u; an
    input from another set is reconstructed at t). */
@@ -238,6 +244,8 @@ rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b);
 /* set s's step from base tick `tick` over `ratio` ticks: one rti_step_set, or one per
    part between the known time events inside it, each evaluated on its own side of them */
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio);
+/* a parameter of set s changed: its next instant is found anew */
+void rti_tev_moved(rt_sim *sim, uint8_t s);
 /* is base tick `tick` a known time event of set s */
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
 

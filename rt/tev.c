@@ -65,6 +65,7 @@ static instant next_after(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k
     return in;
 }
 
+#if RT_MAX_TEV > 0
 /* set s's first instant after base tick k, from state.tev_next while it lies after k
    (none can lie between the tick it was found from and it), else found anew */
 static uint64_t next_tick(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k)
@@ -83,28 +84,45 @@ static void part(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k, uint64_
     sim->work.t_piece = t + (real_t)0.5 * h;
     rti_step_set(sc, sim, s, t, h);
 }
+#endif
 
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
 {
+#if RT_MAX_TEV > 0
     uint64_t end = tick + ratio, k = tick, ke;
-    if (!(sim->plan.set_flags[s] & RTI_SET_TEV)) {
-        rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sc->dt * (real_t)ratio);
+    if (sim->plan.set_flags[s] & RTI_SET_TEV) {
+        /* part by part to each instant inside the step; the last part ends at the step's
+           end whatever lies inside it (rti_tev_init refused a scene needing more parts) */
+        for (int n = 1; n < RT_TEV_PARTS_MAX && (ke = next_tick(sc, sim, s, k)) < end; n++) {
+            part(sc, sim, s, k, ke);
+            k = ke;
+        }
+        part(sc, sim, s, k, end);
+        sim->work.t_piece = 0;
         return;
     }
-    /* part by part to each instant inside the step; the last part ends at the step's end
-       whatever lies inside it (rti_tev_init refused a scene needing more parts) */
-    for (int n = 1; n < RT_TEV_PARTS_MAX && (ke = next_tick(sc, sim, s, k)) < end; n++) {
-        part(sc, sim, s, k, ke);
-        k = ke;
-    }
-    part(sc, sim, s, k, end);
-    sim->work.t_piece = 0;
+#endif
+    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sc->dt * (real_t)ratio);
 }
 
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
 {
+#if RT_MAX_TEV > 0
     return tick > 0 && (sim->plan.set_flags[s] & RTI_SET_TEV) &&
            next_tick(sc, sim, s, tick - 1) == tick;
+#else
+    (void)sc, (void)sim, (void)s, (void)tick;
+    return 0;
+#endif
+}
+
+void rti_tev_moved(rt_sim *sim, uint8_t s)
+{
+#if RT_MAX_TEV > 0
+    sim->state.tev_next[s] = 0;
+#else
+    (void)sim, (void)s;
+#endif
 }
 
 /* ------------------------------------------------------------------ checks at init */
@@ -192,9 +210,13 @@ static int has_events(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 
 rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
 {
+    unsigned n = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (!has_events(sc, sim, s))
             continue;
+        if (++n > RT_MAX_TEV)
+            return rti_fail(sim, RT_E_CAPACITY, "sets with known time events exceed ",
+                            RTI_LIMIT(RT_MAX_TEV), (const char *)0);
         sim->plan.set_flags[s] |= RTI_SET_TEV;
         rt_status st = check_set(sc, sim, s);
         if (st != RT_OK)
@@ -207,6 +229,6 @@ rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b)
 {
     if (!sc->blocks[b].kind->next_event)
         return RT_OK;
-    sim->state.tev_next[sc->blocks[b].set] = 0; /* its instants may have moved */
+    rti_tev_moved(sim, sc->blocks[b].set); /* its instants may have moved */
     return check_set(sc, sim, sc->blocks[b].set);
 }

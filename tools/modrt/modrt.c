@@ -149,9 +149,11 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     for (uint8_t k = 0; k < sc->nsets; k++)
         if (rt_set_is_source(s, k))
             fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_err[k]);
+#if RT_MAX_XPRED > 0
     for (uint8_t k = 0; k < sc->nsets; k++) /* a reader's coupling error (rt/xset.c) */
         if (s->stats.xset_est[k] > 0)
             fprintf(f, "xset_est.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_est[k]);
+#endif
     if (rt_torn_count(s) > 0) {
         fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)s->stats.loop_iter_max);
         for (uint32_t i = 0; i <= s->stats.loop_iter_max; i++)
