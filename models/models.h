@@ -26,6 +26,9 @@ enum { MDL_PI_Y_C = 0 };
 /* step source y = y0 for t < t0, y1 after (OUTPUT) */
 extern const rt_kind mdl_step_kind;
 
+/* pulse train: y1 on [t0 + k T, t0 + k T + w), y0 elsewhere (OUTPUT) */
+extern const rt_kind mdl_pulse_kind;
+
 /* sine source y = a sin(omega t + phase) + offset (OUTPUT) */
 extern const rt_kind mdl_sine_kind;
 

@@ -9,6 +9,7 @@ const mdl_entry mdl_kinds[] = {
     {"pt1", &mdl_pt1_kind},
     {"pi", &mdl_pi_kind},
     {"step", &mdl_step_kind},
+    {"pulse", &mdl_pulse_kind},
     {"sine", &mdl_sine_kind},
     {"gain", &mdl_gain_kind},
     {"sum", &mdl_sum_kind},

@@ -140,6 +140,19 @@ static int copy_changed(real_t *dst, const real_t *src, uint32_t n)
     return changed;
 }
 
+/* set s's sensitivities to the inputs it extrapolates (state.xgain, rt/xset.c) from one
+   rt_sim to the other: the tick judges the misses, the step measures them */
+static void copy_gains(const rt_scene *sc, const rt_sim *from, rt_sim *to, uint8_t s)
+{
+#if RT_MAX_XPRED > 0
+    for (uint16_t k = 0; k < from->plan.nxpred; k++)
+        if (sc->blocks[from->plan.xpred_blk[k]].set == s)
+            to->state.xgain[k] = from->state.xgain[k];
+#else
+    (void)sc, (void)from, (void)to, (void)s;
+#endif
+}
+
 /* what the step reads from the tick's side, as it stands at release: the time, its own
    blocks' parameters (rt_set_param may change them between ticks: a block whose changed
    has its constant mass matrix factored anew in the context, as rt_set_param makes the
@@ -154,11 +167,13 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         bg->state.hist_n[q] = sim->state.hist_n[q];
         copy_reals(bg->state.hist_t[q], sim->state.hist_t[q], RT_HIST);
     }
+    copy_gains(sc, sim, bg, s); /* as the tick last judged them (NaN: measure afresh) */
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
         if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
                          (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
-            bg->work.mbs.m_valid[b] = 0, bg->state.imp_stale[s] = 1;
+            bg->work.mbs.m_valid[b] = 0, bg->state.imp_stale[s] = 1,
+            rti_tev_moved(bg, s); /* its time events may have moved (rt/tev.c) */
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             uint16_t v = sim->plan.src[i];
             if (sim->plan.src_kind[i] == RT_SRC_HELD)
@@ -211,8 +226,11 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
 static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
 {
     uint32_t ratio = sc->sets[s].ratio;
-    real_t t = (real_t)ctx->state.set_tick[s] * sc->dt;
-    rti_step_set(sc, ctx, s, t, sc->dt * (real_t)ratio);
+    /* its sensitivity to the inputs it extrapolates, when due (here, not in the tick) */
+    if (ctx->plan.set_flags[s] & RTI_SET_XPRED)
+        rti_xset_gain(sc, ctx, s, (real_t)ctx->state.set_tick[s] * sc->dt,
+                      sc->dt * (real_t)ratio);
+    rti_tev_step(sc, ctx, s, ctx->state.set_tick[s], ratio); /* parts at time events */
     real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
     rti_outputs(sc, ctx, (rti_at){te, s, RTI_IN_STEP});
     /* its recorded multibody signals (a residual): here, not in a tick */
@@ -254,6 +272,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     if (bg) {
         copy_result(bg, sim, s);
         merge_stats(sim, bg, s);
+        copy_gains(sc, bg, sim, s); /* its step's, for the tick's check at the next release */
     } else {
         move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
     }

@@ -159,6 +159,9 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
             z->event_x = rt_set_nx(sim, s);
     z->seq = sim->plan.nseq;
     z->xpred = rti_xset_npred(sc, sim);
+    z->tev = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        z->tev = (uint16_t)(z->tev + ((sim->plan.set_flags[s] & RTI_SET_TEV) != 0));
     z->loop_hist = 0;
     if (sim->plan.ntorn > 0)
         z->loop_hist = (uint16_t)((sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX) + 1);

@@ -55,6 +55,8 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at, 
     if (k->feed != RT_FEED_NONE) /* no output reads an input: nothing to gather */
         rti_gather(sim, b, at.t);
     rti_args(sc, sim, b, at.t, h, &a);
+    if (k->next_event) /* a switch in time: which side of it (rt/tev.c) */
+        a.t_piece = rti_piece(sc, sim, at.t);
     (lean ? k->output_lean : k->output)(&a, sim->state.y + sim->plan.y_off[b]);
 #if RT_FAULT_INJECT
     if (rti_fault_due(RTI_FAULT_NAN) && rti_fault_plan.block == (int16_t)b && k->ny > 0)
@@ -325,6 +327,8 @@ void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r)
         rt_args a;
         rti_gather(sim, b, t);
         rti_args(sc, sim, b, t, 0, &a);
+        if (k->next_event)
+            a.t_piece = rti_piece(sc, sim, t);
         k->roots(&a, r + n);
         n = (uint16_t)(n + k->nr);
     }
@@ -351,6 +355,8 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
         rt_args a;
         rti_gather(sim, b, t);
         rti_args(sc, sim, b, t, c->h, &a);
+        if (k->next_event)
+            a.t_piece = rti_piece(sc, sim, t);
         k->deriv(&a, xdot + (sim->plan.x_off[b] - base));
     }
     /* multibody blocks of the set are solved together (eqs. 6, 7b, 9) */

@@ -368,7 +368,8 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     rti_zero(&sim->work.w, sizeof sim->work.w);
     if (sc->mbs && (st = (rt_status)sc->mbs->init(sc, sim)) != RT_OK)
         return st;
-    if ((st = tick_count(sc, sim)) != RT_OK)
+    /* the known time events up to the end time (rt/tev.c) */
+    if ((st = tick_count(sc, sim)) != RT_OK || (st = rti_tev_init(sc, sim)) != RT_OK)
         return st;
     return rt_refresh(sc, sim);
 }

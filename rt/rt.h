@@ -118,7 +118,18 @@ typedef struct rt_args {
     const real_t *u;   /* inputs, nu values */
     const real_t *p;   /* parameters, np values */
     const void *spec;  /* the kind's type-specific const data (rt_kind.spec) */
+    /* a time strictly between the known time events (rt_kind.next_event) on either side
+       of this evaluation [s]: the midpoint of the step part being integrated, or half a
+       base tick after t at a tick. A kind whose outputs switch at its instants picks its
+       piece by t_piece, never by t: the step ending at an instant then sees the left
+       limit at its end (t == the instant), the step starting there the right limit, and
+       rounding of t near an instant cannot pick the wrong side (rt/tev.c). Given to the
+       output, derivative and roots of a kind with rt_kind.next_event; t elsewhere */
+    real_t t_piece;
 } rt_args;
+
+/* what rt_kind.next_event returns when no known time event follows */
+#define RT_TEV_NEVER ((real_t)1e30)
 
 /* A block kind: sizes, names and services, like the paper's system_descr (Fig. 3).
  * Every slot may be NULL where the comment says so; the runtime checks the rest at init. */
@@ -187,6 +198,15 @@ typedef struct rt_kind {
     const char *units;          /* units of inputs, outputs, states, discrete states and
                                    parameters in that order, separated by spaces ("-":
                                    dimensionless); NULL: not given */
+    /* Known time events: returns the block's first instant strictly after a->t [s] at
+       which its outputs or derivatives switch (a step, a pulse edge, a scheduled change;
+       an FMU's next time event), or RT_TEV_NEVER (any time at or past the end time reads
+       as none). Reads a->t and a->p only. The runtime ends every step of the block's set
+       at each instant (splitting a step of several ticks), evaluates the step before it
+       with the left limit and the one after with the right limit (rt_args.t_piece); the
+       instants must lie on the base tick grid (rt_init refuses the scene otherwise,
+       rt/tev.c). NULL: none (the kind has no switch in time) */
+    real_t (*next_event)(const rt_args *a);
 } rt_kind;
 
 /* A reference text of a kind: kept on hosts, dropped from embedded images. */
@@ -654,6 +674,12 @@ typedef struct rt_state {
        made at the step's start (NaN: none yet), checked at the next, and the largest |u|
        the input has had at those checks, its scale (rti_xset_predict) */
     real_t xpred[RT_MAX_XPRED], xscale[RT_MAX_XPRED];
+    /* per input of plan.xpred_in: the sensitivity of its set's derivatives to it, the
+       largest |df_i/du| / (1 + |x_i|) [1/s per unit of u], measured by a difference every
+       RT_XSET_GAIN_EVERY steps of the set and before a miss near its accuracy is judged
+       (NaN: due), which turns a missed prediction into an error of the set's state
+       (rti_xset_predict) */
+    real_t xgain[RT_MAX_XPRED];
 #endif
 #if RT_MAX_HELD_SIG > 0
     /* recorded (in record order), then link-exported (in export order) multibody signals
@@ -663,6 +689,12 @@ typedef struct rt_state {
        (rt/bg.c) */
     real_t held_sig[RT_MAX_HELD_SIG];
     real_t bg_sig_new[RT_MAX_HELD_SIG];
+#endif
+#if RT_MAX_TEV > 0
+    /* per set holding a kind with known time events: the base tick of its next instant,
+       UINT64_MAX: none before the end, 0: to be found (at the start, after a parameter
+       change); so a step walks the set's blocks only at an instant (rt/tev.c) */
+    uint64_t tev_next[RT_MAX_SETS];
 #endif
     uint64_t hash;                   /* trace hash of the recorded values (rt_hash_real) */
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
@@ -701,6 +733,13 @@ typedef struct rt_stats {
                                         measure of `modrt tune` and the benchmarks) */
     uint32_t bg_late;                /* background steps not finished at their deadline
                                         (also counted as RT_CNT_OVERRUN) */
+#if RT_MAX_XPRED > 0
+    real_t xset_est[RT_MAX_SETS];    /* the largest local error a set's step took from the
+                                        inputs it extrapolates from other sets, estimated
+                                        from the missed prediction and the set's
+                                        sensitivity to it (state.xgain), in the scaled
+                                        norm of its accuracy (rti_xset_predict) */
+#endif
 } rt_stats;
 
 /* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */
@@ -724,6 +763,11 @@ typedef struct rt_work {
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];
     rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
+#if RT_MAX_TEV > 0
+    real_t t_piece;                  /* midpoint of the step part a set with known time
+                                        events is integrating [s] (rt_args.t_piece); 0:
+                                        none, at a tick (rt/tev.c) */
+#endif
 } rt_work;
 
 /* One running scene. The caller owns it (static storage); rt_init fills every part.
@@ -869,6 +913,7 @@ typedef struct rt_sizes {
     uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_ty, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
     uint16_t bg;           /* states plus outputs of the background set (RT_MAX_BG) */
     uint16_t xpred;        /* inputs extrapolated from another set (RT_MAX_XPRED; may be 0) */
+    uint16_t tev;          /* sets with known time events (RT_MAX_TEV; may be 0) */
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

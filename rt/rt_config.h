@@ -107,6 +107,14 @@ typedef double real_t;
 #define RT_MAX_XPRED RT_MAX_U
 #endif
 
+#ifndef RT_MAX_TEV
+/* sets holding a kind with known time events (rt/tev.c): where any, each set keeps the
+   tick of its next instant (rt_state.tev_next) and a step part its midpoint
+   (rt_work.t_piece). A per-scene build may set 0 (a scene with none; rt_init refuses one
+   that has some) */
+#define RT_MAX_TEV RT_MAX_SETS
+#endif
+
 #ifndef RT_MAX_HELD_SIG
 /* recorded and link-exported multibody signals (energy, residual, reaction) of sets
    stepping over several ticks or in the background, held between their steps like
@@ -241,6 +249,21 @@ typedef double real_t;
    docs/multirate.md) */
 #define RT_XSET_LOST ((real_t)1)
 #endif
+#ifndef RT_XSET_GAIN_EVERY
+/* a set that extrapolates another measures its sensitivity to those inputs (two
+   right-hand sides each) at every this many of its steps: what turns a missed prediction
+   into an error of its state, compared with its accuracy (rti_xset_predict) */
+#define RT_XSET_GAIN_EVERY 256
+#endif
+#ifndef RT_XSET_FRESH
+/* and afresh before it judges a miss whose estimate from the last measurement exceeds
+   this fraction of its accuracy */
+#define RT_XSET_FRESH ((real_t)0.25)
+#endif
+#ifndef RT_XSET_FD
+/* the input's difference for that sensitivity, relative to 1 + its range */
+#define RT_XSET_FD (RT_REAL_IS_FLOAT ? (real_t)1e-3 : (real_t)1e-7)
+#endif
 #ifndef RT_ERR_LOST
 /* a step whose estimate exceeds this (an error as large as the state's scale 1 + |x|)
    has no correct digit: counted as errest too, but the status is failed, not doubtful */
@@ -330,6 +353,12 @@ typedef double real_t;
    scale, above the rounding of a root such as z - zt(t) near that point unless the root
    moves slower than about 3e-5 of its terms per second */
 #define RT_EVENT_MARGIN (RT_REAL_IS_FLOAT ? (real_t)0.0625 : (real_t)9.765625e-4)
+#endif
+#ifndef RT_TEV_PARTS_MAX
+/* parts one set step may be split into at known time events strictly inside it (rt/tev.c):
+   each part is a step of the set's method, so a step's work is at most this many times
+   its bound (rt_step_bound); a scene needing more is refused at rt_init */
+#define RT_TEV_PARTS_MAX 4
 #endif
 
 #if RT_MAX_BLOCKS > 65535 || RT_MAX_Y > 65535 || RT_MAX_U > 65535 || RT_MAX_X > 65535

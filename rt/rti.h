@@ -110,6 +110,21 @@ static inline void rti_args(const rt_scene *sc, const rt_sim *sim, uint16_t b, r
     a->u = sim->work.u + sim->plan.u_off[b];
     a->p = sim->state.p + sim->plan.p_off[b];
     a->spec = sc->blocks[b].kind->spec;
+    a->t_piece = t; /* a kind with known time events gets its piece: rti_piece */
+}
+/* the time of the piece between known time events an evaluation at t lies in
+   (rt_args.t_piece): the midpoint of the step part being integrated (rt/tev.c), else half
+   a base tick after t. Set where a kind with rt_kind.next_event is called (its output,
+   derivative and roots, rt/eval.c): the others never read it */
+static inline real_t rti_piece(const rt_scene *sc, const rt_sim *sim, real_t t)
+{
+#if RT_MAX_TEV > 0
+    if (sim->work.t_piece > 0)
+        return sim->work.t_piece;
+#else
+    (void)sim; /* no set has known time events: never inside a part */
+#endif
+    return t + (real_t)0.5 * sc->dt;
 }
 /* Gathers the inputs of block b at time t from the outputs that feed them (y = P u; an
    input from another set is reconstructed at t). */
@@ -141,9 +156,10 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
    them, a walk the other sets skip), and it extrapolates another set (rti_xset_predict checks
    its predictions), and it steps over several ticks in the tick and other sets read it
    (its step's end evaluates its outputs for its history: kept in state.y_next, they are
-   renewed when its state reaches the tick, rt/sim.c) */
+   renewed when its state reaches the tick, rt/sim.c), and it holds a kind with known time
+   events (its steps end at their instants: rti_tev_init sets the flag, rt/tev.c) */
 enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2, RTI_SET_LINEAR = 4, RTI_SET_STATIC = 8,
-       RTI_SET_HELD_SIG = 16, RTI_SET_XPRED = 32, RTI_SET_NEXT = 64 };
+       RTI_SET_HELD_SIG = 16, RTI_SET_XPRED = 32, RTI_SET_NEXT = 64, RTI_SET_TEV = 128 };
 /* does set s hold a recorded or exported signal between its steps (rt/sim.c) */
 int rti_set_holds(const rt_scene *sc, uint8_t s);
 /* The first block of set s that keeps it from being linear in its state, or -1. */
@@ -203,6 +219,12 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
    RT_XSET_LOST), and their predictions for t + h kept. _reset: none (the run's start) */
 void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
 void rti_xset_predict_reset(rt_sim *sim);
+/* set s's sensitivity to the inputs it extrapolates, at its step's start t (step h), when
+   due (every RT_XSET_GAIN_EVERY steps of it, or NaN: none yet, or marked by a miss near
+   the accuracy): two right-hand sides per input,
+   in the context that runs the step (rti_xset_predict calls it for a set of the tick,
+   rt/bg.c for the background set) */
+void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
 /* does set s extrapolate another set over its step (its predictions are checked);
    _npred: the inputs that do, of every set (RT_MAX_XPRED) */
 int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s);
@@ -211,6 +233,21 @@ uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim);
 /* ---- the background set (bg.c; the rest through rt_scene.bg) ---- */
 /* Reals of the background set's result (states and outputs), 0 without one. */
 uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim);
+
+/* ---- known time events (tev.c) ---- */
+/* at init (after rti_eval_plan and the tick count): flags the sets holding a kind with
+   known time events (RTI_SET_TEV) and checks every instant up to the end time: on the
+   base tick grid, and at most RT_TEV_PARTS_MAX parts per step; else RT_E_SCENE */
+rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim);
+/* the same checks for block b's set after a parameter of b changed (rt_set_param) */
+rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b);
+/* set s's step from base tick `tick` over `ratio` ticks: one rti_step_set, or one per
+   part between the known time events inside it, each evaluated on its own side of them */
+void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio);
+/* a parameter of set s changed: its next instant is found anew */
+void rti_tev_moved(rt_sim *sim, uint8_t s);
+/* is base tick `tick` a known time event of set s */
+int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
 
 /* ---- set steps and events (step.c) ---- */
 /* Advances set s from t by its step h, handling state events; never stops half-way. */

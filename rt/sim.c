@@ -179,16 +179,24 @@ static real_t rec_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r, 
     return rti_sig_value(sc, sim, r);
 }
 
+/* does the tick keep set s's root values from its step's end: a known time event of the
+   set is due now (rt/tev.c), and those values are its left limit, so a root that crosses
+   by the jump alone is seen by the next step, from its start, and located there */
+static int keeps_roots(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    return (sim->plan.set_flags[s] & RTI_SET_TEV) && rti_tev_at(sc, sim, s, sim->state.tick);
+}
+
 /* outputs and roots of set s at the time of its state (and its held signals); renew: its
    step's end evaluated its outputs at this time already (for its history), so only the
-   entries that may give something else now are called (RTI_RENEW) */
-static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int renew)
+   entries that may give something else now are called (RTI_RENEW); in_tick: rt_tick's */
+static void refresh_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int renew, int in_tick)
 {
     real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
     rti_mode mode = renew ? RTI_RENEW
                   : sim->state.set_tick[s] == sim->state.tick ? RTI_AT_TICK : RTI_IN_STEP;
     rti_outputs(sc, sim, (rti_at){ts, s, mode});
-    if (sim->plan.set_r[s + 1] > sim->plan.set_r[s])
+    if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] && !(in_tick && keeps_roots(sc, sim, s)))
         rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
     if (sim->plan.set_flags[s] & RTI_SET_HELD_SIG)
         rti_hold_signals(sc, sim, s);
@@ -278,7 +286,7 @@ static void refresh(const rt_scene *sc, rt_sim *sim, uint32_t renew, int in_tick
 #else
         (void)in_tick; /* no set steps over several ticks in the tick */
 #endif
-        refresh_set(sc, sim, s, ((renew >> s) & 1u) != 0);
+        refresh_set(sc, sim, s, ((renew >> s) & 1u) != 0, in_tick);
     }
 }
 
@@ -294,7 +302,7 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
             rti_xset_push(sc, sim, s, 0);
         }
         for (uint8_t i = 0; i < sc->nsets; i++)
-            refresh_set(sc, sim, sim->plan.sched[i], 0);
+            refresh_set(sc, sim, sim->plan.sched[i], 0, 0);
         for (uint8_t s = 0; s < sc->nsets; s++) {
             sim->state.hist_n[s] = 0;
             rti_xset_push(sc, sim, s, 0);
@@ -359,8 +367,8 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
 #endif
         if (sim->plan.set_flags[s] & RTI_SET_XPRED)
             rti_xset_predict(sc, sim, s, t, sc->dt * (real_t)ratio);
-        if (!(sim->plan.set_flags[s] & RTI_SET_STATIC))
-            rti_step_set(sc, sim, s, t, sc->dt * (real_t)ratio);
+        if (!(sim->plan.set_flags[s] & RTI_SET_STATIC)) /* ending parts at time events */
+            rti_tev_step(sc, sim, s, sim->state.tick, ratio);
         else /* nothing to integrate; a parameter change is taken (renews_later) */
             sim->state.imp_stale[s] = 0;
         sim->state.set_tick[s] = sim->state.tick + ratio;
@@ -481,7 +489,9 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
         real_t *p = sim->state.p + sim->plan.p_off[b];
         real_t old = p[i];
         p[i] = value;
-        if (k->check && k->check(p, k->spec) != RT_OK) {
+        /* a known time event must stay on the grid, in few enough parts (rt/tev.c) */
+        if ((k->check && k->check(p, k->spec) != RT_OK) ||
+            rti_tev_check_block(sc, sim, (uint16_t)b) != RT_OK) {
             p[i] = old;
             return RT_E_PARAM;
         }

@@ -214,6 +214,8 @@ def main():
     hard_cases.extra(s, long)
     __import__("cases_global").extra(s, long)  # class E of issue 26: the global error
     __import__("cases_events").run_all(s, long)
+    __import__("cases_multirate").extra(s, long)  # multirate coupling (docs/multirate.md)
+    __import__("cases_tev").extra(s, long)  # known time events (rt/tev.c)
     if "--table" in sys.argv:
         with open(sys.argv[sys.argv.index("--table") + 1], "w") as f:
             f.write("\n".join(s.table) + "\n")

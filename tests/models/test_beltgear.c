@@ -12,7 +12,7 @@ static void direct_deriv(const rt_args *a, real_t *xd)
     const real_t J1 = (real_t)0.01, r1 = (real_t)0.05, J2 = (real_t)0.04, r2 = (real_t)0.1;
     const real_t k = (real_t)1e5, c = 20, m = (real_t)0.5;
     const real_t *x = a->x;
-    real_t iref = a->t < (real_t)0.01 ? 0 : 2;
+    real_t iref = a->t_piece < (real_t)0.01 ? 0 : 2; /* a known time event, as the step's */
     real_t M = kt * x[0];
     real_t E = 2 * (k * (r1 * x[1] - r2 * x[3]) + c * (r1 * x[2] - r2 * x[4]));
     /* J1 a1 = M - r1 (E + m (r1 a1 - r2 a2)), J2 a2 = r2 (E + m (r1 a1 - r2 a2)) - ML */
@@ -30,10 +30,16 @@ static void direct_out(const rt_args *a, real_t *y)
     for (int i = 0; i < 5; i++)
         y[i] = a->x[i];
 }
+/* the command's step at 10 ms: each step ends there, as the scene's step source does */
+static real_t direct_next(const rt_args *a)
+{
+    return a->t < (real_t)0.01 ? (real_t)0.01 : RT_TEV_NEVER;
+}
 static const char *const dn[] = {"i", "phi1", "w1", "phi2", "w2"};
 static const rt_kind direct = {
     .name = "belt_direct", .type = RT_KIND_NSS, .ny = 5, .nx = 5, .y_names = dn,
     .x_names = dn, .feed = RT_FEED_NONE, .output = direct_out, .deriv = direct_deriv,
+    .next_event = direct_next,
 };
 
 /* the loop-free model, run alongside: returns the worst speed difference */

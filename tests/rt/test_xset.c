@@ -157,6 +157,7 @@ typedef struct reader_case {
     uint32_t rs, rr;
     int first, bg, attach;
     real_t t_end;
+    real_t acc; /* the reader's accuracy (0: none, 1e30: only a lost coupling counts) */
 } reader_case;
 
 #define reader_ctx tu_spare /* the background context */
@@ -176,7 +177,7 @@ static int run_reader(const reader_case *c)
     /* (its own estimates never counted: errest is the coupling's alone here) */
     sets[rot] = (rt_set){.name = "reader", .method = &rt_rk4, .ratio = c->rr,
                          .interp = RT_INTERP_EXTRAP, .background = (uint8_t)c->bg,
-                         .implicit = {.accuracy = (real_t)1e30}};
+                         .implicit = {.accuracy = c->acc > 0 ? c->acc : (real_t)1e30}};
     static rt_scene sc;
     sc = (rt_scene){.name = "reader", .dt = (real_t)1e-3, .t_end = c->t_end, .blocks = bl,
                     .nblocks = 2, .conns = cn, .nconns = 1, .sets = sets, .nsets = 2,
@@ -279,11 +280,11 @@ static void check_modes(reader_case c, int want_lost)
 
 static void test_prediction_monitor(void)
 {
-    reader_case c = {1, 1, (real_t)1.5707963, 0, 1, 40, 0, 0, 0, (real_t)2.4};
+    reader_case c = {1, 1, (real_t)1.5707963, 0, 1, 40, 0, 0, 0, (real_t)2.4, 0};
     check_modes(c, 0);
-    reader_case d = {10, 3, 0, 0, 30, 40, 0, 0, 0, (real_t)2.4};
+    reader_case d = {10, 3, 0, 0, 30, 40, 0, 0, 0, (real_t)2.4, 0};
     check_reader("30 ms read every 40 ms", &d, 0);
-    reader_case e = {1000, 2, (real_t)0.3, 500, 1, 50, 0, 0, 0, (real_t)4.0};
+    reader_case e = {1000, 2, (real_t)0.3, 500, 1, 50, 0, 0, 0, (real_t)4.0, 0};
     check_reader("amplitude 1000", &e, 0);
 }
 
@@ -293,15 +294,52 @@ static void test_prediction_monitor(void)
    keeps the set's count), and from a source of the reader's own rate that steps after it */
 static void test_coupling_lost(void)
 {
-    reader_case c = {10, 60, 0, 0, 1, 50, 0, 0, 0, (real_t)2.0};
+    reader_case c = {10, 60, 0, 0, 1, 50, 0, 0, 0, (real_t)2.0, 0};
     check_modes(c, 1);
-    reader_case d = {10, 60, 0, 0, 50, 50, 1, 0, 0, (real_t)2.0};
+    reader_case d = {10, 60, 0, 0, 50, 50, 1, 0, 0, (real_t)2.0, 0};
     check_reader("same rate, reader first", &d, 1);
     TH_CHECK(rt_status_severity(RT_E_COUPLING) == 2);
     /* the source first: the reader interpolates its fresh point, nothing to check */
     d.first = 0;
     if (run_reader(&d) >= 0)
         TH_CHECK(tu_sim.plan.nxpred == 0 && tu_sim.stats.count[RT_CNT_ERREST] == 0);
+}
+
+/* below the lost threshold the miss is held to the reader's accuracy: the rotor's
+   omega' = u has sensitivity 1 / (1 + |omega|) in the scaled norm, so the coupling's
+   estimate of a step with miss e is e H / 2 / (1 + |omega|), |omega| <= 2 amp / w here;
+   at 20 rad/s over 40 ms the worst miss (0.72, a third of the range) puts 1.4e-2 into
+   the state: doubtful against 1e-3 (the reader's block, errest), ok against 5e-2. In the
+   tick, in the background inline and with a context (its step measures the sensitivity,
+   the tick's release judges) */
+static void check_accuracy(reader_case c, int want_doubtful)
+{
+    for (int mode = 0; mode < 3; mode++) {
+        c.bg = mode > 0, c.attach = mode > 1;
+        uint32_t lost, checks;
+        double worst = predicted_miss(&c, &lost, &checks), h = (double)c.rr * 1e-3;
+        int rot = run_reader(&c);
+        if (rot < 0)
+            return;
+        double est = (double)tu_sim.stats.xset_est[rot];
+        th_note(mode == 0 ? "in the tick: xset_est" : mode == 1 ? "background: xset_est"
+                                                            : "context: xset_est", est);
+        TH_CHECK(lost == 0 && checks > 0);
+        TH_CHECK(est <= 0.5 * h * worst * (1 + 1e-6) &&
+                 est >= 0.5 * h * worst / (1 + 2 * (double)c.amp / (double)c.w));
+        TH_CHECK(want_doubtful ? tu_sim.stats.status == RT_E_ACCURACY &&
+                                     tu_sim.stats.errest[rot] > 0 &&
+                                     tu_sim.stats.last_block[RT_CNT_ERREST] == rot
+                               : tu_sim.stats.status == RT_OK);
+    }
+}
+
+static void test_coupling_accuracy(void)
+{
+    reader_case c = {1, 20, 0, 0, 1, 40, 0, 0, 0, (real_t)2.4, (real_t)1e-3};
+    check_accuracy(c, 1);
+    c.acc = (real_t)5e-2;
+    check_accuracy(c, 0);
 }
 
 /* rti_xset_value on a history filled by hand (points at 0.3, 0.2, 0.1 s of a source
@@ -311,7 +349,7 @@ static void test_coupling_lost(void)
    elsewhere the general path); with two points, the line */
 static void test_value_between_points(void)
 {
-    reader_case c = {1, 1, 0, 0, 1, 40, 0, 0, 0, (real_t)0.1};
+    reader_case c = {1, 1, 0, 0, 1, 40, 0, 0, 0, (real_t)0.1, 0};
     if (run_reader(&c) < 0)
         return;
     rt_sim *sim = &tu_sim;
@@ -353,6 +391,7 @@ const th_test th_xset_tests[] = {
     {"xset_value_between_points", test_value_between_points},
     {"xset_prediction_monitor", test_prediction_monitor},
     {"xset_coupling_lost", test_coupling_lost},
+    {"xset_coupling_accuracy", test_coupling_accuracy},
     {"xset_orders", test_orders},
     {"xset_background_orders", test_background_orders},
     {"xset_schedule", test_schedule},

@@ -104,8 +104,10 @@ static int apply_set(const rt_scene *sc, rt_sim *sim, const char *arg)
     if (rt_block_index(sc, buf) < 0)
         return cli_fail("--set: unknown block", buf);
     rt_status st = rt_set_param(sc, sim, buf, dot + 1, (real_t)v);
-    if (st == RT_E_PARAM)
-        return cli_fail("--set: value out of range for the parameter", arg);
+    if (st == RT_E_PARAM) /* the runtime may say why (a time event off the grid) */
+        return cli_fail(rt_error_text(sim)[0] ? rt_error_text(sim)
+                                              : "--set: value out of range for the parameter",
+                        arg);
     if (st != RT_OK)
         return cli_fail("--set: block has no parameter or state named", dot + 1);
     return 0;
@@ -149,6 +151,11 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     for (uint8_t k = 0; k < sc->nsets; k++)
         if (rt_set_is_source(s, k))
             fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_err[k]);
+#if RT_MAX_XPRED > 0
+    for (uint8_t k = 0; k < sc->nsets; k++) /* a reader's coupling error (rt/xset.c) */
+        if (s->stats.xset_est[k] > 0)
+            fprintf(f, "xset_est.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_est[k]);
+#endif
     if (rt_torn_count(s) > 0) {
         fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)s->stats.loop_iter_max);
         for (uint32_t i = 0; i <= s->stats.loop_iter_max; i++)

@@ -46,13 +46,14 @@ void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
             at_least_1(z.y), at_least_1(z.p), at_least_1(z.roots), at_least_1(z.sets),
             at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
             at_least_1(z.implicit_n), z.transition_n);
-    /* (RT_MAX_TRANSITION_N, RT_MAX_HELD_Y, RT_MAX_HELD_SIG and RT_MAX_XPRED may be 0: their arrays are left out of the
+    /* (RT_MAX_TRANSITION_N, RT_MAX_HELD_Y, RT_MAX_HELD_SIG, RT_MAX_XPRED and RT_MAX_TEV may be 0: their arrays are left out of the
        scene's rt_work and rt_state) */
     fprintf(f, " -DRT_MAX_HIST_Y=%u -DRT_MAX_HELD_Y=%u -DRT_MAX_HELD_SIG=%u -DRT_MAX_EVENT_X=%u "
-               "-DRT_MAX_SEQ=%u -DRT_MAX_LOOP_HIST=%u -DRT_MAX_BG=%u -DRT_MAX_XPRED=%u",
+               "-DRT_MAX_SEQ=%u -DRT_MAX_LOOP_HIST=%u -DRT_MAX_BG=%u -DRT_MAX_XPRED=%u "
+               "-DRT_MAX_TEV=%u",
             at_least_1(z.hist_y), z.held_y, z.held_sig, at_least_1(z.event_x),
             at_least_1(z.seq),
-            at_least_1(z.loop_hist), at_least_1(z.bg), z.xpred);
+            at_least_1(z.loop_hist), at_least_1(z.bg), z.xpred, z.tev);
     fprintf(f, " -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
                "-DRT_MAX_MBS_BZ=%u", at_least_1(sc->njoints), at_least_1(z.mbs_z),
             at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz));

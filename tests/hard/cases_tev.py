@@ -1,0 +1,94 @@
+"""cases_tev.py - known time events in the hard-case suite (tests/hard/hard.py; rt/tev.c):
+a step source switching on a step boundary is seen by the step after it, not the one
+before, so a scene driven by steps keeps every method's order.
+
+  * beltgear (models/scenes/beltgear.scn: its current command steps at 10 ms) against
+    the independent reference tools/study/beltgear_ref.py (the same equations as one ODE,
+    integrated piecewise around the jump): every method's observed order between two
+    steps is at least its order less 0.2;
+  * a DC motor whose load torque steps at 0.3 s (dcmotor_load.scn): up to and at the
+    instant the run is the one without the step, to rounding; after it the speed settles
+    at the closed-form (k v - R TL) / (k^2 + R b)."""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+from hard import run, HERE
+
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+ORDER = {"euler": 1, "heun": 2, "bs3": 3, "rk4": 4, "dopri5": 5, "beuler": 1, "trap": 2,
+         "sdirk2": 2, "sdirk3": 3, "ros2": 2}
+# the pair of steps [s] where each method is in its asymptotic range (backward Euler
+# damps the belt's oscillation: it needs finer steps)
+STEPS = {m: ("0.0002", "0.0001") for m in ORDER}
+STEPS["beuler"] = ("0.00005", "0.000025")
+
+
+def belt_reference():
+    """{t in ms: (omega1, omega2)} every 5 ms, by RK4 at 5 us (its own error 5e-12)"""
+    p = subprocess.run([sys.executable, os.path.join(ROOT, "tools/study/beltgear_ref.py"),
+                        "5e-6"], capture_output=True, text=True, timeout=300)
+    w = p.stdout.split()[2:]
+    return {round(float(w[i]) * 1000): (float(w[i + 1]), float(w[i + 2]))
+            for i in range(0, len(w), 3)}
+
+
+def belt_error(rows, cols, ref):
+    i1, i2 = cols.index("R1.omega"), cols.index("R2.omega")
+    e = 0.0
+    for r in rows:
+        ms = r[0] * 1000
+        if abs(ms - round(ms)) > 1e-6 or round(ms) % 5:
+            continue
+        a, b = ref[round(ms)]
+        e = max(e, abs(r[i1] - a), abs(r[i2] - b)) if r[i1] == r[i1] else math.inf
+    return e
+
+
+def beltgear(s):
+    ref = belt_reference()
+    s.check(len(ref) == 101, "beltgear_ref.py gave %d points" % len(ref))
+    # a base tick of 25 us, so every step here is whole ticks and 10 ms one of them
+    with open(os.path.join(ROOT, "models/scenes/beltgear.scn")) as f:
+        text = f.read().replace("base tick (0.1 ms)", "base tick (0.025 ms)")
+    fd, path = tempfile.mkstemp(suffix=".scn", prefix="modrt-belt-")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    try:
+        for m, p in ORDER.items():
+            errs = []
+            for h in STEPS[m]:
+                # (no substeps on the estimate: the method's own order)
+                rc, summ, rows = run(s.modrt, path, ["--method", "main=" + m, "--step",
+                                                     "main=" + h, "--accuracy", "main=1"])
+                errs.append(belt_error(rows, summ.get("columns", []), ref) if rows
+                            else math.inf)
+                s.row("beltgear", m, h, errs[-1], summ, rc)
+            q = math.log2(errs[0] / errs[1]) if errs[1] > 0 and errs[0] < math.inf else 0
+            s.check(q >= p - 0.2, "beltgear %s: observed order %.2f between %s and %s s "
+                    "(method order %d)" % (m, q, STEPS[m][0], STEPS[m][1], p))
+    finally:
+        os.unlink(path)
+
+
+def dcmotor(s):
+    rc, summ, rows = run(s.modrt, "dcmotor_load.scn", [])
+    rc0, summ0, rows0 = run(s.modrt, "dcmotor_load.scn", ["--set", "Load.t0=1"])
+    s.row("dcmotor_load", "rk4", "0.001", math.nan, summ, rc)
+    before = max((abs(a[j] - b[j]) / (1 + abs(b[j])) for a, b in zip(rows, rows0)
+                  if a[0] <= 0.3 + 1e-9 for j in (1, 2)), default=math.inf)
+    s.check(rc == 0 and rc0 == 0 and len(rows) == len(rows0) == 601,
+            "dcmotor_load: status %s, %s" % (summ.get("status"), summ0.get("status")))
+    s.check(before <= 1e-14, "dcmotor_load: the load step at 0.3 s changes the run before "
+            "it by %.3g" % before)
+    k, v, r, tl, b = 0.05, 12.0, 1.0, 0.02, 1e-5
+    w_end = (k * v - r * tl) / (k * k + r * b)
+    s.check(abs(rows[-1][1] - w_end) <= 1e-9 * w_end, "dcmotor_load: speed %.12g at 0.6 s, "
+            "settled %.12g" % (rows[-1][1], w_end))
+
+
+def extra(s, long):
+    beltgear(s)
+    dcmotor(s)
