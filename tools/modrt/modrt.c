@@ -134,6 +134,11 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     for (uint8_t k = 0; k < sc->nsets; k++)
         fprintf(f, "rhs_evals.%s: %llu\n", sc->sets[k].name,
                 (unsigned long long)s->stats.rhs_evals[k]);
+    for (uint8_t k = 0; k < sc->nsets; k++) /* the most one step took, and its bound */
+        fprintf(f, "rhs_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
+                (unsigned)s->stats.istats[k].rhs_step_max,
+                (unsigned)rt_step_bound(sc, k, (uint16_t)(s->plan.set_x[k + 1] -
+                                                          s->plan.set_x[k])).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) {
         const rt_implicit_cfg *c = &sc->sets[k].implicit;
         fprintf(f, "err_max.%s: %g (accuracy %g)\n", sc->sets[k].name,
