@@ -67,8 +67,8 @@ const rt_kind mdl_coulomb_kind = {
     .feed = RT_FEED_NONE, .autonomous = 1,
     .check = check, .output = output, .deriv = deriv, .roots = roots, .event = event,
     .doc = RT_DOC(
-        "Mass on a surface with dry (Coulomb) friction, stick and slip; switches (two\n"
-        "roots). mode +1/-1: sliding forward/backward, x' = v, m v' = F - mode Fc;\n"
+        "Mass on a surface with dry (Coulomb) friction: stick and slip by two roots.\n"
+        "mode +1/-1: sliding forward/backward, x' = v, m v' = F - mode Fc;\n"
         "mode 0: stuck, x' = v' = 0. Root 0: the sliding speed mode v falls through 0\n"
         "(stop): stuck if |F| <= Fs, else sliding the way F pushes. Root 1: |F| - Fs\n"
         "rises through 0 while stuck (break-away). The initial mode must match the\n"

@@ -49,7 +49,7 @@ const rt_kind mdl_relay_kind = {
     .feed = RT_FEED_NONE, .autonomous = 1,
     .check = check, .output = output, .deriv = deriv, .roots = roots, .event = event,
     .doc = RT_DOC(
-        "Relay with hysteresis; switches (two roots). Output y = A while on = 1, -A\n"
+        "Relay with hysteresis, switching by two roots: y = A while on = 1, -A\n"
         "while on = 0. Root 0: u - a rises through 0 while off (switch on); root 1:\n"
         "u + a falls through 0 while on (switch off). a: half the hysteresis width,\n"
         "finite and >= 0; A: amplitude, finite."),
