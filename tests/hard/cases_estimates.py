@@ -26,6 +26,30 @@ def quadrature(s):
             s.check(rc != 0, "quad_pole %s %s: through the pole with status ok" % (m, h))
 
 
+def quad_cos_err(rows, h):
+    """largest error of z = sin(w t) and of the lag q at the set's steps"""
+    w, T, e = 50.26548245743669, 0.1, 0.0
+    for r in rows:
+        if on_grid(r[0], h):
+            t = r[0]
+            q = (math.cos(w * t) + w * T * math.sin(w * t) - math.exp(-t / T)) / (1 + (w * T) ** 2)
+            e = max(e, abs(r[1] - math.sin(w * t)), abs(r[2] - q))
+    return e
+
+
+def quad_cos(s):
+    """C: z' = w cos(w t) and a lag driven by cos(w t), 8 Hz, at 10 and 20 ms: an answer
+    more than 10x the accuracy (1e-3) off may not say ok"""
+    for m in ("euler", "heun", "bs3", "rk4", "dopri5") + tuple(IMPLICIT):
+        for h in ("0.01", "0.02"):
+            rc, summ, rows = run(s.modrt, "quad_cos.scn", ["--method", "main=" + m,
+                                                          "--step", "main=" + h])
+            err = quad_cos_err(rows, float(h)) if rows else math.inf
+            s.row("w cos(w t) and a lag driven by it", m, h, err, summ, rc)
+            s.check(rc != 0 or err <= 1e-2, "quad_cos %s %s: error %.3g with status ok"
+                    % (m, h, err))
+
+
 def coulomb(s):
     """F: a block sliding to rest under Coulomb friction (library kind coulomb): stops
     at t = 2/3 s at x = 2/3 m and stays; every method of order >= 2 at 10 ms (ROS2's
@@ -98,6 +122,7 @@ def scale(s):
 
 def extra(s, long):
     quadrature(s)
+    quad_cos(s)
     coulomb(s)
     relay(s)
     stall(s)

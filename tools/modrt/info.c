@@ -227,11 +227,14 @@ static void scene_set(FILE *f, const rt_scene *sc, uint8_t s)
         n = (uint16_t)(n + (sc->blocks[i].set == s ? sc->blocks[i].kind->nx : 0));
     rt_step_work w = rt_step_bound(sc, s, n);
     fprintf(f, "  %-10s %-8s step %s s (%u ticks of %s s); %u states; worst step %u "
-               "right-hand sides, %u factorizations; accuracy %s\n",
+               "right-hand sides, %u factorizations; accuracy %s",
             st->name, st->method->name, num(b, (double)(sc->dt * (real_t)st->ratio)),
             (unsigned)st->ratio, num(t, (double)sc->dt), (unsigned)n, (unsigned)w.rhs,
             (unsigned)w.lu,
             num(a, (double)(st->implicit.accuracy > 0 ? st->implicit.accuracy : RT_ERR_TOL)));
+    if (st->implicit.atol > 0) /* |e_i| <= atol + accuracy |x_i| (docs/solvers.md) */
+        fprintf(f, ", absolute %s", num(a, (double)st->implicit.atol));
+    fputc('\n', f);
     if (st->background)
         fprintf(f, "  %-10s background: each step released at its communication point, "
                    "published at the next (rt/bg.c)\n", "");
