@@ -43,8 +43,9 @@
  * difference is filtered by M for the L-stable methods (Hairer & Wanner II, IV.8:
  * e <- M^-1 e, so the stiff components, which the L-stable solution damps, are not read
  * as error); the trapezoidal rule, which carries them on, is judged by the raw e. ROS2 against its
- * first-order companion x0 + h k1: e = h/2 (k1 + k2), filtered by M likewise (the
- * companion damps a stiff mode only to 1 - 1/gamma). The scaled norm of e goes to
+ * first-order companion x0 + h k1: e = h/2 (k1 + k2), filtered by M likewise when the
+ * Jacobian is refreshed every step (the companion damps a stiff mode only to
+ * 1 - 1/gamma). The scaled norm of e goes to
  * stats->last_err; rt/step.c counts the step (errest) when it is above the set's accuracy.
  * The estimate only reports: the schedule never changes.
  *
@@ -520,8 +521,10 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     }
     /* filtered by M as the L-stable DIRKs' (its companion x0 + h k1 damps a stiff mode
        only to 1 - 1/gamma = 0.41, which the raw difference read as error: Prothero-
-       Robinson at 10 ms, 5e-9 off, showed 0.21) */
-    real_t e = estimate(c, ft);
+       Robinson at 10 ms, 5e-9 off, showed 0.21), but only in a set that refreshes its
+       Jacobian every step (jacobian (1), the default): a W-method's error grows with its
+       Jacobian's age, which the raw difference shows and an old M would filter away */
+    real_t e = w->cfg->jac_every <= 1 ? estimate(c, ft) : err_norm(c, ft, x);
     return e == e ? e : R(1) / R(0);
 }
 
