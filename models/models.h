@@ -41,6 +41,7 @@ extern const rt_kind mdl_sum_kind;
 /* bouncing ball with restitution (NSS + state event): outputs h, v; discrete states
    count the impacts and hold the last impact time */
 extern const rt_kind mdl_ball_kind;
+extern const rt_kind mdl_coulomb_kind, mdl_relay_kind;
 enum { MDL_BALL_D_N = 0, MDL_BALL_D_T };
 
 /* belt gear parts (paper Fig. 6): pulley a = (M + s r F)/J (throughput), rotor

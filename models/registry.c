@@ -14,6 +14,8 @@ const mdl_entry mdl_kinds[] = {
     {"gain", &mdl_gain_kind},
     {"sum", &mdl_sum_kind},
     {"ball", &mdl_ball_kind},
+    {"coulomb", &mdl_coulomb_kind},
+    {"relay", &mdl_relay_kind},
     {"mbs_point", &mdl_mbs_point_kind},
     {"mbs_pointf", &mdl_mbs_pointf_kind},
     {"mbs_body", &mdl_mbs_body_kind},

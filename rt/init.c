@@ -225,10 +225,10 @@ static rt_status check_set(const rt_scene *sc, uint8_t s, rt_sim *sim)
     if (!st->method || st->ratio == 0 || st->method->stages > RT_MAX_STAGES)
         return rti_fail(sim, RT_E_SCENE, "set ", st->name,
                         ": needs a method and a step of at least one tick", (const char *)0);
-    if (!tol_ok(c->tol) || !tol_ok(c->accuracy) ||
+    if (!tol_ok(c->tol) || !tol_ok(c->accuracy) || !tol_ok(c->atol) ||
         (c->substeps & (c->substeps - 1)) != 0 || c->substeps > 128)
         return rti_fail(sim, RT_E_PARAM, "set ", st->name,
-                        ": tolerance and accuracy must be 0 (default) or positive and "
+                        ": tolerance, accuracy and atol must be 0 (default) or positive and "
                         "finite, substeps 0 (default) or a power of two up to 128",
                         (const char *)0);
     return RT_OK;

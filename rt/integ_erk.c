@@ -9,7 +9,13 @@
  * Every method carries an embedded solution of one order less (e: the weights b - bhat)
  * and reports the scaled norm of the difference as the step's local error estimate
  * (stats->last_err; rt/step.c counts it against the set's accuracy). All but Heun's
- * need f(t + h, x1) for it: one evaluation more per step, which erk_bound counts. */
+ * need one evaluation more per step for it, which erk_bound counts: f(t + h, x1) (FSAL),
+ * or for the classic Runge-Kutta method a fifth stage at t + 3h/4. The companion's
+ * quadrature rule differs from the method's: when f depends on t alone (y' = g(t), an
+ * input driving a lag) the estimate still sees the error. A companion built on the
+ * method's own nodes would not: rk4's nodes 0, 1/2, 1 carry one rule exact to degree
+ * two, Simpson's, so any third-order companion on them is Simpson's again on a
+ * quadrature and the difference is 0 however wrong the step is. */
 #include "rti.h"
 
 /* Butcher tableau of an s-stage explicit method: a is s*s row-major (strictly lower) */
@@ -17,8 +23,11 @@ typedef struct erk_tab {
     uint8_t s;
     const real_t *a, *b, *c;
     const real_t *e;    /* b - bhat against an embedded solution of one order less:
-                           s weights, plus one for f(t + h, x1) when fsal */
-    uint8_t fsal;       /* the embedded solution needs the derivative at the step's end */
+                           s weights, plus one for the estimate's own stage if any */
+    uint8_t fsal;       /* the estimate's stage is f(t + h, x1), the step's end */
+    const real_t *ae;   /* else, if not NULL: it is f(t + ce h, x0 + h sum_j ae_j k_j),
+                           a stage that only serves the estimate (s weights) */
+    real_t ce;
 } erk_tab;
 
 /* out = base + h acc (base NULL: out = acc), acc = sum_{j<nk} c_j k_j summed from j = 0:
@@ -64,29 +73,31 @@ static void combine(real_t *out, const real_t *base, real_t h, const real_t *c, 
     }
 }
 
-/* max_i |h sum_j e_j k_ij| / (1 + |x_i|): the local error of the embedded solution of
-   one order less, which bounds the method's own from above. The pairs that need the
-   derivative at the step's end (FSAL) pay one more right-hand side for it: at a fixed
-   step it cannot be the next step's first stage, which sees the state after projection,
-   events and the other sets' new outputs. It needs no buffer of its own: the sum over
-   the s stages goes into x0 (dead once x1 is formed), then f(t + h, x1) into k[0], and
-   the last term is added in the same order as one sum would (the same bits), so
-   Dormand-Prince needs six stage buffers, not seven (RT_MAX_STAGES, #14). */
+/* max_i |h sum_j e_j k_ij| / (sa + |x_i|) (rti_err_floor): the local error of the
+   embedded solution of one order less, which bounds the method's own from above. The
+   pairs whose estimate needs a stage of its own pay one more right-hand side for it
+   (erk_extra_stage): the FSAL pairs' f(t + h, x1) cannot be the next step's first stage
+   at a fixed step, which sees the state after projection, events and the other sets' new
+   outputs. The sum over the s stages goes into x0 (dead once x1 is formed), the extra
+   stage's derivative is in k[s] (an estimate stage) or k[0] (FSAL: no buffer of its own,
+   so Dormand-Prince needs six stage buffers, not seven, RT_MAX_STAGES, #14), and its term
+   is added last, in the order one sum would take (the same bits). */
 static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
                            const real_t *x, uint16_t n, const rt_iwork *w)
 {
     const erk_tab *tab = m->tab;
     uint8_t s = tab->s;
+    const real_t *kx = tab->fsal ? w->k[0] : tab->ae ? w->k[s] : 0;
     combine(w->x0, 0, 0, tab->e, s, w, n);
     if (tab->fsal) {
         rt_status st = f->eval(f->ctx, t + h, w->k[0]);
         if (st != RT_OK) /* no derivative at the end: nothing to vouch for the step */
             return (real_t)1 / (real_t)0;
     }
-    real_t mx = 0;
+    real_t mx = 0, sa = rti_err_floor(w->cfg);
     for (uint16_t i = 0; i < n; i++) {
-        real_t acc = tab->fsal ? w->x0[i] + tab->e[s] * w->k[0][i] : w->x0[i];
-        real_t r = rt_fabs(h * acc) / (1 + rt_fabs(x[i]));
+        real_t acc = kx ? w->x0[i] + tab->e[s] * kx[i] : w->x0[i];
+        real_t r = rt_fabs(h * acc) / (sa + rt_fabs(x[i]));
         if (r != r)
             return r;
         mx = r > mx ? r : mx;
@@ -94,6 +105,15 @@ static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, re
     return mx;
 }
 
+/* the stage that serves only the estimate (erk_tab.ae), into k[s], evaluated with the
+   step's stages before the new state is formed (its state is written where the blocks
+   read it, x); a failed evaluation makes the estimate infinite */
+static int erk_extra_stage(const erk_tab *tab, const rt_rhs *f, real_t t, real_t h, real_t *x,
+                           uint16_t n, const rt_iwork *w)
+{
+    combine(x, w->x0, h, tab->ae, tab->s, w, n);
+    return f->eval(f->ctx, t + tab->ce * h, w->k[tab->s]) == RT_OK;
+}
 
 static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
                           real_t *x, uint16_t n, const rt_iwork *w)
@@ -109,9 +129,11 @@ static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, rea
         if (st == RT_OK)
             st = si;
     }
+    /* no statistics (a bare step): no estimate, no extra evaluation */
+    int extra = w->stats && tab->ae ? erk_extra_stage(tab, f, t, h, x, n, w) : 1;
     combine(x, w->x0, h, tab->b, tab->s, w, n);
-    if (w->stats) { /* no statistics (a bare step): no estimate, no extra evaluation */
-        real_t e = erk_estimate(m, f, t, h, x, n, w);
+    if (w->stats) {
+        real_t e = extra ? erk_estimate(m, f, t, h, x, n, w) : (real_t)1 / (real_t)0;
         w->stats->last_err = e;
         if (e != e || e > w->stats->err_max)
             w->stats->err_max = e;
@@ -125,7 +147,7 @@ static void erk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16
 {
     const erk_tab *tab = m->tab;
     (void)cfg, (void)n;
-    w->rhs = (uint32_t)tab->s + tab->fsal, w->lu = 0;
+    w->rhs = (uint32_t)tab->s + (tab->fsal || tab->ae), w->lu = 0;
 }
 
 #define R(v) ((real_t)(v))
@@ -135,14 +157,14 @@ static const real_t euler_a[] = {0};
 static const real_t euler_b[] = {1};
 static const real_t euler_c[] = {0};
 static const real_t euler_e[] = {R(0.5), R(-0.5)}; /* against Heun's method */
-static const erk_tab euler_tab = {1, euler_a, euler_b, euler_c, euler_e, 1};
+static const erk_tab euler_tab = {1, euler_a, euler_b, euler_c, euler_e, 1, 0, 0};
 
 /* Heun's method (explicit trapezoidal), order 2 */
 static const real_t heun_a[] = {0, 0, 1, 0};
 static const real_t heun_b[] = {R(0.5), R(0.5)};
 static const real_t heun_c[] = {0, 1};
 static const real_t heun_e[] = {R(-0.5), R(0.5)}; /* against explicit Euler */
-static const erk_tab heun_tab = {2, heun_a, heun_b, heun_c, heun_e, 0};
+static const erk_tab heun_tab = {2, heun_a, heun_b, heun_c, heun_e, 0, 0, 0};
 
 /* Bogacki-Shampine 3(2); its fourth (FSAL) stage only serves the error estimate */
 static const real_t bs3_a[] = {0, 0, 0, R(0.5), 0, 0, 0, R(0.75), 0};
@@ -150,16 +172,28 @@ static const real_t bs3_b[] = {R(2.0 / 9.0), R(1.0 / 3.0), R(4.0 / 9.0)};
 static const real_t bs3_c[] = {0, R(0.5), R(0.75)};
 /* b - bhat, bhat = (7/24, 1/4, 1/3, 1/8) (Bogacki & Shampine 1989) */
 static const real_t bs3_e[] = {R(-5.0 / 72.0), R(1.0 / 12.0), R(1.0 / 9.0), R(-1.0 / 8.0)};
-static const erk_tab bs3_tab = {3, bs3_a, bs3_b, bs3_c, bs3_e, 1};
+static const erk_tab bs3_tab = {3, bs3_a, bs3_b, bs3_c, bs3_e, 1, 0, 0};
 
 /* the classic Runge-Kutta method, order 4 */
 static const real_t rk4_a[] = {0, 0, 0, 0, R(0.5), 0, 0, 0, 0, R(0.5), 0, 0, 0, 0, 1, 0};
 static const real_t rk4_b[] = {R(1.0 / 6.0), R(1.0 / 3.0), R(1.0 / 3.0), R(1.0 / 6.0)};
 static const real_t rk4_c[] = {0, R(0.5), R(0.5), 1};
-/* no third-order combination of its own stages differs from b; with f(t + h, x1),
-   bhat = (1/6, 1/3, 1/3, 0, 1/6) is third order, so b - bhat = (0, 0, 0, 1/6, -1/6) */
-static const real_t rk4_e[] = {0, 0, 0, R(1.0 / 6.0), R(-1.0 / 6.0)};
-static const erk_tab rk4_tab = {4, rk4_a, rk4_b, rk4_c, rk4_e, 1};
+/* a fifth stage at c = 3/4, only for the estimate, as in Zonneveld's 4(3) pair (Hairer,
+   Norsett & Wanner I, II.4), whose difference b - bhat = (2/3, -2, -2, -2, 16/3) every
+   third-order companion on these nodes shares up to a factor: it is the one direction
+   that annihilates the conditions of order <= 3 (weights summing to 0 against 1, c, c^2
+   and A c). On a quadrature it is off at degree three, where b (Simpson's rule) is exact.
+   The stage's row (3/16, 0, 9/16, 0) (second-order stage, like Zonneveld's) leaves the
+   estimate on y' = lambda y a pure (h lambda)^4 term; Zonneveld's row
+   (5/32, 7/32, 13/32, -1/32) gives (h lambda)^4 (1 + h lambda), blind at h lambda = -1.
+   The factor is the smallest simple one at which the estimate exceeds rk4's own local
+   error on y' = lambda y for every |h lambda| <= 1 (it needs 0.21): 1/4 of the
+   direction above, bhat = (13/96, 41/96, 41/96, 25/96, -1/4), 21 times less pessimistic
+   than Zonneveld's weights (tests/rt/test_integ.c) */
+static const real_t rk4_ae[] = {R(3.0 / 16.0), 0, R(9.0 / 16.0), 0};
+static const real_t rk4_e[] = {R(1.0 / 32.0), R(-3.0 / 32.0), R(-3.0 / 32.0), R(-3.0 / 32.0),
+                               R(1.0 / 4.0)};
+static const erk_tab rk4_tab = {4, rk4_a, rk4_b, rk4_c, rk4_e, 0, rk4_ae, R(0.75)};
 
 /* Dormand-Prince 5(4), fifth-order solution; b7 = 0, so six stages suffice at fixed step */
 static const real_t dp5_a[] = {
@@ -178,7 +212,7 @@ static const real_t dp5_c[] = {0, R(1.0 / 5.0), R(3.0 / 10.0), R(4.0 / 5.0), R(8
    (Dormand & Prince 1980; Hairer, Norsett & Wanner I, II.5) */
 static const real_t dp5_e[] = {R(71.0 / 57600.0), 0, R(-71.0 / 16695.0), R(71.0 / 1920.0),
                                R(-17253.0 / 339200.0), R(22.0 / 525.0), R(-1.0 / 40.0)};
-static const erk_tab dp5_tab = {6, dp5_a, dp5_b, dp5_c, dp5_e, 1};
+static const erk_tab dp5_tab = {6, dp5_a, dp5_b, dp5_c, dp5_e, 1, 0, 0};
 
 const rt_integrator rt_euler = {.name = "euler", .order = 1, .stages = 1, .step = erk_step, .bound = erk_bound,
                                 .tab = &euler_tab};

@@ -39,11 +39,13 @@
  *
  * Error estimate. A DIRK step's embedded first-order solution is x0 + h k_s (the last
  * stage's derivative alone), so e = h sum_j (a_sj - [j = s]) k_j; backward Euler, its own
- * companion, is compared with the trapezoidal rule, e = h/2 (k_1 - f(t + h, x0)). The
+ * companion, is compared with the trapezoidal rule, e = h/2 (k_1 - f(t, x0)). The
  * difference is filtered by M for the L-stable methods (Hairer & Wanner II, IV.8:
  * e <- M^-1 e, so the stiff components, which the L-stable solution damps, are not read
  * as error); the trapezoidal rule, which carries them on, is judged by the raw e. ROS2 against its
- * first-order companion x0 + h k1: e = h/2 (k1 + k2). The scaled norm of e goes to
+ * first-order companion x0 + h k1: e = h/2 (k1 + k2), filtered by M likewise when the
+ * Jacobian is refreshed every step (the companion damps a stiff mode only to
+ * 1 - 1/gamma). The scaled norm of e goes to
  * stats->last_err; rt/step.c counts the step (errest) when it is above the set's accuracy.
  * The estimate only reports: the schedule never changes.
  *
@@ -83,6 +85,7 @@ typedef struct dirk_tab {
     const real_t *a, *c;
     real_t gamma;
     uint8_t lstable; /* R(-inf) = 0: the error estimate may be filtered by M */
+    const real_t *bhat; /* s weights of the embedded companion; NULL: x0 + h k_s */
 } dirk_tab;
 
 /* Rosenbrock-W method ROS2 of Verwer, Spee, Blom & Hundsdorfer (1999), M = I - h gamma J:
@@ -105,10 +108,14 @@ typedef struct imp_step {
     uint8_t singular;   /* a factorization of this step was singular */
     uint8_t full;       /* retrying: a Jacobian at every Newton iterate */
     real_t err;         /* local error estimate of the result (largest over substeps) */
+    real_t sa;          /* floor of the estimate's norm (rti_err_floor) */
     real_t *f0;         /* where to keep the step's first evaluation, or NULL */
     rt_status rhs_st;   /* first error of the right-hand side */
     real_t res;         /* largest final residual of the stages */
     uint32_t iters;     /* Newton iterations of the step */
+    real_t r0;          /* the step's first Newton correction (scaled norm; -1: none yet):
+                           how far its start derivative wants to move the state */
+    uint8_t stall;      /* the step ended where it started though r0 said it must move */
 } imp_step;
 
 /* ------------------------------------------------------------------ iteration matrix */
@@ -169,9 +176,10 @@ static void begin(imp_step *c, const rt_rhs *f, real_t *x, uint16_t n, const rt_
 {
     const rt_implicit_cfg *cfg = w->cfg;
     uint16_t every = cfg->jac_every ? cfg->jac_every : IMP_JAC_EVERY;
-    *c = (imp_step){.f = f, .x = x, .n = n, .w = w, .hg = hg};
+    *c = (imp_step){.f = f, .x = x, .n = n, .w = w, .hg = hg, .r0 = -1};
     c->tol = cfg->tol > 0 ? cfg->tol : IMP_TOL;
     c->nmax = cfg->newton_max ? cfg->newton_max : IMP_NEWTON_MAX;
+    c->sa = rti_err_floor(cfg);
     c->refresh = !w->imp->valid || w->imp->age >= every;
     if (!c->refresh && w->imp->h_factored != hg)
         factor(c);
@@ -205,7 +213,7 @@ static rt_status finish(imp_step *c, real_t res)
     s->last_residual = c->res;
     if (c->iters > s->newton_iter_max)
         s->newton_iter_max = c->iters;
-    if (!(c->res <= c->tol)) {
+    if (!(c->res <= c->tol) || c->stall) {
         s->degraded++;
         c->w->imp->valid = 0;
         return RT_E_NOCONV;
@@ -230,6 +238,20 @@ static real_t scaled_norm(const real_t *d, const real_t *y, uint16_t n)
     return m;
 }
 
+/* the error norm of an estimate e at the new state x: max_i |e_i| / (sa + |x_i|), with
+   the set's floor sa (1 unless it declares an absolute tolerance); NaN when e holds one */
+static real_t err_norm(const imp_step *c, const real_t *e, const real_t *x)
+{
+    real_t m = 0;
+    for (uint16_t i = 0; i < c->n; i++) {
+        real_t r = rt_fabs(e[i]) / (c->sa + rt_fabs(x[i]));
+        if (r != r)
+            return r;
+        m = r > m ? r : m;
+    }
+    return m;
+}
+
 /* the step's local error estimate e (n values in buffer e, overwritten), filtered by the
    iteration matrix, M e (Hairer & Wanner II, IV.8: stiff components of the raw
    difference of two solutions are not errors of the L-stable one), as a scaled norm */
@@ -238,7 +260,7 @@ static real_t estimate(imp_step *c, real_t *e)
     const rt_implicit_ws *ws = c->w->imp;
     if (ws->valid)
         rti_lu_solve(ws->lu, c->n, ws->piv, e);
-    return scaled_norm(e, c->x, c->n);
+    return err_norm(c, e, c->x);
 }
 
 /* solves Y = v + hg f(tc, Y) for Y in x, from the predictor in x; first: this is the
@@ -264,6 +286,8 @@ static real_t newton(imp_step *c, real_t tc, const real_t *v, int first)
             d[i] = v[i] + c->hg * d[i] - x[i];
         rti_lu_solve(ws->lu, c->n, ws->piv, d);
         real_t r = scaled_norm(d, x, c->n);
+        if (c->r0 < 0)
+            c->r0 = r;
         if (rti_fault_due(RTI_FAULT_NEWTON))
             r = R(1) / R(0); /* diverged */
         c->iters++;
@@ -306,7 +330,12 @@ static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     real_t *v = w->k[IMP_BUF_V], *x = c->x, worst = 0;
     for (uint16_t j = 0; j < c->n; j++)
         x[j] = w->x0[j];
-    c->f0 = tab->s == 1 ? w->k[1] : NULL; /* backward Euler's estimate needs f at x0 */
+    /* backward Euler's estimate needs f(t, x0): the first Newton evaluation,
+       f(t + h, x0), is the same in an autonomous set; else one evaluation more (without
+       it a set driven by t alone would show the estimate 0, k_1 = f(t + h, x0)) */
+    c->f0 = tab->s == 1 && w->autonomous ? w->k[1] : NULL;
+    if (tab->s == 1 && !w->autonomous)
+        rhs(c, t, w->k[1]);
     for (uint8_t i = 0; i < tab->s; i++) {
         real_t tc = t + tab->c[i] * h;
         if (tab->a[i * tab->s + i] == 0) { /* explicit first stage, at x0 */
@@ -325,10 +354,11 @@ static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     }
     /* embedded first-order solution x0 + h k_s: e = h sum_j (a_sj - [j = s]) k_j;
        backward Euler is its own companion: against the trapezoidal rule,
-       e = h/2 (k_1 - f(t + h, x0)), about h^2/2 x'' */
+       e = h/2 (k_1 - f(t, x0)), about h^2/2 x'' */
     real_t *e = w->k[IMP_BUF_V], ce[IMP_MAX_S];
     for (uint8_t i = 0; i < tab->s; i++) /* the weights once, not per component */
-        ce[i] = tab->a[(tab->s - 1) * tab->s + i] - (i + 1 == tab->s ? 1 : 0);
+        ce[i] = tab->a[(tab->s - 1) * tab->s + i] -
+                (tab->bhat ? tab->bhat[i] : i + 1 == tab->s ? 1 : 0);
     for (uint16_t j = 0; j < c->n; j++) {
         real_t acc = 0;
         if (tab->s == 1)
@@ -339,7 +369,7 @@ static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     }
     /* an A-stable method that does not damp stiff modes (trap: R(-inf) = -1) carries
        their error on, ringing: its estimate is taken raw */
-    real_t err = tab->lstable ? estimate(c, e) : scaled_norm(e, c->x, c->n);
+    real_t err = tab->lstable ? estimate(c, e) : err_norm(c, e, c->x);
     if (c->err == c->err && !(err <= c->err))
         c->err = err;
     return worst;
@@ -381,6 +411,25 @@ static real_t split(imp_step *c, attempt_fn attempt, const void *tab, real_t gam
 }
 
 
+/* finish() of a DIRK step that met its tolerance, unless it stalled: it ended within
+   the tolerance of its start (max_i |x_i - xs_i| / (1 + |xs_i|)) while its first Newton
+   correction, the move its start derivative asks for filtered by M (a stiff component at
+   its equilibrium asks for none), was RT_IMP_STALL times larger. Nothing but a spurious
+   root of the stage equations ends there (a method's cycle: SDIRK2's two half steps on a
+   relaxation jump return the start state bit for bit, every step); degraded, not a
+   recovered substep, and the next step takes a fresh Jacobian */
+static rt_status finish_moved(imp_step *c, real_t res)
+{
+    const real_t *xs = c->w->imp->xs;
+    real_t moved = 0;
+    for (uint16_t i = 0; i < c->n; i++) {
+        real_t r = rt_fabs(c->x[i] - xs[i]) / (1 + rt_fabs(xs[i]));
+        moved = r > moved ? r : moved;
+    }
+    c->stall = moved <= c->tol && c->r0 > (real_t)RT_IMP_STALL * c->tol;
+    return finish(c, res);
+}
+
 /* A step that does not converge is never left at its start (docs/solvers.md): retry
    with the Jacobian at the failed iterate, then split into 2, 4, ... substeps up to the
    set's bound; if all of that fails, keep the result with the smallest residual. */
@@ -397,7 +446,7 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
         ws->xs[j] = x[j];
     real_t best = R(1) / R(0), res = dirk_attempt(&c, tab, t, h);
     if (res <= c.tol)
-        return finish(&c, res);
+        return finish_moved(&c, res);
     keep_best(&c, res, &best);
     /* 1: full Newton, a Jacobian at every iterate (the start's may not see the stiff
        direction: Robertson's at y = (1, 0, 0) has no 1e4 y2 y3 or 3e7 y2^2 terms) */
@@ -405,19 +454,23 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     c.nmax = (uint8_t)(2 * c.nmax < 255 ? 2 * c.nmax : 255); /* a cold start needs more */
     res = dirk_attempt(&c, tab, t, h);
     if (res <= c.tol) {
-        w->stats->retried++;
-        return finish(&c, res);
+        rt_status st = finish_moved(&c, res);
+        w->stats->retried += !c.stall;
+        return st;
     }
     keep_best(&c, res, &best);
-    /* 2: substeps, each with its own Jacobian */
+    /* 2: substeps, each with its own Jacobian at its start, and still full Newton with
+       the retry's iterations (Robertson's first step at h = 0.1 s converges in no
+       substep without them); dirk_bound counts it */
     uint8_t kmax = w->cfg->substeps ? w->cfg->substeps : RT_IMP_SUBSTEPS;
     for (uint8_t k = 2; k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
         c.err = 0, c.singular = 0;
         res = split(&c, dirk_attempt, tab, tab->gamma, t, h, k);
         if (res <= c.tol) {
-            w->stats->substepped++;
             ws->valid = 0; /* the next step's Jacobian belongs to its own h */
-            return finish(&c, res);
+            rt_status st = finish_moved(&c, res);
+            w->stats->substepped += !c.stall; /* a stall is no recovery */
+            return st;
         }
         keep_best(&c, res, &best);
     }
@@ -466,7 +519,12 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
         x[i] = w->x0[i] + h * (R(1.5) * k1[i] + R(0.5) * k2[i]);
         ft[i] = h * R(0.5) * (k1[i] + k2[i]); /* against the embedded x0 + h k1 */
     }
-    real_t e = scaled_norm(ft, x, n); /* the k are M^-1 f already: no filter */
+    /* filtered by M as the L-stable DIRKs' (its companion x0 + h k1 damps a stiff mode
+       only to 1 - 1/gamma = 0.41, which the raw difference read as error: Prothero-
+       Robinson at 10 ms, 5e-9 off, showed 0.21), but only in a set that refreshes its
+       Jacobian every step (jacobian (1), the default): a W-method's error grows with its
+       Jacobian's age, which the raw difference shows and an old M would filter away */
+    real_t e = w->cfg->jac_every <= 1 ? estimate(c, ft) : err_norm(c, ft, x);
     return e == e ? e : R(1) / R(0);
 }
 
@@ -513,9 +571,11 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
 /* ------------------------------------------------------------------ work bounds */
 
 /* A DIRK step: the attempt (a Jacobian, n evaluations, and nmax iterations per implicit
-   stage), the full-Newton retry (2 nmax iterations per stage, each with a Jacobian and a
-   factorization), then 2, 4, ... K substeps, each an attempt: 2 K - 1 attempts and one
-   retry in all */
+   stage), the full-Newton retry (2 nmax iterations per stage, each with a Jacobian, n
+   evaluations, and a factorization), then 2, 4, ... K substeps, each as the retry plus a
+   Jacobian at its start: 2 K - 1 full attempts after the first, 2 K - 2 of them with a
+   fresh Jacobian. Backward Euler adds f(t, x0) to each attempt (its estimate, in a set
+   that is not autonomous). */
 static void dirk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
                        rt_step_work *w)
 {
@@ -523,9 +583,10 @@ static void dirk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint1
     uint32_t nmax = cfg->newton_max ? cfg->newton_max : IMP_NEWTON_MAX;
     uint32_t k = cfg->substeps ? cfg->substeps : RT_IMP_SUBSTEPS, expl = tab->a[0] == 0;
     uint32_t impl = tab->s - expl, full = 2 * nmax < 255 ? 2 * nmax : 255;
-    uint32_t attempt = n + expl + impl * nmax;
-    w->rhs = (2 * k - 1) * attempt + expl + impl * full * (1u + n);
-    w->lu = (2 * k - 1) + impl * full;
+    uint32_t own = expl + (tab->s == 1); /* evaluations besides Jacobians and Newton */
+    uint32_t first = n + own + impl * nmax, retry = own + impl * full * (1u + n);
+    w->rhs = first + (2 * k - 1) * retry + (2 * k - 2) * n;
+    w->lu = 1 + (2 * k - 1) * impl * full + (2 * k - 2);
 }
 
 /* ROS2: an attempt is a Jacobian (n evaluations), f(t, x0), f(t + h, x0), f(t + h, x1)
@@ -543,19 +604,19 @@ static void ros2_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint1
 /* backward Euler: order 1, L-stable, R(z) = 1 / (1 - z) */
 static const real_t be_a[] = {1};
 static const real_t be_c[] = {1};
-static const dirk_tab be_tab = {1, be_a, be_c, 1, 1};
+static const dirk_tab be_tab = {1, be_a, be_c, 1, 1, 0};
 
 /* trapezoidal rule as a two-stage ESDIRK (explicit first stage): order 2, A-stable but
    not L-stable, R(z) = (1 + z/2) / (1 - z/2) -> -1 as z -> -inf */
 static const real_t trap_a[] = {0, 0, R(0.5), R(0.5)};
 static const real_t trap_c[] = {0, 1};
-static const dirk_tab trap_tab = {2, trap_a, trap_c, R(0.5), 0};
+static const dirk_tab trap_tab = {2, trap_a, trap_c, R(0.5), 0, 0};
 
 /* Alexander (1977), two-stage SDIRK: gamma = 1 - 1/sqrt(2), order 2, L-stable */
 #define SD2_G 0.29289321881345247560
 static const real_t sd2_a[] = {R(SD2_G), 0, R(1 - SD2_G), R(SD2_G)};
 static const real_t sd2_c[] = {R(SD2_G), 1};
-static const dirk_tab sd2_tab = {2, sd2_a, sd2_c, R(SD2_G), 1};
+static const dirk_tab sd2_tab = {2, sd2_a, sd2_c, R(SD2_G), 1, 0};
 
 /* Alexander (1977), three-stage SDIRK: gamma the root of x^3 - 3x^2 + 3/2 x - 1/6 in
    (1/6, 1/2), c2 = (1 + gamma)/2, b1 = -(6 gamma^2 - 16 gamma + 1)/4,
@@ -570,7 +631,12 @@ static const real_t sd3_a[] = {
     R(SD3_B1), R(SD3_B2), R(SD3_G),
 };
 static const real_t sd3_c[] = {R(SD3_G), R(SD3_A21 + SD3_G), 1};
-static const dirk_tab sd3_tab = {3, sd3_a, sd3_c, R(SD3_G), 1};
+/* its companion is second order, on the first two stages: bhat2 = (1/2 - c1) / (c2 - c1),
+   bhat1 = 1 - bhat2 (a first-order x0 + h k3 made the estimate C / h^2 times the error,
+   4e3 to 4e4 at h = 0.05 on a smooth problem: tests/rt/test_integ.c) */
+#define SD3_BH2 ((0.5 - SD3_G) / SD3_A21)
+static const real_t sd3_bhat[] = {R(1 - SD3_BH2), R(SD3_BH2), 0};
+static const dirk_tab sd3_tab = {3, sd3_a, sd3_c, R(SD3_G), 1, sd3_bhat};
 
 /* ROS2 with gamma = 1 + 1/sqrt(2): L-stable, order 2 for any Jacobian approximation (a
    W-method: a stale Jacobian keeps the order, though on stiff problems the error then

@@ -85,6 +85,7 @@ static rt_status ramp_step(const rt_rhs *f, real_t t, real_t h, real_t *x, uint1
             dev[i] = R(0.125) * (df[i] - ws->best[i]);
     }
     const real_t *p1 = ws->lu, *p2 = ws->jac;
+    real_t sa = rti_err_floor(w->cfg);
     for (uint16_t i = 0; i < n; i++, p1 += n, p2 += n) {
         real_t dx = 0, e = 0;
         for (uint16_t j = 0; j < n; j++)
@@ -92,7 +93,7 @@ static rt_status ramp_step(const rt_rhs *f, real_t t, real_t h, real_t *x, uint1
         for (uint16_t j = 0; j < n; j++)
             dx += p2[j] * df[j], e += rt_fabs(p1[j]) * rt_fabs(dev[j]);
         x[i] += dx;
-        real_t r = e / (1 + rt_fabs(x[i]));
+        real_t r = e / (sa + rt_fabs(x[i]));
         *err = r > *err || r != r ? r : *err; /* a NaN sticks */
     }
     for (uint16_t i = 0; i < n; i++)

@@ -266,6 +266,8 @@ typedef struct rt_istats {
     real_t err_max;           /* the largest of them */
     uint32_t substepped;      /* steps that converged only in substeps */
     real_t last_residual;     /* residual norm after the last iteration */
+    uint32_t rhs_step_max;    /* most right-hand sides one step took (an event's re-steps
+                                 each count as one); never above rt_step_bound's */
 } rt_istats;
 
 /* Per-set settings of an implicit method (rt_set; zeros select the defaults). */
@@ -278,6 +280,9 @@ typedef struct rt_implicit_cfg {
                                  1e-5 with RT_REAL_FLOAT) */
     real_t accuracy;          /* local error a step may show, scaled norm max_i |e_i| /
                                  (1 + |x_i|) (default RT_ERR_TOL); above it: errest */
+    real_t atol;              /* absolute part of the accuracy (0: = accuracy): a step
+                                 may show |e_i| <= atol + accuracy |x_i|, i.e. the norm is
+                                 max_i |e_i| / (atol / accuracy + |x_i|) (rti_err_floor) */
 } rt_implicit_cfg;
 
 /* Workspace an integrator may use for one step of one set (carved from rt_sim). */

@@ -284,6 +284,13 @@ typedef double real_t;
    then 2 + (2 + 4 + ... + RT_IMP_SUBSTEPS) = 2 RT_IMP_SUBSTEPS step-equivalents */
 #define RT_IMP_SUBSTEPS 8
 #endif
+#ifndef RT_IMP_STALL
+/* an implicit step whose first Newton correction moved the state by more than this times
+   its residual tolerance but which ended within the tolerance of its start has stalled
+   (its stage equations met a spurious solution, a cycle of the method: SDIRK2's two half
+   steps on a relaxation jump); counted as degraded (integ_implicit.c) */
+#define RT_IMP_STALL 100
+#endif
 #ifndef RT_MAX_IMPLICIT_N
 #define RT_MAX_IMPLICIT_N 64 /* states of a set integrated by an implicit method */
 #endif

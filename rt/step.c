@@ -78,7 +78,10 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
     uint32_t split = w.stats->substepped;
     real_t before = keep_norm(sim->state.x + x0, sim->work.xs, n);
     w.stats->last_err = 0;
+    uint64_t r0 = sim->stats.rhs_evals[s];
     rt_status st = sc->sets[s].method->step(sc->sets[s].method, &f, t, h, sim->state.x + x0, n, &w);
+    if (sim->stats.rhs_evals[s] - r0 > w.stats->rhs_step_max) /* the work bound's witness */
+        w.stats->rhs_step_max = (uint32_t)(sim->stats.rhs_evals[s] - r0);
     if (st == RT_E_NOCONV)
         rti_count(sim, RT_CNT_DEGRADED, -1, RT_E_DEGRADED);
     else if (st == RT_E_SINGULAR)

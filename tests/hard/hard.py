@@ -172,6 +172,11 @@ class Suite:
             summ.get("status", "?"))
         self.table.append(line)
         print(line)
+        for k, v in summ.items():  # every step's work within the printed worst case
+            if k.startswith("rhs_step_max."):
+                most, bound = int(v.split()[0]), int(v.split("bound ")[1].rstrip(")"))
+                self.check(most <= bound, "%s %s %s: a step took %d right-hand sides, "
+                           "bound %d" % (case, method, step, most, bound))
 
     def grid(self, long):
         errs = {}
@@ -216,6 +221,7 @@ def main():
     __import__("cases_events").run_all(s, long)
     __import__("cases_multirate").extra(s, long)  # multirate coupling (docs/multirate.md)
     __import__("cases_tev").extra(s, long)  # known time events (rt/tev.c)
+    __import__("cases_estimates").extra(s, long)
     if "--table" in sys.argv:
         with open(sys.argv[sys.argv.index("--table") + 1], "w") as f:
             f.write("\n".join(s.table) + "\n")

@@ -138,11 +138,17 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     for (uint8_t k = 0; k < sc->nsets; k++)
         fprintf(f, "rhs_evals.%s: %llu\n", sc->sets[k].name,
                 (unsigned long long)s->stats.rhs_evals[k]);
+    for (uint8_t k = 0; k < sc->nsets; k++) /* the most one step took, and its bound */
+        fprintf(f, "rhs_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
+                (unsigned)s->stats.istats[k].rhs_step_max,
+                (unsigned)rt_step_bound(sc, k, (uint16_t)(s->plan.set_x[k + 1] -
+                                                          s->plan.set_x[k])).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) {
         const rt_implicit_cfg *c = &sc->sets[k].implicit;
-        fprintf(f, "err_max.%s: %g (accuracy %g)\n", sc->sets[k].name,
+        fprintf(f, "err_max.%s: %g (accuracy %g", sc->sets[k].name,
                 (double)s->stats.istats[k].err_max,
                 (double)(c->accuracy > 0 ? c->accuracy : RT_ERR_TOL));
+        fprintf(f, c->atol > 0 ? ", absolute %g)\n" : ")\n", (double)c->atol);
         if (s->stats.errest[k] || s->stats.unstable[k])
             fprintf(f, "errest.%s: %u\nunstable.%s: %u\n", sc->sets[k].name,
                     (unsigned)s->stats.errest[k], sc->sets[k].name,
@@ -353,7 +359,8 @@ static const cli_opt run_opts[] = {
      "(as are the five below)", opt_method},
     {"step", "SET=TIME", "set SET's step [s], a whole number of base ticks", opt_step},
     {"tol", "SET=E", "Newton residual tolerance of an implicit set", opt_tol},
-    {"accuracy", "SET=E", "local error a step of SET may show before it is counted (errest)",
+    {"accuracy", "SET=E[,A]", "local error a step of SET may show before it is counted "
+     "(errest): |e| <= A + E |x| (A = E if omitted)",
      opt_accuracy},
     {"substeps", "SET=N", "most substeps a failing implicit step is split into (power of 2)",
      opt_substeps},

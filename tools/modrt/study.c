@@ -55,13 +55,21 @@ static int set_count(rt_set *st, const char *opt, const char *v)
 
 static int set_real(rt_set *st, const char *opt, const char *v)
 {
-    double e;
+    double e, a = 0;
+    const char *comma = strcmp(opt, "accuracy") == 0 ? strchr(v, ',') : NULL;
+    char rel[64];
+    if (comma) { /* accuracy SET=R,A: relative and absolute, as the scene's clause */
+        size_t n = (size_t)(comma - v);
+        if (n >= sizeof rel || !cli_real(comma + 1, &a) || !(a > 0))
+            return bad(opt, "expects SET=E or SET=R,A with both above 0, got", v);
+        memcpy(rel, v, n), rel[n] = 0, v = rel;
+    }
     if (!cli_real(v, &e) || !(e > 0))
         return bad(opt, "expects SET=E with E > 0, got", v);
     if (strcmp(opt, "tol") == 0)
         st->implicit.tol = (real_t)e;
     else
-        st->implicit.accuracy = (real_t)e;
+        st->implicit.accuracy = (real_t)e, st->implicit.atol = (real_t)a;
     return CLI_OK;
 }
 

@@ -483,9 +483,10 @@ static void sets(FILE *f, const scn_scene *s)
             fprintf(f, ", .interp = %s", interp_id[st->interp]);
         if (st->newton || st->jacobian || st->tol != 0 || st->substeps || st->accuracy != 0)
             fprintf(f, ",\n     .implicit = {.newton_max = %u, .substeps = %u, .jac_every = %u,"
-                       " .tol = %s, .accuracy = %s}",
+                       " .tol = %s, .accuracy = %s%s%s}",
                     (unsigned)st->newton, (unsigned)st->substeps, (unsigned)st->jacobian,
-                    R(st->tol), R(st->accuracy));
+                    R(st->tol), R(st->accuracy), st->has_atol ? ", .atol = " : "",
+                    st->has_atol ? R(st->atol) : "");
         if (st->background)
             fputs(", .background = 1", f);
         fputs("},\n", f);

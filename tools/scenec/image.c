@@ -142,6 +142,7 @@ static void sets_recs(scn_ctx *c, rt_scene *sc)
         st[i].implicit.tol = (real_t)x->tol;
         st[i].implicit.substeps = (uint8_t)x->substeps;
         st[i].implicit.accuracy = (real_t)x->accuracy;
+        st[i].implicit.atol = (real_t)x->atol;
         st[i].background = x->background;
     }
     rt_rec *r = scn_alloc(c, (s->nrec + 1u) * sizeof *r);

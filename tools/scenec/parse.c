@@ -514,7 +514,12 @@ static void set_clause(scn_ctx *c, scn_set *st, uint8_t *seen)
     } else if (scn_is_word(c, "substeps") && once(c, &seen[7])) {
         scn_next(c), st->substeps = paren_count(c, 128), st->has_substeps = 1;
     } else if (scn_is_word(c, "accuracy") && once(c, &seen[8])) {
-        scn_next(c), st->accuracy = paren_const(c), st->has_accuracy = 1;
+        /* accuracy (rtol [, atol]): |e_i| <= atol + rtol |x_i|, atol = rtol if omitted */
+        scn_next(c), scn_expect_op(c, "(");
+        st->accuracy = scn_const_expr(c), st->has_accuracy = 1;
+        if (!c->err && scn_is_op(c, ","))
+            scn_next(c), st->atol = scn_const_expr(c), st->has_atol = 1;
+        scn_expect_op(c, ")");
     } else if (scn_is_word(c, "background") && once(c, &seen[9])) {
         scn_next(c), st->background = 1; /* no argument: steps below the tick (rt/bg.c) */
     } else if (!c->err) {

@@ -264,6 +264,8 @@ typedef struct scn_set {
     /* resolved */
     const rt_integrator *m;
     uint32_t ratio;
+    double atol;                /* accuracy's absolute part (rt_implicit_cfg.atol) */
+    uint8_t has_atol;
 } scn_set;
 
 typedef struct scn_rec {

@@ -52,6 +52,9 @@ static void set_method(scn_ctx *c, scn_set *st)
         scn_fail(c, st->name.pos, st->name.s, "tolerance must be positive", "a value above 0");
     if (st->has_accuracy && !(st->accuracy > 0))
         scn_fail(c, st->name.pos, st->name.s, "accuracy must be positive", "a value above 0");
+    if (st->has_atol && !(st->atol > 0))
+        scn_fail(c, st->name.pos, st->name.s, "the absolute accuracy must be positive",
+                 "accuracy (relative, absolute) with both above 0");
     if (st->has_substeps && (st->substeps & (st->substeps - 1)) != 0)
         scn_fail(c, st->name.pos, st->name.s, "substeps must be a power of two",
                  "1, 2, 4, ... 128 (1: a failing step is not split)");

@@ -1,0 +1,129 @@
+"""cases_estimates.py - hard cases of the error estimates, switching right-hand sides,
+stalls and the per-set scale (issue 26, classes C, F, G and the scale): each against a
+closed-form answer, each failing where its fix is missing. (The work bound of every
+step of every run is checked in hard.py's Suite.row.)"""
+import math
+
+from hard import REFS, STATUS, at, run
+
+IMPLICIT = ["beuler", "trap", "sdirk2", "sdirk3", "ros2"]
+
+
+def on_grid(t, h):
+    return abs(t / h - round(t / h)) < 1e-6
+
+
+def quadrature(s):
+    """C: y' = 1 / (t - t1) through its pole and z' = w cos(w t): f of t alone. Past
+    the pole no answer exists, so no method may say ok (rk4 said ok with the estimate 0
+    on every step)"""
+    for m in ("euler", "heun", "bs3", "rk4", "dopri5", "beuler", "sdirk2", "ros2"):
+        for h in ("0.01", "0.05"):
+            rc, summ, rows = run(s.modrt, "quad_pole.scn", ["--method", "main=" + m,
+                                                           "--step", "main=" + h])
+            s.row("quadrature through a pole: y(1)", m, h, rows[-1][1] if rows else math.nan,
+                  summ, rc)
+            s.check(rc != 0, "quad_pole %s %s: through the pole with status ok" % (m, h))
+
+
+def quad_cos_err(rows, h):
+    """largest error of z = sin(w t) and of the lag q at the set's steps"""
+    w, T, e = 50.26548245743669, 0.1, 0.0
+    for r in rows:
+        if on_grid(r[0], h):
+            t = r[0]
+            q = (math.cos(w * t) + w * T * math.sin(w * t) - math.exp(-t / T)) / (1 + (w * T) ** 2)
+            e = max(e, abs(r[1] - math.sin(w * t)), abs(r[2] - q))
+    return e
+
+
+def quad_cos(s):
+    """C: z' = w cos(w t) and a lag driven by cos(w t), 8 Hz, at 10 and 20 ms: an answer
+    more than 10x the accuracy (1e-3) off may not say ok"""
+    for m in ("euler", "heun", "bs3", "rk4", "dopri5") + tuple(IMPLICIT):
+        for h in ("0.01", "0.02"):
+            rc, summ, rows = run(s.modrt, "quad_cos.scn", ["--method", "main=" + m,
+                                                          "--step", "main=" + h])
+            err = quad_cos_err(rows, float(h)) if rows else math.inf
+            s.row("w cos(w t) and a lag driven by it", m, h, err, summ, rc)
+            s.check(rc != 0 or err <= 1e-2, "quad_cos %s %s: error %.3g with status ok"
+                    % (m, h, err))
+
+
+def coulomb(s):
+    """F: a block sliding to rest under Coulomb friction (library kind coulomb): stops
+    at t = 2/3 s at x = 2/3 m and stays; every method of order >= 2 at 10 ms (ROS2's
+    finite-difference Jacobian never straddles the switch: it is a located root)"""
+    for m in ("heun", "bs3", "rk4", "dopri5", "trap", "sdirk2", "sdirk3", "ros2"):
+        rc, summ, rows = run(s.modrt, "coulomb_stop.scn", ["--method", "main=" + m])
+        err = max(abs(rows[-1][1] - 2.0 / 3.0), abs(rows[-1][2])) if rows else math.inf
+        stuck = [r[0] for r in rows if r[3] == 0 and on_grid(r[0], 0.01)]
+        s.row("coulomb: block sliding to rest, |x - 2/3|", m, "0.01", err, summ, rc)
+        s.check(rc == 0 and err < 1e-9, "coulomb %s: x %g, status %s" % (
+            m, rows[-1][1] if rows else math.nan, STATUS.get(rc)))
+        s.check(stuck and 0.66 < 2.0 / 3.0 <= stuck[0] <= 0.67 + 1e-9,
+                "coulomb %s: stuck from the step ending at %s s, analytic 2/3" % (m, stuck[:1]))
+
+
+def relay_exact(t):
+    """x of relay_lag.scn: falls to -1/2 at ln 2, then swings with half period ln 3"""
+    t1 = math.log(2)
+    if t < t1:
+        return math.exp(-t) - 1
+    k = int((t - t1) // math.log(3))
+    tau = t - t1 - k * math.log(3)
+    return 1 - 1.5 * math.exp(-tau) if k % 2 == 0 else -1 + 1.5 * math.exp(-tau)
+
+
+def relay(s):
+    """F: a relay with hysteresis around a first-order lag (library kinds relay, pt1):
+    the limit cycle of period 2 ln 3 against its exponentials, within 10x the accuracy,
+    and 9 switches in 10 s"""
+    for m in ("heun", "bs3", "rk4", "dopri5", "sdirk2", "sdirk3", "ros2"):
+        rc, summ, rows = run(s.modrt, "relay_lag.scn", ["--method", "main=" + m])
+        err = max((abs(r[1] - relay_exact(r[0])) for r in rows if on_grid(r[0], 0.01)),
+                  default=math.inf)
+        s.row("relay around a lag: |x - exact|", m, "0.01", err, summ, rc)
+        s.check(rc == 0 and err < 1e-2, "relay %s: error %.3g, status %s"
+                % (m, err, STATUS.get(rc)))
+        s.check(int(summ.get("events", "0").split()[0]) == 9,
+                "relay %s: %s switches, 9 expected" % (m, summ.get("events")))
+
+
+def stall(s):
+    """G1: the scaled van der Pol (eps = 1e-6, h = 0.1 ms) through its jump at 0.807 s:
+    SDIRK2's half steps settle on a cycle of the method and return the start state step
+    after step; each such step is degraded, not a recovered substep"""
+    for m in ("sdirk2", "sdirk3", "beuler", "trap"):
+        rc, summ, rows = run(s.modrt, "vdp_eps.scn", ["--method", "main=" + m, "--t-end",
+                                                      "2", "--set", "V.b=0"])
+        still = sum(1 for a, b in zip(rows, rows[1:]) if a[1:] == b[1:] and b[2] != 0)
+        deg = int(summ.get("degraded", "0").split()[0])
+        s.row("scaled van der Pol: steps left at their start", m, "0.0001", still, summ, rc)
+        s.check(still <= 10 or deg >= still, "vdp_eps %s: %d steps returned their start "
+                "state, %d degraded" % (m, still, deg))
+
+
+def scale(s):
+    """the scale: Robertson with |e_i| <= 1e-8 + 1e-3 |y_i| declared. The trapezoidal
+    rule at 20 and 50 ms leaves y2 6 to 19 % off; in the default norm that passed as
+    ok, here it may not"""
+    for h in ("0.02", "0.05"):
+        rc, summ, rows = run(s.modrt, "robertson_scaled.scn", ["--step", "main=" + h])
+        e2 = 0.0
+        for ref in REFS[("robertson", "y")]:
+            r = at(rows, ref[0])
+            if r is not None:
+                e2 = max(e2, abs(r[2] - ref[2]) / abs(ref[2]))
+        s.row("robertson, accuracy (1e-3, 1e-8): y2 relative", "trap", h, e2, summ, rc)
+        s.check(rc != 0 or e2 <= 1e-2, "robertson_scaled trap %s: y2 %.3g off with status "
+                "ok" % (h, e2))
+
+
+def extra(s, long):
+    quadrature(s)
+    quad_cos(s)
+    coulomb(s)
+    relay(s)
+    stall(s)
+    scale(s)
