@@ -9,24 +9,38 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "common/link_hmac.h"
 #include "common/link_wire.h"
+#include "fingerprint.h"
+#include "link.h"
 #include "models.h"
 #include "mrlog.h"
 #include "testutil.h"
 
 extern const rt_scene mdl_scene_pi_link, mdl_scene_pi_loop;
 
+#define RUN 0x0123456789abcdefull /* the run nonce of the test packets */
+
 static size_t good_packet(uint8_t *buf, uint32_t seq)
 {
     link_packet p = {.type = LINK_TYPE_IMPORTS, .n = 1, .id = mdl_scene_pi_link.link->id,
-                     .seq = seq, .tick = 10, .v = {0.25}};
+                     .seq = seq, .tick = 10, .run = RUN, .v = {0.25}};
     strcpy(p.name, "pi_link");
-    return link_encode(&p, buf, LINK_MAX_PACKET);
+    return link_encode(&p, NULL, buf, LINK_MAX_PACKET);
+}
+
+static link_wire_error decode_as(const uint8_t *b, size_t n, uint16_t nval, const link_key *k,
+                                 link_packet *p)
+{
+    link_expect x = {.type = LINK_TYPE_IMPORTS, .name = "pi_link",
+                     .id = mdl_scene_pi_link.link->id, .n = nval, .check_run = 1, .run = RUN,
+                     .key = k};
+    return link_decode(b, n, &x, p);
 }
 
 static link_wire_error decode(const uint8_t *b, size_t n, link_packet *p)
 {
-    return link_decode(b, n, LINK_TYPE_IMPORTS, "pi_link", mdl_scene_pi_link.link->id, 1, p);
+    return decode_as(b, n, 1, NULL, p);
 }
 
 /* re-seals a modified packet so that only the intended field is wrong */
@@ -44,33 +58,111 @@ static void test_codec(void)
     uint8_t b[LINK_MAX_PACKET + 8], t[LINK_MAX_PACKET + 8];
     link_packet p;
     size_t n = good_packet(b, 7);
-    TH_CHECK(n == LINK_SIZE(1) && n == 52);
-    TH_CHECK(decode(b, n, &p) == LINK_OK && p.seq == 7 && p.tick == 10 && p.v[0] == 0.25);
+    TH_CHECK(n == LINK_SIZE(1) && n == 60);
+    TH_CHECK(decode(b, n, &p) == LINK_OK && p.seq == 7 && p.tick == 10 && p.run == RUN &&
+             p.v[0] == 0.25);
+    /* the layout of docs/link.md, byte by byte where it matters */
+    TH_CHECK(b[4] == 2 && b[5] == 2 && b[6] == 0 && b[7] == 1 && link_get_le(b + 40, 8) == RUN);
+    TH_CHECK(link_get_le(b + 48, 8) == link_bits_of(0.25));
     TH_CHECK(decode(b, n - 1, &p) == LINK_E_SIZE); /* truncated */
     memcpy(t, b, n), t[n] = 0;
     TH_CHECK(decode(t, n + 1, &p) == LINK_E_SIZE); /* a byte too many */
     TH_CHECK(decode(b, LINK_MAX_PACKET + 1, &p) == LINK_E_SIZE); /* oversized */
     memcpy(t, b, n), t[0] = 'X';
     TH_CHECK(decode(t, n, &p) == LINK_E_MAGIC);
-    memcpy(t, b, n), t[4] = 2, reseal(t, n);
+    memcpy(t, b, n), t[4] = 1, reseal(t, n);
+    TH_CHECK(decode(t, n, &p) == LINK_E_VERSION);
+    memcpy(t, b, n), t[6] = 4, reseal(t, n); /* an unknown flag */
     TH_CHECK(decode(t, n, &p) == LINK_E_VERSION);
     memcpy(t, b, n), t[5] = LINK_TYPE_EXPORTS, reseal(t, n);
     TH_CHECK(decode(t, n, &p) == LINK_E_TYPE);
-    memcpy(t, b, n), t[45] ^= 1; /* a value bit, CRC not resealed */
+    memcpy(t, b, n), t[53] ^= 1; /* a value bit, CRC not resealed */
     TH_CHECK(decode(t, n, &p) == LINK_E_CRC);
     memcpy(t, b, n), t[8] = 'q', reseal(t, n); /* scene name */
     TH_CHECK(decode(t, n, &p) == LINK_E_SCENE);
     memcpy(t, b, n), t[24] ^= 1, reseal(t, n); /* link id */
     TH_CHECK(decode(t, n, &p) == LINK_E_SCENE);
-    TH_CHECK(link_decode(b, n, LINK_TYPE_IMPORTS, "pi_link", mdl_scene_pi_link.link->id, 2, &p) ==
-             LINK_E_COUNT);
+    memcpy(t, b, n), t[41] ^= 1, reseal(t, n); /* another run's nonce */
+    TH_CHECK(decode(t, n, &p) == LINK_E_RUN);
+    TH_CHECK(decode_as(b, n, 2, NULL, &p) == LINK_E_COUNT);
     link_packet q = {.type = LINK_TYPE_IMPORTS, .n = 1, .id = mdl_scene_pi_link.link->id,
-                     .v = {0.0 / 0.0}};
+                     .run = RUN, .v = {0.0 / 0.0}};
     strcpy(q.name, "pi_link");
-    n = link_encode(&q, t, sizeof t);
+    n = link_encode(&q, NULL, t, sizeof t);
     TH_CHECK(decode(t, n, &p) == LINK_E_VALUE);
     q.n = LINK_MAX_VALUES + 1;
-    TH_CHECK(link_encode(&q, t, sizeof t) == 0);
+    TH_CHECK(link_encode(&q, NULL, t, sizeof t) == 0);
+}
+
+static void hex(const char *h, uint8_t *out)
+{
+    for (int i = 0; h[2 * i]; i++) {
+        unsigned v;
+        sscanf(h + 2 * i, "%2x", &v);
+        out[i] = (uint8_t)v;
+    }
+}
+
+static int digest_is(const uint8_t *d, const char *want)
+{
+    uint8_t w[LINK_SHA256_LEN];
+    hex(want, w);
+    return memcmp(d, w, LINK_SHA256_LEN) == 0;
+}
+
+/* SHA-256 against FIPS 180-4's examples (one block, two blocks, a million 'a'), HMAC
+   against RFC 4231's test cases 1, 2 and 6 (a key longer than a block) */
+static void test_hmac(void)
+{
+    uint8_t d[LINK_SHA256_LEN], key[131];
+    link_sha256 s;
+    static const char *const two = "abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq";
+    link_sha256_init(&s), link_sha256_update(&s, (const uint8_t *)"abc", 3);
+    link_sha256_final(&s, d);
+    TH_CHECK(digest_is(d, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"));
+    link_sha256_init(&s), link_sha256_update(&s, (const uint8_t *)two, strlen(two));
+    link_sha256_final(&s, d);
+    TH_CHECK(digest_is(d, "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1"));
+    link_sha256_init(&s);
+    for (int i = 0; i < 1000000; i++)
+        link_sha256_update(&s, (const uint8_t *)"a", 1);
+    link_sha256_final(&s, d);
+    TH_CHECK(digest_is(d, "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0"));
+    memset(key, 0x0b, 20);
+    link_hmac_sha256(key, 20, (const uint8_t *)"Hi There", 8, d);
+    TH_CHECK(digest_is(d, "b0344c61d8db38535ca8afceaf0bf12b881dc200c9833da726e9376c2e32cff7"));
+    link_hmac_sha256((const uint8_t *)"Jefe", 4, (const uint8_t *)"what do ya want for nothing?",
+                     28, d);
+    TH_CHECK(digest_is(d, "5bdcc146bf60754e6a042426089575c75a003f089d2739839dec58b964ec3843"));
+    static const char *const big = "Test Using Larger Than Block-Size Key - Hash Key First";
+    memset(key, 0xaa, 131);
+    link_hmac_sha256(key, 131, (const uint8_t *)big, strlen(big), d);
+    TH_CHECK(digest_is(d, "60e431591ee0b67f0d8a26aacbf5b77f8e0bc6213728c5140546040f0ee37f54"));
+}
+
+/* the authenticated mode: a tag under the key is accepted; no tag, a tag where none is
+   expected, another key, a flipped tag or body bit (CRC resealed) are refused as auth */
+static void test_auth(void)
+{
+    link_key k = {.k = "shared secret", .len = 13}, other = {.k = "shared secreT", .len = 13};
+    link_packet p = {.type = LINK_TYPE_IMPORTS, .n = 1, .id = mdl_scene_pi_link.link->id,
+                     .seq = 3, .tick = 20, .run = RUN, .v = {-1.5}}, q;
+    uint8_t b[LINK_MAX_PACKET], t[LINK_MAX_PACKET], plain[LINK_MAX_PACKET];
+    strcpy(p.name, "pi_link");
+    size_t n = link_encode(&p, &k, b, sizeof b), m = link_encode(&p, NULL, plain, sizeof plain);
+    TH_CHECK(n == LINK_SIZE(1) + LINK_TAG_LEN && b[6] == LINK_FLAG_AUTH);
+    /* the tag is HMAC-SHA-256 of the datagram up to its CRC */
+    uint8_t want[LINK_TAG_LEN];
+    link_hmac_sha256(k.k, k.len, b, n - LINK_TAG_LEN, want);
+    TH_CHECK(memcmp(want, b + n - LINK_TAG_LEN, LINK_TAG_LEN) == 0);
+    TH_CHECK(decode_as(b, n, 1, &k, &q) == LINK_OK && q.v[0] == -1.5 && q.seq == 3);
+    TH_CHECK(decode_as(plain, m, 1, &k, &q) == LINK_E_AUTH);  /* no tag */
+    TH_CHECK(decode_as(b, n, 1, NULL, &q) == LINK_E_AUTH);    /* a tag, no key */
+    TH_CHECK(decode_as(b, n, 1, &other, &q) == LINK_E_AUTH);  /* another key */
+    memcpy(t, b, n), t[n - 1] ^= 0x80;
+    TH_CHECK(decode_as(t, n, 1, &k, &q) == LINK_E_AUTH);
+    memcpy(t, b, n), t[50] ^= 1, reseal(t, n - LINK_TAG_LEN); /* forged value, CRC fixed */
+    TH_CHECK(decode_as(t, n, 1, &k, &q) == LINK_E_AUTH);
 }
 
 static const char *tmp_path(const char *name)
@@ -227,6 +319,8 @@ static void test_snapshot(void)
 
 const th_test th_link_tests[] = {
     {"link_codec", test_codec},
+    {"link_hmac", test_hmac},
+    {"link_auth", test_auth},
     {"link_log", test_log},
     {"link_apply_check", test_apply_and_check},
     {"link_snapshot", test_snapshot},

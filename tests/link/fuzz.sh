@@ -7,7 +7,7 @@ BIN=$1 SECS=$2
 C=build/fuzz/link-corpus
 mkdir -p "$C" build/fuzz/crashes
 if "$BIN" -help=1 2>&1 | grep -q libFuzzer; then
-    "$BIN" -max_total_time="$SECS" -max_len=2048 -timeout=10 -print_final_stats=1 \
+    "$BIN" -max_total_time="$SECS" -max_len=16384 -timeout=10 -print_final_stats=1 \
         -artifact_prefix=build/fuzz/crashes/link- "$C" > build/fuzz/link-fuzz.log 2>&1
     rc=$?
 else

@@ -32,7 +32,8 @@ test-link-fuzz: build/fuzz/link-fuzz link-fuzz-seeds
 	@sh tests/link/fuzz.sh build/fuzz/link-fuzz 5
 
 # the C example controller (a host program: POSIX sockets and the freestanding codec)
-build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c
+build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c \
+                          ports/common/link_hmac.c
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CSTD) -O2 -Iports $^ -o $@
 
@@ -41,3 +42,6 @@ test-link: deps-host build/host/modrt build/host/pi_controller
 
 TEST_SUITES += test-link test-link-fuzz
 .PHONY: link-fuzz link-fuzz-seeds test-link test-link-fuzz
+
+# the scene fingerprint of the replay log reads the programs of interpreted defines
+$(call obj,tools/modrt/fingerprint.c): CINC += -I$(SCN_DIR)

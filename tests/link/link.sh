@@ -75,10 +75,14 @@ stop
 want=$($M run pi_loop --t-end 0.5 | sed -n 's/^hash: //p')
 [ "$(field hash $T/evil.out)" = "$want" ] && ok || bad "bad datagrams changed the run"
 n=$(field link_applied $T/evil.out)
-[ "$n" = 51 ] && [ "$(field link_bad $T/evil.out)" -ge $((9 * 50)) ] &&
-[ "$(field link_dup $T/evil.out)" -ge 100 ] && [ "$(field link_late $T/evil.out)" -ge 49 ] && ok ||
+[ "$n" = 51 ] && [ "$(field link_bad $T/evil.out)" -ge $((15 * 50)) ] &&
+[ "$(field link_dup $T/evil.out)" -ge 150 ] && [ "$(field link_late $T/evil.out)" = 0 ] && ok ||
     bad "bad-datagram counts: $(grep '^link_' $T/evil.out | tr '\n' ' ')"
-[ $rc -eq 1 ] && ok || bad "a run that received bad datagrams exits $rc, not 1"
+for k in size magic version crc auth type scene count run value seq tick; do
+    [ "$(field link_bad.$k $T/evil.out)" -ge 50 ] 2>/dev/null && ok || bad "no link_bad.$k counted"
+done
+[ $rc -eq 1 ] && [ "$(field status $T/evil.out)" != ok ] && ok ||
+    bad "a run that received bad datagrams exits $rc with status $(field status $T/evil.out)"
 echo "link: bad datagrams: $(grep '^link_\(bad\|dup\|late\)' $T/evil.out | tr '\n' ' ')"
 
 # 4. a controller that falls silent: bounded wait, counted, policy applied (hold)
