@@ -5,7 +5,10 @@
  * the import block, the runtime's check of a link, and snapshots: a run restored from a
  * snapshot continues bit-identically. */
 #define _POSIX_C_SOURCE 200809L
+#include <arpa/inet.h>
 #include <stdio.h>
+#include <sys/socket.h>
+#include <sys/time.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -317,6 +320,85 @@ static void test_snapshot(void)
     TH_CHECK(tu_sim.state.hash == straight);
 }
 
+/* a real-time exchange tick that cannot take the mailbox (its trylock fails: injected)
+   counts the outstanding request missing and applies the policy; before, it did neither.
+   The controller is this test, on a loopback socket it owns (bounded waits). */
+static void test_busy_mailbox(void)
+{
+    const rt_scene *sc = &mdl_scene_pi_link;
+    int fd = socket(AF_INET, SOCK_DGRAM, 0);
+    struct sockaddr_in me = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)}, peer;
+    socklen_t len = sizeof me, plen = sizeof peer;
+    struct timeval tv = {2, 0};
+    char spec[64], err[256];
+    if (!TH_CHECK(fd >= 0 && bind(fd, (struct sockaddr *)&me, sizeof me) == 0 &&
+                  getsockname(fd, (struct sockaddr *)&me, &len) == 0) || !tu_init(sc))
+        return;
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    snprintf(spec, sizeof spec, "udp:127.0.0.1:%d", ntohs(me.sin_port));
+    link_opts o = {.realtime = 1, .timeout_s = 1, .run = RUN};
+    if (!TH_CHECK(link_open(spec, sc, &o, NULL, err, sizeof err) == 0))
+        return;
+    uint8_t b[LINK_MAX_PACKET];
+    TH_CHECK(link_exchange(NULL, sc, &tu_sim) == 0); /* tick 0: request 1 */
+    ssize_t n = recvfrom(fd, b, sizeof b, 0, (struct sockaddr *)&peer, &plen);
+    link_packet req, ans = {.type = LINK_TYPE_IMPORTS, .n = 1, .id = sc->link->id, .v = {5}};
+    link_expect x = {.type = LINK_TYPE_EXPORTS, .name = "pi_link", .id = sc->link->id, .n = 2};
+    TH_CHECK(n > 0 && link_decode(b, (size_t)n, &x, &req) == LINK_OK && req.seq == 1 &&
+             req.run == RUN && req.tick == 0);
+    strcpy(ans.name, "pi_link");
+    ans.seq = req.seq, ans.tick = req.tick, ans.run = req.run;
+    size_t m = link_encode(&ans, NULL, b, sizeof b);
+    sendto(fd, b, m, 0, (struct sockaddr *)&peer, plen);
+    link_test_busy(1);
+    for (uint64_t k = 1; k <= sc->link->period; k++) {
+        tu_sim.state.tick = k;
+        TH_CHECK(link_exchange(NULL, sc, &tu_sim) == 0);
+    }
+    link_test_busy(0);
+    link_counts c;
+    link_close(&c);
+    close(fd);
+    TH_CHECK(c.missing == 1 && c.applied == 0 && c.sent == 2 && c.bad == 0);
+    TH_CHECK(link_faulty(&c));
+    /* the policy (hold): Ctrl.c keeps its default 0 */
+    TH_CHECK(rt_rec_value(sc, &tu_sim, 1) == 0);
+}
+
+/* the scene fingerprint of the replay log: equal for a copy, different after a change of
+   one parameter value, an initial state, the end time, a set's method or the link */
+static void test_fingerprint(void)
+{
+    static rt_block blocks[RT_MAX_BLOCKS];
+    static real_t p[16];
+    const rt_scene *base = &mdl_scene_pi_link;
+    rt_scene sc = *base;
+    uint64_t f0 = fp_scene(base);
+    TH_CHECK(fp_scene(&sc) == f0);
+    int k = rt_block_index(base, "Plant");
+    if (!TH_CHECK(k >= 0 && base->nblocks <= RT_MAX_BLOCKS && base->blocks[k].kind->np <= 16))
+        return;
+    memcpy(blocks, base->blocks, base->nblocks * sizeof *blocks);
+    const rt_kind *kd = blocks[k].kind;
+    for (uint16_t i = 0; i < kd->np; i++)
+        p[i] = blocks[k].p ? blocks[k].p[i] : kd->p_default ? kd->p_default[i] : 0;
+    blocks[k].p = p, sc.blocks = blocks;
+    TH_CHECK(fp_scene(&sc) == f0); /* the same values, spelled out */
+    p[0] = p[0] + (real_t)0.5;
+    TH_CHECK(fp_scene(&sc) != f0);
+    sc = *base, sc.t_end = base->t_end + base->dt;
+    TH_CHECK(fp_scene(&sc) != f0);
+    rt_set set = base->sets[0];
+    set.ratio = 2;
+    sc = *base, sc.sets = &set;
+    TH_CHECK(fp_scene(&sc) != f0);
+    rt_link l = *base->link;
+    l.period = 20;
+    sc = *base, sc.link = &l;
+    TH_CHECK(fp_scene(&sc) != f0);
+    TH_CHECK(fp_scene(&mdl_scene_pi_loop) != f0);
+}
+
 const th_test th_link_tests[] = {
     {"link_codec", test_codec},
     {"link_hmac", test_hmac},
@@ -324,5 +406,7 @@ const th_test th_link_tests[] = {
     {"link_log", test_log},
     {"link_apply_check", test_apply_and_check},
     {"link_snapshot", test_snapshot},
+    {"link_busy_mailbox", test_busy_mailbox},
+    {"link_fingerprint", test_fingerprint},
     {0, 0},
 };

@@ -8,7 +8,7 @@ it (answered already: duplicates), and after the good answer the same again (a
 duplicate). The plant must apply only the good answers: its trace then equals pi_loop's,
 and its counters show each kind.
 --silent-after N: stop answering after N requests (the plant's timeout and policy).
---late: answer every request twice as late as --delay S (lock-step: after the timeout)."""
+--dups-only: no bad datagrams, only the good answers and the duplicates (harmless)."""
 import os
 import socket
 import struct
@@ -51,6 +51,7 @@ def bad_packets(seq, tick, run, values):
 
 
 def main():
+    dups_only = "--dups-only" in sys.argv
     silent_after = int(sys.argv[sys.argv.index("--silent-after") + 1]) if "--silent-after" in sys.argv else -1
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     sock.bind(("127.0.0.1", 0))
@@ -70,7 +71,7 @@ def main():
             continue
         seq, tick, run, (r, m) = got
         c = law.step(r, m)
-        for b in bad_packets(seq, tick, run, [c]):
+        for b in [] if dups_only else bad_packets(seq, tick, run, [c]):
             sock.sendto(b, peer)
         if last is not None:
             sock.sendto(last, peer)                  # the previous answer again: dup

@@ -1,9 +1,10 @@
 /* pi_controller.c - the PI controller of scene pi_link in C, outside the plant, over the
  * modrt controller link (docs/link.md, wire format version 2), with the freestanding codec
  * of ports/common/link_wire.c. Binds 127.0.0.1:PORT (0: any, printed as "port N") and
- * serves one plant: the address and run nonce of its first valid request (a new run of
- * the same plant starts with sequence 1 at tick 0); requests from any other sender, of
- * another run or not newer than the last answered are ignored and counted. It answers
+ * serves one plant: the address and run nonce of the first valid request that starts a
+ * run (sequence 1 at tick 0; the same address may start a new run); requests from any
+ * other sender, of another run or not newer than the last answered are ignored and
+ * counted. It answers
  * with models/pi.c's law in its order of arithmetic: e = r - m; c = Kp e + I; then
  * I = I + Ki Ts e. Exits after IDLE seconds without packets. With KEYFILE every datagram
  * carries an HMAC-SHA-256 tag under the shared key (modrt run --link-key KEYFILE).
@@ -68,7 +69,7 @@ static int same_addr(const struct sockaddr_in *a, const struct sockaddr_in *b)
 static int accept_request(plant *p, const struct sockaddr_in *from, const link_packet *in)
 {
     int same = p->known && same_addr(&p->addr, from);
-    if (!p->known || (same && in->run != p->run && in->seq == 1 && in->tick == 0)) {
+    if (in->seq == 1 && in->tick == 0 && (!p->known || same) && in->run != p->run) {
         *p = (plant){.known = 1, .addr = *from, .run = in->run};
         same = 1;
     }

@@ -8,9 +8,10 @@ modrt controller link (docs/link.md, wire format version 2); Python's standard l
 Every request from the plant carries Ref.y and Plant.y; the answer carries the command c
 of the same sampled PI law as models/pi.c (e = r - m; c = Kp e + I; then I = I + Ki Ts e),
 so the loop behaves as scene pi_loop. The controller serves one plant: the address and
-run nonce of the first valid request. Requests from any other address, of another run
-(unless a new run of the same plant starts: sequence 1 at tick 0), or not newer than the
-last one answered are ignored and counted, so no other process can drive its integrator.
+run nonce of the first valid request that starts a run (sequence 1 at tick 0; the same
+address may start a new run). Requests from any other address, of another run, or not
+newer than the last one answered are ignored and counted, so no other process can drive
+its integrator once a run is under way.
 Packets for another scene or layout are refused and counted. With --key FILE every
 datagram carries an HMAC-SHA-256 tag under the shared key (modrt run --link-key FILE).
 The controller exits after --idle seconds without packets, or --max-time."""
@@ -123,7 +124,7 @@ def main():
             refused += 1
             continue
         seq, tick, nonce, (r, m) = got
-        if plant is None or (peer == plant and nonce != run and seq == 1 and tick == 0):
+        if seq == 1 and tick == 0 and plant in (None, peer) and nonce != run:
             plant, run, last, law = peer, nonce, 0, Pi(a.kp, a.ki, a.ts)  # a (new) run
         if peer != plant or nonce != run or seq <= last:
             ignored += 1                       # another sender, another run, or stale
