@@ -3,7 +3,8 @@
 #   make link-fuzz        the datagram and replay-log decoders under libFuzzer for FUZZ_TIME s
 #   make test-link-fuzz   the same for 5 s (CI)
 
-LINK_FUZZ_SRCS = tests/link/fuzz_link.c ports/common/link_wire.c tools/modrt/mrlog.c \
+LINK_FUZZ_SRCS = tests/link/fuzz_link.c ports/common/link_wire.c ports/common/link_hmac.c \
+                 tools/modrt/mrlog.c \
                  $(filter-out rt/registry.c,$(RT_SRCS))
 LINK_FUZZ_FLAGS = $(CSTD) -g -O1 -Irt -Iports -Itools/modrt
 
