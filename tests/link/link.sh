@@ -170,6 +170,8 @@ stop
 [ $rc2 -eq 1 ] && [ "$(field link_applied $T/noauth.out)" = 0 ] && ok ||
     bad "a plant without the key applied answers: $(grep '^link_' $T/noauth.out | tr '\n' ' ')"
 
+$M run pi_link --link-key $T/key > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "--link-key without --link accepted"
+
 # 4f. --link ports: 1..65535 or a service name; anything else is a usage error
 for p in 99999 0 65536 -1 nosuchservice; do
     out=$($M run pi_link --link udp:127.0.0.1:$p --link-timeout 0.01 --t-end 0.02 2>&1); rc=$?

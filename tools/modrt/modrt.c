@@ -346,7 +346,9 @@ static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc
     link_opts lo = {a->realtime, a->link_timeout > 0 ? a->link_timeout : 1,
                     live ? link_nonce() : 0, NULL};
     *rec = NULL;
-    if (a->link_key && live) {
+    if (a->link_key && !live)
+        return cli_fail("--link-key authenticates a link: it needs --link", a->link_key);
+    if (a->link_key) {
         if (link_key_read(a->link_key, &key, err, sizeof err) != 0)
             return cli_fail(err, NULL);
         lo.key = &key;
