@@ -3,7 +3,8 @@
 #   make link-fuzz        the datagram and replay-log decoders under libFuzzer for FUZZ_TIME s
 #   make test-link-fuzz   the same for 5 s (CI)
 
-LINK_FUZZ_SRCS = tests/link/fuzz_link.c ports/common/link_wire.c tools/modrt/mrlog.c \
+LINK_FUZZ_SRCS = tests/link/fuzz_link.c ports/common/link_wire.c ports/common/link_hmac.c \
+                 tools/modrt/mrlog.c \
                  $(filter-out rt/registry.c,$(RT_SRCS))
 LINK_FUZZ_FLAGS = $(CSTD) -g -O1 -Irt -Iports -Itools/modrt
 
@@ -32,7 +33,8 @@ test-link-fuzz: build/fuzz/link-fuzz link-fuzz-seeds
 	@sh tests/link/fuzz.sh build/fuzz/link-fuzz 5
 
 # the C example controller (a host program: POSIX sockets and the freestanding codec)
-build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c
+build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c \
+                          ports/common/link_hmac.c
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CSTD) -O2 -Iports $^ -o $@
 
@@ -41,3 +43,6 @@ test-link: deps-host build/host/modrt build/host/pi_controller
 
 TEST_SUITES += test-link test-link-fuzz
 .PHONY: link-fuzz link-fuzz-seeds test-link test-link-fuzz
+
+# the scene fingerprint of the replay log reads the programs of interpreted defines
+$(call obj,tools/modrt/fingerprint.c): CINC += -I$(SCN_DIR)

@@ -1,9 +1,14 @@
 /* pi_controller.c - the PI controller of scene pi_link in C, outside the plant, over the
- * modrt controller link (docs/link.md), with the freestanding codec of
- * ports/common/link_wire.c. Binds 127.0.0.1:PORT (0: any, printed as "port N"), answers
- * every valid packet of pi_link with c = Kp e + I, I += Ki Ts e (models/pi.c's law), and
- * exits after IDLE seconds without packets.
- * Usage: pi_controller [PORT [IDLE_S]] */
+ * modrt controller link (docs/link.md, wire format version 2), with the freestanding codec
+ * of ports/common/link_wire.c. Binds 127.0.0.1:PORT (0: any, printed as "port N") and
+ * serves one plant: the address and run nonce of the first valid request that starts a
+ * run (sequence 1 at tick 0; the same address may start a new run); requests from any
+ * other sender, of another run or not newer than the last answered are ignored and
+ * counted. It answers
+ * with models/pi.c's law in its order of arithmetic: e = r - m; c = Kp e + I; then
+ * I = I + Ki Ts e. Exits after IDLE seconds without packets. With KEYFILE every datagram
+ * carries an HMAC-SHA-256 tag under the shared key (modrt run --link-key KEYFILE).
+ * Usage: pi_controller [PORT [IDLE_S [KEYFILE]]] */
 #define _POSIX_C_SOURCE 200809L
 #include <arpa/inet.h>
 #include <stdio.h>
@@ -30,12 +35,63 @@ static uint32_t link_id(const char *const *words, int n)
     return h;
 }
 
+static int read_key(const char *path, link_key *key)
+{
+    uint8_t b[LINK_MAX_KEY + 2];
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    size_t n = fread(b, 1, sizeof b, f);
+    fclose(f);
+    if (n > 0 && b[n - 1] == '\n')
+        n--;
+    if (n < 1 || n > LINK_MAX_KEY)
+        return -1;
+    memcpy(key->k, b, n), key->len = n;
+    return 0;
+}
+
+/* the plant served: its address and run */
+typedef struct plant {
+    int known;
+    struct sockaddr_in addr;
+    uint64_t run;
+    uint32_t last;             /* the last sequence number answered */
+    double integral;
+} plant;
+
+static int same_addr(const struct sockaddr_in *a, const struct sockaddr_in *b)
+{
+    return a->sin_addr.s_addr == b->sin_addr.s_addr && a->sin_port == b->sin_port;
+}
+
+/* 1 if the request is the served plant's next one (taking on a first or new run) */
+static int accept_request(plant *p, const struct sockaddr_in *from, const link_packet *in)
+{
+    int same = p->known && same_addr(&p->addr, from);
+    if (in->seq == 1 && in->tick == 0 && (!p->known || same) && in->run != p->run) {
+        *p = (plant){.known = 1, .addr = *from, .run = in->run};
+        same = 1;
+    }
+    if (!same || in->run != p->run || in->seq <= p->last)
+        return 0;
+    p->last = in->seq;
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     static const char *const layout[] = {"pi_link", "Ctrl", "Ref", "y", "Plant", "y", ">", "c"};
-    const uint32_t id = link_id(layout, 8);
+    static link_key key;
     struct sockaddr_in me = {.sin_family = AF_INET, .sin_port = htons(argc > 1 ? atoi(argv[1]) : 0)};
     struct timeval idle = {argc > 2 ? atoi(argv[2]) : 5, 0};
+    if (argc > 3 && read_key(argv[3], &key) != 0) {
+        fprintf(stderr, "pi_controller: %s: cannot read a key of 1 to %d bytes\n", argv[3],
+                LINK_MAX_KEY);
+        return 1;
+    }
+    link_expect want = {.type = LINK_TYPE_EXPORTS, .name = "pi_link", .id = link_id(layout, 8),
+                        .n = 2, .key = &key};
     int fd = socket(AF_INET, SOCK_DGRAM, 0);
     me.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     socklen_t len = sizeof me;
@@ -47,29 +103,33 @@ int main(int argc, char **argv)
     setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &idle, sizeof idle);
     printf("port %d\n", ntohs(me.sin_port));
     fflush(stdout);
-    double integral = 0;
-    unsigned long answered = 0, refused = 0;
+    plant pl = {0};
+    unsigned long answered = 0, refused = 0, ignored = 0;
     for (;;) {
         uint8_t buf[LINK_MAX_PACKET + 1];
-        struct sockaddr_storage peer;
+        struct sockaddr_in peer;
         socklen_t plen = sizeof peer;
         ssize_t n = recvfrom(fd, buf, sizeof buf, 0, (struct sockaddr *)&peer, &plen);
         if (n < 0)
             break; /* idle */
-        link_packet in, out = {.type = LINK_TYPE_IMPORTS, .n = 1, .id = id};
-        if (link_decode(buf, (size_t)n, LINK_TYPE_EXPORTS, "pi_link", id, 2, &in) != LINK_OK) {
+        link_packet in, out = {.type = LINK_TYPE_IMPORTS, .n = 1, .id = want.id};
+        if (link_decode(buf, (size_t)n, &want, &in) != LINK_OK) {
             refused++;
             continue;
         }
+        if (plen != sizeof peer || !accept_request(&pl, &peer, &in)) {
+            ignored++;
+            continue;
+        }
         double e = in.v[0] - in.v[1];
-        out.v[0] = KP * e + integral;
-        integral = integral + KI * TS * e;
+        out.v[0] = KP * e + pl.integral;
+        pl.integral = pl.integral + KI * TS * e;
         strcpy(out.name, "pi_link");
-        out.seq = in.seq, out.tick = in.tick;
-        size_t m = link_encode(&out, buf, sizeof buf);
-        sendto(fd, buf, m, 0, (struct sockaddr *)&peer, plen);
+        out.seq = in.seq, out.tick = in.tick, out.run = in.run;
+        size_t m = link_encode(&out, &key, buf, sizeof buf);
+        sendto(fd, buf, m, 0, (struct sockaddr *)&pl.addr, sizeof pl.addr);
         answered++;
     }
-    printf("answered %lu refused %lu\n", answered, refused);
+    printf("answered %lu refused %lu ignored %lu\n", answered, refused, ignored);
     return 0;
 }
