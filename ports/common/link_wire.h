@@ -35,6 +35,7 @@
 #define LINK_WIRE_ERRORS(X)                                                      \
     X(LINK_OK, "ok", "ok")                                                       \
     X(LINK_E_SIZE, "size", "truncated or oversized datagram")                   \
+    X(LINK_E_FRAME, "frame", "a broken serial frame (COBS, length, framing version)") \
     X(LINK_E_MAGIC, "magic", "wrong magic")                                      \
     X(LINK_E_VERSION, "version", "unsupported protocol version")                 \
     X(LINK_E_TYPE, "type", "wrong packet type")                                  \

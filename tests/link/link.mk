@@ -32,12 +32,19 @@ test-link-fuzz: build/fuzz/link-fuzz link-fuzz-seeds
 	@sh tests/link/fuzz.sh build/fuzz/link-fuzz 5
 
 # the C example controller (a host program: POSIX sockets and the freestanding codec)
-build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c
+build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c \
+                          ports/common/linkframe.c ports/common/linkclient.c tools/modrt/serial.c
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CSTD) -O2 -Iports $^ -o $@
+	$(Q)$(CC) $(CSTD) -O2 -Iports -Itools/modrt $^ -o $@
 
 test-link: deps-host build/host/modrt build/host/pi_controller
 	@bash tests/link/link.sh
 
 TEST_SUITES += test-link test-link-fuzz
 .PHONY: link-fuzz link-fuzz-seeds test-link test-link-fuzz
+
+# the link over a serial line on ptys: lock-step, real time, line noise (tests/link/serial.sh)
+test-serial: deps-host build/host/modrt build/host/pi_controller
+	@sh tests/link/serial.sh
+TEST_SUITES += test-serial
+.PHONY: test-serial

@@ -8,7 +8,8 @@
  *     it arrived; an exchange tick whose previous packet got no answer counts it missing
  *     and applies each import's policy (hold, default, stop).
  * Every applied vector goes to the replay log with its tick (mrlog.c), so a replay
- * reproduces the live run bit for bit whatever the network did. */
+ * reproduces the live run bit for bit whatever the network did. The transport is UDP, or
+ * a serial line carrying the same datagrams in frames (serial.c, `serial:DEV:BAUD`). */
 #define _POSIX_C_SOURCE 200809L
 #include "link.h"
 
@@ -23,12 +24,16 @@
 
 #include "common/link_wire.h"
 #include "mrlog.h"
+#include "serial.h"
 
 #define LINK_RECV_POLL_MS 50   /* the receiver thread checks for shutdown this often */
 #define LINK_RTT_BINS 4096     /* round-trip histogram: 1 us bins up to 4 ms, then one */
+#define LINK_TRIES 10          /* lock-step: a request is sent again every timeout / TRIES */
+#define LINK_SEND_WAIT_MS 100  /* serial: the longest wait for the device to take a frame */
 
 static struct {
     int fd, realtime;
+    int serial;                /* the transport: 0 UDP, 1 a serial line (serial.c) */
     double timeout_s;
     const rt_scene *sc;
     mrl_writer *rec;
@@ -46,6 +51,8 @@ static struct {
     uint32_t rtt_hist[LINK_RTT_BINS + 1];
     /* main thread only */
     uint32_t seq;
+    uint8_t out[LINK_MAX_PACKET]; /* the last request, for sending it again */
+    size_t out_len;
     real_t cur[LINK_MAX_VALUES];
 } L;
 
@@ -81,14 +88,25 @@ static void receive(const uint8_t *buf, size_t len)
     pthread_mutex_unlock(&L.mu);
 }
 
+static void broken_frame(void)
+{
+    pthread_mutex_lock(&L.mu);
+    L.n.bad++, L.n.bad_kind[LINK_E_FRAME]++;
+    pthread_mutex_unlock(&L.mu);
+}
+
 static void *receiver(void *arg)
 {
     static uint8_t buf[LINK_MAX_PACKET + 1]; /* one byte more: an oversized datagram shows */
     (void)arg;
     while (__atomic_load_n(&L.running, __ATOMIC_ACQUIRE)) {
-        ssize_t r = recv(L.fd, buf, sizeof buf, 0);
+        int fault = 0;
+        ssize_t r = L.serial ? serial_recv(L.fd, buf, sizeof buf, LINK_RECV_POLL_MS, &fault)
+                             : recv(L.fd, buf, sizeof buf, 0);
         if (r >= 0)
             receive(buf, (size_t)r);
+        else if (r == -2) /* a broken frame: counted like a bad datagram */
+            broken_frame();
         else if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR &&
                  errno != ECONNREFUSED)
             break;
@@ -113,21 +131,14 @@ static int parse_spec(const char *spec, char *host, size_t nh, char *port, size_
     return 0;
 }
 
-int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout_s,
-              mrl_writer *rec, char *err, size_t n)
+/* a connected UDP socket with a receive timeout (the receiver checks for shutdown) */
+static int open_udp(const char *spec, char *err, size_t n)
 {
     char host[256], port[32];
     struct addrinfo hints = {.ai_socktype = SOCK_DGRAM}, *ai = NULL;
-    if (!sc->link) {
-        snprintf(err, n, "scene %s has no link (export/import statements)", sc->name);
-        return -1;
-    }
-    if (sc->link->nexp > LINK_MAX_VALUES || sc->link->nimp > LINK_MAX_VALUES) {
-        snprintf(err, n, "the link carries more than %d values one way", LINK_MAX_VALUES);
-        return -1;
-    }
     if (parse_spec(spec, host, sizeof host, port, sizeof port) != 0) {
-        snprintf(err, n, "--link expects udp:HOST:PORT or none, got '%s'", spec);
+        snprintf(err, n, "--link expects udp:HOST:PORT, serial:DEVICE[:BAUD] or none, got '%s'",
+                 spec);
         return -1;
     }
     int g = getaddrinfo(host, port, &hints, &ai);
@@ -144,6 +155,33 @@ int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout
     freeaddrinfo(ai);
     struct timeval tv = {0, LINK_RECV_POLL_MS * 1000};
     setsockopt(L.fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    return 0;
+}
+
+/* a serial line (the receiver polls it) */
+static int open_serial(const char *spec, char *err, size_t n)
+{
+    char peer[64], why[400];
+    L.fd = serial_open(spec, peer, sizeof peer, why, sizeof why);
+    if (L.fd < 0)
+        snprintf(err, n, "--link %s", why);
+    return L.fd < 0 ? -1 : 0;
+}
+
+int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout_s,
+              mrl_writer *rec, char *err, size_t n)
+{
+    if (!sc->link) {
+        snprintf(err, n, "scene %s has no link (export/import statements)", sc->name);
+        return -1;
+    }
+    if (sc->link->nexp > LINK_MAX_VALUES || sc->link->nimp > LINK_MAX_VALUES) {
+        snprintf(err, n, "the link carries more than %d values one way", LINK_MAX_VALUES);
+        return -1;
+    }
+    L.serial = strncmp(spec, SERIAL_PREFIX, strlen(SERIAL_PREFIX)) == 0;
+    if ((L.serial ? open_serial : open_udp)(spec, err, n) != 0)
+        return -1;
     L.sc = sc, L.realtime = realtime, L.timeout_s = timeout_s, L.rec = rec;
     L.seq = 0, L.waiting = L.answered = 0, L.full = 0;
     memset(&L.n, 0, sizeof L.n);
@@ -164,6 +202,14 @@ int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout
     return 0;
 }
 
+/* one datagram on the transport; 1 if it went out whole */
+static int transmit(const uint8_t *buf, size_t len)
+{
+    if (L.serial)
+        return serial_send(L.fd, buf, len, LINK_SEND_WAIT_MS) == (ssize_t)len;
+    return send(L.fd, buf, len, 0) == (ssize_t)len;
+}
+
 static void send_exports(const rt_scene *sc, const rt_sim *sim)
 {
     link_packet p = {.type = LINK_TYPE_EXPORTS, .n = sc->link->nexp, .id = sc->link->id,
@@ -177,7 +223,8 @@ static void send_exports(const rt_scene *sc, const rt_sim *sim)
     L.waiting = p.seq, L.full = 0;
     clock_gettime(CLOCK_MONOTONIC, &L.sent_at);
     pthread_mutex_unlock(&L.mu);
-    if (send(L.fd, buf, len, 0) == (ssize_t)len)
+    memcpy(L.out, buf, len), L.out_len = len;
+    if (transmit(L.out, L.out_len))
         L.n.sent++;
 }
 
@@ -213,18 +260,33 @@ static int missing(const rt_scene *sc)
     return stop;
 }
 
+static void add_s(struct timespec *t, double s)
+{
+    t->tv_sec += (time_t)s;
+    t->tv_nsec += (long)((s - (double)(time_t)s) * 1e9);
+    if (t->tv_nsec >= 1000000000L)
+        t->tv_sec++, t->tv_nsec -= 1000000000L;
+}
+
+/* waits for the answer, sending the request again every timeout / LINK_TRIES (a lost
+   request or answer; the controller answers a repeat from its copy, docs/link.md) */
 static int lockstep(const rt_scene *sc, rt_sim *sim)
 {
     struct timespec until;
     clock_gettime(CLOCK_MONOTONIC, &until);
     send_exports(sc, sim);
-    until.tv_sec += (time_t)L.timeout_s;
-    until.tv_nsec += (long)((L.timeout_s - (double)(time_t)L.timeout_s) * 1e9);
-    if (until.tv_nsec >= 1000000000L)
-        until.tv_sec++, until.tv_nsec -= 1000000000L;
     pthread_mutex_lock(&L.mu);
-    while (!L.full && pthread_cond_timedwait(&L.cv, &L.mu, &until) != ETIMEDOUT)
-        ;
+    for (int k = 1; k <= LINK_TRIES && !L.full; k++) {
+        struct timespec try_until = until;
+        add_s(&try_until, L.timeout_s * k / LINK_TRIES);
+        while (!L.full && pthread_cond_timedwait(&L.cv, &L.mu, &try_until) != ETIMEDOUT)
+            ;
+        if (!L.full && k < LINK_TRIES) {
+            pthread_mutex_unlock(&L.mu); /* the receiver may deliver meanwhile */
+            L.n.resent += (uint64_t)transmit(L.out, L.out_len);
+            pthread_mutex_lock(&L.mu);
+        }
+    }
     int got = take(), stop = 0;
     if (!got)
         L.waiting = 0; /* a later answer to it is late */
@@ -289,6 +351,8 @@ void link_print(FILE *f, const link_counts *c)
             (unsigned long long)c->sent, (unsigned long long)c->applied,
             (unsigned long long)c->bad, (unsigned long long)c->late,
             (unsigned long long)c->missing, (unsigned long long)c->dup);
+    if (c->resent)
+        fprintf(f, "link_resent: %llu\n", (unsigned long long)c->resent);
     for (int e = 1; e < LINK_E_COUNT_; e++)
         if (c->bad_kind[e])
             fprintf(f, "link_bad.%s: %llu\n", link_wire_error_key(e),

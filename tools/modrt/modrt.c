@@ -214,8 +214,8 @@ static int opt_realtime(void *ctx, const char *v)
 
 static int opt_link(void *ctx, const char *v)
 {
-    if (strcmp(v, "none") != 0 && strncmp(v, "udp:", 4) != 0)
-        return cli_fail("--link expects udp:HOST:PORT or none, got", v);
+    if (strcmp(v, "none") != 0 && strncmp(v, "udp:", 4) != 0 && strncmp(v, "serial:", 7) != 0)
+        return cli_fail("--link expects udp:HOST:PORT, serial:DEVICE[:BAUD] or none, got", v);
     ((run_args *)ctx)->link = v;
     return CLI_OK;
 }
@@ -275,9 +275,11 @@ static const cli_opt run_opts[] = {
      "to back (catchup, default), drops them (skip), or ends the run (stop)", opt_overrun},
     {"rt-log", "FILE", "real time: write each tick's wake-up latency and execution time "
      "[us] to FILE (CSV)", opt_rt_log},
-    {"link", "udp:HOST:PORT|none", "exchange the scene's export/import signals with a "
-     "controller (docs/link.md); lock-step, or soft real time with --realtime", opt_link},
-    {"link-timeout", "S", "lock-step: wait at most S seconds per exchange (default 1)",
+    {"link", "udp:HOST:PORT|serial:DEV[:BAUD]|none", "exchange the scene's export/import "
+     "signals with a controller over UDP or a serial line (docs/link.md); lock-step, or soft "
+     "real time with --realtime", opt_link},
+    {"link-timeout", "S", "lock-step: wait at most S seconds per exchange, sending the "
+     "request again every S/10 (default 1)",
      opt_link_timeout},
     {"record", "FILE", "write every imported vector and its tick to a replay log "
      "(modrt replay FILE)", opt_record},
