@@ -48,3 +48,20 @@ test-serial: deps-host build/host/modrt build/host/pi_controller
 	@sh tests/link/serial.sh
 TEST_SUITES += test-serial
 .PHONY: test-serial
+
+# the PI controller as Cortex-M firmware (tools/examples/pi_firmware.c) and the plant image
+# pi_link with its link on the UART, for the QEMU rigs (tests/link/serial_qemu.sh)
+SERIAL_QEMU_T ?= m4f
+PI_FW_SRCS = tools/examples/pi_firmware.c ports/common/linkclient.c ports/common/linkframe.c \
+             ports/common/link_wire.c ports/cortex-m/uart.c $(TARGET_PORT_SRCS_$(SERIAL_QEMU_T))
+build/$(SERIAL_QEMU_T)/pi_firmware.elf: $(PI_FW_SRCS) $(wildcard ports/common/*.h ports/cortex-m/*.h)
+	@mkdir -p $(dir $@)
+	$(Q)$(TARGET_CC_$(SERIAL_QEMU_T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) \
+	  $(TARGET_CFLAGS_$(SERIAL_QEMU_T)) $(PI_FW_SRCS) $(TARGET_LDFLAGS_$(SERIAL_QEMU_T)) -o $@
+test-serial-qemu: deps build/host/modrt build/host/pi_controller $(SCENEC)
+	@if $(MAKE) --no-print-directory -s check-target-$(SERIAL_QEMU_T) 2>/dev/null; then \
+	  $(MAKE) --no-print-directory build/$(SERIAL_QEMU_T)/pi_firmware.elf && \
+	  sh tests/link/serial_qemu.sh $(SERIAL_QEMU_T); \
+	else echo "serial-qemu: skipped: the $(SERIAL_QEMU_T) toolchain or QEMU is missing"; fi
+TEST_SUITES += test-serial-qemu
+.PHONY: test-serial-qemu

@@ -1,0 +1,83 @@
+#!/bin/sh
+# serial_qemu.sh - the controller link over a serial line with one side on an emulated
+# Cortex-M (docs/link.md, "Over a serial line"), its UART0 on a QEMU pty:
+#  1. the controller on the board: tools/examples/pi_firmware.c (the PI of pi_loop written
+#     with the client library ports/common/linkclient.c) closes pi_link run by
+#     `modrt run --link serial:PTY` in lock-step: trace and hash equal pi_loop's, and the
+#     recorded log replays to the same hash;
+#  2. the plant on the board: `make image TARGET=<t> SCENE=pi_link` (the link on the
+#     UART, ports/common/image_link.c) against the C example controller in serial mode on
+#     the host: the image's hash is the host run of pi_loop's, nothing bad or missing.
+# Every QEMU and controller runs under `timeout`, talks only over its pty and is stopped
+# by this script by its PID. Generous timeouts: a loaded machine makes it slower, never
+# wrong (lock-step). Usage: sh tests/link/serial_qemu.sh TARGET (m3, m4f or m7)
+set -u
+t=${1:-m4f}
+M=build/host/modrt
+C=build/host/pi_controller
+T=build/test-serial-qemu
+mkdir -p $T
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL serial-qemu: $*"; }
+field() { sed -n "s/^$1: //p" "$2"; }
+pids=""
+cleanup() { for p in $pids; do kill "$p" 2>/dev/null; wait "$p" 2>/dev/null; done; pids=""; }
+trap cleanup EXIT
+case $t in
+m3) machine=mps2-an385 ;; m4f) machine=mps2-an386 ;; m7) machine=mps2-an500 ;;
+*) echo "serial-qemu: target $t has no link UART (m3, m4f, m7)"; exit 2 ;;
+esac
+
+# qemu ELF: the board with UART0 on a new pty (its path in $PTY), console by semihosting
+qemu() {
+    : > $T/qemu.out
+    timeout 300 qemu-system-arm -M $machine -display none -monitor none \
+        -chardev pty,id=u0 -serial chardev:u0 -chardev stdio,id=sh0 \
+        -semihosting-config enable=on,target=native,chardev=sh0 -kernel "$1" \
+        > $T/qemu.out 2>&1 &
+    QEMU=$!; pids="$pids $QEMU"
+    i=0 PTY=
+    while [ $i -lt 100 ] && [ -z "$PTY" ]; do
+        PTY=$(sed -n 's/.*redirected to \(\/dev\/pts\/[0-9]*\).*/\1/p' $T/qemu.out)
+        sleep 0.1; i=$((i + 1))
+    done
+    [ -n "$PTY" ] || bad "QEMU made no pty: $(cat $T/qemu.out)"
+}
+
+$M run pi_loop --csv $T/loop.csv > $T/loop.out
+loop_hash=$(field hash $T/loop.out)
+
+# 1. the controller firmware in QEMU, the plant on the host
+qemu build/$t/pi_firmware.elf
+$M run pi_link --link "serial:$PTY:115200" --link-timeout 30 --record $T/fw.mrl \
+    --csv $T/fw.csv > $T/fw.out; rc=$?
+kill $QEMU 2>/dev/null; wait $QEMU 2>/dev/null
+h=$(field hash $T/fw.out)
+[ $rc -eq 0 ] && [ "$(field link_applied $T/fw.out)" = 301 ] && [ "$(field link_bad $T/fw.out)" = 0 ] &&
+    ok || bad "controller on $t: exit $rc, $(grep '^link_' $T/fw.out | tr '\n' ' ')"
+[ "$h" = "$loop_hash" ] && ok || bad "controller on $t: hash $h, pi_loop's $loop_hash"
+[ "$(tail -n +2 $T/fw.csv | cut -d, -f2-)" = "$(tail -n +2 $T/loop.csv | cut -d, -f2-)" ] && ok ||
+    bad "controller on $t: the trace differs from pi_loop's"
+rh=$($M replay $T/fw.mrl | sed -n 's/^hash: //p')
+[ "$rh" = "$h" ] && ok || bad "controller on $t: replay $rh, live $h"
+echo "serial-qemu: controller firmware on $t: hash $h = pi_loop = replay; $(grep link_rtt_us $T/fw.out)"
+
+# 2. the plant image in QEMU, the controller on the host
+sh tools/image.sh $t pi_link "" "-DRT_IMAGE_LINK_TIMEOUT_US=20000000" > $T/image.out 2>&1 ||
+    bad "make image TARGET=$t SCENE=pi_link: $(cat $T/image.out)"
+qemu build/image/$t/pi_link.elf
+timeout 300 $C "serial:$PTY:115200" 60 > $T/ctl.out 2>&1 &
+CTL=$!; pids="$pids $CTL"
+wait $QEMU; rc=$?
+kill $CTL 2>/dev/null; wait $CTL 2>/dev/null
+line=$(grep '^rt scene pi_link' $T/qemu.out)
+h=$(echo "$line" | sed -n 's/.* hash \([0-9a-f]*\).*/\1/p')
+[ $rc -eq 0 ] && [ "$h" = "$loop_hash" ] && ok || bad "plant on $t: exit $rc, hash $h: $(cat $T/qemu.out)"
+echo "$line" | grep -q ' link_applied 301 link_bad 0 link_late 0 link_missing 0 ' && ok ||
+    bad "plant on $t: $line"
+echo "serial-qemu: plant image on $t: hash $h = pi_loop;$(echo "$line" | sed 's/.*overruns 0//; s/ hash.*//')"
+
+cleanup
+echo "serial-qemu: $pass passed, $fail failed"
+[ $fail -eq 0 ]
