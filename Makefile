@@ -369,7 +369,7 @@ speedup: $(O)/modrt $(O)/svgplot
 # `make docs` runs them and copies the figures over the committed ones in docs/
 BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
-bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup
+bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
 	@mkdir -p build/bench
 	@cp docs/mbs.md build/bench/
 	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md

@@ -23,6 +23,7 @@ static struct {
     uint32_t frame_len;
     linkframe_rx rx;
     uint64_t sent, applied, bad, late, missing, dup, resent;
+    link_packet pkt;             /* the request being built, or the answer being checked */
 } K;
 
 static void transmit(void)
@@ -32,18 +33,18 @@ static void transmit(void)
 
 static void send_exports(const rt_scene *sc, const rt_sim *sim)
 {
-    static link_packet p; /* 560 bytes: off the stack */
+    link_packet *p = &K.pkt;
     uint8_t d[LINK_MAX_PACKET];
     const char *name = sc->name;
-    p.type = LINK_TYPE_EXPORTS, p.n = sc->link->nexp, p.id = sc->link->id;
-    p.seq = ++K.seq, p.tick = sim->state.tick;
+    p->type = LINK_TYPE_EXPORTS, p->n = sc->link->nexp, p->id = sc->link->id;
+    p->seq = ++K.seq, p->tick = sim->state.tick;
     for (int i = 0; i < LINK_NAME_LEN; i++)
-        p.name[i] = *name ? *name++ : 0;
-    for (uint16_t i = 0; i < p.n; i++)
-        p.v[i] = (double)rt_link_export(sc, sim, i);
-    K.frame_len = (uint32_t)linkframe_encode(d, link_encode(&p, d, sizeof d), K.frame,
+        p->name[i] = *name ? *name++ : 0;
+    for (uint16_t i = 0; i < p->n; i++)
+        p->v[i] = (double)rt_link_export(sc, sim, i);
+    K.frame_len = (uint32_t)linkframe_encode(d, link_encode(p, d, sizeof d), K.frame,
                                              sizeof K.frame);
-    K.waiting = p.seq;
+    K.waiting = p->seq;
     transmit();
     K.sent++;
 }
@@ -51,26 +52,26 @@ static void send_exports(const rt_scene *sc, const rt_sim *sim)
 /* a checked datagram: the awaited answer (1, its values in K.cur), or counted */
 static int receive(const rt_scene *sc, const uint8_t *d, size_t len)
 {
-    static link_packet p;
+    link_packet *p = &K.pkt;
     const rt_link *lk = sc->link;
-    link_wire_error e = link_decode(d, len, LINK_TYPE_IMPORTS, sc->name, lk->id, lk->nimp, &p);
+    link_wire_error e = link_decode(d, len, LINK_TYPE_IMPORTS, sc->name, lk->id, lk->nimp, p);
     if (e != LINK_OK) {
         K.bad++;
         return 0;
     }
-    if (p.seq == K.answered) {
+    if (p->seq == K.answered) {
         K.dup++;
         return 0;
     }
-    if (p.seq == 0 || p.seq != K.waiting) {
-        if (p.seq < K.seq)
+    if (p->seq == 0 || p->seq != K.waiting) {
+        if (p->seq < K.seq)
             K.late++; /* an answer to a request given up on */
         else
             K.bad++;  /* to a request never sent */
         return 0;
     }
-    for (uint16_t i = 0; i < p.n; i++)
-        K.cur[i] = (real_t)p.v[i];
+    for (uint16_t i = 0; i < p->n; i++)
+        K.cur[i] = (real_t)p->v[i];
     K.answered = K.waiting, K.waiting = 0;
     K.applied++;
     return 1;

@@ -65,3 +65,10 @@ test-serial-qemu: deps build/host/modrt build/host/pi_controller $(SCENEC)
 	else echo "serial-qemu: skipped: the $(SERIAL_QEMU_T) toolchain or QEMU is missing"; fi
 TEST_SUITES += test-serial-qemu
 .PHONY: test-serial-qemu
+
+# the serial link's round trips next to UDP's (docs/link.md; part of make bench)
+serial-bench: build/host/modrt build/host/pi_controller
+	@$(MAKE) --no-print-directory -s check-target-$(SERIAL_QEMU_T) 2>/dev/null && \
+	  $(MAKE) --no-print-directory build/$(SERIAL_QEMU_T)/pi_firmware.elf; \
+	 sh tools/bench/serial_bench.sh build/host/modrt
+.PHONY: serial-bench

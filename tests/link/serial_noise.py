@@ -13,11 +13,16 @@ by --faults, where one fault is injected:
   delim     the frame's closing zero is lost (the next frame's opening zero ends it: no loss)
 
 --faults 'req:20=garbage,40=drop;ans:30=flip' (req: plant to controller, counted from 1
-in each direction). Exits after --idle seconds without traffic and prints what it did."""
+in each direction). --baud N paces each direction as a line of N baud, 8N1 (10 bits a
+byte: what reaches the other side arrives when its last byte would have); without it the
+relay forwards at once. --controller-dev PATH opens an existing terminal (the pty of a
+QEMU board) as the controller's end instead of making one. Exits after --idle seconds
+without traffic and prints what it did (tools/bench/serial_bench.sh uses it too)."""
 import argparse
 import os
 import select
 import sys
+import time
 import tty
 
 GARBAGE = bytes([0x55, 0xAA, 0x13, 0x37, 0xFE, 0x01, 0x02])
@@ -54,9 +59,18 @@ def corrupt(kind, run):
 class Way:
     """one direction: splits the byte stream at zero bytes, counts frames, injects faults"""
 
-    def __init__(self, name, src, dst, faults):
+    def __init__(self, name, src, dst, faults, baud):
         self.name, self.src, self.dst, self.faults = name, src, dst, faults
         self.run, self.frames, self.done = bytearray(), 0, []
+        self.byte_s, self.free_at = (10.0 / baud if baud else 0), 0.0
+
+    def send(self, out):
+        """on a paced line the bytes arrive when the last of them is through"""
+        if self.byte_s:
+            now = time.monotonic()
+            self.free_at = max(now, self.free_at) + len(out) * self.byte_s
+            time.sleep(max(0.0, self.free_at - now))
+        os.write(self.dst, out)
 
     def feed(self, data):
         out = bytearray()
@@ -78,24 +92,32 @@ class Way:
             if after is not None:
                 out.append(0)
                 out += after
-        os.write(self.dst, bytes(out))
+        if out:
+            self.send(bytes(out))
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--faults", default="")
     ap.add_argument("--idle", type=float, default=5)
+    ap.add_argument("--baud", type=int, default=0)
+    ap.add_argument("--controller-dev")
     a = ap.parse_args()
     f = schedule(a.faults)
     ends = {}
     for side in ("plant", "controller"):
+        if side == "controller" and a.controller_dev:
+            m = os.open(a.controller_dev, os.O_RDWR | os.O_NOCTTY)
+            tty.setraw(m)
+            ends[side] = (m, None)
+            continue
         m, s = os.openpty()
         tty.setraw(s)
         ends[side] = (m, s)
         print(side, os.ttyname(s))
     sys.stdout.flush()
     pm, cm = ends["plant"][0], ends["controller"][0]
-    ways = {pm: Way("req", pm, cm, f["req"]), cm: Way("ans", cm, pm, f["ans"])}
+    ways = {pm: Way("req", pm, cm, f["req"], a.baud), cm: Way("ans", cm, pm, f["ans"], a.baud)}
     seen = False
     while True:
         r, _, _ = select.select([pm, cm], [], [], a.idle)

@@ -4,7 +4,8 @@
 #  1. the controller on the board: tools/examples/pi_firmware.c (the PI of pi_loop written
 #     with the client library ports/common/linkclient.c) closes pi_link run by
 #     `modrt run --link serial:PTY` in lock-step: trace and hash equal pi_loop's, and the
-#     recorded log replays to the same hash;
+#     recorded log replays to the same hash; so does the firmware main loop printed in
+#     docs/link.md, extracted from the page and built as it stands;
 #  2. the plant on the board: `make image TARGET=<t> SCENE=pi_link` (the link on the
 #     UART, ports/common/image_link.c) against the C example controller in serial mode on
 #     the host: the image's hash is the host run of pi_loop's, nothing bad or missing.
@@ -48,20 +49,38 @@ qemu() {
 $M run pi_loop --csv $T/loop.csv > $T/loop.out
 loop_hash=$(field hash $T/loop.out)
 
-# 1. the controller firmware in QEMU, the plant on the host
-qemu build/$t/pi_firmware.elf
-$M run pi_link --link "serial:$PTY:115200" --link-timeout 30 --record $T/fw.mrl \
-    --csv $T/fw.csv > $T/fw.out; rc=$?
-kill $QEMU 2>/dev/null; wait $QEMU 2>/dev/null
-h=$(field hash $T/fw.out)
-[ $rc -eq 0 ] && [ "$(field link_applied $T/fw.out)" = 301 ] && [ "$(field link_bad $T/fw.out)" = 0 ] &&
-    ok || bad "controller on $t: exit $rc, $(grep '^link_' $T/fw.out | tr '\n' ' ')"
-[ "$h" = "$loop_hash" ] && ok || bad "controller on $t: hash $h, pi_loop's $loop_hash"
-[ "$(tail -n +2 $T/fw.csv | cut -d, -f2-)" = "$(tail -n +2 $T/loop.csv | cut -d, -f2-)" ] && ok ||
-    bad "controller on $t: the trace differs from pi_loop's"
-rh=$($M replay $T/fw.mrl | sed -n 's/^hash: //p')
-[ "$rh" = "$h" ] && ok || bad "controller on $t: replay $rh, live $h"
-echo "serial-qemu: controller firmware on $t: hash $h = pi_loop = replay; $(grep link_rtt_us $T/fw.out)"
+# controller ELF LABEL: the controller firmware ELF in QEMU, the plant on the host
+controller() {
+    qemu "$1"
+    $M run pi_link --link "serial:$PTY:115200" --link-timeout 30 --record $T/fw.mrl \
+        --csv $T/fw.csv > $T/fw.out; rc=$?
+    kill $QEMU 2>/dev/null; wait $QEMU 2>/dev/null
+    h=$(field hash $T/fw.out)
+    [ $rc -eq 0 ] && [ "$(field link_applied $T/fw.out)" = 301 ] &&
+        [ "$(field link_bad $T/fw.out)" = 0 ] && ok ||
+        bad "$2 on $t: exit $rc, $(grep '^link_' $T/fw.out | tr '\n' ' ')"
+    [ "$h" = "$loop_hash" ] && ok || bad "$2 on $t: hash $h, pi_loop's $loop_hash"
+    [ "$(tail -n +2 $T/fw.csv | cut -d, -f2-)" = "$(tail -n +2 $T/loop.csv | cut -d, -f2-)" ] &&
+        ok || bad "$2 on $t: the trace differs from pi_loop's"
+    rh=$($M replay $T/fw.mrl | sed -n 's/^hash: //p')
+    [ "$rh" = "$h" ] && ok || bad "$2 on $t: replay $rh, live $h"
+    echo "serial-qemu: $2 on $t: hash $h = pi_loop = replay; $(grep link_rtt_us $T/fw.out)"
+}
+controller build/$t/pi_firmware.elf "controller firmware"
+
+# 1b. the main loop of docs/link.md, as printed there
+awk '/^### A controller on a microcontroller/ { s = 1 } s && /^```c$/ { c = 1; next }
+     c && /^```$/ { exit } c { print }' docs/link.md > $T/doc_fw.c
+# shellcheck disable=SC2046 # the flag lists are meant to split
+if [ -s $T/doc_fw.c ] && $(make -s print-TARGET_CC_$t) $(make -s print-CSTD) -O2 -Iports \
+    $(make -s print-TARGET_CFLAGS_$t) $T/doc_fw.c ports/common/linkclient.c \
+    ports/common/linkframe.c ports/common/link_wire.c ports/cortex-m/uart.c \
+    $(make -s print-TARGET_PORT_SRCS_$t) $(make -s print-TARGET_LDFLAGS_$t) -o $T/doc_fw.elf \
+    > $T/doc_fw.log 2>&1; then
+    ok; controller $T/doc_fw.elf "the firmware of docs/link.md"
+else
+    bad "the firmware main loop of docs/link.md does not build: $(head -5 $T/doc_fw.log)"
+fi
 
 # 2. the plant image in QEMU, the controller on the host
 sh tools/image.sh $t pi_link "" "-DRT_IMAGE_LINK_TIMEOUT_US=20000000" > $T/image.out 2>&1 ||

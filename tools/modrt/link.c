@@ -27,8 +27,11 @@
 #include "serial.h"
 
 #define LINK_RECV_POLL_MS 50   /* the receiver thread checks for shutdown this often */
-#define LINK_RTT_BINS 4096     /* round-trip histogram: 1 us bins up to 4 ms, then one */
-#define LINK_TRIES 10          /* lock-step: a request is sent again every timeout / TRIES */
+#define LINK_RTT_FINE 4096     /* round-trip histogram: 1 us bins up to 4.096 ms, */
+#define LINK_RTT_STEP 64       /* then 64 us bins (a serial line's 10 ms round trips) */
+#define LINK_RTT_BINS (LINK_RTT_FINE + 4096) /* up to 266 ms, then one */
+#define LINK_TRIES 10          /* lock-step on a serial line: a request is sent again every
+                                  timeout / TRIES (UDP: once; docs/link.md, "Lost frames") */
 #define LINK_SEND_WAIT_MS 100  /* serial: the longest wait for the device to take a frame */
 
 static struct {
@@ -49,6 +52,7 @@ static struct {
     link_counts n;
     struct timespec sent_at;   /* when `waiting` was sent */
     uint32_t rtt_hist[LINK_RTT_BINS + 1];
+    double rtt_max;            /* [us] */
     /* main thread only */
     uint32_t seq;
     uint8_t out[LINK_MAX_PACKET]; /* the last request, for sending it again */
@@ -61,6 +65,20 @@ static double since_us(const struct timespec *t0)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return 1e6 * (double)(t.tv_sec - t0->tv_sec) + 1e-3 * (double)(t.tv_nsec - t0->tv_nsec);
+}
+
+static int rtt_bin(double us)
+{
+    if (us < LINK_RTT_FINE)
+        return (int)us;
+    double k = LINK_RTT_FINE + (us - LINK_RTT_FINE) / LINK_RTT_STEP;
+    return k < LINK_RTT_BINS ? (int)k : LINK_RTT_BINS;
+}
+
+/* the middle of bin i [us] */
+static double rtt_mid(int i)
+{
+    return i < LINK_RTT_FINE ? i + 0.5 : LINK_RTT_FINE + (i - LINK_RTT_FINE + 0.5) * LINK_RTT_STEP;
 }
 
 /* the receiver: every datagram is either the awaited answer, or counted */
@@ -82,7 +100,8 @@ static void receive(const uint8_t *buf, size_t len)
     } else {
         L.box = p, L.full = 1;
         double us = since_us(&L.sent_at); /* the round trip, whenever it is applied */
-        L.rtt_hist[us < LINK_RTT_BINS ? (int)us : LINK_RTT_BINS]++;
+        L.rtt_hist[rtt_bin(us)]++;
+        L.rtt_max = us > L.rtt_max ? us : L.rtt_max;
         pthread_cond_signal(&L.cv);
     }
     pthread_mutex_unlock(&L.mu);
@@ -186,6 +205,7 @@ int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout
     L.seq = 0, L.waiting = L.answered = 0, L.full = 0;
     memset(&L.n, 0, sizeof L.n);
     memset(L.rtt_hist, 0, sizeof L.rtt_hist);
+    L.rtt_max = 0;
     for (uint16_t i = 0; i < sc->link->nimp; i++)
         L.cur[i] = sc->link->def[i];
     pthread_mutex_init(&L.mu, NULL);
@@ -268,20 +288,23 @@ static void add_s(struct timespec *t, double s)
         t->tv_sec++, t->tv_nsec -= 1000000000L;
 }
 
-/* waits for the answer, sending the request again every timeout / LINK_TRIES (a lost
-   request or answer; the controller answers a repeat from its copy, docs/link.md) */
+/* waits for the answer; on a serial line it sends the request again every timeout /
+   LINK_TRIES (a frame lost to line noise; the controller answers a repeat from its copy,
+   docs/link.md "Lost frames"). Over UDP the request goes once: a UDP controller need not
+   recognise a repeat (the Python example does not, and would step its integrator twice). */
 static int lockstep(const rt_scene *sc, rt_sim *sim)
 {
     struct timespec until;
+    int tries = L.serial ? LINK_TRIES : 1;
     clock_gettime(CLOCK_MONOTONIC, &until);
     send_exports(sc, sim);
     pthread_mutex_lock(&L.mu);
-    for (int k = 1; k <= LINK_TRIES && !L.full; k++) {
+    for (int k = 1; k <= tries && !L.full; k++) {
         struct timespec try_until = until;
-        add_s(&try_until, L.timeout_s * k / LINK_TRIES);
+        add_s(&try_until, L.timeout_s * k / tries);
         while (!L.full && pthread_cond_timedwait(&L.cv, &L.mu, &try_until) != ETIMEDOUT)
             ;
-        if (!L.full && k < LINK_TRIES) {
+        if (!L.full && k < tries) {
             pthread_mutex_unlock(&L.mu); /* the receiver may deliver meanwhile */
             L.n.resent += (uint64_t)transmit(L.out, L.out_len);
             pthread_mutex_lock(&L.mu);
@@ -331,7 +354,7 @@ static double percentile(double q)
         total += L.rtt_hist[i];
     for (int i = 0; i <= LINK_RTT_BINS && total; i++)
         if ((acc += L.rtt_hist[i]) >= (uint64_t)(q * (double)total + 0.5))
-            return i + 0.5;
+            return rtt_mid(i);
     return 0;
 }
 
@@ -341,6 +364,7 @@ void link_close(link_counts *out)
     pthread_join(L.thread, NULL);
     close(L.fd);
     L.n.rtt_us[0] = percentile(0.5), L.n.rtt_us[1] = percentile(0.99);
+    L.n.rtt_us[2] = L.rtt_max;
     *out = L.n;
 }
 
@@ -358,5 +382,6 @@ void link_print(FILE *f, const link_counts *c)
             fprintf(f, "link_bad.%s: %llu\n", link_wire_error_key(e),
                     (unsigned long long)c->bad_kind[e]);
     if (c->applied)
-        fprintf(f, "link_rtt_us: p50 %.1f p99 %.1f\n", c->rtt_us[0], c->rtt_us[1]);
+        fprintf(f, "link_rtt_us: p50 %.1f p99 %.1f max %.1f\n", c->rtt_us[0], c->rtt_us[1],
+                c->rtt_us[2]);
 }

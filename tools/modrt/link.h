@@ -17,7 +17,7 @@ typedef struct link_counts {
     uint64_t bad, late, missing, dup;
     uint64_t resent;          /* lock-step: requests sent again for want of an answer */
     uint64_t bad_kind[16];    /* bad by link_wire_error */
-    double rtt_us[2];         /* lock-step round trip: p50, p99 [us] */
+    double rtt_us[3];         /* round trip: p50, p99, max [us] */
 } link_counts;
 
 /* Opens the link `spec` (udp:HOST:PORT, IPv4 or [IPv6] or a name; serial:DEVICE[:BAUD],
