@@ -72,3 +72,25 @@ serial-bench: build/host/modrt build/host/pi_controller
 	  $(MAKE) --no-print-directory build/$(SERIAL_QEMU_T)/pi_firmware.elf; \
 	 sh tools/bench/serial_bench.sh build/host/modrt
 .PHONY: serial-bench
+
+# the serial link's frame receiver and client library under the fuzzer (5 s in make test)
+FRAME_FUZZ_SRCS = tests/link/fuzz_frame.c ports/common/linkframe.c ports/common/linkclient.c \
+                  ports/common/link_wire.c
+build/fuzz/frame-fuzz: $(FRAME_FUZZ_SRCS) tests/scenec/fuzz_main.c
+	@mkdir -p $(dir $@)
+	@if command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(){return 0;}' | \
+	    clang -x c -fsanitize=fuzzer - -o build/fuzz/probe-frame 2>/dev/null; then \
+	  clang $(LINK_FUZZ_FLAGS) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+	    $(FRAME_FUZZ_SRCS) -o $@; \
+	else \
+	  $(CC) $(LINK_FUZZ_FLAGS) -fsanitize=address,undefined -fno-sanitize-recover=all \
+	    $(FRAME_FUZZ_SRCS) tests/scenec/fuzz_main.c -o $@; \
+	fi
+# seeds: framed requests of pi_link, whole and cut, from the unit test's encoder
+frame-fuzz-seeds:
+	@mkdir -p build/fuzz/frame-corpus
+	@python3 tests/link/seed_frames.py build/fuzz/frame-corpus
+test-frame-fuzz: build/fuzz/frame-fuzz frame-fuzz-seeds
+	@sh tests/link/fuzz.sh build/fuzz/frame-fuzz 5 build/fuzz/frame-corpus frame
+TEST_SUITES += test-frame-fuzz
+.PHONY: frame-fuzz-seeds test-frame-fuzz

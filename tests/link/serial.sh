@@ -43,7 +43,8 @@ ctl_count() { sed -n "s/.*$1 \([0-9]*\).*/\1/p" $T/ctl.out; }
 
 $M run pi_loop --csv $T/loop.csv > $T/loop.out
 loop_hash=$(field hash $T/loop.out)
-same_trace() { [ "$(tail -n +2 "$1" | cut -d, -f2-)" = "$(tail -n +2 $T/loop.csv | cut -d, -f2-)" ]; }
+rows() { tail -n +2 "$1" | cut -d, -f2-; }   # a trace without its time column
+same_trace() { [ "$(rows "$1")" = "$(rows $T/loop.csv)" ]; }
 
 # 1. lock-step over a pty: pi_loop's trace and hash, replayed to the same hash
 controller pty
@@ -51,7 +52,8 @@ pty=$(waitfor $T/ctl.out pty) || bad "the controller made no pty: $(cat $T/ctl.o
 $M run pi_link --link "serial:$pty:921600" --record $T/ls.mrl --csv $T/ls.csv > $T/ls.out; rc=$?
 sleep 0.2; stop_ctl
 h=$(field hash $T/ls.out)
-[ $rc -eq 0 ] && [ "$(field link_applied $T/ls.out)" = 301 ] && [ "$(field link_bad $T/ls.out)" = 0 ] &&
+[ $rc -eq 0 ] && [ "$(field link_applied $T/ls.out)" = 301 ] &&
+    [ "$(field link_bad $T/ls.out)" = 0 ] &&
     ok || bad "lock-step: exit $rc, $(grep '^link_' $T/ls.out | tr '\n' ' ')"
 [ "$h" = "$loop_hash" ] && ok || bad "lock-step hash $h, pi_loop's $loop_hash"
 same_trace $T/ls.csv && ok || bad "lock-step trace differs from pi_loop's"
@@ -68,7 +70,8 @@ h=$(field hash $T/rt.out)
 rh=$($M replay $T/rt.mrl | sed -n 's/^hash: //p')
 [ -n "$h" ] && [ "$rh" = "$h" ] && [ "$(field link_bad $T/rt.out)" = 0 ] && ok ||
     bad "real time: replay $rh, live $h (exit $rc)"
-echo "serial: soft real time: applied $(field link_applied $T/rt.out) of $(field link_sent $T/rt.out); replay hash = live"
+echo "serial: soft real time: applied $(field link_applied $T/rt.out) of" \
+    "$(field link_sent $T/rt.out); replay hash = live"
 
 # 3. line noise both ways: counted where received, resent, pi_loop's trace
 req='20=garbage,40=drop,60=flip,80=inside,100=delim'

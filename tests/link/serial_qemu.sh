@@ -92,10 +92,12 @@ wait $QEMU; rc=$?
 kill $CTL 2>/dev/null; wait $CTL 2>/dev/null
 line=$(grep '^rt scene pi_link' $T/qemu.out)
 h=$(echo "$line" | sed -n 's/.* hash \([0-9a-f]*\).*/\1/p')
-[ $rc -eq 0 ] && [ "$h" = "$loop_hash" ] && ok || bad "plant on $t: exit $rc, hash $h: $(cat $T/qemu.out)"
+[ $rc -eq 0 ] && [ "$h" = "$loop_hash" ] && ok ||
+    bad "plant on $t: exit $rc, hash $h: $(cat $T/qemu.out)"
 echo "$line" | grep -q ' link_applied 301 link_bad 0 link_late 0 link_missing 0 ' && ok ||
     bad "plant on $t: $line"
-echo "serial-qemu: plant image on $t: hash $h = pi_loop;$(echo "$line" | sed 's/.*overruns 0//; s/ hash.*//')"
+counts=$(echo "$line" | sed 's/.*overruns 0//; s/ hash.*//')
+echo "serial-qemu: plant image on $t: hash $h = pi_loop;$counts"
 
 cleanup
 echo "serial-qemu: $pass passed, $fail failed"

@@ -225,8 +225,10 @@ int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout
 /* one datagram on the transport; 1 if it went out whole */
 static int transmit(const uint8_t *buf, size_t len)
 {
+    /* real time never waits for the device: a frame it cannot take is not sent whole
+       (not counted as sent; the next frame's opening zero resynchronises the receiver) */
     if (L.serial)
-        return serial_send(L.fd, buf, len, LINK_SEND_WAIT_MS) == (ssize_t)len;
+        return serial_send(L.fd, buf, len, L.realtime ? 0 : LINK_SEND_WAIT_MS) == (ssize_t)len;
     return send(L.fd, buf, len, 0) == (ssize_t)len;
 }
 
