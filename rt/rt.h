@@ -38,6 +38,7 @@
     X(RT_E_INVARIANT, 2, "a root function ended a step on the wrong side without a located crossing") \
     X(RT_E_UNSTABLE, 2, "numerically unstable: the state grows without bound")   \
     X(RT_E_LINK, 2, "controller link lost (an import with policy stop)")         \
+    X(RT_E_LINK_FAULT, 2, "controller link faults: bad datagrams or missing answers (link_bad, link_missing)") \
     X(RT_E_STOPPED, 2, "run stopped at a missed deadline (--overrun stop)")       \
     X(RT_E_ACCURACY, 1, "local error estimate above the set's accuracy")         \
     X(RT_E_LOST, 2, "local error estimate above RT_ERR_LOST: no correct digit left") \

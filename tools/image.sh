@@ -50,7 +50,7 @@ if grep -q '^static const rt_link link = {' "$dir/$name.c"; then
     esac
     [ "${console:-semihost}" != uart ] || fail "scene $name has a controller link on the UART: CONSOLE=uart would share it; use semihost, itm or none"
     sizes="$sizes -DRT_IMAGE_LINK=1"
-    linksrc="ports/common/image_link.c ports/common/link_wire.c ports/common/linkframe.c ports/cortex-m/uart.c"
+    linksrc="ports/common/image_link.c ports/common/link_wire.c ports/common/link_hmac.c ports/common/linkframe.c ports/cortex-m/uart.c"
 fi
 
 cc=$(make -s "print-TARGET_CC_$target")

@@ -6,7 +6,9 @@
  * are counted and never applied. Lock-step waits for the answer to this very request
  * (sending it again every timeout / IMAGE_LINK_TRIES, as `modrt run` does); real time
  * looks between ticks and applies an answer at the first tick after it arrived. The
- * import policies (hold, default, stop) apply to an exchange without an answer. */
+ * import policies (hold, default, stop) apply to an exchange without an answer. An answer
+ * must echo its request's sequence number, tick and this run's nonce (image_link_nonce).
+ * Unauthenticated (no shared key on the board). */
 #include "image_link.h"
 
 #include "common/link_wire.h"
@@ -16,6 +18,8 @@
 #define IMAGE_LINK_TRIES 10 /* lock-step: a request is sent again every timeout / TRIES */
 
 static struct {
+    uint64_t run;                /* this run's nonce */
+    uint64_t tick;               /* the tick of the request awaiting its answer */
     uint32_t id, seq, waiting;   /* waiting: the seq awaiting its answer (0: none) */
     uint32_t answered;           /* the last seq answered */
     real_t cur[LINK_MAX_VALUES]; /* the imports in force */
@@ -37,14 +41,14 @@ static void send_exports(const rt_scene *sc, const rt_sim *sim)
     uint8_t d[LINK_MAX_PACKET];
     const char *name = sc->name;
     p->type = LINK_TYPE_EXPORTS, p->n = sc->link->nexp, p->id = sc->link->id;
-    p->seq = ++K.seq, p->tick = sim->state.tick;
+    p->seq = ++K.seq, p->tick = sim->state.tick, p->run = K.run;
     for (int i = 0; i < LINK_NAME_LEN; i++)
         p->name[i] = *name ? *name++ : 0;
     for (uint16_t i = 0; i < p->n; i++)
         p->v[i] = (double)rt_link_export(sc, sim, i);
-    K.frame_len = (uint32_t)linkframe_encode(d, link_encode(p, d, sizeof d), K.frame,
+    K.frame_len = (uint32_t)linkframe_encode(d, link_encode(p, 0, d, sizeof d), K.frame,
                                              sizeof K.frame);
-    K.waiting = p->seq;
+    K.waiting = p->seq, K.tick = p->tick;
     transmit();
     K.sent++;
 }
@@ -54,9 +58,15 @@ static int receive(const rt_scene *sc, const uint8_t *d, size_t len)
 {
     link_packet *p = &K.pkt;
     const rt_link *lk = sc->link;
-    link_wire_error e = link_decode(d, len, LINK_TYPE_IMPORTS, sc->name, lk->id, lk->nimp, p);
+    const link_expect x = {.type = LINK_TYPE_IMPORTS, .name = sc->name, .id = lk->id,
+                           .n = lk->nimp, .check_run = 1, .run = K.run};
+    link_wire_error e = link_decode(d, len, &x, p);
     if (e != LINK_OK) {
         K.bad++;
+        return 0;
+    }
+    if (p->seq == K.waiting && p->tick != K.tick) {
+        K.bad++; /* not its request's tick */
         return 0;
     }
     if (p->seq == K.answered) {
@@ -147,12 +157,24 @@ int image_link_exchange(const rt_scene *sc, rt_sim *sim)
     return rt_link_due(sc, sim) ? lockstep(sc, sim) : 0;
 }
 
+/* a run nonce from the time since reset, mixed (splitmix64); a board with a random number
+   generator overrides this weak definition with a true random number */
+__attribute__((weak)) uint64_t image_link_nonce(void)
+{
+    uint64_t z = port_cycles() + 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return z ? z : 1;
+}
+
 int image_link_start(const rt_scene *sc, rt_sim *sim)
 {
     if (!sc->link || sc->link->nexp > LINK_MAX_VALUES || sc->link->nimp > LINK_MAX_VALUES ||
         port_link_open(RT_IMAGE_LINK_BAUD) != 0)
         return -1;
     linkframe_rx_init(&K.rx);
+    K.run = image_link_nonce();
     for (uint16_t i = 0; i < sc->link->nimp; i++)
         K.cur[i] = sc->link->def[i];
     (void)sim;

@@ -24,6 +24,9 @@ int image_link_start(const rt_scene *sc, rt_sim *sim);
 /* The exchange after a tick: 1 when an import with policy stop went missing (the run
    ends with status RT_E_LINK). */
 int image_link_exchange(const rt_scene *sc, rt_sim *sim);
+/* This run's nonce (docs/link.md): by default mixed from the time since reset; a board
+   with a random number generator defines its own (the default is weak). */
+uint64_t image_link_nonce(void);
 /* Hands each count to put (sent, applied, bad, late, missing, dup, resent, lost: bytes the
    UART dropped); returns 1 if a count shows a fault (bad, missing, lost). */
 int image_link_report(void (*put)(const char *key, uint64_t v));

@@ -21,7 +21,8 @@ int linkclient_init(linkclient *c, const char *scene, uint32_t id, uint16_t nexp
         nimp > LINK_MAX_VALUES)
         return -1;
     c->scene = scene, c->id = id, c->nexp = nexp, c->nimp = nimp, c->io = *io;
-    c->pending = 0, c->answered = 0, c->answer_len = 0;
+    c->key = 0, c->pending = 0, c->new_run = 0, c->run = 0, c->answered = 0;
+    c->answer_len = 0;
     c->last_seq = 0, c->last_crc = c->req_crc = 0, c->last_tick = 0;
     c->requests = c->repeats = c->overtaken = 0;
     for (int e = 0; e < LINK_E_COUNT_; e++)
@@ -44,13 +45,15 @@ uint32_t linkclient_faults(const linkclient *c)
 static int take(linkclient *c, const uint8_t *d, size_t len)
 {
     link_packet p;
-    link_wire_error e = link_decode(d, len, LINK_TYPE_EXPORTS, c->scene, c->id, c->nexp, &p);
+    const link_expect x = {.type = LINK_TYPE_EXPORTS, .name = c->scene, .id = c->id,
+                           .n = c->nexp, .key = c->key};
+    link_wire_error e = link_decode(d, len, &x, &p);
     if (e != LINK_OK) {
         c->bad[e]++;
         return 0;
     }
     /* the same bytes as the request answered last: its CRC field, seq and tick agree */
-    uint32_t crc = (uint32_t)link_get_le(d + len - 4, 4);
+    uint32_t crc = (uint32_t)link_get_le(d + LINK_SIZE(p.n) - 4, 4);
     if (c->answered && crc == c->last_crc && p.seq == c->last_seq && p.tick == c->last_tick) {
         c->repeats++;
         c->io.write(c->io.ctx, c->answer, c->answer_len);
@@ -59,7 +62,8 @@ static int take(linkclient *c, const uint8_t *d, size_t len)
     if (c->pending && p.seq == c->req.seq && p.tick == c->req.tick)
         return 0; /* sent again before we answered: the answer is on its way */
     c->overtaken += (uint32_t)c->pending;
-    c->req = p, c->pending = 1, c->req_crc = crc;
+    c->new_run = c->requests == 0 || p.run != c->run;
+    c->req = p, c->pending = 1, c->req_crc = crc, c->run = p.run;
     c->requests++;
     return 1;
 }
@@ -89,7 +93,7 @@ int linkclient_answer(linkclient *c, const double *v)
             return -1;
         a.v[i] = v[i];
     }
-    size_t n = link_encode(&a, d, sizeof d);
+    size_t n = link_encode(&a, c->key, d, sizeof d);
     c->answer_len = linkframe_encode(d, n, c->answer, sizeof c->answer);
     if (n == 0 || c->answer_len == 0)
         return -1;

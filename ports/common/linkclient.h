@@ -9,13 +9,17 @@
  *   linkclient_init(&c, "pi_link", id, 2, 1, &io);
  *   for (;;)
  *       if (linkclient_poll(&c)) {             // a new request: c.req.v[0 .. nexp-1]
+ *           if (c.new_run)                     // the plant started a run: start afresh
+ *               reset();
  *           double u[1] = {law(c.req.v)};
  *           linkclient_answer(&c, u);
  *       }
  *
  * A lost answer is recovered by the plant sending the same request again: linkclient_poll
  * answers such a repeat from the copy of the answer it kept, without returning it, so the
- * controller's state (an integrator) advances exactly once per request. */
+ * controller's state (an integrator) advances exactly once per request. An answer echoes
+ * its request's sequence number, tick and run nonce (wire format 2); with c.key set, every
+ * datagram carries and needs the HMAC-SHA-256 tag of the authenticated mode. */
 #ifndef LINKCLIENT_H
 #define LINKCLIENT_H
 
@@ -39,9 +43,12 @@ typedef struct linkclient {
     uint32_t id;                 /* its link id (linkclient_layout_id) */
     uint16_t nexp, nimp;         /* values per request, per answer */
     linkclient_io io;
+    const link_key *key;         /* NULL (set by init): unauthenticated; else the shared key */
     /* the request waiting for its answer: valid after linkclient_poll returned 1 */
     link_packet req;
     int pending;                 /* 1: req waits for linkclient_answer */
+    int new_run;                 /* 1: req is the first of a run (a new run nonce) */
+    uint64_t run;                /* the run nonce of the last request handed over */
     uint32_t req_crc;            /* the CRC field of req's datagram */
     /* the last answer as sent, and the request it answers (seq, tick, the request's CRC) */
     uint8_t answer[LINKFRAME_MAX_WIRE];

@@ -159,10 +159,10 @@ static void plant_sends(pipe_io *p, uint32_t id, uint32_t seq, uint64_t tick, do
                         int flip)
 {
     link_packet q = {.type = LINK_TYPE_EXPORTS, .n = 2, .id = id, .seq = seq, .tick = tick,
-                     .v = {r, m}};
+                     .run = 0x0123456789abcdefull + (seq > 100), .v = {r, m}};
     uint8_t d[LINK_MAX_PACKET];
     strcpy(q.name, "pi_link");
-    size_t n = link_encode(&q, d, sizeof d);
+    size_t n = link_encode(&q, NULL, d, sizeof d);
     d[LINK_HEADER] ^= (uint8_t)(flip ? 0x04 : 0);
     p->in_len += linkframe_encode(d, n, p->in + p->in_len, sizeof p->in - p->in_len);
 }
@@ -175,8 +175,10 @@ static int plant_gets(pipe_io *p, uint32_t id, link_packet *a)
     linkframe_rx_init(&rx);
     feed(&rx, p->out, p->out_len, &o);
     p->out_len = 0;
+    const link_expect x = {.type = LINK_TYPE_IMPORTS, .name = "pi_link", .id = id, .n = 1,
+                           .check_run = 1, .run = 0x0123456789abcdefull};
     return o.n == 1 && o.verdict[0] == LINKFRAME_DATAGRAM &&
-           link_decode(o.d, o.len, LINK_TYPE_IMPORTS, "pi_link", id, 1, a) == LINK_OK;
+           link_decode(o.d, o.len, &x, a) == LINK_OK;
 }
 
 static void test_client(void)
@@ -193,7 +195,7 @@ static void test_client(void)
     TH_CHECK(linkclient_answer(&c, &integral) == -1); /* nothing to answer */
     /* a request: handed over once, answered with its seq and tick */
     plant_sends(&p, id, 1, 0, 1.0, 0.25, 0);
-    TH_CHECK(linkclient_poll(&c) == 1 && c.req.v[0] == 1.0 && c.req.v[1] == 0.25);
+    TH_CHECK(linkclient_poll(&c) == 1 && c.req.v[0] == 1.0 && c.req.v[1] == 0.25 && c.new_run);
     double u = 0.5;
     TH_CHECK(linkclient_answer(&c, &u) == 0 && linkclient_poll(&c) == 0);
     TH_CHECK(plant_gets(&p, id, &a) && a.seq == 1 && a.tick == 0 && a.v[0] == 0.5);
@@ -205,7 +207,7 @@ static void test_client(void)
     plant_sends(&p, id, 2, 10, 1.0, 0.5, 1);
     plant_sends(&p, id ^ 1, 2, 10, 1.0, 0.5, 0);
     plant_sends(&p, id, 2, 10, 1.0, 0.5, 0);
-    TH_CHECK(linkclient_poll(&c) == 1 && c.req.seq == 2 && c.req.tick == 10);
+    TH_CHECK(linkclient_poll(&c) == 1 && c.req.seq == 2 && c.req.tick == 10 && !c.new_run);
     TH_CHECK(c.bad[LINK_E_SCENE] == 1 && c.bad[LINK_E_CRC] == 1 && linkclient_faults(&c) == 2);
     /* a value that is not finite is not sent */
     u = 0.0 / 0.0;
@@ -213,6 +215,9 @@ static void test_client(void)
     u = 0.75;
     TH_CHECK(linkclient_answer(&c, &u) == 0 && plant_gets(&p, id, &a) && a.seq == 2);
     TH_CHECK(c.requests == 2 && c.repeats == 1);
+    /* a new run of the plant (another nonce): handed over as the first of a run */
+    plant_sends(&p, id, 101, 0, 1.0, 0.5, 0);
+    TH_CHECK(linkclient_poll(&c) == 1 && c.new_run && c.req.run == 0x0123456789abcdf0ull);
 }
 
 const th_test th_linkframe_tests[] = {

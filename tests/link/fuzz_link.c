@@ -41,8 +41,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             for (int i = 0; i < 4; i++)
                 buf[n - 4 + i] = (uint8_t)(c >> (8 * i));
         }
-        link_wire_error e = link_decode(buf, size - 1, LINK_TYPE_IMPORTS, "pi_link",
-                                        0x5a17c0deu, (uint16_t)(data[0] >> 2), &p);
+        link_expect x = {.type = LINK_TYPE_IMPORTS, .name = "pi_link", .id = 0x5a17c0deu,
+                         .n = (uint16_t)(data[0] >> 2), .check_run = 1,
+                         .run = 0x0123456789abcdefull};
+        link_wire_error e = link_decode(buf, size - 1, &x, &p);
         verdicts[e]++;
         return 0;
     }

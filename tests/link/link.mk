@@ -3,7 +3,8 @@
 #   make link-fuzz        the datagram and replay-log decoders under libFuzzer for FUZZ_TIME s
 #   make test-link-fuzz   the same for 5 s (CI)
 
-LINK_FUZZ_SRCS = tests/link/fuzz_link.c ports/common/link_wire.c tools/modrt/mrlog.c \
+LINK_FUZZ_SRCS = tests/link/fuzz_link.c ports/common/link_wire.c ports/common/link_hmac.c \
+                 tools/modrt/mrlog.c \
                  $(filter-out rt/registry.c,$(RT_SRCS))
 LINK_FUZZ_FLAGS = $(CSTD) -g -O1 -Irt -Iports -Itools/modrt
 
@@ -33,7 +34,8 @@ test-link-fuzz: build/fuzz/link-fuzz link-fuzz-seeds
 
 # the C example controller (a host program: POSIX sockets and the freestanding codec)
 build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c \
-                          ports/common/linkframe.c ports/common/linkclient.c tools/modrt/serial.c
+                          ports/common/link_hmac.c ports/common/linkframe.c \
+                          ports/common/linkclient.c tools/modrt/serial.c
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CSTD) -O2 -Iports -Itools/modrt $^ -o $@
 
@@ -42,6 +44,9 @@ test-link: deps-host build/host/modrt build/host/pi_controller
 
 TEST_SUITES += test-link test-link-fuzz
 .PHONY: link-fuzz link-fuzz-seeds test-link test-link-fuzz
+
+# the scene fingerprint of the replay log reads the programs of interpreted defines
+$(call obj,tools/modrt/fingerprint.c): CINC += -I$(SCN_DIR)
 
 # the link over a serial line on ptys: lock-step, real time, line noise (tests/link/serial.sh)
 test-serial: deps-host build/host/modrt build/host/pi_controller
@@ -53,7 +58,8 @@ TEST_SUITES += test-serial
 # pi_link with its link on the UART, for the QEMU rigs (tests/link/serial_qemu.sh)
 SERIAL_QEMU_T ?= m4f
 PI_FW_SRCS = tools/examples/pi_firmware.c ports/common/linkclient.c ports/common/linkframe.c \
-             ports/common/link_wire.c ports/cortex-m/uart.c $(TARGET_PORT_SRCS_$(SERIAL_QEMU_T))
+             ports/common/link_wire.c ports/common/link_hmac.c ports/cortex-m/uart.c \
+             $(TARGET_PORT_SRCS_$(SERIAL_QEMU_T))
 build/$(SERIAL_QEMU_T)/pi_firmware.elf: $(PI_FW_SRCS) $(wildcard ports/common/*.h ports/cortex-m/*.h)
 	@mkdir -p $(dir $@)
 	$(Q)$(TARGET_CC_$(SERIAL_QEMU_T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) \
@@ -75,7 +81,7 @@ serial-bench: build/host/modrt build/host/pi_controller
 
 # the serial link's frame receiver and client library under the fuzzer (5 s in make test)
 FRAME_FUZZ_SRCS = tests/link/fuzz_frame.c ports/common/linkframe.c ports/common/linkclient.c \
-                  ports/common/link_wire.c
+                  ports/common/link_wire.c ports/common/link_hmac.c
 build/fuzz/frame-fuzz: $(FRAME_FUZZ_SRCS) tests/scenec/fuzz_main.c
 	@mkdir -p $(dir $@)
 	@if command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(){return 0;}' | \

@@ -27,7 +27,9 @@ def cobs(payload):
 
 
 def request(seq, tick, r, m):
-    head = struct.pack("<4sBBH16sIIQ", b"MRTL", 1, 1, 2, b"pi_link", 0x5A17C0DE, seq, tick)
+    # wire format 2 (docs/link.md): flags 0, n in one byte, the run nonce after the tick
+    head = struct.pack("<4sBBBB16sIIQQ", b"MRTL", 2, 1, 0, 2, b"pi_link", 0x5A17C0DE, seq,
+                       tick, 0x1234)
     body = head + struct.pack("<dd", r, m)
     return body + struct.pack("<I", zlib.crc32(body))
 

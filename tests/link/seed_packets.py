@@ -1,14 +1,46 @@
 #!/usr/bin/env python3
-"""seed_packets.py DIR - seed datagrams for the link fuzzer: a valid pi_link answer (with
-the fuzz target's id 0x5a17c0de and 1 value) under each selector byte, sealed or not."""
+"""seed_packets.py DIR - seeds for the link fuzzer (tests/link/fuzz_link.c): a valid
+pi_link answer of wire format version 2 (the fuzz target's id 0x5a17c0de, run nonce
+0x0123456789abcdef, 1 value) under each selector byte, sealed or not; and small valid
+replay logs of every version (1 and 2, selector byte 0), written here from the layout of
+tools/modrt/mrlog.c, so "logs accepted" is never 0 whatever the unit tests leave."""
 import os
 import struct
 import sys
 import zlib
 
-head = struct.Struct("<4sBBH16sIIQ").pack(b"MRTL", 1, 2, 1, b"pi_link", 0x5A17C0DE, 7, 10)
+RUN = 0x0123456789ABCDEF
+head = struct.Struct("<4sBBBB16sIIQQ").pack(b"MRTL", 2, 2, 0, 1, b"pi_link", 0x5A17C0DE, 7,
+                                            10, RUN)
 body = head + struct.pack("<d", 0.25)
 pkt = body + struct.pack("<I", zlib.crc32(body))
+
+
+def crc(b):
+    return b + struct.pack("<I", zlib.crc32(b))
+
+
+def log(version, records, nsets=0):
+    """a replay log: header, records (tick, values), end marker"""
+    nimp = len(records[0][1]) if records else 1
+    fixed = struct.pack("<4sHHIHBBdIHH", b"MRTR", version, 0, 0x5A17C0DE, nimp, 8, 0, 0.05,
+                        1, nsets, 0)
+    if version >= 2:
+        fixed += struct.pack("<QQ", 0x1122334455667788, RUN)
+    size = len(fixed) + 256 + 128 * nsets + 4
+    fixed = fixed[:6] + struct.pack("<H", size) + fixed[8:]
+    h = crc(fixed + b"pi_link".ljust(256, b"\0") + b"".join(
+        ("Plant.K=%d" % i).encode().ljust(128, b"\0") for i in range(nsets)))
+    out = h
+    for tick, vals in records:
+        out += crc(struct.pack("<Q%dd" % len(vals), tick, *vals))
+    return out + crc(b"MRTE" + struct.pack("<Q", len(records)))
+
+
 for sel in (1 | (1 << 2), 3 | (1 << 2), 3 | (2 << 2)):
     with open(os.path.join(sys.argv[1], "packet-%d" % sel), "wb") as f:
         f.write(bytes([sel]) + pkt)
+for version in (1, 2):
+    for name, recs, nsets in (("empty", [], 0), ("three", [(0, [0.5]), (10, [1.0]), (20, [-2.0])], 1)):
+        with open(os.path.join(sys.argv[1], "log-v%d-%s" % (version, name)), "wb") as f:
+            f.write(b"\0" + log(version, recs, nsets))

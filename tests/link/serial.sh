@@ -34,7 +34,7 @@ waitfor() {
 }
 # controller DEVICE: the C example in serial mode on DEVICE (or serial:pty), idle exit 3 s
 controller() {
-    rm -f $T/ctl.out
+    : > $T/ctl.out
     timeout 60 $C "serial:$1" 3 > $T/ctl.out 2>&1 &
     CTL=$!; pids="$pids $CTL"
 }

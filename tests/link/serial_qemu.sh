@@ -74,7 +74,8 @@ awk '/^### A controller on a microcontroller/ { s = 1 } s && /^```c$/ { c = 1; n
 # shellcheck disable=SC2046 # the flag lists are meant to split
 if [ -s $T/doc_fw.c ] && $(make -s print-TARGET_CC_$t) $(make -s print-CSTD) -O2 -Iports \
     $(make -s print-TARGET_CFLAGS_$t) $T/doc_fw.c ports/common/linkclient.c \
-    ports/common/linkframe.c ports/common/link_wire.c ports/cortex-m/uart.c \
+    ports/common/linkframe.c ports/common/link_wire.c ports/common/link_hmac.c \
+    ports/cortex-m/uart.c \
     $(make -s print-TARGET_PORT_SRCS_$t) $(make -s print-TARGET_LDFLAGS_$t) -o $T/doc_fw.elf \
     > $T/doc_fw.log 2>&1; then
     ok; controller $T/doc_fw.elf "the firmware of docs/link.md"

@@ -94,9 +94,10 @@ run() { # OUT SPEC: pi_link in lock-step over SPEC
     fi
     echo
     echo "== what each line allows (frame sizes: docs/link.md; 8N1: 10 bits a byte)"
-    awk 'BEGIN {
+    hdr=$(sed -n 's/^#define LINK_HEADER \([0-9]*\).*/\1/p' ports/common/link_wire.h)
+    awk -v hdr="$hdr" 'BEGIN {
         nexp = 2; nimp = 1
-        q = 40 + 8 * nexp + 4; a = 40 + 8 * nimp + 4
+        q = hdr + 8 * nexp + 4; a = hdr + 8 * nimp + 4
         fq = q + 1 + int((q + 1) / 254) + 1 + 2; fa = a + 1 + int((a + 1) / 254) + 1 + 2
         printf "values per exchange: %d out, %d back; bytes: datagrams %d + %d, on the line %d + %d = %d\n", nexp, nimp, q, a, fq, fa, fq + fa
         printf "| baud | line time of one exchange [ms] | highest rate lock-step [Hz] | highest rate real time [Hz] |\n|---:|---:|---:|---:|\n"

@@ -60,6 +60,8 @@ int app_main(void)
     double integral = 0;
     for (;;) {
         if (linkclient_poll(&c)) {
+            if (c.new_run) /* the plant started a run: the controller starts afresh */
+                integral = 0;
             double e = c.req.v[0] - c.req.v[1];
             double u = KP * e + integral;
             integral = integral + KI * TS * e;

@@ -1,63 +1,69 @@
-/* link.c - the POSIX controller link (docs/link.md): a connected UDP socket (IPv4 or IPv6)
- * to the controller, a receiver thread that decodes and sorts every datagram into a
- * one-slot mailbox or a counter, and the exchange the runner calls at every tick:
+/* link.c - the POSIX controller link (docs/link.md): a transport to the controller (UDP,
+ * link_udp.c, or a serial line, link_serial.c), a receiver thread that checks every datagram against the request it claims
+ * to answer and sorts it into a one-slot mailbox or a counter, and the exchange the
+ * runner calls at every tick:
  *   lock-step (simulated clock): at each exchange tick send the exports and wait (at most
- *     the timeout) for the answer to this very packet, then apply it at this tick;
+ *     the timeout) for the answer to this very request, then apply it at this tick;
  *     deterministic, for CI;
  *   soft real time (--realtime): never wait. An answer is applied at the first tick after
- *     it arrived; an exchange tick whose previous packet got no answer counts it missing
- *     and applies each import's policy (hold, default, stop).
- * Every applied vector goes to the replay log with its tick (mrlog.c), so a replay
- * reproduces the live run bit for bit whatever the network did. The transport is UDP, or
- * a serial line carrying the same datagrams in frames (serial.c, `serial:DEV:BAUD`). */
+ *     it arrived; an exchange tick whose previous request got no answer, or that cannot
+ *     take the mailbox, counts it missing and applies each import's policy.
+ * An answer is taken only if it repeats its request's sequence number, tick and this
+ * run's nonce (and carries a valid tag in the authenticated mode). Every applied vector
+ * goes to the replay log with its tick (mrlog.c), so a replay reproduces the live run bit
+ * for bit whatever the network did. */
 #define _POSIX_C_SOURCE 200809L
 #include "link.h"
 
 #include <errno.h>
-#include <netdb.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <string.h>
-#include <sys/socket.h>
-#include <sys/time.h>
 #include <time.h>
 #include <unistd.h>
 
-#include "common/link_wire.h"
 #include "mrlog.h"
-#include "serial.h"
 
 #define LINK_RECV_POLL_MS 50   /* the receiver thread checks for shutdown this often */
 #define LINK_RTT_FINE 4096     /* round-trip histogram: 1 us bins up to 4.096 ms, */
 #define LINK_RTT_STEP 64       /* then 64 us bins (a serial line's 10 ms round trips) */
 #define LINK_RTT_BINS (LINK_RTT_FINE + 4096) /* up to 266 ms, then one */
-#define LINK_TRIES 10          /* lock-step on a serial line: a request is sent again every
-                                  timeout / TRIES (UDP: once; docs/link.md, "Lost frames") */
-#define LINK_SEND_WAIT_MS 100  /* serial: the longest wait for the device to take a frame */
+#define LINK_WINDOW 64         /* requests remembered (tick, answered) for the checks */
+#define LINK_TRIES 10          /* lock-step over a transport that resends: every timeout/10 */
+
+static const link_transport *const transports[] = {&link_udp, &link_serial, NULL};
+
+/* what the plant remembers of a request it sent */
+typedef struct sent_req {
+    uint32_t seq;
+    uint64_t tick;
+    int answered;              /* an answer was boxed or applied (a further one is dup) */
+} sent_req;
 
 static struct {
-    int fd, realtime;
-    int serial;                /* the transport: 0 UDP, 1 a serial line (serial.c) */
-    double timeout_s;
+    const link_transport *tr;
+    link_opts o;
     const rt_scene *sc;
     mrl_writer *rec;
     pthread_t thread;
-    int running;
+    int running, test_busy;
     pthread_mutex_t mu;
     pthread_cond_t cv;
     /* under mu */
-    uint32_t waiting;          /* seq of the packet whose answer is awaited (0: none) */
-    uint32_t answered;         /* last seq answered (applied or in the mailbox) */
+    uint32_t last;             /* the newest seq sent */
+    uint32_t waiting;          /* seq of the request whose answer is awaited (0: none) */
     int full;                  /* the mailbox holds the answer to `waiting` */
     link_packet box;
+    sent_req win[LINK_WINDOW]; /* by seq % LINK_WINDOW */
     link_counts n;
     struct timespec sent_at;   /* when `waiting` was sent */
     uint32_t rtt_hist[LINK_RTT_BINS + 1];
     double rtt_max;            /* [us] */
     /* main thread only */
-    uint32_t seq;
-    uint8_t out[LINK_MAX_PACKET]; /* the last request, for sending it again */
-    size_t out_len;
+    uint32_t outstanding;      /* the request sent and neither answered nor given up */
     real_t cur[LINK_MAX_VALUES];
+    uint8_t out[LINK_MAX_PACKET]; /* the last request as sent, for sending it again */
+    size_t out_len;
 } L;
 
 static double since_us(const struct timespec *t0)
@@ -65,6 +71,11 @@ static double since_us(const struct timespec *t0)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return 1e6 * (double)(t.tv_sec - t0->tv_sec) + 1e-3 * (double)(t.tv_nsec - t0->tv_nsec);
+}
+
+static void count_bad(link_wire_error e)
+{
+    L.n.bad++, L.n.bad_kind[e]++;
 }
 
 static int rtt_bin(double us)
@@ -78,7 +89,30 @@ static int rtt_bin(double us)
 /* the middle of bin i [us] */
 static double rtt_mid(int i)
 {
-    return i < LINK_RTT_FINE ? i + 0.5 : LINK_RTT_FINE + (i - LINK_RTT_FINE + 0.5) * LINK_RTT_STEP;
+    return i < LINK_RTT_FINE ? i + 0.5
+                             : LINK_RTT_FINE + (i - LINK_RTT_FINE + 0.5) * LINK_RTT_STEP;
+}
+
+/* a checked answer against the request it names (under mu): boxed, or counted */
+static void sort(const link_packet *p)
+{
+    sent_req *r = &L.win[p->seq % LINK_WINDOW];
+    int known = r->seq == p->seq && p->seq != 0;
+    if (p->seq == 0 || p->seq > L.last)
+        count_bad(LINK_E_SEQ);             /* a request never sent */
+    else if (known && p->tick != r->tick)
+        count_bad(LINK_E_TICK);            /* not its request's tick */
+    else if (known && r->answered)
+        L.n.dup++;                         /* a second answer */
+    else if (p->seq != L.waiting)
+        L.n.late++;                        /* after its deadline: given up on */
+    else {
+        L.box = *p, L.full = 1, r->answered = 1;
+        double us = since_us(&L.sent_at); /* the round trip, whenever it is applied */
+        L.rtt_hist[rtt_bin(us)]++;
+        L.rtt_max = us > L.rtt_max ? us : L.rtt_max;
+        pthread_cond_signal(&L.cv);
+    }
 }
 
 /* the receiver: every datagram is either the awaited answer, or counted */
@@ -86,31 +120,14 @@ static void receive(const uint8_t *buf, size_t len)
 {
     link_packet p;
     const rt_link *lk = L.sc->link;
-    link_wire_error e = link_decode(buf, len, LINK_TYPE_IMPORTS, L.sc->name, lk->id, lk->nimp, &p);
+    link_expect x = {.type = LINK_TYPE_IMPORTS, .name = L.sc->name, .id = lk->id,
+                     .n = lk->nimp, .check_run = 1, .run = L.o.run, .key = L.o.key};
+    link_wire_error e = link_decode(buf, len, &x, &p);
     pthread_mutex_lock(&L.mu);
-    if (e != LINK_OK) {
-        L.n.bad++, L.n.bad_kind[e]++;
-    } else if (p.seq == L.answered || (p.seq == L.waiting && L.full)) {
-        L.n.dup++;
-    } else if (p.seq != L.waiting || p.seq == 0) {
-        if (p.seq < L.waiting) /* an answer to a packet given up on */
-            L.n.late++;
-        else
-            L.n.bad++, L.n.bad_kind[LINK_E_SEQ]++; /* a packet never sent */
-    } else {
-        L.box = p, L.full = 1;
-        double us = since_us(&L.sent_at); /* the round trip, whenever it is applied */
-        L.rtt_hist[rtt_bin(us)]++;
-        L.rtt_max = us > L.rtt_max ? us : L.rtt_max;
-        pthread_cond_signal(&L.cv);
-    }
-    pthread_mutex_unlock(&L.mu);
-}
-
-static void broken_frame(void)
-{
-    pthread_mutex_lock(&L.mu);
-    L.n.bad++, L.n.bad_kind[LINK_E_FRAME]++;
+    if (e != LINK_OK)
+        count_bad(e);
+    else
+        sort(&p);
     pthread_mutex_unlock(&L.mu);
 }
 
@@ -119,76 +136,84 @@ static void *receiver(void *arg)
     static uint8_t buf[LINK_MAX_PACKET + 1]; /* one byte more: an oversized datagram shows */
     (void)arg;
     while (__atomic_load_n(&L.running, __ATOMIC_ACQUIRE)) {
-        int fault = 0;
-        ssize_t r = L.serial ? serial_recv(L.fd, buf, sizeof buf, LINK_RECV_POLL_MS, &fault)
-                             : recv(L.fd, buf, sizeof buf, 0);
-        if (r >= 0)
+        long r = L.tr->recv(buf, sizeof buf, LINK_RECV_POLL_MS);
+        if (r > 0) {
             receive(buf, (size_t)r);
-        else if (r == -2) /* a broken frame: counted like a bad datagram */
-            broken_frame();
-        else if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR &&
-                 errno != ECONNREFUSED)
+        } else if (r == LINK_RECV_BROKEN) {
+            pthread_mutex_lock(&L.mu);
+            count_bad(LINK_E_FRAME);
+            pthread_mutex_unlock(&L.mu);
+        } else if (r < 0) {
             break;
+        }
     }
     return NULL;
 }
 
-static int parse_spec(const char *spec, char *host, size_t nh, char *port, size_t np)
+static const link_transport *transport_of(const char *spec)
 {
-    if (strncmp(spec, "udp:", 4) != 0)
+    for (int i = 0; transports[i]; i++)
+        if (strncmp(spec, transports[i]->prefix, strlen(transports[i]->prefix)) == 0)
+            return transports[i];
+    return NULL;
+}
+
+int link_spec_check(const char *spec, char *err, size_t n)
+{
+    if (strcmp(spec, "none") == 0)
+        return 0;
+    const link_transport *t = transport_of(spec);
+    if (!t) {
+        int k = snprintf(err, n, "--link expects");
+        for (int i = 0; transports[i] && k >= 0 && (size_t)k < n; i++)
+            k += snprintf(err + k, n - (size_t)k, " %s or", transports[i]->usage);
+        if (k >= 0 && (size_t)k < n)
+            snprintf(err + k, n - (size_t)k, " none, got '%s'", spec);
         return -1;
-    const char *h = spec + 4, *colon = strrchr(h, ':');
-    if (!colon || colon == h || !colon[1])
+    }
+    return t->check(spec, err, n);
+}
+
+uint64_t link_nonce(void)
+{
+    uint64_t v = 0;
+    int fd = open("/dev/urandom", O_RDONLY);
+    if (fd >= 0) {
+        if (read(fd, &v, sizeof v) != (ssize_t)sizeof v)
+            v = 0;
+        close(fd);
+    }
+    if (v == 0) { /* no entropy device: the clock and the process, still once per run */
+        struct timespec t;
+        clock_gettime(CLOCK_REALTIME, &t);
+        v = ((uint64_t)t.tv_sec * 1000000007u) ^ (uint64_t)t.tv_nsec ^
+            ((uint64_t)getpid() << 40);
+    }
+    return v ? v : 1;
+}
+
+int link_key_read(const char *path, link_key *key, char *err, size_t n)
+{
+    uint8_t b[LINK_MAX_KEY + 2];
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, n, "--link-key %s: %s", path, strerror(errno));
         return -1;
-    size_t hl = (size_t)(colon - h);
-    if (h[0] == '[' && hl >= 2 && h[hl - 1] == ']') /* [::1]:port */
-        h++, hl -= 2;
-    if (hl >= nh || strlen(colon + 1) >= np)
+    }
+    size_t got = fread(b, 1, sizeof b, f);
+    fclose(f);
+    if (got > 0 && b[got - 1] == '\n')
+        got--;
+    if (got == 0 || got > LINK_MAX_KEY) {
+        snprintf(err, n, "--link-key %s: the key must be 1 to %d bytes", path, LINK_MAX_KEY);
         return -1;
-    memcpy(host, h, hl), host[hl] = 0;
-    strcpy(port, colon + 1);
+    }
+    memcpy(key->k, b, got), key->len = got;
     return 0;
 }
 
-/* a connected UDP socket with a receive timeout (the receiver checks for shutdown) */
-static int open_udp(const char *spec, char *err, size_t n)
-{
-    char host[256], port[32];
-    struct addrinfo hints = {.ai_socktype = SOCK_DGRAM}, *ai = NULL;
-    if (parse_spec(spec, host, sizeof host, port, sizeof port) != 0) {
-        snprintf(err, n, "--link expects udp:HOST:PORT, serial:DEVICE[:BAUD] or none, got '%s'",
-                 spec);
-        return -1;
-    }
-    int g = getaddrinfo(host, port, &hints, &ai);
-    if (g != 0) {
-        snprintf(err, n, "--link %s: %s", spec, gai_strerror(g));
-        return -1;
-    }
-    L.fd = socket(ai->ai_family, SOCK_DGRAM, 0);
-    if (L.fd < 0 || connect(L.fd, ai->ai_addr, ai->ai_addrlen) != 0) {
-        snprintf(err, n, "--link %s: %s", spec, strerror(errno));
-        freeaddrinfo(ai);
-        return -1;
-    }
-    freeaddrinfo(ai);
-    struct timeval tv = {0, LINK_RECV_POLL_MS * 1000};
-    setsockopt(L.fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    return 0;
-}
-
-/* a serial line (the receiver polls it) */
-static int open_serial(const char *spec, char *err, size_t n)
-{
-    char peer[64], why[400];
-    L.fd = serial_open(spec, peer, sizeof peer, why, sizeof why);
-    if (L.fd < 0)
-        snprintf(err, n, "--link %s", why);
-    return L.fd < 0 ? -1 : 0;
-}
-
-int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout_s,
-              mrl_writer *rec, char *err, size_t n)
+int link_open(const char *spec, const rt_scene *sc, const link_opts *o, mrl_writer *rec,
+              char *err, size_t n)
 {
     if (!sc->link) {
         snprintf(err, n, "scene %s has no link (export/import statements)", sc->name);
@@ -198,17 +223,20 @@ int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout
         snprintf(err, n, "the link carries more than %d values one way", LINK_MAX_VALUES);
         return -1;
     }
-    L.serial = strncmp(spec, SERIAL_PREFIX, strlen(SERIAL_PREFIX)) == 0;
-    if ((L.serial ? open_serial : open_udp)(spec, err, n) != 0)
+    if (link_spec_check(spec, err, n) != 0)
         return -1;
-    L.sc = sc, L.realtime = realtime, L.timeout_s = timeout_s, L.rec = rec;
-    L.seq = 0, L.waiting = L.answered = 0, L.full = 0;
-    memset(&L.n, 0, sizeof L.n);
-    memset(L.rtt_hist, 0, sizeof L.rtt_hist);
-    L.rtt_max = 0;
+    memset(&L, 0, sizeof L);
+    L.tr = transport_of(spec);
+    if (L.tr->open(spec, err, n) != 0)
+        return -1;
+    L.sc = sc, L.o = *o, L.rec = rec;
     for (uint16_t i = 0; i < sc->link->nimp; i++)
         L.cur[i] = sc->link->def[i];
-    pthread_mutex_init(&L.mu, NULL);
+    /* priority inheritance: the real-time tick never waits behind a preempted receiver */
+    pthread_mutexattr_t ma;
+    pthread_mutexattr_init(&ma);
+    pthread_mutexattr_setprotocol(&ma, PTHREAD_PRIO_INHERIT);
+    pthread_mutex_init(&L.mu, &ma);
     pthread_condattr_t ca;
     pthread_condattr_init(&ca);
     pthread_condattr_setclock(&ca, CLOCK_MONOTONIC);
@@ -216,37 +244,34 @@ int link_open(const char *spec, const rt_scene *sc, int realtime, double timeout
     L.running = 1;
     if (pthread_create(&L.thread, NULL, receiver, NULL) != 0) {
         snprintf(err, n, "--link: cannot start the receiver thread");
-        close(L.fd);
+        L.tr->close();
         return -1;
     }
     return 0;
 }
 
-/* one datagram on the transport; 1 if it went out whole */
-static int transmit(const uint8_t *buf, size_t len)
-{
-    /* real time never waits for the device: a frame it cannot take is not sent whole
-       (not counted as sent; the next frame's opening zero resynchronises the receiver) */
-    if (L.serial)
-        return serial_send(L.fd, buf, len, L.realtime ? 0 : LINK_SEND_WAIT_MS) == (ssize_t)len;
-    return send(L.fd, buf, len, 0) == (ssize_t)len;
-}
-
+/* sends the exports as the next request; an answer still boxed for the previous one
+   came after its deadline (the tick gave it up without reading it): late */
 static void send_exports(const rt_scene *sc, const rt_sim *sim)
 {
     link_packet p = {.type = LINK_TYPE_EXPORTS, .n = sc->link->nexp, .id = sc->link->id,
-                     .seq = ++L.seq, .tick = sim->state.tick};
+                     .tick = sim->state.tick, .run = L.o.run};
     uint8_t buf[LINK_MAX_PACKET];
     strncpy(p.name, sc->name, LINK_NAME_LEN);
     for (uint16_t i = 0; i < p.n; i++)
         p.v[i] = (double)rt_link_export(sc, sim, i);
-    size_t len = link_encode(&p, buf, sizeof buf);
     pthread_mutex_lock(&L.mu);
+    p.seq = ++L.last;
+    if (L.full)
+        L.n.late++;
+    L.win[p.seq % LINK_WINDOW] = (sent_req){.seq = p.seq, .tick = p.tick};
     L.waiting = p.seq, L.full = 0;
     clock_gettime(CLOCK_MONOTONIC, &L.sent_at);
     pthread_mutex_unlock(&L.mu);
+    L.outstanding = p.seq;
+    size_t len = link_encode(&p, L.o.key, buf, sizeof buf);
     memcpy(L.out, buf, len), L.out_len = len;
-    if (transmit(L.out, L.out_len))
+    if (len && L.tr->send(buf, len) == 0)
         L.n.sent++;
 }
 
@@ -264,16 +289,17 @@ static int take(void)
         return 0;
     for (uint16_t i = 0; i < L.box.n; i++)
         L.cur[i] = (real_t)L.box.v[i];
-    L.answered = L.waiting, L.full = 0, L.waiting = 0;
+    L.full = 0, L.waiting = 0, L.outstanding = 0;
     L.n.applied++;
     return 1;
 }
 
-/* no answer in time: each import's policy; 1 if one of them stops the run */
+/* no answer in time: each import's policy; 1 if one of them stops the run. The caller
+   has told the receiver (waiting = 0, or the next request) that a later answer is late. */
 static int missing(const rt_scene *sc)
 {
     int stop = 0;
-    L.n.missing++;
+    L.n.missing++, L.outstanding = 0;
     for (uint16_t i = 0; i < sc->link->nimp; i++) {
         if (sc->link->policy[i] == RT_LINK_DEFAULT)
             L.cur[i] = sc->link->def[i];
@@ -290,25 +316,24 @@ static void add_s(struct timespec *t, double s)
         t->tv_sec++, t->tv_nsec -= 1000000000L;
 }
 
-/* waits for the answer; on a serial line it sends the request again every timeout /
-   LINK_TRIES (a frame lost to line noise; the controller answers a repeat from its copy,
-   docs/link.md "Lost frames"). Over UDP the request goes once: a UDP controller need not
-   recognise a repeat (the Python example does not, and would step its integrator twice). */
+/* waits for the answer; over a transport that resends (a serial line) the request goes
+   again every timeout / LINK_TRIES: a frame lost to line noise costs a retry, not the
+   exchange (docs/link.md, "Lost frames"); the controller answers a repeat from its copy */
 static int lockstep(const rt_scene *sc, rt_sim *sim)
 {
-    struct timespec until;
-    int tries = L.serial ? LINK_TRIES : 1;
-    clock_gettime(CLOCK_MONOTONIC, &until);
+    struct timespec start;
+    int tries = L.tr->resend ? LINK_TRIES : 1;
+    clock_gettime(CLOCK_MONOTONIC, &start);
     send_exports(sc, sim);
     pthread_mutex_lock(&L.mu);
     for (int k = 1; k <= tries && !L.full; k++) {
-        struct timespec try_until = until;
-        add_s(&try_until, L.timeout_s * k / tries);
-        while (!L.full && pthread_cond_timedwait(&L.cv, &L.mu, &try_until) != ETIMEDOUT)
+        struct timespec until = start;
+        add_s(&until, L.o.timeout_s * k / tries);
+        while (!L.full && pthread_cond_timedwait(&L.cv, &L.mu, &until) != ETIMEDOUT)
             ;
         if (!L.full && k < tries) {
-            pthread_mutex_unlock(&L.mu); /* the receiver may deliver meanwhile */
-            L.n.resent += (uint64_t)transmit(L.out, L.out_len);
+            pthread_mutex_unlock(&L.mu); /* the receiver may box the answer meanwhile */
+            L.n.resent += (uint64_t)(L.tr->send(L.out, L.out_len) == 0);
             pthread_mutex_lock(&L.mu);
         }
     }
@@ -322,17 +347,20 @@ static int lockstep(const rt_scene *sc, rt_sim *sim)
     return stop;
 }
 
-/* soft real time: never blocks (trylock; a busy mailbox is looked at next tick) */
+/* soft real time: the mailbox is looked at with a trylock, never waited for. On an
+   exchange tick the request still outstanding (unanswered, or its answer out of reach
+   behind a busy mailbox) is missing; send_exports then retires it (a boxed answer is
+   late) and sends the next. */
 static int realtime(const rt_scene *sc, rt_sim *sim)
 {
     int got = 0, stop = 0, due = rt_link_due(sc, sim);
-    if (pthread_mutex_trylock(&L.mu) == 0) {
+    if (!L.test_busy && pthread_mutex_trylock(&L.mu) == 0) {
         got = take();
-        if (due && !got && L.waiting != 0)
-            L.waiting = 0, stop = -1; /* the previous packet went unanswered */
+        if (due && !got)
+            L.waiting = 0;
         pthread_mutex_unlock(&L.mu);
     }
-    if (stop < 0)
+    if (due && !got && L.outstanding != 0)
         stop = missing(sc), got = 1;
     if (got)
         apply(sc, sim);
@@ -344,9 +372,14 @@ static int realtime(const rt_scene *sc, rt_sim *sim)
 int link_exchange(void *ctx, const rt_scene *sc, rt_sim *sim)
 {
     (void)ctx;
-    if (L.realtime)
+    if (L.o.realtime)
         return realtime(sc, sim);
     return rt_link_due(sc, sim) ? lockstep(sc, sim) : 0;
+}
+
+void link_test_busy(int busy)
+{
+    L.test_busy = busy;
 }
 
 static double percentile(double q)
@@ -364,10 +397,15 @@ void link_close(link_counts *out)
 {
     __atomic_store_n(&L.running, 0, __ATOMIC_RELEASE);
     pthread_join(L.thread, NULL);
-    close(L.fd);
+    L.tr->close();
     L.n.rtt_us[0] = percentile(0.5), L.n.rtt_us[1] = percentile(0.99);
     L.n.rtt_us[2] = L.rtt_max;
     *out = L.n;
+}
+
+int link_faulty(const link_counts *c)
+{
+    return c->bad > 0 || c->missing > 0;
 }
 
 void link_print(FILE *f, const link_counts *c)

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "fingerprint.h"
 #include "info.h"
 #include "link.h"
 #include "models.h"
@@ -165,7 +166,7 @@ typedef struct run_args {
     unsigned every;
     const char *sets[MAX_SETS_ARGS];
     int nsets;
-    const char *link, *record;
+    const char *link, *record, *link_key;
     double link_timeout;
     study_args study; /* per-set overrides */
     int overrun;      /* rtloop_policy */
@@ -214,9 +215,16 @@ static int opt_realtime(void *ctx, const char *v)
 
 static int opt_link(void *ctx, const char *v)
 {
-    if (strcmp(v, "none") != 0 && strncmp(v, "udp:", 4) != 0 && strncmp(v, "serial:", 7) != 0)
-        return cli_fail("--link expects udp:HOST:PORT, serial:DEVICE[:BAUD] or none, got", v);
+    char err[512];
+    if (link_spec_check(v, err, sizeof err) != 0)
+        return cli_fail(err, NULL);
     ((run_args *)ctx)->link = v;
+    return CLI_OK;
+}
+
+static int opt_link_key(void *ctx, const char *v)
+{
+    ((run_args *)ctx)->link_key = v;
     return CLI_OK;
 }
 
@@ -278,9 +286,11 @@ static const cli_opt run_opts[] = {
     {"link", "udp:HOST:PORT|serial:DEV[:BAUD]|none", "exchange the scene's export/import "
      "signals with a controller over UDP or a serial line (docs/link.md); lock-step, or soft "
      "real time with --realtime", opt_link},
-    {"link-timeout", "S", "lock-step: wait at most S seconds per exchange, sending the "
-     "request again every S/10 (default 1)",
+    {"link-timeout", "S", "lock-step: wait at most S seconds per exchange (a serial line: "
+     "sending the request again every S/10; default 1)",
      opt_link_timeout},
+    {"link-key", "FILE", "authenticate every datagram with HMAC-SHA-256 under the shared "
+     "key in FILE (1 to 64 bytes; docs/link.md)", opt_link_key},
     {"record", "FILE", "write every imported vector and its tick to a replay log "
      "(modrt replay FILE)", opt_record},
     {"method", "SET=NAME", "integrate set SET by method NAME instead of the scene's; repeatable "
@@ -295,61 +305,88 @@ static const cli_opt run_opts[] = {
     {NULL, NULL, NULL, NULL},
 };
 
-/* the replay log's header of this run */
-static int record_header(const run_args *a, const char *scene, const rt_scene *sc,
-                         mrl_header *h)
+/* the options that change the numbers, as the log lists them */
+static int record_options(const run_args *a, mrl_header *h)
 {
-    memset(h, 0, sizeof *h);
-    if (strlen(scene) > MRL_SCENE_LEN || a->nsets > MRL_MAX_SETS)
-        return cli_fail("--record: scene path or --set list too long for the log", scene);
-    strcpy(h->scene, scene);
-    h->id = sc->link ? sc->link->id : 0, h->nimp = sc->link ? sc->link->nimp : 0;
-    h->real_size = (uint8_t)sizeof(real_t), h->realtime = (uint8_t)a->realtime;
-    h->t_end = (double)sc->t_end, h->every = a->every, h->nsets = (uint16_t)a->nsets;
-    for (int i = 0; i < a->nsets; i++) {
-        if (strlen(a->sets[i]) > MRL_SET_LEN)
-            return cli_fail("--record: --set option too long for the log", a->sets[i]);
-        strcpy(h->sets[i], a->sets[i]);
+    char b[MRL_SET_LEN + 2];
+    if (a->nsets + a->study.n > MRL_MAX_SETS)
+        return cli_fail("--record: too many --set and per-set options for the log", NULL);
+    for (int i = 0; i < a->nsets + a->study.n; i++) {
+        int s = i - a->nsets;
+        int k = i < a->nsets ? snprintf(b, sizeof b, "%s", a->sets[i])
+                             : snprintf(b, sizeof b, "--%s %s", a->study.opt[s], a->study.val[s]);
+        if (k < 0 || k > MRL_SET_LEN)
+            return cli_fail("--record: option too long for the log", b);
+        strcpy(h->sets[h->nsets++], b);
     }
     return 0;
+}
+
+/* the replay log's header of this run */
+static int record_header(const run_args *a, const char *scene, const rt_scene *sc,
+                         uint64_t run, mrl_header *h)
+{
+    char err[600];
+    memset(h, 0, sizeof *h);
+    if (mrl_scene_name(scene, h->scene, sizeof h->scene, err, sizeof err) != 0)
+        return cli_fail("--record", err);
+    h->id = sc->link ? sc->link->id : 0, h->nimp = sc->link ? sc->link->nimp : 0;
+    h->real_size = (uint8_t)sizeof(real_t), h->realtime = (uint8_t)a->realtime;
+    h->t_end = (double)sc->t_end, h->every = a->every;
+    h->scene_fp = fp_scene(sc), h->run = run;
+    return record_options(a, h);
 }
 
 /* the inputs of a run: the controller link (and the log it writes), or nothing */
 static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc,
                         port_run_opts *o, mrl_writer **rec)
 {
+    static link_key key;
     char err[512];
     mrl_header h;
+    int live = a->link && strcmp(a->link, "none") != 0;
+    link_opts lo = {a->realtime, a->link_timeout > 0 ? a->link_timeout : 1,
+                    live ? link_nonce() : 0, NULL};
     *rec = NULL;
+    if (a->link_key && live) {
+        if (link_key_read(a->link_key, &key, err, sizeof err) != 0)
+            return cli_fail(err, NULL);
+        lo.key = &key;
+    }
     if (a->record) {
-        if (record_header(a, scene, sc, &h))
+        if (record_header(a, scene, sc, lo.run, &h))
             return CLI_USAGE;
         if (!(*rec = mrl_create(a->record, &h, err, sizeof err)))
             return cli_fail("--record", err);
     }
-    if (!a->link || strcmp(a->link, "none") == 0)
+    if (!live)
         return CLI_OK;
-    if (link_open(a->link, sc, a->realtime, a->link_timeout > 0 ? a->link_timeout : 1, *rec,
-                  err, sizeof err) != 0)
+    if (link_open(a->link, sc, &lo, *rec, err, sizeof err) != 0)
         return cli_fail("--link", err);
     o->exchange = link_exchange;
     return CLI_OK;
 }
 
-/* closes the link and the log; prints the link's counts; 1 if they show a fault */
-static int stop_inputs(const run_args *a, FILE *f, mrl_writer *rec)
+/* closes the link before the summary, so its faults set the status the summary shows
+   and the exit code follows: RT_E_LINK_FAULT (failed) */
+static int stop_link(const run_args *a, rt_sim *s, link_counts *c)
+{
+    if (!a->link || strcmp(a->link, "none") == 0)
+        return 0;
+    link_close(c);
+    if (link_faulty(c) &&
+        rt_status_severity(RT_E_LINK_FAULT) > rt_status_severity(s->stats.status))
+        s->stats.status = RT_E_LINK_FAULT;
+    return 1;
+}
+
+/* finishes the log; 1 if it could not be written */
+static int stop_record(mrl_writer *rec)
 {
     char err[512];
-    int bad = 0;
-    if (a->link && strcmp(a->link, "none") != 0) {
-        link_counts c;
-        link_close(&c);
-        link_print(f, &c);
-        bad = c.bad > 0 || c.missing > 0;
-    }
     if (rec && mrl_finish(rec, err, sizeof err) != 0)
-        bad = cli_fail("--record", err) != 0;
-    return bad;
+        return cli_fail("--record", err) != 0;
+    return 0;
 }
 
 static int cmd_run(void *ctx, int npos, char **pos)
@@ -408,11 +445,14 @@ static int cmd_run(void *ctx, int npos, char **pos)
     if (rt_log && fclose(rt_log) != 0)
         return cli_fail("error writing the --rt-log file", a->rt_log);
     FILE *out = to_stdout ? stderr : stdout;
+    link_counts lc;
+    int linked = stop_link(a, &sim, &lc);
     summary(out, &sc, &sim, st, r.wall_s);
     if (a->realtime)
         rtloop_print(out, (rtloop_policy)a->overrun, &r.rt);
-    int link_bad = stop_inputs(a, out, rec);
-    return link_bad ? CLI_FAULTS : exit_code(&sim);
+    if (linked)
+        link_print(out, &lc);
+    return stop_record(rec) ? CLI_FAULTS : exit_code(&sim);
 }
 
 /* ------------------------------------------------------------------ replay */
@@ -433,10 +473,56 @@ static const cli_opt replay_opts[] = {
     {NULL, NULL, NULL, NULL},
 };
 
+/* the log's per-set options ("--method main=rk4") onto the scene */
+static int replay_study(const mrl_header *h, rt_scene *sc)
+{
+    static study_args st;
+    static char names[MRL_MAX_SETS][MRL_SET_LEN + 1];
+    memset(&st, 0, sizeof st);
+    for (uint16_t i = 0; i < h->nsets; i++) {
+        char *sp = strchr(strcpy(names[i], h->sets[i]), ' ');
+        if (strncmp(names[i], "--", 2) != 0)
+            continue;
+        if (!sp)
+            return cli_fail("replay: a malformed option in the log", h->sets[i]);
+        *sp = 0;
+        if (study_add(&st, names[i] + 2, sp + 1) != CLI_OK)
+            return CLI_USAGE;
+    }
+    return study_apply(&st, sc);
+}
+
+/* the log's scene is the one recorded: its link layout and, from version 2, its
+   fingerprint (every table and parameter value, fingerprint.h) */
+static int replay_same_scene(const mrl_header *h, const rt_scene *sc, const char *path)
+{
+    char what[700];
+    uint32_t id = sc->link ? sc->link->id : 0;
+    uint16_t nimp = sc->link ? sc->link->nimp : 0;
+    if (id != h->id || nimp != h->nimp) {
+        snprintf(what, sizeof what, "link layout 0x%08x with %u imports, but scene %s has "
+                 "0x%08x with %u: another scene or another version of it",
+                 (unsigned)h->id, (unsigned)h->nimp, h->scene, (unsigned)id, (unsigned)nimp);
+        return cli_fail(path, what);
+    }
+    uint64_t fp = fp_scene(sc);
+    if (h->version >= 2 && fp != h->scene_fp) {
+        snprintf(what, sizeof what, "recorded with scene fingerprint %016llx, but scene %s "
+                 "is now %016llx: the scene changed since (a table or parameter value)",
+                 (unsigned long long)h->scene_fp, h->scene, (unsigned long long)fp);
+        return cli_fail(path, what);
+    }
+    if (h->version < 2)
+        fprintf(stderr, "modrt: warning: %s: a version %u log names its scene by name and "
+                "link layout only; a changed parameter would go unnoticed\n", path,
+                (unsigned)h->version);
+    return CLI_OK;
+}
+
 /* the scene of the log, initialised as the live run was */
 static int replay_scene(const mrl_header *h, rt_scene *sc, const char *path)
 {
-    char what[600];
+    char err[600];
     const rt_scene *base = cli_scene(h->scene);
     if (!base)
         return CLI_USAGE;
@@ -447,21 +533,22 @@ static int replay_scene(const mrl_header *h, rt_scene *sc, const char *path)
                                                   "double build"
                                                 : "was recorded by a double build; this is a "
                                                   "float build");
-    uint32_t id = sc->link ? sc->link->id : 0;
-    uint16_t nimp = sc->link ? sc->link->nimp : 0;
-    if (id != h->id || nimp != h->nimp) {
-        snprintf(what, sizeof what, "link layout 0x%08x with %u imports, but scene %s has "
-                 "0x%08x with %u: another scene or another version of it",
-                 (unsigned)h->id, (unsigned)h->nimp, h->scene, (unsigned)id, (unsigned)nimp);
-        return cli_fail(path, what);
-    }
+    if (replay_study(h, sc) != CLI_OK)
+        return CLI_USAGE;
+    int rc = replay_same_scene(h, sc, path);
+    if (rc != CLI_OK)
+        return rc;
     rt_status st = rt_init(sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
+    if (mrl_check_schedule(rt_tick_count(&sim), sc->link ? sc->link->period : 1, h->realtime,
+                           err, sizeof err) != 0)
+        return cli_fail("replay", err);
+    int nsets = 0;
     for (uint16_t i = 0; i < h->nsets; i++)
-        if (apply_set(sc, h->sets[i]))
+        if (strncmp(h->sets[i], "--", 2) != 0 && (++nsets, apply_set(sc, h->sets[i])))
             return CLI_USAGE;
-    if (h->nsets > 0)
+    if (nsets > 0)
         rt_refresh(sc, &sim);
     return CLI_OK;
 }

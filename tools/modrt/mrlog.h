@@ -12,20 +12,25 @@
 
 #include "rt.h"
 
-#define MRL_SCENE_LEN 255  /* the scene as given to run: a library name or a file path */
-#define MRL_MAX_SETS 32    /* --set overrides */
+#define MRL_SCENE_LEN 255  /* the scene: a library name or a scene file's absolute path */
+#define MRL_MAX_SETS 32    /* --set and per-set overrides */
 #define MRL_SET_LEN 127
 
 typedef struct mrl_header {
+    uint16_t version;       /* of the file read (writing: always the newest) */
     uint32_t id;            /* the link id of the scene's layout */
     uint16_t nimp;          /* values per record */
     uint8_t real_size;      /* sizeof(real_t) of the build that wrote it */
     uint8_t realtime;       /* 1: recorded in soft real time, 0: lock-step */
     double t_end;           /* the run's end time [s] */
     uint32_t every;         /* --every */
+    uint64_t scene_fp;      /* fp_scene of the scene as run (fingerprint.h); version 1: 0 */
+    uint64_t run;           /* the link's run nonce (0: no link); version 1: 0 */
     char scene[MRL_SCENE_LEN + 1];
     uint16_t nsets;
-    char sets[MRL_MAX_SETS][MRL_SET_LEN + 1]; /* --set BLOCK.PARAM=VALUE, in order */
+    /* the options that change the numbers, in order: "BLOCK.PARAM=VALUE" (--set), or
+       "--OPTION SET=VALUE" (--method, --step, --tol, --accuracy, --substeps, --newton) */
+    char sets[MRL_MAX_SETS][MRL_SET_LEN + 1];
 } mrl_header;
 
 typedef struct mrl_writer mrl_writer;
@@ -40,6 +45,14 @@ int mrl_finish(mrl_writer *w, char *err, size_t n);
 /* Opens a log and checks all of it (header, every record, the end marker): 0, or -1
    with "what at byte N" in err. Then mrl_next yields its records in order. */
 int mrl_open(const char *path, mrl_header *h, char *err, size_t n);
+/* Checks that every record of the open log is applied by a replay of a scene that ends at
+   tick `last` and exchanges every `period` ticks: no record past the end, and in a
+   lock-step log (h.realtime 0) every record on an exchange tick. 0, or -1 with the number
+   of such records and the first one's byte offset and tick in err. */
+int mrl_check_schedule(uint64_t last, uint32_t period, int realtime, char *err, size_t n);
+/* The scene argument as a log records it: a path ending in ".scn" made absolute (so the
+   log replays from any directory), a library name as it is. 0, or -1 with the reason. */
+int mrl_scene_name(const char *scene, char *out, size_t n, char *err, size_t en);
 /* The next record's tick and values (h.nimp of them); 0 at the end. */
 int mrl_next(uint64_t *tick, real_t *v);
 void mrl_close(void);

@@ -81,28 +81,46 @@ static int open_pty(char *peer, size_t nk, char *err, size_t n)
     return m; /* s is kept open for the life of the process */
 }
 
-int serial_open(const char *spec, char *peer, size_t nk, char *err, size_t n)
+/* serial:DEVICE[:BAUD] into the device and its rate; -1 with the reason */
+static int split(const char *spec, char *dev, size_t nd, speed_t *code, unsigned long *baud,
+                 char *err, size_t n)
 {
-    char dev[256];
-    unsigned long baud = SERIAL_DEFAULT_BAUD;
-    speed_t code = B115200;
+    *baud = SERIAL_DEFAULT_BAUD, *code = B115200; /* the same rate */
     if (strncmp(spec, SERIAL_PREFIX, strlen(SERIAL_PREFIX)) != 0)
         return snprintf(err, n, "expected serial:DEVICE[:BAUD], got '%s'", spec), -1;
     const char *d = spec + strlen(SERIAL_PREFIX), *colon = strrchr(d, ':');
-    if (strcmp(d, "pty") == 0)
-        return open_pty(peer, nk, err, n);
     size_t dl = strlen(d);
     if (colon) {
         char *end;
-        baud = strtoul(colon + 1, &end, 10);
-        if (colon[1] == 0 || *end != 0 || speed_of(baud, &code) != 0)
+        *baud = strtoul(colon + 1, &end, 10);
+        if (colon[1] == 0 || *end != 0 || speed_of(*baud, code) != 0)
             return snprintf(err, n, "%s: the baud rate '%s' is none the system names "
                             "(e.g. 9600, 115200, 921600)", spec, colon + 1), -1;
         dl = (size_t)(colon - d);
     }
-    if (dl == 0 || dl >= sizeof dev)
+    if (dl == 0 || dl >= nd)
         return snprintf(err, n, "expected serial:DEVICE[:BAUD], got '%s'", spec), -1;
     memcpy(dev, d, dl), dev[dl] = 0;
+    return 0;
+}
+
+int serial_check(const char *spec, char *err, size_t n)
+{
+    char dev[256];
+    speed_t code;
+    unsigned long baud;
+    return split(spec, dev, sizeof dev, &code, &baud, err, n);
+}
+
+int serial_open(const char *spec, char *peer, size_t nk, char *err, size_t n)
+{
+    char dev[256];
+    unsigned long baud;
+    speed_t code;
+    if (strcmp(spec, SERIAL_PREFIX "pty") == 0)
+        return open_pty(peer, nk, err, n);
+    if (split(spec, dev, sizeof dev, &code, &baud, err, n) != 0)
+        return -1;
     int fd = open(dev, O_RDWR | O_NOCTTY | O_NONBLOCK);
     if (fd < 0)
         return snprintf(err, n, "%s: %s", dev, strerror(errno)), -1;

@@ -17,6 +17,8 @@
    written to `peer`, nk bytes; the returned fd is its master side). Returns the fd, or -1
    with a one-line reason in err. */
 int serial_open(const char *spec, char *peer, size_t nk, char *err, size_t n);
+/* Checks the syntax and the rate of a spec without opening anything: 0, or -1. */
+int serial_check(const char *spec, char *err, size_t n);
 /* Waits at most poll_ms for input and returns the next datagram (its length; the bytes in
    buf, cap of them); -1 with errno EAGAIN when no frame ended in time, another errno on a
    read error; -2 when a broken frame ended, with *fault its linkframe_verdict. */
