@@ -28,7 +28,7 @@ static int ser_open(const char *spec, char *err, size_t n)
     char peer[64], why[400];
     fd = serial_open(spec, peer, sizeof peer, why, sizeof why);
     if (fd < 0)
-        return snprintf(err, n, "--link %s", why), -1;
+        return snprintf(err, n, "%s", why), -1;
     if (strcmp(spec, SERIAL_PREFIX "pty") == 0)
         fprintf(stderr, "link: the controller's end of the pty is %s\n", peer);
     return 0;

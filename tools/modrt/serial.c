@@ -123,9 +123,10 @@ int serial_open(const char *spec, char *peer, size_t nk, char *err, size_t n)
         return -1;
     int fd = open(dev, O_RDWR | O_NOCTTY | O_NONBLOCK);
     if (fd < 0)
-        return snprintf(err, n, "%s: %s", dev, strerror(errno)), -1;
+        return snprintf(err, n, "%s: cannot open %s: %s", spec, dev, strerror(errno)), -1;
     if (make_raw(fd, code) != 0) {
-        snprintf(err, n, "%s: not a terminal at %lu baud: %s", dev, baud, strerror(errno));
+        snprintf(err, n, "%s: %s is not a terminal that takes %lu baud: %s", spec, dev, baud,
+                 strerror(errno));
         close(fd);
         return -1;
     }
