@@ -8,7 +8,8 @@
 #     docs/link.md, extracted from the page and built as it stands;
 #  2. the plant on the board: `make image TARGET=<t> SCENE=pi_link` (the link on the
 #     UART, ports/common/image_link.c) against the C example controller in serial mode on
-#     the host: the image's hash is the host run of pi_loop's, nothing bad or missing.
+#     the host: the image's hash is the host run of pi_loop's, nothing bad or missing;
+#  3. the same image in real time: every request answered or counted missing, none bad.
 # Every QEMU and controller runs under `timeout`, talks only over its pty and is stopped
 # by this script by its PID. Generous timeouts: a loaded machine makes it slower, never
 # wrong (lock-step). Usage: sh tests/link/serial_qemu.sh TARGET (m3, m4f or m7)
@@ -99,6 +100,27 @@ echo "$line" | grep -q ' link_applied 301 link_bad 0 link_late 0 link_missing 0 
     bad "plant on $t: $line"
 counts=$(echo "$line" | sed 's/.*overruns 0//; s/ hash.*//')
 echo "serial-qemu: plant image on $t: hash $h = pi_loop;$counts"
+
+# 3. the plant image in real time (the timer paces the ticks, an answer is applied at the
+# first tick after it arrived): whatever the timing, every answer is checked and counted
+# and each request is either answered or counted missing (the last one's answer is never
+# applied); the trace depends on the timing, so no hash is compared
+sh tools/image.sh $t pi_link "" "-DRT_IMAGE_LINK_REALTIME=1" > $T/image_rt.out 2>&1 &&
+    cp build/image/$t/pi_link.elf $T/pi_link_rt.elf ||
+    bad "make image TARGET=$t SCENE=pi_link (real time): $(cat $T/image_rt.out)"
+qemu $T/pi_link_rt.elf
+timeout 300 $C "serial:$PTY:115200" 60 > $T/ctl_rt.out 2>&1 &
+CTL=$!; pids="$pids $CTL"
+wait $QEMU
+kill $CTL 2>/dev/null; wait $CTL 2>/dev/null
+line=$(grep '^rt scene pi_link' $T/qemu.out)
+num() { echo "$line" | sed -n "s/.* $1 \([0-9]*\).*/\1/p"; }
+sent=$(num link_sent) applied=$(num link_applied) missing=$(num link_missing)
+if [ "$(num ticks)" = 3000 ] && [ "$(num link_bad)" = 0 ] && [ "${sent:-0}" = 301 ] &&
+    [ "${applied:-0}" -ge 1 ] && [ $((applied + missing)) -ge 300 ] &&
+    [ $((applied + missing)) -le 301 ]; then ok
+else bad "plant on $t in real time: $(cat $T/qemu.out)"; fi
+echo "serial-qemu: plant image on $t in real time: sent $sent, applied $applied, missing $missing"
 
 cleanup
 echo "serial-qemu: $pass passed, $fail failed"
