@@ -5,7 +5,8 @@
 #     with the client library ports/common/linkclient.c) closes pi_link run by
 #     `modrt run --link serial:PTY` in lock-step: trace and hash equal pi_loop's, and the
 #     recorded log replays to the same hash; so does the firmware main loop printed in
-#     docs/link.md, extracted from the page and built as it stands;
+#     docs/link.md, extracted from the page and built as it stands; and the firmware
+#     behind a noisy line (garbage, a lost byte, a flipped bit, each way) keeps that hash;
 #  2. the plant on the board: `make image TARGET=<t> SCENE=pi_link` (the link on the
 #     UART, ports/common/image_link.c) against the C example controller in serial mode on
 #     the host: the image's hash is the host run of pi_loop's, nothing bad or missing;
@@ -68,6 +69,27 @@ controller() {
     echo "serial-qemu: $2 on $t: hash $h = pi_loop = replay; $(grep link_rtt_us $T/fw.out)"
 }
 controller build/$t/pi_firmware.elf "controller firmware"
+
+# 1a. the firmware behind a noisy line (tests/link/serial_noise.py between modrt and the
+# board's pty): the plant counts the four spoiling faults of the answers, the firmware's
+# client library drops the requests' and answers the repeats from its copy; pi_loop's hash
+qemu build/$t/pi_firmware.elf
+: > $T/noise.out
+timeout 300 python3 tests/link/serial_noise.py --idle 5 --controller-dev "$PTY" \
+    --faults 'req:20=garbage,40=drop,60=flip,80=inside,100=delim;ans:30=garbage,50=drop,70=flip,90=inside,110=delim' \
+    > $T/noise.out 2>&1 &
+RELAY=$!; pids="$pids $RELAY"
+i=0 plant=
+while [ $i -lt 100 ] && [ -z "$plant" ]; do
+    plant=$(sed -n 's/^plant //p' $T/noise.out); sleep 0.1; i=$((i + 1))
+done
+$M run pi_link --link "serial:$plant" --link-timeout 10 > $T/noisy.out; rc=$?
+kill $RELAY $QEMU 2>/dev/null; wait $RELAY $QEMU 2>/dev/null
+[ $rc -eq 1 ] && [ "$(field hash $T/noisy.out)" = "$loop_hash" ] &&
+    [ "$(field link_bad $T/noisy.out)" = 4 ] && [ "$(field link_missing $T/noisy.out)" = 0 ] &&
+    ok || bad "firmware on $t behind a noisy line: exit $rc, $(grep '^\(hash\|link_\)' $T/noisy.out | tr '\n' ' ')"
+echo "serial-qemu: firmware on $t behind a noisy line: hash = pi_loop;" \
+    "$(grep '^link_\(bad\|resent\|dup\)' $T/noisy.out | tr '\n' ' ')"
 
 # 1b. the main loop of docs/link.md, as printed there
 awk '/^### A controller on a microcontroller/ { s = 1 } s && /^```c$/ { c = 1; next }
