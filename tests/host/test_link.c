@@ -179,7 +179,7 @@ static void write_log(const char *path, uint16_t nrec)
 {
     char err[256];
     mrl_header h = {.id = 0x1234, .nimp = 2, .real_size = sizeof(real_t), .t_end = 3,
-                    .every = 1, .nsets = 1};
+                    .every = 1, .nsets = 1, .scene_fp = 0x8877665544332211ull, .run = RUN};
     strcpy(h.scene, "pi_link");
     strcpy(h.sets[0], "Plant.K=2");
     mrl_writer *w = mrl_create(path, &h, err, sizeof err);
@@ -236,6 +236,7 @@ static void test_log(void)
     TH_CHECK(mrl_open(p, &h, err, sizeof err) == 0);
     TH_CHECK(h.id == 0x1234 && h.nimp == 2 && h.nsets == 1 && strcmp(h.sets[0], "Plant.K=2") == 0);
     TH_CHECK(strcmp(h.scene, "pi_link") == 0 && h.t_end == 3 && h.every == 1);
+    TH_CHECK(h.version == 2 && h.scene_fp == 0x8877665544332211ull && h.run == RUN);
     uint64_t tick;
     real_t v[LINK_MAX_VALUES];
     int n = 0;
@@ -399,11 +400,48 @@ static void test_fingerprint(void)
     TH_CHECK(fp_scene(&mdl_scene_pi_loop) != f0);
 }
 
+/* a version 1 log (before the fingerprint and the nonce), written byte by byte from its
+   layout (mrlog.c), is still read: its header fields and its one record */
+static void test_log_v1(void)
+{
+    uint8_t b[400] = {0};
+    const char *p = tmp_path("v1");
+    size_t hs = 32 + 256 + 4, n = 0;
+    memcpy(b, "MRTR", 4);
+    link_put_le(b + 4, 1, 2), link_put_le(b + 6, hs, 2), link_put_le(b + 8, 0xabcd, 4);
+    link_put_le(b + 12, 1, 2), b[14] = (uint8_t)sizeof(real_t);
+    link_put_le(b + 16, link_bits_of(0.5), 8), link_put_le(b + 24, 2, 4);
+    memcpy(b + 32, "pi_link", 7);
+    link_put_le(b + hs - 4, link_crc32(0, b, hs - 4), 4);
+    n = hs;
+    link_put_le(b + n, 40, 8), link_put_le(b + n + 8, link_bits_of(-0.25), 8);
+    link_put_le(b + n + 16, link_crc32(0, b + n, 16), 4);
+    n += 20;
+    memcpy(b + n, "MRTE", 4), link_put_le(b + n + 4, 1, 8);
+    link_put_le(b + n + 12, link_crc32(0, b + n, 12), 4);
+    n += 16;
+    FILE *f = fopen(p, "wb");
+    if (!TH_CHECK(f != NULL))
+        return;
+    fwrite(b, 1, n, f), fclose(f);
+    mrl_header h;
+    char err[512];
+    uint64_t tick;
+    real_t v[LINK_MAX_VALUES];
+    TH_CHECK(mrl_open(p, &h, err, sizeof err) == 0);
+    TH_CHECK(h.version == 1 && h.id == 0xabcd && h.nimp == 1 && h.t_end == 0.5 && h.every == 2);
+    TH_CHECK(h.scene_fp == 0 && h.run == 0 && strcmp(h.scene, "pi_link") == 0);
+    TH_CHECK(mrl_next(&tick, v) == 1 && tick == 40 && v[0] == (real_t)-0.25);
+    TH_CHECK(mrl_next(&tick, v) == 0);
+    mrl_close();
+}
+
 const th_test th_link_tests[] = {
     {"link_codec", test_codec},
     {"link_hmac", test_hmac},
     {"link_auth", test_auth},
     {"link_log", test_log},
+    {"link_log_v1", test_log_v1},
     {"link_apply_check", test_apply_and_check},
     {"link_snapshot", test_snapshot},
     {"link_busy_mailbox", test_busy_mailbox},

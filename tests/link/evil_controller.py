@@ -3,17 +3,21 @@
 every good answer it sends one datagram of each bad kind (bad CRC, wrong magic, version,
 an unknown flag, type, scene name, link id, value count, truncated, oversized, a tag the
 plant has no key for, another run's nonce, a sequence number never sent, a wrong tick,
-a NaN), each carrying a wrong command, then the previous answer again and the one before
+a NaN), each carrying a wrong command, and from another port of the machine an answer
+right in every field but its wrong command (it must never reach the plant's checks: the
+plant's socket takes only the --link address), then the previous answer again and the one before
 it (answered already: duplicates), and after the good answer the same again (a
 duplicate). The plant must apply only the good answers: its trace then equals pi_loop's,
 and its counters show each kind.
 --silent-after N: stop answering after N requests (the plant's timeout and policy).
---dups-only: no bad datagrams, only the good answers and the duplicates (harmless)."""
+--dups-only: no bad datagrams, only the good answers and the duplicates (harmless).
+--answer-late: only the good answers, each sent when the next request arrives: after its
+deadline by construction (lock-step: the plant sends the next request only after the
+timeout of this one; real time: only at the next exchange tick)."""
 import os
 import socket
 import struct
 import sys
-import time
 import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools", "examples"))
@@ -50,8 +54,12 @@ def bad_packets(seq, tick, run, values):
     return out
 
 
+OTHER = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)  # another port of this machine
+
+
 def main():
     dups_only = "--dups-only" in sys.argv
+    answer_late, held = "--answer-late" in sys.argv, None
     silent_after = int(sys.argv[sys.argv.index("--silent-after") + 1]) if "--silent-after" in sys.argv else -1
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     sock.bind(("127.0.0.1", 0))
@@ -71,8 +79,15 @@ def main():
             continue
         seq, tick, run, (r, m) = got
         c = law.step(r, m)
+        if answer_late:
+            if held is not None:
+                sock.sendto(held, peer)
+            held = pc.encode(seq, tick, run, [c])
+            continue
         for b in [] if dups_only else bad_packets(seq, tick, run, [c]):
             sock.sendto(b, peer)
+        if not dups_only:  # a right-looking answer with a wrong value from another port:
+            OTHER.sendto(pc.encode(seq, tick, run, [c + 100.0]), peer)  # the kernel drops it
         if last is not None:
             sock.sendto(last, peer)                  # the previous answer again: dup
         if older is not None:
