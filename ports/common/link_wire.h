@@ -47,7 +47,7 @@
    finds seq and tick against its requests. */
 #define LINK_WIRE_ERRORS(X)                                                      \
     X(LINK_OK, "ok", "ok")                                                       \
-    X(LINK_E_FRAME, "frame", "a broken serial frame (COBS, length, framing version)") \
+    X(LINK_E_FRAME, "frame", "a broken frame of a serial line")                  \
     X(LINK_E_SIZE, "size", "truncated or oversized datagram")                   \
     X(LINK_E_MAGIC, "magic", "wrong magic")                                      \
     X(LINK_E_VERSION, "version", "unsupported protocol version or flag")        \

@@ -61,6 +61,18 @@ rh=$($M replay $T/ls.mrl | sed -n 's/^hash: //p')
 [ "$rh" = "$h" ] && ok || bad "replay of the serial log: $rh, live $h"
 echo "serial: lock-step over a pty: hash $h = pi_loop = replay; $(grep link_rtt_us $T/ls.out)"
 
+# 1b. the authenticated mode over a pty: both ends with the same key, pi_loop's hash
+printf 'a shared key of the serial test\n' > $T/key
+: > $T/ctl.out
+timeout 60 $C serial:pty 3 $T/key > $T/ctl.out 2>&1 &
+CTL=$!; pids="$pids $CTL"
+pty=$(waitfor $T/ctl.out pty)
+$M run pi_link --link "serial:$pty" --link-key $T/key > $T/key.out; rc=$?
+stop_ctl
+[ $rc -eq 0 ] && [ "$(field hash $T/key.out)" = "$loop_hash" ] &&
+    [ "$(field link_applied $T/key.out)" = 301 ] && ok ||
+    bad "authenticated over a pty: exit $rc, $(grep '^\(hash\|link_\)' $T/key.out | tr '\n' ' ')"
+
 # 2. soft real time over a pty: the log reproduces whatever the timing did
 controller pty
 pty=$(waitfor $T/ctl.out pty)
