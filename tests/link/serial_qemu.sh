@@ -75,9 +75,10 @@ controller build/$t/pi_firmware.elf "controller firmware"
 # client library drops the requests' and answers the repeats from its copy; pi_loop's hash
 qemu build/$t/pi_firmware.elf
 : > $T/noise.out
+faults='req:20=garbage,40=drop,60=flip,80=inside,100=delim'
+faults="$faults;ans:30=garbage,50=drop,70=flip,90=inside,110=delim"
 timeout 300 python3 tests/link/serial_noise.py --idle 5 --controller-dev "$PTY" \
-    --faults 'req:20=garbage,40=drop,60=flip,80=inside,100=delim;ans:30=garbage,50=drop,70=flip,90=inside,110=delim' \
-    > $T/noise.out 2>&1 &
+    --faults "$faults" > $T/noise.out 2>&1 &
 RELAY=$!; pids="$pids $RELAY"
 i=0 plant=
 while [ $i -lt 100 ] && [ -z "$plant" ]; do
@@ -87,7 +88,8 @@ $M run pi_link --link "serial:$plant" --link-timeout 10 > $T/noisy.out; rc=$?
 kill $RELAY $QEMU 2>/dev/null; wait $RELAY $QEMU 2>/dev/null
 [ $rc -eq 1 ] && [ "$(field hash $T/noisy.out)" = "$loop_hash" ] &&
     [ "$(field link_bad $T/noisy.out)" = 4 ] && [ "$(field link_missing $T/noisy.out)" = 0 ] &&
-    ok || bad "firmware on $t behind a noisy line: exit $rc, $(grep '^\(hash\|link_\)' $T/noisy.out | tr '\n' ' ')"
+    ok || bad "firmware on $t behind a noisy line: exit $rc," \
+        "$(grep '^\(hash\|link_\)' $T/noisy.out | tr '\n' ' ')"
 echo "serial-qemu: firmware on $t behind a noisy line: hash = pi_loop;" \
     "$(grep '^link_\(bad\|resent\|dup\)' $T/noisy.out | tr '\n' ' ')"
 
