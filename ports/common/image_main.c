@@ -92,10 +92,6 @@ static rt_status exchange(const rt_scene *sc, rt_status st)
     return st;
 }
 
-#if RT_IMAGE_LINK
-static void put_count(const char *key, uint64_t v);
-#endif
-
 static void on_timer(void *ctx)
 {
     timer_count *c = ctx;
@@ -137,6 +133,7 @@ static void put_u64(uint64_t v, unsigned base, int width)
 }
 
 #if RT_IMAGE_LINK
+/* one count of the link on the image's line: " link_KEY N" */
 static void put_count(const char *key, uint64_t v)
 {
     port_write(" link_");
