@@ -59,9 +59,11 @@ MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
 POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/modrt/cli.c \
                tools/modrt/info.c tools/modrt/study.c tools/modrt/check.c tools/modrt/rtloop.c tools/modrt/trace.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c \
                tools/modrt/link_udp.c tools/modrt/fingerprint.c ports/common/link_hmac.c \
+               tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c \
                $(wildcard tools/modrt/sweep*.c)
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
-HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
+HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c) \
+                  ports/common/linkclient.c
 
 obj = $(patsubst %.c,$(O)/obj/%.o,$(1))
 RT_OBJS    := $(call obj,$(RT_SRCS))
@@ -369,7 +371,7 @@ speedup: $(O)/modrt $(O)/svgplot
 # `make docs` runs them and copies the figures over the committed ones in docs/
 BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
-bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup
+bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
 	@mkdir -p build/bench
 	@cp docs/mbs.md build/bench/
 	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md

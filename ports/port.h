@@ -35,6 +35,21 @@ int port_timer_late(void);
 int port_bg_start(void (*fn)(void *ctx), void *ctx);
 void port_bg_request(void);
 
+/* The link UART: the board's serial line to the other side of the controller link
+   (docs/link.md, "Over a serial line"). Only ports with a link UART provide these, and an
+   application links them only when it uses them (the Cortex-M port: ports/cortex-m/uart.c).
+   port_link_open sets it up at `baud` bits per second, 8N1, receiving from its interrupt
+   into a buffer: 0, or -1 where the rate cannot be made. port_link_getc returns the next
+   received byte, or -1 when none waits (it never waits). port_link_write sends n bytes,
+   waiting while the transmitter is full. port_link_lost counts the bytes received while
+   the buffer was full (dropped). port_link_wait sleeps until a byte waits or another
+   interrupt (the timer's) fires: a wait for an answer that neither spins nor misses one. */
+int port_link_open(uint32_t baud);
+int port_link_getc(void);
+void port_link_wait(void);
+void port_link_write(const uint8_t *b, uint32_t n);
+uint32_t port_link_lost(void);
+
 /* The application's entry point, called by bare-metal startup code after .data/.bss
    are set up; its return value becomes the exit status. */
 int app_main(void);

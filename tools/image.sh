@@ -41,6 +41,17 @@ sym=$(sed -n 's/^const rt_scene \(mdl_scene_[A-Za-z0-9_]*\) = {$/\1/p' "$dir/$na
 sizes=$(build/host/scenec --sizes "$scene") || fail "scenec --sizes $scene failed (see above)"
 # a background set steps at the port's level below the timer, in a second rt_sim
 grep -q '\.bg = &rt_bg' "$dir/$name.c" && sizes="$sizes -DRT_IMAGE_BG=1"
+# a controller link runs over the port's link UART (docs/link.md, "The plant on a board")
+linksrc=
+if grep -q '^static const rt_link link = {' "$dir/$name.c"; then
+    case "$target" in
+    m3 | m4f | m7) ;;
+    *) fail "scene $name has a controller link: its image needs a port with a link UART (m3, m4f, m7), not $target" ;;
+    esac
+    [ "${console:-semihost}" != uart ] || fail "scene $name has a controller link on the UART: CONSOLE=uart would share it; use semihost, itm or none"
+    sizes="$sizes -DRT_IMAGE_LINK=1"
+    linksrc="ports/common/image_link.c ports/common/link_wire.c ports/common/link_hmac.c ports/common/linkframe.c ports/cortex-m/uart.c"
+fi
 
 cc=$(make -s "print-TARGET_CC_$target")
 cflags="$(make -s print-CSTD) -O2 -ffunction-sections -fdata-sections $(make -s print-CINC) \
@@ -51,7 +62,7 @@ rt=$(ls rt/*.c | grep -v '^rt/registry.c$')
 models=$(ls models/*.c | grep -v '^models/registry.c$')
 # shellcheck disable=SC2086 # the flag lists are meant to split
 $cc $cflags $cdef $sizes -DRT_SCENE="$sym" $extra ports/common/image_main.c "$dir/$name.c" \
-    $rt $models $ports $ldflags -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
+    $rt $models $ports $linksrc $ldflags -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
 size=$(make -s "print-TARGET_SIZE_$target")
-echo "image: $dir/$name.elf (scene $sym, target $target${console:+, console $console})"
+echo "image: $dir/$name.elf (scene $sym, target $target${console:+, console $console}${linksrc:+, link on the UART})"
 $size "$dir/$name.elf" | tail -1 | awk '{printf "image: flash %d bytes, RAM %d bytes\n", $1 + $2, $2 + $3}'

@@ -11,7 +11,13 @@
  * the set's steps at that lower level, in a second rt_sim, preempted by every tick that
  * falls while they run (the line reports how many did). Elsewhere the ticks run in the
  * main loop and the steps inline. RT_IMAGE_TICKS ends the run early, RT_IMAGE_PERIOD_US
- * ticks faster than the scene's base tick (the cross test: more preemptions). */
+ * ticks faster than the scene's base tick (the cross test: more preemptions).
+ *
+ * A scene with a controller link (RT_IMAGE_LINK, docs/link.md "The plant on a board")
+ * exchanges its exports and imports over the port's link UART after each tick
+ * (image_link.c), as `modrt run --link` does: in lock-step the controller paces the run
+ * (the ticks run back to back; the timer only wakes the wait for an answer), in real time
+ * the timer does. */
 #include "port.h"
 #include "rt.h"
 
@@ -29,6 +35,19 @@ extern const rt_scene RT_SCENE;
 
 #ifndef RT_IMAGE_BG
 #define RT_IMAGE_BG 0 /* 1: the scene has a background set (tools/image.sh finds out) */
+#endif
+
+#ifndef RT_IMAGE_LINK
+#define RT_IMAGE_LINK 0 /* 1: the scene has a controller link (tools/image.sh finds out) */
+#endif
+#if RT_IMAGE_LINK
+#include "image_link.h"
+#if RT_IMAGE_BG
+#error "A scene with a controller link and a background set: the image runs one or the other."
+#endif
+#define RT_IMAGE_PACED RT_IMAGE_LINK_REALTIME /* lock-step: the controller paces the run */
+#else
+#define RT_IMAGE_PACED 1
 #endif
 
 static rt_sim sim;
@@ -54,7 +73,23 @@ static int finished(rt_status st)
     if (sim.state.tick >= RT_IMAGE_TICKS)
         return 1;
 #endif
-    return st == RT_E_DONE;
+    return st == RT_E_DONE || st == RT_E_LINK;
+}
+
+/* the exchange with the controller after a tick (and at tick 0); an import with policy
+   stop that went missing ends the run with status RT_E_LINK */
+static rt_status exchange(const rt_scene *sc, rt_status st)
+{
+#if RT_IMAGE_LINK
+    if (image_link_exchange(sc, &sim)) {
+        if (rt_status_severity(RT_E_LINK) > rt_status_severity(sim.stats.status))
+            sim.stats.status = RT_E_LINK;
+        return RT_E_LINK;
+    }
+#else
+    (void)sc;
+#endif
+    return st;
 }
 
 static void on_timer(void *ctx)
@@ -97,6 +132,17 @@ static void put_u64(uint64_t v, unsigned base, int width)
     port_write(buf + n);
 }
 
+#if RT_IMAGE_LINK
+/* one count of the link on the image's line: " link_KEY N" */
+static void put_count(const char *key, uint64_t v)
+{
+    port_write(" link_");
+    port_write(key);
+    port_write(" ");
+    put_u64(v, 10, 1);
+}
+#endif
+
 int app_main(void)
 {
     const rt_scene *sc = &RT_SCENE;
@@ -104,29 +150,43 @@ int app_main(void)
     static timer_count count; /* the timer interrupt keeps a pointer to it */
     if (rt_init(sc, &sim) != RT_OK)
         return 1;
-    rt_record(sc, &sim, 0);
     uint32_t us = RT_IMAGE_PERIOD_US ? RT_IMAGE_PERIOD_US
                                      : (uint32_t)(sc->dt * (real_t)1e6 + (real_t)0.5);
-#if RT_IMAGE_BG
-    if (sc->bg && port_bg_start(on_background, &count) == 0)
-        count.in_irq = rt_bg_attach(sc, &sim, &bg) == RT_OK;
-#endif
+    rt_status st = RT_OK;
+#if RT_IMAGE_LINK
+    /* the timer runs before the first exchange: in lock-step its tick is what ends the
+       wait for an answer that does not come (port_link_wait) */
+    if (image_link_start(sc, &sim) != 0) {
+        port_write("rt: the port has no link UART at this rate\n");
+        return 1;
+    }
     if (port_timer_start(us, on_timer, &count) != 0) {
         port_write("rt: the port cannot tick at this period\n");
         return 1;
     }
-    rt_status st = RT_OK;
+    st = exchange(sc, st);
+#endif
+    rt_record(sc, &sim, 0);
+#if RT_IMAGE_BG
+    if (sc->bg && port_bg_start(on_background, &count) == 0)
+        count.in_irq = rt_bg_attach(sc, &sim, &bg) == RT_OK;
+#endif
+    if (!RT_IMAGE_LINK && port_timer_start(us, on_timer, &count) != 0) {
+        port_write("rt: the port cannot tick at this period\n");
+        return 1;
+    }
     if (count.in_irq) {
         while (!count.done)
             port_timer_wait(); /* the ticks run in the interrupt, the steps below it */
         overruns = count.overruns;
     } else {
-        do {
-            port_timer_wait(); /* the work runs in the main loop, not in the interrupt */
-            st = rt_tick(sc, &sim);
+        while (!finished(st)) {
+            if (RT_IMAGE_PACED)
+                port_timer_wait(); /* the work runs in the main loop, not in the interrupt */
+            st = exchange(sc, rt_tick(sc, &sim));
             rt_record(sc, &sim, 0);
-            overruns += (uint32_t)port_timer_late();
-        } while (!finished(st));
+            overruns += RT_IMAGE_PACED ? (uint32_t)port_timer_late() : 0;
+        }
     }
     port_timer_stop();
     port_write("rt scene ");
@@ -143,6 +203,11 @@ int app_main(void)
         port_write(" late ");
         put_u64(sim.stats.bg_late, 10, 1);
     }
+#if RT_IMAGE_LINK
+    int link_bad = image_link_report(put_count);
+#else
+    int link_bad = 0;
+#endif
     port_write(" hash ");
     put_u64(sim.state.hash, 16, 16);
     port_write(" status ");
@@ -150,5 +215,5 @@ int app_main(void)
     port_write("\n");
     /* overruns are judged by the caller: zero is required only where the port's time is
        virtual and deterministic (bare metal under QEMU -icount), not on a shared host */
-    return sim.stats.status == RT_OK ? 0 : 1;
+    return sim.stats.status == RT_OK && !link_bad ? 0 : 1;
 }

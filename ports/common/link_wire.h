@@ -42,10 +42,12 @@
 #define LINK_MAX_PACKET (LINK_SIZE(LINK_MAX_VALUES) + LINK_TAG_LEN)
 
 /* What a receiver found wrong, in the order the checks run, declared once:
-   X(id, key for summaries, meaning). The decoder finds all but the last two; the
-   plant's exchange (tools/modrt/link.c) finds seq and tick against its requests. */
+   X(id, key for summaries, meaning). A serial line's framing (linkframe.c) finds frame;
+   the decoder all the others but the last two; the plant's exchange (tools/modrt/link.c)
+   finds seq and tick against its requests. */
 #define LINK_WIRE_ERRORS(X)                                                      \
     X(LINK_OK, "ok", "ok")                                                       \
+    X(LINK_E_FRAME, "frame", "a broken frame of a serial line")                  \
     X(LINK_E_SIZE, "size", "truncated or oversized datagram")                   \
     X(LINK_E_MAGIC, "magic", "wrong magic")                                      \
     X(LINK_E_VERSION, "version", "unsupported protocol version or flag")        \

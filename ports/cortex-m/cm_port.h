@@ -62,6 +62,17 @@
 #define CM_UART_CTRL    CM_REG(CM_UART_BASE + 0x08u) /* bit 0: transmit enable */
 #define CM_UART_BAUDDIV CM_REG(CM_UART_BASE + 0x10u)
 
+/* The link UART (ports/cortex-m/uart.c): a CMSDK APB UART and its receive interrupt
+   (MPS2: UART0 at 0x40004000, RX interrupt 0; UART1 0x40005000, 2; UART2 0x40006000, 4). */
+#ifndef CM_LINK_UART_BASE
+#define CM_LINK_UART_BASE 0x40004000u
+#endif
+#ifndef CM_LINK_UART_IRQ
+#define CM_LINK_UART_IRQ 0
+#endif
+#define CM_NVIC_ISER0 CM_REG(0xE000E100u)
+void cm_link_uart_irq(void);
+
 /* ITM stimulus port 0 (ARMv7-M), as written by CMSIS ITM_SendChar: only when the
    debugger enabled the ITM (TCR.ITMENA) and the port (TER bit 0), else dropped. */
 #define CM_ITM_PORT0 CM_REG(0xE0000000u)

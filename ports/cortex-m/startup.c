@@ -17,6 +17,8 @@ extern uint32_t __stack_top[];
 
 void Reset_Handler(void);
 void Fault_Handler(void);
+/* the link UART's receive interrupt: a fault unless ports/cortex-m/uart.c is linked */
+void cm_link_uart_irq(void) __attribute__((weak, alias("Fault_Handler")));
 void cm_fault_report(const uint32_t *frame, uint32_t exc_return);
 
 void Reset_Handler(void)
@@ -105,7 +107,8 @@ const cm_vector cm_vector_table[16 + CM_N_IRQ] = {
     [14] = PendSV_Handler, /* the background level (port_bg_start) */
     [15] = SysTick_Handler,
 #define CM_IRQ_FAULT(n) [16 + (n)] = Fault_Handler
-    CM_IRQ_FAULT(0), CM_IRQ_FAULT(1), CM_IRQ_FAULT(2), CM_IRQ_FAULT(3),
+    [16 + CM_LINK_UART_IRQ] = cm_link_uart_irq, /* ports/cortex-m/uart.c, when linked */
+    CM_IRQ_FAULT(1), CM_IRQ_FAULT(2), CM_IRQ_FAULT(3),
     CM_IRQ_FAULT(4), CM_IRQ_FAULT(5), CM_IRQ_FAULT(6), CM_IRQ_FAULT(7),
     CM_IRQ_FAULT(8), CM_IRQ_FAULT(9), CM_IRQ_FAULT(10), CM_IRQ_FAULT(11),
     CM_IRQ_FAULT(12), CM_IRQ_FAULT(13), CM_IRQ_FAULT(14), CM_IRQ_FAULT(15),

@@ -34,9 +34,10 @@ test-link-fuzz: build/fuzz/link-fuzz link-fuzz-seeds
 
 # the C example controller (a host program: POSIX sockets and the freestanding codec)
 build/host/pi_controller: tools/examples/pi_controller.c ports/common/link_wire.c \
-                          ports/common/link_hmac.c
+                          ports/common/link_hmac.c ports/common/linkframe.c \
+                          ports/common/linkclient.c tools/modrt/serial.c
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CSTD) -O2 -Iports $^ -o $@
+	$(Q)$(CC) $(CSTD) -O2 -Iports -Itools/modrt $^ -o $@
 
 test-link: deps-host build/host/modrt build/host/pi_controller
 	@bash tests/link/link.sh
@@ -46,3 +47,56 @@ TEST_SUITES += test-link test-link-fuzz
 
 # the scene fingerprint of the replay log reads the programs of interpreted defines
 $(call obj,tools/modrt/fingerprint.c): CINC += -I$(SCN_DIR)
+
+# the link over a serial line on ptys: lock-step, real time, line noise (tests/link/serial.sh)
+test-serial: deps-host build/host/modrt build/host/pi_controller
+	@sh tests/link/serial.sh
+TEST_SUITES += test-serial
+.PHONY: test-serial
+
+# the PI controller as Cortex-M firmware (tools/examples/pi_firmware.c) and the plant image
+# pi_link with its link on the UART, for the QEMU rigs (tests/link/serial_qemu.sh)
+SERIAL_QEMU_T ?= m4f
+PI_FW_SRCS = tools/examples/pi_firmware.c ports/common/linkclient.c ports/common/linkframe.c \
+             ports/common/link_wire.c ports/common/link_hmac.c ports/cortex-m/uart.c \
+             $(TARGET_PORT_SRCS_$(SERIAL_QEMU_T))
+build/$(SERIAL_QEMU_T)/pi_firmware.elf: $(PI_FW_SRCS) $(wildcard ports/common/*.h ports/cortex-m/*.h)
+	@mkdir -p $(dir $@)
+	$(Q)$(TARGET_CC_$(SERIAL_QEMU_T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) \
+	  $(TARGET_CFLAGS_$(SERIAL_QEMU_T)) $(PI_FW_SRCS) $(TARGET_LDFLAGS_$(SERIAL_QEMU_T)) -o $@
+test-serial-qemu: deps build/host/modrt build/host/pi_controller $(SCENEC)
+	@if $(MAKE) --no-print-directory -s check-target-$(SERIAL_QEMU_T) 2>/dev/null; then \
+	  $(MAKE) --no-print-directory build/$(SERIAL_QEMU_T)/pi_firmware.elf && \
+	  sh tests/link/serial_qemu.sh $(SERIAL_QEMU_T); \
+	else echo "serial-qemu: skipped: the $(SERIAL_QEMU_T) toolchain or QEMU is missing"; fi
+TEST_SUITES += test-serial-qemu
+.PHONY: test-serial-qemu
+
+# the serial link's round trips next to UDP's (docs/link.md; part of make bench)
+serial-bench: build/host/modrt build/host/pi_controller
+	@$(MAKE) --no-print-directory -s check-target-$(SERIAL_QEMU_T) 2>/dev/null && \
+	  $(MAKE) --no-print-directory build/$(SERIAL_QEMU_T)/pi_firmware.elf; \
+	 sh tools/bench/serial_bench.sh build/host/modrt
+.PHONY: serial-bench
+
+# the serial link's frame receiver and client library under the fuzzer (5 s in make test)
+FRAME_FUZZ_SRCS = tests/link/fuzz_frame.c ports/common/linkframe.c ports/common/linkclient.c \
+                  ports/common/link_wire.c ports/common/link_hmac.c
+build/fuzz/frame-fuzz: $(FRAME_FUZZ_SRCS) tests/scenec/fuzz_main.c
+	@mkdir -p $(dir $@)
+	@if command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(){return 0;}' | \
+	    clang -x c -fsanitize=fuzzer - -o build/fuzz/probe-frame 2>/dev/null; then \
+	  clang $(LINK_FUZZ_FLAGS) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+	    $(FRAME_FUZZ_SRCS) -o $@; \
+	else \
+	  $(CC) $(LINK_FUZZ_FLAGS) -fsanitize=address,undefined -fno-sanitize-recover=all \
+	    $(FRAME_FUZZ_SRCS) tests/scenec/fuzz_main.c -o $@; \
+	fi
+# seeds: framed requests of pi_link, whole and cut, from the unit test's encoder
+frame-fuzz-seeds:
+	@mkdir -p build/fuzz/frame-corpus
+	@python3 tests/link/seed_frames.py build/fuzz/frame-corpus
+test-frame-fuzz: build/fuzz/frame-fuzz frame-fuzz-seeds
+	@sh tests/link/fuzz.sh build/fuzz/frame-fuzz 5 build/fuzz/frame-corpus frame
+TEST_SUITES += test-frame-fuzz
+.PHONY: frame-fuzz-seeds test-frame-fuzz

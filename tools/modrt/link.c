@@ -1,5 +1,5 @@
 /* link.c - the POSIX controller link (docs/link.md): a transport to the controller (UDP,
- * link_udp.c), a receiver thread that checks every datagram against the request it claims
+ * link_udp.c, or a serial line, link_serial.c), a receiver thread that checks every datagram against the request it claims
  * to answer and sorts it into a one-slot mailbox or a counter, and the exchange the
  * runner calls at every tick:
  *   lock-step (simulated clock): at each exchange tick send the exports and wait (at most
@@ -25,10 +25,13 @@
 #include "mrlog.h"
 
 #define LINK_RECV_POLL_MS 50   /* the receiver thread checks for shutdown this often */
-#define LINK_RTT_BINS 4096     /* round-trip histogram: 1 us bins up to 4 ms, then one */
+#define LINK_RTT_FINE 4096     /* round-trip histogram: 1 us bins up to 4.096 ms, */
+#define LINK_RTT_STEP 64       /* then 64 us bins (a serial line's 10 ms round trips) */
+#define LINK_RTT_BINS (LINK_RTT_FINE + 4096) /* up to 266 ms, then one */
 #define LINK_WINDOW 64         /* requests remembered (tick, answered) for the checks */
+#define LINK_TRIES 10          /* lock-step over a transport that resends: every timeout/10 */
 
-static const link_transport *const transports[] = {&link_udp, NULL};
+static const link_transport *const transports[] = {&link_udp, &link_serial, NULL};
 
 /* what the plant remembers of a request it sent */
 typedef struct sent_req {
@@ -55,9 +58,12 @@ static struct {
     link_counts n;
     struct timespec sent_at;   /* when `waiting` was sent */
     uint32_t rtt_hist[LINK_RTT_BINS + 1];
+    double rtt_max;            /* [us] */
     /* main thread only */
     uint32_t outstanding;      /* the request sent and neither answered nor given up */
     real_t cur[LINK_MAX_VALUES];
+    uint8_t out[LINK_MAX_PACKET]; /* the last request as sent, for sending it again */
+    size_t out_len;
 } L;
 
 static double since_us(const struct timespec *t0)
@@ -70,6 +76,21 @@ static double since_us(const struct timespec *t0)
 static void count_bad(link_wire_error e)
 {
     L.n.bad++, L.n.bad_kind[e]++;
+}
+
+static int rtt_bin(double us)
+{
+    if (us < LINK_RTT_FINE)
+        return (int)us;
+    double k = LINK_RTT_FINE + (us - LINK_RTT_FINE) / LINK_RTT_STEP;
+    return k < LINK_RTT_BINS ? (int)k : LINK_RTT_BINS;
+}
+
+/* the middle of bin i [us] */
+static double rtt_mid(int i)
+{
+    return i < LINK_RTT_FINE ? i + 0.5
+                             : LINK_RTT_FINE + (i - LINK_RTT_FINE + 0.5) * LINK_RTT_STEP;
 }
 
 /* a checked answer against the request it names (under mu): boxed, or counted */
@@ -88,7 +109,8 @@ static void sort(const link_packet *p)
     else {
         L.box = *p, L.full = 1, r->answered = 1;
         double us = since_us(&L.sent_at); /* the round trip, whenever it is applied */
-        L.rtt_hist[us < LINK_RTT_BINS ? (int)us : LINK_RTT_BINS]++;
+        L.rtt_hist[rtt_bin(us)]++;
+        L.rtt_max = us > L.rtt_max ? us : L.rtt_max;
         pthread_cond_signal(&L.cv);
     }
 }
@@ -115,10 +137,15 @@ static void *receiver(void *arg)
     (void)arg;
     while (__atomic_load_n(&L.running, __ATOMIC_ACQUIRE)) {
         long r = L.tr->recv(buf, sizeof buf, LINK_RECV_POLL_MS);
-        if (r > 0)
+        if (r > 0) {
             receive(buf, (size_t)r);
-        else if (r < 0)
+        } else if (r == LINK_RECV_BROKEN) {
+            pthread_mutex_lock(&L.mu);
+            count_bad(LINK_E_FRAME);
+            pthread_mutex_unlock(&L.mu);
+        } else if (r < 0) {
             break;
+        }
     }
     return NULL;
 }
@@ -243,6 +270,7 @@ static void send_exports(const rt_scene *sc, const rt_sim *sim)
     pthread_mutex_unlock(&L.mu);
     L.outstanding = p.seq;
     size_t len = link_encode(&p, L.o.key, buf, sizeof buf);
+    memcpy(L.out, buf, len), L.out_len = len;
     if (len && L.tr->send(buf, len) == 0)
         L.n.sent++;
 }
@@ -280,18 +308,35 @@ static int missing(const rt_scene *sc)
     return stop;
 }
 
+static void add_s(struct timespec *t, double s)
+{
+    t->tv_sec += (time_t)s;
+    t->tv_nsec += (long)((s - (double)(time_t)s) * 1e9);
+    if (t->tv_nsec >= 1000000000L)
+        t->tv_sec++, t->tv_nsec -= 1000000000L;
+}
+
+/* waits for the answer; over a transport that resends (a serial line) the request goes
+   again every timeout / LINK_TRIES: a frame lost to line noise costs a retry, not the
+   exchange (docs/link.md, "Lost frames"); the controller answers a repeat from its copy */
 static int lockstep(const rt_scene *sc, rt_sim *sim)
 {
-    struct timespec until;
-    clock_gettime(CLOCK_MONOTONIC, &until);
+    struct timespec start;
+    int tries = L.tr->resend ? LINK_TRIES : 1;
+    clock_gettime(CLOCK_MONOTONIC, &start);
     send_exports(sc, sim);
-    until.tv_sec += (time_t)L.o.timeout_s;
-    until.tv_nsec += (long)((L.o.timeout_s - (double)(time_t)L.o.timeout_s) * 1e9);
-    if (until.tv_nsec >= 1000000000L)
-        until.tv_sec++, until.tv_nsec -= 1000000000L;
     pthread_mutex_lock(&L.mu);
-    while (!L.full && pthread_cond_timedwait(&L.cv, &L.mu, &until) != ETIMEDOUT)
-        ;
+    for (int k = 1; k <= tries && !L.full; k++) {
+        struct timespec until = start;
+        add_s(&until, L.o.timeout_s * k / tries);
+        while (!L.full && pthread_cond_timedwait(&L.cv, &L.mu, &until) != ETIMEDOUT)
+            ;
+        if (!L.full && k < tries) {
+            pthread_mutex_unlock(&L.mu); /* the receiver may box the answer meanwhile */
+            L.n.resent += (uint64_t)(L.tr->send(L.out, L.out_len) == 0);
+            pthread_mutex_lock(&L.mu);
+        }
+    }
     int got = take(), stop = 0;
     if (!got)
         L.waiting = 0; /* a later answer to it is late */
@@ -344,7 +389,7 @@ static double percentile(double q)
         total += L.rtt_hist[i];
     for (int i = 0; i <= LINK_RTT_BINS && total; i++)
         if ((acc += L.rtt_hist[i]) >= (uint64_t)(q * (double)total + 0.5))
-            return i + 0.5;
+            return rtt_mid(i);
     return 0;
 }
 
@@ -354,6 +399,7 @@ void link_close(link_counts *out)
     pthread_join(L.thread, NULL);
     L.tr->close();
     L.n.rtt_us[0] = percentile(0.5), L.n.rtt_us[1] = percentile(0.99);
+    L.n.rtt_us[2] = L.rtt_max;
     *out = L.n;
 }
 
@@ -369,10 +415,13 @@ void link_print(FILE *f, const link_counts *c)
             (unsigned long long)c->sent, (unsigned long long)c->applied,
             (unsigned long long)c->bad, (unsigned long long)c->late,
             (unsigned long long)c->missing, (unsigned long long)c->dup);
+    if (c->resent)
+        fprintf(f, "link_resent: %llu\n", (unsigned long long)c->resent);
     for (int e = 1; e < LINK_E_COUNT_; e++)
         if (c->bad_kind[e])
             fprintf(f, "link_bad.%s: %llu\n", link_wire_error_key(e),
                     (unsigned long long)c->bad_kind[e]);
     if (c->applied)
-        fprintf(f, "link_rtt_us: p50 %.1f p99 %.1f\n", c->rtt_us[0], c->rtt_us[1]);
+        fprintf(f, "link_rtt_us: p50 %.1f p99 %.1f max %.1f\n", c->rtt_us[0], c->rtt_us[1],
+                c->rtt_us[2]);
 }

@@ -1,5 +1,5 @@
-/* link.h - the POSIX controller link of `modrt run --link udp:HOST:PORT` (docs/link.md):
- * a transport (UDP here; link_transport is the boundary a serial framing plugs into) read
+/* link.h - the POSIX controller link of `modrt run --link udp:HOST:PORT` or
+ * `serial:DEVICE[:BAUD]` (docs/link.md): a transport (link_udp.c, link_serial.c) read
  * by a receiver thread that never blocks the tick, the lock-step and soft real-time
  * exchanges, the checks of every answer against its request, the per-signal policies and
  * the counters. */
@@ -18,8 +18,9 @@ struct mrl_writer;
 typedef struct link_counts {
     uint64_t sent, applied;   /* requests sent; answers applied */
     uint64_t bad, late, missing, dup;
+    uint64_t resent;          /* lock-step: requests sent again for want of an answer */
     uint64_t bad_kind[LINK_E_COUNT_]; /* bad by link_wire_error */
-    double rtt_us[2];         /* round trip: p50, p99 [us] */
+    double rtt_us[3];         /* round trip: p50, p99, max [us] */
 } link_counts;
 
 /* A transport carries the datagrams of link_wire.h unchanged, one at a time, between the
@@ -36,13 +37,20 @@ typedef struct link_transport {
     /* Sends one datagram whole without waiting: 0, or -1. The tick's thread. */
     int (*send)(const uint8_t *buf, size_t len);
     /* Waits at most poll_ms for one datagram from the peer (anything from another sender
-       is dropped unseen) into buf: its length, 0 when none came, -1 when the transport
+       is dropped unseen) into buf: its length, 0 when none came, LINK_RECV_BROKEN when
+       what arrived was a broken frame (counted link_bad.frame), -1 when the transport
        failed for good. The receiver thread only. */
     long (*recv)(uint8_t *buf, size_t cap, int poll_ms);
     void (*close)(void);
+    /* 1: lock-step sends an unanswered request again every timeout / LINK_TRIES (a byte
+       stream that loses frames to line noise; its controllers answer a repeat from a
+       copy). 0: once (a UDP controller need not recognise a repeat). */
+    int resend;
 } link_transport;
 
-extern const link_transport link_udp; /* link_udp.c */
+#define LINK_RECV_BROKEN (-2L)
+extern const link_transport link_udp;    /* link_udp.c */
+extern const link_transport link_serial; /* link_serial.c */
 
 typedef struct link_opts {
     int realtime;             /* 1: soft real-time exchange, else lock-step */

@@ -357,9 +357,11 @@ static const cli_opt run_opts[] = {
      "to back (catchup, default), drops them (skip), or ends the run (stop)", opt_overrun},
     {"rt-log", "FILE", "real time: write each tick's wake-up latency and execution time "
      "[us] to FILE (CSV)", opt_rt_log},
-    {"link", "udp:HOST:PORT|none", "exchange the scene's export/import signals with a "
-     "controller (docs/link.md); lock-step, or soft real time with --realtime", opt_link},
-    {"link-timeout", "S", "lock-step: wait at most S seconds per exchange (default 1)",
+    {"link", "udp:HOST:PORT|serial:DEV[:BAUD]|none", "exchange the scene's export/import "
+     "signals with a controller over UDP or a serial line (docs/link.md); lock-step, or soft "
+     "real time with --realtime", opt_link},
+    {"link-timeout", "S", "lock-step: wait at most S seconds per exchange (a serial line: "
+     "sending the request again every S/10; default 1)",
      opt_link_timeout},
     {"link-key", "FILE", "authenticate every datagram with HMAC-SHA-256 under the shared "
      "key in FILE (1 to 64 bytes; docs/link.md)", opt_link_key},
