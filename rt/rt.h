@@ -29,6 +29,7 @@
     X(RT_E_UNCONNECTED, 3, "input is not connected and has no default value")    \
     X(RT_E_LOOP, 3, "algebraic loop that cannot be solved")                      \
     X(RT_E_PARAM, 3, "parameter out of range")                                   \
+    X(RT_E_INCONSISTENT, 3, "initial state inconsistent: conflicting constraints, or off them by more than RT_INIT_TOL") \
     X(RT_E_NAN, 2, "non-finite value")                                           \
     X(RT_E_NOCONV, 2, "algebraic loop iteration did not converge")               \
     X(RT_E_DEGRADED, 2, "step accepted with its residual above tolerance (degraded)") \
@@ -65,6 +66,8 @@ typedef enum {
     X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy (or an input it extrapolated from another set lost every digit)") \
     X(RT_CNT_INVARIANT, "invariant", "step ending further below a guard root (a floor) without a located crossing: the model tunnels") \
     X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
+    X(RT_CNT_REDUNDANT, "redundant", "constraint rows found dependent on others and consistent with them: solved with their multipliers zero (counted when a set's rank deficit changes)") \
+    X(RT_CNT_INIT_MOVED, "init_moved", "rt_init moved an initial multibody state onto its constraints or normalized its quaternion (rt_error_text says by how much)") \
     X(RT_CNT_OVERRUN, "overrun", "tick finished after its deadline")             \
     X(RT_CNT_EVENTS, "events", "state events handled")
 
@@ -749,7 +752,9 @@ typedef struct rt_sim {
  * evaluation order, initial outputs. Returns RT_OK or the first problem found; on error
  * sim holds a description for rt_error_text. */
 rt_status rt_init(const rt_scene *scene, rt_sim *sim);
-/* Returns the text describing the last init error ("" if none). */
+/* Returns the text describing the last init error, or after an rt_init that returned
+ * RT_OK what it reported (an initial state moved onto its constraints, a quaternion
+ * normalized, redundant joints; "" if nothing). */
 const char *rt_error_text(const rt_sim *sim);
 /* Advances the scene by one base tick. Always completes the tick; faults go to the
  * counters and to sim->stats.status. Returns RT_E_DONE once t_end is reached. */

@@ -51,6 +51,12 @@ typedef struct rti_at {
 /* ---- text (util.c) ---- */
 /* Writes the NULL-terminated list of strings into sim->err and returns status. */
 rt_status rti_fail(rt_sim *sim, rt_status status, ...);
+/* Appends the NULL-terminated list of strings to sim->err ("; " after earlier text): the
+   warnings of an rt_init that returns RT_OK (rt_error_text). */
+void rti_note(rt_sim *sim, ...);
+/* v as "d.dde+xx" into buf (RTI_REAL_TEXT bytes); returns buf (or a constant "nan"). */
+#define RTI_REAL_TEXT 16
+const char *rti_real_text(char *buf, real_t v);
 /* "RT_MAX_X (256 in rt_config.h)": a limit with its value, for rti_fail's messages; a
    per-scene build (make image) sizes the limits from the scene */
 #define RTI_STR2(x) #x

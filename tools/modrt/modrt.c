@@ -504,6 +504,8 @@ static int cmd_run(void *ctx, int npos, char **pos)
     rt_status st = rt_init(&sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
+    if (rt_error_text(&sim)[0]) /* what rt_init moved or found redundant */
+        fprintf(stderr, "modrt: %s: %s\n", sc.name, rt_error_text(&sim));
     if (setup_sets(a, &sc, &sim) != CLI_OK)
         return CLI_USAGE;
     if (a->check_csv && !(a->global.csv = fopen(a->check_csv, "w")))

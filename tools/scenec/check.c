@@ -305,6 +305,21 @@ static void twice(scn_ctx *c, const scn_assign *a, uint16_t first)
 static void assign_joint(scn_ctx *c, uint16_t ai, scn_joint *j)
 {
     const scn_assign *a = &c->sc.asg[ai];
+    if (!strcmp(a->lhs.port.s, "axis")) { /* the joint's axis: a direction */
+        if (!a->is_vec)
+            scn_fail(c, a->lhs.port.pos, a->lhs.port.s, "a joint's axis is a direction",
+                     scn_fmt(c, "%s.axis = (x, y, z);", j->name.s));
+        else if (j->axis_at)
+            twice(c, a, j->axis_at);
+        else
+            memcpy(j->axis, a->vec, sizeof j->axis), j->axis_at = (uint16_t)(ai + 1);
+        return;
+    }
+    if (a->is_vec) {
+        scn_fail(c, a->lhs.port.pos, a->lhs.port.s, "a direction (x, y, z) is only for axis",
+                 scn_fmt(c, "%s.%s = <value>;", j->name.s, a->lhs.port.s));
+        return;
+    }
     int i = scn_find_name(j->kind->p_names, j->kind->np, a->lhs.port.s);
     if (i < 0) {
         scn_fail(c, a->lhs.port.pos, a->lhs.port.s,
@@ -321,6 +336,11 @@ static void assign_block(scn_ctx *c, uint16_t ai, scn_block *b)
 {
     scn_scene *s = &c->sc;
     const scn_assign *a = &s->asg[ai];
+    if (a->is_vec) {
+        scn_fail(c, a->lhs.port.pos, a->lhs.port.s, "a direction (x, y, z) is only for a "
+                 "joint's axis", scn_fmt(c, "%s.%s = <value>;", b->name.s, a->lhs.port.s));
+        return;
+    }
     int i = 0, slot = value_slot(c, b, a->lhs.port, &i);
     double *vals[3] = {b->p, b->x0, b->d0};
     uint16_t *at[4] = {b->p_at, b->x_at, b->d_at, b->u_at};

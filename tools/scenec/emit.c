@@ -527,6 +527,10 @@ static void joints(FILE *f, const scn_scene *s)
         reals(f, id, "p", j->p, j->kind->np);
         if (s->lnk[j->link].has_at)
             reals(f, id, "at", s->lnk[j->link].at, 3);
+        if (s->lnk[j->link].has_turn)
+            reals(f, id, "at_S", s->lnk[j->link].at_S, 9);
+        if (j->axis_at)
+            reals(f, id, "axis_S", j->axis_S, 9);
     }
     if (s->njnt)
         fputs("static const rt_joint joints[] = {\n", f);
@@ -543,6 +547,10 @@ static void joints(FILE *f, const scn_scene *s)
             fprintf(f, ", .p = j_%s_p", j->name.s);
         if (l->has_at)
             fprintf(f, ", .at = j_%s_at", j->name.s);
+        if (l->has_turn)
+            fprintf(f, ", .at_S = j_%s_at_S", j->name.s);
+        if (j->axis_at)
+            fprintf(f, ", .axis_S = j_%s_axis_S", j->name.s);
         fputs("},\n", f);
     }
     if (s->njnt)

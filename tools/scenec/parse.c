@@ -452,7 +452,40 @@ static void st_connect(scn_ctx *c, scn_pos at)
         s->conn[s->nconn++] = cn;
 }
 
-/* link(A.node, B.node | ground [at (x, y, z)]) by (Joint); */
+/* ( x, y, z ) of constants */
+static void paren_vec3(scn_ctx *c, double *v)
+{
+    scn_expect_op(c, "(");
+    for (int i = 0; i < 3 && !c->err; i++) {
+        v[i] = scn_const_expr(c);
+        if (i < 2)
+            scn_expect_op(c, ",");
+    }
+    scn_expect_op(c, ")");
+}
+
+/* the anchor's orientation by axis and angle: rotated (angle deg|rad about (x, y, z)) */
+static void anchor_turn(scn_ctx *c, scn_link *l)
+{
+    l->turn_pos = c->tok.pos, l->has_turn = 1;
+    scn_next(c);
+    scn_expect_op(c, "(");
+    double a = scn_const_expr(c);
+    if (scn_is_word(c, "deg"))
+        a *= 3.14159265358979323846 / 180;
+    else if (!scn_is_word(c, "rad") && !c->err) {
+        scn_fail_tok(c, "angle without its unit", "deg or rad");
+        return;
+    }
+    scn_next(c);
+    scn_expect_word(c, "about");
+    l->turn[0] = a;
+    paren_vec3(c, l->turn + 1);
+    scn_expect_op(c, ")");
+}
+
+/* link(A.node, B.node | ground [at (x, y, z)] [rotated (angle deg about (x, y, z))])
+   by (Joint); */
 static void st_link(scn_ctx *c, scn_pos at)
 {
     scn_scene *s = &c->sc;
@@ -475,6 +508,8 @@ static void st_link(scn_ctx *c, scn_pos at)
             scn_expect_op(c, ")");
             l.has_at = 1;
         }
+        if (scn_is_word(c, "rotated")) /* rotated (angle deg|rad about (x, y, z)) */
+            anchor_turn(c, &l);
     } else {
         l.b = ref(c, "a node as Block.node, or ground");
     }
@@ -725,14 +760,18 @@ static void st_stab(scn_ctx *c, scn_pos at)
     scn_expect_op(c, ";");
 }
 
-/* Block.name = constant; */
+/* Block.name = constant;  Joint.axis = (x, y, z); */
 static void st_assign(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
     scn_assign a;
+    memset(&a, 0, sizeof a);
     a.lhs = ref(c, "a statement or Block.name = value;");
     scn_expect_op(c, "=");
-    a.v = scn_const_expr(c);
+    if (!c->err && !strcmp(a.lhs.port.s, "axis") && scn_is_op(c, "("))
+        paren_vec3(c, a.vec), a.is_vec = 1; /* a direction, checked with the joint */
+    else
+        a.v = scn_const_expr(c);
     scn_expect_op(c, ";");
     if (!c->err && s->nasg >= SCN_MAX_ASSIGN)
         scn_fail(c, a.lhs.block.pos, a.lhs.block.s, "too many assignments",

@@ -215,6 +215,9 @@ typedef struct scn_joint {
     double *p;
     uint16_t *p_at;             /* assignment index + 1 of each parameter, 0: none */
     int16_t link;               /* index of its link statement, -1: not linked yet */
+    double axis[3];             /* J.axis = (x, y, z): the joint's axis in both node frames */
+    uint16_t axis_at;           /* its assignment index + 1, 0: none (the z axis) */
+    double axis_S[9];           /* resolved: the joint frame, third column the unit axis */
 } scn_joint;
 
 typedef struct scn_conn {
@@ -226,6 +229,8 @@ typedef struct scn_conn {
 typedef struct scn_assign {
     scn_ref lhs;
     double v;
+    double vec[3];              /* a direction (x, y, z): J.axis */
+    uint8_t is_vec;
 } scn_assign;
 
 typedef struct scn_default {
@@ -238,6 +243,10 @@ typedef struct scn_link {
     uint8_t ground;             /* b is the inertial frame */
     double at[3];               /* ground position [m] */
     uint8_t has_at;
+    double turn[4];             /* rotated (angle deg|rad about (x, y, z)): [rad], axis */
+    scn_pos turn_pos;
+    uint8_t has_turn;
+    double at_S[9];             /* resolved: the anchor's rotation, row-major */
     scn_name joint;
     /* resolved */
     int16_t b1, n1, b2, n2;
