@@ -137,6 +137,11 @@ typedef struct rt_joint_kind {
     /* g alone between two points, the same bits as eval_points' g (the recorded position
        residual, every tick: no C, c or g'). NULL: eval_points serves. */
     void (*g_points)(const real_t *p, const real_t *r1, const real_t *r2, real_t *g);
+    /* Reference text (`modrt info KIND`, docs/blocks.md), through RT_DOC(...) (hosts
+       only): what it holds, its constraint equations in the nodes' terms; and the
+       directions it leaves free. NULL: none. */
+    const char *doc;
+    const char *free;
 } rt_joint_kind;
 
 /* the library of joint kinds */

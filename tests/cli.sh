@@ -92,6 +92,9 @@ $M info pt1 >"$T/kind" && grep -q '^kind: pt1$' "$T/kind" && grep -q '^  T  *\[s
     && ok || bad "info pt1: $(cat "$T/kind")"
 # docs/blocks.md is generated from the same tables: it must be current (make docs)
 $M docs-blocks | cmp -s - docs/blocks.md && ok || bad "docs/blocks.md is stale: run make docs"
+# its rail example is the scene tests/scenec/test_scenec.c holds to the closed form
+sed -n '/^## Example: a cart on a rail/,$p' docs/blocks.md | sed -n '/^```$/,/^```$/p' | sed '1d;$d' \
+    | cmp -s - tests/scenec/scenes/lang_rail.scn && ok || bad "docs/blocks.md's rail example is not lang_rail.scn"
 $M info pi_loop | grep -q '^  PI  *pi  *dss  *set main' && ok || bad "info shows set names"
 $M info pi_loop | grep -q 'Kp=0.8 Ki=3$' && ok || bad "info shows parameter values"
 if command -v python3 >/dev/null; then

@@ -78,6 +78,11 @@ static int cmd_info(void *ctx, int npos, char **pos)
         info_kind(stdout, k, a->json);
         return CLI_OK;
     }
+    const rt_joint_kind *j = info_find_joint(pos[0]);
+    if (j && !is_scene_name(pos[0])) {
+        info_joint(stdout, j);
+        return CLI_OK;
+    }
     const rt_scene *sc = cli_scene(pos[0]);
     if (!sc)
         return CLI_USAGE;
