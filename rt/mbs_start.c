@@ -154,7 +154,7 @@ static rt_status report_moves(const rt_scene *sc, rt_sim *sim, uint8_t set,
 static rt_status start_set(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    char t1[RTI_REAL_TEXT];
+    char t1[RTI_REAL_TEXT], t2[RTI_REAL_TEXT];
     rt_status st = quaternions(sc, sim, set);
     if (st != RT_OK)
         return st;
@@ -173,9 +173,10 @@ static rt_status start_set(const rt_scene *sc, rt_sim *sim, uint8_t set)
                             row_owner(sc, sim, set, w->drop_row[set]), " and ", dep,
                             " constrain the same motion and disagree (", what, " left off by ",
                             rti_real_text(t1, left), ")", (const char *)0);
-        return rti_fail(sim, RT_E_INCONSISTENT, "the initial state cannot be put onto the "
-                        "constraints: ", what, " left off by ", rti_real_text(t1, left),
-                        (const char *)0);
+        return rti_fail(sim, RT_E_INCONSISTENT, "no state near the initial one meets ", what,
+                        ": off by ", rti_real_text(t1, left), " after ",
+                        RTI_STR(RT_INIT_PROJ_MAX), " projections (", joint, " off by ",
+                        rti_real_text(t2, g0), " at the start)", (const char *)0);
     }
     if ((st = report_moves(sc, sim, set, joint, g0)) != RT_OK)
         return st;

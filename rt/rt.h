@@ -36,7 +36,7 @@
     X(RT_E_SINGULAR, 2, "singular or near-singular matrix")                      \
     X(RT_E_EVENT, 2, "too many state events in one step")                        \
     X(RT_E_NOLOC, 2, "state event not located within its bound")                 \
-    X(RT_E_INVARIANT, 2, "a root function ended a step on the wrong side without a located crossing") \
+    X(RT_E_INVARIANT, 2, "an invariant broken: a kind's declared invariant, or a guard root crossed without a located event") \
     X(RT_E_UNSTABLE, 2, "numerically unstable: the state grows without bound")   \
     X(RT_E_LINK, 2, "controller link lost (an import with policy stop)")         \
     X(RT_E_STOPPED, 2, "run stopped at a missed deadline (--overrun stop)")       \
@@ -64,7 +64,7 @@ typedef enum {
     X(RT_CNT_DEGRADED, "degraded", "step accepted with residual above tolerance")\
     X(RT_CNT_SUBSTEP, "substep", "implicit step that converged only in substeps") \
     X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy (or an input it extrapolated from another set lost every digit)") \
-    X(RT_CNT_INVARIANT, "invariant", "step ending further below a guard root (a floor) without a located crossing: the model tunnels") \
+    X(RT_CNT_INVARIANT, "invariant", "step ending with a kind's declared invariant broken (a negative concentration, a conserved sum lost), or further below a guard root (a floor) without a located crossing: the model tunnels") \
     X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
     X(RT_CNT_REDUNDANT, "redundant", "constraint rows found dependent on others and consistent with them: solved with their multipliers zero (counted when a set's rank deficit changes)") \
     X(RT_CNT_INIT_MOVED, "init_moved", "rt_init moved an initial multibody state onto its constraints or normalized its quaternion (rt_error_text says by how much)") \
@@ -123,6 +123,30 @@ typedef struct rt_args {
     const void *spec;  /* the kind's type-specific const data (rt_kind.spec) */
 } rt_args;
 
+/* What a kind knows of its continuous state and declares (rt_kind.inv), checked after
+ * every step of its set (rt/invariant.c); a violation beyond the tolerance is counted
+ * (RT_CNT_INVARIANT, the block) and fails the run (RT_E_INVARIANT): an answer with
+ * negative concentrations is wrong whatever the error estimate says. Declared once:
+ * X(ENUM, name, meaning). */
+#define RT_INV_LIST(X)                                                                     \
+    X(RT_INV_NONNEG, "nonnegative", "each state >= -tol (concentrations, masses)")         \
+    X(RT_INV_SUM, "sum", "|sum of the states - c| <= tol (a conserved total)")             \
+    X(RT_INV_NORM, "norm", "Euclidean norm of the states <= c + tol (a bounded norm)")
+typedef enum {
+#define RT_X_ENUM(id, name, text) id,
+    RT_INV_LIST(RT_X_ENUM)
+#undef RT_X_ENUM
+    RT_INV_COUNT
+} rt_inv_type;
+
+typedef struct rt_invariant {
+    uint8_t type;               /* rt_inv_type */
+    uint8_t n;                  /* states it reads */
+    const uint16_t *x;          /* their indices within the block's x (n values) */
+    real_t c;                   /* the conserved sum, or the bound of the norm */
+    real_t tol;                 /* absolute tolerance [the states' unit]; 0: RT_INV_TOL */
+} rt_invariant;
+
 /* A block kind: sizes, names and services, like the paper's system_descr (Fig. 3).
  * Every slot may be NULL where the comment says so; the runtime checks the rest at init. */
 typedef struct rt_kind {
@@ -160,6 +184,9 @@ typedef struct rt_kind {
                                    floor) that must stay >= 0 except across a located
                                    crossing; a step ending further below is counted
                                    (invariant). NULL: none */
+    const rt_invariant *inv;    /* ninv invariants of the continuous state, checked after
+                                   each step (rt/invariant.c); NULL iff ninv == 0 */
+    uint8_t ninv;
 
     /* Called once at rt_init with the instance parameters: returns RT_OK or RT_E_PARAM.
        May be NULL (no check). */

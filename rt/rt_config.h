@@ -209,6 +209,11 @@ typedef double real_t;
    as degraded (RT_CNT_DEGRADED) [m or 1] */
 #define RT_MBS_RES_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-4 : (real_t)1e-9)
 #endif
+#ifndef RT_INV_TOL
+/* absolute tolerance of a kind's declared invariants that give none (rt_invariant.tol):
+   a step may leave a concentration this far below 0, a conserved sum this far off */
+#define RT_INV_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-4 : (real_t)1e-8)
+#endif
 #ifndef RT_MBS_RANK_TOL
 /* a constraint row dropped as dependent on others (rt/mbs_ldl.c) conflicts with them when
    what its right-hand side asks beyond theirs exceeds RT_MBS_RES_TOL plus this fraction

@@ -48,6 +48,13 @@ typedef struct rti_at {
 #define RTI_INLINE inline
 #endif
 
+/* ---- invariants (invariant.c) ---- */
+/* Checks the kinds' declared invariants (types, indices, tolerances) at init. */
+rt_status rti_invariant_init(const rt_scene *sc, rt_sim *sim);
+/* After a step of set s: each block's invariants at its new state, a violation counted
+   (RT_CNT_INVARIANT with the block, RT_E_INVARIANT). */
+void rti_invariants(const rt_scene *sc, rt_sim *sim, uint8_t s);
+
 /* ---- text (util.c) ---- */
 /* Writes the NULL-terminated list of strings into sim->err and returns status. */
 rt_status rti_fail(rt_sim *sim, rt_status status, ...);

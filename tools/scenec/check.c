@@ -142,6 +142,33 @@ const rt_kind *scn_library_kind(const char *name)
     return NULL;
 }
 
+/* the define's invariants with their states resolved to indices (rt_kind.inv) */
+static void define_invariants(scn_ctx *c, const scn_define *d, rt_kind *k)
+{
+    if (d->ninv == 0)
+        return;
+    rt_invariant *inv = scn_alloc(c, d->ninv * sizeof *inv);
+    for (uint8_t i = 0; i < d->ninv && !c->err; i++) {
+        const scn_inv *v = &d->inv[i];
+        uint16_t *x = scn_alloc(c, v->n * sizeof *x);
+        for (uint8_t j = 0; j < v->n && !c->err; j++) {
+            int at = -1;
+            for (uint16_t q = 0; q < d->nx && at < 0; q++)
+                at = strcmp(d->x[q].name.s, v->x[j].s) ? -1 : q;
+            if (at < 0)
+                scn_fail(c, v->x[j].pos, v->x[j].s, "an invariant reads a state",
+                         scn_fmt(c, "a state of %s", d->name.s));
+            x[j] = (uint16_t)(at < 0 ? 0 : at);
+        }
+        if (!c->err && !(v->tol >= 0))
+            scn_fail(c, v->x[0].pos, v->x[0].s, "an invariant's tolerance is negative",
+                     "within (a tolerance >= 0)");
+        inv[i] = (rt_invariant){.type = v->type, .n = v->n, .x = x, .c = (real_t)v->c,
+                                .tol = (real_t)v->tol};
+    }
+    k->inv = inv, k->ninv = d->ninv;
+}
+
 /* the kind a define describes: sizes, names, defaults, throughput (services: image.c) */
 static void define_kind(scn_ctx *c, scn_define *d)
 {
@@ -167,6 +194,7 @@ static void define_kind(scn_ctx *c, scn_define *d)
         memcpy(dir, d->rdir, d->nr);
         k->nr = d->nr, k->root_dir = dir;
     }
+    define_invariants(c, d, k);
     d->kind = k;
     if (d->type != SCN_DEF_LSS) {
         define_feed(c, d, k);

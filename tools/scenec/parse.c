@@ -264,6 +264,50 @@ static void define_names(scn_ctx *c, scn_define *d)
 }
 
 /* with inputs (...) outputs (...) parameters (...) states (...) period (...) */
+/* one invariant: nonnegative (names) | sum (names) = c | norm (names) <= c,
+   then within (tol) */
+static void inv_item(scn_ctx *c, scn_inv *v)
+{
+    static const char *const kinds[] = {"nonnegative", "sum", "norm"};
+    scn_var names[SCN_MAX_PORTS];
+    int k = 0;
+    while (k < 3 && !scn_is_word(c, kinds[k]))
+        k++;
+    if (k == 3) {
+        scn_fail_tok(c, "syntax error", "nonnegative (...), sum (...) = c or norm (...) <= c");
+        return;
+    }
+    scn_next(c);
+    uint16_t n = var_list(c, names, 0, "a state name");
+    if (!c->err && (n == 0 || n > SCN_MAX_INV_N))
+        scn_fail_tok(c, "an invariant reads 1 to 16 states", "a shorter list of states");
+    for (uint16_t i = 0; i < n && !c->err; i++)
+        v->x[i] = names[i].name;
+    v->type = (uint8_t)k, v->n = (uint8_t)n, v->c = 0, v->tol = 0;
+    if (k == RT_INV_SUM)
+        scn_expect_op(c, "="), v->c = scn_const_expr(c);
+    if (k == RT_INV_NORM)
+        scn_expect_op(c, "<="), v->c = scn_const_expr(c);
+    if (!c->err && scn_is_word(c, "within"))
+        scn_next(c), v->tol = paren_const(c);
+}
+
+/* invariants (item, item, ...): what the states keep (rt/invariant.c) */
+static void inv_list(scn_ctx *c, scn_define *d)
+{
+    scn_expect_op(c, "(");
+    while (!c->err) {
+        if (d->ninv >= SCN_MAX_INV) {
+            scn_fail_tok(c, "too many invariants", scn_fmt(c, "at most %u", SCN_MAX_INV));
+            return;
+        }
+        inv_item(c, &d->inv[d->ninv++]);
+        if (!scn_accept_op(c, ","))
+            break;
+    }
+    scn_expect_op(c, ")");
+}
+
 static void define_clauses(scn_ctx *c, scn_define *d)
 {
     uint8_t seen[5] = {0};
@@ -281,6 +325,9 @@ static void define_clauses(scn_ctx *c, scn_define *d)
         else if (scn_is_word(c, "period") && d->type == SCN_DEF_DSS && once(c, &seen[4])) {
             scn_next(c);
             d->period = paren_time(c, 0, NULL, &d->period_pos);
+        } else if (scn_is_word(c, "invariants") && d->type == SCN_DEF_SS && !d->ninv) {
+            scn_next(c);
+            inv_list(c, d);
         } else if (!c->err)
             scn_fail_tok(c, "syntax error",
                          d->type == SCN_DEF_DSS

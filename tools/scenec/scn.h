@@ -175,6 +175,17 @@ typedef struct scn_matrix {
     uint8_t given;
 } scn_matrix;
 
+#define SCN_MAX_INV 8           /* invariants of one define */
+#define SCN_MAX_INV_N 16        /* states of one invariant */
+
+/* invariants (nonnegative (a, b) [within (tol)], sum (a, b) = c, norm (a, b) <= c) */
+typedef struct scn_inv {
+    uint8_t type;               /* rt_inv_type */
+    uint8_t n;
+    scn_name x[SCN_MAX_INV_N];  /* state names */
+    double c, tol;              /* the sum or bound; tolerance (0: RT_INV_TOL) */
+} scn_inv;
+
 typedef struct scn_define {
     scn_name name;
     uint8_t type;               /* scn_def_type */
@@ -188,6 +199,8 @@ typedef struct scn_define {
     int8_t rdir[SCN_MAX_PORTS]; /* root directions of `when`: -1 falling, +1 rising, 0 both */
     uint16_t nr;                /* roots (`when` statements) */
     scn_matrix A, B, C, D;      /* LSS */
+    scn_inv inv[SCN_MAX_INV];   /* invariants (...) */
+    uint8_t ninv;
     /* derived by check.c */
     rt_kind *kind;              /* sizes, names, defaults, feed (no services) */
     uint8_t *feed;              /* ny*nu: output i depends directly on input j */
