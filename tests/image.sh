@@ -58,5 +58,16 @@ if make -s image TARGET=m7 SCENE=pi_loop >/dev/null &&
    [ "$(arm-none-eabi-objdump -d build/image/m7/pi_loop.elf | grep -c 'bkpt')" -gt 0 ]; then ok
 else bad "the default (semihosting) image has no bkpt: the check above cannot fail"; fi
 
+# REAL=float goes beside the double image (it used to overwrite it), and the command the
+# build prints runs the image
+if make -s image TARGET=m4f SCENE=pi_loop >/dev/null &&
+   cmd=$(make -s image TARGET=m4f SCENE=pi_loop REAL=float | sed -n 's/^image: run it with: //p') &&
+   [ -f build/image/m4f/pi_loop.elf ] && [ -f build/image/m4f-float/pi_loop.elf ] &&
+   ! cmp -s build/image/m4f/pi_loop.elf build/image/m4f-float/pi_loop.elf; then ok
+else bad "REAL=float and double images of pi_loop are not kept apart"; fi
+# shellcheck disable=SC2086 # the printed command is meant to split into words
+if [ -n "${cmd:-}" ] && $cmd 2>&1 | grep -q '^rt scene pi_loop .* status ok$'; then ok
+else bad "the printed command '${cmd:-}' does not run the float image"; fi
+
 echo "image: $pass passed, $fail failed"
 [ $fail -eq 0 ]
