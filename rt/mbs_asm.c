@@ -96,10 +96,10 @@ static int point_of(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, in
 /* S <- S A (3 x 3, row-major) */
 static void turn(real_t *S, const real_t *A)
 {
-    for (int r = 0; r < 3; r++) {
-        real_t a = S[3 * r], b = S[3 * r + 1], c = S[3 * r + 2];
-        for (int k = 0; k < 3; k++)
-            S[3 * r + k] = a * A[k] + b * A[3 + k] + c * A[6 + k];
+    for (real_t *row = S; row < S + 9; row += 3) {
+        real_t a = row[0], b = row[1], c = row[2];
+        for (unsigned k = 0; k < 3; k++)
+            row[k] = a * A[k] + b * A[3 + k] + c * A[6 + k];
     }
 }
 

@@ -628,6 +628,11 @@ typedef struct rt_plan {
 
     /* multirate (rt/xset.c) */
     uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
+    uint8_t rsched[RT_MAX_SETS];     /* order the sets' outputs are refreshed in at a tick:
+                                        sched's, but a set whose sampled outputs another
+                                        set reads (RT_SRC_HELD) before that set (rt/xset.c),
+                                        so the trace does not depend on how the scene
+                                        lists its sets */
     uint8_t set_flags[RT_MAX_SETS];  /* rti_set_flag bits of each set (rti_eval_plan) */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */

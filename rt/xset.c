@@ -62,6 +62,44 @@ static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+/* does a block of set r read a sampled output of set q (RT_SRC_HELD)? */
+static int reads_held(const rt_scene *sc, const rt_sim *sim, uint8_t r, uint8_t q)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t i = sim->plan.u_off[b]; sc->blocks[b].set == r && i < sim->plan.u_off[b + 1];
+             i++)
+            if (sim->plan.src_kind[i] == RT_SRC_HELD && sim->plan.src_set[i] == q)
+                return 1;
+    return 0;
+}
+
+/* rsched: sched's order, but a set's outputs refreshed before those of any set that reads
+   its sampled outputs: at a sample instant a throughput block then shows this sample, not
+   the last, whatever the order the scene lists its sets in. Each place takes the first set
+   in sched's order none of whose sampled sources is still unplaced (in a cycle: the first) */
+static void refresh_order(const rt_scene *sc, rt_sim *sim)
+{
+    uint8_t placed[RT_MAX_SETS] = {0};
+    for (uint8_t n = 0; n < sc->nsets; n++) {
+        uint8_t pick = RT_MAX_SETS, first = RT_MAX_SETS;
+        for (uint8_t i = 0; i < sc->nsets && pick == RT_MAX_SETS; i++) {
+            uint8_t r = sim->plan.sched[i];
+            if (placed[r])
+                continue;
+            first = first < RT_MAX_SETS ? first : r;
+            int ready = 1;
+            for (uint8_t q = 0; ready && q < sc->nsets; q++)
+                ready = placed[q] || q == r || !reads_held(sc, sim, r, q);
+            pick = ready ? r : RT_MAX_SETS;
+        }
+        pick = pick < RT_MAX_SETS ? pick : first; /* a cycle: sched's first unplaced */
+        if (pick >= RT_MAX_SETS)
+            return; /* not reached: n < nsets leaves a set unplaced */
+        placed[pick] = 1;
+        sim->plan.rsched[n] = pick;
+    }
+}
+
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
 {
     for (uint16_t c = 0; c < sc->nconns; c++) {
@@ -81,6 +119,7 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
            it with the end of its set's step and deliver it one step late */
         if (sc->blocks[cn->from].kind->type == RT_KIND_DSS) {
             sim->plan.src_kind[gi] = RT_SRC_HELD;
+            sim->plan.src_set[gi] = sf; /* the refresh order (refresh_order) */
             sim->plan.interp[gi] = RT_INTERP_HOLD;
             continue;
         }
@@ -101,6 +140,7 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
             sim->plan.sched[j] = sim->plan.sched[j - 1];
         sim->plan.sched[j] = i;
     }
+    refresh_order(sc, sim);
     return collect_predicted(sc, sim);
 }
 
