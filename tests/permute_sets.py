@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """permute_sets.py - the trace does not depend on the order in which a scene lists its
-sets: every library scene with several sets, and tests/scenec/scenes/lang_order.scn (a
-throughput block in one set reading a sampled controller in another), run with their set
-statements in every order give the same trace hash. Usage: permute_sets.py MODRT"""
+sets: every library scene with several sets, tests/scenec/scenes/lang_order.scn (a
+throughput block in one set reading a sampled controller in another) and lang_cycle.scn
+(three sets of one step coupled in a loop), run with their set statements in every order,
+give the same trace hash. Usage: permute_sets.py MODRT"""
 import glob
 import itertools
 import os
@@ -46,7 +47,8 @@ def main():
     for inc in glob.glob(os.path.join(ROOT, "models", "scenes", "*.inc")):
         shutil.copy(inc, OUT)
     scenes = sorted(glob.glob(os.path.join(ROOT, "models", "scenes", "*.scn")))
-    scenes.append(os.path.join(ROOT, "tests", "scenec", "scenes", "lang_order.scn"))
+    for extra in ("lang_order.scn", "lang_cycle.scn"):
+        scenes.append(os.path.join(ROOT, "tests", "scenec", "scenes", extra))
     passed = failed = 0
     for path in scenes:
         parts = split_sets(open(path).read())
