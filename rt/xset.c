@@ -123,10 +123,10 @@ static void order_run(const rt_scene *sc, rt_sim *sim, uint8_t lo, uint8_t hi)
 
 static void equal_ratios(const rt_scene *sc, rt_sim *sim)
 {
-    for (uint8_t lo = 0, hi; lo < sc->nsets; lo = hi) {
+    for (uint8_t lo = 0, hi; lo < sc->nsets && lo < RT_MAX_SETS; lo = hi) {
         for (hi = (uint8_t)(lo + 1);
-             hi < sc->nsets && sc->sets[sim->plan.sched[hi]].ratio ==
-                                   sc->sets[sim->plan.sched[lo]].ratio;
+             hi < sc->nsets && hi < RT_MAX_SETS &&
+             sc->sets[sim->plan.sched[hi]].ratio == sc->sets[sim->plan.sched[lo]].ratio;
              hi++)
             ;
         if (hi - lo > 1)
