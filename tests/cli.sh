@@ -183,6 +183,10 @@ want_pe="$want_pe -DRT_MAX_MBS_LNZ=9 -DRT_MAX_MBS_M=30 -DRT_MAX_MBS_JROWS=10 -DR
 [ "$($M sizes pi_loop)" = "$want_pi" ] && ok || bad "modrt sizes pi_loop: $($M sizes pi_loop)"
 expect_err "scenec --sizes of a bad scene" 1 "error" build/host/scenec --sizes tests/scenec/errors/not_multibody.scn
 
+# modrt info shows what rt_init reported about a scene it accepted
+$M info tests/hard/joints_redundant.scn | grep -qx 'init: ok (reported: J2 repeats constraints of J1: solved with its multipliers zero)' \
+    && ok || bad "modrt info does not show rt_init's report of a redundant joint"
+
 # the trace does not depend on the order the scene lists its sets in
 out=$(python3 tests/permute_sets.py $M) && ok || bad "set order changes a trace: $out"
 

@@ -446,8 +446,9 @@ static void scene_text(FILE *f, const rt_scene *sc, const rt_sim *sim, rt_status
     fprintf(f, "recorded:");
     for (uint16_t i = 0; i < sc->nrecs; i++)
         fprintf(f, " %s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
-    fprintf(f, "\ninit: %s%s%s\n", rt_status_name(init), init ? ": " : "",
-            init ? rt_error_text(sim) : "");
+    const char *text = rt_error_text(sim); /* after ok: what rt_init moved or found */
+    fprintf(f, "\ninit: %s%s%s%s\n", rt_status_name(init),
+            init ? ": " : text[0] ? " (reported: " : "", text, !init && text[0] ? ")" : "");
 }
 
 static void json_blocks(FILE *f, const rt_scene *sc)
