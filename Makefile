@@ -95,7 +95,14 @@ help:
 	@echo "make study        what accuracy costs: docs/study.md and docs/study/*.svg, the four"
 	@echo "                  paper examples on the host, Cortex-M4F and M7 (STUDY=quick: a subset)"
 	@echo "make image TARGET=<t> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
-	@echo "                  a firmware image of one scene (docs/porting.md)"
+	@echo "           [REAL=float] [IMAGE_CFLAGS=...]"
+	@echo "                  a firmware image of one scene (docs/porting.md) into"
+	@echo "                  build/image/<t>/ (REAL=float: binary32, into build/image/<t>-float/);"
+	@echo "                  IMAGE_CFLAGS are added to the compile, e.g. -DCM_EXIT_SEMIHOST=1;"
+	@echo "                  prints the QEMU command that runs it"
+	@echo "make hard         the hard-case suite at full length, table into build/hard-table.md"
+	@echo "make test-<suite> one suite of make test: $(patsubst test-%,%,$(filter test-%,$(TEST_SUITES)))"
+	@echo "                  (also check-freestanding, cross-test-<t>)"
 	@echo "make fuzz         the scene-language fuzzer for $(FUZZ_TIME) s"
 	@echo "make deps         install what the targets need (tools/install-deps.sh)"
 	@echo "make clean        remove build/"
@@ -329,6 +336,7 @@ image: deps build/host/modrt $(SCENEC)
 TEST_SUITES += test-image
 test-image: deps build/host/modrt $(SCENEC)
 	@sh tests/image.sh
+	@sh tests/cmsis/check.sh
 
 # prints a make variable (used by tools/footprint.sh)
 print-%:

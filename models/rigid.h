@@ -151,13 +151,14 @@ static inline void mdl_rigid_node_x(const real_t *x, const real_t *R, real_t d, 
     }
 }
 
-/* p <- p / |p| in q = [r, p] (after the position projection) */
-static inline void mdl_rigid_normalize(real_t *q)
+/* p <- p / |p| in q = [r, p] (after the position projection); returns |p| before */
+static inline real_t mdl_rigid_normalize(real_t *q)
 {
     real_t n = rt_sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
     if (n > 0)
         for (int i = 3; i < 7; i++)
             q[i] /= n;
+    return n;
 }
 
 #endif /* MDL_RIGID_H */

@@ -47,31 +47,50 @@ static real_t magic(real_t alpha, real_t ca, real_t fz, const real_t *p)
     return d * rt_sin(p[P_SHAPE] * rt_atan(ba - p[P_CURV] * (ba - rt_atan(ba))));
 }
 
-/* body-frame tire resultants: fb = (F_x, F_y, M_z); mf: the Magic Formula with exact
-   slip angles and static axle loads, else the linear tires */
-static void tires_law(const rt_args *a, real_t *fb, int mf)
+/* body-frame speeds: u (forward, at least umin: us), v (left), the yaw rate r */
+typedef struct speeds {
+    real_t u, v, r, us;
+} speeds;
+
+static speeds body_speeds(const rt_args *a)
 {
-    const real_t *x = a->x, *p = a->p;
+    const real_t *x = a->x;
     real_t c = rt_cos(x[2]), s = rt_sin(x[2]);
-    real_t u = c * x[3] + s * x[4], v = -s * x[3] + c * x[4], r = x[5];
-    real_t us = u > p[P_UMIN] ? u : p[P_UMIN], fyf, fyr;
-    if (mf) {
-        real_t l = p[P_LF] + p[P_LR], w = p[P_M] * p[P_G];
-        fyf = magic(a->u[U_DELTA] - rt_atan((v + p[P_LF] * r) / us), p[P_CF], w * p[P_LR] / l, p);
-        fyr = magic(-rt_atan((v - p[P_LR] * r) / us), p[P_CR], w * p[P_LF] / l, p);
-    } else {
-        fyf = p[P_CF] * (a->u[U_DELTA] - (v + p[P_LF] * r) / us);
-        fyr = -p[P_CR] * (v - p[P_LR] * r) / us;
-    }
+    speeds b = {c * x[3] + s * x[4], -s * x[3] + c * x[4], x[5], 0};
+    b.us = b.u > a->p[P_UMIN] ? b.u : a->p[P_UMIN];
+    return b;
+}
+
+/* body-frame tire resultants fb = (F_x, F_y, M_z) from the axles' lateral forces */
+static void resultants(const rt_args *a, real_t fyf, real_t fyr, real_t *fb)
+{
+    const real_t *p = a->p;
     fb[0] = a->u[U_FX];
     fb[1] = fyf + fyr;
     fb[2] = p[P_LF] * fyf - p[P_LR] * fyr;
 }
 
-static const rt_mbs_spec spec_mf;
+/* linear tires (st_car). Each kind has its own tire function, so that an image of a
+   scene with linear tires links no Magic-Formula code */
+static void tires(const rt_args *a, real_t *fb)
+{
+    const real_t *p = a->p;
+    speeds b = body_speeds(a);
+    resultants(a, p[P_CF] * (a->u[U_DELTA] - (b.v + p[P_LF] * b.r) / b.us),
+               -p[P_CR] * (b.v - p[P_LR] * b.r) / b.us, fb);
+}
 
-/* the tire law of the kind the block is: st_car_mf's spec selects the Magic Formula */
-static void tires(const rt_args *a, real_t *fb) { tires_law(a, fb, a->spec == &spec_mf); }
+/* the Magic Formula with exact slip angles and static axle loads (st_car_mf) */
+static void tires_mf(const rt_args *a, real_t *fb)
+{
+    const real_t *p = a->p;
+    speeds b = body_speeds(a);
+    real_t l = p[P_LF] + p[P_LR], w = p[P_M] * p[P_G];
+    resultants(a,
+               magic(a->u[U_DELTA] - rt_atan((b.v + p[P_LF] * b.r) / b.us), p[P_CF],
+                     w * p[P_LR] / l, p),
+               magic(-rt_atan((b.v - p[P_LR] * b.r) / b.us), p[P_CR], w * p[P_LF] / l, p), fb);
+}
 
 static void kin(const rt_args *a, const real_t *v, real_t *qd)
 {
@@ -98,6 +117,13 @@ static void force(const rt_args *a, real_t *k)
 {
     real_t fb[3];
     tires(a, fb);
+    to_ground(a, fb, k);
+}
+
+static void force_mf(const rt_args *a, real_t *k)
+{
+    real_t fb[3];
+    tires_mf(a, fb);
     to_ground(a, fb, k);
 }
 
@@ -146,6 +172,13 @@ static void output(const rt_args *a, real_t *y)
 {
     real_t fb[3];
     tires(a, fb);
+    outputs(a, fb, y);
+}
+
+static void output_mf(const rt_args *a, real_t *y)
+{
+    real_t fb[3];
+    tires_mf(a, fb);
     outputs(a, fb, y);
 }
 
@@ -200,14 +233,14 @@ const rt_kind mdl_st_car_kind = {
 static const rt_mbs_spec spec_mf = {
     .nq = 3, .nz = 3, .nn = 2, .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST,
     .node_names = node_names,
-    .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
+    .kin = kin, .mass = mass, .force = force_mf, .node = node, .energy = energy,
 };
 
 const rt_kind mdl_st_car_mf_kind = {
     .name = "st_car_mf", .type = RT_KIND_MBS, .nu = 2, .ny = 7, .nx = 6, .np = P_COUNT_MF,
     .u_names = u_names, .y_names = y_names, .x_names = x_names, .p_names = p_names,
     .p_default = p_default_mf, .x_default = x_default, .feed = RT_FEED_TABLE, .autonomous = 1,
-    .feed_table = feed, .check = check_mf, .output = output, .spec = &spec_mf,
+    .feed_table = feed, .check = check_mf, .output = output_mf, .spec = &spec_mf,
     .doc = RT_DOC(
         "Planar single-track car with Magic-Formula tires (the same ports, states and\n"
         "nodes as st_car): slip angles a_f = delta - atan((v + lf r)/u),\n"

@@ -356,7 +356,8 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         sim->stats.last_block[c] = -1;
     for (uint8_t s = 0; s < RT_MAX_SETS; s++)
         sim->plan.set_xout[s] = 0, sim->plan.sched[s] = s;
-    if ((st = check_scene(sc, sim)) != RT_OK || (st = layout(sc, sim)) != RT_OK ||
+    if ((st = check_scene(sc, sim)) != RT_OK || (st = rti_invariant_init(sc, sim)) != RT_OK ||
+        (st = layout(sc, sim)) != RT_OK ||
         (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
         /* the link's exports count among the held signals (check_history) */

@@ -192,19 +192,44 @@ const rt_joint_kind rt_joint_sphdiff = {
     .name = "sphdiff", .nc = 1, .np = 1, .trans = 1, .p_names = sphdiff_p,
     .check = sphdiff_check, .eval = sphdiff_eval, .eval_points = sphdiff_points,
     .g_points = sphdiff_g,
+    .doc = RT_DOC("Rod of length l between two points (spherical difference, eq. (8)):\n"
+                  "  g = |d| - l = 0,  d = r1 - r2 (node positions, inertial frame)\n"
+                  "  g' = e.(v1 - v2), e = d/|d|; coincident nodes: e = +x"),
+    .free = RT_DOC("5 of 6 relative directions: both rotations of the rod and the nodes' "
+                   "rotations about their points; only the distance is held"),
 };
 const rt_joint_kind rt_joint_spherical = {
     .name = "spherical", .nc = 3, .trans = 1, .eval = spherical_eval,
+    .doc = RT_DOC("Ball joint: the two nodes coincide.\n"
+                  "  g = r1 - r2 = 0 (3 rows)"),
+    .free = RT_DOC("the three relative rotations"),
 };
 const rt_joint_kind rt_joint_revolute = {
     .name = "revolute", .nc = 5, .eval = revolute_eval,
+    .doc = RT_DOC("Hinge: the nodes coincide and their joint axes are parallel. With the\n"
+                  "joint frame A (J.axis, default z) the node frames are S1 A, S2 A:\n"
+                  "  g = r1 - r2 = 0 (3 rows)\n"
+                  "  (S2 A ez).(S1 A ex) = 0,  (S2 A ez).(S1 A ey) = 0"),
+    .free = RT_DOC("the rotation about the joint axis (S1 A ez)"),
 };
 const rt_joint_kind rt_joint_fixed = {
     .name = "fixed", .nc = 6, .eval = fixed_eval,
+    .doc = RT_DOC("Clamp: the nodes coincide and their frames agree (node frames S1 A, S2 A):\n"
+                  "  g = r1 - r2 = 0 (3 rows)\n"
+                  "  (S2 A ey).(S1 A ez) = 0, (S2 A ez).(S1 A ex) = 0, (S2 A ex).(S1 A ey) = 0\n"
+                  "On a mass point (no rotation) the three orientation rows restrain no\n"
+                  "motion: dropped and counted redundant (a spherical joint says it)."),
+    .free = RT_DOC("none"),
 };
 
 const rt_joint_kind rt_joint_prismatic = {
     .name = "prismatic", .nc = 5, .eval = prismatic_eval,
+    .doc = RT_DOC("Slider: node 2 stays on the line through node 1 along the joint axis, and\n"
+                  "the frames agree (node frames S1 A, S2 A; J.axis, default z):\n"
+                  "  a.d = 0 for a = S1 A ex, S1 A ey, d = r2 - r1 (2 rows)\n"
+                  "  the three orientation rows of fixed\n"
+                  "A cart on a horizontal rail: J.axis = (1, 0, 0), bodies unturned."),
+    .free = RT_DOC("the translation along the joint axis (S1 A ez)"),
 };
 
 const rt_joint_entry rt_joint_kinds[] = {

@@ -278,11 +278,8 @@ static int init(const rt_scene *sc, rt_sim *sim)
         return st;
     sim->work.mbs.res_max = 0;
     sim->work.mbs.projections = 0;
-    /* the index-1 formulation needs consistent initial values: project them once */
-    for (uint8_t s = 0; s < sc->nsets; s++)
-        if (sim->work.mbs.nz[s] > 0 && (sc->stab == RT_STAB_PROJECT || sim->work.mbs.need_lambda))
-            rti_mbs_project(sc, sim, s, 0); /* also the initial multipliers, if recorded */
-    return RT_OK;
+    /* the index-1 formulation needs consistent initial values (rt/mbs_start.c) */
+    return rti_mbs_start(sc, sim);
 }
 
 /* ------------------------------------------------------------------ signals */

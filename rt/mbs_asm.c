@@ -93,12 +93,26 @@ static int point_of(const rt_scene *sc, const rt_sim *sim, const rt_joint *j, in
     return b < 0 || (spec_of(sc, (uint16_t)b)->flags & RT_MBS_NODE_POINT) != 0;
 }
 
+/* S <- S A (3 x 3, row-major) */
+static void turn(real_t *S, const real_t *A)
+{
+    for (real_t *row = S; row < S + 9; row += 3) {
+        real_t a = row[0], b = row[1], c = row[2];
+        for (unsigned k = 0; k < 3; k++)
+            row[k] = a * A[k] + b * A[3 + k] + c * A[6 + k];
+    }
+}
+
 void rti_mbs_joint(const rt_scene *sc, const rt_sim *sim, uint16_t ji, real_t t,
                    rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2, rt_joint_eval *e)
 {
     const rt_joint *j = &sc->joints[ji];
     joint_node(sc, sim, j, 0, t, n1, J1);
     joint_node(sc, sim, j, 1, t, n2, J2);
+    if (j->axis_S) { /* the joint frame: S A on both sides (velocities are inertial) */
+        turn(n1->S, j->axis_S);
+        turn(n2->S, j->axis_S);
+    }
     j->kind->eval(j->p, n1, n2, e);
 }
 
@@ -472,15 +486,24 @@ void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
     else
         for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
             schur_block(w, spec_of(sc, w->sblk[k]), w->sblk[k]);
+    uint16_t deficit = w->ndrop[set];
     int bad = rti_mbs_ldl_factor(w, set);
     if (bad >= 0) /* counted with the block owning the first offending row */
         rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, set, (uint16_t)bad),
                   RT_E_SINGULAR);
+    /* dependent rows solve as they are (their conflicts are found in the solves): counted
+       when the rank deficit changes, not in every factorization */
+    if (w->ndrop[set] != deficit && w->ndrop[set] > 0)
+        rti_count(sim, RT_CNT_REDUNDANT, rti_mbs_row_block(sc, sim, set, w->drop_row[set]),
+                  RT_OK);
 }
 
 void rti_mbs_solve(rt_sim *sim, uint8_t set, real_t *v)
 {
-    rti_mbs_ldl_solve(&sim->work.mbs, set, v);
+    int row = rti_mbs_ldl_solve(&sim->work.mbs, set, v);
+    if (row >= 0) /* dependent rows that ask for different things: no answer meets both */
+        rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sim->sc, sim, set, (uint16_t)row),
+                  RT_E_SINGULAR);
 }
 
 void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t *v,

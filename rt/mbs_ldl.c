@@ -6,10 +6,20 @@
  * gives a tridiagonal A, a tree or a few closed loops a sparse one. At init (symbolic
  * phase) a minimum-degree elimination order and the pattern of L with its fill are
  * computed once from the touches; every evaluation then only adds the blocks' shares into
- * the pattern's slots and factors those non-zeros (numeric phase), with no pivoting (A is
- * positive definite; a pivot at or below the threshold is replaced by it and counted, as
- * the dense LU did). Loops run in a fixed order: the same A gives the same bits on every
- * target. */
+ * the pattern's slots and factors those non-zeros (numeric phase). Loops run in a fixed
+ * order: the same A gives the same bits on every target.
+ *
+ * Rank-revealing: A is positive semidefinite, and the pivot of row i is the squared
+ * M^-1-distance of its row of W from the span of the rows eliminated before it. A pivot
+ * at or below RT_MBS_PIVOT_TOL times A's largest diagonal entry marks a row that depends
+ * on earlier ones (a redundant joint, a chain pulled straight): it is dropped (D = 0, its
+ * column of L zero, its multiplier zero), so the rows kept have full rank, whatever the
+ * order. In a solve the forward substitution leaves at a dropped row exactly the part of
+ * its right-hand side that the rows it depends on do not give: zero when the redundancy
+ * is consistent (two identical rods: solved), not zero when the rows conflict (two rods of
+ * different lengths from one anchor: reported). A negative pivot beyond the threshold or
+ * a NaN is not a rank question (A is then not semidefinite): it is replaced by the
+ * threshold and reported as singular. */
 #include "rti_mbs.h"
 
 #define WORD_BITS 32
@@ -168,11 +178,13 @@ int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
     real_t u[RT_MAX_MBS_C]; /* row i so far: u[j] = L_ij D_j, zero outside its pattern */
     real_t big = 0;
     for (unsigned i = 0; i < n; i++) {
-        big = D[i] > big ? D[i] : big; /* positive definite: the largest entry is on it */
+        big = D[i] > big ? D[i] : big; /* semidefinite: the largest entry is on it */
         u[i] = 0;
     }
     real_t floor_ = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);
     int bad = -1;
+    uint16_t drop = 0;
+    w->drop_row[set] = 0;
     for (unsigned i = 0; i < n; i++) {
         real_t d = D[i];
         unsigned e0 = lp[i], e1 = lp[i + 1];
@@ -184,24 +196,29 @@ int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
                the same sum (t is never -0: A's slots sum from +0) */
             for (unsigned f = lp[j], f1 = e > e0 ? lp[j + 1] : f; f < f1; f++)
                 t -= L[f] * u[lj[f]];
-            u[j] = t;
-            L[e] = t / D[j];
-            d -= L[e] * t;
+            /* a dropped row j has no column: L_ij = 0 */
+            u[j] = D[j] != 0 ? t : 0;
+            L[e] = D[j] != 0 ? t / D[j] : 0;
+            d -= L[e] * u[j];
         }
         for (unsigned e = e0; e < e1; e++)
             u[lj[e]] = 0;
         if (i == 0 && rti_fault_due(RTI_FAULT_SINGULAR))
+            d = -big - 1;
+        if (d >= -floor_ && d <= floor_) { /* depends on the rows before it: dropped */
+            w->drop_row[set] = drop++ ? w->drop_row[set] : w->perm[base + i];
             d = 0;
-        if (!(d > floor_)) { /* singular, indefinite or NaN: go on with the threshold */
+        } else if (!(d > floor_)) { /* indefinite or NaN: go on with the threshold */
             bad = bad < 0 ? (int)w->perm[base + i] : bad;
             d = floor_;
         }
         D[i] = d;
     }
+    w->ndrop[set] = drop;
     return bad;
 }
 
-void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v)
+int rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v)
 {
     unsigned base = w->rb[set], n = w->rb[set + 1] - base;
     const real_t *D = w->lv + base, *L = w->lv + (size_t)RT_MAX_MBS_ROWS;
@@ -210,19 +227,33 @@ void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v)
        is one row (the array becomes a scalar): y[0] is set for it, not the whole array
        (40 stores per solve at the default limit) */
     real_t y[RT_MAX_MBS_C];
+    real_t scale = 0;
+    int conflict = -1;
     y[0] = 0;
+    if (w->ndrop[set])
+        for (unsigned i = 0; i < n; i++)
+            scale = rt_fmax(scale, rt_fabs(v[i]));
     for (unsigned i = 0; i < n; i++) { /* L y = P v */
         real_t t = v[perm[i]];
         for (unsigned e = lp[i], e1 = lp[i + 1]; e < e1; e++)
             t -= L[e] * y[lj[e]];
         y[i] = t;
     }
-    for (unsigned i = 0; i < n; i++)
-        y[i] /= D[i];
+    for (unsigned i = 0; i < n; i++) {
+        if (D[i] != 0) {
+            y[i] /= D[i];
+            continue;
+        }
+        /* a dropped row: what is left of its right-hand side is the conflict */
+        if (!(rt_fabs(y[i]) <= RT_MBS_RES_TOL + RT_MBS_RANK_TOL * scale) && conflict < 0)
+            conflict = perm[i];
+        y[i] = 0;
+    }
     for (unsigned i = n; i-- > 0;) { /* L^T x = y */
         real_t t = y[i];
         for (unsigned e = lp[i], e1 = lp[i + 1]; e < e1; e++)
             y[lj[e]] -= L[e] * t;
         v[perm[i]] = t;
     }
+    return conflict;
 }

@@ -132,6 +132,42 @@ static void refresh_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t 
     rti_mbs_lambda(sc, sim, set, t);
 }
 
+/* positions (10a): M, W and K frozen at the predicted state, two iterations */
+static void positions(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    save_q(sc, sim, set);
+    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC);
+    rti_mbs_schur(sc, sim, set);
+    correct(sc, sim, set, w->g);
+    move_q(sc, sim, set, t);
+    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_G);
+    correct(sc, sim, set, w->g);
+    move_q(sc, sim, set, t);
+    normalize(sc, sim, set);
+}
+
+/* velocities (10b): W and M at the projected positions, one solve; leaves g of the
+   projected positions in w->g */
+static void velocities(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC);
+    rti_mbs_schur(sc, sim, set);
+    correct(sc, sim, set, w->gd);
+    move_z(sc, sim, set);
+}
+
+/* largest |g| in w->g (NaN: infinite) */
+static real_t g_max(const rt_mbs_work *w, uint8_t set)
+{
+    real_t worst = 0;
+    for (uint16_t r = 0; r < w->nc[set]; r++)
+        worst = rt_fabs(w->g[r]) <= worst ? worst : rt_isfinite(w->g[r]) ? rt_fabs(w->g[r])
+                                                                          : (real_t)1e30;
+    return worst;
+}
+
 void rti_mbs_project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
     rt_mbs_work *w = &sim->work.mbs;
@@ -143,21 +179,30 @@ void rti_mbs_project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
         refresh_lambda(sc, sim, set, t);
         return;
     }
-    /* positions (10a): M, W and K frozen at the predicted state, two iterations */
-    save_q(sc, sim, set);
-    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC);
-    rti_mbs_schur(sc, sim, set);
-    correct(sc, sim, set, w->g);
-    move_q(sc, sim, set, t);
-    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_G);
-    correct(sc, sim, set, w->g);
-    move_q(sc, sim, set, t);
-    normalize(sc, sim, set);
-    /* velocities (10b): W and M at the projected positions, one solve */
-    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_JAC);
-    rti_mbs_schur(sc, sim, set);
-    correct(sc, sim, set, w->gd);
-    move_z(sc, sim, set);
+    positions(sc, sim, set, t);
+    velocities(sc, sim, set, t);
     check_residual(sc, sim, set);
     refresh_lambda(sc, sim, set, t);
+}
+
+real_t rti_mbs_settle(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    if (w->nz[set] == 0)
+        return 0;
+    w->projections++;
+    if (w->nc[set] == 0)
+        normalize(sc, sim, set);
+    else {
+        /* the first round is a step's projection; more only while it is not enough */
+        for (unsigned k = 0; k < RT_INIT_PROJ_MAX; k++) {
+            positions(sc, sim, set, t);
+            rti_mbs_assemble(sc, sim, set, t, RTI_MBS_G);
+            if (g_max(w, set) <= RT_MBS_RES_TOL)
+                break;
+        }
+        velocities(sc, sim, set, t);
+    }
+    refresh_lambda(sc, sim, set, t);
+    return w->nc[set] > 0 ? g_max(w, set) : 0;
 }

@@ -29,13 +29,14 @@
     X(RT_E_UNCONNECTED, 3, "input is not connected and has no default value")    \
     X(RT_E_LOOP, 3, "algebraic loop that cannot be solved")                      \
     X(RT_E_PARAM, 3, "parameter out of range")                                   \
+    X(RT_E_INCONSISTENT, 3, "initial state inconsistent: conflicting constraints, or off them by more than RT_INIT_TOL") \
     X(RT_E_NAN, 2, "non-finite value")                                           \
     X(RT_E_NOCONV, 2, "algebraic loop iteration did not converge")               \
     X(RT_E_DEGRADED, 2, "step accepted with its residual above tolerance (degraded)") \
     X(RT_E_SINGULAR, 2, "singular or near-singular matrix")                      \
     X(RT_E_EVENT, 2, "too many state events in one step")                        \
     X(RT_E_NOLOC, 2, "state event not located within its bound")                 \
-    X(RT_E_INVARIANT, 2, "a root function ended a step on the wrong side without a located crossing") \
+    X(RT_E_INVARIANT, 2, "an invariant broken: a kind's declared invariant, or a guard root crossed without a located event") \
     X(RT_E_UNSTABLE, 2, "numerically unstable: the state grows without bound")   \
     X(RT_E_LINK, 2, "controller link lost (an import with policy stop)")         \
     X(RT_E_LINK_FAULT, 2, "controller link faults: bad datagrams or missing answers (link_bad, link_missing)") \
@@ -64,8 +65,10 @@ typedef enum {
     X(RT_CNT_DEGRADED, "degraded", "step accepted with residual above tolerance")\
     X(RT_CNT_SUBSTEP, "substep", "implicit step that converged only in substeps") \
     X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy (or an input it extrapolated from another set lost every digit)") \
-    X(RT_CNT_INVARIANT, "invariant", "step ending further below a guard root (a floor) without a located crossing: the model tunnels") \
+    X(RT_CNT_INVARIANT, "invariant", "step ending with a kind's declared invariant broken (a negative concentration, a conserved sum lost), or further below a guard root (a floor) without a located crossing: the model tunnels") \
     X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
+    X(RT_CNT_REDUNDANT, "redundant", "constraint rows found dependent on others and consistent with them: solved with their multipliers zero (counted when a set's rank deficit changes)") \
+    X(RT_CNT_INIT_MOVED, "init_moved", "rt_init moved an initial multibody state onto its constraints or normalized its quaternion (rt_error_text says by how much)") \
     X(RT_CNT_OVERRUN, "overrun", "tick finished after its deadline")             \
     X(RT_CNT_EVENTS, "events", "state events handled")
 
@@ -132,6 +135,30 @@ typedef struct rt_args {
 /* what rt_kind.next_event returns when no known time event follows */
 #define RT_TEV_NEVER ((real_t)1e30)
 
+/* What a kind knows of its continuous state and declares (rt_kind.inv), checked after
+ * every step of its set (rt/invariant.c); a violation beyond the tolerance is counted
+ * (RT_CNT_INVARIANT, the block) and fails the run (RT_E_INVARIANT): an answer with
+ * negative concentrations is wrong whatever the error estimate says. Declared once:
+ * X(ENUM, name, meaning). */
+#define RT_INV_LIST(X)                                                                     \
+    X(RT_INV_NONNEG, "nonnegative", "each state >= -tol (concentrations, masses)")         \
+    X(RT_INV_SUM, "sum", "|sum of the states - c| <= tol (a conserved total)")             \
+    X(RT_INV_NORM, "norm", "Euclidean norm of the states <= c + tol (a bounded norm)")
+typedef enum {
+#define RT_X_ENUM(id, name, text) id,
+    RT_INV_LIST(RT_X_ENUM)
+#undef RT_X_ENUM
+    RT_INV_COUNT
+} rt_inv_type;
+
+typedef struct rt_invariant {
+    uint8_t type;               /* rt_inv_type */
+    uint8_t n;                  /* states it reads */
+    const uint16_t *x;          /* their indices within the block's x (n values) */
+    real_t c;                   /* the conserved sum, or the bound of the norm */
+    real_t tol;                 /* absolute tolerance [the states' unit]; 0: RT_INV_TOL */
+} rt_invariant;
+
 /* A block kind: sizes, names and services, like the paper's system_descr (Fig. 3).
  * Every slot may be NULL where the comment says so; the runtime checks the rest at init. */
 typedef struct rt_kind {
@@ -169,6 +196,9 @@ typedef struct rt_kind {
                                    floor) that must stay >= 0 except across a located
                                    crossing; a step ending further below is counted
                                    (invariant). NULL: none */
+    const rt_invariant *inv;    /* ninv invariants of the continuous state, checked after
+                                   each step (rt/invariant.c); NULL iff ninv == 0 */
+    uint8_t ninv;
 
     /* Called once at rt_init with the instance parameters: returns RT_OK or RT_E_PARAM.
        May be NULL (no check). */
@@ -624,6 +654,11 @@ typedef struct rt_plan {
 
     /* multirate (rt/xset.c) */
     uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
+    uint8_t rsched[RT_MAX_SETS];     /* order the sets' outputs are refreshed in at a tick:
+                                        sched's, but a set whose sampled outputs another
+                                        set reads (RT_SRC_HELD) before that set (rt/xset.c),
+                                        so the trace does not depend on how the scene
+                                        lists its sets */
     uint8_t set_flags[RT_MAX_SETS];  /* rti_set_flag bits of each set (rti_eval_plan) */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
@@ -806,7 +841,9 @@ typedef struct rt_sim {
  * evaluation order, initial outputs. Returns RT_OK or the first problem found; on error
  * sim holds a description for rt_error_text. */
 rt_status rt_init(const rt_scene *scene, rt_sim *sim);
-/* Returns the text describing the last init error ("" if none). */
+/* Returns the text describing the last init error, or after an rt_init that returned
+ * RT_OK what it reported (an initial state moved onto its constraints, a quaternion
+ * normalized, redundant joints; "" if nothing). */
 const char *rt_error_text(const rt_sim *sim);
 /* Advances the scene by one base tick. Always completes the tick; faults go to the
  * counters and to sim->stats.status. Returns RT_E_DONE once t_end is reached. */

@@ -217,6 +217,30 @@ typedef double real_t;
    as degraded (RT_CNT_DEGRADED) [m or 1] */
 #define RT_MBS_RES_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-4 : (real_t)1e-9)
 #endif
+#ifndef RT_INV_TOL
+/* absolute tolerance of a kind's declared invariants that give none (rt_invariant.tol):
+   a step may leave a concentration this far below 0, a conserved sum this far off */
+#define RT_INV_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-4 : (real_t)1e-8)
+#endif
+#ifndef RT_MBS_RANK_TOL
+/* a constraint row dropped as dependent on others (rt/mbs_ldl.c) conflicts with them when
+   what its right-hand side asks beyond theirs exceeds RT_MBS_RES_TOL plus this fraction
+   of the largest right-hand side: two identical rods agree to the bit, two rods of
+   different lengths from one anchor disagree by the difference */
+#define RT_MBS_RANK_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-4 : (real_t)1e-8)
+#endif
+#ifndef RT_INIT_TOL
+/* the farthest rt_init moves a multibody node (or the unit vector of a quaternion) to put
+   the initial state on its constraints; beyond it the set-up is refused as a mistake
+   (RT_E_INCONSISTENT), below it the move is reported with the block (RT_CNT_INIT_MOVED)
+   [m or 1] */
+#define RT_INIT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-2 : (real_t)1e-3)
+#endif
+#ifndef RT_INIT_PROJ_MAX
+/* projections rt_init may do to bring the initial state within RT_MBS_RES_TOL of its
+   constraints (a step's projection does one: two position iterations) */
+#define RT_INIT_PROJ_MAX 8
+#endif
 #ifndef RT_MBS_LEN_MIN
 /* a spherical difference joint whose nodes are closer than this has no direction;
    its direction falls back to +x deterministically [m] */

@@ -96,8 +96,10 @@ typedef struct rt_mbs_spec {
     /* Kinetic energy e[0] = z^T M z / 2 and potential energy e[1] [J]. Never NULL. */
     void (*energy)(const struct rt_args *a, real_t *e);
     /* Called on q after the position projection, e.g. to renormalize unit quaternions
-       (which K keeps tangent). NULL: nothing to do. */
-    void (*normalize)(real_t *q);
+       (which K keeps tangent); returns the norm the quantity had (1 when it was unit), so
+       that rt_init can report a non-unit initial quaternion (rt/mbs_start.c). NULL:
+       nothing to normalize. */
+    real_t (*normalize)(real_t *q);
 } rt_mbs_spec;
 
 /* ------------------------------------------------------------------ joints */
@@ -135,6 +137,11 @@ typedef struct rt_joint_kind {
     /* g alone between two points, the same bits as eval_points' g (the recorded position
        residual, every tick: no C, c or g'). NULL: eval_points serves. */
     void (*g_points)(const real_t *p, const real_t *r1, const real_t *r2, real_t *g);
+    /* Reference text (`modrt info KIND`, docs/blocks.md), through RT_DOC(...) (hosts
+       only): what it holds, its constraint equations in the nodes' terms; and the
+       directions it leaves free. NULL: none. */
+    const char *doc;
+    const char *free;
 } rt_joint_kind;
 
 /* the library of joint kinds */
@@ -162,6 +169,10 @@ typedef struct rt_joint {
     const real_t *p;                  /* kind->np parameters (e.g. the length l of eq. 8) */
     const real_t *at;                 /* anchor position [m], 3 values; NULL: origin */
     const real_t *at_S;               /* anchor rotation, 9 values row-major; NULL: unit */
+    const real_t *axis_S;             /* the joint frame within both node frames, 9 values
+                                         row-major: its third column is the joint's axis
+                                         (revolute axis, prismatic direction), the kinds
+                                         see node frames S A; NULL: unit (the z axis) */
 } rt_joint;
 
 /* ------------------------------------------------------------------ signals */
@@ -238,6 +249,9 @@ typedef struct rt_mbs_work {
     uint8_t need_lambda;            /* the scene records or exports joint reactions */
     uint8_t m_valid[RT_MAX_BLOCKS]; /* 1: M of a block with RT_MBS_M_CONST is factored */
     uint8_t points[RT_MAX_SETS];    /* 1: the set holds points only (rt/mbs.c points_only) */
+    uint16_t ndrop[RT_MAX_SETS];    /* rows of each set's A dropped as dependent on others
+                                       at its last factorization (its rank deficit) */
+    uint16_t drop_row[RT_MAX_SETS]; /* ... the first of them (a set row) */
     /* the sparse LDL^T of each set's A (rt/mbs_ldl.c): rows in elimination order */
     uint16_t rb[RT_MAX_SETS + 1];   /* first row of each set in perm, lp and lv */
     uint16_t perm[RT_MAX_MBS_ROWS]; /* set row eliminated at each position */

@@ -48,9 +48,22 @@ typedef struct rti_at {
 #define RTI_INLINE inline
 #endif
 
+/* ---- invariants (invariant.c) ---- */
+/* Checks the kinds' declared invariants (types, indices, tolerances) at init. */
+rt_status rti_invariant_init(const rt_scene *sc, rt_sim *sim);
+/* After a step of set s: each block's invariants at its new state, a violation counted
+   (RT_CNT_INVARIANT with the block, RT_E_INVARIANT). */
+void rti_invariants(const rt_scene *sc, rt_sim *sim, uint8_t s);
+
 /* ---- text (util.c) ---- */
 /* Writes the NULL-terminated list of strings into sim->err and returns status. */
 rt_status rti_fail(rt_sim *sim, rt_status status, ...);
+/* Appends the NULL-terminated list of strings to sim->err ("; " after earlier text): the
+   warnings of an rt_init that returns RT_OK (rt_error_text). */
+void rti_note(rt_sim *sim, ...);
+/* v as "d.dde+xx" into buf (RTI_REAL_TEXT bytes); returns buf (or a constant "nan"). */
+#define RTI_REAL_TEXT 16
+const char *rti_real_text(char *buf, real_t v);
 /* "RT_MAX_X (256 in rt_config.h)": a limit with its value, for rti_fail's messages; a
    per-scene build (make image) sizes the limits from the scene */
 #define RTI_STR2(x) #x

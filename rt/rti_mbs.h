@@ -28,10 +28,12 @@ void rti_mbs_joint_g(const struct rt_scene *sc, const struct rt_sim *sim, uint16
 /* Evaluates the set's MBS blocks and joints at the current state into sim->work.mbs. */
 void rti_mbs_assemble(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
                       int what);
-/* Forms Y = M^-1 W^T and A = W Y over the touched rows and factors A (rt/mbs_ldl.c); a
-   singular A is counted (RT_CNT_SINGULAR) with the block of the offending row. */
+/* Forms Y = M^-1 W^T and A = W Y over the touched rows and factors A (rt/mbs_ldl.c); an
+   indefinite A is counted (RT_CNT_SINGULAR) with the block of the offending row, a change
+   of its rank deficit to a non-zero one as RT_CNT_REDUNDANT. */
 void rti_mbs_schur(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set);
-/* v (nc values) <- A^-1 v with the factors of rti_mbs_schur. */
+/* v (nc values) <- A^-1 v with the factors of rti_mbs_schur; a dropped row whose
+   right-hand side conflicts with the others is counted (RT_CNT_SINGULAR, its block). */
 void rti_mbs_solve(struct rt_sim *sim, uint8_t set, real_t *v);
 /* dz = -Y v (add: dz -= Y v): the velocity-space correction of multipliers v. */
 void rti_mbs_correct(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set,
@@ -43,11 +45,13 @@ rt_status rti_mbs_ldl_init(const struct rt_scene *sc, struct rt_sim *sim, uint8_
                            uint32_t *np);
 /* Zeroes the set's A before the blocks add their shares. */
 void rti_mbs_ldl_clear(rt_mbs_work *w, uint8_t set);
-/* Factors the set's A = L D L^T in place; returns the set row of the first pivot at or
-   below the threshold (replaced by it), or -1. */
+/* Factors the set's A = L D L^T in place, dropping the rows that depend on earlier ones
+   (w->ndrop[set], w->drop_row[set]); returns the set row of the first negative or NaN
+   pivot (replaced by the threshold), or -1. */
 int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set);
-/* v <- A^-1 v with the factors. */
-void rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v);
+/* v <- A^-1 v with the factors, a dropped row's multiplier zero; returns the first
+   dropped row whose right-hand side conflicts with the rows it depends on, or -1. */
+int rti_mbs_ldl_solve(const rt_mbs_work *w, uint8_t set, real_t *v);
 /* The block owning constraint row `row` of the set (a joint's b1), or -1. */
 int rti_mbs_row_block(const struct rt_scene *sc, const struct rt_sim *sim, uint8_t set,
                       uint16_t row);
@@ -58,5 +62,13 @@ void rti_mbs_lambda(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, 
 void rti_mbs_accel(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
                    real_t *xdot);
 void rti_mbs_project(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+/* rt_init's projection (rt/mbs_project.c): rounds of a step's projection of positions,
+   at most RT_INIT_PROJ_MAX, until the largest |g| is within RT_MBS_RES_TOL, then the
+   velocities, whatever the scene's stabilization; counts nothing and returns the largest
+   |g| left. */
+real_t rti_mbs_settle(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+/* rt/mbs_start.c: the initial state of each set: quaternions, constraints, redundancy
+   (RT_CNT_INIT_MOVED, RT_E_INCONSISTENT; the warnings into rt_error_text). */
+rt_status rti_mbs_start(const struct rt_scene *sc, struct rt_sim *sim);
 
 #endif /* RTI_MBS_H */

@@ -275,7 +275,7 @@ uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim)
 static void refresh(const rt_scene *sc, rt_sim *sim, uint32_t renew, int in_tick)
 {
     for (uint8_t i = 0; i < sc->nsets; i++) {
-        uint8_t s = sim->plan.sched[i];
+        uint8_t s = sim->plan.rsched[i]; /* sampled sources before their readers */
         if (!refreshed(sc, sim, s))
             continue;
 #if RT_MAX_HELD_Y > 0
@@ -302,7 +302,7 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
             rti_xset_push(sc, sim, s, 0);
         }
         for (uint8_t i = 0; i < sc->nsets; i++)
-            refresh_set(sc, sim, sim->plan.sched[i], 0, 0);
+            refresh_set(sc, sim, sim->plan.rsched[i], 0, 0);
         for (uint8_t s = 0; s < sc->nsets; s++) {
             sim->state.hist_n[s] = 0;
             rti_xset_push(sc, sim, s, 0);

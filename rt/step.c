@@ -442,4 +442,5 @@ void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h
             sim->state.x[x0 + i] = sim->work.xs[i];
         rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);
     }
+    rti_invariants(sc, sim, s); /* what the kinds declare of their states */
 }

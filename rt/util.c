@@ -116,6 +116,53 @@ rt_status rti_fail(rt_sim *sim, rt_status status, ...)
     return status;
 }
 
+void rti_note(rt_sim *sim, ...)
+{
+    va_list ap;
+    size_t n = 0;
+    while (sim->err[n])
+        n++;
+    if (n > 0 && n + 3 < RT_ERR_LEN)
+        sim->err[n++] = ';', sim->err[n++] = ' ';
+    va_start(ap, sim);
+    for (const char *s; (s = va_arg(ap, const char *)) != 0;)
+        while (*s && n + 1 < RT_ERR_LEN)
+            sim->err[n++] = *s++;
+    va_end(ap);
+    sim->err[n] = 0;
+}
+
+const char *rti_real_text(char *buf, real_t v)
+{
+    /* d.dde+xx: three digits are what a message needs; no libc printf in rt/ */
+    char *p = buf;
+    real_t a = v;
+    int e = 0;
+    if (a != a)
+        return "nan";
+    if (a < 0)
+        *p++ = '-', a = -a;
+    if (a - a != 0) { /* infinite */
+        p[0] = 'i', p[1] = 'n', p[2] = 'f', p[3] = 0;
+        return buf;
+    }
+    while (a != 0 && a < 1 && e > -330)
+        a *= 10, e--;
+    while (a >= 10)
+        a /= 10, e++;
+    unsigned d = (unsigned)(a * 100 + (real_t)0.5);
+    if (d >= 1000)
+        d /= 10, e++;
+    *p++ = (char)('0' + d / 100), *p++ = '.';
+    *p++ = (char)('0' + d / 10 % 10), *p++ = (char)('0' + d % 10);
+    *p++ = 'e', *p++ = e < 0 ? '-' : '+';
+    e = e < 0 ? -e : e;
+    if (e >= 100)
+        *p++ = (char)('0' + e / 100);
+    *p++ = (char)('0' + e / 10 % 10), *p++ = (char)('0' + e % 10), *p = 0;
+    return buf;
+}
+
 const char *rt_error_text(const rt_sim *sim)
 {
     return sim->err;

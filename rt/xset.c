@@ -65,6 +65,105 @@ static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+/* does a block of set r read a sampled output of set q (RT_SRC_HELD)? */
+static int reads_held(const rt_scene *sc, const rt_sim *sim, uint8_t r, uint8_t q)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t i = sim->plan.u_off[b]; sc->blocks[b].set == r && i < sim->plan.u_off[b + 1];
+             i++)
+            if (sim->plan.src_kind[i] == RT_SRC_HELD && sim->plan.src_set[i] == q)
+                return 1;
+    return 0;
+}
+
+/* does a block of set r read an output of set q through q's history (RT_SRC_XSET)? */
+static int reads_hist(const rt_scene *sc, const rt_sim *sim, uint8_t r, uint8_t q)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t i = sim->plan.u_off[b]; sc->blocks[b].set == r && i < sim->plan.u_off[b + 1];
+             i++)
+            if (sim->plan.src_kind[i] == RT_SRC_XSET && sim->plan.src_set[i] == q)
+                return 1;
+    return 0;
+}
+
+/* a before b in byte order of their names */
+static int name_before(const char *a, const char *b)
+{
+    while (*a && *a == *b)
+        a++, b++;
+    return (unsigned char)*a < (unsigned char)*b;
+}
+
+/* sets of one ratio step at the same instants: the one that steps first is read by the
+   others at its new point, the others it extrapolates. So that this does not depend on
+   the order the scene lists them in, a set steps after the sets of its ratio it reads
+   (their history) and, in a cycle, by name. sched[lo .. hi) holds one ratio */
+static void order_run(const rt_scene *sc, rt_sim *sim, uint8_t lo, uint8_t hi)
+{
+    uint8_t run[RT_MAX_SETS], placed[RT_MAX_SETS] = {0};
+    for (uint8_t i = lo; i < hi; i++)
+        run[i] = sim->plan.sched[i];
+    for (uint8_t n = lo; n < hi; n++) {
+        uint8_t pick = RT_MAX_SETS, low = RT_MAX_SETS;
+        for (uint8_t i = lo; i < hi && pick == RT_MAX_SETS; i++) {
+            uint8_t r = run[i];
+            if (placed[r])
+                continue;
+            low = low < RT_MAX_SETS && name_before(sc->sets[low].name, sc->sets[r].name) ? low : r;
+            int ready = 1;
+            for (uint8_t k = lo; ready && k < hi; k++)
+                ready = placed[run[k]] || run[k] == r || !reads_hist(sc, sim, r, run[k]);
+            pick = ready ? r : RT_MAX_SETS;
+        }
+        pick = pick < RT_MAX_SETS ? pick : low; /* a cycle: the first name of the rest */
+        if (pick >= RT_MAX_SETS)
+            return; /* not reached: a set of the run is unplaced */
+        placed[pick] = 1;
+        sim->plan.sched[n] = pick;
+    }
+}
+
+static void equal_ratios(const rt_scene *sc, rt_sim *sim)
+{
+    for (uint8_t lo = 0, hi; lo < sc->nsets && lo < RT_MAX_SETS; lo = hi) {
+        for (hi = (uint8_t)(lo + 1);
+             hi < sc->nsets && hi < RT_MAX_SETS &&
+             sc->sets[sim->plan.sched[hi]].ratio == sc->sets[sim->plan.sched[lo]].ratio;
+             hi++)
+            ;
+        if (hi - lo > 1)
+            order_run(sc, sim, lo, hi);
+    }
+}
+
+/* rsched: sched's order, but a set's outputs refreshed before those of any set that reads
+   its sampled outputs: at a sample instant a throughput block then shows this sample, not
+   the last, whatever the order the scene lists its sets in. Each place takes the first set
+   in sched's order none of whose sampled sources is still unplaced (in a cycle: the first) */
+static void refresh_order(const rt_scene *sc, rt_sim *sim)
+{
+    uint8_t placed[RT_MAX_SETS] = {0};
+    for (uint8_t n = 0; n < sc->nsets; n++) {
+        uint8_t pick = RT_MAX_SETS, first = RT_MAX_SETS;
+        for (uint8_t i = 0; i < sc->nsets && pick == RT_MAX_SETS; i++) {
+            uint8_t r = sim->plan.sched[i];
+            if (placed[r])
+                continue;
+            first = first < RT_MAX_SETS ? first : r;
+            int ready = 1;
+            for (uint8_t q = 0; ready && q < sc->nsets; q++)
+                ready = placed[q] || q == r || !reads_held(sc, sim, r, q);
+            pick = ready ? r : RT_MAX_SETS;
+        }
+        pick = pick < RT_MAX_SETS ? pick : first; /* a cycle: sched's first unplaced */
+        if (pick >= RT_MAX_SETS)
+            return; /* not reached: n < nsets leaves a set unplaced */
+        placed[pick] = 1;
+        sim->plan.rsched[n] = pick;
+    }
+}
+
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
 {
     for (uint16_t c = 0; c < sc->nconns; c++) {
@@ -84,6 +183,7 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
            it with the end of its set's step and deliver it one step late */
         if (sc->blocks[cn->from].kind->type == RT_KIND_DSS) {
             sim->plan.src_kind[gi] = RT_SRC_HELD;
+            sim->plan.src_set[gi] = sf; /* the refresh order (refresh_order) */
             sim->plan.interp[gi] = RT_INTERP_HOLD;
             continue;
         }
@@ -97,13 +197,15 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
         if (sim->plan.src[gi] >= sim->plan.set_xout[sf])
             sim->plan.set_xout[sf] = (uint16_t)(sim->plan.src[gi] + 1);
     }
-    /* schedule: by ratio, largest first; equal ratios keep their scene order */
+    /* schedule: by ratio, largest first; equal ratios by dependency (equal_ratios) */
     for (uint8_t i = 0; i < sc->nsets && i < RT_MAX_SETS; i++) { /* init checked nsets */
         uint8_t j = i;
         for (; j > 0 && sc->sets[sim->plan.sched[j - 1]].ratio < sc->sets[i].ratio; j--)
             sim->plan.sched[j] = sim->plan.sched[j - 1];
         sim->plan.sched[j] = i;
     }
+    equal_ratios(sc, sim);
+    refresh_order(sc, sim);
     return collect_predicted(sc, sim);
 }
 

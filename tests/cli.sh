@@ -92,6 +92,9 @@ $M info pt1 >"$T/kind" && grep -q '^kind: pt1$' "$T/kind" && grep -q '^  T  *\[s
     && ok || bad "info pt1: $(cat "$T/kind")"
 # docs/blocks.md is generated from the same tables: it must be current (make docs)
 $M docs-blocks | cmp -s - docs/blocks.md && ok || bad "docs/blocks.md is stale: run make docs"
+# its rail example is the scene tests/scenec/test_scenec.c holds to the closed form
+sed -n '/^## Example: a cart on a rail/,$p' docs/blocks.md | sed -n '/^```$/,/^```$/p' | sed '1d;$d' \
+    | cmp -s - tests/scenec/scenes/lang_rail.scn && ok || bad "docs/blocks.md's rail example is not lang_rail.scn"
 $M info pi_loop | grep -q '^  PI  *pi  *dss  *set main' && ok || bad "info shows set names"
 $M info pi_loop | grep -q 'Kp=0.8 Ki=3$' && ok || bad "info shows parameter values"
 if command -v python3 >/dev/null; then
@@ -179,6 +182,13 @@ want_pe="$want_pe -DRT_MAX_MBS_LNZ=9 -DRT_MAX_MBS_M=30 -DRT_MAX_MBS_JROWS=10 -DR
     bad "scenec --sizes pendulum10: $(build/host/scenec --sizes models/scenes/pendulum10.scn)"
 [ "$($M sizes pi_loop)" = "$want_pi" ] && ok || bad "modrt sizes pi_loop: $($M sizes pi_loop)"
 expect_err "scenec --sizes of a bad scene" 1 "error" build/host/scenec --sizes tests/scenec/errors/not_multibody.scn
+
+# modrt info shows what rt_init reported about a scene it accepted
+$M info tests/hard/joints_redundant.scn | grep -qx 'init: ok (reported: J2 repeats constraints of J1: solved with its multipliers zero)' \
+    && ok || bad "modrt info does not show rt_init's report of a redundant joint"
+
+# the trace does not depend on the order the scene lists its sets in
+out=$(python3 tests/permute_sets.py $M) && ok || bad "set order changes a trace: $out"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -48,6 +48,10 @@ f=models/scenes/lane_change_planar.scn
 if make -s image TARGET=m7 SCENE=$f >/dev/null; then
     # shellcheck disable=SC2046 # the run command is meant to split into words
     run_check m7 build/image/m7/lane_change_planar.elf lane_change_planar $(make -s print-TARGET_RUN_m7)
+    # an effect the scene omits is not linked: its cars have linear tires, no Magic Formula
+    if arm-none-eabi-nm build/image/m7/lane_change_planar.elf | grep -qw 'magic'; then
+        bad "lane_change_planar (linear tires) links the Magic-Formula tire law"
+    else ok; fi
 else bad "m7 image of $f did not build"; fi
 
 if make -s image TARGET=m7 SCENE=pi_loop CONSOLE=none >/dev/null; then
@@ -57,6 +61,17 @@ else bad "m7 CONSOLE=none image did not build"; fi
 if make -s image TARGET=m7 SCENE=pi_loop >/dev/null &&
    [ "$(arm-none-eabi-objdump -d build/image/m7/pi_loop.elf | grep -c 'bkpt')" -gt 0 ]; then ok
 else bad "the default (semihosting) image has no bkpt: the check above cannot fail"; fi
+
+# REAL=float goes beside the double image (it used to overwrite it), and the command the
+# build prints runs the image
+if make -s image TARGET=m4f SCENE=pi_loop >/dev/null &&
+   cmd=$(make -s image TARGET=m4f SCENE=pi_loop REAL=float | sed -n 's/^image: run it with: //p') &&
+   [ -f build/image/m4f/pi_loop.elf ] && [ -f build/image/m4f-float/pi_loop.elf ] &&
+   ! cmp -s build/image/m4f/pi_loop.elf build/image/m4f-float/pi_loop.elf; then ok
+else bad "REAL=float and double images of pi_loop are not kept apart"; fi
+# shellcheck disable=SC2086 # the printed command is meant to split into words
+if [ -n "${cmd:-}" ] && $cmd 2>&1 | grep -q '^rt scene pi_loop .* status ok$'; then ok
+else bad "the printed command '${cmd:-}' does not run the float image"; fi
 
 echo "image: $pass passed, $fail failed"
 [ $fail -eq 0 ]

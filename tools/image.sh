@@ -33,7 +33,9 @@ esac
 make -s "check-target-$target" 2>/dev/null || fail "the $target toolchain or QEMU is missing: run sh tools/install-deps.sh"
 
 name=$(basename "$scene" .scn)
-dir=build/image/$target
+# a binary32 image (REAL=float) goes beside the double one, never over it
+real=$(make -s print-REAL)
+dir=build/image/$target$( [ "$real" = float ] && echo -float)
 mkdir -p "$dir"
 build/host/scenec -o "$dir/$name.c" "$scene" || fail "scenec could not compile $scene (see above)"
 sym=$(sed -n 's/^const rt_scene \(mdl_scene_[A-Za-z0-9_]*\) = {$/\1/p' "$dir/$name.c" | head -1)
@@ -64,5 +66,9 @@ models=$(ls models/*.c | grep -v '^models/registry.c$')
 $cc $cflags $cdef $sizes -DRT_SCENE="$sym" $extra ports/common/image_main.c "$dir/$name.c" \
     $rt $models $ports $linksrc $ldflags -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
 size=$(make -s "print-TARGET_SIZE_$target")
-echo "image: $dir/$name.elf (scene $sym, target $target${console:+, console $console}${linksrc:+, link on the UART})"
+echo "image: $dir/$name.elf (scene $sym, target $target, $real${console:+, console $console}${linksrc:+, link on the UART})"
 $size "$dir/$name.elf" | tail -1 | awk '{printf "image: flash %d bytes, RAM %d bytes\n", $1 + $2, $2 + $3}'
+# how to run it: the target's QEMU command; a UART console prints on the serial port
+run=$(make -s "print-TARGET_RUN_$target")
+[ "${console:-semihost}" = uart ] && run=$(echo "$run" | sed 's/-serial null/-serial stdio/')
+echo "image: run it with: $run $dir/$name.elf"

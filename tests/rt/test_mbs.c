@@ -176,8 +176,9 @@ static void test_period(void)
     TH_CHECK(tu_sim.stats.status == RT_OK);
 }
 
-/* the redundant rod: W M^-1 W^T is singular; counted, and the deterministic fallback
-   gives the single rod's motion */
+/* the redundant rod: W M^-1 W^T is singular with a rank deficit of one; the dependent
+   row is dropped, found consistent (counted redundant, status ok, named at init) and the
+   motion is the single rod's */
 static void test_redundant(void)
 {
     real_t ref[6];
@@ -190,15 +191,77 @@ static void test_redundant(void)
     sc = pendulum(&rt_rk4, (real_t)1e-3, 1, RT_STAB_PROJECT, 2);
     if (!tu_init(&sc))
         return;
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "rod2 repeats constraints of rod"));
     tu_run_to(&sc, 1);
     double d = 0;
     for (int i = 0; i < 6; i++)
         d = absd((double)(tu_sim.state.x[i] - ref[i])) > d ? absd((double)(tu_sim.state.x[i] - ref[i])) : d;
-    th_note("redundant rod: singular solves", tu_sim.stats.count[RT_CNT_SINGULAR]);
+    th_note("redundant rod: redundant counted", tu_sim.stats.count[RT_CNT_REDUNDANT]);
     th_note("redundant rod: |x - x_single|", d);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] > 0 && tu_sim.stats.status == RT_E_SINGULAR);
-    TH_CHECK(tu_sim.stats.last_block[RT_CNT_SINGULAR] == 0 && tu_sim.stats.count[RT_CNT_NAN] == 0);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] == 0 && tu_sim.stats.status == RT_OK);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_REDUNDANT] == 1 &&
+             tu_sim.stats.last_block[RT_CNT_REDUNDANT] == 0 &&
+             tu_sim.stats.first_tick[RT_CNT_REDUNDANT] == 0);
+    TH_CHECK(tu_sim.stats.count[RT_CNT_NAN] == 0 && tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
     TH_CHECK(d < (RT_REAL_IS_FLOAT ? 1e-4 : 1e-12));
+}
+
+/* two rods of different lengths from one anchor: the rows depend on each other and ask
+   for different positions; refused at init naming both joints */
+static void test_conflict(void)
+{
+    static const real_t longer[] = {(real_t)1.5};
+    static const rt_joint joints[] = {
+        {.name = "rod", .kind = &rt_joint_sphdiff, .b1 = 0, .b2 = -1, .p = one},
+        {.name = "rod15", .kind = &rt_joint_sphdiff, .b1 = 0, .b2 = -1, .p = longer},
+    };
+    rt_scene sc = pendulum(&rt_rk4, (real_t)1e-3, 1, RT_STAB_PROJECT, 2);
+    sc.joints = joints;
+    TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_INCONSISTENT);
+    th_put("  conflict: ");
+    th_put(rt_error_text(&tu_sim));
+    th_put("\n");
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "joints rod15 and rod constrain the same motion"));
+}
+
+/* an initial state off its rod: moved and reported (counted with the block, the distance
+   in the text) when within RT_INIT_TOL, refused beyond it */
+static void test_init_moved(void)
+{
+    static real_t off[6] = {0, 0, 0, 0, 0, 0};
+    static rt_block blocks[1];
+    blocks[0] = p1_blocks[0], blocks[0].x0 = off;
+    rt_scene sc = pendulum(&rt_rk4, (real_t)1e-3, 1, RT_STAB_PROJECT, 1);
+    sc.blocks = blocks;
+    off[0] = (real_t)1.0005;
+    if (!tu_init(&sc))
+        return;
+    th_put("  moved: ");
+    th_put(rt_error_text(&tu_sim));
+    th_put("\n");
+    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 1 &&
+             tu_sim.stats.last_block[RT_CNT_INIT_MOVED] == 0 && tu_sim.stats.status == RT_OK);
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "P moved 5.00e-04 m"));
+    TH_NEAR(tu_sim.state.x[0], 1, RT_REAL_IS_FLOAT ? 1e-6 : 1e-15);
+    /* the same off the rod without projection: moved too (index 1 needs it) */
+    sc.stab = RT_STAB_NONE;
+    if (!tu_init(&sc))
+        return;
+    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 1);
+    TH_NEAR(tu_sim.state.x[0], 1, RT_REAL_IS_FLOAT ? 1e-6 : 1e-15);
+    /* 2 cm off: a set-up mistake */
+    sc.stab = RT_STAB_PROJECT;
+    off[0] = (real_t)1.02;
+    TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_INCONSISTENT);
+    th_put("  refused: ");
+    th_put(rt_error_text(&tu_sim));
+    th_put("\n");
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "P starts 2.00e-02 m off its constraints (rod"));
+    /* on the rod: nothing to report */
+    off[0] = 1;
+    if (!tu_init(&sc))
+        return;
+    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 0 && rt_error_text(&tu_sim)[0] == 0);
 }
 
 /* ------------------------------------------------------------------ drift */
@@ -669,6 +732,8 @@ static void test_points_path(void)
 const th_test th_mbs_tests[] = {
     {"mbs_period", test_period},
     {"mbs_redundant", test_redundant},
+    {"mbs_conflict", test_conflict},
+    {"mbs_init_moved", test_init_moved},
     {"mbs_drift_10s", test_drift_10s},
     {"mbs_drift_long", test_drift_long},
     {"mbs_double_pendulum", test_double_pendulum},

@@ -282,6 +282,35 @@ static void test_prismatic(void)
     TH_CHECK(tu_sim.stats.status == RT_OK);
 }
 
+/* ------------------------------------------------------------------ initial quaternion */
+
+/* a non-unit initial quaternion is normalized at init and reported with the block and
+   its norm; a zero one is refused */
+static void test_quaternion(void)
+{
+    static const real_t p[16] = {2, 1, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    static real_t x0[13];
+    static rt_block b[1];
+    b[0] = (rt_block){.name = "Free", .kind = &mdl_mbs_body_kind, .p = p, .x0 = x0};
+    rt_scene sc = body_scene(b, 0, 0, (real_t)1e-3, 1);
+    x0[P] = 0, x0[P + 1] = 2; /* 180 deg about x, twice too long */
+    if (!tu_init(&sc))
+        return;
+    th_put("  quaternion: ");
+    th_put(rt_error_text(&tu_sim));
+    th_put("\n");
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "Free: quaternion of norm 2.00e+00 normalized"));
+    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 1 && tu_sim.stats.status == RT_OK);
+    TH_CHECK(tu_sim.state.x[P] == 0 && tu_sim.state.x[P + 1] == 1);
+    x0[P + 1] = 1; /* unit: nothing to say */
+    if (!tu_init(&sc))
+        return;
+    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 0 && rt_error_text(&tu_sim)[0] == 0);
+    x0[P + 1] = 0;
+    TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_PARAM);
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "Free: initial quaternion of norm 0.00e+00"));
+}
+
 /* ------------------------------------------------------------------ inputs */
 
 /* a body-frame torque about z on a free body: w_z = tau t / Jzz; a force: x = F t^2/2m */
@@ -311,5 +340,6 @@ const th_test th_mbs_body_tests[] = {
     {"mbs_body_fixed", test_fixed},
     {"mbs_body_prismatic", test_prismatic},
     {"mbs_body_torque_input", test_torque_input},
+    {"mbs_body_quaternion", test_quaternion},
     {0, 0},
 };

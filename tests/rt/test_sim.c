@@ -147,6 +147,43 @@ static void test_nan_contained(void)
     TH_NEAR(tu_sim.state.x[2], 0.5, 0.02); /* held near where it went bad */
 }
 
+/* a declared invariant (rt/invariant.c): x' = -1 from x = 1 keeps x >= 0 until t = 1;
+   the first step ending below -RT_INV_TOL is counted with the block (one count per step,
+   status invariant, the state untouched), and a declaration out of range is refused */
+static void fall_deriv(const rt_args *a, real_t *xdot) { (void)a, xdot[0] = -1; }
+static const uint16_t fall_x[] = {0};
+static const rt_invariant fall_inv[] = {{.type = RT_INV_NONNEG, .n = 1, .x = fall_x}};
+static const uint16_t bad_x[] = {1};
+static const rt_invariant bad_inv[] = {{.type = RT_INV_SUM, .n = 1, .x = bad_x}};
+
+static void test_invariant(void)
+{
+    static rt_kind k = {.name = "fall", .type = RT_KIND_NSS, .ny = 1, .nx = 1,
+                        .y_names = nan_names, .x_names = nan_names, .feed = RT_FEED_NONE,
+                        .output = nan_out, .deriv = fall_deriv, .inv = fall_inv, .ninv = 1};
+    static const real_t one[] = {1};
+    static const rt_block bl[] = {{.name = "Fall", .kind = &k, .x0 = one}};
+    static const rt_set set[] = {{.name = "s", .method = &rt_rk4, .ratio = 1}};
+    rt_scene sc = {.name = "inv", .dt = (real_t)0.125, .t_end = 2, .blocks = bl,
+                   .nblocks = 1, .sets = set, .nsets = 1};
+    if (!tu_init(&sc))
+        return;
+    while (rt_tick(&sc, &tu_sim) == RT_OK && tu_sim.state.tick < 8)
+        ;
+    TH_CHECK(tu_sim.stats.count[RT_CNT_INVARIANT] == 0 && tu_sim.stats.status == RT_OK);
+    while (rt_tick(&sc, &tu_sim) == RT_OK)
+        ;
+    /* ticks 9 .. 16 end at x = -0.125 .. -1 */
+    TH_CHECK(tu_sim.stats.count[RT_CNT_INVARIANT] == 8 && tu_sim.stats.first_tick[RT_CNT_INVARIANT] == 8);
+    TH_CHECK(tu_sim.stats.last_block[RT_CNT_INVARIANT] == 0 &&
+             tu_sim.stats.status == RT_E_INVARIANT);
+    TH_NEAR(tu_sim.state.x[0], -1, 1e-6); /* the check changes no state */
+    k.inv = bad_inv; /* reads state 1 of a kind with one */
+    TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_SCENE);
+    TH_CHECK(th_has(rt_error_text(&tu_sim), "block Fall: kind fall declares an invariant"));
+    k.inv = fall_inv;
+}
+
 /* every status and counter has a name, and out-of-range values are safe */
 static void test_lists(void)
 {
@@ -383,6 +420,7 @@ const th_test th_sim_tests[] = {
     {"sim_set_param", test_set_param},
     {"sim_lss", test_lss},
     {"sim_nan_contained", test_nan_contained},
+    {"sim_invariant", test_invariant},
     {"sim_lists", test_lists},
     {"sim_held_outputs", test_held_outputs},
     {"sim_fast_reads_history", test_fast_reads_history},

@@ -209,7 +209,82 @@ static void test_literals(void)
     TH_CHECK(strcmp(b, "10") == 0);
 }
 
+/* lang_rail.scn, the example of docs/blocks.md: the cart keeps its height and speed with
+   the reaction m g, the slider slides down its 30-degree incline by g sin 30 t^2 / 2 */
+static void test_rail(void)
+{
+    static char text[4096];
+    FILE *f = fopen("tests/scenec/scenes/lang_rail.scn", "r");
+    size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f)
+        fclose(f);
+    text[n] = 0;
+    scn_ctx *c = compile(text);
+    TH_CHECK(n > 0 && !c->err);
+    if (n > 0 && !c->err) {
+        rt_sim *sim = c->sim;
+        TH_CHECK(rt_init(&c->image, sim) == RT_OK);
+        while (rt_tick(&c->image, sim) == RT_OK)
+            ;
+        double g = 9.81, s = -g * 0.5 / 2, tol = RT_REAL_IS_FLOAT ? 1e-3 : 1e-9;
+        double v[5];
+        for (int i = 0; i < 5; i++)
+            v[i] = (double)rt_rec_value(&c->image, sim, (uint16_t)i);
+        TH_NEAR(v[0], 1.5, tol);                 /* Cart.x = vx t */
+        TH_NEAR(v[1], 0.5, tol);                 /* Cart.z */
+        TH_NEAR(v[2], s * 0.8660254037844386, tol); /* Slider.x */
+        TH_NEAR(v[3], s * 0.5, tol);             /* Slider.z */
+        TH_NEAR(v[4], 2 * g, tol * 100);         /* Rail.fz = m g */
+        TH_CHECK(sim->stats.status == RT_OK && sim->stats.count[RT_CNT_INIT_MOVED] == 0);
+    }
+    scn_free(c);
+}
+
+/* an anchor turned by axis and angle: its rotation matrix; axes without a direction and
+   angles without a unit are errors */
+static void test_joint_frames(void)
+{
+    const char *base = "base tick (1 ms); end time (0 s);\n"
+                       "load system (B) of type (mbs_body) from file (\"mbs_body\");\n"
+                       "load joint (J) of type (revolute);\n";
+    char text[1024];
+    snprintf(text, sizeof text, "%slink(B.cm, ground rotated (90 deg about (0, 0, 2))) by (J);"
+             "\nJ.axis = (0, 0, 1);\n", base);
+    scn_ctx *c = compile(text);
+    TH_CHECK(!c->err);
+    if (!c->err) {
+        const real_t *S = c->image.joints[0].at_S, *A = c->image.joints[0].axis_S;
+        const double Rz[9] = {0, -1, 0, 1, 0, 0, 0, 0, 1}, I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        TH_CHECK(S && A);
+        for (int i = 0; S && A && i < 9; i++) {
+            TH_NEAR((double)S[i], Rz[i], 1e-6);
+            TH_NEAR((double)A[i], I[i], 1e-6);
+        }
+    }
+    scn_free(c);
+    static const char *const bad[] = {
+        "link(B.cm, ground) by (J); J.axis = (0, 0, 0);\n",
+        "link(B.cm, ground) by (J); B.axis = (1, 0, 0);\n",
+        "link(B.cm, ground) by (J); J.axis = 1;\n",
+        "link(B.cm, ground rotated (90 about (0, 0, 1))) by (J);\n",
+        "link(B.cm, ground rotated (90 deg about (0, 0, 0))) by (J);\n",
+    };
+    static const char *const why[] = {
+        "the joint's axis has no direction", "a direction (x, y, z) is only for a joint's axis",
+        "a joint's axis is a direction", "angle without its unit",
+        "the anchor's rotation axis has no direction",
+    };
+    for (int i = 0; i < 5; i++) {
+        snprintf(text, sizeof text, "%s%s", base, bad[i]);
+        c = compile(text);
+        TH_CHECK(c->err && th_has(c->msg, why[i]));
+        scn_free(c);
+    }
+}
+
 static const th_test tests[] = {
+    {"scenec_rail", test_rail},
+    {"scenec_joint_frames", test_joint_frames},
     {"scenec_precedence", test_precedence},
     {"scenec_logic", test_logic},
     {"scenec_names_functions", test_names_and_functions},

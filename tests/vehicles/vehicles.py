@@ -6,7 +6,8 @@ against an independent answer:
     here, and the yaw rate against the closed form U delta / (L + K_us U^2);
   * a straight free roll (no steering, no drive): x = 20 t, y = psi = 0;
   * the ISO 3888-1 lane change of lane_change_planar: V1's footprint (CommonRoad vehicle
-    1: 4.298 m x 1.674 m, centred between the axles) inside the cones of sections 1, 3
+    1: 4.298 m x 1.674 m, centred between the axles; its edges, not only its corners)
+    inside the cones of sections 1, 3
     and 5-6 (lane widths 1.1 b + 0.25, 1.2 b + 0.25, 1.3 b + 0.25 m; offset 3.5 m centre
     to centre), V2 within 0.75 m of V1's track at the same x, the tow bar's residual at
     rounding level, status ok;
@@ -131,39 +132,53 @@ def free_roll(modrt):
     check(rc == 0 and worst < 1e-9, "free roll: off the straight line by %.3g" % worst)
 
 
-def lanes(x, x0):
-    """(centre, half width) of the lane at x, or None between the lane sections"""
-    b = WIDTH
-    s = x - x0
-    if 0 <= s <= 15:
-        return 0.0, (1.1 * b + 0.25) / 2
-    if 45 <= s <= 70:
-        return 3.5, (1.2 * b + 0.25) / 2
-    if 95 <= s <= 125:
-        return 0.0, (1.3 * b + 0.25) / 2
-    return None
+LANES = ((0.0, 15.0, 0.0, 1.1), (45.0, 70.0, 3.5, 1.2), (95.0, 125.0, 0.0, 1.3))
+
+
+def lanes(x0):
+    """the cone lanes: (x from, x to, centre, half width) for sections 1, 3 and 5-6"""
+    return [(x0 + a, x0 + b, c, (k * WIDTH + 0.25) / 2) for a, b, c, k in LANES]
 
 
 def corners(x, y, psi):
-    """the footprint's corners: a box of LENGTH x WIDTH centred between the axles"""
+    """the footprint's corners in order around it: a box of LENGTH x WIDTH centred between
+    the axles"""
     cx, cy = x + (LF - LR) / 2 * math.cos(psi), y + (LF - LR) / 2 * math.sin(psi)
     c, s = math.cos(psi), math.sin(psi)
     out = []
-    for a in (LENGTH / 2, -LENGTH / 2):
-        for b in (WIDTH / 2, -WIDTH / 2):
-            out.append((cx + a * c - b * s, cy + a * s + b * c))
+    for a, b in ((1, 1), (1, -1), (-1, -1), (-1, 1)):
+        a, b = a * LENGTH / 2, b * WIDTH / 2
+        out.append((cx + a * c - b * s, cy + a * s + b * c))
     return out
 
 
 def lane_margin(x, y, psi, x0):
-    """the footprint's smallest margin to the cone lines at this instant (1e9 between the
-    lane sections)"""
+    """the footprint's smallest margin to the cone lines at this instant (1e9 outside the
+    lane sections). Edges, not only corners: the part of the box inside a section's x
+    range has its extreme y at a corner in that range or where an edge crosses the
+    section's first or last cone (a box half inside a section touches a cone there with a
+    side, while all its corners in the section are clear)"""
+    box = corners(x, y, psi)
     worst = 1e9
-    for cx, cy in corners(x, y, psi):
-        lane = lanes(cx, x0)
-        if lane:
-            worst = min(worst, lane[1] - abs(cy - lane[0]))
+    for xa, xb, c, w in lanes(x0):
+        pts = [p for p in box if xa <= p[0] <= xb]
+        for (ax, ay), (bx, by) in zip(box, box[1:] + box[:1]):
+            for xe in (xa, xb):
+                if (ax - xe) * (bx - xe) < 0:
+                    pts.append((xe, ay + (by - ay) * (xe - ax) / (bx - ax)))
+        for _, py in pts:
+            worst = min(worst, w - abs(py - c))
     return worst
+
+
+def footprint_edges():
+    """the footprint check tests edges: a box turned by 0.2 rad with one corner in section 3
+    (0.76 m clear of its cones) whose side crosses the section's first cone pair 0.055 m
+    outside the lane hits a cone"""
+    x0 = 20.0
+    m = lane_margin(x0 + 45 - 1.8, 3.5 + 0.82, 0.2, x0)
+    check(-0.06 < m < -0.05, "footprint: a side across the first cone of section 3 "
+          "not found (margin %.3f m)" % m)
 
 
 def lane_change(modrt, scene="lane_change_planar", x0=20.0):
@@ -515,6 +530,7 @@ def main():
     cornering(modrt)
     cornering_mf(modrt)
     free_roll(modrt)
+    footprint_edges()
     lane_change(modrt)
     lane_change(modrt, "lane_change")
     lane_change(modrt, "lane_change_single")

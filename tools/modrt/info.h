@@ -17,6 +17,9 @@ void info_scene(FILE *f, const rt_scene *sc, const rt_sim *sim, rt_status init, 
 void info_kind(FILE *f, const rt_kind *k, int json);
 /* Prints one line per registered kind: name, type, one-line summary. */
 void info_kinds(FILE *f);
+/* The joint kind of that name (rt_joint_kinds), or NULL; its reference text. */
+const rt_joint_kind *info_find_joint(const char *name);
+void info_joint(FILE *f, const rt_joint_kind *k);
 /* Writes the block reference (docs/blocks.md) of every registered kind. */
 void info_blocks_md(FILE *f);
 

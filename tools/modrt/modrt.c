@@ -80,6 +80,11 @@ static int cmd_info(void *ctx, int npos, char **pos)
         info_kind(stdout, k, a->json);
         return CLI_OK;
     }
+    const rt_joint_kind *j = info_find_joint(pos[0]);
+    if (j && !is_scene_name(pos[0])) {
+        info_joint(stdout, j);
+        return CLI_OK;
+    }
     const rt_scene *sc = cli_scene(pos[0]);
     if (!sc)
         return CLI_USAGE;
@@ -560,6 +565,8 @@ static int cmd_run(void *ctx, int npos, char **pos)
     rt_status st = rt_init(&sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
+    if (rt_error_text(&sim)[0]) /* what rt_init moved or found redundant */
+        fprintf(stderr, "modrt: %s: %s\n", sc.name, rt_error_text(&sim));
     if (setup_sets(a, &sc, &sim) != CLI_OK)
         return CLI_USAGE;
     if (a->check_csv && !(a->global.csv = fopen(a->check_csv, "w")))

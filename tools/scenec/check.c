@@ -163,6 +163,33 @@ static void when_times(scn_ctx *c, scn_define *d, rt_kind *k)
     k->nd = d->nr, k->d_names = names, k->d_default = t0;
 }
 
+/* the define's invariants with their states resolved to indices (rt_kind.inv) */
+static void define_invariants(scn_ctx *c, const scn_define *d, rt_kind *k)
+{
+    if (d->ninv == 0)
+        return;
+    rt_invariant *inv = scn_alloc(c, d->ninv * sizeof *inv);
+    for (uint8_t i = 0; i < d->ninv && !c->err; i++) {
+        const scn_inv *v = &d->inv[i];
+        uint16_t *x = scn_alloc(c, v->n * sizeof *x);
+        for (uint8_t j = 0; j < v->n && !c->err; j++) {
+            int at = -1;
+            for (uint16_t q = 0; q < d->nx && at < 0; q++)
+                at = strcmp(d->x[q].name.s, v->x[j].s) ? -1 : q;
+            if (at < 0)
+                scn_fail(c, v->x[j].pos, v->x[j].s, "an invariant reads a state",
+                         scn_fmt(c, "a state of %s", d->name.s));
+            x[j] = (uint16_t)(at < 0 ? 0 : at);
+        }
+        if (!c->err && !(v->tol >= 0))
+            scn_fail(c, v->x[0].pos, v->x[0].s, "an invariant's tolerance is negative",
+                     "within (a tolerance >= 0)");
+        inv[i] = (rt_invariant){.type = v->type, .n = v->n, .x = x, .c = (real_t)v->c,
+                                .tol = (real_t)v->tol};
+    }
+    k->inv = inv, k->ninv = d->ninv;
+}
+
 /* the kind a define describes: sizes, names, defaults, throughput (services: image.c) */
 static void define_kind(scn_ctx *c, scn_define *d)
 {
@@ -189,6 +216,7 @@ static void define_kind(scn_ctx *c, scn_define *d)
         k->nr = d->nr, k->root_dir = dir;
         when_times(c, d, k);
     }
+    define_invariants(c, d, k);
     d->kind = k;
     if (d->type != SCN_DEF_LSS) {
         define_feed(c, d, k);
@@ -327,6 +355,21 @@ static void twice(scn_ctx *c, const scn_assign *a, uint16_t first)
 static void assign_joint(scn_ctx *c, uint16_t ai, scn_joint *j)
 {
     const scn_assign *a = &c->sc.asg[ai];
+    if (!strcmp(a->lhs.port.s, "axis")) { /* the joint's axis: a direction */
+        if (!a->is_vec)
+            scn_fail(c, a->lhs.port.pos, a->lhs.port.s, "a joint's axis is a direction",
+                     scn_fmt(c, "%s.axis = (x, y, z);", j->name.s));
+        else if (j->axis_at)
+            twice(c, a, j->axis_at);
+        else
+            memcpy(j->axis, a->vec, sizeof j->axis), j->axis_at = (uint16_t)(ai + 1);
+        return;
+    }
+    if (a->is_vec) {
+        scn_fail(c, a->lhs.port.pos, a->lhs.port.s, "a direction (x, y, z) is only for axis",
+                 scn_fmt(c, "%s.%s = <value>;", j->name.s, a->lhs.port.s));
+        return;
+    }
     int i = scn_find_name(j->kind->p_names, j->kind->np, a->lhs.port.s);
     if (i < 0) {
         scn_fail(c, a->lhs.port.pos, a->lhs.port.s,
@@ -343,6 +386,11 @@ static void assign_block(scn_ctx *c, uint16_t ai, scn_block *b)
 {
     scn_scene *s = &c->sc;
     const scn_assign *a = &s->asg[ai];
+    if (a->is_vec) {
+        scn_fail(c, a->lhs.port.pos, a->lhs.port.s, "a direction (x, y, z) is only for a "
+                 "joint's axis", scn_fmt(c, "%s.%s = <value>;", b->name.s, a->lhs.port.s));
+        return;
+    }
     int i = 0, slot = value_slot(c, b, a->lhs.port, &i);
     double *vals[3] = {b->p, b->x0, b->d0};
     uint16_t *at[4] = {b->p_at, b->x_at, b->d_at, b->u_at};

@@ -280,6 +280,30 @@ static const char *const type_id[] = {"RT_KIND_OUTPUT", "RT_KIND_NSS", "RT_KIND_
                                       "RT_KIND_DSS", "RT_KIND_MBS"};
 static const char *const feed_id[] = {"RT_FEED_NONE", "RT_FEED_ALL", "RT_FEED_TABLE"};
 
+/* the kind's invariants (rt_kind.inv) and the state indices they read */
+static void invariants(FILE *f, const rt_kind *k, const char *pre)
+{
+#define SCN_X_ID(id, name, text) #id,
+    static const char *const inv_id[] = {RT_INV_LIST(SCN_X_ID)};
+#undef SCN_X_ID
+    for (uint8_t i = 0; i < k->ninv; i++) {
+        fprintf(f, "static const uint16_t %s_inv%u[] = {", pre, i);
+        for (uint8_t j = 0; j < k->inv[i].n; j++)
+            fprintf(f, "%s%u", j ? ", " : "", k->inv[i].x[j]);
+        fputs("};\n", f);
+    }
+    if (k->ninv)
+        fprintf(f, "static const rt_invariant %s_inv[] = {\n", pre);
+    for (uint8_t i = 0; i < k->ninv; i++) {
+        const rt_invariant *v = &k->inv[i];
+        fprintf(f, "    {.type = %s, .n = %u, .x = %s_inv%u, .c = %s,", inv_id[v->type], v->n,
+                pre, i, R((double)v->c));
+        fprintf(f, " .tol = %s},\n", R((double)v->tol));
+    }
+    if (k->ninv)
+        fputs("};\n", f);
+}
+
 static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
 {
     static const char *const dtype[] = {"ss_system", "lss_system", "dss_system"};
@@ -317,6 +341,7 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
         if (d->nr)
             event_services(f, c, d, pre);
     }
+    invariants(f, k, pre);
     fprintf(f, "\nstatic const rt_kind %s_kind = {\n    .name = \"%s\", .type = %s,\n", pre, id,
             type_id[k->type]);
     fprintf(f, "    .nu = %u, .ny = %u, .nx = %u, .nd = %u, .np = %u, .nr = %u,\n", k->nu,
@@ -348,6 +373,8 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
         fprintf(f, " .update = %s_update,", pre);
     if (d->nr)
         fprintf(f, " .roots = %s_roots, .event = %s_event, .root_dir = %s_rdir,", pre, pre, pre);
+    if (k->ninv)
+        fprintf(f, " .inv = %s_inv, .ninv = %u,", pre, k->ninv);
     fputs("\n};\n", f);
 }
 
@@ -555,6 +582,10 @@ static void joints(FILE *f, const scn_scene *s)
         reals(f, id, "p", j->p, j->kind->np);
         if (s->lnk[j->link].has_at)
             reals(f, id, "at", s->lnk[j->link].at, 3);
+        if (s->lnk[j->link].has_turn)
+            reals(f, id, "at_S", s->lnk[j->link].at_S, 9);
+        if (j->axis_at)
+            reals(f, id, "axis_S", j->axis_S, 9);
     }
     if (s->njnt)
         fputs("static const rt_joint joints[] = {\n", f);
@@ -571,6 +602,10 @@ static void joints(FILE *f, const scn_scene *s)
             fprintf(f, ", .p = j_%s_p", j->name.s);
         if (l->has_at)
             fprintf(f, ", .at = j_%s_at", j->name.s);
+        if (l->has_turn)
+            fprintf(f, ", .at_S = j_%s_at_S", j->name.s);
+        if (j->axis_at)
+            fprintf(f, ", .axis_S = j_%s_axis_S", j->name.s);
         fputs("},\n", f);
     }
     if (s->njnt)

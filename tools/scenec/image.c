@@ -164,6 +164,8 @@ static void joints(scn_ctx *c, rt_scene *sc)
         j[i].b1 = l->b1, j[i].n1 = l->n1, j[i].b2 = l->b2, j[i].n2 = l->n2;
         j[i].p = reals(c, x->p, x->kind->np);
         j[i].at = l->has_at ? reals(c, l->at, 3) : NULL;
+        j[i].at_S = l->has_turn ? reals(c, l->at_S, 9) : NULL;
+        j[i].axis_S = x->axis_at ? reals(c, x->axis_S, 9) : NULL;
     }
     for (uint16_t b = 0; b < s->nblk; b++)
         mbs |= s->blk[b].kind->type == RT_KIND_MBS;

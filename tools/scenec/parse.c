@@ -264,6 +264,50 @@ static void define_names(scn_ctx *c, scn_define *d)
 }
 
 /* with inputs (...) outputs (...) parameters (...) states (...) period (...) */
+/* one invariant: nonnegative (names) | sum (names) = c | norm (names) <= c,
+   then within (tol) */
+static void inv_item(scn_ctx *c, scn_inv *v)
+{
+    static const char *const kinds[] = {"nonnegative", "sum", "norm"};
+    scn_var names[SCN_MAX_PORTS];
+    int k = 0;
+    while (k < 3 && !scn_is_word(c, kinds[k]))
+        k++;
+    if (k == 3) {
+        scn_fail_tok(c, "syntax error", "nonnegative (...), sum (...) = c or norm (...) <= c");
+        return;
+    }
+    scn_next(c);
+    uint16_t n = var_list(c, names, 0, "a state name");
+    if (!c->err && (n == 0 || n > SCN_MAX_INV_N))
+        scn_fail_tok(c, "an invariant reads 1 to 16 states", "a shorter list of states");
+    for (uint16_t i = 0; i < n && !c->err; i++)
+        v->x[i] = names[i].name;
+    v->type = (uint8_t)k, v->n = (uint8_t)n, v->c = 0, v->tol = 0;
+    if (k == RT_INV_SUM)
+        scn_expect_op(c, "="), v->c = scn_const_expr(c);
+    if (k == RT_INV_NORM)
+        scn_expect_op(c, "<="), v->c = scn_const_expr(c);
+    if (!c->err && scn_is_word(c, "within"))
+        scn_next(c), v->tol = paren_const(c);
+}
+
+/* invariants (item, item, ...): what the states keep (rt/invariant.c) */
+static void inv_list(scn_ctx *c, scn_define *d)
+{
+    scn_expect_op(c, "(");
+    while (!c->err) {
+        if (d->ninv >= SCN_MAX_INV) {
+            scn_fail_tok(c, "too many invariants", scn_fmt(c, "at most %u", SCN_MAX_INV));
+            return;
+        }
+        inv_item(c, &d->inv[d->ninv++]);
+        if (!scn_accept_op(c, ","))
+            break;
+    }
+    scn_expect_op(c, ")");
+}
+
 static void define_clauses(scn_ctx *c, scn_define *d)
 {
     uint8_t seen[5] = {0};
@@ -281,6 +325,9 @@ static void define_clauses(scn_ctx *c, scn_define *d)
         else if (scn_is_word(c, "period") && d->type == SCN_DEF_DSS && once(c, &seen[4])) {
             scn_next(c);
             d->period = paren_time(c, 0, NULL, &d->period_pos);
+        } else if (scn_is_word(c, "invariants") && d->type == SCN_DEF_SS && !d->ninv) {
+            scn_next(c);
+            inv_list(c, d);
         } else if (!c->err)
             scn_fail_tok(c, "syntax error",
                          d->type == SCN_DEF_DSS
@@ -452,7 +499,40 @@ static void st_connect(scn_ctx *c, scn_pos at)
         s->conn[s->nconn++] = cn;
 }
 
-/* link(A.node, B.node | ground [at (x, y, z)]) by (Joint); */
+/* ( x, y, z ) of constants */
+static void paren_vec3(scn_ctx *c, double *v)
+{
+    scn_expect_op(c, "(");
+    for (int i = 0; i < 3 && !c->err; i++) {
+        v[i] = scn_const_expr(c);
+        if (i < 2)
+            scn_expect_op(c, ",");
+    }
+    scn_expect_op(c, ")");
+}
+
+/* the anchor's orientation by axis and angle: rotated (angle deg|rad about (x, y, z)) */
+static void anchor_turn(scn_ctx *c, scn_link *l)
+{
+    l->turn_pos = c->tok.pos, l->has_turn = 1;
+    scn_next(c);
+    scn_expect_op(c, "(");
+    double a = scn_const_expr(c);
+    if (scn_is_word(c, "deg"))
+        a *= 3.14159265358979323846 / 180;
+    else if (!scn_is_word(c, "rad") && !c->err) {
+        scn_fail_tok(c, "angle without its unit", "deg or rad");
+        return;
+    }
+    scn_next(c);
+    scn_expect_word(c, "about");
+    l->turn[0] = a;
+    paren_vec3(c, l->turn + 1);
+    scn_expect_op(c, ")");
+}
+
+/* link(A.node, B.node | ground [at (x, y, z)] [rotated (angle deg about (x, y, z))])
+   by (Joint); */
 static void st_link(scn_ctx *c, scn_pos at)
 {
     scn_scene *s = &c->sc;
@@ -475,6 +555,8 @@ static void st_link(scn_ctx *c, scn_pos at)
             scn_expect_op(c, ")");
             l.has_at = 1;
         }
+        if (scn_is_word(c, "rotated")) /* rotated (angle deg|rad about (x, y, z)) */
+            anchor_turn(c, &l);
     } else {
         l.b = ref(c, "a node as Block.node, or ground");
     }
@@ -730,14 +812,18 @@ static void st_stab(scn_ctx *c, scn_pos at)
     scn_expect_op(c, ";");
 }
 
-/* Block.name = constant; */
+/* Block.name = constant;  Joint.axis = (x, y, z); */
 static void st_assign(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
     scn_assign a;
+    memset(&a, 0, sizeof a);
     a.lhs = ref(c, "a statement or Block.name = value;");
     scn_expect_op(c, "=");
-    a.v = scn_const_expr(c);
+    if (!c->err && !strcmp(a.lhs.port.s, "axis") && scn_is_op(c, "("))
+        paren_vec3(c, a.vec), a.is_vec = 1; /* a direction, checked with the joint */
+    else
+        a.v = scn_const_expr(c);
     scn_expect_op(c, ";");
     if (!c->err && s->nasg >= SCN_MAX_ASSIGN)
         scn_fail(c, a.lhs.block.pos, a.lhs.block.s, "too many assignments",

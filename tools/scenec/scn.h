@@ -179,6 +179,17 @@ typedef struct scn_matrix {
     uint8_t given;
 } scn_matrix;
 
+#define SCN_MAX_INV 8           /* invariants of one define */
+#define SCN_MAX_INV_N 16        /* states of one invariant */
+
+/* invariants (nonnegative (a, b) [within (tol)], sum (a, b) = c, norm (a, b) <= c) */
+typedef struct scn_inv {
+    uint8_t type;               /* rt_inv_type */
+    uint8_t n;
+    scn_name x[SCN_MAX_INV_N];  /* state names */
+    double c, tol;              /* the sum or bound; tolerance (0: RT_INV_TOL) */
+} scn_inv;
+
 typedef struct scn_define {
     scn_name name;
     uint8_t type;               /* scn_def_type */
@@ -193,6 +204,8 @@ typedef struct scn_define {
     uint8_t rest[SCN_MAX_PORTS];/* 1: the `when` has a rest clause */
     uint16_t nr;                /* roots (`when` statements) */
     scn_matrix A, B, C, D;      /* LSS */
+    scn_inv inv[SCN_MAX_INV];   /* invariants (...) */
+    uint8_t ninv;
     /* derived by check.c */
     rt_kind *kind;              /* sizes, names, defaults, feed (no services) */
     uint8_t *feed;              /* ny*nu: output i depends directly on input j */
@@ -220,6 +233,9 @@ typedef struct scn_joint {
     double *p;
     uint16_t *p_at;             /* assignment index + 1 of each parameter, 0: none */
     int16_t link;               /* index of its link statement, -1: not linked yet */
+    double axis[3];             /* J.axis = (x, y, z): the joint's axis in both node frames */
+    uint16_t axis_at;           /* its assignment index + 1, 0: none (the z axis) */
+    double axis_S[9];           /* resolved: the joint frame, third column the unit axis */
 } scn_joint;
 
 typedef struct scn_conn {
@@ -231,6 +247,8 @@ typedef struct scn_conn {
 typedef struct scn_assign {
     scn_ref lhs;
     double v;
+    double vec[3];              /* a direction (x, y, z): J.axis */
+    uint8_t is_vec;
 } scn_assign;
 
 typedef struct scn_default {
@@ -243,6 +261,10 @@ typedef struct scn_link {
     uint8_t ground;             /* b is the inertial frame */
     double at[3];               /* ground position [m] */
     uint8_t has_at;
+    double turn[4];             /* rotated (angle deg|rad about (x, y, z)): [rad], axis */
+    scn_pos turn_pos;
+    uint8_t has_turn;
+    double at_S[9];             /* resolved: the anchor's rotation, row-major */
     scn_name joint;
     /* resolved */
     int16_t b1, n1, b2, n2;

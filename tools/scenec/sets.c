@@ -193,8 +193,62 @@ static void link_joint(scn_ctx *c, uint16_t li)
                      s->set[s->blk[l->b2].set].name.s));
 }
 
-static void joint_params(scn_ctx *c, const scn_joint *j)
+/* R (row-major) of the turn by angle a [rad] about the unit vector k (Rodrigues) */
+static void axis_angle(double a, const double *k, double *R)
 {
+    double co = (double)rt_cos((real_t)a), si = (double)rt_sin((real_t)a), v = 1 - co; /* no libm here */
+    for (int r = 0; r < 3; r++)
+        for (int q = 0; q < 3; q++)
+            R[3 * r + q] = v * k[r] * k[q] + (r == q ? co : 0);
+    R[1] -= si * k[2], R[2] += si * k[1], R[3] += si * k[2];
+    R[5] -= si * k[0], R[6] -= si * k[1], R[7] += si * k[0];
+}
+
+/* v / |v| into u; 0 when v has no direction */
+static int unit3(const double *v, double *u)
+{
+    double n = (double)rt_sqrt((real_t)(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    if (!(n > 0) || !rt_isfinite((real_t)n))
+        return 0;
+    u[0] = v[0] / n, u[1] = v[1] / n, u[2] = v[2] / n;
+    return 1;
+}
+
+/* the joint frame A: the shortest turn taking z to the axis a, so A's third column is a
+   (a = -z: half a turn about x) */
+static void axis_frame(const double *a, double *A)
+{
+    double k[3] = {-a[1], a[0], 0}, kn = (double)rt_sqrt((real_t)(a[0] * a[0] + a[1] * a[1]));
+    if (kn == 0) {
+        const double x[3] = {1, 0, 0};
+        axis_angle(a[2] > 0 ? 0 : 3.14159265358979323846, x, A);
+        return;
+    }
+    k[0] /= kn, k[1] /= kn;
+    axis_angle((double)rt_atan2((real_t)kn, (real_t)a[2]), k, A);
+}
+
+/* a joint's axis and its anchor's turn, as rotation matrices */
+static void joint_frames(scn_ctx *c, scn_joint *j)
+{
+    scn_scene *s = &c->sc;
+    scn_link *l = &s->lnk[j->link];
+    double u[3];
+    if (j->axis_at && !unit3(j->axis, u))
+        scn_fail(c, s->asg[j->axis_at - 1].lhs.port.pos, "axis", "the joint's axis has no "
+                 "direction", "a non-zero direction (x, y, z)");
+    else if (j->axis_at)
+        axis_frame(u, j->axis_S);
+    if (!c->err && l->has_turn && !unit3(l->turn + 1, u))
+        scn_fail(c, l->turn_pos, "rotated", "the anchor's rotation axis has no direction",
+                 "rotated (angle deg about (x, y, z)) with a non-zero (x, y, z)");
+    else if (l->has_turn)
+        axis_angle(l->turn[0], u, l->at_S);
+}
+
+static void joint_params(scn_ctx *c, scn_joint *j)
+{
+    joint_frames(c, j);
     const rt_joint_kind *k = j->kind;
     real_t p[256];
     for (uint16_t i = 0; i < k->np && !c->err; i++) {
