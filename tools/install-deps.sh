@@ -1,7 +1,7 @@
 #!/bin/sh
 # install-deps.sh - installs, from Debian's packages, everything the make targets use: the
-# host compiler, the cross compilers, QEMU, clang's libFuzzer, valgrind, python3, cppcheck
-# and clang-tidy. Skips
+# host compiler, expat and libzip (FMUs), the cross compilers, QEMU, clang's libFuzzer,
+# valgrind, python3, cppcheck and clang-tidy. Skips
 # what is already there. Needs root (or sudo) for apt-get.
 #
 #   sh tools/install-deps.sh            install what is missing (all groups)
@@ -18,6 +18,11 @@ have gcc                     || need="$need gcc libc6-dev"
 have make                    || need="$need make"
 have git                     || need="$need git"
 have python3                 || need="$need python3"
+# FMUs (tools/fmi/): modelDescription.xml by expat, the archive by libzip, zip for the
+# test FMUs
+[ -f /usr/include/expat.h ]  || need="$need libexpat1-dev"
+[ -f /usr/include/zip.h ]    || need="$need libzip-dev"
+have zip                     || need="$need zip"
 if [ "$group" = all ]; then
     have arm-none-eabi-gcc       || need="$need gcc-arm-none-eabi"
     [ -d /usr/lib/arm-none-eabi/newlib ] || need="$need libnewlib-arm-none-eabi"

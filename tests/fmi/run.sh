@@ -1,0 +1,94 @@
+#!/bin/sh
+# run.sh - the FMU suite (make test-fmi): the test FMUs of tests/fmi/models/ as FMI 2.0 and
+# 3.0 in the scenes of tests/fmi/scenes/ (@V@: the version, @FMUS@: where they were built),
+# their traces against closed forms (check.py), their hashes against the same equations in
+# the scene language and against each other, `modrt info` of an FMU, and the bad-FMU corpus
+# (bad.sh). Ends with "N passed, N failed".
+#
+# Usage: sh tests/fmi/run.sh BUILD_DIR FMI_DIR   (e.g. build/host build/host/fmi)
+set -u
+B=$1 T=$2
+M=$B/modrt
+FMUS=$(cd "$T/fmu" && pwd)
+W=$T/run
+rm -rf "$W" && mkdir -p "$W"
+export MODRT_FMU_CACHE="$T/cache"
+pass=0 fail=0
+ok() { pass=$((pass + 1)); echo "ok: $*"; }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+hash_of() { sed -n 's/^hash: //p' "$1"; }
+
+# a scene of tests/fmi/scenes for version $2, run with its CSV; its summary in $W/$1$2.out
+run() {
+    sed "s#@V@#$2#g; s#@FMUS@#$FMUS#g" "tests/fmi/scenes/$1.scn" > "$W/$1$2.scn"
+    "$M" run "$W/$1$2.scn" --csv "$W/$1$2.csv" > "$W/$1$2.out" 2>&1
+    rc=$?
+    if [ $rc -eq 0 ] && grep -q '^status: ok' "$W/$1$2.out"; then
+        ok "$1 (FMI $2.0) runs, status ok, $(grep '^fmu\.' "$W/$1$2.out" | head -1)"
+    else
+        bad "$1 (FMI $2.0) exit $rc:"; cat "$W/$1$2.out"
+    fi
+}
+
+closed() { # kind scene version tolerance
+    if python3 tests/fmi/check.py "$1" "$W/$2$3.csv" "$4"; then ok "$2 (FMI $3.0) closed form"
+    else bad "$2 (FMI $3.0) closed form"; fi
+}
+
+same_hash() { # what, file a, file b
+    ha=$(hash_of "$2") hb=$(hash_of "$3")
+    if [ -n "$ha" ] && [ "$ha" = "$hb" ]; then ok "$1: same hash $ha"
+    else bad "$1: hashes differ ($ha, $hb)"; fi
+}
+
+for v in 2 3; do
+    run ball_fmu $v && closed ball ball_fmu $v 1e-9
+    run stair_fmu $v && closed stair stair_fmu $v 0
+    run osc_fmu $v && closed osc osc_fmu $v 1e-7
+done
+
+# the same equations as defines of the scene language: the same bits
+for s in ball osc; do
+    "$M" run "tests/fmi/scenes/${s}_scn.scn" > "$W/${s}_scn.out" 2>&1
+    same_hash "$s: FMI 2.0 FMU = scene-language define" "$W/${s}_fmu2.out" "$W/${s}_scn.out"
+    same_hash "$s: FMI 3.0 FMU = FMI 2.0 FMU" "$W/${s}_fmu3.out" "$W/${s}_fmu2.out"
+done
+same_hash "stair: FMI 3.0 FMU = FMI 2.0 FMU" "$W/stair_fmu3.out" "$W/stair_fmu2.out"
+
+# events: the ball bounces 9 times in 2 s (each impact and each lift-off is an FMI event)
+n=$(sed -n 's/^events: //p' "$W/ball_fmu2.out")
+t1=$(python3 -c 'import math
+g, e = 9.81, 0.7
+t, v, n = math.sqrt(2 / g), math.sqrt(2 * g) * e, 0
+while t < 2: n, t, v = n + 1, t + 2 * v / g, v * e
+print(2 * n)')
+if [ "$n" = "$t1" ]; then ok "ball: $n events (impacts and lift-offs before 2 s)"
+else bad "ball: $n events, expected $t1"; fi
+
+# a tunable parameter changed before the run (--set) takes effect: the feed-through gain
+"$M" run "$W/osc_fmu2.scn" --set Ft.gain=3 --csv "$W/gain.csv" > "$W/gain.out" 2>&1
+if python3 -c 'import csv,sys
+r = list(csv.reader(open(sys.argv[1])))[1:]
+sys.exit(0 if all(float(x[2]) == 3 * float(x[1]) + 0.5 for x in r) else 1)' "$W/gain.csv"
+then ok "--set Ft.gain=3: y = 3 u1 + 0.5 on every row"; else bad "--set Ft.gain=3"; fi
+
+# modrt info of an FMU file: causality, unit and start of every variable
+"$M" info "$FMUS/bouncing3.fmu" > "$W/info.out" 2>&1
+if grep -q '^g  *parameter  *fixed  *Float64  *4  *m/s2  *9.81$' "$W/info.out" &&
+   grep -q '^states: 2$' "$W/info.out" && grep -q '^event_indicators: 1$' "$W/info.out"; then
+    ok "modrt info bouncing3.fmu lists g (parameter, m/s2, 9.81), 2 states, 1 indicator"
+else bad "modrt info bouncing3.fmu:"; cat "$W/info.out"; fi
+
+# scenec writes C for targets: an FMU system is refused at its load statement
+"$B/scenec" --check "$W/ball_fmu2.scn" > "$W/scenec.out" 2>&1
+if [ $? -eq 1 ] && grep -q 'error: FMU systems run on the host only near' "$W/scenec.out"; then
+    ok "scenec refuses an FMU system in one line"; else bad "scenec:"; cat "$W/scenec.out"; fi
+
+# the broken FMUs: each a one-line error or a counted fault
+out=$(sh tests/fmi/bad.sh "$B" "$T")
+echo "$out"
+p=$(echo "$out" | grep -c '^ok:') f=$(echo "$out" | grep -c '^FAIL:')
+pass=$((pass + p)) fail=$((fail + f))
+
+echo "test-fmi: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
