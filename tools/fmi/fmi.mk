@@ -13,6 +13,10 @@ FMI_LIBS  := -lzip -lexpat -ldl
 FMI_TDIR  := $(O)/fmi
 $(call obj,$(FMI_SRCS)): CINC += -I$(FMI_DIR) -I$(SCN_DIR)
 $(call obj,tools/modrt/modrt.c tools/modrt/cli.c): CINC += -I$(FMI_DIR)
+# the exporter (linked into scenec) finds the sources an exported FMU is built from here
+$(call obj,$(SCN_DIR)/scenec.c): CINC += -I$(FMI_DIR) -I$(SCN_DIR)
+$(call obj,$(FMI_DIR)/fmu_export.c): CINC += -I$(FMI_DIR) -I$(FMI_DIR)/cs -I$(SCN_DIR)
+$(call obj,$(FMI_DIR)/fmu_export.c): CDEFS += -DMODRT_SRC_DIR='"$(CURDIR)"'
 
 # ---- the test FMUs: one C file per model, built for each FMI version ----
 FMI_MODELS := $(basename $(notdir $(wildcard tests/fmi/models/*.c)))
@@ -47,8 +51,13 @@ build/fuzz/fmi-md-fuzz: $(FMI_FUZZ_SRCS) $(FMI_DIR)/fmu_md.h tests/scenec/fuzz_m
 fuzz-fmi: build/fuzz/fmi-md-fuzz fmi-fmus
 	sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz $(FUZZ_TIME) $(FMI_TDIR)
 
-test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz
+test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz $(FMI_TDIR)/master
 	sh tests/fmi/run.sh $(O) $(FMI_TDIR)
 	sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz 10 $(FMI_TDIR)
 
 .PHONY: fmi-fmus fuzz-fmi test-fmi
+
+# the foreign master of exported Co-Simulation FMUs (tests/fmi/master.c)
+$(FMI_TDIR)/master: tests/fmi/master.c $(FMI_DIR)/fmu_md.c $(FMI_DIR)/fmu_md.h $(FMI_DIR)/fmi_api.h
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(CSTD) -O2 -I$(FMI_DIR) tests/fmi/master.c $(FMI_DIR)/fmu_md.c -lexpat -ldl -lm -o $@

@@ -96,11 +96,41 @@ typedef uint8_t fmi3Byte;
 #define fmi3True true
 #define fmi3False false
 
+typedef float fmi3Float32;
+typedef int8_t fmi3Int8;
+typedef uint8_t fmi3UInt8;
+typedef int16_t fmi3Int16;
+typedef uint16_t fmi3UInt16;
+typedef int32_t fmi3Int32;
+typedef uint32_t fmi3UInt32;
+typedef int64_t fmi3Int64;
+typedef uint64_t fmi3UInt64;
+typedef const fmi3Byte *fmi3Binary;
+typedef bool fmi3Clock;
+
 typedef enum { fmi3OK, fmi3Warning, fmi3Discard, fmi3Error, fmi3Fatal } fmi3Status;
+typedef enum {
+    fmi3Independent, fmi3Constant, fmi3Fixed, fmi3Tunable, fmi3Discrete, fmi3Dependent
+} fmi3DependencyKind;
+typedef enum {
+    fmi3IntervalNotYetKnown, fmi3IntervalUnchanged, fmi3IntervalChanged
+} fmi3IntervalQualifier;
 
 typedef void (*fmi3LogMessageCallback)(fmi3InstanceEnvironment instanceEnvironment,
                                        fmi3Status status, fmi3String category,
                                        fmi3String message);
+
+typedef void (*fmi3ClockUpdateCallback)(fmi3InstanceEnvironment instanceEnvironment);
+typedef void (*fmi3IntermediateUpdateCallback)(fmi3InstanceEnvironment instanceEnvironment,
+                                               fmi3Float64 intermediateUpdateTime,
+                                               fmi3Boolean intermediateVariableSetRequested,
+                                               fmi3Boolean intermediateVariableGetAllowed,
+                                               fmi3Boolean intermediateStepFinished,
+                                               fmi3Boolean canReturnEarly,
+                                               fmi3Boolean *earlyReturnRequested,
+                                               fmi3Float64 *earlyReturnTime);
+typedef void (*fmi3LockPreemptionCallback)(void);
+typedef void (*fmi3UnlockPreemptionCallback)(void);
 
 typedef const char *fmi3GetVersionTYPE(void);
 typedef fmi3Instance fmi3InstantiateModelExchangeTYPE(fmi3String instanceName,
@@ -157,5 +187,29 @@ typedef fmi3Status fmi3GetNumberOfEventIndicatorsTYPE(fmi3Instance instance,
                                                       size_t *nEventIndicators);
 typedef fmi3Status fmi3GetNumberOfContinuousStatesTYPE(fmi3Instance instance,
                                                        size_t *nContinuousStates);
+
+/* Co-Simulation (what the test master of an exported FMU calls, tests/fmi/master.c) */
+typedef fmi3Instance fmi3InstantiateCoSimulationTYPE(
+    fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
+    fmi3Boolean visible, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
+    fmi3Boolean earlyReturnAllowed, const fmi3ValueReference requiredIntermediateVariables[],
+    size_t nRequiredIntermediateVariables, fmi3InstanceEnvironment instanceEnvironment,
+    fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate);
+typedef fmi3Status fmi3DoStepTYPE(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
+                                  fmi3Float64 communicationStepSize,
+                                  fmi3Boolean noSetFMUStatePriorToCurrentPoint,
+                                  fmi3Boolean *eventHandlingNeeded,
+                                  fmi3Boolean *terminateSimulation, fmi3Boolean *earlyReturn,
+                                  fmi3Float64 *lastSuccessfulTime);
+typedef fmi3Status fmi3GetFMUStateTYPE(fmi3Instance instance, fmi3FMUState *FMUState);
+typedef fmi3Status fmi3SetFMUStateTYPE(fmi3Instance instance, fmi3FMUState FMUState);
+typedef fmi3Status fmi3FreeFMUStateTYPE(fmi3Instance instance, fmi3FMUState *FMUState);
+typedef fmi3Status fmi3SerializedFMUStateSizeTYPE(fmi3Instance instance, fmi3FMUState FMUState,
+                                                  size_t *size);
+typedef fmi3Status fmi3SerializeFMUStateTYPE(fmi3Instance instance, fmi3FMUState FMUState,
+                                             fmi3Byte serializedState[], size_t size);
+typedef fmi3Status fmi3DeserializeFMUStateTYPE(fmi3Instance instance,
+                                               const fmi3Byte serializedState[], size_t size,
+                                               fmi3FMUState *FMUState);
 
 #endif /* FMI_API_H */

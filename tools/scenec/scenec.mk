@@ -42,8 +42,9 @@ $(call obj,tools/modrt/modrt.c tools/modrt/cli.c): CINC += -I$(SCN_DIR)
 $(O)/obj/tests/scenec/%.o: CINC += -I$(SCN_DIR)
 
 ifeq ($(O),build/host)
-$(SCENEC): $(call obj,$(SCN_DIR)/scenec.c) $(SCN_LIB_OBJS) $(RT_OBJS) $(SCN_MODEL_OBJS)
-	$(CC) $(LDSAN) $^ -o $@
+$(SCENEC): $(call obj,$(SCN_DIR)/scenec.c tools/fmi/fmu_export.c) $(SCN_LIB_OBJS) $(RT_OBJS) \
+           $(SCN_MODEL_OBJS)
+	$(CC) $(LDSAN) $^ -lzip -o $@
 else
 # other builds (REAL=float, SAN=1, FAULT=1) use the double compiler of build/host
 $(SCENEC): scenec-always
