@@ -43,6 +43,7 @@ same_hash() { # what, file a, file b
 
 for v in 2 3; do
     run ball_fmu $v && closed ball ball_fmu $v 1e-9
+    run ball_h2_fmu $v && closed ball_h2 ball_h2_fmu $v 1e-9
     run stair_fmu $v && closed stair stair_fmu $v 0
     run osc_fmu $v && closed osc osc_fmu $v 1e-7
 done
