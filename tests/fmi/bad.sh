@@ -72,6 +72,10 @@ for v in 2 3; do
     mk nan$v $v bouncing --define FMU_BAD_NAN_AT=0.5 && counted nan$v "non-finite derivative"
     mk loop$v $v bouncing --define FMU_BAD_LOOP && counted loop$v "did not converge in 64"
 done
+mk srcbreak3 3 bouncing --source-only --break-source &&
+    refused srcbreak3 "building its sources failed (.* exit 1, log .*build.log)"
+mk srcesc3 3 bouncing --source-only --source-name ../../evil.c &&
+    refused srcesc3 "names a file outside sources/ or too many: refused"
 mk nz3 3 bouncing --md-nz 2 && refused nz3 "declares 2 states and 2 event indicators, the binary 2 and 1"
 
 # nothing escaped the cache

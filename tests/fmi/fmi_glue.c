@@ -14,6 +14,9 @@
 #include "fmi_api.h"
 #include "fmi_model.h"
 
+#ifndef FMI_VERSION /* a 2.0 source FMU is built without definitions */
+#define FMI_VERSION 2
+#endif
 #define EXPORT __attribute__((visibility("default")))
 
 /* the sizes as values (a model without states compares against 0 without a warning) */

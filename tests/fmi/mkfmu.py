@@ -130,6 +130,15 @@ def md3(d, token, ident):
     return "\n".join(out)
 
 
+def build_description(ident, cfiles):
+    return ('<?xml version="1.0" encoding="UTF-8"?>\n<fmiBuildDescription fmiVersion="3.0">\n'
+            '  <BuildConfiguration modelIdentifier="%s">\n    <SourceFileSet language="C11">\n'
+            '%s      <PreprocessorDefinition name="FMI_VERSION" value="3"/>\n'
+            '      <IncludeDirectory name="."/>\n    </SourceFileSet>\n'
+            '    <Library name="m"/>\n  </BuildConfiguration>\n</fmiBuildDescription>\n'
+            % (ident, "".join('      <SourceFile name="%s"/>\n' % f for f in cfiles)))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--cc", default="gcc")
@@ -144,6 +153,10 @@ def main():
     ap.add_argument("--extra", action="append", default=[], help="NAME: one more entry")
     ap.add_argument("--platform", help="binaries/<platform>/ other than this one's")
     ap.add_argument("--int-input", help="one more input, an integer, in modelDescription.xml")
+    ap.add_argument("--source-only", action="store_true",
+                    help="a source FMU: sources/ (and buildDescription.xml for 3.0), no binary")
+    ap.add_argument("--break-source", action="store_true", help="a source file cut short")
+    ap.add_argument("--source-name", help="the name buildDescription.xml gives the glue")
     ap.add_argument("--truncate", type=int, help="keep only this many bytes of the archive")
     a = ap.parse_args()
     d = json.load(open(os.path.join(HERE, "models", a.model + ".json")))
@@ -166,6 +179,15 @@ def main():
         if a.md_nz is not None:
             d["nz"] = a.md_nz
         xml = (md2 if a.version == 2 else md3)(d, token, ident)
+        srcs = [os.path.join(HERE, "fmi_glue.c"), os.path.join(HERE, "models", a.model + ".c"),
+                os.path.join(HERE, "fmi_model.h"), os.path.join(tmp, "model_gen.h"),
+                os.path.join(HERE, "..", "..", "tools", "fmi", "fmi_api.h")]
+        cfiles = ["fmi_glue.c", a.model + ".c"]
+        if a.source_only and a.version == 2:
+            xml = xml.replace('completedIntegratorStepNotNeeded="true"/>',
+                              'completedIntegratorStepNotNeeded="true">\n    <SourceFiles>\n%s'
+                              '    </SourceFiles>\n  </ModelExchange>' %
+                              "".join('      <File name="%s"/>\n' % f for f in cfiles))
         if a.int_input:
             vr = max(v["vr"] for v in d["vars"]) + 10
             var = ('    <ScalarVariable name="%s" valueReference="%d" causality="input">\n'
@@ -176,7 +198,18 @@ def main():
         with zipfile.ZipFile(tmpzip, "w", zipfile.ZIP_DEFLATED) as z:
             if not a.no_md:
                 z.writestr("modelDescription.xml", xml)
-            z.write(so, "binaries/%s/%s.so" % (plat, ident))
+            if a.source_only:
+                for f in srcs:
+                    data = open(f).read()
+                    if a.break_source and f.endswith("fmi_glue.c"):
+                        data = data[:len(data) // 2]
+                    z.writestr("sources/" + os.path.basename(f), data)
+                if a.version == 3:
+                    if a.source_name:
+                        cfiles[0] = a.source_name
+                    z.writestr("sources/buildDescription.xml", build_description(ident, cfiles))
+            else:
+                z.write(so, "binaries/%s/%s.so" % (plat, ident))
             for e in a.extra:
                 z.writestr(e, "an entry of the bad-FMU corpus\n")
         if a.truncate:

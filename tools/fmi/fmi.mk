@@ -7,8 +7,8 @@
 #   make fuzz-fmi      the modelDescription.xml fuzzer for FUZZ_TIME seconds
 
 FMI_DIR   := tools/fmi
-FMI_SRCS  := $(addprefix $(FMI_DIR)/,fmu_md.c fmu_zip.c fmu_model.c fmu_call.c fmu_inst.c \
-               fmu_info.c fmu_scn.c)
+FMI_SRCS  := $(addprefix $(FMI_DIR)/,fmu_md.c fmu_zip.c fmu_model.c fmu_build.c fmu_call.c \
+               fmu_inst.c fmu_info.c fmu_scn.c)
 FMI_LIBS  := -lzip -lexpat -ldl
 FMI_TDIR  := $(O)/fmi
 $(call obj,$(FMI_SRCS)): CINC += -I$(FMI_DIR) -I$(SCN_DIR)

@@ -6,6 +6,7 @@
  *   fmu_md.c     modelDescription.xml, read by expat (fmu_md.h)
  *   fmu_model.c  one FMU file: its description, its binary (dlopen), the interface modrt
  *                maps onto a kind (inputs, outputs, parameters, states, event indicators)
+ *   fmu_build.c  a source FMU's binary for the host, built from its sources/
  *   fmu_inst.c   one block: the FMU instance, its initialization and the rt_kind services
  *                (output, deriv, roots, event, check) that drive it
  *   fmu_info.c   `modrt info FILE.fmu` and the run summary's FMU lines

@@ -116,6 +116,9 @@ struct fmu_inst {
 /* fmu_model.c: the scene-language name of an FMI name (every character outside
    [A-Za-z0-9_] becomes '_'; a leading digit gets a '_'); malloc'd */
 char *fmu_scene_name(const char *fmi_name);
+/* fmu_build.c: a source FMU's binary for this host built from its sources/ into lib;
+   0, or -1 with a one-line message in err */
+int fmu_build(const fmu_model *m, const char *lib, char *err, size_t errlen);
 /* fmu_inst.c: the instances of the process, for the summary */
 extern fmu_inst *fmu_instances[FMU_MAX_INSTANCES];
 extern int fmu_ninstances;

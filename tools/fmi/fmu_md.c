@@ -16,7 +16,7 @@
 /* where the parser stands: the element kinds whose children it reads */
 typedef enum {
     E_SKIP = 0, E_ROOT, E_MODEL_VARS, E_SCALAR2, E_VAR3, E_TYPEDEFS, E_SIMPLETYPE2,
-    E_STRUCT, E_OUTPUTS2, E_DERIVS2, E_OTHER2, E_LEAF
+    E_STRUCT, E_OUTPUTS2, E_DERIVS2, E_OTHER2, E_LEAF, E_ME2, E_FILES2
 } elem;
 
 typedef struct tdef {
@@ -30,7 +30,7 @@ typedef struct arena {
     const char **declared;  /* per variable: its declaredType, or NULL */
     tdef *td;
     size_t ntd, captd;
-    size_t capv, capder, capout;
+    size_t capv, capder, capout, capsrc;
 } arena;
 
 typedef struct ctx {
@@ -401,6 +401,23 @@ static void type_def(ctx *c, const char *name, const char **at, int v2_child)
     a->ntd++;
 }
 
+/* 2.0: a C file of a source FMU (<ModelExchange><SourceFiles><File name=...>) */
+static void source_file(ctx *c, const char **at)
+{
+    fmu_md *md = c->md;
+    const char *n = attr(at, "name");
+    if (!n || !*n) {
+        fail(c, "<File> without a name");
+        return;
+    }
+    if (md->nsources >= FMU_MD_MAX_VARS) {
+        fail(c, "more than %u source files", FMU_MD_MAX_VARS);
+        return;
+    }
+    if (!grow(c, (void **)&md->sources, &c->a->capsrc, md->nsources, sizeof *md->sources))
+        md->sources[md->nsources++] = keep(c, n);
+}
+
 /* the kind of a child element `name` of an element of kind `parent` */
 static elem child(ctx *c, elem parent, const char *name, const char **at)
 {
@@ -408,7 +425,7 @@ static elem child(ctx *c, elem parent, const char *name, const char **at)
     case E_ROOT:
         if (!strcmp(name, "ModelExchange") || !strcmp(name, "CoSimulation")) {
             interface(c, name, at);
-            return E_SKIP;
+            return c->md->version == 2 && !strcmp(name, "ModelExchange") ? E_ME2 : E_SKIP;
         }
         return !strcmp(name, "ModelVariables") ? E_MODEL_VARS
              : !strcmp(name, "ModelStructure") ? E_STRUCT
@@ -428,6 +445,12 @@ static elem child(ctx *c, elem parent, const char *name, const char **at)
         return c->md->version == 2 ? E_SIMPLETYPE2 : E_SKIP;
     case E_SIMPLETYPE2:
         type_def(c, name, at, 1);
+        return E_SKIP;
+    case E_ME2:
+        return !strcmp(name, "SourceFiles") ? E_FILES2 : E_SKIP;
+    case E_FILES2:
+        if (!strcmp(name, "File"))
+            source_file(c, at);
         return E_SKIP;
     case E_STRUCT:
         return structure(c, name, at);
@@ -577,6 +600,7 @@ void fmu_md_free(fmu_md *md)
     for (uint32_t i = 0; i < md->nout; i++)
         free(md->out[i].deps);
     free(md->v);
+    free(md->sources);
     free(md->der);
     free(md->out);
     memset(md, 0, sizeof *md);

@@ -53,6 +53,9 @@ typedef struct fmu_md {
     const char *me_id;              /* modelIdentifier of <ModelExchange>, NULL: none */
     const char *cs_id;              /* modelIdentifier of <CoSimulation>, NULL: none */
     const char *tool;               /* generationTool, or NULL */
+    const char **sources;           /* 2.0: <ModelExchange><SourceFiles><File name>: the C
+                                       files of a source FMU, under sources/ */
+    uint32_t nsources;
     uint8_t needs_step_done;        /* the FMU asks for CompletedIntegratorStep calls */
     uint8_t once_per_process;       /* canBeInstantiatedOnlyOncePerProcess */
     uint32_t n_indicators;          /* 2.0: numberOfEventIndicators; 3.0: EventIndicator

@@ -125,7 +125,12 @@ static int open_binary(fmu_model *m, char *err, size_t errlen)
         return failf(err, errlen, "out of memory");
     snprintf(m->lib, n, "%s/binaries/%s/%s.so", m->dir, plat, md->me_id);
     struct stat st;
-    if (stat(m->lib, &st) != 0) {
+    char src[4200];
+    snprintf(src, sizeof src, "%s/sources", m->dir);
+    if (stat(m->lib, &st) != 0 && stat(src, &st) == 0) { /* a source FMU: built here once */
+        if (fmu_build(m, m->lib, err, errlen) != 0)
+            return -1;
+    } else if (stat(m->lib, &st) != 0) {
         char have[256];
         platforms(m->dir, have, sizeof have);
         return failf(err, errlen, "%s: no binary for this platform (binaries/%s/%s.so); it "

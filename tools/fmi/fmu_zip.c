@@ -202,7 +202,7 @@ char *fmu_unpack(const char *path, char *err, size_t errlen)
     snprintf(dir, sizeof dir, "%s/%016llx", root, h);
     struct stat st;
     if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
-        return strdup(dir);
+        return realpath(dir, NULL); /* absolute: the FMU and its build may chdir */
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", dir, (long)getpid());
     nftw(tmp, rm_one, 16, FTW_DEPTH | FTW_PHYS); /* a leftover of an interrupted run */
     if (extract(path, tmp, err, errlen)) {
@@ -216,5 +216,5 @@ char *fmu_unpack(const char *path, char *err, size_t errlen)
             return NULL;
         }
     }
-    return strdup(dir);
+    return realpath(dir, NULL);
 }
