@@ -76,6 +76,10 @@ mk srcbreak3 3 bouncing --source-only --break-source &&
     refused srcbreak3 "building its sources failed (.* exit 1, log .*build.log)"
 mk srcesc3 3 bouncing --source-only --source-name ../../evil.c &&
     refused srcesc3 "names a file outside sources/ or too many: refused"
+for v in 2 3; do
+    mk past$v $v stair --define FMU_BAD_NEXT_PAST && sed -i 's/record (X.h);/record (X.y);/' "$D/past$v.scn" &&
+        counted past$v "nextEventTime 1 is not after the current time 1"
+done
 mk nz3 3 bouncing --md-nz 2 && refused nz3 "declares 2 states and 2 event indicators, the binary 2 and 1"
 
 # nothing escaped the cache

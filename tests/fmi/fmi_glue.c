@@ -4,7 +4,8 @@
  * state returns Error with a logged reason. Fault injection for the bad-FMU corpus
  * (tests/fmi/bad.sh): FMU_BAD_ERROR_AT=t (derivatives return Error from time t),
  * FMU_BAD_NAN_AT=t (NaN derivatives from t), FMU_BAD_LOOP (no event iteration after the start ends),
- * FMU_BAD_NO_INDICATORS (the event-indicator function is missing). */
+ * FMU_BAD_NO_INDICATORS (the event-indicator function is missing), FMU_BAD_NEXT_PAST (after
+ * the first event, nextEventTime is the current time). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -120,6 +121,10 @@ static int update(inst *in, int *again, int *x_changed, int *has_next, double *n
     *again = model_event(&in->d, x_changed, has_next, next);
 #ifdef FMU_BAD_LOOP
     *again = in->d.time > 0; /* every event after the start */
+#endif
+#ifdef FMU_BAD_NEXT_PAST
+    if (in->d.time > 0)      /* from the first event on: the next one "now" */
+        *has_next = 1, *next = in->d.time;
 #endif
     return 0;
 }

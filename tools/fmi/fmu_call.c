@@ -119,6 +119,7 @@ static int set2(fmu_inst *in, const uint32_t *vr, size_t n, const double *v)
 }
 
 static int reset2(fmu_inst *in) { return in->m->f2.fmi2Reset(in->c); }
+static int terminate2(fmu_inst *in) { return in->m->f2.fmi2Terminate(in->c); }
 
 static void free2(fmu_inst *in) { in->m->f2.fmi2FreeInstance(in->c); }
 
@@ -127,7 +128,7 @@ const fmu_ops fmu_ops2 = {
     .exit_init = exit_init2, .update = update2, .enter_ct = enter_ct2,
     .enter_event = enter_event2, .set_time = set_time2, .set_x = set_x2, .get_x = get_x2,
     .get_dx = get_dx2, .get_z = get_z2, .get = get2, .set = set2, .reset = reset2,
-    .free = free2,
+    .terminate = terminate2, .free = free2,
 };
 
 /* ------------------------------------------------------------------ FMI 3.0 */
@@ -208,6 +209,7 @@ static int set3(fmu_inst *in, const uint32_t *vr, size_t n, const double *v)
 }
 
 static int reset3(fmu_inst *in) { return in->m->f3.fmi3Reset(in->c); }
+static int terminate3(fmu_inst *in) { return in->m->f3.fmi3Terminate(in->c); }
 static void free3(fmu_inst *in) { in->m->f3.fmi3FreeInstance(in->c); }
 
 const fmu_ops fmu_ops3 = {
@@ -215,5 +217,5 @@ const fmu_ops fmu_ops3 = {
     .exit_init = exit_init3, .update = update3, .enter_ct = enter_ct3,
     .enter_event = enter_event3, .set_time = set_time3, .set_x = set_x3, .get_x = get_x3,
     .get_dx = get_dx3, .get_z = get_z3, .get = get3, .set = set3, .reset = reset3,
-    .free = free3,
+    .terminate = terminate3, .free = free3,
 };

@@ -65,6 +65,7 @@ static int check(fmu_inst *in, int s, const char *what, double t)
           status_names[st], in->log[0] ? ": " : "", in->log);
     if (s >= 3)
         in->mode = FMU_M_DEAD;
+    in->fatal |= s == 4;
     return -1;
 }
 
@@ -114,6 +115,11 @@ static int iterate(fmu_inst *in, double t, real_t *x)
         }
     }
     in->iter_max = k + 1 > in->iter_max ? k + 1 : in->iter_max;
+    if (u.has_next && !(u.next > t)) { /* it would never cross: a lost event */
+        fault(in, t, "nextEventTime %.17g is not after the current time %.17g", u.next, t);
+        in->mode = FMU_M_DEAD;
+        return -1;
+    }
     in->has_next = (uint8_t)u.has_next, in->t_next = u.next;
     if (CALL(in, t, "EnterContinuousTimeMode", o->enter_ct(in)))
         return -1;
@@ -318,12 +324,12 @@ static int start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given
     if (m->np && CALL(in, 0, o == &fmu_ops2 ? "SetReal" : "SetFloat64",
                       o->set(in, m->vp, m->np, in->p)))
         return -1;
-    for (uint32_t i = 0; given && i < m->nx; i++) {
-        double v = (double)x0[i];
-        if (given[i] && CALL(in, 0, o == &fmu_ops2 ? "SetReal" : "SetFloat64",
-                             o->set(in, &m->vx[i], 1, &v)))
+    for (uint32_t i = 0; given && i < m->nx; i++) /* the scene's, kept for a restart */
+        in->x_given[i] = given[i], in->x_start[i] = (double)x0[i];
+    for (uint32_t i = 0; i < m->nx; i++)
+        if (in->x_given[i] && CALL(in, 0, o == &fmu_ops2 ? "SetReal" : "SetFloat64",
+                                   o->set(in, &m->vx[i], 1, &in->x_start[i])))
             return -1;
-    }
     if (CALL(in, 0, "EnterInitializationMode", o->enter_init(in, 0)) ||
         CALL(in, 0, "ExitInitializationMode", o->exit_init(in)))
         return -1;
@@ -396,6 +402,21 @@ int fmu_inst_start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *giv
 
 /* ------------------------------------------------------------------ the kind */
 
+/* at the process's end: every instance terminated and freed, as FMI's life cycle ends
+   (an FMU may write its results there); none after Fatal, which allows no further call */
+static void release_all(void)
+{
+    for (int i = 0; i < fmu_ninstances; i++) {
+        fmu_inst *in = fmu_instances[i];
+        if (!in->c || in->fatal)
+            continue;
+        if (in->mode == FMU_M_CT || in->mode == FMU_M_EVENT)
+            in->m->ops->terminate(in);
+        in->m->ops->free(in);
+        in->c = NULL;
+    }
+}
+
 fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen)
 {
     if (fmu_ninstances >= FMU_MAX_INSTANCES) {
@@ -411,9 +432,12 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
         in->x = calloc(m->nx + 1, sizeof *in->x), in->u = calloc(m->nu + 1, sizeof *in->u);
         in->p = calloc(m->np + 1, sizeof *in->p), in->buf = calloc(nb + 1, sizeof *in->buf);
         in->ev_x = calloc(m->nx + 1, sizeof *in->ev_x);
+        in->x_start = calloc(m->nx + 1, sizeof *in->x_start);
+        in->x_given = calloc(m->nx + 1, 1);
         in->root_dir = calloc(m->nz + 1, 1);
     }
-    if (!in || !in->block || !in->x || !in->u || !in->p || !in->buf || !in->ev_x || !in->root_dir) {
+    if (!in || !in->block || !in->x || !in->u || !in->p || !in->buf || !in->ev_x ||
+        !in->root_dir || !in->x_start || !in->x_given) {
         snprintf(err, errlen, "out of memory");
         return NULL;
     }
@@ -439,6 +463,8 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
         return NULL;
     }
     m->ninst++;
+    if (fmu_ninstances == 0)
+        atexit(release_all);
     fmu_instances[fmu_ninstances++] = in;
     return in;
 }

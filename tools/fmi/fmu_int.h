@@ -61,6 +61,7 @@ typedef struct fmu_ops {
     int (*get)(fmu_inst *in, const uint32_t *vr, size_t n, double *v);
     int (*set)(fmu_inst *in, const uint32_t *vr, size_t n, const double *v);
     int (*reset)(fmu_inst *in);
+    int (*terminate)(fmu_inst *in);
     void (*free)(fmu_inst *in);
 } fmu_ops;
 extern const fmu_ops fmu_ops2, fmu_ops3;
@@ -105,6 +106,10 @@ struct fmu_inst {
     double ev_t;                /* the last event: its time and the states after it */
     double *ev_x;
     uint8_t ev_valid;
+    uint8_t fatal;              /* a call returned Fatal: no further call at all */
+    double *x_start;            /* the scene's state starts (where x_given), set before every
+                                   initialization */
+    uint8_t *x_given;
     /* what went wrong */
     unsigned long faults, warnings, events;
     uint32_t iter_max;          /* most discrete-state updates of one event iteration */
