@@ -95,6 +95,8 @@ help:
 	@echo "make image TARGET=<t> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
 	@echo "                  a firmware image of one scene (docs/porting.md)"
 	@echo "make fuzz         the scene-language fuzzer for $(FUZZ_TIME) s"
+	@echo "make test-fmi     FMUs: import (FMI 2.0/3.0 ME), export (3.0 CS), the bad corpus;"
+	@echo "                  make fuzz-fmi: the modelDescription.xml fuzzer (docs/fmi.md)"
 	@echo "make deps         install what the targets need (tools/install-deps.sh)"
 	@echo "make clean        remove build/"
 	@echo "settings: REAL=double|float SAN=1 O=DIR V=1 CC=..."
