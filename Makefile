@@ -57,7 +57,8 @@ RT_SRCS     := $(wildcard rt/*.c)
 MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
                $(patsubst models/scenes/%.scn,build/gen/scenes/%.c,$(wildcard models/scenes/*.scn))
 POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/modrt/cli.c \
-               tools/modrt/info.c tools/modrt/study.c tools/modrt/rtloop.c tools/modrt/trace.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c
+               tools/modrt/info.c tools/modrt/study.c tools/modrt/check.c tools/modrt/rtloop.c tools/modrt/trace.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c \
+               $(wildcard tools/modrt/sweep*.c)
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c)
 
@@ -435,3 +436,4 @@ include tests/hard/hard.mk
 include tests/static/static.mk
 include tests/vehicles/vehicles.mk
 include tools/study/study.mk
+include tests/sweep/sweep.mk

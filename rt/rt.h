@@ -626,6 +626,9 @@ typedef struct rt_state {
     real_t y[RT_MAX_Y];              /* outputs (DSS outputs held between hits) */
     real_t p[RT_MAX_P];              /* parameters (may be changed before the run) */
     real_t r[RT_MAX_ROOTS];          /* root values at the end of the last step */
+    real_t r_lvl[RT_MAX_ROOTS];      /* level each root crosses at: 0, or after a handler
+                                        that sent it back (or stopped it) the value it
+                                        was handled at, less a margin (rt/step.c) */
     real_t torn_val[RT_MAX_TORN];    /* torn inputs' values (warm start of the next solve) */
     real_t loop_h[RT_MAX_TORN * RT_MAX_TORN]; /* inverse Jacobians, Broyden-updated */
     real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
@@ -669,6 +672,10 @@ typedef struct rt_state {
                                         its next step forms its Jacobian anew (rt/step.c;
                                         a background set's in the context that runs it) */
     uint8_t bg_busy;                 /* 1: a step is released and not yet published */
+    int8_t r_side[RT_MAX_ROOTS];     /* per root, the side (+1 above r_lvl, -1 below) a
+                                        handler sent it back to (or stopped it on) and
+                                        it must not leave without a located crossing;
+                                        0: none (until it is seen on that side of 0) */
 } rt_state;
 
 /* What a run has met: fault counters, the first fault, high-water marks and monitors.

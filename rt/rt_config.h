@@ -316,6 +316,21 @@ typedef double real_t;
    far below any model's time scale, yet reached in a few Illinois iterations */
 #define RT_EVENT_TTOL (RT_REAL_IS_FLOAT ? (real_t)1e-6 : (real_t)1e-12)
 #endif
+#ifndef RT_EVENT_PROBE
+/* after a handler leaves its root on the far side of the crossing, the root's motion is
+   measured over this fraction of the step (one Euler step of the set, rt/step.c): about
+   the cube root of the unit roundoff, so the change is well above rounding while the
+   curvature of the trajectory over it stays below the first-order change */
+#define RT_EVENT_PROBE (RT_REAL_IS_FLOAT ? (real_t)3.90625e-3 : (real_t)7.62939453125e-6)
+#endif
+#ifndef RT_EVENT_MARGIN
+/* a root a handler sent back toward its side fires again when it comes back this
+   fraction of its probed motion beyond the point it was handled at (in time, this
+   fraction of RT_EVENT_PROBE of the step: 7e-12 s at 1 ms in double): below any physical
+   scale, above the rounding of a root such as z - zt(t) near that point unless the root
+   moves slower than about 3e-5 of its terms per second */
+#define RT_EVENT_MARGIN (RT_REAL_IS_FLOAT ? (real_t)0.0625 : (real_t)9.765625e-4)
+#endif
 
 #if RT_MAX_BLOCKS > 65535 || RT_MAX_Y > 65535 || RT_MAX_U > 65535 || RT_MAX_X > 65535
 #error "modrt indexes blocks, states and ports with 16-bit integers: keep every RT_MAX_* below 65536."

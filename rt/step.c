@@ -102,17 +102,42 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
     return after;
 }
 
-/* does root i cross from ra to rb in its declared direction? */
-static int crossed(const rt_kind *k, uint16_t i, real_t ra, real_t rb)
+/* the event bookkeeping of one set's roots: levels and sides (rt_state.r_lvl, r_side),
+   whether a root going NaN is taken for a crossing to locate (class "lost", below) */
+typedef struct rootset {
+    real_t *lvl;
+    int8_t *side;
+    int lost;   /* 1: a root that ends NaN from a finite start is located (finite state) */
+} rootset;
+
+static rootset roots_of(rt_sim *sim, uint8_t s)
 {
+    uint16_t r0 = sim->plan.set_r[s];
+    return (rootset){sim->state.r_lvl + r0, sim->state.r_side + r0, 0};
+}
+
+/* does root i cross from ra to rb in its declared direction? A root a handler sent back
+   to (or stopped on) a side of its level crosses when it leaves the level to the other */
+static int crossed(const rt_kind *k, uint16_t i, real_t ra, real_t rb, real_t lvl, int side)
+{
+    if (side != 0)
+        return (real_t)side * (ra - lvl) >= 0 && (real_t)side * (rb - lvl) < 0;
     int dir = k->root_dir ? k->root_dir[i] : 0;
     int down = ra > 0 && rb <= 0, up = ra < 0 && rb >= 0;
     return dir < 0 ? down : dir > 0 ? up : (down || up);
 }
 
-/* first root of the set (in block order) crossing between ra and rb; -1 if none.
-   Writes the owning block into *blk and the root's index within it into *which. */
-static int find_crossing(const rt_scene *sc, uint8_t s, const real_t *ra,
+/* the side root i was on before a crossing from ra: +1 above its level, -1 below */
+static int8_t side_before(const rt_kind *k, uint16_t i, real_t ra, real_t lvl, int side)
+{
+    int dir = k->root_dir ? k->root_dir[i] : 0;
+    return (int8_t)(side != 0 ? side : dir != 0 ? -dir : ra - lvl > 0 ? 1 : -1);
+}
+
+/* first root of the set (in block order) crossing between ra and rb, or (rs->lost) going
+   NaN from a finite value; -1 if none. Writes the owning block into *blk and the root's
+   index within it into *which. */
+static int find_crossing(const rt_scene *sc, uint8_t s, const rootset *rs, const real_t *ra,
                          const real_t *rb, uint16_t *blk, uint16_t *which)
 {
     uint16_t n = 0;
@@ -121,7 +146,8 @@ static int find_crossing(const rt_scene *sc, uint8_t s, const real_t *ra,
         if (k->nr == 0 || sc->blocks[b].set != s)
             continue;
         for (uint16_t i = 0; i < k->nr; i++, n++)
-            if (crossed(k, i, ra[n], rb[n])) {
+            if (crossed(k, i, ra[n], rb[n], rs->lvl[n], rs->side[n]) ||
+                (rs->lost && ra[n] == ra[n] && rb[n] != rb[n])) {
                 *blk = b, *which = i;
                 return n;
             }
@@ -143,20 +169,23 @@ static void trial(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h
 
 typedef struct bracket {
     real_t a, b;   /* fractions of the step around the crossing */
-    real_t ra, rb; /* the located root's values there */
+    real_t ra, rb; /* the located root's values there (rb NaN: where it went NaN) */
     int root;      /* root index within the set */
 } bracket;
 
-/* narrows the bracket by Illinois regula falsi; leaves the state at its right end in xb */
+/* narrows the bracket by Illinois regula falsi (bisection while rb is NaN); leaves the
+   state at its right end in xb */
 static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, bracket *k,
-                   const real_t *r_start)
+                   const rootset *rs, const real_t *r_start)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     int side = 0;
     uint32_t it = 0;
     /* rb == 0: the right end sits exactly on the root, nothing left to narrow */
     for (; it < RT_EVENT_ITER_MAX && k->b - k->a > RT_EVENT_TTOL && k->rb != 0; it++) {
-        real_t th = (k->a * k->rb - k->b * k->ra) / (k->rb - k->ra);
+        /* the secant through the values relative to the root's level */
+        real_t lv = rs->lvl[k->root], fa = k->ra - lv, fb = k->rb - lv;
+        real_t th = (k->a * fb - k->b * fa) / (fb - fa);
         if (!(th > k->a && th < k->b))
             th = (real_t)0.5 * (k->a + k->b);
         /* keep the trial half a tolerance inside the bracket: once the secant sits on the
@@ -166,16 +195,16 @@ static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
         trial(sc, sim, s, t, h, th, sim->work.rs);
         uint16_t blk, which;
         /* an earlier crossing of any root in [a, th] takes over the bracket */
-        int c = find_crossing(sc, s, r_start, sim->work.rs, &blk, &which);
+        int c = find_crossing(sc, s, rs, r_start, sim->work.rs, &blk, &which);
         if (c >= 0) {
             k->root = c, k->b = th, k->rb = sim->work.rs[c];
             for (uint16_t i = 0; i < n; i++)
                 sim->work.xb[i] = sim->state.x[x0 + i];
-            k->ra = side == -1 ? k->ra * (real_t)0.5 : k->ra; /* Illinois */
+            k->ra = side == -1 ? lv + (k->ra - lv) * (real_t)0.5 : k->ra; /* Illinois */
             side = -1;
         } else {
             k->a = th, k->ra = sim->work.rs[k->root];
-            k->rb = side == 1 ? k->rb * (real_t)0.5 : k->rb;
+            k->rb = side == 1 ? lv + (k->rb - lv) * (real_t)0.5 : k->rb;
             side = 1;
         }
     }
@@ -189,8 +218,10 @@ static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
    crossed since the start of the (sub)step (roots r_start): the located one and any
    crossing at the same time, e.g. two bodies hitting their floors together, which would
    otherwise start the rest of the step on the wrong side and never be seen again.
-   Handlers run in root order, each with the outputs after the previous one. */
-static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const real_t *r_start)
+   Handlers run in root order, each with the outputs after the previous one. The side
+   each fired root came from is written into fired (0: did not fire). */
+static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const rootset *rs,
+                 const real_t *r_start, int8_t *fired)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0), m = 0;
     for (uint16_t i = 0; i < n; i++)
@@ -202,8 +233,10 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const re
         if (k->nr == 0 || sc->blocks[b].set != s)
             continue;
         for (uint16_t i = 0; i < k->nr; i++, m++) {
-            if (!crossed(k, i, r_start[m], sim->work.rs[m]))
+            fired[m] = 0;
+            if (!crossed(k, i, r_start[m], sim->work.rs[m], rs->lvl[m], rs->side[m]))
                 continue;
+            fired[m] = side_before(k, i, r_start[m], rs->lvl[m], rs->side[m]);
             rt_args a;
             rti_gather(sim, b, te);
             rti_args(sc, sim, b, te, 0, &a);
@@ -214,10 +247,99 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const re
     }
 }
 
-/* a guard root (rt_kind.root_guard, a floor) that ends the step below zero and further
-   below than it started, with no crossing located: the model tunnels through its floor */
-static void check_guards(const rt_scene *sc, rt_sim *sim, uint8_t s, const real_t *ra,
-                         const real_t *rb)
+/* the roots of the set one Euler step of length tau ahead of the state at t, into r: the
+   sign of each root's motion (its first-order rate), whatever the curvature of the path
+   beyond. The state and the outputs at t are left as they were. */
+static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t tau, real_t *r)
+{
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    real_t *x = sim->state.x + x0, *f = sim->work.w.k[0], *keep = sim->work.xb;
+    rti_rhs_ctx ctx = {sc, sim, s, tau};
+    rti_rhs(&ctx, t, f);
+    for (uint16_t i = 0; i < n; i++)
+        keep[i] = x[i], x[i] = x[i] + tau * f[i];
+    rti_outputs(sc, sim, (rti_at){t + tau, s, RTI_IN_STEP});
+    rti_roots(sc, sim, s, t + tau, r);
+    for (uint16_t i = 0; i < n; i++)
+        x[i] = keep[i];
+    rti_outputs(sc, sim, (rti_at){t, s, RTI_IN_STEP});
+}
+
+/* after the handlers at te (roots r there): each fired root the handlers did not put back
+   on its side of zero. The handler ran just past the crossing, so a bounce leaves its root
+   a hair on the far side, moving back: crossing zero again on the way out and once more
+   on the way down within one step (a flight shorter than the step) shows no sign change
+   at the step's end, and the body tunnels. So the root's motion is probed: sent back, it
+   is held on its side of the level it was handled at (less a margin): leaving that level
+   again is its next crossing. Stopped there (a directional root, or a guard), the same.
+   Moving on (a handler that only counts a pass), it waits to be seen on its side again,
+   unless it was held when it fired: a contact whose handler let it through fires again
+   at once (its handler turns it back, or the per-step bound counts it), never silently */
+static void settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
+                   const rootset *rs, const int8_t *fired, const real_t *r)
+{
+    uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]), m = 0;
+    int far = 0;
+    for (uint16_t i = 0; i < nr; i++) {
+        if (fired[i] != 0 && (real_t)fired[i] * r[i] > 0)
+            rs->lvl[i] = 0, rs->side[i] = 0; /* put back on its side by the handler */
+        far |= fired[i] != 0 && !((real_t)fired[i] * r[i] > 0);
+    }
+    if (!far)
+        return;
+    real_t *rp = sim->work.rs;
+    probe(sc, sim, s, te, h * RT_EVENT_PROBE, rp);
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nr == 0 || sc->blocks[b].set != s)
+            continue;
+        for (uint16_t i = 0; i < k->nr; i++, m++) {
+            int8_t sd = fired[m];
+            if (sd == 0 || (real_t)sd * r[m] > 0)
+                continue;
+            real_t d = rp[m] - r[m], v = (real_t)sd * d;
+            int held = (k->root_dir && k->root_dir[i] != 0) ||
+                       (k->root_guard && k->root_guard[i]);
+            if (v > 0)
+                rs->side[m] = sd, rs->lvl[m] = r[m] - d * RT_EVENT_MARGIN;
+            else if ((v == 0 && held) || rs->side[m] != 0)
+                rs->side[m] = sd, rs->lvl[m] = r[m];
+            else
+                rs->side[m] = 0, rs->lvl[m] = 0;
+        }
+    }
+}
+
+/* a guard root (rt_kind.root_guard, a floor, or a root a handler sent back to its side)
+   that ends the step beyond its level and further than it started, with no crossing
+   located: the model tunnels through its floor */
+static void check_guards(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *rs,
+                         const real_t *ra, const real_t *rb)
+{
+    uint16_t n = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nr == 0 || sc->blocks[b].set != s)
+            continue;
+        for (uint16_t i = 0; i < k->nr; i++, n++) {
+            int sd = rs->side[n] != 0 ? rs->side[n] : k->root_guard && k->root_guard[i];
+            real_t side = (real_t)sd;
+            if (sd != 0 && side * (rb[n] - rs->lvl[n]) < 0 && side * rb[n] < side * ra[n])
+                rti_count(sim, RT_CNT_INVARIANT, b, RT_E_INVARIANT);
+        }
+    }
+}
+
+/* a root seen on its side of zero is free of its level again */
+static void release(uint16_t nr, const rootset *rs, const real_t *r)
+{
+    for (uint16_t i = 0; i < nr; i++)
+        if (rs->side[i] != 0 && (real_t)rs->side[i] * r[i] > 0)
+            rs->side[i] = 0, rs->lvl[i] = 0;
+}
+
+/* the first block of set s with a NaN root in r, or -1 */
+static int nan_root_block(const rt_scene *sc, uint8_t s, const real_t *r)
 {
     uint16_t n = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
@@ -225,45 +347,59 @@ static void check_guards(const rt_scene *sc, rt_sim *sim, uint8_t s, const real_
         if (k->nr == 0 || sc->blocks[b].set != s)
             continue;
         for (uint16_t i = 0; i < k->nr; i++, n++)
-            if (k->root_guard && k->root_guard[i] && rb[n] < 0 && rb[n] < ra[n])
-                rti_count(sim, RT_CNT_INVARIANT, b, RT_E_INVARIANT);
+            if (r[n] != r[n])
+                return b;
     }
+    return -1;
 }
 
-/* sub-steps from t0 to t + h, locating and firing events on the way */
+/* sub-steps from t0 to t + h, locating and firing events on the way. A root that ends a
+   span NaN (its state finite) is counted (nan, with its block): where it went NaN from a
+   finite value is located like a crossing, so a crossing of any root before that point
+   is found and handled; the NaN root itself has no handler to run */
 static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]);
     real_t *r = sim->state.r + sim->plan.set_r[s];
+    int8_t fired[RT_MAX_ROOTS];
+    rootset rs = roots_of(sim, s);
     real_t t0 = t, span = h;
+    int nan_seen = 0;
     for (int ev = 0;; ev++) {
         integrate(sc, sim, s, t0, span); /* keeps the span's start in work.xs */
         rti_outputs(sc, sim, (rti_at){t0 + span, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0 + span, sim->work.rs);
+        int nb = nan_root_block(sc, s, sim->work.rs);
+        rs.lost = nb >= 0 && rt_all_finite(sim->state.x + x0, n);
+        if (rs.lost && !nan_seen)
+            rti_count(sim, RT_CNT_NAN, nb, RT_E_NAN), nan_seen = 1;
         uint16_t blk, which;
-        int c = find_crossing(sc, s, r, sim->work.rs, &blk, &which);
+        int c = find_crossing(sc, s, &rs, r, sim->work.rs, &blk, &which);
         if (c < 0) {
-            check_guards(sc, sim, s, r, sim->work.rs);
-            break;
-        }
-        if (ev >= RT_EVENTS_PER_STEP_MAX) {
-            rti_count(sim, RT_CNT_EVENT_LIMIT, blk, RT_E_EVENT);
+            check_guards(sc, sim, s, &rs, r, sim->work.rs);
+            release(nr, &rs, sim->work.rs);
             break;
         }
         bracket k = {0, 1, r[c], sim->work.rs[c], c};
         for (uint16_t i = 0; i < n; i++)
             sim->work.xb[i] = sim->state.x[x0 + i];
-        locate(sc, sim, s, t0, span, &k, r);
+        /* past the bound the crossing is handled where the step ends, unlocated: the work
+           stays bounded, and a body chattering on its floor (Zeno) stays on it */
+        if (ev >= RT_EVENTS_PER_STEP_MAX)
+            rti_count(sim, RT_CNT_EVENT_LIMIT, blk, RT_E_EVENT);
+        else
+            locate(sc, sim, s, t0, span, &k, &rs, r);
         real_t te = t0 + k.b * span;
-        fire(sc, sim, s, te, r);
+        fire(sc, sim, s, te, &rs, r, fired);
         /* the rest of the step starts from the handled state */
         span = (t0 + span) - te;
         t0 = te;
         rti_outputs(sc, sim, (rti_at){t0, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0, r);
+        settle(sc, sim, s, t0, h, &rs, fired, r);
         if (!(span > 0))
-            break;
+            return; /* an event at the step's end: r holds the roots after its handlers */
     }
     for (uint16_t i = 0; i < nr; i++)
         r[i] = sim->work.rs[i];

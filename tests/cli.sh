@@ -127,6 +127,27 @@ expect_err "bad set value" 2 "not a finite number" $M run oscillator --set Osc.o
 expect_err "bad set range" 2 "out of range" $M run pi_loop --set Plant.T=0
 expect_err "bad csv path" 2 "cannot write the CSV file" $M run oscillator --csv /nonexistent/x.csv
 
+# the global-error check (tools/modrt/check.c; the estimate against closed forms is in
+# tests/hard/cases_global.py): what it cannot check is refused in one line
+expect_err "check a live link" 2 "a live --link run cannot be checked" \
+    $M run pi_link --check --link udp:127.0.0.1:9
+expect_err "check real time" 2 "cannot be run again at half the steps" $M run oscillator --check --realtime
+expect_err "global-tol without check" 2 "apply with --check" $M run oscillator --global-tol 1e-3
+expect_err "bad global-tol" 2 "global-tol expects E or ATOL,RTOL" $M check oscillator --global-tol 1e-3,x
+expect_err "check selects nothing" 2 "no recorded signal to check: Nobody" $M check oscillator --only Nobody
+# the run beside the check is the run: the same hash
+h1=$($M run oscillator | hash_of); h2=$($M run oscillator --check | hash_of)
+[ -n "$h1" ] && [ "$h1" = "$h2" ] && ok || bad "run --check changes the run: $h1 $h2"
+# --set and --t-end reach the half run too: x' = 0 x is exact at every step
+$M check tests/hard/global_exp.scn --method main=euler --set G.lam=0 --t-end 1 >"$T/out"; rc=$?
+[ $rc -eq 0 ] && grep -q '^global_err.G.y: 0 at' "$T/out" && grep -q '^check_compared: 100 ' "$T/out" \
+    && ok || bad "check with --set: exit $rc, $(grep -e global_err -e compared "$T/out")"
+# x' = x by euler to 20 s: every step within its accuracy, the answer 9 % off: flagged
+$M check tests/hard/global_exp.scn --global-tol 1e-2 >"$T/out"; rc=$?
+[ $rc -eq 3 ] && grep -q '^status: ok$' "$T/out" && grep -q '^global_status: doubtful$' "$T/out" \
+    && grep -q '^global_tol: atol 0.01, rtol 0.01 ' "$T/out" && ok || bad "check global_exp: exit $rc"
+$M run --help | grep -q "It says nothing about the global error" && ok || bad "run --help: no guarantee"
+
 # the scene compiler alone gives a per-scene build its limits, counted here by hand from
 # the scene files: pi_loop has 3 blocks (step, pi, pt1), 1 state, 1 discrete state, 3
 # inputs, 3 outputs, 3 + 2 + 2 parameters, 3 records; pendulum10 10 mass points (6 states,

@@ -1,12 +1,13 @@
 #!/bin/sh
 # install-deps.sh - installs, from Debian's packages, everything the make targets use: the
 # host compiler, expat and libzip (FMUs), the cross compilers, QEMU, clang's libFuzzer,
-# valgrind, python3, cppcheck and clang-tidy. Skips
+# valgrind, python3, cppcheck and clang-tidy; GNU parallel, Slurm and MUNGE for the
+# campaign engines (make test-sweep). Skips
 # what is already there. Needs root (or sudo) for apt-get.
 #
 #   sh tools/install-deps.sh            install what is missing (all groups)
 #   sh tools/install-deps.sh --auto G   what the Makefile calls before a target that needs
-#                                       group G (host | all): installs when it can (root,
+#                                       group G (host | sweep | all): installs when it can (root,
 #                                       or sudo without a password), otherwise prints one
 #                                       line naming the command to run and fails
 set -eu
@@ -23,6 +24,12 @@ have python3                 || need="$need python3"
 [ -f /usr/include/expat.h ]  || need="$need libexpat1-dev"
 [ -f /usr/include/zip.h ]    || need="$need libzip-dev"
 have zip                     || need="$need zip"
+if [ "$group" = all ] || [ "$group" = sweep ]; then
+    # the engines `modrt sweep` hands its task lines to (tests/sweep/sweep.sh runs both)
+    have parallel                || need="$need parallel"
+    have slurmctld               || need="$need slurm-wlm"
+    have munged                  || need="$need munge"
+fi
 if [ "$group" = all ]; then
     have arm-none-eabi-gcc       || need="$need gcc-arm-none-eabi"
     [ -d /usr/lib/arm-none-eabi/newlib ] || need="$need libnewlib-arm-none-eabi"

@@ -67,14 +67,15 @@ for s in ball osc; do
 done
 same_hash "stair: FMI 3.0 FMU = FMI 2.0 FMU" "$W/stair_fmu3.out" "$W/stair_fmu2.out"
 
-# events: the ball bounces 9 times in 2 s (each impact and each lift-off is an FMI event)
+# events: one per impact before 2 s (the runtime holds a root a handler sent back on its
+# side, rt/step.c: the lift-off right after an impact is no crossing, docs/fmi.md)
 n=$(sed -n 's/^events: //p' "$W/ball_fmu2.out")
 t1=$(python3 -c 'import math
 g, e = 9.81, 0.7
 t, v, n = math.sqrt(2 / g), math.sqrt(2 * g) * e, 0
 while t < 2: n, t, v = n + 1, t + 2 * v / g, v * e
-print(2 * n)')
-if [ "$n" = "$t1" ]; then ok "ball: $n events (impacts and lift-offs before 2 s)"
+print(n)')
+if [ "$n" = "$t1" ]; then ok "ball: $n events (the impacts before 2 s)"
 else bad "ball: $n events, expected $t1"; fi
 
 # a tunable parameter changed before the run (--set) takes effect: the feed-through gain

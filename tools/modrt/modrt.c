@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "cli.h"
 #include "fmu.h"
 #include "info.h"
@@ -17,6 +18,7 @@
 #include "mrlog.h"
 #include "scn_host.h"
 #include "study.h"
+#include "sweep.h"
 #include "runner.h"
 #include "tune.h"
 #include "version.h"
@@ -89,7 +91,7 @@ static int cmd_info(void *ctx, int npos, char **pos)
 }
 
 /* BLOCK.PARAM=VALUE */
-static int apply_set(const rt_scene *sc, const char *arg)
+static int apply_set(const rt_scene *sc, rt_sim *sim, const char *arg)
 {
     char buf[128];
     double v;
@@ -104,7 +106,7 @@ static int apply_set(const rt_scene *sc, const char *arg)
         return cli_fail("--set value is not a finite number", arg);
     if (rt_block_index(sc, buf) < 0)
         return cli_fail("--set: unknown block", buf);
-    rt_status st = rt_set_param(sc, &sim, buf, dot + 1, (real_t)v);
+    rt_status st = rt_set_param(sc, sim, buf, dot + 1, (real_t)v);
     if (st == RT_E_PARAM)
         return cli_fail("--set: value out of range for the parameter", arg);
     if (st != RT_OK)
@@ -174,6 +176,9 @@ typedef struct run_args {
     study_args study; /* per-set overrides */
     int overrun;      /* rtloop_policy */
     const char *rt_log;
+    int check;        /* 1: estimate the global error (check.h) */
+    const char *check_csv; /* its estimates at every compared instant, or NULL */
+    check_opts global; /* its tolerance and signals */
 } run_args;
 
 static int opt_t_end(void *ctx, const char *v)
@@ -266,6 +271,62 @@ static int opt_record(void *ctx, const char *v)
     return CLI_OK;
 }
 
+static int opt_check(void *ctx, const char *v)
+{
+    (void)v;
+    ((run_args *)ctx)->check = 1;
+    return CLI_OK;
+}
+
+/* E (atol = rtol = E) or A,R */
+static int opt_global_tol(void *ctx, const char *v)
+{
+    check_opts *o = &((run_args *)ctx)->global;
+    char buf[64];
+    const char *comma = strchr(v, ',');
+    size_t n = comma ? (size_t)(comma - v) : strlen(v);
+    if (n >= sizeof buf)
+        return cli_fail("--global-tol expects E or ATOL,RTOL, got", v);
+    memcpy(buf, v, n), buf[n] = 0;
+    if (!cli_real(buf, &o->atol) || !(o->atol >= 0) ||
+        !cli_real(comma ? comma + 1 : buf, &o->rtol) || !(o->rtol >= 0) ||
+        !(o->atol > 0 || o->rtol > 0))
+        return cli_fail("--global-tol expects E or ATOL,RTOL (numbers >= 0, not both 0), got",
+                        v);
+    return CLI_OK;
+}
+
+static int opt_only(void *ctx, const char *v)
+{
+    ((run_args *)ctx)->global.only = v;
+    return CLI_OK;
+}
+
+static int opt_observe(void *ctx, const char *v)
+{
+    (void)v;
+    ((run_args *)ctx)->global.observe = 1;
+    return CLI_OK;
+}
+
+static int opt_check_csv(void *ctx, const char *v)
+{
+    ((run_args *)ctx)->check_csv = v;
+    return CLI_OK;
+}
+
+#define CHECK_OPTS                                                                          \
+    {"global-tol", "E|ATOL,RTOL", "with the check: a signal's estimated global error must "  \
+     "stay below ATOL + RTOL * its largest |y| (E: both; default: the accuracy of the "       \
+     "signal's set)", opt_global_tol},                                                      \
+    {"only", "P,...", "with the check: check only recorded signals starting with these "    \
+     "prefixes", opt_only},                                                                 \
+    {"check-csv", "FILE", "with the check: write the estimate of every checked signal at "  \
+     "every compared instant as CSV to FILE", opt_check_csv},                               \
+    {"observe", NULL, "with the check: a third run at a quarter of the steps measures each " \
+     "signal's order of convergence; an order below the methods' replaces theirs",         \
+     opt_observe}
+
 static const cli_opt run_opts[] = {
     {"t-end", "S", "end time [s] instead of the scene's", opt_t_end},
     {"csv", "FILE", "write the recorded signals as CSV to FILE (- : stdout, summary to stderr)",
@@ -294,6 +355,31 @@ static const cli_opt run_opts[] = {
     {"substeps", "SET=N", "most substeps a failing implicit step is split into (power of 2)",
      opt_substeps},
     {"newton", "SET=N", "Newton iterations per stage of an implicit set", opt_newton},
+    {"check", NULL, "estimate the global error of every recorded signal: the scene again at "
+     "half the steps (as `modrt check`)", opt_check},
+    CHECK_OPTS,
+    {NULL, NULL, NULL, NULL},
+};
+
+/* `modrt check`: the options of a run that make sense beside a second run */
+static const cli_opt check_opts_tab[] = {
+    {"t-end", "S", "end time [s] instead of the scene's", opt_t_end},
+    {"csv", "FILE", "write the recorded signals of the run (at the scene's steps) as CSV to "
+     "FILE (- : stdout, summary to stderr)", opt_csv},
+    {"every", "N", "record every N-th tick (default 1)", opt_every},
+    {"set", "BLOCK.PARAM=VALUE", "set parameter (or initial state) P of block B to V, in "
+     "both runs; repeatable", opt_set},
+    {"method", "SET=NAME", "integrate set SET by method NAME instead of the scene's; "
+     "repeatable (as are the five below)", opt_method},
+    {"step", "SET=TIME", "set SET's step [s], a whole number of base ticks (the check "
+     "halves it)", opt_step},
+    {"tol", "SET=E", "Newton residual tolerance of an implicit set", opt_tol},
+    {"accuracy", "SET=E", "local error a step of SET may show before it is counted (errest)",
+     opt_accuracy},
+    {"substeps", "SET=N", "most substeps a failing implicit step is split into (power of 2)",
+     opt_substeps},
+    {"newton", "SET=N", "Newton iterations per stage of an implicit set", opt_newton},
+    CHECK_OPTS,
     {NULL, NULL, NULL, NULL},
 };
 
@@ -354,6 +440,43 @@ static int stop_inputs(const run_args *a, FILE *f, mrl_writer *rec)
     return bad;
 }
 
+/* the run's --set overrides onto a freshly initialised sim (the check's half run too) */
+static int setup_sets(void *ctx, const rt_scene *sc, rt_sim *s)
+{
+    const run_args *a = ctx;
+    for (int i = 0; i < a->nsets; i++)
+        if (apply_set(sc, s, a->sets[i]))
+            return CLI_USAGE;
+    if (a->nsets > 0) /* only then: a refresh re-solves loops from a new warm start */
+        rt_refresh(sc, s);
+    return CLI_OK;
+}
+
+/* what a second run at half the steps cannot reproduce */
+static int check_refused(const run_args *a)
+{
+    if (!a->check)
+        return a->global.only || a->global.atol >= 0 || a->check_csv || a->global.observe
+                   ? cli_fail("--global-tol, --only, --check-csv and --observe apply with --check", NULL)
+                   : CLI_OK;
+    if (a->realtime)
+        return cli_fail("--check", "a run paced by the wall clock cannot be run again at half "
+                        "the steps; check without --realtime");
+    if (a->link && strcmp(a->link, "none") != 0)
+        return cli_fail("--check", "a live --link run cannot be checked: its controller "
+                        "answers one run, not a second at half the steps; check the scene "
+                        "without --link (its imports hold their defaults)");
+    if (a->record)
+        return cli_fail("--check", "--record logs a live link's imports; there is none to "
+                        "check");
+    return CLI_OK;
+}
+
+static void check_observe(const rt_scene *sc, const rt_sim *s)
+{
+    check_tick(sc, s);
+}
+
 static int cmd_run(void *ctx, int npos, char **pos)
 {
     run_args *a = ctx;
@@ -381,16 +504,17 @@ static int cmd_run(void *ctx, int npos, char **pos)
         }
         sc.t_end = (real_t)a->t_end;
     }
-    if (study_apply(&a->study, &sc) != CLI_OK)
+    if (study_apply(&a->study, &sc) != CLI_OK || check_refused(a) != CLI_OK)
         return CLI_USAGE;
     rt_status st = rt_init(&sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
-    for (int i = 0; i < a->nsets; i++)
-        if (apply_set(&sc, a->sets[i]))
-            return CLI_USAGE;
-    if (a->nsets > 0) /* only then: a refresh re-solves loops from a new warm start */
-        rt_refresh(&sc, &sim);
+    if (setup_sets(a, &sc, &sim) != CLI_OK)
+        return CLI_USAGE;
+    if (a->check_csv && !(a->global.csv = fopen(a->check_csv, "w")))
+        return cli_fail("cannot write the --check-csv file", a->check_csv);
+    if (a->check && check_begin(&sc, &sim, &a->global, setup_sets, a) != RT_OK)
+        return cli_fail("--check", check_error());
     FILE *csv = NULL;
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : fopen(a->csv, "w")))
@@ -398,7 +522,8 @@ static int cmd_run(void *ctx, int npos, char **pos)
     FILE *rt_log = NULL;
     if (a->rt_log && !(rt_log = fopen(a->rt_log, "w")))
         return cli_fail("cannot write the --rt-log file", a->rt_log);
-    port_run_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log};
+    port_run_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
+                       a->check ? check_observe : NULL};
     port_run_result r;
     mrl_writer *rec;
     int rc = start_inputs(a, pos[0], &sc, &o, &rec);
@@ -414,7 +539,25 @@ static int cmd_run(void *ctx, int npos, char **pos)
     if (a->realtime)
         rtloop_print(out, (rtloop_policy)a->overrun, &r.rt);
     int link_bad = stop_inputs(a, out, rec);
-    return link_bad ? CLI_FAULTS : exit_code(&sim);
+    if (link_bad)
+        return CLI_FAULTS;
+    if (!a->check)
+        return exit_code(&sim);
+    static check_result cr;
+    check_end(&sc, &sim, &cr);
+    if (a->global.csv && fclose(a->global.csv) != 0)
+        return cli_fail("error writing the --check-csv file", a->check_csv);
+    check_print(out, &sc, &cr);
+    int sev = rt_status_severity(sim.stats.status);
+    sev = cr.severity > sev ? cr.severity : sev;
+    return sev == 0 ? CLI_OK : sev == 1 ? CLI_DOUBTFUL : CLI_FAULTS;
+}
+
+/* `modrt check`: a run with the check */
+static int cmd_check(void *ctx, int npos, char **pos)
+{
+    ((run_args *)ctx)->check = 1;
+    return cmd_run(ctx, npos, pos);
 }
 
 /* ------------------------------------------------------------------ replay */
@@ -461,7 +604,7 @@ static int replay_scene(const mrl_header *h, rt_scene *sc, const char *path)
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
     for (uint16_t i = 0; i < h->nsets; i++)
-        if (apply_set(sc, h->sets[i]))
+        if (apply_set(sc, &sim, h->sets[i]))
             return CLI_USAGE;
     if (h->nsets > 0)
         rt_refresh(sc, &sim);
@@ -484,7 +627,7 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : fopen(a->csv, "w")))
         return mrl_close(), cli_fail("cannot write the CSV file", a->csv);
-    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL};
+    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
     port_run_result r;
     rt_status st = port_run(&sc, &sim, &o, &r);
     mrl_close();
@@ -512,7 +655,8 @@ static int cmd_sizes(void *ctx, int npos, char **pos)
 /* ------------------------------------------------------------------ subcommands */
 
 static info_args info_ctx;
-static run_args run_ctx = {.every = 1};
+static run_args run_ctx = {.every = 1, .global = {-1, -1, NULL, NULL, 0}};
+static run_args check_ctx = {.every = 1, .global = {-1, -1, NULL, NULL, 0}};
 static replay_args replay_ctx;
 static const cli_opt info_opts[] = {
     {"json", NULL, "print JSON (one object) for scripts", opt_json},
@@ -533,9 +677,42 @@ static const cli_cmd commands[] = {
      "Exit status 0 when no fault was counted; 1 when the answer failed (NaN, instability,\n"
      "a degraded step, a lost link...); 3 when it completed but a step's error estimate\n"
      "exceeded its set's accuracy or a tick its deadline; 2 for bad arguments.\n"
+     "\n"
+     "status: ok says, of every step of every set: its local error estimate (the step\n"
+     "against its embedded companion, scaled by 1 + |x|) stayed within the set's accuracy;\n"
+     "every Newton iteration and algebraic loop converged within its bound, without a\n"
+     "singular matrix; no state, output or derivative was NaN or infinite; no state grew\n"
+     "without bound; every state event was located within its bound, at most\n"
+     "RT_EVENTS_PER_STEP_MAX per step, and no guard root was tunnelled; no input\n"
+     "extrapolated from another set lost every digit; no link import or deadline was\n"
+     "missed. It says nothing about the global error: local errors accumulate (and grow\n"
+     "with an unstable solution) over the run. --check estimates it (modrt check --help;\n"
+     "docs/solvers.md, \"What status: ok guarantees\").\n"
+     "\n"
      "The summary's hash is a 64-bit FNV-1a over the bit patterns of every recorded value:\n"
      "the same scene gives the same hash on every run and every target.",
      run_opts, 1, 1, &run_ctx, cmd_run},
+    {"check", "SCENE|FILE.scn", "run a scene and estimate the global error of every "
+     "recorded signal",
+     "Runs the scene as `modrt run` does (its summary first), and beside it the scene again\n"
+     "with the base tick halved and every set's ratio kept: every step halves, sampled\n"
+     "blocks, sources and the end time keep their times. Where all sets of both runs meet,\n"
+     "each recorded signal's global error is estimated by Richardson extrapolation,\n"
+     "|y_h - y_h/2| / (1 - 2^-p), p the lowest order among the sets that integrate and\n"
+     "the couplings between sets (hold 1, extrapolate and linear 2, hermite and quadratic\n"
+     "3). Prints the largest estimate per signal, its time, and its tolerance (--global-tol:\n"
+     "ATOL + RTOL * the signal's largest |y|; default ATOL = RTOL = the accuracy of the\n"
+     "signal's set). Instants between the two runs' event times (their event counts\n"
+     "differ) are left out and printed apart. global_status: ok within every tolerance;\n"
+     "doubtful above one, when the runs end with different numbers of events, or when a\n"
+     "step split into substeps (the runs then did not take h and h/2); failed\n"
+     "when an estimate leaves no correct digit (above 1 + |y|) or the half run failed.\n"
+     "Exit status: the worse of the run's status and global_status (0, 3, 1; 2 for bad\n"
+     "arguments, or a scene that cannot be checked). The estimate holds where the error\n"
+     "behaves like C h^p: a right-hand side that is not smooth lowers the order, and\n"
+     "--observe (a third run at a quarter of the steps) measures it per signal and uses\n"
+     "it where it is below p (docs/solvers.md).",
+     check_opts_tab, 1, 1, &check_ctx, cmd_check},
     {"replay", "FILE.mrl", "re-run a recorded live run from its log, without the controller",
      "Applies every recorded import at its tick on the simulated clock: the summary and its\n"
      "hash equal the live run's bit for bit. A corrupt, truncated or mismatched log is\n"
@@ -543,8 +720,13 @@ static const cli_cmd commands[] = {
      replay_opts, 1, 1, &replay_ctx, cmd_replay},
     {"tune", "SCENE|FILE.scn", "find the cheapest fixed multirate schedule within a tolerance",
      "Runs a fine reference, then candidate schedules (nested power-of-two step ratios),\n"
-     "and prints the cheapest that stays within --tol of it (docs/multirate.md).",
+     "and prints the cheapest that stays within --tol of it and whose own estimated global\n"
+     "error (modrt check: the schedule again at half its steps) is within --tol too\n"
+     "(docs/multirate.md).",
      tune_cli_opts, 1, 1, &tune_cli_ctx, tune_cli_run},
+    {"sweep", "plan|run|exec|slurm CAMPAIGN, or collect DIR", "parameter sweeps and "
+     "Monte-Carlo campaigns of a scene: local cores, GNU parallel, Slurm (docs/sweeps.md)",
+     sweep_cli_help, sweep_cli_opts, 2, 2, &sweep_cli_ctx, sweep_cli_run},
     {"sizes", "SCENE|FILE.scn", "print the exact compile-time limits of a per-scene build "
      "as -D flags", NULL, NULL, 1, 1, NULL, cmd_sizes},
     {"docs-blocks", "", "print the block reference (docs/blocks.md) of every kind", NULL,
@@ -575,6 +757,8 @@ int main(int argc, char **argv)
         printf("modrt %s (%s)\n", MODRT_VERSION, RT_REAL_IS_FLOAT ? "float" : "double");
         return CLI_OK;
     }
+    if (strcmp(argv[1], "sweep") == 0)
+        sweep_short_opts(argc, argv);
     for (const cli_cmd *c = commands; c->name; c++)
         if (strcmp(argv[1], c->name) == 0)
             return cli_dispatch(c, argc - 2, argv + 2);

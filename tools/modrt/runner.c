@@ -66,6 +66,8 @@ static rt_status exchange(const rt_scene *sc, rt_sim *sim, const port_run_opts *
 static rt_status tick_and_record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
 {
     rt_status st = exchange(sc, sim, o, rt_tick(sc, sim));
+    if (o->observe)
+        o->observe(sc, sim);
     if (sim->state.tick % o->every == 0 || !running(st))
         record(sc, sim, o);
     return st;

@@ -19,6 +19,9 @@ typedef struct port_run_opts {
     void *xctx;
     int overrun;        /* real time: rtloop_policy of a missed deadline */
     FILE *rt_log;       /* real time: per-tick latency and execution time, or NULL */
+    /* simulated clock: called after every tick (the global-error check, check.h), or
+       NULL */
+    void (*observe)(const rt_scene *sc, const rt_sim *sim);
 } port_run_opts;
 
 typedef struct port_run_result {

@@ -38,13 +38,19 @@ typedef struct tune_sched {
                              derivatives evaluated per simulated second) */
     double host_s;        /* host CPU time of the run [s] */
     double xset_err[RT_MAX_SETS]; /* the run-time monitor (rt_sim.xset_err) at the end */
+    double gerr, t_gerr;  /* its estimated global error (check.h: the schedule again at
+                             half the steps), largest over the compared signals, and where;
+                             -1: not checked (the reference comparison failed first) */
+    int gok;              /* 1: the check found every estimate within tol, the events
+                             resolved and no substep */
     int complete;         /* 1: ran to the end (not cut short at an error above tol) */
     int clean;            /* 1: no fault counted (NaN, degraded step, singular, ...) */
 } tune_sched;
 
 /* What tune_scene found. */
 typedef struct tune_result {
-    int found;            /* 1: best meets the tolerance */
+    int found;            /* 1: best meets the tolerance, against the reference and by its
+                             estimated global error */
     tune_sched best;      /* the cheapest schedule within tol (meaningful when found) */
     tune_sched declared;  /* the scene's own schedule, measured the same way */
     double ref_err;       /* |reference - reference at half its resolution| */

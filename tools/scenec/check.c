@@ -142,6 +142,27 @@ const rt_kind *scn_library_kind(const char *name)
     return NULL;
 }
 
+/* the discrete states of an ss_system's roots: t_last<k>, the time of the k-th when's
+   last crossing (SCN_T_LAST0 before the first), which its rest clause reads */
+static void when_times(scn_ctx *c, scn_define *d, rt_kind *k)
+{
+    const char **names = scn_alloc(c, d->nr * sizeof *names);
+    real_t *t0 = scn_alloc(c, d->nr * sizeof *t0);
+    for (uint16_t r = 0; r < d->nr && !c->err; r++) {
+        names[r] = scn_fmt(c, "t_last%u", r + 1u), t0[r] = (real_t)SCN_T_LAST0;
+        const scn_var *all[4] = {d->u, d->y, d->p, d->x};
+        uint16_t cnt[4] = {d->nu, d->ny, d->np, d->nx};
+        for (int j = 0; j < 4; j++)
+            for (uint16_t i = 0; i < cnt[j] && !c->err; i++)
+                if (!strcmp(all[j][i].name.s, names[r]))
+                    scn_fail(c, all[j][i].name.pos, names[r],
+                             "name of the discrete state of a when",
+                             "a name other than t_last<k> (the time of the k-th when's "
+                             "last crossing)");
+    }
+    k->nd = d->nr, k->d_names = names, k->d_default = t0;
+}
+
 /* the kind a define describes: sizes, names, defaults, throughput (services: image.c) */
 static void define_kind(scn_ctx *c, scn_define *d)
 {
@@ -166,6 +187,7 @@ static void define_kind(scn_ctx *c, scn_define *d)
         int8_t *dir = scn_alloc(c, d->nr);
         memcpy(dir, d->rdir, d->nr);
         k->nr = d->nr, k->root_dir = dir;
+        when_times(c, d, k);
     }
     d->kind = k;
     if (d->type != SCN_DEF_LSS) {

@@ -217,6 +217,19 @@ static void service(FILE *f, const scn_ctx *c, const scn_define *d, const char *
     fputs("}\n", f);
 }
 
+/* the statements of root r's service kind (handler, rest time or rest handler) */
+static void handler(FILE *f, const scn_ctx *c, const scn_define *d, uint8_t kind, uint16_t r,
+                    const char *out, int *ntemp)
+{
+    uint8_t in[SCN_MAX_STMTS];
+    scn_service_root(c, d, kind, r, in);
+    fputs("    {\n", f);
+    for (uint32_t s = d->st0; s < d->st1; s++)
+        if (in[s - d->st0])
+            statement(f, c, &c->sc.st[s], out, ntemp);
+    fputs("    }\n", f);
+}
+
 /* roots and the event handlers, one case per root */
 static void event_services(FILE *f, const scn_ctx *c, const scn_define *d, const char *id)
 {
@@ -231,14 +244,20 @@ static void event_services(FILE *f, const scn_ctx *c, const scn_define *d, const
     for (uint16_t r = 0; r < d->nr; r++)
         fprintf(f, "%s%d", r ? ", " : "", d->rdir[r]);
     fprintf(f, "};\n\nstatic void %s_event(const rt_args *a, uint16_t which, real_t *x, "
-               "real_t *d)\n{\n    (void)a, (void)d;\n    switch (which) {\n", id);
+               "real_t *d)\n{\n    switch (which) {\n", id);
     for (uint16_t r = 0; r < d->nr; r++) {
-        scn_service_event(c, d, r, in);
         fprintf(f, "    case %u: {\n", (unsigned)r);
-        for (uint32_t s = d->st0; s < d->st1; s++)
-            if (in[s - d->st0])
-                statement(f, c, &c->sc.st[s], "x", &ntemp);
-        fputs("        break;\n    }\n", f);
+        if (d->rest[r]) { /* as scn_vm_event: the rest clause's time, then one handler */
+            fprintf(f, "    real_t tq[%u];\n", r + 1u);
+            handler(f, c, d, SCN_ST_REST_T, r, "tq", &ntemp);
+            fprintf(f, "    if (a->t - d[%u] < tq[%u]) {\n", r, r);
+            handler(f, c, d, SCN_ST_REST, r, "x", &ntemp);
+            fputs("    } else {\n", f);
+        }
+        handler(f, c, d, SCN_ST_EVENT, r, "x", &ntemp);
+        if (d->rest[r])
+            fputs("    }\n", f);
+        fprintf(f, "        d[%u] = a->t;\n        break;\n    }\n", r);
     }
     fputs("    default:\n        break;\n    }\n}\n", f);
 }
@@ -274,6 +293,12 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
     names(f, pre, "u", d->u, d->nu), names(f, pre, "y", d->y, d->ny);
     names(f, pre, "p", d->p, d->np), names(f, pre, "x", d->x, d->nx);
     var_reals(f, pre, "pdef", d->p, d->np), var_reals(f, pre, "xdef", d->x, d->nx);
+    if (!dss && d->nr) {
+        scn_var t_last[SCN_MAX_PORTS];
+        for (uint16_t r = 0; r < d->nr; r++)
+            t_last[r] = (scn_var){{k->d_names[r], d->name.pos}, SCN_T_LAST0};
+        names(f, pre, "d", t_last, d->nr), var_reals(f, pre, "ddef", t_last, d->nr);
+    }
     if (k->feed == RT_FEED_TABLE) {
         fprintf(f, "static const uint8_t %s_feed[] = {", pre);
         for (size_t i = 0; i < (size_t)d->ny * d->nu; i++)
@@ -304,6 +329,8 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
             fprintf(f, "    .%s = %s_%s,\n", field[i], pre, slot[i]);
     if (d->np)
         fprintf(f, "    .p_default = %s_pdef,\n", pre);
+    if (!dss && d->nr) /* the roots' t_last */
+        fprintf(f, "    .d_names = %s_d, .d_default = %s_ddef,\n", pre, pre);
     if (d->nx)
         fprintf(f, "    .%s = %s_xdef,\n", dss ? "d_default" : "x_default", pre);
     fprintf(f, "    .feed = %s,", feed_id[k->feed]);

@@ -321,6 +321,8 @@ static void name_ref(scn_ctx *c, scn_name n)
         emit(c, SCN_OP_STEP, 0, 1);
     else if (strcmp(n.s, "pi") == 0)
         emit_const(c, RT_PI);
+    else if (c->when && strcmp(n.s, "t_last") == 0) /* the root's discrete t_last<k> */
+        emit(c, SCN_OP_DSTATE, (uint16_t)(c->when - 1), 1);
     else if (find_var(d->y, d->ny, n.s) >= 0)
         scn_fail(c, n.pos, n.s, "an output cannot be read in a body",
                  "an input, parameter, state or let name");
@@ -562,8 +564,9 @@ static void let_stmt(scn_ctx *c)
     d->loc[d->nloc++] = n;
 }
 
-/* one assignment of a `when` handler: state = e; or x[i] = e; each state once */
-static void handler_stmt(scn_ctx *c, uint16_t r)
+/* one assignment of a `when` handler (kind SCN_ST_EVENT) or of its rest clause
+   (SCN_ST_REST): state = e; or x[i] = e; each state once */
+static void handler_stmt(scn_ctx *c, uint16_t r, uint8_t kind)
 {
     scn_define *d = c->def;
     scn_name n = scn_expect_name(c, "a state assignment (state = ...; or x[i] = ...;) or '}'");
@@ -575,14 +578,46 @@ static void handler_stmt(scn_ctx *c, uint16_t r)
         scn_fail(c, n.pos, n.s, "not a state of the define",
                  "a state name or x[i]: an event handler sets states");
     for (uint32_t s = d->st0; !c->err && s < c->sc.nst; s++)
-        if (c->sc.st[s].kind == SCN_ST_EVENT && c->sc.st[s].root == r &&
-            c->sc.st[s].index == i)
+        if (c->sc.st[s].kind == kind && c->sc.st[s].root == r && c->sc.st[s].index == i)
             scn_fail(c, n.pos, n.s, "assigned twice in the handler", "one value per state");
     if (c->err)
         return;
     scn_pos pos = c->tok.pos;
     scn_expect_op(c, "=");
-    add_stmt_to(c, SCN_ST_EVENT, (uint16_t)i, r, pos, ";");
+    add_stmt_to(c, kind, (uint16_t)i, r, pos, ";");
+}
+
+/* { state = ...; ... } of root r's handler or rest clause, t_last readable inside */
+static void handler_block(scn_ctx *c, uint16_t r, uint8_t kind)
+{
+    scn_expect_op(c, "{");
+    c->when = (uint16_t)(r + 1);
+    while (!c->err && !scn_is_op(c, "}") && c->tok.kind != SCN_T_EOF)
+        handler_stmt(c, r, kind);
+    c->when = 0;
+    scn_expect_op(c, "}");
+}
+
+/* rest (T) { state = ...; ... } after a `when`: a crossing that comes less than T seconds
+   after the root's previous one (its t_last) runs this handler instead of the when's:
+   how contact comes to rest (docs/scene-language.md) */
+static void rest_clause(scn_ctx *c, scn_name at)
+{
+    scn_define *d = c->def;
+    if (!c->after_when) {
+        scn_fail(c, at.pos, at.s, "a rest clause belongs to a when",
+                 "when (...) { ... } rest (time) { ... }");
+        return;
+    }
+    uint16_t r = (uint16_t)(c->after_when - 1);
+    c->after_when = 0; /* one rest clause per when */
+    d->rest[r] = 1;
+    scn_pos pos = c->tok.pos;
+    scn_expect_op(c, "(");
+    c->when = (uint16_t)(r + 1);
+    add_stmt_to(c, SCN_ST_REST_T, r, r, pos, ")");
+    c->when = 0;
+    handler_block(c, r, SCN_ST_REST);
 }
 
 /* when [falling|rising] (e) { state = ...; ... }: a root function of an ss_system (a state
@@ -610,10 +645,8 @@ static void when_stmt(scn_ctx *c, scn_name at)
     scn_pos pos = c->tok.pos;
     scn_expect_op(c, "(");
     add_stmt_to(c, SCN_ST_ROOT, r, 0, pos, ")");
-    scn_expect_op(c, "{");
-    while (!c->err && !scn_is_op(c, "}") && c->tok.kind != SCN_T_EOF)
-        handler_stmt(c, r);
-    scn_expect_op(c, "}");
+    handler_block(c, r, SCN_ST_EVENT);
+    c->after_when = (uint16_t)(r + 1);
 }
 
 /* which kind of assignment a body statement is and to which index */
@@ -628,6 +661,11 @@ static void body_stmt(scn_ctx *c)
         return;
     uint8_t kind = SCN_ST_OUT;
     int i = -1;
+    if (strcmp(n.s, "rest") == 0 && scn_is_op(c, "(")) {
+        rest_clause(c, n);
+        return;
+    }
+    c->after_when = 0;
     if (strcmp(n.s, "let") == 0 && c->tok.kind == SCN_T_ID) {
         let_stmt(c);
         return;
@@ -691,6 +729,7 @@ static void body_complete(scn_ctx *c, scn_define *d, scn_pos end)
 void scn_parse_body(scn_ctx *c, scn_define *d)
 {
     c->def = d;
+    c->after_when = 0;
     d->st0 = c->sc.nst;
     scn_expect_op(c, "{");
     while (!c->err && !scn_is_op(c, "}") && c->tok.kind != SCN_T_EOF)

@@ -44,20 +44,24 @@ static scn_prog program(scn_ctx *c, const scn_define *d, uint8_t kind, const rea
     return program_of(c, d, in, k);
 }
 
-/* roots and one handler program per root (`when`) */
+/* roots and one handler program per root (`when`), with its rest clause's */
 static void events(scn_ctx *c, const scn_define *d, const real_t *k, scn_vm_spec *vs,
                    rt_kind *kd)
 {
     if (d->nr == 0)
         return;
-    scn_prog *ev = scn_alloc(c, d->nr * sizeof *ev);
+    scn_prog *ev = scn_alloc(c, 3 * d->nr * sizeof *ev);
     uint8_t in[SCN_MAX_STMTS];
     for (uint16_t r = 0; r < d->nr; r++) {
         scn_service_event(c, d, r, in);
         ev[r] = program_of(c, d, in, k);
+        scn_service_root(c, d, SCN_ST_REST_T, r, in);
+        ev[d->nr + r] = program_of(c, d, in, k);
+        scn_service_root(c, d, SCN_ST_REST, r, in);
+        ev[2 * d->nr + r] = program_of(c, d, in, k);
     }
     vs->roots = program(c, d, SCN_ST_ROOT, k);
-    vs->event = ev;
+    vs->event = ev, vs->rest_t = ev + d->nr, vs->rest = ev + 2 * d->nr;
     kd->roots = scn_vm_roots, kd->event = scn_vm_event;
 }
 

@@ -132,6 +132,8 @@ typedef struct scn_prog {
 typedef struct scn_vm_spec {
     scn_prog out, der, upd, roots;
     const scn_prog *event;      /* one handler program per root */
+    const scn_prog *rest_t;     /* per root: its shortest flight (n = 0: no rest clause) */
+    const scn_prog *rest;       /* per root: its rest handler */
 } scn_vm_spec;
 
 /* VM services (vm.c): the rt_kind slots of interpreted defines; they read a->spec. */
@@ -150,7 +152,9 @@ typedef enum { SCN_DEF_SS = 0, SCN_DEF_LSS, SCN_DEF_DSS } scn_def_type;
 typedef enum {
     SCN_ST_LET = 0, SCN_ST_OUT, SCN_ST_DER, SCN_ST_NEXT,
     SCN_ST_ROOT,                /* the root function `when (...)`, index: the root */
-    SCN_ST_EVENT                /* a state assignment of root `root`'s handler */
+    SCN_ST_EVENT,               /* a state assignment of root `root`'s handler */
+    SCN_ST_REST_T,              /* the shortest flight of `rest (...)`, index: the root */
+    SCN_ST_REST                 /* a state assignment of root `root`'s rest handler */
 } scn_stmt_kind;
 
 /* a port, parameter or state of a define, with its default value */
@@ -165,7 +169,7 @@ typedef struct scn_stmt {
     uint16_t index;             /* local, output or state index */
     uint32_t code0, code1;      /* its instructions in scn_scene.code (terminator incl.) */
     scn_pos pos;
-    uint16_t root;              /* SCN_ST_EVENT: the root whose handler it belongs to */
+    uint16_t root;              /* SCN_ST_EVENT, _REST: the root whose handler it belongs to */
 } scn_stmt;
 
 typedef struct scn_matrix {
@@ -186,6 +190,7 @@ typedef struct scn_define {
     scn_pos period_pos;
     uint32_t st0, st1;          /* its statements in scn_scene.st */
     int8_t rdir[SCN_MAX_PORTS]; /* root directions of `when`: -1 falling, +1 rising, 0 both */
+    uint8_t rest[SCN_MAX_PORTS];/* 1: the `when` has a rest clause */
     uint16_t nr;                /* roots (`when` statements) */
     scn_matrix A, B, C, D;      /* LSS */
     /* derived by check.c */
@@ -369,6 +374,10 @@ typedef struct scn_ctx {
     uint32_t edepth;            /* expression nesting */
     uint32_t sdepth, smax;      /* VM stack depth of the expression being compiled */
     struct scn_define *def;     /* the define whose body is being parsed */
+    uint16_t when;              /* 1 + the root whose handler or rest is being parsed (its
+                                   t_last is readable there); 0: none */
+    uint16_t after_when;        /* 1 + the root of a `when` the last body statement was
+                                   (a rest clause may follow it); 0: none */
     /* the first error */
     int err;
     char msg[SCN_MSG_LEN];
@@ -458,8 +467,13 @@ void scn_check_link(scn_ctx *c);
 /* sets.c: marks in[i] for the statements d->st0 + i of one service (SCN_ST_OUT, _DER or
    _NEXT): its own, and the lets they need, directly or through other lets */
 void scn_service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint8_t *in);
-/* the same for the handler of root r (its SCN_ST_EVENT statements and the lets they use) */
+/* the same for the handler of root r (its SCN_ST_EVENT statements and the lets they use);
+   kind SCN_ST_REST_T or SCN_ST_REST: its rest clause's flight time or handler */
 void scn_service_event(const scn_ctx *c, const scn_define *d, uint16_t r, uint8_t *in);
+void scn_service_root(const scn_ctx *c, const scn_define *d, uint8_t kind, uint16_t r,
+                      uint8_t *in);
+/* the initial t_last of a root: far in the past, so a first crossing never rests */
+#define SCN_T_LAST0 (-1e30)
 int scn_build_image(scn_ctx *c);                        /* image.c */
 /* fmu.c: the kind of an FMU system (NULL with an error), and the start of every FMU
    system once the scene's values are known (their initial states into x0) */

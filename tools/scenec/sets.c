@@ -402,7 +402,9 @@ static void service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint16_
     uint8_t need[SCN_MAX_LOCALS] = {0};
     for (uint32_t s = d->st1; s-- > d->st0;) {
         const scn_stmt *st = &c->sc.st[s];
-        int mine = (st->kind == kind && (kind != SCN_ST_EVENT || st->root == r)) ||
+        int per_root = kind == SCN_ST_EVENT || kind == SCN_ST_REST;
+        int mine = (st->kind == kind && (!per_root || st->root == r) &&
+                    (kind != SCN_ST_REST_T || st->index == r)) ||
                    (st->kind == SCN_ST_LET && need[st->index]);
         in[s - d->st0] = (uint8_t)mine;
         for (uint32_t i = st->code0; mine && i < st->code1; i++)
@@ -419,4 +421,10 @@ void scn_service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint8_t *i
 void scn_service_event(const scn_ctx *c, const scn_define *d, uint16_t r, uint8_t *in)
 {
     service(c, d, SCN_ST_EVENT, r, in);
+}
+
+void scn_service_root(const scn_ctx *c, const scn_define *d, uint8_t kind, uint16_t r,
+                      uint8_t *in)
+{
+    service(c, d, kind, r, in);
 }

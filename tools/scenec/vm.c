@@ -104,9 +104,18 @@ void scn_vm_roots(const rt_args *a, real_t *r)
     run(&((const scn_vm_spec *)a->spec)->roots, a, r);
 }
 
-/* the handler of root which; its assignments write the states in place, in order */
+/* the handler of root which, or its rest clause's if the crossing came less than the
+   clause's time after the root's previous one (d[which], t_last); its assignments write
+   the states in place, in order. The root's t_last becomes this crossing's time. */
 void scn_vm_event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
 {
-    (void)d;
-    run(&((const scn_vm_spec *)a->spec)->event[which], a, x);
+    const scn_vm_spec *vs = a->spec;
+    real_t tq[SCN_MAX_PORTS];
+    int rest = 0;
+    if (vs->rest_t[which].n > 0) {
+        run(&vs->rest_t[which], a, tq);
+        rest = a->t - d[which] < tq[which];
+    }
+    run(rest ? &vs->rest[which] : &vs->event[which], a, x);
+    d[which] = a->t;
 }

@@ -7,6 +7,9 @@ checks a quick subset and writes only into build/study/ (--mode quick, `make tes
 For every example it generates variant scenes from the scene files as they are at run time
 (tools/study/scene.py: method, step, base tick, sets, stabilization, Newton and Broyden
 bounds), and for each variant
+  - the estimated global error of `modrt check` (the variant again at half its steps,
+    Richardson), read at the same instants and signals, beside the error, to show how
+    well the estimate tracks it,
   - the error against an independent reference (pendulum10: the chain in minimal
     coordinates, tools/study/pendulum_ref.py and the long-double values of
     tests/rt/test_mbs_scene.c; the others: two fine single-rate runs of different
@@ -351,6 +354,32 @@ def error_of(ex, rows):
     return (worst if n else math.nan), at, n
 
 
+def estimate_of(ex, path, real, every, te):
+    """`modrt check --observe` on the variant: its largest estimated global error over the
+    error's signals at the reference's instants, with the methods' order p and with each
+    signal's observed order where that is lower (None when the check did not run), and
+    its global_status"""
+    est_csv = path[:-4] + ".est.csv"
+    r = sh([MODRT[real], "check", path, "--t-end=%.17g" % te, "--every=%d" % every,
+            "--observe", "--check-csv=" + est_csv])
+    s = summary(r.stdout)
+    if r.returncode not in (0, 1, 3) or not os.path.exists(est_csv):
+        return None, None, s.get("global_status")
+    p = int(s.get("check_order", "0").split()[0] or 0)
+    scale = []  # per signal: (1 - 2^-p) / (1 - 2^-q) where q took p's place
+    for sig in ex.signals:
+        m = re.search(r"observed order ([\d.]+), below p", s.get("global_err." + sig, ""))
+        q = float(m.group(1)) if m else None
+        scale.append((1 - 2 ** -p) / (1 - 2 ** -q) if q and p else 1.0)
+    rows = read_csv(est_csv, ex.signals)
+    keys = [k for k in ex.ref_rows if k in rows and rows[k]]
+    if not keys:
+        return None, None, s.get("global_status")
+    est = max(max(rows[k]) for k in keys)
+    est_q = max(max(v * f for v, f in zip(rows[k], scale)) for k in keys)
+    return est, est_q, s.get("global_status")
+
+
 def t_err(ex):
     return ex.t_err if ex.t_err else ex.sc_t_end
 
@@ -447,6 +476,7 @@ def run_cfg(ex, c, cross, sc_end):
         return c
     c["wall"] = float(s.get("wall_s", "nan")) / te
     c["err"], c["err_at"], c["n_cmp"] = error_of(ex, read_csv(path[:-4] + ".csv", ex.signals))
+    c["est_p"], c["est"], c["global_status"] = estimate_of(ex, path, c["real"], every, te)
     c["rhs_per_s"] = sum(float(v) for k, v in s.items() if k.startswith("rhs_evals.")) / te
     # host instructions
     n = window_of(ex, sc, rhs_per_s=c["rhs_per_s"])
@@ -734,40 +764,43 @@ def fmt(v, digits=2):
 
 def tables(ex):
     fl = floor_of(ex)
-    o = ["| tolerance [%s] | cheapest on the host | error | host insn/s | host wall s/s "
-         "| cheapest on Cortex-M7 | error | M7 insn/s | worst tick [insn] | max tick rate "
-         "at 600 MHz (needed) |" % ex.unit, "|---:|---|---:|---:|---:|---|---:|---:|---:|---:|"]
+    o = ["| tolerance [%s] | cheapest on the host | error | estimate | host insn/s | host "
+         "wall s/s | cheapest on Cortex-M7 | error | estimate | M7 insn/s | worst tick [insn] "
+         "| max tick rate at 600 MHz (needed) |" % ex.unit,
+         "|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|"]
     for tol in TOLS:
         if tol < fl:
-            o.append("| %g | below the reference's resolution (%.0e) | | | | | | | | |" % (
+            o.append("| %g | below the reference's resolution (%.0e) | | | | | | | | | | |" % (
                 tol, fl))
             continue
         h, m = cheapest(ex, "host", tol), cheapest(ex, "m7", tol)
         row = ["%g" % tol]
         if h:
-            row += [describe(h), fmt(h["err"]), fmt(h["host"]), fmt(h.get("wall"))]
-        else:
-            row += ["none of the configurations tried", "", "", ""]
-        if m:
-            mx = m["m7"]["max"]
-            row += [describe(m), fmt(m["err"]), fmt(m["m7"]["per_s"]), "%d" % mx,
-                    "%s kHz (%s kHz)" % (fmt(M7_HZ / mx / 1e3, 3), fmt(1e-3 / m["tick"], 3))]
+            row += [describe(h), fmt(h["err"]), fmt(h.get("est")), fmt(h["host"]),
+                    fmt(h.get("wall"))]
         else:
             row += ["none of the configurations tried", "", "", "", ""]
+        if m:
+            mx = m["m7"]["max"]
+            row += [describe(m), fmt(m["err"]), fmt(m.get("est")), fmt(m["m7"]["per_s"]),
+                    "%d" % mx, "%s kHz (%s kHz)" % (fmt(M7_HZ / mx / 1e3, 3),
+                                                   fmt(1e-3 / m["tick"], 3))]
+        else:
+            row += ["none of the configurations tried", "", "", "", "", ""]
         o.append("| " + " | ".join(row) + " |")
     return "\n".join(o)
 
 
 def shipped_table(ex):
-    o = ["| scene | real | sets | error [%s] | host insn/s | M7 insn/s | M4F insn/s | worst "
-         "M7 tick [insn] | max tick rate at 600 MHz (needed) | cheapest on M7 at this error "
-         "|" % ex.unit, "|---|---|---|---:|---:|---:|---:|---:|---:|---|"]
+    o = ["| scene | real | sets | error [%s] | estimate | host insn/s | M7 insn/s | M4F insn/s "
+         "| worst M7 tick [insn] | max tick rate at 600 MHz (needed) | cheapest on M7 at this "
+         "error |" % ex.unit, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|"]
     for c in ex.cfgs:
         if not (c["shipped"] and c["series"].startswith("shipped")):
             continue
         if not ok(c):
-            o.append("| %s | %s | | failed: %s | | | | | | |" % (c["shipped"], c["real"],
-                                                               c.get("fail")))
+            o.append("| %s | %s | | failed: %s | | | | | | | |" % (c["shipped"], c["real"],
+                                                                  c.get("fail")))
             continue
         best = cheapest(ex, "m7", c["err"])
         m7 = c.get("m7", {})
@@ -776,8 +809,9 @@ def shipped_table(ex):
             rel = "%s: %s insn/s (%.2gx)" % (describe(best), fmt(best["m7"]["per_s"]),
                                             m7["per_s"] / best["m7"]["per_s"])
         mx = m7.get("max")
-        o.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            c["shipped"], c["real"], config_text(c), fmt(c["err"]), fmt(c.get("host")),
+        o.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            c["shipped"], c["real"], config_text(c), fmt(c["err"]), fmt(c.get("est")),
+            fmt(c.get("host")),
             fmt(m7.get("per_s")), fmt(c.get("m4f", {}).get("per_s")), mx or "–",
             ("%s kHz (%s kHz)" % (fmt(M7_HZ / mx / 1e3, 3), fmt(1e-3 / c["tick"], 3)))
             if mx else "–", rel))
@@ -818,6 +852,36 @@ def reading(ex, key):
             s2.append("in float the same scene costs %.2g times less (%s %s error)" % (
                 cost(dbl[0], key) / cost(flt[0], key), fmt(flt[0]["err"]), ex.unit))
     return s1 + " " + ("; ".join(s2) + "." if s2 else "")
+
+
+def tracking(ex):
+    """how the estimated global error (modrt check) tracks the error against the
+    reference: est / err over the configurations whose error is resolved, with the
+    methods' order and with the observed one"""
+    fl = floor_of(ex)
+    cs = [c for c in ex.cfgs if ok(c) and c.get("est") is not None and c["err"] > 10 * fl]
+    if not cs:
+        return "No configuration has a resolved error to compare the estimate with."
+
+    def stats(key):
+        q = sorted(c[key] / c["err"] for c in cs)
+        return q[len(q) // 2], q[0], q[-1], sum(1 for v in q if 0.5 <= v <= 2)
+
+    low = sorted(cs, key=lambda c: c["est"] / c["err"])[:3]
+    flagged = [c for c in cs if c["err"] > 1e-3]
+    said = sum(1 for c in flagged if c["est"] > 1e-3)
+    return ("**The estimate of `modrt check --observe`** (the variant again at half and at "
+            "a quarter of its steps, Richardson with the lowest order of its sets and "
+            "couplings, or each signal's observed order where that is lower; read at the "
+            "same instants and signals as the error) over the %d configurations whose error "
+            "is resolved: estimate / error median %.2f, from %.2g to %.2g, within a factor 2 "
+            "in %d; with the methods' order alone median %.2f, from %.2g to %.2g, within a "
+            "factor 2 in %d. Of the %d with an error above 1e-3 %s, the estimate is above "
+            "1e-3 in %d. Farthest below: %s." % ((len(cs),) + stats("est") + stats("est_p") + (
+                len(flagged), ex.unit, said, "; ".join(
+                    "%s (%.2g: %s against %s)" % (describe(c), c["est"] / c["err"],
+                                                  fmt(c["est"]), fmt(c["err"]))
+                    for c in low))))
 
 
 def headline(ex, tol):
@@ -898,6 +962,7 @@ def write_doc(exs, out_dir, started, elapsed, all_checks, jobs, where):
         for key in ("host", "m7", "m4f"):
             o += ["![%s on %s](study/%s-%s.svg)" % (ex.key, key, ex.key, key), "",
                   reading(ex, key), ""]
+        o += [tracking(ex), ""]
         o += ["Cheapest configuration for each tolerance:", "", tables(ex), "",
               "The shipped scenes of this model:", "", shipped_table(ex), ""]
         fails = [c for c in ex.cfgs if not ok(c)]

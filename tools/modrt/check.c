@@ -1,0 +1,441 @@
+/* check.c - owns the global-error check (`modrt check`, `modrt run --check`): the scene
+ * runs again at half the steps of every set, in step with the run, and at every instant
+ * where all sets of both runs are at a communication point the difference of each
+ * recorded signal is scaled by Richardson's factor 1 / (1 - 2^-p):
+ *
+ *     y_h - y = C h^p + ...,  y_h/2 - y = C (h/2)^p + ...
+ *     =>  |y_h - y| ~ |y_h - y_h/2| / (1 - 2^-p)
+ *
+ * p is the lowest order among the sets that integrate states and the couplings between
+ * sets (hold 1, extrapolate and linear 2, hermite and quadratic 3): the error of the
+ * slowest-converging part dominates as h shrinks.
+ *
+ * Halving: the base tick is halved and every set keeps its ratio, so every step halves
+ * and stays a whole number of ticks. What is physics keeps its time: sampled (DSS)
+ * blocks keep their periods in seconds, sources and time events their instants, the end
+ * time stays; the controller link's period (in base ticks) doubles, though no exchange
+ * takes place (a live link cannot run twice: the imports hold their defaults, as in a
+ * run without --link).
+ *
+ * Events: a state event is located in each run to its own accuracy, so its time differs
+ * a little between them. An instant where the two runs have handled different numbers of
+ * events lies between the two event times: the difference there is the jump of the
+ * signal, not an error estimate. It is left out of the estimate and reported apart
+ * (err_ev, the stretch's length shift_s); runs that end with different numbers of events
+ * have not resolved the event sequence, and the check says so (severity 1).
+ *
+ * Substeps: an implicit step that fails its Newton iteration, or a ROS2 step above its
+ * accuracy, splits itself into substeps (docs/solvers.md). Then the two runs did not take
+ * steps h and h/2 (at h = 4 h' and h/2 = 2 h' split into 4 and 2 substeps they compute
+ * the same thing, and the difference is 0): a run with substeps has no estimate, and the
+ * check says so (severity 1).
+ *
+ * Observed order (--observe): a third run at a quarter of the steps gives each signal's
+ * q = log2(max |y_h - y_h/2| / max |y_h/2 - y_h/4|). A discontinuity inside a step, a
+ * source read one step early, a step size outside the asymptotic range lower it below
+ * the methods' p, and the formula with p then reads the error too small (by up to
+ * (1 - 2^-p) / (1 - 2^-q): 1.9 for p = 4, q = 1); q below p - CHECK_Q_SLACK takes p's
+ * place, and q below CHECK_Q_MIN (the differences do not shrink) leaves no estimate.
+ *
+ * Host only: libc, no libm (rt_log, rt_exp of the runtime). */
+#include <float.h>
+#include <math.h> /* HUGE_VAL only: modrt links without libm */
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+
+static rt_sim half;  /* the run at half the steps */
+static rt_sim quarter; /* --observe: the run at a quarter of the steps */
+static rt_sim own;   /* the run at the scene's steps, for check_scene */
+
+static struct {
+    rt_scene sc;          /* the half scene */
+    rt_link link;         /* its link, with the period doubled */
+    rt_scene sc4;         /* the quarter scene */
+    rt_link link4;
+    check_opts o;
+    check_result r;
+    int differ;           /* the event counts differ since shift_from */
+    uint64_t shift_from;
+    char err[400];
+} C;
+
+const char *check_error(void)
+{
+    return C.err;
+}
+
+static rt_status refuse(rt_status st, const char *what, const char *detail)
+{
+    snprintf(C.err, sizeof C.err, "%s%s%s", what, detail ? ": " : "", detail ? detail : "");
+    return st;
+}
+
+static double fabs_(double v)
+{
+    return v < 0 ? -v : v;
+}
+
+/* "Block.signal" of recorded signal i */
+static void sig_name(const rt_scene *sc, uint16_t i, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
+}
+
+/* does name start with one of the comma-separated prefixes of list? */
+static int selected(const char *name, const char *list)
+{
+    if (!list)
+        return 1;
+    for (const char *p = list; *p;) {
+        size_t len = strcspn(p, ",");
+        if (len > 0 && strncmp(name, p, len) == 0)
+            return 1;
+        p += len + (p[len] == ',');
+    }
+    return 0;
+}
+
+/* The global tolerance of recorded signal i, absolute and relative to its range: the
+   options', or the accuracy of the set of the signal's block read as atol = rtol (the
+   runtime's scaled norm |e| / (1 + |x|) <= accuracy). The one place it is read: a set's
+   own absolute and relative tolerances take over the default here. */
+static void sig_tol(const rt_scene *sc, uint16_t i, const check_opts *o, double *atol,
+                    double *rtol)
+{
+    const rt_set *st = &sc->sets[sc->blocks[sc->recs[i].block].set];
+    double acc = st->implicit.accuracy > 0 ? (double)st->implicit.accuracy
+                                           : (double)RT_ERR_TOL;
+    *atol = o->atol >= 0 ? o->atol : acc;
+    *rtol = o->rtol >= 0 ? o->rtol : acc;
+}
+
+/* the order of convergence of a coupling scheme (rt/rt.h, RT_INTERP_LIST) */
+static uint8_t interp_order(uint8_t i)
+{
+    static const uint8_t order[RT_INTERP_COUNT] = {
+        [RT_INTERP_SET] = 1, [RT_INTERP_HOLD] = 1, [RT_INTERP_EXTRAP] = 2,
+        [RT_INTERP_LINEAR] = 2, [RT_INTERP_HERMITE] = 3, [RT_INTERP_QUAD] = 3};
+    return i < RT_INTERP_COUNT ? order[i] : 1;
+}
+
+static void why_add(const char *fmt, const char *a, const char *b, unsigned p)
+{
+    size_t n = strlen(C.r.why);
+    if (n + 1 < sizeof C.r.why)
+        snprintf(C.r.why + n, sizeof C.r.why - n, fmt, n ? ", " : "", a, b, p);
+}
+
+/* the lowest order among the sets with states and the couplings between sets */
+static void find_order(const rt_scene *sc, const rt_sim *sim)
+{
+    uint8_t p = 0, seen[RT_INTERP_COUNT] = {0};
+    C.r.why[0] = 0;
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        if (rt_set_nx(sim, s) == 0)
+            continue;
+        uint8_t q = sc->sets[s].method->order;
+        p = p == 0 || q < p ? q : p;
+        why_add("%sset %s %s %u", sc->sets[s].name, sc->sets[s].method->name, q);
+    }
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        for (uint16_t u = 0; u < sc->blocks[b].kind->nu; u++) {
+            rt_interp in;
+            if (rt_input_source(sim, b, u, &in) != RT_SRC_XSET || seen[in])
+                continue;
+            seen[in] = 1;
+            uint8_t q = interp_order((uint8_t)in);
+            p = p == 0 || q < p ? q : p;
+            why_add("%s%s%s couplings %u", rt_interp_name(in), "", q);
+        }
+    C.r.order = p;
+}
+
+/* base ticks between instants where every set is at a communication point: the least
+   common multiple of the ratios (0 if it passes n) */
+static uint64_t meet_every(const rt_scene *sc, uint64_t n)
+{
+    uint64_t l = 1;
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        uint64_t a = l, b = sc->sets[s].ratio;
+        while (b) {
+            uint64_t t = a % b;
+            a = b, b = t;
+        }
+        l = l / a * sc->sets[s].ratio;
+        if (l > n)
+            return 0;
+    }
+    return l;
+}
+
+rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o,
+                      check_setup setup, void *ctx)
+{
+    char b[160];
+    memset(&C.r, 0, sizeof C.r);
+    C.err[0] = 0, C.o = *o, C.differ = 0;
+    C.r.atol = o->atol, C.r.rtol = o->rtol;
+    uint64_t n = rt_tick_count(sim);
+    if (n > RT_MAX_TICKS / 2) {
+        snprintf(b, sizeof b, "%.10g s at half the base tick", (double)sc->t_end);
+        return refuse(RT_E_CAPACITY, "the check's run exceeds RT_MAX_TICKS (2^53 ticks)", b);
+    }
+    C.r.every = meet_every(sc, n);
+    if (C.r.every == 0)
+        return refuse(RT_E_ARG, "the sets' steps meet no instant before the end time (the "
+                      "least common multiple of their ratios): nothing to compare", NULL);
+    C.r.every_s = (double)C.r.every * (double)sc->dt;
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        char name[96];
+        sig_name(sc, i, name, sizeof name);
+        C.r.sig[i].on = selected(name, o->only);
+        C.r.nsig += (uint16_t)C.r.sig[i].on;
+    }
+    if (C.r.nsig == 0)
+        return refuse(RT_E_ARG, "no recorded signal to check", o->only);
+    find_order(sc, sim);
+    if (o->csv) {
+        fputs("t", o->csv);
+        for (uint16_t i = 0; i < sc->nrecs; i++) {
+            char name[96];
+            sig_name(sc, i, name, sizeof name);
+            if (C.r.sig[i].on)
+                fprintf(o->csv, ",%s", name);
+        }
+        fputc('\n', o->csv);
+    }
+    C.sc = *sc;
+    C.sc.dt = sc->dt / 2; /* every set keeps its ratio: its step halves */
+    if (sc->link) {
+        C.link = *sc->link;
+        C.link.period *= 2; /* the same exchange instants (none takes place) */
+        C.sc.link = &C.link;
+    }
+    C.r.dt_half = (double)C.sc.dt;
+    rt_status st = rt_init(&C.sc, &half);
+    if (st != RT_OK)
+        return refuse(st, "the scene at half the steps", rt_error_text(&half));
+    if (setup && setup(ctx, &C.sc, &half) != 0)
+        return refuse(RT_E_ARG, "the scene at half the steps: an override failed", NULL);
+    C.r.observe = o->observe;
+    if (!o->observe)
+        return RT_OK;
+    if (n > RT_MAX_TICKS / 4)
+        return refuse(RT_E_CAPACITY, "the check's quarter run exceeds RT_MAX_TICKS", NULL);
+    C.sc4 = C.sc;
+    C.sc4.dt = C.sc.dt / 2;
+    if (sc->link) {
+        C.link4 = C.link;
+        C.link4.period *= 2;
+        C.sc4.link = &C.link4;
+    }
+    if ((st = rt_init(&C.sc4, &quarter)) != RT_OK)
+        return refuse(st, "the scene at a quarter of the steps", rt_error_text(&quarter));
+    if (setup && setup(ctx, &C.sc4, &quarter) != 0)
+        return refuse(RT_E_ARG, "the scene at a quarter of the steps: an override failed",
+                      NULL);
+    return RT_OK;
+}
+
+/* the estimate at the current instant (both runs at time t) */
+static void compare(const rt_scene *sc, const rt_sim *sim)
+{
+    static const double two[] = {1, 2, 4, 8, 16, 32, 64, 128, 256};
+    uint8_t p = C.r.order < 8 ? C.r.order : 8;
+    double factor = p ? 1 / (1 - 1 / two[p]) : 1; /* nothing integrated: exact difference */
+    double t = (double)rt_time(sc, sim);
+    uint32_t ev = sim->stats.count[RT_CNT_EVENTS];
+    int differ = ev != half.stats.count[RT_CNT_EVENTS] ||
+                 (C.r.observe && ev != quarter.stats.count[RT_CNT_EVENTS]);
+    if (differ && !C.differ)
+        C.shift_from = sim->state.tick;
+    if (differ || C.differ) { /* the stretch ends at the first instant they agree again */
+        double len = (double)(sim->state.tick - C.shift_from) * (double)sc->dt;
+        C.r.shift_s = len > C.r.shift_s ? len : C.r.shift_s;
+    }
+    C.differ = differ;
+    C.r.nshift += (uint64_t)differ;
+    C.r.ncmp += (uint64_t)!differ;
+    if (C.o.csv && !differ)
+        fprintf(C.o.csv, "%.17g", t);
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        check_sig *g = &C.r.sig[i];
+        if (!g->on)
+            continue;
+        double y = (double)rt_rec_value(sc, sim, i), yh = (double)rt_rec_value(&C.sc, &half, i);
+        double d = fabs_(y - yh), a = fabs_(y);
+        if (!(d <= DBL_MAX)) /* not finite in one of the runs */
+            d = HUGE_VAL;
+        g->range = a <= DBL_MAX && a > g->range ? a : g->range;
+        if (differ) {
+            if (d > g->err_ev)
+                g->err_ev = d, g->t_ev = t;
+        } else {
+            if (factor * d > g->err)
+                g->err = factor * d, g->t = t;
+            if (C.r.observe) {
+                double d2 = fabs_(yh - (double)rt_rec_value(&C.sc4, &quarter, i));
+                g->d1 = d > g->d1 ? d : g->d1;
+                g->d2 = d2 > g->d2 || !(d2 <= DBL_MAX) ? d2 : g->d2;
+            }
+            if (C.o.csv)
+                fprintf(C.o.csv, ",%.3e", factor * d);
+        }
+    }
+    if (C.o.csv && !differ)
+        fputc('\n', C.o.csv);
+}
+
+void check_tick(const rt_scene *sc, const rt_sim *sim)
+{
+    if (sim->state.tick == 0) /* the initial state: the same in both runs */
+        return;
+    for (int k = 0; k < 2 && half.state.tick < rt_tick_count(&half); k++)
+        rt_tick(&C.sc, &half);
+    for (int k = 0; C.r.observe && k < 4 && quarter.state.tick < rt_tick_count(&quarter); k++)
+        rt_tick(&C.sc4, &quarter);
+    if (sim->state.tick % C.r.every == 0)
+        compare(sc, sim);
+}
+
+/* observe: the observed order of signal g, and the estimate by it where it is below p.
+   Differences within a few thousand roundings of the signal's size carry no order. */
+static void observed(check_sig *g)
+{
+    double noise = 1e3 * (double)RT_EPS * (1 + g->range);
+    if (!(g->d1 > noise && g->d2 > noise) || !(g->d1 <= DBL_MAX && g->d2 <= DBL_MAX))
+        return;
+    g->q = (double)(rt_log((real_t)(g->d1 / g->d2)) / rt_log((real_t)2));
+    if (g->q < CHECK_Q_MIN) {
+        g->q_none = 1;
+        return;
+    }
+    if (g->q < C.r.order - CHECK_Q_SLACK) {
+        /* the largest difference over (1 - 2^-q): d1 is max |y_h - y_h/2| */
+        g->err = g->d1 / (1 - (double)rt_exp((real_t)(-g->q) * rt_log((real_t)2)));
+        g->q_used = 1;
+    }
+}
+
+void check_end(const rt_scene *sc, const rt_sim *sim, check_result *r)
+{
+    C.r.events = sim->stats.count[RT_CNT_EVENTS];
+    C.r.events_half = half.stats.count[RT_CNT_EVENTS];
+    C.r.status_half = half.stats.status;
+    C.r.substeps = sim->stats.count[RT_CNT_SUBSTEP];
+    C.r.substeps_half = half.stats.count[RT_CNT_SUBSTEP];
+    if (C.r.observe) {
+        C.r.status_quarter = quarter.stats.status;
+        C.r.events_quarter = quarter.stats.count[RT_CNT_EVENTS];
+        C.r.substeps_quarter = quarter.stats.count[RT_CNT_SUBSTEP];
+    }
+    int sev = 0;
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        check_sig *g = &C.r.sig[i];
+        double atol, rtol;
+        if (!g->on)
+            continue;
+        sig_tol(sc, i, &C.o, &atol, &rtol);
+        g->tol = atol + rtol * g->range;
+        if (C.r.observe)
+            observed(g);
+        int s = g->err > (double)RT_ERR_LOST * (1 + g->range) ? 2
+                : g->err > g->tol || g->q_none;
+        sev = s > sev ? s : sev;
+    }
+    if ((C.r.events != C.r.events_half || C.r.substeps || C.r.substeps_half) && sev < 1)
+        sev = 1;
+    if (C.r.observe && (C.r.events != C.r.events_quarter || C.r.substeps_quarter) && sev < 1)
+        sev = 1;
+    if (rt_status_severity(C.r.status_half) >= 2 ||
+        (C.r.observe && rt_status_severity(C.r.status_quarter) >= 2))
+        sev = 2;
+    C.r.severity = sev;
+    *r = C.r;
+}
+
+rt_status check_scene(const rt_scene *sc, const check_opts *o, check_setup setup, void *ctx,
+                      check_result *r)
+{
+    rt_status st = rt_init(sc, &own);
+    if (st != RT_OK)
+        return refuse(st, "the scene", rt_error_text(&own));
+    if (setup && setup(ctx, sc, &own) != 0)
+        return refuse(RT_E_ARG, "an override failed", NULL);
+    if ((st = check_begin(sc, &own, o, setup, ctx)) != RT_OK)
+        return st;
+    while (own.state.tick < rt_tick_count(&own)) {
+        rt_tick(sc, &own);
+        check_tick(sc, &own);
+    }
+    check_end(sc, &own, r);
+    return RT_OK;
+}
+
+/* ------------------------------------------------------------------ printing */
+
+static const char *verdict(const check_result *r, const check_sig *g)
+{
+    return r->substeps || r->substeps_half ? "no estimate (substeps)"
+           : g->q_none                       ? "no estimate (the runs do not converge)"
+           : g->err > (double)RT_ERR_LOST * (1 + g->range) ? "no correct digit"
+           : g->err > g->tol                             ? "above tolerance"
+                                                          : "ok";
+}
+
+void check_print(FILE *f, const rt_scene *sc, const check_result *r)
+{
+    static const char *sev[] = {"ok", "doubtful", "failed"};
+    fprintf(f, "check: every set again at half its step (base tick %g s, ratios kept); "
+               "Richardson estimate |y_h - y_h/2| / (1 - 2^-p)\n", r->dt_half);
+    if (r->order)
+        fprintf(f, "check_order: %u (the lowest of: %s)\n", (unsigned)r->order, r->why);
+    else
+        fprintf(f, "check_order: none (no set integrates a state: the difference itself)\n");
+    if (r->atol >= 0)
+        fprintf(f, "global_tol: atol %g", r->atol);
+    else
+        fputs("global_tol: atol = the accuracy of the signal's set", f);
+    if (r->rtol >= 0)
+        fprintf(f, ", rtol %g", r->rtol);
+    else
+        fputs(", rtol = the same accuracy", f);
+    fputs(" (a signal's tolerance: atol + rtol * its largest |y|)\n", f);
+    fprintf(f, "check_compared: %llu instants every %g s\n", (unsigned long long)r->ncmp,
+            r->every_s);
+    fprintf(f, "check_half_status: %s\n", rt_status_name(r->status_half));
+    if (r->observe)
+        fprintf(f, "check_quarter_status: %s (base tick %g s: each signal's observed order "
+                   "log2(max |y_h - y_h/2| / max |y_h/2 - y_h/4|))\n",
+                rt_status_name(r->status_quarter), r->dt_half / 2);
+    if (r->events || r->events_half)
+        fprintf(f, "check_events: %u, at half the steps %u%s; %llu instants between the "
+                   "runs' event times left out (longest stretch %g s)\n",
+                (unsigned)r->events, (unsigned)r->events_half,
+                r->events != r->events_half ? " (different: the event sequence is not "
+                                              "resolved)" : "",
+                (unsigned long long)r->nshift, r->shift_s);
+    if (r->substeps || r->substeps_half)
+        fprintf(f, "check_substeps: %u, at half the steps %u (steps split into substeps did "
+                   "not take h and h/2: the estimates below are no estimates)\n",
+                (unsigned)r->substeps, (unsigned)r->substeps_half);
+    for (uint16_t i = 0; i < sc->nrecs; i++) {
+        const check_sig *g = &r->sig[i];
+        char name[96];
+        if (!g->on)
+            continue;
+        sig_name(sc, i, name, sizeof name);
+        fprintf(f, "global_err.%s: %.3g at t = %.6g s (tol %.3g): %s", name, g->err, g->t,
+                g->tol, verdict(r, g));
+        if (r->observe && g->q > 0)
+            fprintf(f, "; observed order %.2f%s", g->q,
+                    g->q_used ? ", below p: the estimate takes it" : "");
+        fputc('\n', f);
+        if (g->err_ev > 0)
+            fprintf(f, "event_shift_diff.%s: %.3g at t = %.6g s (between the runs' events: "
+                       "not an estimate)\n", name, g->err_ev, g->t_ev);
+    }
+    fprintf(f, "global_status: %s\n", sev[r->severity]);
+}
