@@ -71,6 +71,8 @@ MODEL_OBJS := $(call obj,$(MODEL_SRCS))
 
 # the scene language: scenec, generated scenes, modrt's scene files (docs/scene-language.md)
 include tools/scenec/scenec.mk
+# FMUs as block kinds on the host (tools/fmi/, docs/fmi.md): linked into modrt and the tests
+include tools/fmi/fmi.mk
 
 .PHONY: all help test unit demo bench check-freestanding cross-test footprint clean \
         $(addprefix cross-test-,$(CROSS_TARGETS)) $(addprefix check-target-,$(CROSS_TARGETS)) \
@@ -104,6 +106,8 @@ help:
 	@echo "make test-<suite> one suite of make test: $(patsubst test-%,%,$(filter test-%,$(TEST_SUITES)))"
 	@echo "                  (also check-freestanding, cross-test-<t>)"
 	@echo "make fuzz         the scene-language fuzzer for $(FUZZ_TIME) s"
+	@echo "make test-fmi     FMUs: import (FMI 2.0/3.0 ME), export (3.0 CS), the bad corpus;"
+	@echo "                  make fuzz-fmi: the modelDescription.xml fuzzer (docs/fmi.md)"
 	@echo "make deps         install what the targets need (tools/install-deps.sh)"
 	@echo "make clean        remove build/"
 	@echo "settings: REAL=double|float SAN=1 O=DIR V=1 CC=..."
@@ -126,8 +130,8 @@ $(O)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CFLAGS_ALL) -c $< -o $@
 
-$(O)/modrt: $(call obj,tools/modrt/modrt.c $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
-	$(Q)$(CC) $(LDSAN) $^ -lpthread -o $@
+$(O)/modrt: $(call obj,tools/modrt/modrt.c $(POSIX_SRCS) $(FMI_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
+	$(Q)$(CC) $(LDSAN) $^ -lpthread $(FMI_LIBS) -o $@
 
 # the version `modrt --version` prints: the git description, rewritten only when it changes
 $(call obj,tools/modrt/modrt.c): build/gen/version.h
@@ -143,8 +147,8 @@ $(O)/svgplot: tools/svgplot.c
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CSTD) -O2 $< -lm -o $@
 
-$(O)/tests: $(call obj,$(TEST_SRCS) $(HOST_TEST_SRCS) $(POSIX_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
-	$(Q)$(CC) $(LDSAN) $^ -lpthread -lm -o $@
+$(O)/tests: $(call obj,$(TEST_SRCS) $(HOST_TEST_SRCS) $(POSIX_SRCS) $(FMI_SRCS)) $(RT_OBJS) $(MODEL_OBJS)
+	$(Q)$(CC) $(LDSAN) $^ -lpthread -lm $(FMI_LIBS) -o $@
 
 # ---- tests ----
 unit: $(O)/tests
@@ -164,7 +168,7 @@ check-freestanding: $(RT_OBJS) $(MODEL_OBJS)
 # and ends with the grand total (tools/run-suites.sh). Other makefiles add theirs to
 # TEST_SUITES.
 TEST_SUITES = check-freestanding test-unit test-san test-float test-faults test-cli test-scenec \
-               test-fuzz $(addprefix cross-test-,$(CROSS_TARGETS))
+               test-fuzz test-fmi $(addprefix cross-test-,$(CROSS_TARGETS))
 test: deps
 	@V=$(V) sh tools/run-suites.sh "$(MAKE) JOBS=$(JOBS) V=$(V)" $(TEST_SUITES)
 test-unit:

@@ -1,8 +1,8 @@
 #!/bin/sh
 # install-deps.sh - installs, from Debian's packages, everything the make targets use: the
-# host compiler, the cross compilers, QEMU, clang's libFuzzer, valgrind, python3, cppcheck
-# and clang-tidy; GNU parallel, Slurm and MUNGE for the campaign engines (make test-sweep).
-# Skips
+# host compiler, expat and libzip (FMUs), the cross compilers, QEMU, clang's libFuzzer,
+# valgrind, python3, cppcheck and clang-tidy; GNU parallel, Slurm and MUNGE for the
+# campaign engines (make test-sweep). Skips
 # what is already there. Needs root (or sudo) for apt-get.
 #
 #   sh tools/install-deps.sh            install what is missing (all groups)
@@ -19,6 +19,11 @@ have gcc                     || need="$need gcc libc6-dev"
 have make                    || need="$need make"
 have git                     || need="$need git"
 have python3                 || need="$need python3"
+# FMUs (tools/fmi/): modelDescription.xml by expat, the archive by libzip, zip for the
+# test FMUs
+[ -f /usr/include/expat.h ]  || need="$need libexpat1-dev"
+[ -f /usr/include/zip.h ]    || need="$need libzip-dev"
+have zip                     || need="$need zip"
 if [ "$group" = all ] || [ "$group" = sweep ]; then
     # the engines `modrt sweep` hands its task lines to (tests/sweep/sweep.sh runs both)
     have parallel                || need="$need parallel"

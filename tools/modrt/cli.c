@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "fmu_scn.h"
 #include "models.h"
 #include "scn_host.h"
 
@@ -46,7 +47,7 @@ const char *cli_fmt(char *buf, size_t n, double v)
 const rt_scene *cli_scene(const char *name)
 {
     if (scn_host_is_file(name)) /* the scene compiler says what is wrong with a file */
-        return scn_host_load(name);
+        return scn_host_load(name, &fmu_scn_ops);
     for (const rt_scene_entry *e = mdl_scenes; e->name; e++)
         if (strcmp(e->name, name) == 0)
             return e->scene;

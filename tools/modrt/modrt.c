@@ -12,6 +12,7 @@
 #include "check.h"
 #include "cli.h"
 #include "fingerprint.h"
+#include "fmu.h"
 #include "info.h"
 #include "link.h"
 #include "models.h"
@@ -76,6 +77,8 @@ static int cmd_info(void *ctx, int npos, char **pos)
     const info_args *a = ctx;
     const rt_kind *k = info_find_kind(pos[0]);
     (void)npos;
+    if (fmu_is_file(pos[0])) /* an FMU file: its variables */
+        return fmu_info(stdout, pos[0]) == 0 ? CLI_OK : CLI_USAGE;
     if (k && !is_scene_name(pos[0])) { /* a scene of the same name wins */
         info_kind(stdout, k, a->json);
         return CLI_OK;
@@ -174,6 +177,7 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
             fprintf(f, " %u", (unsigned)s->stats.loop_hist[i]);
         fprintf(f, "\nloop_residual: %g\n", (double)s->stats.loop_residual);
     }
+    fmu_summary(f); /* FMU blocks: their faults with the FMU's own account */
     fprintf(f, "hash: %016llx\n", (unsigned long long)s->state.hash);
 }
 
@@ -775,9 +779,12 @@ static const cli_cmd commands[] = {
     {"list", "", "list the registered scenes", NULL, NULL, 0, 0, NULL, cmd_list},
     {"kinds", "", "list the block kinds of the model library", NULL, NULL, 0, 0, NULL,
      cmd_kinds},
-    {"info", "SCENE|FILE.scn|KIND", "describe a scene as initialised, or a block kind",
+    {"info", "SCENE|FILE.scn|FILE.fmu|KIND",
+     "describe a scene as initialised, a block kind, or an FMU file",
      "A scene: blocks with parameter values, wiring, sets, schedule, evaluation order, loops.\n"
-     "A kind: inputs, outputs, states and parameters with defaults and units, equations.", info_opts, 1, 1, &info_ctx, cmd_info},
+     "A kind: inputs, outputs, states and parameters with defaults and units, equations.\n"
+     "An FMU: its interfaces and every variable with causality, variability, type, unit and\n"
+     "start value (docs/fmi.md).", info_opts, 1, 1, &info_ctx, cmd_info},
     {"run", "SCENE|FILE.scn", "run a scene to its end time; prints a key: value summary",
      "Exit status 0 when no fault was counted; 1 when the answer failed (NaN, instability,\n"
      "a degraded step, a lost link...); 3 when it completed but a step's error estimate\n"

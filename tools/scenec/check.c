@@ -277,6 +277,8 @@ static void block_kind(scn_ctx *c, scn_block *b)
         if (!strcmp(s->def[i]->name.s, b->type.s))
             b->def = (int16_t)i, d = s->def[i];
     b->kind = d ? d->kind : scn_library_kind(b->type.s);
+    if (!d && !strcmp(b->type.s, "fmu") && !(b->kind = scn_fmu_kind(c, b)))
+        return; /* (its error said why) */
     if (!b->kind) {
         scn_fail(c, b->type.pos, b->type.s, "unknown system type",
                  scn_fmt(c, "a model of the library or a defined system (%s)", type_list(c)));

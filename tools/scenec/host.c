@@ -14,7 +14,7 @@ int scn_host_is_file(const char *arg)
     return n > 4 && strcmp(arg + n - 4, ".scn") == 0;
 }
 
-const rt_scene *scn_host_load(const char *path)
+const rt_scene *scn_host_load(const char *path, const scn_fmu_ops *fmu)
 {
     static scn_ctx *last; /* owns the scene's memory until exit (modrt loads one) */
     scn_ctx *c = scn_new();
@@ -22,6 +22,7 @@ const rt_scene *scn_host_load(const char *path)
         fputs("modrt: out of memory\n", stderr);
         return NULL;
     }
+    c->fmu = fmu;
     if (scn_compile(c, path, NULL, 0) != 0) {
         fprintf(stderr, "modrt: %s\n", c->msg);
         scn_free(c);

@@ -203,6 +203,9 @@ int scn_build_image(scn_ctx *c)
         dk[i] = define_services(c, s->def[i], k);
     sc->name = s->name.s, sc->doc = s->doc ? s->doc : "";
     sc->dt = (real_t)s->dt, sc->t_end = (real_t)s->t_end;
+    scn_fmu_start(c); /* FMU systems' initial states */
+    if (c->err)
+        return -1;
     blocks(c, sc, dk);
     wiring(c, sc);
     sets_recs(c, sc);

@@ -1,6 +1,6 @@
 /* scenec.c - the scene compiler's command line: compiles a scene file to C const tables,
- * checks it, runs it in host memory (the interpreter `modrt run FILE.scn` uses), or
- * writes the registry of several scenes. Errors go to stderr as one line
+ * checks it, runs it in host memory (the interpreter `modrt run FILE.scn` uses), writes
+ * it as an FMI 3.0 Co-Simulation FMU, or writes the registry of several scenes. Errors go to stderr as one line
  * "FILE:LINE:COL: error: WHAT near 'TEXT'; expected WHAT", exit status 1; usage errors
  * exit with 2. Output files are written whole or not at all. */
 #define _POSIX_C_SOURCE 200809L
@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fmu_export.h"
 #include "scn.h"
 #include "scn_host.h"
 
@@ -29,6 +30,8 @@ static int usage(void)
           "       scenec --run [-I DIR]... FILE.scn                   run in host memory\n"
           "       scenec --sizes [-I DIR]... FILE.scn                 the exact limits of a\n"
           "                                                           per-scene build (-D flags)\n"
+          "       scenec --fmu OUT.fmu [-I DIR]... FILE.scn           an FMI 3.0 Co-Simulation\n"
+          "                                                           FMU (docs/fmi.md)\n"
           "       scenec --registry [--symbol NAME] -o OUT.c FILE.scn...\n",
           stderr);
     return 2;
@@ -44,6 +47,8 @@ static int parse_args(int argc, char **argv, opts *o)
             o->mode = a[2] == 'c' ? 'k' : a[3] == 'u' ? 'r' : 'g';
         else if (!strcmp(a, "--sizes"))
             o->mode = 's';
+        else if (!strcmp(a, "--fmu") && more)
+            o->mode = 'f', o->out = argv[++i];
         else if (!strcmp(a, "-o") && more)
             o->out = argv[++i];
         else if (!strcmp(a, "-M") && more)
@@ -156,6 +161,20 @@ static int cmd_run(const opts *o)
     return rc;
 }
 
+/* the scene as an FMI 3.0 Co-Simulation FMU (tools/fmi/fmu_export.c) */
+static int cmd_fmu(const opts *o)
+{
+    char err[SCN_MSG_LEN];
+    scn_ctx *c = compile(o, o->in[0]);
+    if (!c)
+        return 1;
+    int rc = fmu_export(c, o->out, err, sizeof err);
+    if (rc)
+        fprintf(stderr, "scenec: %s: %s\n", o->out, err);
+    scn_free(c);
+    return rc ? 1 : 0;
+}
+
 /* the exact compile-time limits of a per-scene build, as -D flags (docs/porting.md) */
 static int cmd_sizes(const opts *o)
 {
@@ -214,5 +233,7 @@ int main(int argc, char **argv)
         return cmd_registry(&o);
     if (o.mode == 's')
         return cmd_sizes(&o);
+    if (o.mode == 'f')
+        return cmd_fmu(&o);
     return cmd_compile(&o);
 }

@@ -224,6 +224,7 @@ typedef struct scn_block {
     uint16_t *p_at, *x_at, *d_at, *u_at; /* assignment index + 1 of each value, 0: none */
     uint8_t p_given, x_given, d_given;   /* any assignment: emit the array */
     int16_t *u_conn;            /* connection driving each input, -1: none */
+    uint8_t fmu;                /* 1: an FMU system (kind from scn_fmu_ops) */
 } scn_block;
 
 typedef struct scn_joint {
@@ -370,11 +371,24 @@ typedef struct scn_lexer {
 
 typedef struct scn_chunk scn_chunk;
 
+/* FMU systems (`load system (P) of type (fmu) from file ("p.fmu");`, docs/fmi.md): the
+   host's loader (tools/fmi/fmu_scn.c), named by the tools that read FMUs (modrt) */
+typedef struct scn_fmu_ops {
+    /* the kind of FMU block `block` read from the file at path: its own kind, its services
+       driving an instance of its own. NULL with a one-line message in err */
+    const rt_kind *(*kind)(const char *path, const char *block, char *err, size_t n);
+    /* instantiates and initializes the FMU of kind k with parameters p and, where given[i],
+       initial state x0[i]; writes the states it starts from into x0. 0, or -1 with err */
+    int (*start)(const rt_kind *k, const real_t *p, real_t *x0, const uint8_t *given,
+                 char *err, size_t n);
+} scn_fmu_ops;
+
 typedef struct scn_ctx {
     /* options */
     const char *incdirs[8];     /* -I directories searched after the includer's */
     uint8_t nincdirs;
     uint8_t sandbox;            /* 1: includes never touch the file system (fuzzing) */
+    const scn_fmu_ops *fmu;     /* FMU systems; NULL: this tool reads none */
     /* sources and tokens */
     scn_file files[SCN_MAX_FILES];
     uint16_t nfiles;
@@ -485,6 +499,10 @@ void scn_service_root(const scn_ctx *c, const scn_define *d, uint8_t kind, uint1
 /* the initial t_last of a root: far in the past, so a first crossing never rests */
 #define SCN_T_LAST0 (-1e30)
 int scn_build_image(scn_ctx *c);                        /* image.c */
+/* fmu.c: the kind of an FMU system (NULL with an error), and the start of every FMU
+   system once the scene's values are known (their initial states into x0) */
+const rt_kind *scn_fmu_kind(scn_ctx *c, scn_block *b);
+void scn_fmu_start(scn_ctx *c);
 /* The C literal of a double that reads back as the same double ("0.1", "-2", "1e-300"). */
 void scn_real_literal(double v, char *buf, size_t n);
 

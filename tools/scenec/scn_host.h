@@ -10,9 +10,11 @@
 
 /* Does the command-line argument name a scene file (it ends in ".scn")? */
 int scn_host_is_file(const char *arg);
-/* Compiles the scene file at path into host memory; returns the scene (valid until the
-   process ends), or NULL after printing "modrt: FILE:LINE:COL: error: ..." to stderr. */
-const rt_scene *scn_host_load(const char *path);
+struct scn_fmu_ops;
+/* Compiles the scene file at path into host memory, its FMU systems read by fmu (NULL:
+   none may appear); returns the scene (valid until the process ends), or NULL after
+   printing "modrt: FILE:LINE:COL: error: ..." to stderr. */
+const rt_scene *scn_host_load(const char *path, const struct scn_fmu_ops *fmu);
 /* Writes the exact compile-time limits of a per-scene build of sc (initialised in sim)
    as -D flags on one line: what `scenec --sizes` and `modrt sizes` print. */
 void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim);

@@ -1,0 +1,103 @@
+#!/usr/bin/env python3
+"""check.py - the traces of the FMU test scenes (tests/fmi/scenes/) against closed forms,
+computed here from the equations, never from the code under test:
+
+  ball  h'' = -g from h = 1, v = 0; at each impact v := -e v (ball_h2: from 2 m, e = 0.5). Impact k at t_k, bounce
+        speed e^k v1 (v1 = sqrt(2 g)), flights of 2 e^k v1 / g: h and v at every row.
+  stair y(t) = floor(t / period) at every row, for a period on the tick grid (0.5 s) and
+        one between ticks (0.3 s); a row on a switching instant shows the value after it.
+  osc   x'' + c x' + k x = b u, u constant, from rest: the underdamped step response;
+        the feed-through y = gain P.y + offset (exactly the double arithmetic), y2 = u2.
+
+Usage: check.py KIND CSV [TOL]; prints one line, exit 1 when a row is off."""
+import csv
+import math
+import sys
+
+
+def rows(path):
+    with open(path) as f:
+        r = csv.reader(f)
+        head = next(r)
+        return head, [[float(x) for x in row] for row in r]
+
+
+def ball_exact(t, g=9.81, e=0.7, h0=1.0):
+    t1 = math.sqrt(2 * h0 / g)
+    if t < t1:
+        return h0 - g * t * t / 2, -g * t
+    v = g * t1 * e      # speed just after the first impact
+    tk = t1
+    while v > 1e-12:    # (past the accumulation point of the impacts: at rest)
+        flight = 2 * v / g
+        if t < tk + flight:
+            s = t - tk
+            return v * s - g * s * s / 2, v - g * s
+        tk += flight
+        v *= e
+    return 0.0, 0.0
+
+
+def check_ball(path, tol, e=0.7, h0=1.0):
+    head, data = rows(path)
+    worst = 0.0
+    for r in data:
+        h, v = ball_exact(r[0], e=e, h0=h0)
+        # next to an impact the sampled velocity jumps: compare the height there only
+        worst = max(worst, abs(r[1] - h))
+        if abs(r[2] - v) > 1e-3:
+            if near_impact(r[0], e=e, h0=h0):
+                continue
+        worst = max(worst, abs(r[2] - v))
+    return worst
+
+
+def near_impact(t, g=9.81, e=0.7, h0=1.0):
+    tk, v = math.sqrt(2 * h0 / g), math.sqrt(2 * g * h0) * e
+    while tk < t + 1:
+        if abs(t - tk) < 2e-3:
+            return True
+        tk += 2 * v / g
+        v *= e
+    return False
+
+
+def check_stair(path, tol):
+    head, data = rows(path)
+    worst = 0.0
+    for r in data:
+        for p, y in zip([0.5, 0.3], r[1:]):
+            # a row on a switching instant shows the value after the event
+            worst = max(worst, abs(y - math.floor(r[0] / p + 1e-12)))
+    return worst
+
+
+def check_osc(path, tol, k=9.0, c=0.6, b=1.5, u=2.0, gain=2.0, offset=0.5, u2=3.0):
+    head, data = rows(path)
+    w0 = math.sqrt(k)
+    z = c / (2 * w0)
+    wd = w0 * math.sqrt(1 - z * z)
+    xs = b * u / k
+    worst = 0.0
+    for r in data:
+        t = r[0]
+        x = xs * (1 - math.exp(-z * w0 * t) * (math.cos(wd * t) + z * w0 / wd * math.sin(wd * t)))
+        worst = max(worst, abs(r[1] - x))
+        if r[2] != gain * r[1] + offset or r[3] != u2:  # the feed-through, bit for bit
+            return float("inf")
+    return worst
+
+
+def main():
+    kind, path = sys.argv[1], sys.argv[2]
+    tol = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-6
+    worst = {"ball": check_ball, "stair": check_stair, "osc": check_osc,
+             "ball_h2": lambda p, t: check_ball(p, t, e=0.5, h0=2.0)}[kind](path, tol)
+    ok = worst <= tol
+    print("%s %s: largest deviation from the closed form %.3g (tolerance %.3g): %s"
+          % (kind, path, worst, tol, "ok" if ok else "FAIL"))
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

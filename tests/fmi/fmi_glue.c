@@ -1,0 +1,464 @@
+/* fmi_glue.c - the FMI functions of the test FMUs, written from the specification (FMI 2.0
+ * and 3.0 Model Exchange; FMI_VERSION selects which set this build exports) on top of one
+ * model (fmi_model.h). Modes are checked as far as the tests need: a call in the wrong
+ * state returns Error with a logged reason. Fault injection for the bad-FMU corpus
+ * (tests/fmi/bad.sh): FMU_BAD_ERROR_AT=t (derivatives return Error from time t),
+ * FMU_BAD_NAN_AT=t (NaN derivatives from t), FMU_BAD_LOOP (no event iteration after the start ends),
+ * FMU_BAD_NO_INDICATORS (the event-indicator function is missing), FMU_BAD_NEXT_PAST (after
+ * the first event, nextEventTime is the current time). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi_api.h"
+#include "fmi_model.h"
+
+#ifndef FMI_VERSION /* a 2.0 source FMU is built without definitions */
+#define FMI_VERSION 2
+#endif
+#define EXPORT __attribute__((visibility("default")))
+
+/* the sizes as values (a model without states compares against 0 without a warning) */
+static const size_t model_nx = MODEL_NX;
+__attribute__((unused)) static const size_t model_nz = MODEL_NZ;
+
+typedef enum { M_INSTANTIATED, M_INIT, M_EVENT, M_CT, M_TERMINATED } mode;
+
+typedef struct inst {
+    model_data d;
+    mode mode;
+    char *name;
+#if FMI_VERSION == 2
+    const fmi2CallbackFunctions *cb;
+#else
+    fmi3InstanceEnvironment env;
+    fmi3LogMessageCallback log;
+#endif
+} inst;
+
+static void say(inst *in, int status, const char *msg)
+{
+#if FMI_VERSION == 2
+    if (in->cb && in->cb->logger)
+        in->cb->logger(in->cb->componentEnvironment, in->name, (fmi2Status)status, "error",
+                       "%s", msg);
+#else
+    if (in->log)
+        in->log(in->env, (fmi3Status)status, "error", msg);
+#endif
+}
+
+/* a call made in a mode that does not allow it */
+static int wrong_mode(inst *in, const char *what)
+{
+    char buf[160];
+    snprintf(buf, sizeof buf, "%s called in mode %d", what, (int)in->mode);
+    say(in, 3, buf);
+    return 3;
+}
+
+static void reset_values(inst *in)
+{
+    for (int i = 0; i < MODEL_NV; i++)
+        in->d.v[i] = model_start[i];
+    in->d.time = 0;
+}
+
+static int get_values(inst *in, const unsigned *vr, size_t n, double *v)
+{
+    model_outputs(&in->d);
+    for (size_t i = 0; i < n; i++) {
+        if (vr[i] >= MODEL_NV) {
+            say(in, 3, "value reference out of range");
+            return 3;
+        }
+        v[i] = in->d.v[vr[i]];
+    }
+    return 0;
+}
+
+static int set_values(inst *in, const unsigned *vr, size_t n, const double *v)
+{
+    for (size_t i = 0; i < n; i++) {
+        if (vr[i] >= MODEL_NV) {
+            say(in, 3, "value reference out of range");
+            return 3;
+        }
+        in->d.v[vr[i]] = v[i];
+    }
+    return 0;
+}
+
+static int derivatives(inst *in, double *dx, size_t n)
+{
+    if (in->mode != M_CT && in->mode != M_EVENT)
+        return wrong_mode(in, "GetDerivatives");
+#ifdef FMU_BAD_ERROR_AT
+    if (in->d.time >= FMU_BAD_ERROR_AT) {
+        say(in, 3, "injected failure of the derivative call");
+        return 3;
+    }
+#endif
+    model_derivatives(&in->d);
+    for (size_t i = 0; i < n && i < model_nx; i++)
+        dx[i] = in->d.v[model_der[i]];
+#ifdef FMU_BAD_NAN_AT
+    if (in->d.time >= FMU_BAD_NAN_AT)
+        for (size_t i = 0; i < n; i++)
+            dx[i] = NAN;
+#endif
+    return 0;
+}
+
+static int update(inst *in, int *again, int *x_changed, int *has_next, double *next)
+{
+    *again = 0, *x_changed = 0, *has_next = 0, *next = 0;
+    if (in->mode != M_EVENT)
+        return wrong_mode(in, "UpdateDiscreteStates");
+    *x_changed = 0, *has_next = 0, *next = 0;
+    *again = model_event(&in->d, x_changed, has_next, next);
+#ifdef FMU_BAD_LOOP
+    *again = in->d.time > 0; /* every event after the start */
+#endif
+#ifdef FMU_BAD_NEXT_PAST
+    if (in->d.time > 0)      /* from the first event on: the next one "now" */
+        *has_next = 1, *next = in->d.time;
+#endif
+    return 0;
+}
+
+/* ------------------------------------------------------------------ FMI 2.0 */
+#if FMI_VERSION == 2
+
+EXPORT const char *fmi2GetTypesPlatform(void) { return "default"; }
+EXPORT const char *fmi2GetVersion(void) { return "2.0"; }
+
+EXPORT fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid,
+                                     fmi2String resources, const fmi2CallbackFunctions *cb,
+                                     fmi2Boolean visible, fmi2Boolean logging)
+{
+    (void)resources, (void)visible, (void)logging;
+    inst tmp = {.cb = cb, .name = (char *)name};
+    if (type != fmi2ModelExchange || !guid || strcmp(guid, MODEL_TOKEN) != 0) {
+        say(&tmp, 3, "wrong GUID or not Model Exchange");
+        return NULL;
+    }
+    inst *in = calloc(1, sizeof *in);
+    if (!in)
+        return NULL;
+    in->cb = cb, in->name = strdup(name ? name : "");
+    reset_values(in);
+    return in;
+}
+
+EXPORT void fmi2FreeInstance(fmi2Component c)
+{
+    inst *in = c;
+    if (in)
+        free(in->name);
+    free(in);
+}
+
+EXPORT fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean tolDefined, fmi2Real tol,
+                                      fmi2Real start, fmi2Boolean stopDefined, fmi2Real stop)
+{
+    inst *in = c;
+    (void)tolDefined, (void)tol, (void)stopDefined, (void)stop;
+    in->d.time = start;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2EnterInitializationMode(fmi2Component c)
+{
+    inst *in = c;
+    if (in->mode != M_INSTANTIATED)
+        return (fmi2Status)wrong_mode(in, "EnterInitializationMode");
+    in->mode = M_INIT;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2ExitInitializationMode(fmi2Component c)
+{
+    inst *in = c;
+    if (in->mode != M_INIT)
+        return (fmi2Status)wrong_mode(in, "ExitInitializationMode");
+    in->mode = M_EVENT;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2Terminate(fmi2Component c)
+{
+    ((inst *)c)->mode = M_TERMINATED;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2Reset(fmi2Component c)
+{
+    inst *in = c;
+    in->mode = M_INSTANTIATED;
+    reset_values(in);
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                              fmi2Real v[])
+{
+    return (fmi2Status)get_values(c, vr, n, v);
+}
+
+EXPORT fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                              const fmi2Real v[])
+{
+    return (fmi2Status)set_values(c, vr, n, v);
+}
+
+EXPORT fmi2Status fmi2EnterEventMode(fmi2Component c)
+{
+    inst *in = c;
+    if (in->mode != M_CT)
+        return (fmi2Status)wrong_mode(in, "EnterEventMode");
+    in->mode = M_EVENT;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *e)
+{
+    int again, xch, has;
+    double next;
+    int s = update(c, &again, &xch, &has, &next);
+    e->newDiscreteStatesNeeded = again, e->terminateSimulation = 0;
+    e->nominalsOfContinuousStatesChanged = 0, e->valuesOfContinuousStatesChanged = xch;
+    e->nextEventTimeDefined = has, e->nextEventTime = next;
+    return (fmi2Status)s;
+}
+
+EXPORT fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
+{
+    inst *in = c;
+    if (in->mode != M_EVENT)
+        return (fmi2Status)wrong_mode(in, "EnterContinuousTimeMode");
+    in->mode = M_CT;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet,
+                                              fmi2Boolean *enter, fmi2Boolean *term)
+{
+    (void)c, (void)noSet;
+    *enter = 0, *term = 0;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2SetTime(fmi2Component c, fmi2Real t)
+{
+    ((inst *)c)->d.time = t;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t n)
+{
+    inst *in = c;
+    for (size_t i = 0; i < n && i < model_nx; i++)
+        in->d.v[model_state[i]] = x[i];
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t n)
+{
+    inst *in = c;
+    for (size_t i = 0; i < n && i < model_nx; i++)
+        x[i] = in->d.v[model_state[i]];
+    return fmi2OK;
+}
+
+EXPORT fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t n)
+{
+    return (fmi2Status)derivatives(c, dx, n);
+}
+
+#ifndef FMU_BAD_NO_INDICATORS
+EXPORT fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t n)
+{
+    double zz[MODEL_NZ + 1];
+    model_indicators(&((inst *)c)->d, zz);
+    for (size_t i = 0; i < n && i < model_nz; i++)
+        z[i] = zz[i];
+    return fmi2OK;
+}
+#endif
+
+#else
+/* ------------------------------------------------------------------ FMI 3.0 */
+
+EXPORT const char *fmi3GetVersion(void) { return "3.0"; }
+
+EXPORT fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
+                                                 fmi3String resources, fmi3Boolean visible,
+                                                 fmi3Boolean logging,
+                                                 fmi3InstanceEnvironment env,
+                                                 fmi3LogMessageCallback log)
+{
+    (void)resources, (void)visible, (void)logging;
+    inst tmp = {.env = env, .log = log};
+    if (!token || strcmp(token, MODEL_TOKEN) != 0) {
+        say(&tmp, 3, "wrong instantiationToken");
+        return NULL;
+    }
+    inst *in = calloc(1, sizeof *in);
+    if (!in)
+        return NULL;
+    in->env = env, in->log = log, in->name = strdup(name ? name : "");
+    reset_values(in);
+    return in;
+}
+
+EXPORT void fmi3FreeInstance(fmi3Instance c)
+{
+    inst *in = c;
+    if (in)
+        free(in->name);
+    free(in);
+}
+
+EXPORT fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean tolDefined,
+                                              fmi3Float64 tol, fmi3Float64 start,
+                                              fmi3Boolean stopDefined, fmi3Float64 stop)
+{
+    inst *in = c;
+    (void)tolDefined, (void)tol, (void)stopDefined, (void)stop;
+    if (in->mode != M_INSTANTIATED)
+        return (fmi3Status)wrong_mode(in, "EnterInitializationMode");
+    in->d.time = start, in->mode = M_INIT;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3ExitInitializationMode(fmi3Instance c)
+{
+    inst *in = c;
+    if (in->mode != M_INIT)
+        return (fmi3Status)wrong_mode(in, "ExitInitializationMode");
+    in->mode = M_EVENT;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3EnterEventMode(fmi3Instance c)
+{
+    inst *in = c;
+    if (in->mode != M_CT)
+        return (fmi3Status)wrong_mode(in, "EnterEventMode");
+    in->mode = M_EVENT;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3Terminate(fmi3Instance c)
+{
+    ((inst *)c)->mode = M_TERMINATED;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3Reset(fmi3Instance c)
+{
+    inst *in = c;
+    in->mode = M_INSTANTIATED;
+    reset_values(in);
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                                 fmi3Float64 v[], size_t nv)
+{
+    (void)nv;
+    return (fmi3Status)get_values(c, vr, n, v);
+}
+
+EXPORT fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                                 const fmi3Float64 v[], size_t nv)
+{
+    (void)nv;
+    return (fmi3Status)set_values(c, vr, n, v);
+}
+
+EXPORT fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *again,
+                                           fmi3Boolean *term, fmi3Boolean *nominals,
+                                           fmi3Boolean *xch, fmi3Boolean *has,
+                                           fmi3Float64 *next)
+{
+    int a, x, h;
+    double n;
+    int s = update(c, &a, &x, &h, &n);
+    *again = a, *term = 0, *nominals = 0, *xch = x, *has = h, *next = n;
+    return (fmi3Status)s;
+}
+
+EXPORT fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c)
+{
+    inst *in = c;
+    if (in->mode != M_EVENT)
+        return (fmi3Status)wrong_mode(in, "EnterContinuousTimeMode");
+    in->mode = M_CT;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSet,
+                                              fmi3Boolean *enter, fmi3Boolean *term)
+{
+    (void)c, (void)noSet;
+    *enter = 0, *term = 0;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 t)
+{
+    ((inst *)c)->d.time = t;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64 x[], size_t n)
+{
+    inst *in = c;
+    for (size_t i = 0; i < n && i < model_nx; i++)
+        in->d.v[model_state[i]] = x[i];
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_t n)
+{
+    inst *in = c;
+    for (size_t i = 0; i < n && i < model_nx; i++)
+        x[i] = in->d.v[model_state[i]];
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], size_t n)
+{
+    return (fmi3Status)derivatives(c, dx, n);
+}
+
+#ifndef FMU_BAD_NO_INDICATORS
+EXPORT fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 z[], size_t n)
+{
+    double zz[MODEL_NZ + 1];
+    model_indicators(&((inst *)c)->d, zz);
+    for (size_t i = 0; i < n && i < model_nz; i++)
+        z[i] = zz[i];
+    return fmi3OK;
+}
+#endif
+
+EXPORT fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n)
+{
+    (void)c;
+    *n = MODEL_NZ;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n)
+{
+    (void)c;
+    *n = MODEL_NX;
+    return fmi3OK;
+}
+
+#endif

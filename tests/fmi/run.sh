@@ -1,0 +1,146 @@
+#!/bin/sh
+# run.sh - the FMU suite (make test-fmi): the test FMUs of tests/fmi/models/ as FMI 2.0 and
+# 3.0 in the scenes of tests/fmi/scenes/ (@V@: the version, @FMUS@: where they were built),
+# their traces against closed forms (check.py), their hashes against the same equations in
+# the scene language and against each other, `modrt info` of an FMU, and the bad-FMU corpus
+# (bad.sh). Ends with "N passed, N failed".
+#
+# Usage: sh tests/fmi/run.sh BUILD_DIR FMI_DIR   (e.g. build/host build/host/fmi)
+set -u
+B=$1 T=$2
+M=$B/modrt
+FMUS=$(cd "$T/fmu" && pwd)
+W=$T/run
+rm -rf "$W" && mkdir -p "$W"
+export MODRT_FMU_CACHE="$T/cache"
+pass=0 fail=0
+ok() { pass=$((pass + 1)); echo "ok: $*"; }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+hash_of() { sed -n 's/^hash: //p' "$1"; }
+
+# a scene of tests/fmi/scenes for version $2, run with its CSV; its summary in $W/$1$2.out
+run() {
+    sed "s#@V@#$2#g; s#@FMUS@#$FMUS#g" "tests/fmi/scenes/$1.scn" > "$W/$1$2.scn"
+    "$M" run "$W/$1$2.scn" --csv "$W/$1$2.csv" > "$W/$1$2.out" 2>&1
+    rc=$?
+    if [ $rc -eq 0 ] && grep -q '^status: ok' "$W/$1$2.out"; then
+        ok "$1 (FMI $2.0) runs, status ok, $(grep '^fmu\.' "$W/$1$2.out" | head -1)"
+    else
+        bad "$1 (FMI $2.0) exit $rc:"; cat "$W/$1$2.out"
+    fi
+}
+
+closed() { # kind scene version tolerance
+    if python3 tests/fmi/check.py "$1" "$W/$2$3.csv" "$4"; then ok "$2 (FMI $3.0) closed form"
+    else bad "$2 (FMI $3.0) closed form"; fi
+}
+
+same_hash() { # what, file a, file b
+    ha=$(hash_of "$2") hb=$(hash_of "$3")
+    if [ -n "$ha" ] && [ "$ha" = "$hb" ]; then ok "$1: same hash $ha"
+    else bad "$1: hashes differ ($ha, $hb)"; fi
+}
+
+for v in 2 3; do
+    run ball_fmu $v && closed ball ball_fmu $v 1e-9
+    run ball_h2_fmu $v && closed ball_h2 ball_h2_fmu $v 1e-9
+    run stair_fmu $v && closed stair stair_fmu $v 0
+    run osc_fmu $v && closed osc osc_fmu $v 1e-7
+done
+
+# source FMUs: no binary, sources/ built on the host (buildDescription.xml for 3.0, the
+# <SourceFiles> of 2.0): the same bits as the binary FMUs
+for v in 2 3; do
+    python3 tests/fmi/mkfmu.py --cc "${CC:-cc}" --version $v --model bouncing --source-only \
+        --out "$W/src_bouncing$v.fmu" --cflags "-std=c11 -O2 -fPIC -shared -Itools/fmi -Itests/fmi"
+    sed "s#@V@#$v#g; s#@FMUS@/bouncing$v.fmu#$(cd "$W" && pwd)/src_bouncing$v.fmu#" \
+        tests/fmi/scenes/ball_fmu.scn > "$W/src_ball$v.scn"
+    "$M" run "$W/src_ball$v.scn" > "$W/src_ball$v.out" 2>&1
+    same_hash "ball: FMI $v.0 source FMU built here = binary FMU" "$W/src_ball$v.out" "$W/ball_fmu$v.out"
+done
+
+# the same equations as defines of the scene language: the same bits
+for s in ball osc; do
+    "$M" run "tests/fmi/scenes/${s}_scn.scn" > "$W/${s}_scn.out" 2>&1
+    same_hash "$s: FMI 2.0 FMU = scene-language define" "$W/${s}_fmu2.out" "$W/${s}_scn.out"
+    same_hash "$s: FMI 3.0 FMU = FMI 2.0 FMU" "$W/${s}_fmu3.out" "$W/${s}_fmu2.out"
+done
+same_hash "stair: FMI 3.0 FMU = FMI 2.0 FMU" "$W/stair_fmu3.out" "$W/stair_fmu2.out"
+
+# events: one per impact before 2 s (the runtime holds a root a handler sent back on its
+# side, rt/step.c: the lift-off right after an impact is no crossing, docs/fmi.md)
+n=$(sed -n 's/^events: //p' "$W/ball_fmu2.out")
+t1=$(python3 -c 'import math
+g, e = 9.81, 0.7
+t, v, n = math.sqrt(2 / g), math.sqrt(2 * g) * e, 0
+while t < 2: n, t, v = n + 1, t + 2 * v / g, v * e
+print(n)')
+if [ "$n" = "$t1" ]; then ok "ball: $n events (the impacts before 2 s)"
+else bad "ball: $n events, expected $t1"; fi
+
+# a tunable parameter changed before the run (--set) takes effect: the feed-through gain
+"$M" run "$W/osc_fmu2.scn" --set Ft.gain=3 --csv "$W/gain.csv" > "$W/gain.out" 2>&1
+if python3 -c 'import csv,sys
+r = list(csv.reader(open(sys.argv[1])))[1:]
+sys.exit(0 if all(float(x[2]) == 3 * float(x[1]) + 0.5 for x in r) else 1)' "$W/gain.csv"
+then ok "--set Ft.gain=3: y = 3 u1 + 0.5 on every row"; else bad "--set Ft.gain=3"; fi
+
+# modrt info of an FMU file: causality, unit and start of every variable
+"$M" info "$FMUS/bouncing3.fmu" > "$W/info.out" 2>&1
+if grep -q '^g  *parameter  *fixed  *Float64  *4  *m/s2  *9.81$' "$W/info.out" &&
+   grep -q '^states: 2$' "$W/info.out" && grep -q '^event_indicators: 1$' "$W/info.out"; then
+    ok "modrt info bouncing3.fmu lists g (parameter, m/s2, 9.81), 2 states, 1 indicator"
+else bad "modrt info bouncing3.fmu:"; cat "$W/info.out"; fi
+
+# scenec writes C for targets: an FMU system is refused at its load statement
+"$B/scenec" --check "$W/ball_fmu2.scn" > "$W/scenec.out" 2>&1
+if [ $? -eq 1 ] && grep -q 'error: FMU systems run on the host only near' "$W/scenec.out"; then
+    ok "scenec refuses an FMU system in one line"; else bad "scenec:"; cat "$W/scenec.out"; fi
+
+# export: library scenes as FMI 3.0 Co-Simulation FMUs, driven by a foreign master
+# (master.c): the trace hash of one-tick steps = modrt run's; 10-tick steps and a restored
+# FMU state give the same bits; steps off the tick grid refused; the description keeps the
+# schema's rules (check_md3.py); the binary built again from the FMU's own sources (its
+# buildDescription.xml) gives the same hash
+export_fmu() { # scene, extra modrt run options
+    s=$1
+    shift
+    rm -rf "$W/x_$s" && mkdir -p "$W/x_$s"
+    if ! "$B/scenec" --fmu "$W/$s.fmu" "models/scenes/$s.scn" 2> "$W/x_$s.err"; then
+        bad "scenec --fmu $s: $(cat "$W/x_$s.err")"; return 1; fi
+    (cd "$W/x_$s" && unzip -q "../$s.fmu")
+    if python3 tests/fmi/check_md3.py "$W/x_$s" > "$W/x_$s.md"; then ok "$s.fmu: $(cat "$W/x_$s.md")"
+    else bad "$s.fmu:"; cat "$W/x_$s.md"; fi
+    dt=$(sed -n 's/.*stepSize="\([^"]*\)".*/\1/p' "$W/x_$s/modelDescription.xml")
+    te=$(sed -n 's/.*stopTime="\([^"]*\)".*/\1/p' "$W/x_$s/modelDescription.xml")
+    "$M" run "$s" "$@" > "$W/x_$s.run" 2>&1
+    "$M" run "$s" "$@" --csv "$W/x_$s.csv" > /dev/null 2>&1
+    env MASTER_DT="$dt" MASTER_END="$te" ${PI_CSV:+MASTER_PI_CSV="$PI_CSV"} "$T/master" "$W/x_$s" \
+        > "$W/x_$s.master" 2>&1
+    grep -E '^(ok|FAIL)' "$W/x_$s.master" | while read -r l; do echo "$l ($s)"; done
+    p=$(grep -c '^ok' "$W/x_$s.master") f=$(grep -c '^FAIL' "$W/x_$s.master")
+    pass=$((pass + p)) fail=$((fail + f))
+    same_hash "$s: the exported FMU under a foreign master = modrt run" "$W/x_$s.master" "$W/x_$s.run"
+    python3 tests/fmi/build_sources.py "$W/x_$s" "$W/x_$s/binaries/x86_64-linux/$s.so" &&
+        MASTER_DT=$dt MASTER_END=$te "$T/master" "$W/x_$s" > "$W/x_$s.src" 2>&1
+    same_hash "$s: the FMU's binary built from its sources = modrt run" "$W/x_$s.src" "$W/x_$s.run"
+}
+for s in pi_loop oscillator bouncing_ball; do export_fmu $s; done
+"$M" run pi_loop --csv "$W/pi_loop_ref.csv" > /dev/null 2>&1
+PI_CSV=$W/pi_loop_ref.csv export_fmu pi_link --link none
+
+# the schema checker can fail: a description without its unit definitions
+mkdir -p "$W/x_broken" && cp -r "$W/x_pi_loop/." "$W/x_broken/"
+sed -i '/UnitDefinitions\|<Unit /d' "$W/x_broken/modelDescription.xml"
+if python3 tests/fmi/check_md3.py "$W/x_broken" | grep -q "not in UnitDefinitions"; then
+    ok "check_md3 refuses a unit missing from UnitDefinitions"
+else bad "check_md3 accepted a broken description"; fi
+
+# the broken FMUs: each a one-line error or a counted fault
+out=$(sh tests/fmi/bad.sh "$B" "$T")
+echo "$out"
+p=$(echo "$out" | grep -c '^ok:') f=$(echo "$out" | grep -c '^FAIL:')
+pass=$((pass + p)) fail=$((fail + f))
+
+echo "test-fmi: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

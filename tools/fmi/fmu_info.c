@@ -1,0 +1,105 @@
+/* fmu_info.c - what modrt prints about FMUs: `modrt info FILE.fmu` (the model, how it maps
+ * onto a block kind, every variable with causality, variability, type, unit and start) and
+ * the FMU lines of a run summary (faults, the first one with its call, status, time and
+ * the FMU's logged message; event iterations). */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmu_int.h"
+
+void fmu_summary(FILE *f)
+{
+    for (int i = 0; i < fmu_ninstances; i++) {
+        const fmu_inst *in = fmu_instances[i];
+        fprintf(f, "fmu.%s: %lu faults, %lu warnings, %lu events, event_iter_max %u\n",
+                in->block, in->faults, in->warnings, in->events, (unsigned)in->iter_max);
+        if (in->faults)
+            fprintf(f, "fmu.%s.first_fault: t = %.17g: %s\n", in->block, in->fault_t, in->fault);
+    }
+}
+
+static int read_all(const char *path, char **buf, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    fseek(f, 0, SEEK_END);
+    long len = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    *buf = len >= 0 && (unsigned long)len <= FMU_MD_MAX_BYTES ? malloc((size_t)len + 1) : NULL;
+    *n = *buf ? fread(*buf, 1, (size_t)len, f) : 0;
+    fclose(f);
+    return *buf ? 0 : -1;
+}
+
+static void variables(FILE *f, const fmu_md *md)
+{
+    fprintf(f, "\n%-24s %-20s %-12s %-8s %-6s %-10s %s\n", "variable", "causality",
+            "variability", "type", "vr", "unit", "start");
+    for (uint32_t i = 0; i < md->nv; i++) {
+        const fmu_var *v = &md->v[i];
+        char start[40] = "";
+        for (int prec = 1; v->has_start && prec <= 17; prec++) { /* shortest round trip */
+            snprintf(start, sizeof start, "%.*g", prec, v->start);
+            if (strtod(start, NULL) == v->start)
+                break;
+        }
+        fprintf(f, "%-24s %-20s %-12s %-8s %-6u %-10s %s", v->name,
+                fmu_md_causality_name(v->causality), fmu_md_variability_name(v->variability),
+                v->type ? v->type : "?", (unsigned)v->vr, v->unit ? v->unit : "-", start);
+        char *scene = fmu_scene_name(v->name);
+        if (scene && strcmp(scene, v->name) != 0)
+            fprintf(f, "  (scene name %s)", scene);
+        free(scene);
+        if (v->desc && *v->desc)
+            fprintf(f, "  \"%s\"", v->desc);
+        fputc('\n', f);
+    }
+}
+
+int fmu_info(FILE *f, const char *path)
+{
+    char err[FMU_ERR_LEN], *xml = NULL;
+    size_t n = 0;
+    fmu_md md;
+    char *dir = fmu_unpack(path, err, sizeof err);
+    if (!dir) {
+        fprintf(stderr, "modrt: %s\n", err);
+        return -1;
+    }
+    size_t len = strlen(dir) + 32;
+    char *p = malloc(len);
+    snprintf(p, len, "%s/modelDescription.xml", dir);
+    int rc = read_all(p, &xml, &n);
+    free(p);
+    free(dir);
+    if (rc) {
+        fprintf(stderr, "modrt: %s: cannot read its modelDescription.xml\n", path);
+        return -1;
+    }
+    rc = fmu_md_parse(xml, n, &md, err, sizeof err);
+    free(xml);
+    if (rc) {
+        fprintf(stderr, "modrt: %s: %s\n", path, err);
+        fmu_md_free(&md);
+        return -1;
+    }
+    uint32_t nc[FMU_C_COUNT] = {0};
+    for (uint32_t i = 0; i < md.nv; i++)
+        nc[md.v[i].causality]++;
+    fprintf(f, "fmu: %s\nmodel: %s\nfmi_version: %s\ngeneration_tool: %s\n", path,
+            md.model_name, md.fmi_version, md.tool ? md.tool : "-");
+    fprintf(f, "model_exchange: %s\nco_simulation: %s\n", md.me_id ? md.me_id : "no",
+            md.cs_id ? md.cs_id : "no");
+    fprintf(f, "inputs: %u\noutputs: %u\nparameters: %u\nstates: %u\nevent_indicators: %u\n",
+            (unsigned)nc[FMU_C_INPUT], (unsigned)nc[FMU_C_OUTPUT], (unsigned)nc[FMU_C_PARAMETER],
+            (unsigned)md.nder, (unsigned)md.n_indicators);
+    if (md.needs_step_done)
+        fprintf(f, "note: the FMU asks for CompletedIntegratorStep after every step; modrt "
+                   "does not call it (docs/fmi.md)\n");
+    variables(f, &md);
+    fmu_md_free(&md);
+    return 0;
+}
