@@ -226,11 +226,13 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
 static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
 {
     uint32_t ratio = sc->sets[s].ratio;
+    uint64_t r0 = ctx->stats.rhs_evals[s];
     /* its sensitivity to the inputs it extrapolates, when due (here, not in the tick) */
     if (ctx->plan.set_flags[s] & RTI_SET_XPRED)
         rti_xset_gain(sc, ctx, s, (real_t)ctx->state.set_tick[s] * sc->dt,
                       sc->dt * (real_t)ratio);
     rti_tev_step(sc, ctx, s, ctx->state.set_tick[s], ratio); /* parts at time events */
+    rti_step_witness(ctx, s, r0);
     real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
     rti_outputs(sc, ctx, (rti_at){te, s, RTI_IN_STEP});
     /* its recorded multibody signals (a residual): here, not in a tick */

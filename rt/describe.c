@@ -13,6 +13,38 @@ uint16_t rt_set_nx(const rt_sim *sim, uint8_t set)
     return (uint16_t)(sim->plan.set_x[set + 1] - sim->plan.set_x[set]);
 }
 
+/* inputs of set s whose extrapolation the coupling monitor checks (rt/xset.c) */
+static uint32_t checked_inputs(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    uint32_t m = 0;
+#if RT_MAX_XPRED > 0
+    for (uint16_t k = 0; k < sim->plan.nxpred; k++)
+        m += sc->blocks[sim->plan.xpred_blk[k]].set == s;
+#else
+    (void)sc, (void)sim, (void)s;
+#endif
+    return m;
+}
+
+/* the method's bound times the method steps one step of the set can take: the step
+   itself and, with roots, every located event's re-steps and the rest of the step after
+   it (rt/step.c), with one probe per handled event; each part at a known time event
+   again (rt/tev.c); and the coupling monitor's two right-hand sides per sensitivity,
+   measured at most twice a step per checked input (rt/xset.c) */
+rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    rt_step_work w = rt_step_bound(sc, s, rt_set_nx(sim, s));
+    uint32_t steps = 1, probes = 0;
+    uint32_t parts = (sim->plan.set_flags[s] & RTI_SET_TEV) ? RT_TEV_PARTS_MAX : 1;
+    if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
+        steps += RT_EVENTS_PER_STEP_MAX * (RT_EVENT_ITER_MAX + 1u);
+        probes = RT_EVENTS_PER_STEP_MAX + 1u;
+    }
+    w.rhs = parts * (steps * w.rhs + probes) + 4u * checked_inputs(sc, sim, s);
+    w.lu = parts * steps * w.lu;
+    return w;
+}
+
 int rt_set_is_source(const rt_sim *sim, uint8_t set)
 {
     return sim->plan.set_xout[set] != 0;

@@ -299,6 +299,9 @@ typedef struct rt_istats {
     real_t last_residual;     /* residual norm after the last iteration */
     uint32_t rhs_step_max;    /* most right-hand sides one step took (an event's re-steps
                                  each count as one); never above rt_step_bound's */
+    uint32_t rhs_set_step_max; /* most one whole step of the set took in its tick: every
+                                 part, re-step, probe and coupling check; never above
+                                 rt_set_step_bound's */
 } rt_istats;
 
 /* Per-set settings of an implicit method (rt_set; zeros select the defaults). */
@@ -917,6 +920,11 @@ uint8_t rt_set_at(const rt_sim *sim, uint8_t i);
 uint16_t rt_set_nx(const rt_sim *sim, uint8_t set);
 /* 1 if other sets read outputs of this set (it keeps a history and a monitor). */
 int rt_set_is_source(const rt_sim *sim, uint8_t set);
+/* the most work one whole step of set s can take in its tick (or context): the method's
+   bound (rt_step_bound) for every method step that event location and the parts at known
+   time events may need, plus the probes and the coupling monitor's evaluations; the
+   witness is rt_istats.rhs_set_step_max */
+rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s);
 /* Base ticks to the end time. */
 uint64_t rt_tick_count(const rt_sim *sim);
 /* Output j of block b now (as the last tick or refresh left it). */

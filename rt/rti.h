@@ -273,6 +273,9 @@ int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
 /* ---- set steps and events (step.c) ---- */
 /* Advances set s from t by its step h, handling state events; never stops half-way. */
 void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
+/* records the right-hand sides set s's whole step took since its count was r0
+   (rt_istats.rhs_set_step_max, the witness of rt_set_step_bound) */
+void rti_step_witness(rt_sim *sim, uint8_t s, uint64_t r0);
 
 /* ---- graph search (scc.c) ---- */
 /* Successor enumeration: returns the next successor of v after cursor (updating it),

@@ -365,12 +365,14 @@ rt_status rt_tick(const rt_scene *sc, rt_sim *sim)
         if (ratio > 1)
             copy_outputs(sim, s, sim->state.y, sim->work.y_held);
 #endif
+        uint64_t r0 = sim->stats.rhs_evals[s];
         if (sim->plan.set_flags[s] & RTI_SET_XPRED)
             rti_xset_predict(sc, sim, s, t, sc->dt * (real_t)ratio);
         if (!(sim->plan.set_flags[s] & RTI_SET_STATIC)) /* ending parts at time events */
             rti_tev_step(sc, sim, s, sim->state.tick, ratio);
         else /* nothing to integrate; a parameter change is taken (renews_later) */
             sim->state.imp_stale[s] = 0;
+        rti_step_witness(sim, s, r0);
         sim->state.set_tick[s] = sim->state.tick + ratio;
         if (sim->plan.set_xout[s]) {
             real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;

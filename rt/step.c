@@ -424,6 +424,13 @@ static int nonfinite_block(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     return -1;
 }
 
+void rti_step_witness(rt_sim *sim, uint8_t s, uint64_t r0)
+{
+    uint64_t d = sim->stats.rhs_evals[s] - r0;
+    if (d > sim->stats.istats[s].rhs_set_step_max)
+        sim->stats.istats[s].rhs_set_step_max = (uint32_t)d;
+}
+
 void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);

@@ -173,7 +173,7 @@ class Suite:
         self.table.append(line)
         print(line)
         for k, v in summ.items():  # every step's work within the printed worst case
-            if k.startswith("rhs_step_max."):
+            if k.startswith("rhs_step_max.") or k.startswith("rhs_set_step_max."):
                 most, bound = int(v.split()[0]), int(v.split("bound ")[1].rstrip(")"))
                 self.check(most <= bound, "%s %s %s: a step took %d right-hand sides, "
                            "bound %d" % (case, method, step, most, bound))

@@ -365,6 +365,14 @@ static void scene_schedule(FILE *f, const rt_scene *sc, const rt_sim *s)
                 fprintf(f, " %s", sc->sets[rt_set_at(s, i)].name);
         fputc('\n', f);
     }
+    /* a tick's worst case: the method's bound for every re-step of event location and
+       every part at a known time event, with the probes and coupling checks */
+    for (uint8_t i = 0; i < sc->nsets; i++) {
+        rt_step_work w = rt_set_step_bound(sc, s, i);
+        fprintf(f, "  %s: a whole step at most %u right-hand sides, %u factorizations "
+                   "(events, time-event parts, coupling checks)\n",
+                sc->sets[i].name, (unsigned)w.rhs, (unsigned)w.lu);
+    }
     for (uint16_t c = 0; c < sc->nconns; c++) {
         const rt_conn *cn = &sc->conns[c];
         rt_interp how;

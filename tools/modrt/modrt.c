@@ -152,6 +152,10 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
                 (unsigned)s->stats.istats[k].rhs_step_max,
                 (unsigned)rt_step_bound(sc, k, (uint16_t)(s->plan.set_x[k + 1] -
                                                           s->plan.set_x[k])).rhs);
+    for (uint8_t k = 0; k < sc->nsets; k++) /* a whole step: events, parts, couplings */
+        fprintf(f, "rhs_set_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
+                (unsigned)s->stats.istats[k].rhs_set_step_max,
+                (unsigned)rt_set_step_bound(sc, s, k).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) {
         const rt_implicit_cfg *c = &sc->sets[k].implicit;
         fprintf(f, "err_max.%s: %g (accuracy %g", sc->sets[k].name,
