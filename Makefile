@@ -40,8 +40,9 @@ ifeq ($(FAULT),1)
 CDEFS    += -DRT_FAULT_INJECT=1
 endif
 ifeq ($(SAN),1)
-COPT     := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
-LDSAN    := -fsanitize=address,undefined
+COPT     := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow \
+            -fno-sanitize-recover=all
+LDSAN    := -fsanitize=address,undefined,float-cast-overflow
 endif
 CFLAGS_ALL = $(CSTD) $(COPT) $(CINC) $(CDEFS) -MMD -MP
 # rt/ and models/ are freestanding: no libc, no libm, no builtins that call them; each
@@ -160,6 +161,8 @@ test-unit:
 	$(MAKE) --no-print-directory -j$(JOBS) unit
 test-san:
 	$(MAKE) --no-print-directory -j$(JOBS) SAN=1 unit
+	$(MAKE) --no-print-directory -j$(JOBS) SAN=1 build/host-san/modrt
+	sh tests/casts.sh build/host-san/modrt
 test-float:
 	$(MAKE) --no-print-directory -j$(JOBS) REAL=float unit
 # fault injection (tests/faults/test_faults.c): a build with the hooks of rti.h
@@ -172,6 +175,7 @@ test-faults:
 	$(MAKE) --no-print-directory -j$(JOBS) FAULT=1 SAN=1 faults
 test-cli:
 	$(MAKE) --no-print-directory -j$(JOBS) all
+	sh tests/make_again.sh "$(MAKE)" $(O)
 	sh tests/cli.sh $(O)
 	sh tests/readme.sh
 	python3 tests/scenec/limits.py $(O)/modrt

@@ -379,6 +379,12 @@ static int cmd_run(void *ctx, int npos, char **pos)
     }
     if (study_apply(&a->study, &sc) != CLI_OK)
         return CLI_USAGE;
+    if (a->realtime && !((double)sc.dt * 1e9 < 9e18)) { /* the clock counts int64_t ns */
+        char v[32];
+        snprintf(v, sizeof v, "%.10g s", (double)sc.dt);
+        return cli_fail("--realtime: the scene's base tick too long for the real-time clock "
+                        "(at most 9e9 s), got", v);
+    }
     rt_status st = rt_init(&sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));

@@ -103,16 +103,39 @@ const char *scn_path(const scn_ctx *c, scn_pos pos)
     return pos.file < c->nfiles ? c->files[pos.file].path : "?";
 }
 
-/* text for a message: printable, at most 40 characters */
+#define NEAR_MAX 40 /* characters of the text a message quotes */
+
+static int printable(char ch) { return ch >= 32 && ch < 127; }
+
+/* text for a message: at most NEAR_MAX characters, a byte that is not printable ASCII
+   written as \xHH (a NUL byte, a tab, a UTF-8 byte: the user sees which one it is) */
 static const char *sanitize(scn_ctx *c, const char *s, size_t n)
 {
-    size_t m = n > 40 ? 40 : n;
-    char *d = scn_alloc(c, m + 4);
-    for (size_t i = 0; i < m; i++)
-        d[i] = (s[i] >= 32 && s[i] < 127) ? s[i] : '?';
-    if (n > m)
+    char *d = scn_alloc(c, NEAR_MAX + 4);
+    size_t i = 0, m = 0;
+    for (; i < n; i++) {
+        size_t w = printable(s[i]) ? 1 : 4;
+        if (m + w > NEAR_MAX)
+            break;
+        if (w == 1)
+            d[m] = s[i];
+        else
+            snprintf(d + m, 5, "\\x%02x", (unsigned)(unsigned char)s[i]);
+        m += w;
+    }
+    if (i < n)
         memcpy(d + m, "...", 3);
     return d;
+}
+
+/* already what sanitize makes of it: printable, within NEAR_MAX (and a "..." it added) */
+static int sanitized(const char *s)
+{
+    size_t n = strlen(s);
+    for (size_t i = 0; i < n; i++)
+        if (!printable(s[i]))
+            return 0;
+    return n <= NEAR_MAX || (n <= NEAR_MAX + 3 && strcmp(s + n - 3, "...") == 0);
 }
 
 const char *scn_near(scn_ctx *c, const scn_tok *t)
@@ -128,7 +151,7 @@ void scn_fail(scn_ctx *c, scn_pos pos, const char *near, const char *what,
     c->err = 1;
     snprintf(c->msg, sizeof c->msg, "%s:%u:%u: error: %s near '%s'; expected %s",
              scn_path(c, pos), (unsigned)pos.line, (unsigned)pos.col, what,
-             sanitize(c, near, strlen(near)), expected);
+             sanitized(near) ? near : sanitize(c, near, strlen(near)), expected);
 }
 
 void scn_fail_tok(scn_ctx *c, const char *what, const char *expected)
@@ -163,7 +186,7 @@ static int add_file(scn_ctx *c, const char *path, const char *real, const char *
                     size_t len)
 {
     scn_file *f = &c->files[c->nfiles];
-    f->path = path, f->real = real, f->text = text, f->len = len;
+    f->path = path, f->real = real, f->text = text, f->len = len, f->generated = 0;
     scn_lexer *l = &c->lx[c->depth];
     l->file = c->nfiles++, l->off = 0, l->line = 1, l->col = 1;
     return 0;
@@ -275,6 +298,7 @@ int scn_push_text(scn_ctx *c, const char *label, const char *text, scn_pos pos)
     }
     c->depth++;
     add_file(c, label, label, text, strlen(text));
+    c->files[c->nfiles - 1].generated = 1;
     scn_next(c);
     return c->err ? -1 : 0;
 }
@@ -397,6 +421,10 @@ static void lex_number(scn_ctx *c, scn_tok *t)
     t->num = strtod(text, NULL);
     if (errno == ERANGE && (t->num > 1 || t->num < -1))
         scn_fail(c, t->pos, text, "number out of range", "a finite double");
+    else if (errno == ERANGE) /* 1e-999 would silently be 0 (or lose its digits) */
+        scn_fail(c, t->pos, text, "number too small: it underflows",
+                 "0, or a magnitude of at least 2.2250738585072014e-308 (the smallest normal "
+                 "double)");
 }
 
 /* "text" with the escapes \" and \\ */
@@ -409,6 +437,11 @@ static void lex_string(scn_ctx *c, scn_tok *t)
         int ch = at(c, 0);
         if (ch < 0 || ch == '\n') {
             scn_fail(c, t->pos, "\"", "unterminated string", "a closing '\"' on the same line");
+            return;
+        }
+        if ((ch < 32 && ch != '\t') || ch == 127) { /* a NUL byte would end it early */
+            scn_fail(c, here(c), sanitize(c, cur(c), 1), "control character in string",
+                     "printable text (a tab is allowed)");
             return;
         }
         adv(c);

@@ -331,6 +331,7 @@ typedef struct scn_file {
     const char *real;           /* resolved path for recursion checks */
     const char *text;
     size_t len;
+    uint8_t generated;          /* 1: text the compiler made (scn_push_text), no file */
 } scn_file;
 
 typedef struct scn_lexer {
