@@ -177,6 +177,7 @@ test-cli:
 	$(MAKE) --no-print-directory -j$(JOBS) all
 	sh tests/make_again.sh "$(MAKE)" $(O)
 	sh tests/cli.sh $(O)
+	sh tests/cli_io.sh $(O)
 	sh tests/readme.sh
 	python3 tests/scenec/limits.py $(O)/modrt
 test-scenec:

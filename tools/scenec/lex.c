@@ -9,6 +9,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* ------------------------------------------------------------------ arena */
 
@@ -161,9 +162,28 @@ void scn_fail_tok(scn_ctx *c, const char *what, const char *expected)
 
 /* ------------------------------------------------------------------ files */
 
-/* reads a whole file into the arena; -1 if it cannot, -2 if it is too large */
-static int read_file(scn_ctx *c, const char *path, const char **text, size_t *len)
+/* what path is when it is not a regular file (opening a FIFO or a terminal to read it
+   would wait for a writer forever), or NULL */
+static const char *not_regular(const char *path)
 {
+    struct stat st;
+    if (stat(path, &st) != 0 || S_ISREG(st.st_mode))
+        return NULL; /* a missing file is reported by fopen, with errno */
+    return S_ISDIR(st.st_mode)    ? "a directory"
+           : S_ISFIFO(st.st_mode) ? "a FIFO"
+           : S_ISCHR(st.st_mode)  ? "a character device"
+           : S_ISBLK(st.st_mode)  ? "a block device"
+           : S_ISSOCK(st.st_mode) ? "a socket"
+                                  : "not a regular file";
+}
+
+/* reads a whole file into the arena; -1 if it cannot (errno), -2 if it is too large, -3
+   if it is not a regular file (*why says what it is) */
+static int read_file(scn_ctx *c, const char *path, const char **text, size_t *len,
+                     const char **why)
+{
+    if ((*why = not_regular(path)) != NULL)
+        return -3;
     FILE *f = fopen(path, "rb");
     if (!f)
         return -1;
@@ -206,11 +226,13 @@ int scn_open_main(scn_ctx *c, const char *path, const char *text, size_t len)
     c->depth = 0;
     if (!text) {
         errno = 0;
-        int r = read_file(c, path, &text, &len);
-        if (r == -1) { /* no position in a file that was never read: the system's reason */
+        const char *why;
+        int r = read_file(c, path, &text, &len, &why);
+        if (r == -1 || r == -3) { /* no position in a file never read: the reason */
             c->err = 1;
             snprintf(c->msg, sizeof c->msg, "%s: error: cannot read the scene file: %s", path,
-                     errno ? strerror(errno) : "read error");
+                     r == -3 ? scn_fmt(c, "%s, not a regular file", why)
+                     : errno ? strerror(errno) : "read error");
             return -1;
         }
         if (r == -2) {
@@ -237,18 +259,17 @@ static const char *beside(scn_ctx *c, const char *includer, const char *name)
     return scn_fmt(c, "%.*s/%s", (int)(slash - includer), includer, name);
 }
 
-/* the first existing file among: beside the includer, then the -I directories */
+/* the first existing file among: beside the includer, then the -I directories (looked
+   at, not opened: opening a FIFO would block) */
 static const char *find_include(scn_ctx *c, const char *name)
 {
     const char *p = beside(c, c->files[c->lx[c->depth].file].path, name);
-    FILE *f;
+    struct stat st;
     for (int i = -1; i < (int)c->nincdirs; i++) {
         if (i >= 0 && name[0] != '/')
             p = scn_fmt(c, "%s/%s", c->incdirs[i], name);
-        if ((f = fopen(p, "rb")) != NULL) {
-            fclose(f);
+        if (stat(p, &st) == 0)
             return p;
-        }
     }
     return NULL;
 }
@@ -275,9 +296,14 @@ int scn_push_include(scn_ctx *c, const char *name, scn_pos pos)
                              c->files[c->lx[d].file].path));
             return -1;
         }
-    const char *text;
+    const char *text, *why;
     size_t len;
-    int r = read_file(c, path, &text, &len);
+    int r = read_file(c, path, &text, &len, &why);
+    if (r == -3) {
+        scn_fail(c, pos, near, scn_fmt(c, "include is %s (%s), not a regular file", why, path),
+                 "a regular file");
+        return -1;
+    }
     if (r < 0) {
         scn_fail(c, pos, near, r == -2 ? "include file too large" : "cannot read include file",
                  r == -2 ? scn_fmt(c, "at most %u bytes", SCN_MAX_SRC) : "a readable file");
