@@ -150,7 +150,8 @@ void scn_fail(scn_ctx *c, scn_pos pos, const char *near, const char *what,
     if (c->err)
         return;
     c->err = 1;
-    snprintf(c->msg, sizeof c->msg, "%s:%u:%u: error: %s near '%s'; expected %s",
+    c->err_pos = pos;
+    snprintf(c->msg, SCN_MSG_LEN, "%s:%u:%u: error: %s near '%s'; expected %s",
              scn_path(c, pos), (unsigned)pos.line, (unsigned)pos.col, what,
              sanitized(near) ? near : sanitize(c, near, strlen(near)), expected);
 }
@@ -158,6 +159,52 @@ void scn_fail(scn_ctx *c, scn_pos pos, const char *near, const char *what,
 void scn_fail_tok(scn_ctx *c, const char *what, const char *expected)
 {
     scn_fail(c, c->tok.pos, scn_near(c, &c->tok), what, expected);
+}
+
+void scn_keep_error(scn_ctx *c)
+{
+    if (!c->err)
+        return;
+    if (c->nkept < SCN_MAX_ERRORS) {
+        memcpy(c->kept[c->nkept], c->msg, SCN_MSG_LEN);
+        c->kept[c->nkept][SCN_MSG_LEN - 1] = 0;
+        c->kept_pos[c->nkept++] = c->err_pos;
+    } else {
+        c->nlost++;
+    }
+    c->err = 0, c->msg[0] = 0;
+}
+
+unsigned scn_error_count(const scn_ctx *c)
+{
+    return (unsigned)c->nkept + c->nlost + (c->err != 0);
+}
+
+static int before(scn_pos a, scn_pos b)
+{
+    return a.file != b.file ? a.file < b.file : a.line != b.line ? a.line < b.line : a.col < b.col;
+}
+
+int scn_report_errors(scn_ctx *c)
+{
+    scn_keep_error(c);
+    if (c->nkept == 0)
+        return 0;
+    uint16_t order[SCN_MAX_ERRORS];
+    for (uint16_t i = 0; i < c->nkept; i++) { /* stable insertion sort by position */
+        uint16_t j = i;
+        for (; j > 0 && before(c->kept_pos[i], c->kept_pos[order[j - 1]]); j--)
+            order[j] = order[j - 1];
+        order[j] = i;
+    }
+    size_t n = 0;
+    for (uint16_t i = 0; i < c->nkept; i++)
+        n += (size_t)snprintf(c->msg + n, sizeof c->msg - n, "%s%s", i ? "\n" : "",
+                              c->kept[order[i]]);
+    if (c->nlost)
+        snprintf(c->msg + n, sizeof c->msg - n, "\n(%u more errors not shown)", (unsigned)c->nlost);
+    c->err = 1;
+    return -1;
 }
 
 /* ------------------------------------------------------------------ files */
@@ -230,7 +277,7 @@ int scn_open_main(scn_ctx *c, const char *path, const char *text, size_t len)
         int r = read_file(c, path, &text, &len, &why);
         if (r == -1 || r == -3) { /* no position in a file never read: the reason */
             c->err = 1;
-            snprintf(c->msg, sizeof c->msg, "%s: error: cannot read the scene file: %s", path,
+            snprintf(c->msg, SCN_MSG_LEN, "%s: error: cannot read the scene file: %s", path,
                      r == -3 ? scn_fmt(c, "%s, not a regular file", why)
                      : errno ? strerror(errno) : "read error");
             return -1;
