@@ -231,12 +231,12 @@ CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 # budget (tests/cross/run.sh, the limit of tools/qemu/insn_count.c): about 4 times what
 # the most expensive target (rv32, soft float) executed when it was set; an image that
 # runs past it stops and names the budget (raise it when many tests are added).
-CROSS_PARTS := 4
+CROSS_PARTS := 10
 CROSS_SCENE_PARTS = $(words $(SCN_FILES))
 CROSS_PART_LIST = $(shell seq 0 $$(($(CROSS_PARTS) - 1)))
 CROSS_SCENE_PART_LIST = $(shell seq 0 $$(($(CROSS_SCENE_PARTS) - 1)))
 CROSS_BUDGET_SOFTFLOAT := 400000000
-CROSS_BUDGET_TESTS := 60000000000
+CROSS_BUDGET_TESTS := 100000000000
 CROSS_BUDGET_SCENES := 120000000000
 CROSS_BUDGET_RT := 1000000000
 cobj = $(patsubst %,build/$(1)$(XSUF)/obj/%.o,$(basename $(2)))
