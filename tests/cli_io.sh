@@ -50,6 +50,15 @@ for sig in INT TERM; do
     [ "$(tail -c 16 "$T/run.mrl" | head -c 4)" = MRTE ] && ok || bad "SIG$sig: replay log without its end marker"
 done
 
+# the real-time clock too (its CSV rows are written by a thread from a ring)
+rm -f "$T/run.csv"
+interrupt INT --csv "$T/run.csv" --realtime; rc=$?
+ticks=$(sed -n 's/^ticks: //p' "$T/sum")
+[ $rc -eq 5 ] && grep -q "^interrupted: SIGINT at tick $ticks of 100000000$" "$T/sum" && ok ||
+    bad "--realtime SIGINT: exit $rc: $(grep -E '^(status|interrupted)' "$T/sum")"
+[ "$(($(wc -l <"$T/run.csv") - 1))" -eq $((ticks + 1)) ] &&
+    awk -F, 'NF != 4 { exit 1 }' "$T/run.csv" && ok || bad "--realtime SIGINT: CSV rows for $ticks ticks"
+
 # ---- write errors: the reason, the summary, the log finished, exit 4
 if [ -w /dev/full ]; then
     "$M" run pi_loop --csv /dev/full --record "$T/full.mrl" >"$T/sum" 2>"$T/err"; rc=$?

@@ -56,15 +56,24 @@ static void record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
    caller still closes its files and prints the summary. The handler only sets a flag. */
 static volatile sig_atomic_t stop_signal;
 static struct sigaction old_int, old_term;
+static struct timespec stop_at; /* when the first signal came */
+
+#define STOP_AGAIN_S 1 /* a signal this long after the first ends the program at once */
 
 static void on_stop(int sig)
 {
-    if (stop_signal) { /* asked twice: the default action, at once */
-        signal(sig, SIG_DFL);
-        raise(sig);
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now); /* async-signal-safe */
+    if (!stop_signal) {
+        stop_at = now, stop_signal = sig;
         return;
     }
-    stop_signal = sig;
+    /* asked again: the default action, at once; but not for the copies of the first that
+       come together (Ctrl-C reaches a wrapper and modrt alike, `timeout` passes it on) */
+    if (now.tv_sec - stop_at.tv_sec > STOP_AGAIN_S) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+    }
 }
 
 int port_stop_signal(void) { return stop_signal; }

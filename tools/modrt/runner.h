@@ -30,8 +30,8 @@ typedef struct port_run_result {
 
 /* Runs an initialised scene to its end; returns the last tick status (RT_E_LINK when the
    exchange ended it, also set as the run's status). SIGINT or SIGTERM during the run ends
-   it after the tick under way and its CSV row (r->signal says which); a second one ends
-   the program at once. */
+   it after the tick under way and its CSV row (r->signal says which); another one a
+   second or more later ends the program at once. */
 rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port_run_result *r);
 /* The signal that asked the run under way to stop, 0: none (the tick loops poll it). */
 int port_stop_signal(void);
