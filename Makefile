@@ -81,7 +81,7 @@ help:
 	@echo "make demo         run the demo scene, write its trace and SVG plots into build/demo/"
 	@echo "make test         every test suite, one line each, ending in 'N passed, N failed'"
 	@echo "                  (V=1: every command and all output; logs in build/test-logs/;"
-	@echo "                  about 25 min on 2 shared cores, README.md 'Tests'). One suite alone:"
+	@echo "                  about an hour on 2 loaded cores, README.md 'Tests'). One suite alone:"
 	@$(foreach t,$(TEST_SUITES),printf '  make %-22s %s\n' '$(t)' '$(or $(TEST_HELP_$(t)),$(TEST_HELP_$(firstword $(subst cross-test-,cross-test ,$(t)))))';)
 	@echo "make hard         the hard-case suite at full size (long), table in build/hard-table.md"
 	@echo "make bench        benchmarks: figures into build/bench/ (make docs: into docs/)"
@@ -227,10 +227,13 @@ CROSS_BG_DEFS = -DRT_SCENE=mdl_scene_pendulum10_actuated -DRT_IMAGE_BG=1 \
                 -DRT_IMAGE_TICKS=$(CROSS_BG_TICKS) -DRT_IMAGE_PERIOD_US=40
 CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 # The unit tests run as several images, and each library scene as an image of its own
-# (tests/cross/tests_main.c, scenes_main.c), so that no one emulated run is long. Each run is bounded by an instruction
-# budget (tests/cross/run.sh, the limit of tools/qemu/insn_count.c): about 4 times what
-# the most expensive target (rv32, soft float) executed when it was set; an image that
-# runs past it stops and names the budget (raise it when many tests are added).
+# (tests/cross/tests_main.c, scenes_main.c), so that no one emulated run is long. Each
+# run is bounded by an instruction budget (tests/cross/run.sh, the limit of
+# tools/qemu/insn_count.c), set from what rv32 (binary64 in software, the most
+# expensive target) executed: softfloat 6.6e7; a quarter of the unit tests at most 4.0e10
+# (a tenth now); pendulum10_actuated_single's whole run about 3.2e10; the timer-paced
+# pi_loop 4e7. An image that runs past its budget stops and names it (raise it when
+# many tests are added).
 CROSS_PARTS := 10
 CROSS_SCENE_PARTS = $(words $(SCN_FILES))
 CROSS_PART_LIST = $(shell seq 0 $$(($(CROSS_PARTS) - 1)))
