@@ -40,8 +40,9 @@ ifeq ($(FAULT),1)
 CDEFS    += -DRT_FAULT_INJECT=1
 endif
 ifeq ($(SAN),1)
-COPT     := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
-LDSAN    := -fsanitize=address,undefined
+COPT     := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow \
+            -fno-sanitize-recover=all
+LDSAN    := -fsanitize=address,undefined,float-cast-overflow
 endif
 CFLAGS_ALL = $(CSTD) $(COPT) $(CINC) $(CDEFS) -MMD -MP
 # rt/ and models/ are freestanding: no libc, no libm, no builtins that call them; each
@@ -85,7 +86,10 @@ help:
 	@echo "                  into $(O)/"
 	@echo "make demo         run the demo scene, write its trace and SVG plots into build/demo/"
 	@echo "make test         every test suite, one line each, ending in 'N passed, N failed'"
-	@echo "                  (V=1: every command and all output; logs in build/test-logs/)"
+	@echo "                  (V=1: every command and all output; logs in build/test-logs/;"
+	@echo "                  52 min on 2 loaded cores, README.md 'Tests'). One suite alone:"
+	@$(foreach t,$(TEST_SUITES),printf '  make %-22s %s\n' '$(t)' '$(or $(TEST_HELP_$(t)),$(TEST_HELP_$(firstword $(subst cross-test-,cross-test ,$(t)))))';)
+	@echo "make hard         the hard-case suite at full size (long), table in build/hard-table.md"
 	@echo "make bench        benchmarks: figures into build/bench/ (make docs: into docs/)"
 	@echo "make speedup      the multirate speedup at equal accuracy from instruction counts"
 	@echo "                  (part of bench; a few minutes; SPEEDUP_JOBS=2)"
@@ -169,12 +173,36 @@ check-freestanding: $(RT_OBJS) $(MODEL_OBJS)
 # TEST_SUITES.
 TEST_SUITES = check-freestanding test-unit test-san test-float test-faults test-cli test-scenec \
                test-fuzz test-fmi $(addprefix cross-test-,$(CROSS_TARGETS))
+# one line each for `make help`
+TEST_HELP_check-freestanding := rt/ and models/ link without libc or libm
+TEST_HELP_test-unit := the unit tests on the host (tests/rt, tests/models, tests/host)
+TEST_HELP_test-san := the unit tests under ASan and UBSan, out-of-range casts (casts.sh)
+TEST_HELP_test-float := the unit tests of the REAL=float build
+TEST_HELP_test-faults := fault injection (tests/faults/, FAULT=1, sanitized)
+TEST_HELP_test-cli := the command line of modrt: cli.sh, cli_io.sh, make_again.sh, limits.py
+TEST_HELP_test-scenec := scene compiler: error corpus, language tests, hashes, effects
+TEST_HELP_test-fuzz := the scene fuzzer for 10 s, inputs up to 64 KB
+TEST_HELP_cross-test := one target under QEMU: arithmetic, unit tests, whole scene runs
+TEST_HELP_test-image := per-scene firmware images (make image) against the host hash
+TEST_HELP_test-link := the controller link end to end (UDP, real time, replay)
+TEST_HELP_test-link-fuzz := the datagram and replay-log fuzzer for 5 s
+TEST_HELP_test-hard := the hard-case suite at CI sizes (make hard: full size)
+TEST_HELP_test-static := cppcheck and clang-tidy on rt/, models/, ports/
+TEST_HELP_test-vehicles := the vehicle models against their references
+TEST_HELP_test-study := the quick configurations (make study: all)
+TEST_HELP_test-fmi := own test FMUs against closed forms, bad FMUs, export round trip
+TEST_HELP_test-serial := the link over a pty: lock-step, real time, replay, line noise
+TEST_HELP_test-serial-qemu := firmware controller and plant image on a Cortex-M in QEMU
+TEST_HELP_test-frame-fuzz := the serial frame decoder fuzzer (COBS, resync) for 5 s
+TEST_HELP_test-sweep := modrt sweep: metrics, draws, errors; local, GNU parallel, Slurm
 test: deps
 	@V=$(V) sh tools/run-suites.sh "$(MAKE) JOBS=$(JOBS) V=$(V)" $(TEST_SUITES)
 test-unit:
 	$(MAKE) --no-print-directory -j$(JOBS) unit
 test-san:
 	$(MAKE) --no-print-directory -j$(JOBS) SAN=1 unit
+	$(MAKE) --no-print-directory -j$(JOBS) SAN=1 build/host-san/modrt
+	sh tests/casts.sh build/host-san/modrt
 test-float:
 	$(MAKE) --no-print-directory -j$(JOBS) REAL=float unit
 # fault injection (tests/faults/test_faults.c): a build with the hooks of rti.h
@@ -187,7 +215,11 @@ test-faults:
 	$(MAKE) --no-print-directory -j$(JOBS) FAULT=1 SAN=1 faults
 test-cli:
 	$(MAKE) --no-print-directory -j$(JOBS) all
+	sh tests/make_again.sh "$(MAKE)" $(O)
 	sh tests/cli.sh $(O)
+	sh tests/cli_io.sh $(O)
+	sh tests/help.sh "$(MAKE)"
+	sh tests/docs_commit.sh
 	sh tests/readme.sh
 	python3 tests/scenec/limits.py $(O)/modrt
 test-scenec:
@@ -214,6 +246,22 @@ CROSS_BG_TICKS := 1000
 CROSS_BG_DEFS = -DRT_SCENE=mdl_scene_pendulum10_actuated -DRT_IMAGE_BG=1 \
                 -DRT_IMAGE_TICKS=$(CROSS_BG_TICKS) -DRT_IMAGE_PERIOD_US=40
 CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
+# The unit tests run as several images, and each library scene as an image of its own
+# (tests/cross/tests_main.c, scenes_main.c), so that no one emulated run is long. Each
+# run is bounded by an instruction budget (tests/cross/run.sh, the limit of
+# tools/qemu/insn_count.c), set from what rv32 (binary64 in software, the most
+# expensive target) executed: softfloat 6.6e7; a quarter of the unit tests at most 4.0e10
+# (a tenth now); pendulum10_actuated_single's whole run about 3.2e10; the timer-paced
+# pi_loop 4e7. An image that runs past its budget stops and names it (raise it when
+# many tests are added).
+CROSS_PARTS := 10
+CROSS_SCENE_PARTS = $(words $(SCN_FILES))
+CROSS_PART_LIST = $(shell seq 0 $$(($(CROSS_PARTS) - 1)))
+CROSS_SCENE_PART_LIST = $(shell seq 0 $$(($(CROSS_SCENE_PARTS) - 1)))
+CROSS_BUDGET_SOFTFLOAT := 400000000
+CROSS_BUDGET_TESTS := 100000000000
+CROSS_BUDGET_SCENES := 120000000000
+CROSS_BUDGET_RT := 1000000000
 cobj = $(patsubst %,build/$(1)$(XSUF)/obj/%.o,$(basename $(2)))
 
 # the host's binary64 results are the reference for every target's arithmetic
@@ -235,7 +283,21 @@ build/$(1)$(XSUF)/obj/%.o: %.S
 build/$(1)$(XSUF)/tests.elf: $$(call cobj,$(1),$$(CROSS_TEST_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
                       $$(TARGET_PORT_SRCS_$(1)))
 	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
-build/$(1)$(XSUF)/scenes.elf: $$(call cobj,$(1),$$(CROSS_SCENE_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
+# part K of N of the unit tests (tests/cross/tests_main.c), and of the scenes
+build/$(1)$(XSUF)/obj/tests/cross/tests_main-%.o: tests/cross/tests_main.c
+	@mkdir -p $$(dir $$@)
+	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) \
+	  -DTH_PART=$$(word 1,$$(subst of, ,$$*)) -DTH_PARTS=$$(word 2,$$(subst of, ,$$*)) -c $$< -o $$@
+build/$(1)$(XSUF)/tests-%.elf: build/$(1)$(XSUF)/obj/tests/cross/tests_main-%.o \
+                      $$(call cobj,$(1),$$(filter-out tests/cross/tests_main.c,$$(CROSS_TEST_SRCS)) \
+                      $$(RT_SRCS) $$(MODEL_SRCS) $$(TARGET_PORT_SRCS_$(1)))
+	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
+build/$(1)$(XSUF)/obj/tests/cross/scenes_main-%.o: tests/cross/scenes_main.c
+	@mkdir -p $$(dir $$@)
+	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) \
+	  -DSC_PART=$$(word 1,$$(subst of, ,$$*)) -DSC_PARTS=$$(word 2,$$(subst of, ,$$*)) -c $$< -o $$@
+build/$(1)$(XSUF)/scenes-%.elf: build/$(1)$(XSUF)/obj/tests/cross/scenes_main-%.o \
+                       $$(call cobj,$(1),tests/harness.c $$(RT_SRCS) $$(MODEL_SRCS) \
                        $$(TARGET_PORT_SRCS_$(1)))
 	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
 build/$(1)$(XSUF)/rt.elf: $$(call cobj,$(1),$$(CROSS_RT_SRCS) $$(RT_SRCS) $$(MODEL_SRCS) \
@@ -247,35 +309,24 @@ build/$(1)$(XSUF)/rt_bg.elf: ports/common/image_main.c $$(call cobj,$(1),$$(RT_S
                       $$(TARGET_PORT_SRCS_$(1)))
 	$(Q)$$(TARGET_CC_$(1)) $$(filter-out -MMD -MP,$$(CROSS_CFLAGS)) $$(TARGET_CFLAGS_$(1)) \
 	  $$(CROSS_BG_DEFS) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
-cross-test-$(1): build/$(1)$(XSUF)/tests.elf build/$(1)$(XSUF)/scenes.elf build/$(1)$(XSUF)/rt.elf \
-                 $(O)/scenes.log build/$(1)$(XSUF)/softfloat.elf $(O)/softfloat.log \
+# every run bounded by its instruction budget (tests/cross/run.sh); QEMU_TIMEOUT guards
+# against QEMU itself hanging
+cross-test-$(1): TARGET_QEMU_EXTRA = -plugin $(abspath $(INSN_COUNT_SO)),limit=@BUDGET@
+cross-test-$(1): $(INSN_COUNT_SO) build/$(1)$(XSUF)/softfloat.elf $(O)/softfloat.log \
+                 $$(foreach k,$$(CROSS_PART_LIST),build/$(1)$(XSUF)/tests-$$(k)of$$(CROSS_PARTS).elf) \
+                 $$(foreach k,$$(CROSS_SCENE_PART_LIST),build/$(1)$(XSUF)/scenes-$$(k)of$$(CROSS_SCENE_PARTS).elf) \
+                 $(O)/scenes.log build/$(1)$(XSUF)/rt.elf $(O)/modrt \
                  $(if $(filter $(1),$(CROSS_BG_TARGETS)),build/$(1)$(XSUF)/rt_bg.elf)
-	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/softfloat.elf > build/$(1)$(XSUF)/softfloat.log 2>&1 || \
-	  { cat build/$(1)$(XSUF)/softfloat.log; echo "cross-test $(1): softfloat test failed"; exit 1; }
-	@if diff $(O)/softfloat.log build/$(1)$(XSUF)/softfloat.log; then \
-	  echo "cross-test $(1): binary64 result hashes equal to the host's: $$$$(grep -c hash build/$(1)$(XSUF)/softfloat.log) passed, 0 failed"; \
-	else echo "cross-test $(1): binary64 result hashes differ from the host's"; exit 1; fi
-	@echo "cross-test $(1): unit tests"
-	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/tests.elf > build/$(1)$(XSUF)/tests.log 2>&1 || \
-	  { grep -E 'FAIL|passed' build/$(1)$(XSUF)/tests.log; echo "cross-test $(1): unit tests failed"; exit 1; }
-	@echo "cross-test $(1): unit tests: $$$$(tail -1 build/$(1)$(XSUF)/tests.log)"
-	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/scenes.elf > build/$(1)$(XSUF)/scenes.log 2>&1 || \
-	  { cat build/$(1)$(XSUF)/scenes.log; echo "cross-test $(1): scene image failed"; exit 1; }
-	@if diff $(O)/scenes.log build/$(1)$(XSUF)/scenes.log; then \
-	  echo "cross-test $(1): scene hashes equal to the host's: $$$$(wc -l < build/$(1)$(XSUF)/scenes.log) passed, 0 failed"; \
-	else echo "cross-test $(1): scene hashes differ from the host's"; exit 1; fi
-	@$$(TARGET_RUN_$(1)) build/$(1)$(XSUF)/rt.elf > build/$(1)$(XSUF)/rt.log 2>&1 || \
-	  { cat build/$(1)$(XSUF)/rt.log; echo "cross-test $(1): timer-paced run failed"; exit 1; }
-	@h=$$$$(sed -n 's/.* hash \([0-9a-f]*\).*/\1/p' build/$(1)$(XSUF)/rt.log); \
-	if [ "$$$$h" = "$$$$($(O)/modrt run pi_loop | sed -n 's/^hash: //p')" ]; then \
-	  echo "cross-test $(1): timer-paced pi_loop: $$$$(sed 's/^rt scene pi_loop //' build/$(1)$(XSUF)/rt.log)"; \
-	else cat build/$(1)$(XSUF)/rt.log; echo "cross-test $(1): timer-paced hash differs"; exit 1; fi
-	@if [ "$$(TARGET_VTIME_$(1))" = 1 ] && ! grep -q ' overruns 0 ' build/$(1)$(XSUF)/rt.log; then \
-	  echo "cross-test $(1): overruns in deterministic virtual time"; exit 1; fi
-	@$(if $(filter $(1),$(CROSS_BG_TARGETS)),sh tests/cross/check_bg.sh "$$(TARGET_RUN_$(1))" \
-	  build/$(1)$(XSUF)/rt_bg.elf $(O)/modrt $(CROSS_BG_TICKS) $(1),:)
+	@QEMU_TIMEOUT=$(QEMU_TIMEOUT) CROSS_PARTS=$(CROSS_PARTS) CROSS_SCENE_PARTS=$(CROSS_SCENE_PARTS) \
+	 CROSS_BUDGET_SOFTFLOAT=$(CROSS_BUDGET_SOFTFLOAT) CROSS_BUDGET_TESTS=$(CROSS_BUDGET_TESTS) \
+	 CROSS_BUDGET_SCENES=$(CROSS_BUDGET_SCENES) CROSS_BUDGET_RT=$(CROSS_BUDGET_RT) \
+	 sh tests/cross/cross_test.sh $(1) build/$(1)$(XSUF) $(O) "$$(TARGET_RUN_$(1))" \
+	   "$$(TARGET_VTIME_$(1))" $(if $(filter $(1),$(CROSS_BG_TARGETS)),$(CROSS_BG_TICKS),0)
 endef
 $(foreach t,$(CROSS_TARGETS),$(eval $(call CROSS_RULES,$(t))))
+.SECONDARY: $(foreach t,$(CROSS_TARGETS), \
+              $(foreach k,$(CROSS_PART_LIST),build/$(t)$(XSUF)/obj/tests/cross/tests_main-$(k)of$(CROSS_PARTS).o) \
+              $(foreach k,$(CROSS_SCENE_PART_LIST),build/$(t)$(XSUF)/obj/tests/cross/scenes_main-$(k)of$(CROSS_SCENE_PARTS).o))
 
 $(O)/softfloat.log: $(O)/softfloat
 	$(O)/softfloat > $@
@@ -443,6 +494,9 @@ clean:
 include tests/link/link.mk
 
 -include $(shell find build -name '*.d' 2>/dev/null)
+# the dependency files are written by the compilers as they go: no rule makes them (else
+# make would chain built-in rules to remake each one it includes)
+%.d: ;
 include tests/hard/hard.mk
 include tests/static/static.mk
 include tests/vehicles/vehicles.mk

@@ -17,9 +17,12 @@ so=$(make -s print-INSN_COUNT_SO)
 V=tests/vehicles/variants
 . tools/foot_lib.sh
 
+commit=$(git describe --always --dirty 2>/dev/null || echo unknown)
 cat <<HDR
 
 ## Effects of the lane change
+
+Figures of commit \`$commit\`.
 
 Written by \`make effects\` (tools/effects.sh; \`make footprint\` runs it too); do not edit
 by hand. Each row omits one effect of the full \`lane_change\` (the variants are

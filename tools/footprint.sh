@@ -19,8 +19,12 @@ MF=build/host-float/modrt
 so=$(make -s print-INSN_COUNT_SO)
 scenes=${FOOT_SCENES:-$($M list | awk '{print $1}')}
 
+commit=$(git describe --always --dirty 2>/dev/null || echo unknown)
 cat <<HDR
 # Footprint and cost per tick
+
+Figures of commit \`$commit\`: a later change to the runtime, the models or the scenes
+may move them until \`make footprint\` runs again.
 
 Written by \`make footprint\` (tools/footprint.sh); do not edit by hand. One image per
 scene and target: \`tests/cross/footprint_main.c\`, the scene's const tables, the runtime

@@ -367,7 +367,7 @@ static void format_linear(char *buf, double v, double step, double maxabs)
         snprintf(buf, MAX_LABEL, "%.*f", e < 0 ? -e : 0, v);
         return;
     }
-    int sig = (int)floor(log10(maxabs)) - e + 1;
+    int sig = maxabs > 0 ? (int)floor(log10(maxabs)) - e + 1 : 1; /* log10(0): no int */
     sig = sig < 1 ? 1 : sig > 15 ? 15 : sig;
     snprintf(buf, MAX_LABEL, "%.*g", sig, v);
     tidy_exponent(buf);
@@ -932,7 +932,7 @@ static void bin_add(struct bin *b, double t, double y, long row, int *pending)
 static int bin_index(const struct axis *ax, double t, int nbins)
 {
     double u = (t - ax->lo) / (ax->hi - ax->lo) * nbins;
-    int b = u < 0.0 ? 0 : u >= nbins ? nbins - 1 : (int)u;
+    int b = !(u >= 0.0) ? 0 : u >= nbins ? nbins - 1 : (int)u; /* NaN: bin 0, never cast */
     return b;
 }
 

@@ -10,7 +10,7 @@ mkdir -p "$C" build/fuzz/crashes
 cp models/scenes/*.scn tests/scenec/scenes/*.scn tests/scenec/scenes/inc/*.inc \
    tests/scenec/errors/*.scn "$C"/ 2>/dev/null
 if "$BIN" -help=1 2>&1 | grep -q libFuzzer; then
-    "$BIN" -max_total_time="$SECS" -dict=tests/scenec/scn.dict -max_len=4096 -timeout=20 \
+    "$BIN" -max_total_time="$SECS" -dict=tests/scenec/scn.dict -max_len=65536 -len_control=0 -timeout=20 \
         -rss_limit_mb=4096 -print_final_stats=1 -artifact_prefix=build/fuzz/crashes/ \
         "$C" > build/fuzz/fuzz.log 2>&1
     rc=$?

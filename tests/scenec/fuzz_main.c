@@ -10,7 +10,7 @@
 #include <time.h>
 
 #define MAX_SEEDS 512
-#define MAX_LEN 8192 /* bytes of one input */
+#define MAX_LEN 65536 /* bytes of one input (the libFuzzer runs use -max_len=65536 too) */
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -4,13 +4,15 @@
  * stdout with exit 0, and one line on stderr with exit 2 for every bad argument.
  * Exit codes: CLI_OK (0), CLI_FAULTS (1: a run failed: NaN, instability, a degraded
  * step, a lost link...), CLI_USAGE (2), CLI_DOUBTFUL (3: the run completed but a step's
- * error estimate or a deadline was exceeded): rt_status_severity of the run's status. */
+ * error estimate or a deadline was exceeded): rt_status_severity of the run's status;
+ * CLI_IO (4: an output file could not be opened or written: the CSV, the replay log, the
+ * real-time log), CLI_INTERRUPTED (5: SIGINT or SIGTERM ended the run before its end). */
 #ifndef CLI_H
 #define CLI_H
 
 #include "rt.h"
 
-enum { CLI_OK = 0, CLI_FAULTS = 1, CLI_USAGE = 2, CLI_DOUBTFUL = 3 };
+enum { CLI_OK = 0, CLI_FAULTS = 1, CLI_USAGE = 2, CLI_DOUBTFUL = 3, CLI_IO = 4, CLI_INTERRUPTED = 5 };
 
 #define CLI_POS_MAX 8 /* positional arguments of one subcommand */
 

@@ -4,10 +4,13 @@
  * options, --help per subcommand, exit codes 0 ok / 1 failed / 2 usage / 3 doubtful) are in
  * cli.h; each subcommand is a row of the table at the end of this file. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "check.h"
 #include "cli.h"
@@ -129,12 +132,21 @@ static int exit_code(const rt_sim *sim)
     return sev == 0 ? CLI_OK : sev == 1 ? CLI_DOUBTFUL : CLI_FAULTS;
 }
 
-static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, double wall)
+/* the summary of a run; sig: the signal that ended it early (its status then says so, the
+   counters say what happened until then) */
+static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, double wall,
+                    int sig)
 {
     fprintf(f, "scene: %s\nticks: %llu\nsim_time: %.17g\nwall_s: %.6f\n", sc->name,
             (unsigned long long)s->state.tick, (double)rt_time(sc, s), wall);
-    fprintf(f, "status: %s\n", s->stats.status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
-                                                  : rt_status_name(s->stats.status));
+    if (sig)
+        fprintf(f, "status: interrupted\ninterrupted: %s at tick %llu of %llu\n",
+                sig == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)s->state.tick,
+                (unsigned long long)rt_tick_count(s));
+    else
+        fprintf(f, "status: %s\n", s->stats.status == RT_OK
+                                       ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
+                                       : rt_status_name(s->stats.status));
     for (int c = 0; c < RT_CNT_COUNT; c++) {
         fprintf(f, "%s: %u", rt_counter_key((rt_counter)c), (unsigned)s->stats.count[c]);
         if (s->stats.last_block[c] >= 0 && c != RT_CNT_EVENTS)
@@ -183,6 +195,51 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     }
     fmu_summary(f); /* FMU blocks: their faults with the FMU's own account */
     fprintf(f, "hash: %016llx\n", (unsigned long long)s->state.hash);
+}
+
+/* ------------------------------------------------------------------ output files */
+
+/* one line with the system's reason; CLI_IO */
+static int io_fail(const char *what, const char *path, int err)
+{
+    fprintf(stderr, "modrt: %s %s: %s\n", what, path, err ? strerror(err) : "write error");
+    return CLI_IO;
+}
+
+/* an output file of a run, opened before the run so that a directory, a missing
+   directory or a missing permission is reported before any tick; NULL after one line */
+static FILE *open_out(const char *path, const char *what)
+{
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        io_fail(what, path, EISDIR);
+        return NULL;
+    }
+    FILE *f = fopen(path, "w");
+    if (!f)
+        io_fail(what, path, errno);
+    return f;
+}
+
+/* flushes f and closes it (not stdout): CLI_OK, or CLI_IO after one line with the reason
+   (a full disk shows here: the rows were buffered) */
+static int close_out(FILE *f, int is_stdout, const char *what, const char *path)
+{
+    if (!f)
+        return CLI_OK;
+    errno = 0;
+    int bad = fflush(f) != 0, err = errno;
+    bad |= ferror(f) != 0;
+    errno = 0;
+    if (!is_stdout && fclose(f) != 0)
+        bad = 1, err = err ? err : errno;
+    return bad ? io_fail(what, path, err) : CLI_OK;
+}
+
+/* the exit status of a run: interrupted, then an output lost, then the run's own */
+static int run_exit(int sig, int io, int faults, const rt_sim *s)
+{
+    return sig ? CLI_INTERRUPTED : io ? CLI_IO : faults ? CLI_FAULTS : exit_code(s);
 }
 
 /* ------------------------------------------------------------------ run */
@@ -472,7 +529,7 @@ static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc
         if (record_header(a, scene, sc, lo.run, &h))
             return CLI_USAGE;
         if (!(*rec = mrl_create(a->record, &h, err, sizeof err)))
-            return cli_fail("--record", err);
+            return cli_fail("--record", err), CLI_IO;
     }
     if (!live)
         return CLI_OK;
@@ -495,13 +552,13 @@ static int stop_link(const run_args *a, rt_sim *s, link_counts *c)
     return 1;
 }
 
-/* finishes the log; 1 if it could not be written */
+/* finishes the log (its end marker written); CLI_IO if it could not be written */
 static int stop_record(mrl_writer *rec)
 {
     char err[512];
     if (rec && mrl_finish(rec, err, sizeof err) != 0)
-        return cli_fail("--record", err) != 0;
-    return 0;
+        return cli_fail("--record", err), CLI_IO;
+    return CLI_OK;
 }
 
 /* the run's --set overrides onto a freshly initialised sim (the check's half run too) */
@@ -570,6 +627,12 @@ static int cmd_run(void *ctx, int npos, char **pos)
     }
     if (study_apply(&a->study, &sc) != CLI_OK || check_refused(a) != CLI_OK)
         return CLI_USAGE;
+    if (a->realtime && !((double)sc.dt * 1e9 < 9e18)) { /* the clock counts int64_t ns */
+        char v[32];
+        snprintf(v, sizeof v, "%.10g s", (double)sc.dt);
+        return cli_fail("--realtime: the scene's base tick too long for the real-time clock "
+                        "(at most 9e9 s), got", v);
+    }
     rt_status st = rt_init(&sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
@@ -583,11 +646,11 @@ static int cmd_run(void *ctx, int npos, char **pos)
         return cli_fail("--check", check_error());
     FILE *csv = NULL;
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
-    if (a->csv && !(csv = to_stdout ? stdout : fopen(a->csv, "w")))
-        return cli_fail("cannot write the CSV file", a->csv);
+    if (a->csv && !(csv = to_stdout ? stdout : open_out(a->csv, "cannot write the CSV file")))
+        return CLI_IO;
     FILE *rt_log = NULL;
-    if (a->rt_log && !(rt_log = fopen(a->rt_log, "w")))
-        return cli_fail("cannot write the --rt-log file", a->rt_log);
+    if (a->rt_log && !(rt_log = open_out(a->rt_log, "cannot write the --rt-log file")))
+        return CLI_IO;
     port_run_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
                        a->check ? check_observe : NULL};
     port_run_result r;
@@ -596,29 +659,29 @@ static int cmd_run(void *ctx, int npos, char **pos)
     if (rc != CLI_OK)
         return rc;
     st = port_run(&sc, &sim, &o, &r);
-    if (csv && !to_stdout && fclose(csv) != 0)
-        return cli_fail("error writing the CSV file", a->csv);
-    if (rt_log && fclose(rt_log) != 0)
-        return cli_fail("error writing the --rt-log file", a->rt_log);
+    /* whatever was lost, the summary is printed and the replay log finished */
+    int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
+    io |= close_out(rt_log, 0, "error writing the --rt-log file", a->rt_log);
     FILE *out = to_stdout ? stderr : stdout;
     link_counts lc;
     int linked = stop_link(a, &sim, &lc);
-    summary(out, &sc, &sim, st, r.wall_s);
+    summary(out, &sc, &sim, st, r.wall_s, r.signal);
     if (a->realtime)
         rtloop_print(out, (rtloop_policy)a->overrun, &r.rt);
     if (linked)
         link_print(out, &lc);
-    if (stop_record(rec))
-        return CLI_FAULTS;
-    if (!a->check)
-        return exit_code(&sim);
-    static check_result cr;
-    check_end(&sc, &sim, &cr);
-    if (a->global.csv && fclose(a->global.csv) != 0)
-        return cli_fail("error writing the --check-csv file", a->check_csv);
-    check_print(out, &sc, &cr);
+    io |= stop_record(rec);
     int sev = rt_status_severity(sim.stats.status);
-    sev = cr.severity > sev ? cr.severity : sev;
+    if (a->check && !r.signal) { /* an interrupted run has no whole run to check */
+        static check_result cr;
+        check_end(&sc, &sim, &cr);
+        io |= close_out(a->global.csv, 0, "error writing the --check-csv file", a->check_csv);
+        check_print(out, &sc, &cr);
+        sev = cr.severity > sev ? cr.severity : sev;
+    }
+    io |= close_out(out, 1, "error writing the summary to", to_stdout ? "stderr" : "stdout");
+    if (r.signal || io)
+        return run_exit(r.signal, io, 0, &sim);
     return sev == 0 ? CLI_OK : sev == 1 ? CLI_DOUBTFUL : CLI_FAULTS;
 }
 
@@ -733,7 +796,12 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     const replay_args *a = ctx;
     char err[600];
     rt_scene sc;
+    struct stat fs;
     (void)npos;
+    if (stat(pos[0], &fs) == 0 && !S_ISREG(fs.st_mode)) /* not read: a FIFO would block */
+        return cli_fail(S_ISDIR(fs.st_mode) ? "replay: a directory, not a replay log"
+                                            : "replay: not a regular file, not a replay log",
+                        pos[0]);
     if (mrl_open(pos[0], &h, err, sizeof err) != 0)
         return cli_fail("replay", err);
     int rc = replay_scene(&h, &sc, pos[0]);
@@ -741,16 +809,17 @@ static int cmd_replay(void *ctx, int npos, char **pos)
         return mrl_close(), rc;
     FILE *csv = NULL;
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
-    if (a->csv && !(csv = to_stdout ? stdout : fopen(a->csv, "w")))
-        return mrl_close(), cli_fail("cannot write the CSV file", a->csv);
+    if (a->csv && !(csv = to_stdout ? stdout : open_out(a->csv, "cannot write the CSV file")))
+        return mrl_close(), CLI_IO;
     port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
     port_run_result r;
     rt_status st = port_run(&sc, &sim, &o, &r);
     mrl_close();
-    if (csv && !to_stdout && fclose(csv) != 0)
-        return cli_fail("error writing the CSV file", a->csv);
-    summary(to_stdout ? stderr : stdout, &sc, &sim, st, r.wall_s);
-    return exit_code(&sim);
+    int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
+    FILE *out = to_stdout ? stderr : stdout;
+    summary(out, &sc, &sim, st, r.wall_s, r.signal);
+    io |= close_out(out, 1, "error writing the summary to", to_stdout ? "stderr" : "stdout");
+    return run_exit(r.signal, io, 0, &sim);
 }
 
 /* the compile-time limits that fit this scene exactly, as -D flags for a per-scene build
@@ -792,7 +861,9 @@ static const cli_cmd commands[] = {
     {"run", "SCENE|FILE.scn", "run a scene to its end time; prints a key: value summary",
      "Exit status 0 when no fault was counted; 1 when the answer failed (NaN, instability,\n"
      "a degraded step, a lost link...); 3 when it completed but a step's error estimate\n"
-     "exceeded its set's accuracy or a tick its deadline; 2 for bad arguments.\n"
+     "exceeded its set's accuracy or a tick its deadline; 2 for bad arguments; 4 when an\n"
+     "output file could not be written (the summary says how far the run got); 5 when\n"
+     "SIGINT or SIGTERM ended it early (status: interrupted; the CSV ends in a whole row).\n"
      "\n"
      "status: ok says, of every step of every set: its local error estimate (the step\n"
      "against its embedded companion, scaled by 1 + |x|) stayed within the set's accuracy;\n"

@@ -21,6 +21,7 @@
 #include <time.h>
 
 #include "rtloop.h"
+#include "runner.h"
 #include "trace.h"
 
 #define NS_PER_S 1000000000LL
@@ -252,12 +253,13 @@ rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void 
     memset(&s, 0, sizeof s);
     memset(&lat_hist, 0, sizeof lat_hist), memset(&exec_hist, 0, sizeof exec_hist);
     rt_status st = RT_OK;
-    if (trace_start(sc, csv, log) != 0)
+    double period_ns = (double)sc->dt * 1e9; /* in int64_t's range before the cast */
+    if (!(period_ns < 9e18) || trace_start(sc, csv, log) != 0)
         return RT_E_ARG;
     go_realtime(warn, &s);
     bg_start(sc, sim, s.fifo);
-    int64_t period = (int64_t)((double)sc->dt * 1e9 + 0.5), d = now_ns() + period;
-    while (running(st) && !s.stopped) {
+    int64_t period = (int64_t)(period_ns + 0.5), d = now_ns() + period;
+    while (running(st) && !s.stopped && !port_stop_signal()) {
         sleep_until(d);
         int64_t wake = now_ns();
         st = tick(sc, sim, ctx);

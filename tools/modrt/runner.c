@@ -3,6 +3,7 @@
  * deadlines, latency statistics, the trace ring) and counts overruns. Both record
  * through rt_record at the same ticks, so the hash and the CSV are the same. */
 #define _POSIX_C_SOURCE 200809L
+#include <signal.h>
 #include <string.h>
 #include <time.h>
 
@@ -48,6 +49,56 @@ static void record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
         port_csv_row(o->csv, sc, sim, vals);
 }
 
+
+/* ------------------------------------------------------------------ signals */
+
+/* SIGINT or SIGTERM: the run stops between ticks, so the CSV ends in a whole row and the
+   caller still closes its files and prints the summary. The handler only sets a flag. */
+static volatile sig_atomic_t stop_signal;
+static struct sigaction old_int, old_term;
+static struct timespec stop_at; /* when the first signal came */
+
+#define STOP_AGAIN_S 1 /* a signal this long after the first ends the program at once */
+
+static void on_stop(int sig)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now); /* async-signal-safe */
+    if (!stop_signal) {
+        stop_at = now, stop_signal = sig;
+        return;
+    }
+    /* asked again: the default action, at once; but not for the copies of the first that
+       come together (Ctrl-C reaches a wrapper and modrt alike, `timeout` passes it on) */
+    if (now.tv_sec - stop_at.tv_sec > STOP_AGAIN_S) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+    }
+}
+
+int port_stop_signal(void) { return stop_signal; }
+
+static void catch_stop(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop;
+    sa.sa_flags = SA_RESTART; /* a write under way completes: no half row */
+    sigemptyset(&sa.sa_mask);
+    stop_signal = 0;
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    if (old_int.sa_handler == SIG_IGN) /* a background job (nohup, sh's &) stays deaf */
+        sigaction(SIGINT, &old_int, NULL);
+}
+
+static void release_stop(void)
+{
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+}
+
+/* ------------------------------------------------------------------ the loops */
 
 static int running(rt_status st) { return st != RT_E_DONE && st != RT_E_LINK; }
 
@@ -112,13 +163,16 @@ rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port
     st = exchange(sc, sim, o, st);
     record(sc, sim, o);
     double t0 = now_s();
+    catch_stop();
     if (!running(st)) {
     } else if (!o->realtime) {
-        while (running(st))
+        while (running(st) && !stop_signal)
             st = tick_and_record(sc, sim, o);
     } else {
         st = run_realtime(sc, sim, o, r);
     }
+    r->signal = stop_signal;
+    release_stop();
     r->wall_s = now_s() - t0;
     return st;
 }

@@ -26,13 +26,18 @@ typedef struct port_run_opts {
 
 typedef struct port_run_result {
     double wall_s;      /* wall-clock time of the tick loop [s] */
+    int signal;         /* SIGINT or SIGTERM that ended the run early, 0: none */
     uint64_t overruns;  /* real-time ticks that missed their deadline */
     rtloop_stats rt;    /* real time: latency, execution time, misses */
 } port_run_result;
 
 /* Runs an initialised scene to its end; returns the last tick status (RT_E_LINK when the
-   exchange ended it, also set as the run's status). */
+   exchange ended it, also set as the run's status). SIGINT or SIGTERM during the run ends
+   it after the tick under way and its CSV row (r->signal says which); another one a
+   second or more later ends the program at once. */
 rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port_run_result *r);
+/* The signal that asked the run under way to stop, 0: none (the tick loops poll it). */
+int port_stop_signal(void);
 /* Writes the CSV header: t, then Block.signal for each recorded signal. */
 void port_csv_header(FILE *f, const rt_scene *sc);
 /* Writes one CSV row of the current state (values as recorded, full precision). */

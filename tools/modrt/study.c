@@ -30,7 +30,8 @@ static int set_step(rt_scene *sc, rt_set *st, const char *opt, const char *v)
     double s;
     if (!cli_real(v, &s) || !(s > 0))
         return bad(opt, "expects SET=TIME, a step in seconds > 0, got", v);
-    double r = s / (double)sc->dt, k = (double)(uint32_t)(r + 0.5);
+    /* in range before the cast: a double out of uint32_t's range is undefined behaviour */
+    double r = s / (double)sc->dt, k = r >= 0.5 && r <= 1e9 ? (double)(uint32_t)(r + 0.5) : 0;
     if (!(k >= 1 && k <= 1e9) || !(k * (double)sc->dt <= s * (1 + 1e-12) &&
                                    k * (double)sc->dt >= s * (1 - 1e-12)))
         return bad(opt, "must be a whole number of base ticks; got", v);

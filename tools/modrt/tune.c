@@ -274,8 +274,9 @@ static int admissible(const uint32_t *ratio)
         const rt_block *bl = &sc->blocks[b];
         if (bl->kind->type != RT_KIND_DSS)
             continue;
-        uint64_t n = (uint64_t)((double)bl->ts / (double)sc->dt + 0.5);
-        if (n % ratio[bl->set] != 0)
+        double r = (double)bl->ts / (double)sc->dt; /* rt_init: a whole number of ticks */
+        uint64_t n = r >= 0.5 && r < 1.8e19 ? (uint64_t)(r + 0.5) : 0;
+        if (n == 0 || n % ratio[bl->set] != 0)
             return 0;
     }
     return 1;

@@ -16,6 +16,12 @@
  *   first=<i>,count=<n>  statistics over intervals i .. i+n-1 only (0-based; default all),
  *                   e.g. to skip start-up and keep the steady-state ticks.
  *   dump=on         also print every interval ("insn_count: interval <i> <n>").
+ *   limit=<n>       a budget: once the guest has executed more than n instructions the
+ *                   plugin prints "insn_count: stopped after <n> instructions (the
+ *                   image's budget)" on stderr and ends QEMU with exit status 3. Counted per
+ *                   translation block as it runs (a block left early by an exception
+ *                   counts whole), so it bounds a run by the guest's work, not by the
+ *                   machine's load (tests/cross/run.sh). Alone, it counts per block only.
  * Output goes to QEMU's log (-d plugin: stderr, or -D file):
  *   insn_count: total <N>
  *   insn_count: marker 0x<addr> hits <H> intervals <n> min <a> median <b> max <c>
@@ -51,6 +57,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* ------------------------------------------------------------------ plugin API (v1) */
 
@@ -88,6 +95,8 @@ void qemu_plugin_register_vcpu_insn_exec_cb(struct qemu_plugin_insn *insn, qemu_
                                             enum qemu_plugin_cb_flags flags, void *userdata);
 void qemu_plugin_register_vcpu_insn_exec_inline(struct qemu_plugin_insn *insn, enum qemu_plugin_op op,
                                                 void *ptr, uint64_t imm);
+void qemu_plugin_register_vcpu_tb_exec_cb(struct qemu_plugin_tb *tb, qemu_plugin_vcpu_udata_cb_t cb,
+                                          enum qemu_plugin_cb_flags flags, void *userdata);
 void qemu_plugin_register_atexit_cb(qemu_plugin_id_t id, qemu_plugin_udata_cb_t cb, void *userdata);
 size_t qemu_plugin_tb_n_insns(const struct qemu_plugin_tb *tb);
 struct qemu_plugin_insn *qemu_plugin_tb_get_insn(const struct qemu_plugin_tb *tb, size_t idx);
@@ -113,6 +122,21 @@ static uint64_t marker_hits;
 static uint64_t marker_last;    /* insn_total before the previous hit */
 static uint64_t *intervals;
 static size_t n_intervals, cap_intervals;
+static uint64_t limit;          /* budget of instructions, 0: none */
+static uint64_t block_total;    /* instructions of the blocks run (the budget's count) */
+
+#define LIMIT_EXIT 3 /* QEMU's exit status when the budget ran out */
+
+static void on_block(unsigned int vcpu_index, void *userdata)
+{
+    (void)vcpu_index;
+    block_total += (uintptr_t)userdata;
+    if (block_total > limit) {
+        fprintf(stderr, "insn_count: stopped after %" PRIu64 " instructions (the image's budget)\n",
+                limit);
+        _exit(LIMIT_EXIT); /* from the vCPU thread: no QEMU clean-up to wait for */
+    }
+}
 
 static void add_interval(uint64_t n)
 {
@@ -153,6 +177,10 @@ static void on_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
 {
     (void)id;
     size_t n = qemu_plugin_tb_n_insns(tb);
+    if (limit)
+        qemu_plugin_register_vcpu_tb_exec_cb(tb, on_block, QEMU_PLUGIN_CB_NO_REGS, (void *)(uintptr_t)n);
+    if (limit && !marker_on && !stop_on)
+        return; /* a budget only: no count per instruction */
     for (size_t i = 0; i < n; i++) {
         struct qemu_plugin_insn *insn = qemu_plugin_tb_get_insn(tb, i);
         uint64_t va = qemu_plugin_insn_vaddr(insn);
@@ -176,7 +204,8 @@ static void plugin_at_exit(qemu_plugin_id_t id, void *userdata)
     (void)id;
     (void)userdata;
     char line[160];
-    snprintf(line, sizeof line, "insn_count: total %" PRIu64 "\n", insn_total);
+    snprintf(line, sizeof line, "insn_count: total %" PRIu64 "\n",
+             limit && !marker_on && !stop_on ? block_total : insn_total);
     qemu_plugin_outs(line);
     if (!marker_on) return;
     if (dump_on) {
@@ -215,6 +244,13 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
                 return -1;
             }
             marker_on = true;
+        } else if (strncmp(a, "limit=", 6) == 0) {
+            char *end;
+            limit = strtoull(a + 6, &end, 0);
+            if (end == a + 6 || *end != '\0' || limit == 0) {
+                fprintf(stderr, "insn_count: bad instruction budget '%s'\n", a + 6);
+                return -1;
+            }
         } else if (strncmp(a, "stop=", 5) == 0) {
             char *end;
             stop_addr = strtoull(a + 5, &end, 0) & ~(uint64_t)1;

@@ -229,10 +229,11 @@ static void define_kind(scn_ctx *c, scn_define *d)
     lss_feed(c, d, k);
 }
 
+/* each define on its own: one's error does not hide another's */
 static void defines(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
-    for (uint16_t i = 0; i < s->ndef && !c->err; i++) {
+    for (uint16_t i = 0; i < s->ndef; i++, scn_keep_error(c)) {
         scn_define *d = s->def[i];
         if (scn_library_kind(d->name.s))
             scn_fail(c, d->name.pos, d->name.s, "type name already used by the model library",
@@ -496,28 +497,39 @@ static void wiring(scn_ctx *c)
 
 /* ------------------------------------------------------------------ entry */
 
+/* Every independent error is reported (up to SCN_MAX_ERRORS), in the order of the file:
+   the header, each define, each block's and joint's type, and the scene's systems are
+   checked on their own; what builds on them (values, wiring, sets, links, the rest) only
+   when they passed, and what counts in ticks only with a base tick, so that no error
+   reported is a consequence of another. */
 int scn_check(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
     header(c);
+    int timed = s->has_dt && s->dt > 0;
+    scn_keep_error(c);
+    unsigned e0 = scn_error_count(c);
     defines(c);
-    for (uint16_t i = 0; i < s->nblk && !c->err; i++)
-        block_kind(c, &s->blk[i]);
-    for (uint16_t i = 0; i < s->njnt && !c->err; i++)
-        joint_kind(c, &s->jnt[i]);
-    if (!c->err)
+    int typed = scn_error_count(c) == e0; /* the block types may name the defines */
+    for (uint16_t i = 0; i < s->nblk && typed; i++)
+        block_kind(c, &s->blk[i]), scn_keep_error(c);
+    for (uint16_t i = 0; i < s->njnt && typed; i++)
+        joint_kind(c, &s->jnt[i]), scn_keep_error(c);
+    if (scn_error_count(c) == e0) {
         assigns(c);
-    if (!c->err)
-        wiring(c);
-    if (!c->err)
-        scn_check_sets(c);
-    if (!c->err)
-        scn_check_links(c);
-    if (!c->err)
-        scn_check_rest(c);
-    if (s->nblk == 0) /* last: a file of defines only reports their errors first */
+        if (!c->err)
+            wiring(c);
+        if (!c->err && timed)
+            scn_check_sets(c);
+        if (!c->err && timed)
+            scn_check_links(c);
+        if (!c->err && timed)
+            scn_check_rest(c);
+    }
+    scn_keep_error(c);
+    if (s->nblk == 0 && scn_error_count(c) == 0) /* a file of defines: their errors alone */
         scn_fail(c, (scn_pos){0, 1, 1}, s->name.s, "scene without systems",
                  "at least one load system (...);");
-    return c->err ? -1 : 0;
+    return scn_report_errors(c);
 }
 

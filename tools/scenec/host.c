@@ -24,7 +24,10 @@ const rt_scene *scn_host_load(const char *path, const scn_fmu_ops *fmu)
     }
     c->fmu = fmu;
     if (scn_compile(c, path, NULL, 0) != 0) {
-        fprintf(stderr, "modrt: %s\n", c->msg);
+        for (const char *l = c->msg, *e; *l; l = *e ? e + 1 : e) { /* one error a line */
+            e = strchr(l, '\n') ? strchr(l, '\n') : l + strlen(l);
+            fprintf(stderr, "modrt: %.*s\n", (int)(e - l), l);
+        }
         scn_free(c);
         return NULL;
     }

@@ -9,6 +9,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* ------------------------------------------------------------------ arena */
 
@@ -103,16 +104,39 @@ const char *scn_path(const scn_ctx *c, scn_pos pos)
     return pos.file < c->nfiles ? c->files[pos.file].path : "?";
 }
 
-/* text for a message: printable, at most 40 characters */
+#define NEAR_MAX 40 /* characters of the text a message quotes */
+
+static int printable(char ch) { return ch >= 32 && ch < 127; }
+
+/* text for a message: at most NEAR_MAX characters, a byte that is not printable ASCII
+   written as \xHH (a NUL byte, a tab, a UTF-8 byte: the user sees which one it is) */
 static const char *sanitize(scn_ctx *c, const char *s, size_t n)
 {
-    size_t m = n > 40 ? 40 : n;
-    char *d = scn_alloc(c, m + 4);
-    for (size_t i = 0; i < m; i++)
-        d[i] = (s[i] >= 32 && s[i] < 127) ? s[i] : '?';
-    if (n > m)
+    char *d = scn_alloc(c, NEAR_MAX + 4);
+    size_t i = 0, m = 0;
+    for (; i < n; i++) {
+        size_t w = printable(s[i]) ? 1 : 4;
+        if (m + w > NEAR_MAX)
+            break;
+        if (w == 1)
+            d[m] = s[i];
+        else
+            snprintf(d + m, 5, "\\x%02x", (unsigned)(unsigned char)s[i]);
+        m += w;
+    }
+    if (i < n)
         memcpy(d + m, "...", 3);
     return d;
+}
+
+/* already what sanitize makes of it: printable, within NEAR_MAX (and a "..." it added) */
+static int sanitized(const char *s)
+{
+    size_t n = strlen(s);
+    for (size_t i = 0; i < n; i++)
+        if (!printable(s[i]))
+            return 0;
+    return n <= NEAR_MAX || (n <= NEAR_MAX + 3 && strcmp(s + n - 3, "...") == 0);
 }
 
 const char *scn_near(scn_ctx *c, const scn_tok *t)
@@ -126,9 +150,10 @@ void scn_fail(scn_ctx *c, scn_pos pos, const char *near, const char *what,
     if (c->err)
         return;
     c->err = 1;
-    snprintf(c->msg, sizeof c->msg, "%s:%u:%u: error: %s near '%s'; expected %s",
+    c->err_pos = pos;
+    snprintf(c->msg, SCN_MSG_LEN, "%s:%u:%u: error: %s near '%s'; expected %s",
              scn_path(c, pos), (unsigned)pos.line, (unsigned)pos.col, what,
-             sanitize(c, near, strlen(near)), expected);
+             sanitized(near) ? near : sanitize(c, near, strlen(near)), expected);
 }
 
 void scn_fail_tok(scn_ctx *c, const char *what, const char *expected)
@@ -136,11 +161,76 @@ void scn_fail_tok(scn_ctx *c, const char *what, const char *expected)
     scn_fail(c, c->tok.pos, scn_near(c, &c->tok), what, expected);
 }
 
+void scn_keep_error(scn_ctx *c)
+{
+    if (!c->err)
+        return;
+    if (c->nkept < SCN_MAX_ERRORS) {
+        memcpy(c->kept[c->nkept], c->msg, SCN_MSG_LEN);
+        c->kept[c->nkept][SCN_MSG_LEN - 1] = 0;
+        c->kept_pos[c->nkept++] = c->err_pos;
+    } else {
+        c->nlost++;
+    }
+    c->err = 0, c->msg[0] = 0;
+}
+
+unsigned scn_error_count(const scn_ctx *c)
+{
+    return (unsigned)c->nkept + c->nlost + (c->err != 0);
+}
+
+static int before(scn_pos a, scn_pos b)
+{
+    return a.file != b.file ? a.file < b.file : a.line != b.line ? a.line < b.line : a.col < b.col;
+}
+
+int scn_report_errors(scn_ctx *c)
+{
+    scn_keep_error(c);
+    if (c->nkept == 0)
+        return 0;
+    uint16_t order[SCN_MAX_ERRORS];
+    for (uint16_t i = 0; i < c->nkept; i++) { /* stable insertion sort by position */
+        uint16_t j = i;
+        for (; j > 0 && before(c->kept_pos[i], c->kept_pos[order[j - 1]]); j--)
+            order[j] = order[j - 1];
+        order[j] = i;
+    }
+    size_t n = 0;
+    for (uint16_t i = 0; i < c->nkept; i++)
+        n += (size_t)snprintf(c->msg + n, sizeof c->msg - n, "%s%s", i ? "\n" : "",
+                              c->kept[order[i]]);
+    if (c->nlost)
+        snprintf(c->msg + n, sizeof c->msg - n, "\n(%u more errors not shown)", (unsigned)c->nlost);
+    c->err = 1;
+    return -1;
+}
+
 /* ------------------------------------------------------------------ files */
 
-/* reads a whole file into the arena; -1 if it cannot, -2 if it is too large */
-static int read_file(scn_ctx *c, const char *path, const char **text, size_t *len)
+/* what path is when it is not a regular file (opening a FIFO or a terminal to read it
+   would wait for a writer forever), or NULL */
+static const char *not_regular(const char *path)
 {
+    struct stat st;
+    if (stat(path, &st) != 0 || S_ISREG(st.st_mode))
+        return NULL; /* a missing file is reported by fopen, with errno */
+    return S_ISDIR(st.st_mode)    ? "a directory"
+           : S_ISFIFO(st.st_mode) ? "a FIFO"
+           : S_ISCHR(st.st_mode)  ? "a character device"
+           : S_ISBLK(st.st_mode)  ? "a block device"
+           : S_ISSOCK(st.st_mode) ? "a socket"
+                                  : "not a regular file";
+}
+
+/* reads a whole file into the arena; -1 if it cannot (errno), -2 if it is too large, -3
+   if it is not a regular file (*why says what it is) */
+static int read_file(scn_ctx *c, const char *path, const char **text, size_t *len,
+                     const char **why)
+{
+    if ((*why = not_regular(path)) != NULL)
+        return -3;
     FILE *f = fopen(path, "rb");
     if (!f)
         return -1;
@@ -163,7 +253,7 @@ static int add_file(scn_ctx *c, const char *path, const char *real, const char *
                     size_t len)
 {
     scn_file *f = &c->files[c->nfiles];
-    f->path = path, f->real = real, f->text = text, f->len = len;
+    f->path = path, f->real = real, f->text = text, f->len = len, f->generated = 0;
     scn_lexer *l = &c->lx[c->depth];
     l->file = c->nfiles++, l->off = 0, l->line = 1, l->col = 1;
     return 0;
@@ -183,11 +273,13 @@ int scn_open_main(scn_ctx *c, const char *path, const char *text, size_t len)
     c->depth = 0;
     if (!text) {
         errno = 0;
-        int r = read_file(c, path, &text, &len);
-        if (r == -1) { /* no position in a file that was never read: the system's reason */
+        const char *why;
+        int r = read_file(c, path, &text, &len, &why);
+        if (r == -1 || r == -3) { /* no position in a file never read: the reason */
             c->err = 1;
-            snprintf(c->msg, sizeof c->msg, "%s: error: cannot read the scene file: %s", path,
-                     errno ? strerror(errno) : "read error");
+            snprintf(c->msg, SCN_MSG_LEN, "%s: error: cannot read the scene file: %s", path,
+                     r == -3 ? scn_fmt(c, "%s, not a regular file", why)
+                     : errno ? strerror(errno) : "read error");
             return -1;
         }
         if (r == -2) {
@@ -214,18 +306,17 @@ static const char *beside(scn_ctx *c, const char *includer, const char *name)
     return scn_fmt(c, "%.*s/%s", (int)(slash - includer), includer, name);
 }
 
-/* the first existing file among: beside the includer, then the -I directories */
+/* the first existing file among: beside the includer, then the -I directories (looked
+   at, not opened: opening a FIFO would block) */
 static const char *find_include(scn_ctx *c, const char *name)
 {
     const char *p = beside(c, c->files[c->lx[c->depth].file].path, name);
-    FILE *f;
+    struct stat st;
     for (int i = -1; i < (int)c->nincdirs; i++) {
         if (i >= 0 && name[0] != '/')
             p = scn_fmt(c, "%s/%s", c->incdirs[i], name);
-        if ((f = fopen(p, "rb")) != NULL) {
-            fclose(f);
+        if (stat(p, &st) == 0)
             return p;
-        }
     }
     return NULL;
 }
@@ -252,9 +343,14 @@ int scn_push_include(scn_ctx *c, const char *name, scn_pos pos)
                              c->files[c->lx[d].file].path));
             return -1;
         }
-    const char *text;
+    const char *text, *why;
     size_t len;
-    int r = read_file(c, path, &text, &len);
+    int r = read_file(c, path, &text, &len, &why);
+    if (r == -3) {
+        scn_fail(c, pos, near, scn_fmt(c, "include is %s (%s), not a regular file", why, path),
+                 "a regular file");
+        return -1;
+    }
     if (r < 0) {
         scn_fail(c, pos, near, r == -2 ? "include file too large" : "cannot read include file",
                  r == -2 ? scn_fmt(c, "at most %u bytes", SCN_MAX_SRC) : "a readable file");
@@ -275,6 +371,7 @@ int scn_push_text(scn_ctx *c, const char *label, const char *text, scn_pos pos)
     }
     c->depth++;
     add_file(c, label, label, text, strlen(text));
+    c->files[c->nfiles - 1].generated = 1;
     scn_next(c);
     return c->err ? -1 : 0;
 }
@@ -397,6 +494,10 @@ static void lex_number(scn_ctx *c, scn_tok *t)
     t->num = strtod(text, NULL);
     if (errno == ERANGE && (t->num > 1 || t->num < -1))
         scn_fail(c, t->pos, text, "number out of range", "a finite double");
+    else if (errno == ERANGE) /* 1e-999 would silently be 0 (or lose its digits) */
+        scn_fail(c, t->pos, text, "number too small: it underflows",
+                 "0, or a magnitude of at least 2.2250738585072014e-308 (the smallest normal "
+                 "double)");
 }
 
 /* "text" with the escapes \" and \\ */
@@ -409,6 +510,11 @@ static void lex_string(scn_ctx *c, scn_tok *t)
         int ch = at(c, 0);
         if (ch < 0 || ch == '\n') {
             scn_fail(c, t->pos, "\"", "unterminated string", "a closing '\"' on the same line");
+            return;
+        }
+        if ((ch < 32 && ch != '\t') || ch == 127) { /* a NUL byte would end it early */
+            scn_fail(c, here(c), sanitize(c, cur(c), 1), "control character in string",
+                     "printable text (a tab is allowed)");
             return;
         }
         adv(c);

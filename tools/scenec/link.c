@@ -30,7 +30,7 @@ static uint32_t link_id(const scn_scene *s)
 static uint32_t period_ticks(scn_ctx *c, const scn_scene *s)
 {
     double r = s->lperiod / s->dt;
-    uint32_t n = (uint32_t)(r + 0.5);
+    uint32_t n = r >= 0.5 && r < 4e9 ? (uint32_t)(r + 0.5) : 0; /* in range before the cast */
     if (n >= 1 && (double)n * s->dt - s->lperiod <= RT_TICK_MATCH_REL * s->lperiod &&
         s->lperiod - (double)n * s->dt <= RT_TICK_MATCH_REL * s->lperiod)
         return n;

@@ -325,6 +325,9 @@ static void define_clauses(scn_ctx *c, scn_define *d)
         else if (scn_is_word(c, "period") && d->type == SCN_DEF_DSS && once(c, &seen[4])) {
             scn_next(c);
             d->period = paren_time(c, 0, NULL, &d->period_pos);
+            if (!c->err && !(d->period > 0)) /* 0 would read as "no period given" */
+                scn_fail(c, d->period_pos, scn_fmt(c, "%g s", d->period),
+                         "sample period must be positive", "a time above 0 s");
         } else if (scn_is_word(c, "invariants") && d->type == SCN_DEF_SS && !d->ninv) {
             scn_next(c);
             inv_list(c, d);
@@ -332,7 +335,7 @@ static void define_clauses(scn_ctx *c, scn_define *d)
             scn_fail_tok(c, "syntax error",
                          d->type == SCN_DEF_DSS
                              ? "inputs, outputs, parameters, states, period (...) or by { ... }"
-                             : "inputs, outputs, parameters, states (...) or by { ... }");
+                             : "inputs, outputs, parameters, states, invariants (...) or by { ... }");
     }
     if (!c->err && d->type == SCN_DEF_LSS && d->np > 0)
         scn_fail(c, d->p[0].name.pos, d->p[0].name.s, "an lss_system has no parameters",
@@ -754,7 +757,9 @@ static void st_import(scn_ctx *c, scn_pos at)
         scn_next(c);
         s->lperiod = paren_time(c, 0, NULL, &every);
     }
-    double r = s->dt > 0 ? s->lperiod / s->dt : 0, n = (double)(uint32_t)(r + 0.5);
+    /* r is range-checked before it is rounded: a cast of a double out of range is undefined */
+    double r = s->dt > 0 ? s->lperiod / s->dt : 0;
+    double n = r >= 0.5 && r < 4e9 ? (double)(uint32_t)(r + 0.5) : 0;
     if (!c->err && !(s->lperiod > 0 && s->dt > 0))
         scn_fail(c, at, "import", "no exchange period",
                  "base tick (...) before the import, and every (<time>) if not every tick");

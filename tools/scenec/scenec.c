@@ -103,7 +103,9 @@ static int commit(FILE *f, int ok, const char *tmp, const char *path)
     return 1;
 }
 
-/* make rules: the C file depends on the scene file and every file it includes */
+/* make rules: the C file depends on the scene file and every file it includes (not on
+   the text the compiler generates, such as the import block of a link: no file is there,
+   so make would remake the target every time) */
 static int write_deps(const scn_ctx *c, const char *deps, const char *target)
 {
     char tmp[4096];
@@ -112,10 +114,12 @@ static int write_deps(const scn_ctx *c, const char *deps, const char *target)
         return 1;
     fprintf(f, "%s:", target);
     for (uint16_t i = 0; i < c->nfiles; i++)
-        fprintf(f, " %s", c->files[i].path);
+        if (!c->files[i].generated)
+            fprintf(f, " %s", c->files[i].path);
     fputs("\n", f);
     for (uint16_t i = 1; i < c->nfiles; i++)
-        fprintf(f, "%s:\n", c->files[i].path);
+        if (!c->files[i].generated)
+            fprintf(f, "%s:\n", c->files[i].path);
     return commit(f, !ferror(f), tmp, deps);
 }
 

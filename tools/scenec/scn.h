@@ -44,6 +44,7 @@
 #define SCN_MAX_RECS RT_MAX_REC /* recorded signals */
 #define SCN_MAX_MEMBERS 256     /* set members over all sets */
 #define SCN_MSG_LEN 600         /* characters of an error message */
+#define SCN_MAX_ERRORS 10       /* errors of independent checks one compilation reports */
 
 /* ------------------------------------------------------------------ positions, names */
 
@@ -361,6 +362,7 @@ typedef struct scn_file {
     const char *real;           /* resolved path for recursion checks */
     const char *text;
     size_t len;
+    uint8_t generated;          /* 1: text the compiler made (scn_push_text), no file */
 } scn_file;
 
 typedef struct scn_lexer {
@@ -402,9 +404,15 @@ typedef struct scn_ctx {
                                    t_last is readable there); 0: none */
     uint16_t after_when;        /* 1 + the root of a `when` the last body statement was
                                    (a rest clause may follow it); 0: none */
-    /* the first error */
+    /* the error of the check under way (err, its position), the errors of independent
+       checks before it (scn_keep_error), and at the end all of them, one per line, in the
+       order of the file (msg) */
     int err;
-    char msg[SCN_MSG_LEN];
+    char msg[SCN_MSG_LEN * (SCN_MAX_ERRORS + 1)];
+    scn_pos err_pos;
+    char kept[SCN_MAX_ERRORS][SCN_MSG_LEN];
+    scn_pos kept_pos[SCN_MAX_ERRORS];
+    uint16_t nkept, nlost;
     /* memory */
     scn_chunk *chunks;
     /* the scene, and what image.c builds from it */
@@ -440,6 +448,14 @@ void scn_fail(scn_ctx *c, scn_pos pos, const char *near, const char *what,
               const char *expected);
 /* The same at the current token. */
 void scn_fail_tok(scn_ctx *c, const char *what, const char *expected);
+/* Keeps the pending error (if any) and clears it, so that a check that does not depend on
+   the one that failed runs and reports its own error too (at most SCN_MAX_ERRORS). */
+void scn_keep_error(scn_ctx *c);
+/* Errors so far: kept, lost past the limit and pending. */
+unsigned scn_error_count(const scn_ctx *c);
+/* Ends a run of independent checks: every error kept, in the order of the file, becomes
+   msg (one per line) and err is set; returns -1 if there was one, else 0. */
+int scn_report_errors(scn_ctx *c);
 const char *scn_near(scn_ctx *c, const scn_tok *t);     /* a token's text for messages */
 const char *scn_path(const scn_ctx *c, scn_pos pos);    /* file of a position */
 int scn_open_main(scn_ctx *c, const char *path, const char *text, size_t len);
