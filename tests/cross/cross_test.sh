@@ -11,7 +11,7 @@
 #   RUN: the target's QEMU command with -plugin ...,limit=@BUDGET@ in it; VTIME: 1 where
 #   time is virtual (no overrun may happen); BG_TICKS: ticks of the background run, or 0.
 #   Environment: QEMU_TIMEOUT, CROSS_PARTS, CROSS_SCENE_PARTS, CROSS_BUDGET_SOFTFLOAT,
-#   CROSS_BUDGET_TESTS, CROSS_BUDGET_SCENES, CROSS_BUDGET_RT.
+#   CROSS_BUDGET_TESTS, CROSS_BUDGET_SCENES, CROSS_BUDGET_RT, CROSS_JOBS (images at once, 2).
 set -u
 t=$1 B=$2 H=$3 RUN=$4 VTIME=$5 BG=$6
 fail=0
@@ -21,6 +21,19 @@ say() { echo "cross-test $t: $*"; }
 run() {
     eval "budget=\$$2"
     sh tests/cross/run.sh "cross-test $t: $1" "$RUN" "$budget" "$2" "$3" "$4"
+}
+
+# parts KIND BUDGET_NAME N: the images $B/KIND-<k>ofN.elf, CROSS_JOBS (2) at a time as a
+# pool (each bounded by its own instruction budget, so how many share the cores changes
+# no verdict); each leaves its log, its status in LOG.rc and what run.sh said in LOG.say
+jobs=${CROSS_JOBS:-2}
+parts() {
+    eval "budget=\$$2"
+    k=0
+    while [ $k -lt "$3" ]; do echo $k; k=$((k + 1)); done |
+        xargs -P "$jobs" -I{} sh -c 'l="$6-{}of$7.log"; sh tests/cross/run.sh "$1 {}" "$2" \
+            "$3" "$4" "$6-{}of$7.elf" "$l" > "$l.say" 2>&1; echo $? > "$l.rc"' _ \
+            "cross-test $t: $1 part" "$RUN" "$budget" "$2" - "$B/$1" "$3"
 }
 
 # binary64 arithmetic
@@ -35,11 +48,13 @@ else
     tail -20 "$B/softfloat.log"; say "softfloat test failed"; fail=1
 fi
 
-# the unit tests, part by part
+# the unit tests, part by part, reported in order
+parts tests CROSS_BUDGET_TESTS "$CROSS_PARTS"
 k=0
 while [ $k -lt "$CROSS_PARTS" ]; do
-    p="$((k + 1))/$CROSS_PARTS" elf="$B/tests-${k}of$CROSS_PARTS.elf" log="$B/tests-${k}of$CROSS_PARTS.log"
-    if run "unit tests $p" CROSS_BUDGET_TESTS "$elf" "$log"; then
+    p="$((k + 1))/$CROSS_PARTS" log="$B/tests-${k}of$CROSS_PARTS.log"
+    cat "$log.say"
+    if [ "$(cat "$log.rc")" = 0 ]; then
         say "unit tests $p: $(tail -1 "$log")"
     else
         grep -E '^FAIL|passed' "$log" | head -40; say "unit tests $p failed"; fail=1
@@ -68,10 +83,12 @@ probe "QEMU_TIMEOUT" "timed out after 1 s (QEMU_TIMEOUT)" "timeout 1 sh tests/cr
 
 # every library scene over its whole run, against the host
 : > "$B/scenes.log"
+parts scenes CROSS_BUDGET_SCENES "$CROSS_SCENE_PARTS"
 k=0
 while [ $k -lt "$CROSS_SCENE_PARTS" ]; do
     p="$((k + 1))/$CROSS_SCENE_PARTS" log="$B/scenes-${k}of$CROSS_SCENE_PARTS.log"
-    if run "scenes $p" CROSS_BUDGET_SCENES "$B/scenes-${k}of$CROSS_SCENE_PARTS.elf" "$log"; then
+    cat "$log.say"
+    if [ "$(cat "$log.rc")" = 0 ]; then
         cat "$log" >> "$B/scenes.log"
     else
         tail -5 "$log"; say "scene image $p failed"; fail=1
