@@ -13,6 +13,14 @@ uint16_t rt_set_nx(const rt_sim *sim, uint8_t set)
     return (uint16_t)(sim->plan.set_x[set + 1] - sim->plan.set_x[set]);
 }
 
+rt_step_work rt_step_bound(const rt_scene *sc, uint8_t s, uint16_t n)
+{
+    rt_step_work w = {0, 0};
+    const rt_integrator *m = sc->sets[s].method;
+    m->bound(m, &sc->sets[s].implicit, n, &w);
+    return w;
+}
+
 /* inputs of set s whose extrapolation the coupling monitor checks (rt/xset.c) */
 static uint32_t checked_inputs(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {

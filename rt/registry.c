@@ -16,14 +16,6 @@ const rt_integrator_entry rt_integrators[] = {
     {0, 0},
 };
 
-rt_step_work rt_step_bound(const rt_scene *sc, uint8_t s, uint16_t n)
-{
-    rt_step_work w = {0, 0};
-    const rt_integrator *m = sc->sets[s].method;
-    m->bound(m, &sc->sets[s].implicit, n, &w);
-    return w;
-}
-
 const rt_integrator *rt_integrator_find(const char *name)
 {
     for (const rt_integrator_entry *e = rt_integrators; e->name; e++)
