@@ -42,8 +42,10 @@ static void send_exports(const rt_scene *sc, const rt_sim *sim)
     const char *name = sc->name;
     p->type = LINK_TYPE_EXPORTS, p->n = sc->link->nexp, p->id = sc->link->id;
     p->seq = ++K.seq, p->tick = sim->state.tick, p->run = K.run;
-    for (int i = 0; i < LINK_NAME_LEN; i++)
-        p->name[i] = *name ? *name++ : 0;
+    for (int i = 0; i < LINK_NAME_LEN; i++) { /* the scene's name, padded with zeros */
+        p->name[i] = *name;
+        name += *name != 0;
+    }
     for (uint16_t i = 0; i < p->n; i++)
         p->v[i] = (double)rt_link_export(sc, sim, i);
     K.frame_len = (uint32_t)linkframe_encode(d, link_encode(p, 0, d, sizeof d), K.frame,
