@@ -525,7 +525,7 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
 {
     const ros2_tab *tab = m->tab;
     rt_implicit_ws *ws = w->imp;
-    real_t acc = w->cfg->accuracy > 0 ? w->cfg->accuracy : RT_ERR_TOL;
+    real_t acc = rti_accuracy(w->cfg);
     imp_step c;
     begin(&c, f, x, n, w, h * tab->gamma);
     for (uint16_t j = 0; j < n; j++)

@@ -88,7 +88,7 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
         rti_count(sim, RT_CNT_SINGULAR, -1, RT_E_SINGULAR);
     if (w.stats->substepped != split)
         rti_count(sim, RT_CNT_SUBSTEP, -1, RT_OK); /* recovered: reported, not a fault */
-    real_t acc = w.cfg->accuracy > 0 ? w.cfg->accuracy : RT_ERR_TOL;
+    real_t acc = rti_accuracy(w.cfg);
     real_t e = w.stats->last_err; /* a NaN estimate is the nan counter's (below) */
     if (e == e && !(e <= acc)) {
         rti_count(sim, RT_CNT_ERREST, -1,
