@@ -64,10 +64,7 @@ static real_t pulse_next(const rt_args *a)
 static rt_status pulse_check(const real_t *p, const void *spec)
 {
     (void)spec;
-    for (int i = 0; i < 5; i++)
-        if (!rt_isfinite(p[i]))
-            return RT_E_PARAM;
-    return p[1] > 0 && p[2] > 0 && p[2] < p[1] ? RT_OK : RT_E_PARAM;
+    return rt_all_finite(p, 5) && p[1] > 0 && p[2] > 0 && p[2] < p[1] ? RT_OK : RT_E_PARAM;
 }
 
 const rt_kind mdl_pulse_kind = {

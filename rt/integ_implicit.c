@@ -225,26 +225,13 @@ static rt_status finish(imp_step *c, real_t res)
 
 /* ------------------------------------------------------------------ Newton */
 
-/* max_i |d_i| / (1 + |y_i|); NaN when d holds one */
-static real_t scaled_norm(const real_t *d, const real_t *y, uint16_t n)
+/* max_i |d_i| / (sa + |y_i|); NaN when d holds one. sa: 1 for a Newton correction,
+   the set's floor (imp_step.sa, rti_err_floor) for an error estimate */
+static real_t scaled_norm(const real_t *d, const real_t *y, uint16_t n, real_t sa)
 {
     real_t m = 0;
     for (uint16_t i = 0; i < n; i++) {
-        real_t r = rt_fabs(d[i]) / (1 + rt_fabs(y[i]));
-        if (r != r)
-            return r;
-        m = r > m ? r : m;
-    }
-    return m;
-}
-
-/* the error norm of an estimate e at the new state x: max_i |e_i| / (sa + |x_i|), with
-   the set's floor sa (1 unless it declares an absolute tolerance); NaN when e holds one */
-static real_t err_norm(const imp_step *c, const real_t *e, const real_t *x)
-{
-    real_t m = 0;
-    for (uint16_t i = 0; i < c->n; i++) {
-        real_t r = rt_fabs(e[i]) / (c->sa + rt_fabs(x[i]));
+        real_t r = rt_fabs(d[i]) / (sa + rt_fabs(y[i]));
         if (r != r)
             return r;
         m = r > m ? r : m;
@@ -260,7 +247,7 @@ static real_t estimate(imp_step *c, real_t *e)
     const rt_implicit_ws *ws = c->w->imp;
     if (ws->valid)
         rti_lu_solve(ws->lu, c->n, ws->piv, e);
-    return err_norm(c, e, c->x);
+    return scaled_norm(e, c->x, c->n, c->sa);
 }
 
 /* solves Y = v + hg f(tc, Y) for Y in x, from the predictor in x; first: this is the
@@ -285,7 +272,7 @@ static real_t newton(imp_step *c, real_t tc, const real_t *v, int first)
         for (uint16_t i = 0; i < c->n; i++)
             d[i] = v[i] + c->hg * d[i] - x[i];
         rti_lu_solve(ws->lu, c->n, ws->piv, d);
-        real_t r = scaled_norm(d, x, c->n);
+        real_t r = scaled_norm(d, x, c->n, 1);
         if (c->r0 < 0)
             c->r0 = r;
         if (rti_fault_due(RTI_FAULT_NEWTON))
@@ -369,7 +356,7 @@ static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     }
     /* an A-stable method that does not damp stiff modes (trap: R(-inf) = -1) carries
        their error on, ringing: its estimate is taken raw */
-    real_t err = tab->lstable ? estimate(c, e) : err_norm(c, e, c->x);
+    real_t err = tab->lstable ? estimate(c, e) : scaled_norm(e, c->x, c->n, c->sa);
     if (c->err == c->err && !(err <= c->err))
         c->err = err;
     return worst;
@@ -524,7 +511,7 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
        Robinson at 10 ms, 5e-9 off, showed 0.21), but only in a set that refreshes its
        Jacobian every step (jacobian (1), the default): a W-method's error grows with its
        Jacobian's age, which the raw difference shows and an old M would filter away */
-    real_t e = w->cfg->jac_every <= 1 ? estimate(c, ft) : err_norm(c, ft, x);
+    real_t e = w->cfg->jac_every <= 1 ? estimate(c, ft) : scaled_norm(ft, x, n, c->sa);
     return e == e ? e : R(1) / R(0);
 }
 
@@ -538,7 +525,7 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
 {
     const ros2_tab *tab = m->tab;
     rt_implicit_ws *ws = w->imp;
-    real_t acc = w->cfg->accuracy > 0 ? w->cfg->accuracy : RT_ERR_TOL;
+    real_t acc = rti_accuracy(w->cfg);
     imp_step c;
     begin(&c, f, x, n, w, h * tab->gamma);
     for (uint16_t j = 0; j < n; j++)

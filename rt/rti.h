@@ -195,18 +195,21 @@ static inline uint16_t rti_block_run(const rt_sim *sim, uint8_t s, uint16_t *k, 
 }
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
-/* Forward-difference Jacobian of f at (t, x) around fb = f(t, x) into the n x n row-major
-   jac, column by column: x_j moves in place by inc max(1, |x_j|), re-measured as the
-   representable difference, and is restored bit for bit; fd is n scratch. Returns the
-   first error of f, or RT_OK (rt/integ_implicit.c; the transition method's too). */
+/* the accuracy a set's error estimates are held to: its own, else RT_ERR_TOL */
+static inline real_t rti_accuracy(const rt_implicit_cfg *c)
+{
+    return c->accuracy > 0 ? c->accuracy : RT_ERR_TOL;
+}
 /* the floor of the error norm of a set's estimates, max_i |e_i| / (floor + |x_i|): 1
    unless the set declares an absolute tolerance (atol / accuracy; docs/solvers.md) */
 static inline real_t rti_err_floor(const rt_implicit_cfg *c)
 {
-    real_t acc = c->accuracy > 0 ? c->accuracy : RT_ERR_TOL;
-    return c->atol > 0 ? c->atol / acc : (real_t)1;
+    return c->atol > 0 ? c->atol / rti_accuracy(c) : (real_t)1;
 }
-
+/* Forward-difference Jacobian of f at (t, x) around fb = f(t, x) into the n x n row-major
+   jac, column by column: x_j moves in place by inc max(1, |x_j|), re-measured as the
+   representable difference, and is restored bit for bit; fd is n scratch. Returns the
+   first error of f, or RT_OK (rt/integ_implicit.c; the transition method's too). */
 rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, const real_t *fb,
                           real_t inc, real_t *fd, real_t *jac);
 

@@ -88,7 +88,7 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
         rti_count(sim, RT_CNT_SINGULAR, -1, RT_E_SINGULAR);
     if (w.stats->substepped != split)
         rti_count(sim, RT_CNT_SUBSTEP, -1, RT_OK); /* recovered: reported, not a fault */
-    real_t acc = w.cfg->accuracy > 0 ? w.cfg->accuracy : RT_ERR_TOL;
+    real_t acc = rti_accuracy(w.cfg);
     real_t e = w.stats->last_err; /* a NaN estimate is the nan counter's (below) */
     if (e == e && !(e <= acc)) {
         rti_count(sim, RT_CNT_ERREST, -1,
@@ -137,17 +137,28 @@ static int8_t side_before(const rt_kind *k, uint16_t i, real_t ra, real_t lvl, i
     return (int8_t)(side != 0 ? side : dir != 0 ? -dir : ra - lvl > 0 ? 1 : -1);
 }
 
+/* the next block of set s with roots from its k-th (plan.set_blk, the order of
+   rti_roots), advancing k; sc->nblocks past the last. Every walk of a set's roots
+   below goes block by block so, from k = plan.blk_of[s], root n counting on */
+static uint16_t next_root_block(const rt_scene *sc, const rt_sim *sim, uint8_t s, uint16_t *k)
+{
+    while (*k < sim->plan.blk_of[s + 1]) {
+        uint16_t b = sim->plan.set_blk[(*k)++];
+        if (sc->blocks[b].kind->nr > 0)
+            return b;
+    }
+    return sc->nblocks;
+}
+
 /* first root of the set (in block order) crossing between ra and rb, or (rs->lost) going
    NaN from a finite value; -1 if none. Writes the owning block into *blk and the root's
    index within it into *which. */
-static int find_crossing(const rt_scene *sc, uint8_t s, const rootset *rs, const real_t *ra,
-                         const real_t *rb, uint16_t *blk, uint16_t *which)
+static int find_crossing(const rt_scene *sc, const rt_sim *sim, uint8_t s, const rootset *rs,
+                         const real_t *ra, const real_t *rb, uint16_t *blk, uint16_t *which)
 {
-    uint16_t n = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
+    uint16_t n = 0, j = sim->plan.blk_of[s];
+    for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
-        if (k->nr == 0 || sc->blocks[b].set != s)
-            continue;
         for (uint16_t i = 0; i < k->nr; i++, n++)
             if (crossed(k, i, ra[n], rb[n], rs->lvl[n], rs->side[n]) ||
                 (rs->lost && ra[n] == ra[n] && rb[n] != rb[n])) {
@@ -198,7 +209,7 @@ static void locate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
         trial(sc, sim, s, t, h, th, sim->work.rs);
         uint16_t blk, which;
         /* an earlier crossing of any root in [a, th] takes over the bracket */
-        int c = find_crossing(sc, s, rs, r_start, sim->work.rs, &blk, &which);
+        int c = find_crossing(sc, sim, s, rs, r_start, sim->work.rs, &blk, &which);
         if (c >= 0) {
             k->root = c, k->b = th, k->rb = sim->work.rs[c];
             for (uint16_t i = 0; i < n; i++)
@@ -227,14 +238,13 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const ro
                  const real_t *r_start, int8_t *fired)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0), m = 0;
+    uint16_t j = sim->plan.blk_of[s];
     for (uint16_t i = 0; i < n; i++)
         sim->state.x[x0 + i] = sim->work.xb[i];
     rti_outputs(sc, sim, (rti_at){te, s, RTI_IN_STEP});
     rti_roots(sc, sim, s, te, sim->work.rs);
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
+    for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
-        if (k->nr == 0 || sc->blocks[b].set != s)
-            continue;
         for (uint16_t i = 0; i < k->nr; i++, m++) {
             fired[m] = 0;
             if (!crossed(k, i, r_start[m], sim->work.rs[m], rs->lvl[m], rs->side[m]))
@@ -282,6 +292,7 @@ static void settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t
                    const rootset *rs, const int8_t *fired, const real_t *r)
 {
     uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]), m = 0;
+    uint16_t j = sim->plan.blk_of[s];
     int far = 0;
     for (uint16_t i = 0; i < nr; i++) {
         if (fired[i] != 0 && (real_t)fired[i] * r[i] > 0)
@@ -292,10 +303,8 @@ static void settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t
         return;
     real_t *rp = sim->work.rs;
     probe(sc, sim, s, te, h * RT_EVENT_PROBE, rp);
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
+    for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
-        if (k->nr == 0 || sc->blocks[b].set != s)
-            continue;
         for (uint16_t i = 0; i < k->nr; i++, m++) {
             int8_t sd = fired[m];
             if (sd == 0 || (real_t)sd * r[m] > 0)
@@ -319,11 +328,9 @@ static void settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t
 static void check_guards(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *rs,
                          const real_t *ra, const real_t *rb)
 {
-    uint16_t n = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
+    uint16_t n = 0, j = sim->plan.blk_of[s];
+    for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
-        if (k->nr == 0 || sc->blocks[b].set != s)
-            continue;
         for (uint16_t i = 0; i < k->nr; i++, n++) {
             int sd = rs->side[n] != 0 ? rs->side[n] : k->root_guard && k->root_guard[i];
             real_t side = (real_t)sd;
@@ -342,13 +349,11 @@ static void release(uint16_t nr, const rootset *rs, const real_t *r)
 }
 
 /* the first block of set s with a NaN root in r, or -1 */
-static int nan_root_block(const rt_scene *sc, uint8_t s, const real_t *r)
+static int nan_root_block(const rt_scene *sc, const rt_sim *sim, uint8_t s, const real_t *r)
 {
-    uint16_t n = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
+    uint16_t n = 0, j = sim->plan.blk_of[s];
+    for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
-        if (k->nr == 0 || sc->blocks[b].set != s)
-            continue;
         for (uint16_t i = 0; i < k->nr; i++, n++)
             if (r[n] != r[n])
                 return b;
@@ -373,12 +378,12 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         integrate(sc, sim, s, t0, span); /* keeps the span's start in work.xs */
         rti_outputs(sc, sim, (rti_at){t0 + span, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0 + span, sim->work.rs);
-        int nb = nan_root_block(sc, s, sim->work.rs);
+        int nb = nan_root_block(sc, sim, s, sim->work.rs);
         rs.lost = nb >= 0 && rt_all_finite(sim->state.x + x0, n);
         if (rs.lost && !nan_seen)
             rti_count(sim, RT_CNT_NAN, nb, RT_E_NAN), nan_seen = 1;
         uint16_t blk, which;
-        int c = find_crossing(sc, s, &rs, r, sim->work.rs, &blk, &which);
+        int c = find_crossing(sc, sim, s, &rs, r, sim->work.rs, &blk, &which);
         if (c < 0) {
             check_guards(sc, sim, s, &rs, r, sim->work.rs);
             release(nr, &rs, sim->work.rs);

@@ -103,16 +103,21 @@ void rti_zero(void *p, size_t n)
         *b++ = 0;
 }
 
-rt_status rti_fail(rt_sim *sim, rt_status status, ...)
+/* the strings of ap up to a null pointer into sim->err from its n-th byte, truncated */
+static void put_parts(rt_sim *sim, size_t n, va_list ap)
 {
-    va_list ap;
-    size_t n = 0;
-    va_start(ap, status);
     for (const char *s; (s = va_arg(ap, const char *)) != 0;)
         while (*s && n + 1 < RT_ERR_LEN)
             sim->err[n++] = *s++;
-    va_end(ap);
     sim->err[n] = 0;
+}
+
+rt_status rti_fail(rt_sim *sim, rt_status status, ...)
+{
+    va_list ap;
+    va_start(ap, status);
+    put_parts(sim, 0, ap);
+    va_end(ap);
     return status;
 }
 
@@ -125,11 +130,8 @@ void rti_note(rt_sim *sim, ...)
     if (n > 0 && n + 3 < RT_ERR_LEN)
         sim->err[n++] = ';', sim->err[n++] = ' ';
     va_start(ap, sim);
-    for (const char *s; (s = va_arg(ap, const char *)) != 0;)
-        while (*s && n + 1 < RT_ERR_LEN)
-            sim->err[n++] = *s++;
+    put_parts(sim, n, ap);
     va_end(ap);
-    sim->err[n] = 0;
 }
 
 const char *rti_real_text(char *buf, real_t v)

@@ -16,8 +16,9 @@
  * is counted like a step whose own estimate lost every digit: the coupling is past its
  * stability limit (RT_E_COUPLING). Below that, the miss times the reader's sensitivity to
  * the input (its derivatives' change per unit of it, measured every RT_XSET_GAIN_EVERY
- * steps and afresh near the accuracy) and half its step estimates the local error the coupling put into its state,
- * which is held to the reader's accuracy like its own estimate (doubtful above it). */
+ * steps and afresh near the accuracy) and half its step estimates the local error the
+ * coupling put into its state, which is held to the reader's accuracy like its own
+ * estimate (doubtful above it). */
 #include "rti.h"
 
 /* does input i, of a block of set st, extrapolate its source over st's step: a source
@@ -65,24 +66,14 @@ static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
-/* does a block of set r read a sampled output of set q (RT_SRC_HELD)? */
-static int reads_held(const rt_scene *sc, const rt_sim *sim, uint8_t r, uint8_t q)
+/* does a block of set r read an output of set q by source kind how: a sampled output
+   (RT_SRC_HELD) or through q's history (RT_SRC_XSET)? */
+static int reads(const rt_scene *sc, const rt_sim *sim, uint8_t r, uint8_t q, rt_src_kind how)
 {
     for (uint16_t b = 0; b < sc->nblocks; b++)
         for (uint16_t i = sim->plan.u_off[b]; sc->blocks[b].set == r && i < sim->plan.u_off[b + 1];
              i++)
-            if (sim->plan.src_kind[i] == RT_SRC_HELD && sim->plan.src_set[i] == q)
-                return 1;
-    return 0;
-}
-
-/* does a block of set r read an output of set q through q's history (RT_SRC_XSET)? */
-static int reads_hist(const rt_scene *sc, const rt_sim *sim, uint8_t r, uint8_t q)
-{
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        for (uint16_t i = sim->plan.u_off[b]; sc->blocks[b].set == r && i < sim->plan.u_off[b + 1];
-             i++)
-            if (sim->plan.src_kind[i] == RT_SRC_XSET && sim->plan.src_set[i] == q)
+            if (sim->plan.src_kind[i] == how && sim->plan.src_set[i] == q)
                 return 1;
     return 0;
 }
@@ -113,7 +104,7 @@ static void order_run(const rt_scene *sc, rt_sim *sim, uint8_t lo, uint8_t hi)
             low = low < RT_MAX_SETS && name_before(sc->sets[low].name, sc->sets[r].name) ? low : r;
             int ready = 1;
             for (uint8_t k = lo; ready && k < hi; k++)
-                ready = placed[run[k]] || run[k] == r || !reads_hist(sc, sim, r, run[k]);
+                ready = placed[run[k]] || run[k] == r || !reads(sc, sim, r, run[k], RT_SRC_XSET);
             pick = ready ? r : RT_MAX_SETS;
         }
         pick = pick < RT_MAX_SETS ? pick : low; /* a cycle: the first name of the rest */
@@ -153,7 +144,7 @@ static void refresh_order(const rt_scene *sc, rt_sim *sim)
             first = first < RT_MAX_SETS ? first : r;
             int ready = 1;
             for (uint8_t q = 0; ready && q < sc->nsets; q++)
-                ready = placed[q] || q == r || !reads_held(sc, sim, r, q);
+                ready = placed[q] || q == r || !reads(sc, sim, r, q, RT_SRC_HELD);
             pick = ready ? r : RT_MAX_SETS;
         }
         pick = pick < RT_MAX_SETS ? pick : first; /* a cycle: sched's first unplaced */
@@ -417,7 +408,7 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
                   real_t e, real_t t, real_t h)
 {
-    real_t acc = sc->sets[s].implicit.accuracy > 0 ? sc->sets[s].implicit.accuracy : RT_ERR_TOL;
+    real_t acc = rti_accuracy(&sc->sets[s].implicit);
     real_t est = (real_t)0.5 * h * sim->state.xgain[k] * e;
     if (!(est <= RT_XSET_FRESH * acc)) {
         if (!sc->sets[s].background) {
