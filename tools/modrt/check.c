@@ -44,6 +44,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "cli.h"
 
 static rt_sim half;  /* the run at half the steps */
 static rt_sim quarter; /* --observe: the run at a quarter of the steps */
@@ -75,26 +76,6 @@ static rt_status refuse(rt_status st, const char *what, const char *detail)
 static double fabs_(double v)
 {
     return v < 0 ? -v : v;
-}
-
-/* "Block.signal" of recorded signal i */
-static void sig_name(const rt_scene *sc, uint16_t i, char *buf, size_t n)
-{
-    snprintf(buf, n, "%s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
-}
-
-/* does name start with one of the comma-separated prefixes of list? */
-static int selected(const char *name, const char *list)
-{
-    if (!list)
-        return 1;
-    for (const char *p = list; *p;) {
-        size_t len = strcspn(p, ",");
-        if (len > 0 && strncmp(name, p, len) == 0)
-            return 1;
-        p += len + (p[len] == ',');
-    }
-    return 0;
 }
 
 /* The global tolerance of recorded signal i, absolute and relative to its range: the
@@ -189,8 +170,8 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
     C.r.every_s = (double)C.r.every * (double)sc->dt;
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         char name[96];
-        sig_name(sc, i, name, sizeof name);
-        C.r.sig[i].on = selected(name, o->only);
+        cli_rec_name(sc, i, name, sizeof name);
+        C.r.sig[i].on = cli_selected(name, o->only);
         C.r.nsig += (uint16_t)C.r.sig[i].on;
     }
     if (C.r.nsig == 0)
@@ -200,7 +181,7 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
         fputs("t", o->csv);
         for (uint16_t i = 0; i < sc->nrecs; i++) {
             char name[96];
-            sig_name(sc, i, name, sizeof name);
+            cli_rec_name(sc, i, name, sizeof name);
             if (C.r.sig[i].on)
                 fprintf(o->csv, ",%s", name);
         }
@@ -426,7 +407,7 @@ void check_print(FILE *f, const rt_scene *sc, const check_result *r)
         char name[96];
         if (!g->on)
             continue;
-        sig_name(sc, i, name, sizeof name);
+        cli_rec_name(sc, i, name, sizeof name);
         fprintf(f, "global_err.%s: %.3g at t = %.6g s (tol %.3g): %s", name, g->err, g->t,
                 g->tol, verdict(r, g));
         if (r->observe && g->q > 0)

@@ -44,6 +44,54 @@ const char *cli_fmt(char *buf, size_t n, double v)
     return buf;
 }
 
+int cli_exit_code(int sev)
+{
+    return sev == 0 ? CLI_OK : sev == 1 ? CLI_DOUBTFUL : CLI_FAULTS;
+}
+
+int cli_set_param(const rt_scene *sc, rt_sim *sim, const char *arg)
+{
+    char buf[128];
+    double v;
+    if (strlen(arg) >= sizeof buf)
+        return cli_fail("--set argument too long", arg);
+    strcpy(buf, arg);
+    char *dot = strchr(buf, '.'), *eq = strchr(buf, '=');
+    if (!dot || !eq || eq < dot)
+        return cli_fail("--set expects BLOCK.PARAM=VALUE, got", arg);
+    *dot = 0, *eq = 0;
+    if (!cli_real(eq + 1, &v))
+        return cli_fail("--set value is not a finite number", arg);
+    if (rt_block_index(sc, buf) < 0)
+        return cli_fail("--set: unknown block", buf);
+    rt_status st = rt_set_param(sc, sim, buf, dot + 1, (real_t)v);
+    if (st == RT_E_PARAM) /* the runtime may say why (a time event off the grid) */
+        return cli_fail(rt_error_text(sim)[0] ? rt_error_text(sim)
+                                              : "--set: value out of range for the parameter",
+                        arg);
+    if (st != RT_OK)
+        return cli_fail("--set: block has no parameter or state named", dot + 1);
+    return CLI_OK;
+}
+
+void cli_rec_name(const rt_scene *sc, uint16_t i, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
+}
+
+int cli_selected(const char *name, const char *list)
+{
+    if (!list)
+        return 1;
+    for (const char *p = list; *p;) {
+        size_t len = strcspn(p, ",");
+        if (len > 0 && strncmp(name, p, len) == 0)
+            return 1;
+        p += len + (p[len] == ',');
+    }
+    return 0;
+}
+
 const rt_scene *cli_scene(const char *name)
 {
     if (scn_host_is_file(name)) /* the scene compiler says what is wrong with a file */

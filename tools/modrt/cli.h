@@ -51,5 +51,15 @@ int cli_uint(const char *s, unsigned long lo, unsigned long hi, unsigned long *v
 const rt_scene *cli_scene(const char *name);
 /* Prints a real in the shortest form that reads back to the same value. */
 const char *cli_fmt(char *buf, size_t n, double v);
+/* The exit code of a run whose worst status has severity sev (rt_status_severity):
+   CLI_OK, CLI_DOUBTFUL or CLI_FAULTS. */
+int cli_exit_code(int sev);
+/* `--set BLOCK.PARAM=VALUE` onto the initialised sim. CLI_OK, or CLI_USAGE after one
+   line that says what is wrong (the runtime's reason when it gives one). */
+int cli_set_param(const rt_scene *sc, rt_sim *sim, const char *arg);
+/* "Block.signal", the name of recorded signal i, into buf. */
+void cli_rec_name(const rt_scene *sc, uint16_t i, char *buf, size_t n);
+/* 1 when name starts with one of the comma-separated prefixes of list (NULL: all). */
+int cli_selected(const char *name, const char *list);
 
 #endif /* CLI_H */

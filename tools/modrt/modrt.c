@@ -99,39 +99,6 @@ static int cmd_info(void *ctx, int npos, char **pos)
     return st == RT_OK ? CLI_OK : CLI_FAULTS;
 }
 
-/* BLOCK.PARAM=VALUE */
-static int apply_set(const rt_scene *sc, rt_sim *sim, const char *arg)
-{
-    char buf[128];
-    double v;
-    if (strlen(arg) >= sizeof buf)
-        return cli_fail("--set argument too long", arg);
-    strcpy(buf, arg);
-    char *dot = strchr(buf, '.'), *eq = strchr(buf, '=');
-    if (!dot || !eq || eq < dot)
-        return cli_fail("--set expects BLOCK.PARAM=VALUE, got", arg);
-    *dot = 0, *eq = 0;
-    if (!cli_real(eq + 1, &v))
-        return cli_fail("--set value is not a finite number", arg);
-    if (rt_block_index(sc, buf) < 0)
-        return cli_fail("--set: unknown block", buf);
-    rt_status st = rt_set_param(sc, sim, buf, dot + 1, (real_t)v);
-    if (st == RT_E_PARAM) /* the runtime may say why (a time event off the grid) */
-        return cli_fail(rt_error_text(sim)[0] ? rt_error_text(sim)
-                                              : "--set: value out of range for the parameter",
-                        arg);
-    if (st != RT_OK)
-        return cli_fail("--set: block has no parameter or state named", dot + 1);
-    return 0;
-}
-
-/* 0 ok, 3 doubtful (accuracy, overrun), 1 failed: the run's worst status */
-static int exit_code(const rt_sim *sim)
-{
-    int sev = rt_status_severity(sim->stats.status);
-    return sev == 0 ? CLI_OK : sev == 1 ? CLI_DOUBTFUL : CLI_FAULTS;
-}
-
 /* the summary of a run; sig: the signal that ended it early (its status then says so, the
    counters say what happened until then) */
 static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, double wall,
@@ -236,10 +203,11 @@ static int close_out(FILE *f, int is_stdout, const char *what, const char *path)
     return bad ? io_fail(what, path, err) : CLI_OK;
 }
 
-/* the exit status of a run: interrupted, then an output lost, then the run's own */
-static int run_exit(int sig, int io, int faults, const rt_sim *s)
+/* the exit status of a run: interrupted, then an output lost, then the worst severity
+   of the run (and of its check) */
+static int run_exit(int sig, int io, int sev)
 {
-    return sig ? CLI_INTERRUPTED : io ? CLI_IO : faults ? CLI_FAULTS : exit_code(s);
+    return sig ? CLI_INTERRUPTED : io ? CLI_IO : cli_exit_code(sev);
 }
 
 /* ------------------------------------------------------------------ run */
@@ -260,6 +228,13 @@ typedef struct run_args {
     const char *check_csv; /* its estimates at every compared instant, or NULL */
     check_opts global; /* its tolerance and signals */
 } run_args;
+
+/* 1: the run talks to a controller over --link (`--link none`: the imports hold their
+   defaults) */
+static int live_link(const run_args *a)
+{
+    return a->link && strcmp(a->link, "none") != 0;
+}
 
 static int opt_t_end(void *ctx, const char *v)
 {
@@ -514,7 +489,7 @@ static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc
     static link_key key;
     char err[512];
     mrl_header h;
-    int live = a->link && strcmp(a->link, "none") != 0;
+    int live = live_link(a);
     link_opts lo = {a->realtime, a->link_timeout > 0 ? a->link_timeout : 1,
                     live ? link_nonce() : 0, NULL};
     *rec = NULL;
@@ -543,7 +518,7 @@ static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc
    and the exit code follows: RT_E_LINK_FAULT (failed) */
 static int stop_link(const run_args *a, rt_sim *s, link_counts *c)
 {
-    if (!a->link || strcmp(a->link, "none") == 0)
+    if (!live_link(a))
         return 0;
     link_close(c);
     if (link_faulty(c) &&
@@ -566,7 +541,7 @@ static int setup_sets(void *ctx, const rt_scene *sc, rt_sim *s)
 {
     const run_args *a = ctx;
     for (int i = 0; i < a->nsets; i++)
-        if (apply_set(sc, s, a->sets[i]))
+        if (cli_set_param(sc, s, a->sets[i]))
             return CLI_USAGE;
     if (a->nsets > 0) /* only then: a refresh re-solves loops from a new warm start */
         rt_refresh(sc, s);
@@ -583,7 +558,7 @@ static int check_refused(const run_args *a)
     if (a->realtime)
         return cli_fail("--check", "a run paced by the wall clock cannot be run again at half "
                         "the steps; check without --realtime");
-    if (a->link && strcmp(a->link, "none") != 0)
+    if (live_link(a))
         return cli_fail("--check", "a live --link run cannot be checked: its controller "
                         "answers one run, not a second at half the steps; check the scene "
                         "without --link (its imports hold their defaults)");
@@ -680,9 +655,7 @@ static int cmd_run(void *ctx, int npos, char **pos)
         sev = cr.severity > sev ? cr.severity : sev;
     }
     io |= close_out(out, 1, "error writing the summary to", to_stdout ? "stderr" : "stdout");
-    if (r.signal || io)
-        return run_exit(r.signal, io, 0, &sim);
-    return sev == 0 ? CLI_OK : sev == 1 ? CLI_DOUBTFUL : CLI_FAULTS;
+    return run_exit(r.signal, io, sev);
 }
 
 /* `modrt check`: a run with the check */
@@ -783,7 +756,7 @@ static int replay_scene(const mrl_header *h, rt_scene *sc, const char *path)
         return cli_fail("replay", err);
     int nsets = 0;
     for (uint16_t i = 0; i < h->nsets; i++)
-        if (strncmp(h->sets[i], "--", 2) != 0 && (++nsets, apply_set(sc, &sim, h->sets[i])))
+        if (strncmp(h->sets[i], "--", 2) != 0 && (++nsets, cli_set_param(sc, &sim, h->sets[i])))
             return CLI_USAGE;
     if (nsets > 0)
         rt_refresh(sc, &sim);
@@ -819,7 +792,7 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     FILE *out = to_stdout ? stderr : stdout;
     summary(out, &sc, &sim, st, r.wall_s, r.signal);
     io |= close_out(out, 1, "error writing the summary to", to_stdout ? "stderr" : "stdout");
-    return run_exit(r.signal, io, 0, &sim);
+    return run_exit(r.signal, io, rt_status_severity(sim.stats.status));
 }
 
 /* the compile-time limits that fit this scene exactly, as -D flags for a per-scene build

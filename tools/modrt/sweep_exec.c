@@ -39,26 +39,6 @@ static void rel_path(const sweep_campaign *c, const char *p, char *buf, size_t n
         snprintf(buf, n, "%s/%s", c->dir, p);
 }
 
-/* BLOCK.PARAM=VALUE onto the initialised sim */
-static int set_one(const rt_scene *sc, const char *arg)
-{
-    char buf[2 * SWEEP_NAME];
-    double v;
-    const char *eq = strchr(arg, '='), *dot = strchr(arg, '.');
-    if (!eq || !dot || dot > eq || (size_t)(eq - arg) >= sizeof buf)
-        return cli_fail("--set expects BLOCK.PARAM=VALUE, got", arg);
-    memcpy(buf, arg, (size_t)(eq - arg)), buf[eq - arg] = 0;
-    buf[dot - arg] = 0;
-    if (!cli_real(eq + 1, &v))
-        return cli_fail("--set value is not a finite number", arg);
-    if (rt_block_index(sc, buf) < 0)
-        return cli_fail("--set: unknown block", buf);
-    rt_status st = rt_set_param(sc, &sim, buf, buf + (dot - arg) + 1, (real_t)v);
-    if (st == RT_E_PARAM)
-        return cli_fail("--set: value out of range for the parameter", arg);
-    return st == RT_OK ? CLI_OK : cli_fail("--set: block has no parameter or state", arg);
-}
-
 /* the log's scene as the live run was set up (modrt replay does the same) */
 static mrl_header h; /* the replayed log's header */
 
@@ -123,10 +103,10 @@ static int setup(const sweep_campaign *c, const sweep_exec_args *a, rt_scene *sc
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
     /* the live run's overrides first, then the campaign's */
     for (uint16_t i = 0; a->replay && i < h.nsets; i++)
-        if (set_one(sc, h.sets[i]) != CLI_OK)
+        if (cli_set_param(sc, &sim, h.sets[i]) != CLI_OK)
             return CLI_USAGE;
     for (int i = 0; i < a->nsets; i++)
-        if (set_one(sc, a->sets[i]) != CLI_OK)
+        if (cli_set_param(sc, &sim, a->sets[i]) != CLI_OK)
             return CLI_USAGE;
     if (a->nsets > 0 || (a->replay && h.nsets > 0)) /* a refresh re-solves loops from the new values */
         rt_refresh(sc, &sim);
@@ -204,8 +184,7 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
         mrl_close();
     if (csv && fclose(csv) != 0)
         return cli_fail("error writing the CSV file", a->csv);
-    int sev = rt_status_severity(sim.stats.status);
-    int code = sev == 0 ? CLI_OK : sev == 1 ? CLI_DOUBTFUL : CLI_FAULTS;
+    int code = cli_exit_code(rt_status_severity(sim.stats.status));
     return write_result(c, a, &sc, st, r.wall_s, code) != CLI_OK ? CLI_USAGE : code;
 }
 

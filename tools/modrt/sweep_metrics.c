@@ -14,8 +14,7 @@ static int find_rec(const rt_scene *sc, const char *name)
 {
     char buf[2 * SWEEP_NAME];
     for (uint16_t i = 0; i < sc->nrecs; i++) {
-        snprintf(buf, sizeof buf, "%s.%s", sc->blocks[sc->recs[i].block].name,
-                 rt_rec_signal(sc, i));
+        cli_rec_name(sc, i, buf, sizeof buf);
         if (strcmp(buf, name) == 0)
             return i;
     }

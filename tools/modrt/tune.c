@@ -66,26 +66,6 @@ static double cpu_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* "Block.signal" of recorded signal i */
-static void sig_name(const rt_scene *sc, uint16_t i, char *buf, size_t n)
-{
-    snprintf(buf, n, "%s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
-}
-
-/* does name start with one of the comma-separated prefixes of list? */
-static int selected(const char *name, const char *list)
-{
-    if (!list)
-        return 1;
-    for (const char *p = list; *p;) {
-        size_t len = strcspn(p, ",");
-        if (len > 0 && strncmp(name, p, len) == 0)
-            return 1;
-        p += len + (p[len] == ',');
-    }
-    return 0;
-}
-
 /* the work scene: sc with ratio[] on the base tick divided by div */
 static void configure(const uint32_t *ratio, uint32_t div)
 {
@@ -190,8 +170,8 @@ static rt_status setup(const rt_scene *sc, const tune_opts *o)
     T.nsig = 0;
     for (uint16_t i = 0; i < sc->nrecs; i++) {
         char name[NAME_LEN];
-        sig_name(sc, i, name, sizeof name);
-        if (selected(name, T.o.only))
+        cli_rec_name(sc, i, name, sizeof name);
+        if (cli_selected(name, T.o.only))
             T.sig[T.nsig++] = i;
     }
     if (T.nsig == 0)
