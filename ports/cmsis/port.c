@@ -44,21 +44,11 @@
 
 /* ------------------------------------------------------------------ console and exit */
 
-#if PORT_CONSOLE_SEMIHOST
-static uintptr_t semihost(uintptr_t op, const void *arg)
-{
-    register uintptr_t r0 __asm__("r0") = op;
-    register const void *r1 __asm__("r1") = arg;
-    __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
-    return r0;
-}
-#endif
-
 void port_write(const char *s)
 {
 #if PORT_CONSOLE_SEMIHOST
     if (s && *s)
-        semihost(0x04u, s); /* SYS_WRITE0 */
+        cm_semihost(CM_SYS_WRITE0, s);
 #else
     (void)s; /* your UART here */
 #endif
@@ -68,23 +58,13 @@ void port_exit(int code)
 {
 #if PORT_CONSOLE_SEMIHOST
     uint32_t c = (uint32_t)code & 0xFFu;
-    const uint32_t block[2] = {0x20026u /* ApplicationExit */, code != 0 && c == 0 ? 1 : c};
-    semihost(0x20u, block); /* SYS_EXIT_EXTENDED */
+    const uint32_t block[2] = {CM_ADP_STOPPED_APPLICATION_EXIT, code != 0 && c == 0 ? 1 : c};
+    cm_semihost(CM_SYS_EXIT_EXTENDED, block);
 #else
     (void)code;
 #endif
     for (;;)
         __asm__ volatile("cpsid i\n\twfi");
-}
-
-void cm_write_hex(const char *label, uint32_t v)
-{
-    char buf[11] = {'0', 'x'};
-    for (int i = 0; i < 8; i++)
-        buf[2 + i] = "0123456789abcdef"[(v >> (28 - 4 * i)) & 0xFu];
-    buf[10] = 0;
-    port_write(label);
-    port_write(buf);
 }
 
 /* ------------------------------------------------------------------ cycles */

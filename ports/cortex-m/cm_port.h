@@ -84,13 +84,19 @@ void cm_link_uart_irq(void);
 #define CM_SYS_EXIT          0x18u
 #define CM_SYS_EXIT_EXTENDED 0x20u
 #define CM_ADP_STOPPED_APPLICATION_EXIT 0x20026u
+/* one call: the operation in r0, its argument (block) in r1, the host's answer in r0 */
+static inline uintptr_t cm_semihost(uintptr_t op, const void *arg)
+{
+    register uintptr_t r0 __asm__("r0") = op;
+    register const void *r1 __asm__("r1") = arg;
+    __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
+    return r0;
+}
 
 /* port.c: starts the cost counter; called by the reset handler before app_main. */
 void cm_port_init(void);
 /* port.c: the SysTick and PendSV exception handlers (referenced by the vector table). */
 void SysTick_Handler(void);
 void PendSV_Handler(void);
-/* port.c: writes "label0xXXXXXXXX" to the console (used by the fault reports). */
-void cm_write_hex(const char *label, uint32_t v);
 
 #endif /* CM_PORT_H */

@@ -51,18 +51,6 @@
 #define CM_CYCLES_PER_TICK (1000000000u / CM_SYSCLK_HZ)
 #endif
 
-/* ------------------------------------------------------------------ semihosting */
-
-#if CM_CONSOLE == CM_CONSOLE_SEMIHOST || CM_EXIT_SEMIHOST
-static uintptr_t cm_semihost(uintptr_t op, const void *arg)
-{
-    register uintptr_t r0 __asm__("r0") = op;
-    register const void *r1 __asm__("r1") = arg;
-    __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
-    return r0;
-}
-#endif
-
 /* ------------------------------------------------------------------ console */
 
 #if CM_CONSOLE == CM_CONSOLE_UART
@@ -114,17 +102,6 @@ void port_exit(int code)
     (void)code; /* nowhere to report it: the application printed its status */
 #endif
     for (;;) __asm__ volatile("cpsid i\n\twfi");
-}
-
-void cm_write_hex(const char *label, uint32_t v)
-{
-    char buf[11];
-    buf[0] = '0';
-    buf[1] = 'x';
-    for (int i = 0; i < 8; i++) buf[2 + i] = "0123456789abcdef"[(v >> (28 - 4 * i)) & 0xFu];
-    buf[10] = '\0';
-    port_write(label);
-    port_write(buf);
 }
 
 /* ------------------------------------------------------------------ cost counter */

@@ -67,6 +67,17 @@ static const char *const cm_exc_names[16] = {
     "?", "?", "?", "SVCall", "DebugMonitor", "?", "PendSV", "SysTick",
 };
 
+/* writes "label0xXXXXXXXX" to the console */
+static void cm_write_hex(const char *label, uint32_t v)
+{
+    char buf[11] = {'0', 'x'};
+    for (int i = 0; i < 8; i++)
+        buf[2 + i] = "0123456789abcdef"[(v >> (28 - 4 * i)) & 0xFu];
+    buf[10] = 0;
+    port_write(label);
+    port_write(buf);
+}
+
 void cm_fault_report(const uint32_t *frame, uint32_t exc_return)
 {
     uint32_t ipsr;

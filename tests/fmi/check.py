@@ -19,7 +19,10 @@ def rows(path):
     with open(path) as f:
         r = csv.reader(f)
         head = next(r)
-        return head, [[float(x) for x in row] for row in r]
+        data = [[float(x) for x in row] for row in r]
+    if not data:  # no row would be no deviation: never a pass
+        sys.exit("%s: no rows" % path)
+    return head, data
 
 
 def ball_exact(t, g=9.81, e=0.7, h0=1.0):

@@ -31,6 +31,7 @@ start() {
 stop() { kill $CTL 2>/dev/null; wait $CTL 2>/dev/null; }
 
 loop_hash=$($M run pi_loop --csv $T/loop.csv | sed -n 's/^hash: //p')
+[ -n "$loop_hash" ] || bad "pi_loop printed no hash: every comparison with it would be empty"
 
 # 1. lock-step: exact, replayable, equal to the in-scene controller
 start tools/examples/pi_controller.py --idle 3

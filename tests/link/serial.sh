@@ -44,6 +44,7 @@ ctl_count() { sed -n "s/.*$1 \([0-9]*\).*/\1/p" $T/ctl.out; }
 
 $M run pi_loop --csv $T/loop.csv > $T/loop.out
 loop_hash=$(field hash $T/loop.out)
+[ -n "$loop_hash" ] || bad "pi_loop printed no hash: every comparison with it would be empty"
 rows() { tail -n +2 "$1" | cut -d, -f2-; }   # a trace without its time column
 same_trace() { [ "$(rows "$1")" = "$(rows $T/loop.csv)" ]; }
 

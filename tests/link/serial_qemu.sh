@@ -50,6 +50,7 @@ qemu() {
 
 $M run pi_loop --csv $T/loop.csv > $T/loop.out
 loop_hash=$(field hash $T/loop.out)
+[ -n "$loop_hash" ] || bad "pi_loop printed no hash: every comparison with it would be empty"
 
 # controller ELF LABEL: the controller firmware ELF in QEMU, the plant on the host
 controller() {

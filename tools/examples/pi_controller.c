@@ -32,18 +32,6 @@
 #define KI 3.0
 #define TS 0.01
 
-/* FNV-1a over the scene's link layout (docs/link.md, "link id") */
-static uint32_t link_id(const char *const *words, int n)
-{
-    uint32_t h = 2166136261u;
-    for (int i = 0; i < n; i++) {
-        for (const char *s = words[i]; *s; s++)
-            h = (h ^ (uint8_t)*s) * 16777619u;
-        h = (h ^ (uint8_t)'|') * 16777619u;
-    }
-    return h;
-}
-
 static int read_key(const char *path, link_key *key)
 {
     uint8_t b[LINK_MAX_KEY + 2];
@@ -176,14 +164,17 @@ int main(int argc, char **argv)
     struct sockaddr_in me = {.sin_family = AF_INET, .sin_port = htons(argc > 1 ? atoi(argv[1]) : 0)};
     struct timeval idle = {argc > 2 ? atoi(argv[2]) : 5, 0};
     if (argc > 3 && read_key(argv[3], &key) != 0) {
-        fprintf(stderr, "pi_controller: %s: cannot read a key of 1 to %d bytes\n", argv[3],
-                LINK_MAX_KEY);
-        return 1;
+      fprintf(stderr, "pi_controller: %s: cannot read a key of 1 to %d bytes\n",
+              argv[3], LINK_MAX_KEY);
+      return 1;
     }
-    link_expect want = {.type = LINK_TYPE_EXPORTS, .name = "pi_link", .id = link_id(layout, 8),
-                        .n = 2, .key = &key};
+    link_expect want = {.type = LINK_TYPE_EXPORTS,
+                        .name = "pi_link",
+                        .id = linkclient_layout_id(layout, 8),
+                        .n = 2,
+                        .key = &key};
     if (argc > 1 && strncmp(argv[1], SERIAL_PREFIX, strlen(SERIAL_PREFIX)) == 0)
-        return serial_main(argv[1], argc > 2 ? atoi(argv[2]) : 5, want.id, &key);
+      return serial_main(argv[1], argc > 2 ? atoi(argv[2]) : 5, want.id, &key);
     int fd = socket(AF_INET, SOCK_DGRAM, 0);
     me.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     socklen_t len = sizeof me;

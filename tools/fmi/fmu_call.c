@@ -90,21 +90,9 @@ static int get_z2(fmu_inst *in, double *z, size_t n)
     return in->m->f2.fmi2GetEventIndicators(in->c, z, n);
 }
 
-static int get2(fmu_inst *in, const uint32_t *vr, size_t n, double *v)
-{
-    fmi2ValueReference r[64];
-    int s = fmi2OK;
-    for (size_t i = 0; i < n && s <= fmi2Warning; i += 64) { /* unsigned int vs uint32_t */
-        size_t k = n - i < 64 ? n - i : 64;
-        for (size_t j = 0; j < k; j++)
-            r[j] = vr[i + j];
-        int t = in->m->f2.fmi2GetReal(in->c, r, k, v + i);
-        s = t > s ? t : s;
-    }
-    return s;
-}
-
-static int set2(fmu_inst *in, const uint32_t *vr, size_t n, const double *v)
+/* fmi2GetReal into get, else fmi2SetReal from set, in blocks of 64 value references
+   (fmi2ValueReference is unsigned int, the interface's are uint32_t) */
+static int real2(fmu_inst *in, const uint32_t *vr, size_t n, double *get, const double *set)
 {
     fmi2ValueReference r[64];
     int s = fmi2OK;
@@ -112,10 +100,21 @@ static int set2(fmu_inst *in, const uint32_t *vr, size_t n, const double *v)
         size_t k = n - i < 64 ? n - i : 64;
         for (size_t j = 0; j < k; j++)
             r[j] = vr[i + j];
-        int t = in->m->f2.fmi2SetReal(in->c, r, k, v + i);
+        int t = get ? in->m->f2.fmi2GetReal(in->c, r, k, get + i)
+                    : in->m->f2.fmi2SetReal(in->c, r, k, set + i);
         s = t > s ? t : s;
     }
     return s;
+}
+
+static int get2(fmu_inst *in, const uint32_t *vr, size_t n, double *v)
+{
+    return real2(in, vr, n, v, NULL);
+}
+
+static int set2(fmu_inst *in, const uint32_t *vr, size_t n, const double *v)
+{
+    return real2(in, vr, n, NULL, v);
 }
 
 static int reset2(fmu_inst *in) { return in->m->f2.fmi2Reset(in->c); }
