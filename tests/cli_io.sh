@@ -1,10 +1,11 @@
 #!/bin/sh
 # cli_io.sh - the command line at the edges of its input and output (issue 30): a run
 # interrupted by SIGINT or SIGTERM (whole CSV rows, the replay log finished, the summary
-# with status interrupted, exit 5), write errors (a full disk, a directory, no directory:
-# the system's reason, still the summary and the finished log, exit 4), an include or a
-# replay log that is not a regular file (refused with the reason, never read: a FIFO
-# would block). Every process this starts is bounded by timeout and stopped by its PID.
+# with status interrupted, exit 5, its replay stopping at the same tick), write errors (a
+# full disk, a directory, no directory: the system's reason, still the summary and the
+# finished log, exit 4), an include or a replay log that is not a regular file (refused
+# with the reason, never read: a FIFO would block). Every process this starts is bounded
+# by timeout and stopped by its PID.
 # Usage: sh tests/cli_io.sh BUILD_DIR
 set -u
 B=${1:-build/host}
@@ -46,8 +47,17 @@ for sig in INT TERM; do
         "$T/run.csv" && ok || bad "SIG$sig: CSV rows or last time $(tail -1 "$T/run.csv") vs $ticks ticks"
     [ "$(($(wc -l <"$T/run.csv") - 1))" -eq $((ticks + 1)) ] && ok ||
         bad "SIG$sig: $(wc -l <"$T/run.csv") CSV lines for $ticks ticks"
-    # the replay log ends in its end marker ("MRTE", 8-byte count, CRC-32)
-    [ "$(tail -c 16 "$T/run.mrl" | head -c 4)" = MRTE ] && ok || bad "SIG$sig: replay log without its end marker"
+    # the replay log ends in its end marker ("MRTE", count, last tick, how it ended, CRC-32)
+    [ "$(tail -c 28 "$T/run.mrl" | head -c 4)" = MRTE ] && ok || bad "SIG$sig: replay log without its end marker"
+    # its replay stops at the tick reached (it ran to the header's end time, 1e8 ticks):
+    # the same ticks, rows and hash, and the summary says where the recorded run ended
+    timeout -s KILL 120 "$M" replay "$T/run.mrl" --csv "$T/re.csv" >"$T/re" 2>&1; rc=$?
+    [ "$(sed -n 's/^ticks: //p' "$T/re")" = "$ticks" ] &&
+        [ "$(sed -n 's/^hash: //p' "$T/re")" = "$(sed -n 's/^hash: //p' "$T/sum")" ] &&
+        cmp -s "$T/run.csv" "$T/re.csv" && ok ||
+        bad "SIG$sig: replay: exit $rc, $(grep -E '^(ticks|hash)' "$T/re" | tr '\n' ' ')vs ticks $ticks $(grep '^hash' "$T/sum")"
+    [ $rc -eq 5 ] && grep -q "^replayed: to tick $ticks of 100000000, where the recorded run ended (SIG$sig)$" "$T/re" &&
+        ok || bad "SIG$sig: replay: exit $rc, $(grep -E '^(status|replayed)' "$T/re" | tr '\n' ' ')"
 done
 
 # the real-time clock too (its CSV rows are written by a thread from a ring)
@@ -66,7 +76,7 @@ if [ -w /dev/full ]; then
     grep -q '^modrt: error writing the CSV file /dev/full: No space left on device$' "$T/err" && ok ||
         bad "--csv /dev/full: $(cat "$T/err")"
     grep -q '^status: ok$' "$T/sum" && grep -q '^ticks: 3000$' "$T/sum" && ok || bad "--csv /dev/full: no summary"
-    [ "$(tail -c 16 "$T/full.mrl" | head -c 4)" = MRTE ] && ok || bad "--csv /dev/full: log unfinished"
+    [ "$(tail -c 28 "$T/full.mrl" | head -c 4)" = MRTE ] && ok || bad "--csv /dev/full: log unfinished"
     "$M" run pi_loop --csv - >/dev/full 2>"$T/err"; rc=$?
     [ $rc -eq 4 ] && grep -q 'error writing the CSV file -: No space left on device' "$T/err" && \
         grep -q '^hash: ' "$T/err" && ok || bad "--csv - >/dev/full: exit $rc: $(head -3 "$T/err")"

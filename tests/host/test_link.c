@@ -175,7 +175,8 @@ static const char *tmp_path(const char *name)
     return p;
 }
 
-static void write_log(const char *path, uint16_t nrec)
+/* a log of nrec records (ticks 0, 10, ...) whose run ended as `ended` at tick `last` */
+static void write_log_end(const char *path, uint16_t nrec, mrl_end ended, uint64_t last)
 {
     char err[256];
     mrl_header h = {.id = 0x1234, .nimp = 2, .real_size = sizeof(real_t), .t_end = 3,
@@ -190,7 +191,12 @@ static void write_log(const char *path, uint16_t nrec)
         real_t v[2] = {(real_t)i, (real_t)(0.5 * i)};
         mrl_append(w, 10u * i, v);
     }
-    TH_CHECK(mrl_finish(w, err, sizeof err) == 0);
+    TH_CHECK(mrl_finish(w, ended, last, err, sizeof err) == 0);
+}
+
+static void write_log(const char *path, uint16_t nrec)
+{
+    write_log_end(path, nrec, MRL_END_DONE, 3000);
 }
 
 static long file_size(const char *path)
@@ -236,7 +242,8 @@ static void test_log(void)
     TH_CHECK(mrl_open(p, &h, err, sizeof err) == 0);
     TH_CHECK(h.id == 0x1234 && h.nimp == 2 && h.nsets == 1 && strcmp(h.sets[0], "Plant.K=2") == 0);
     TH_CHECK(strcmp(h.scene, "pi_link") == 0 && h.t_end == 3 && h.every == 1);
-    TH_CHECK(h.version == 2 && h.scene_fp == 0x8877665544332211ull && h.run == RUN);
+    TH_CHECK(h.version == 3 && h.scene_fp == 0x8877665544332211ull && h.run == RUN);
+    TH_CHECK(h.ended == MRL_END_DONE && h.last_tick == 3000);
     uint64_t tick;
     real_t v[LINK_MAX_VALUES];
     int n = 0;
@@ -244,7 +251,7 @@ static void test_log(void)
         TH_CHECK(tick == 10u * (unsigned)n && v[1] == (real_t)(0.5 * n)), n++;
     TH_CHECK(n == 3);
     mrl_close();
-    long size = file_size(p), hdr = size - 16 - 3 * (8 + 16 + 4);
+    long size = file_size(p), hdr = size - 28 - 3 * (8 + 16 + 4);
     /* a flipped bit in record 1, in the header, a cut file, data after the end */
     write_log(p, 3);
     patch(p, hdr + 28 + 9, 0x10);
@@ -263,6 +270,33 @@ static void test_log(void)
     if (f)
         fputs("t,Ref.y\n0,0\n", f), fclose(f);
     TH_CHECK(refused(p, "not a modrt replay log"));
+    /* the end marker: how the run ended and its last tick, read back; a record past that
+       tick is one a replay would never apply; an unknown way to end or a flipped bit in
+       the tick are refused */
+    write_log_end(p, 3, MRL_END_SIGINT, 25);
+    TH_CHECK(mrl_open(p, &h, err, sizeof err) == 0 && h.ended == MRL_END_SIGINT &&
+             h.last_tick == 25);
+    mrl_close();
+    TH_CHECK(strcmp(mrl_end_name(MRL_END_SIGTERM), "SIGTERM") == 0);
+    write_log_end(p, 3, MRL_END_LINK, 19);
+    TH_CHECK(mrl_open(p, &h, err, sizeof err) == 0 && mrl_check_end(3000, err, sizeof err) == 0);
+    TH_CHECK(mrl_check_schedule(3000, 10, 0, err, sizeof err) != 0 &&
+             th_has(err, "1 record(s) a replay would never apply, the first at tick 20 (past "
+                         "the end; the run ends at tick 19"));
+    mrl_close();
+    write_log_end(p, 3, MRL_END_DONE, 2999); /* ran to its end: tick 3000 */
+    TH_CHECK(mrl_open(p, &h, err, sizeof err) == 0 && mrl_check_end(3000, err, sizeof err) != 0 &&
+             th_has(err, "the end marker says the run ended at tick 2999 (end time), but the "
+                         "scene's run ends at tick 3000"));
+    mrl_close();
+    write_log_end(p, 3, MRL_END_SIGINT, 3001);
+    TH_CHECK(mrl_open(p, &h, err, sizeof err) == 0 && mrl_check_end(3000, err, sizeof err) != 0);
+    mrl_close();
+    write_log_end(p, 3, MRL_END_COUNT_, 30);
+    TH_CHECK(refused(p, "unknown end of the run in the end marker"));
+    write_log_end(p, 3, MRL_END_DONE, 30);
+    patch(p, size - 28 + 12, 0x01);
+    TH_CHECK(refused(p, "end marker CRC mismatch"));
 }
 
 static void test_apply_and_check(void)
@@ -431,6 +465,7 @@ static void test_log_v1(void)
     TH_CHECK(mrl_open(p, &h, err, sizeof err) == 0);
     TH_CHECK(h.version == 1 && h.id == 0xabcd && h.nimp == 1 && h.t_end == 0.5 && h.every == 2);
     TH_CHECK(h.scene_fp == 0 && h.run == 0 && strcmp(h.scene, "pi_link") == 0);
+    TH_CHECK(h.ended == MRL_END_UNKNOWN && h.last_tick == 0); /* it does not say */
     TH_CHECK(mrl_next(&tick, v) == 1 && tick == 40 && v[0] == (real_t)-0.25);
     TH_CHECK(mrl_next(&tick, v) == 0);
     mrl_close();

@@ -56,6 +56,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static mrl_header h;
     char err[512];
     if (mrl_open(path, &h, err, sizeof err) == 0) {
+        /* the checks a replay makes against its scene (the seeds' run: 1000 ticks,
+           exchanges every 10); either may refuse and close the log */
+        if (mrl_check_schedule(1000, 10, h.realtime, err, sizeof err) == 0)
+            mrl_check_end(1000, err, sizeof err);
         uint64_t tick;
         real_t v[LINK_MAX_VALUES];
         while (mrl_next(&tick, v))

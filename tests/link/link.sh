@@ -60,6 +60,31 @@ h=$($M run pi_link --link udp:127.0.0.1:$PORT | sed -n 's/^hash: //p')
 stop
 [ "$h" = "$loop_hash" ] && ok || bad "C controller: hash $h, pi_loop's $loop_hash"
 
+# 1b. interrupted: a lock-step run stopped by SIGTERM (its PID) after its first rows; the
+# log's end marker names the tick reached and the replay stops there: the same ticks, the
+# same CSV row for row (which the controller's answers shaped), the same hash, the summary
+# still says interrupted and the exit status is 5 (it replayed to the header's end time)
+start_c 5
+rm -f $T/int.csv
+timeout -s KILL 120 $M run pi_link --t-end 100000 --link udp:127.0.0.1:$PORT --record $T/int.mrl \
+    --csv $T/int.csv > $T/int.out 2>&1 &
+pid=$!
+for _ in $(seq 600); do
+    [ -f $T/int.csv ] && [ "$(wc -l < $T/int.csv)" -ge 2000 ] && break; sleep 0.1; done
+kill -TERM $pid 2>/dev/null; wait $pid; rc=$?
+stop
+ticks=$(field ticks $T/int.out)
+timeout -s KILL 120 $M replay $T/int.mrl --csv $T/int_re.csv > $T/int_re.out 2>&1; rrc=$?
+[ $rc -eq 5 ] && [ -n "$ticks" ] && [ "$(field link_applied $T/int.out)" -gt 100 ] && ok ||
+    bad "interrupted lock-step run: exit $rc, $(grep -E '^(ticks|status|link_applied)' $T/int.out | tr '\n' ' ')"
+[ "$(field ticks $T/int_re.out)" = "$ticks" ] && [ "$(field hash $T/int_re.out)" = "$(field hash $T/int.out)" ] &&
+    ok || bad "replay of the interrupted run: ticks $(field ticks $T/int_re.out), hash $(field hash $T/int_re.out); live: ticks $ticks, hash $(field hash $T/int.out)"
+cmp -s $T/int.csv $T/int_re.csv && ok || bad "replay of the interrupted run: CSV differs from the live run's"
+[ $rrc -eq 5 ] && grep -q "^interrupted: SIGTERM at tick $ticks of 100000000$" $T/int_re.out &&
+    grep -q "^replayed: to tick $ticks of 100000000, where the recorded run ended (SIGTERM)$" $T/int_re.out &&
+    ok || bad "replay of the interrupted run: exit $rrc, $(grep -E '^(status|interrupted|replayed)' $T/int_re.out | tr '\n' ' ')"
+echo "link: interrupted at tick $ticks ($(field link_applied $T/int.out) answers applied); its replay: $(field ticks $T/int_re.out) ticks, exit $rrc"
+
 # 2. soft real time: whatever the timing did, the replay reproduces it
 start tools/examples/pi_controller.py --idle 3
 $M run pi_link --link udp:127.0.0.1:$PORT --realtime --record $T/rt.mrl > $T/rt.out; rc=$?
@@ -95,6 +120,19 @@ stop
 
 [ "$(field status $T/quiet.out)" = "controller link faults: bad datagrams or missing answers (link_bad, link_missing)" ] &&
     ok || bad "silent controller: status '$(field status $T/quiet.out)' with exit $rc"
+# ... with policy stop the run ends at the first missing answer (tick 50 at the latest:
+# five answers at ticks 0..40), and its replay ends there too, with the same hash (it ran
+# on to 200 ticks)
+sed 's/import (c = 0 hold)/import (c = 0 stop)/' models/scenes/pi_link.scn > $T/stop.scn
+start tests/link/evil_controller.py --silent-after 5
+$M run $T/stop.scn --link udp:127.0.0.1:$PORT --link-timeout 0.5 --t-end 0.2 --record $T/stop.mrl > $T/stop.out
+stop
+$M replay $T/stop.mrl > $T/stop_re.out; rc=$?
+n=$(field ticks $T/stop.out)
+[ -n "$n" ] && [ "$n" -le 50 ] && [ "$(field ticks $T/stop_re.out)" = "$n" ] &&
+    [ "$(field hash $T/stop_re.out)" = "$(field hash $T/stop.out)" ] && [ $rc -eq 1 ] &&
+    grep -q "^replayed: to tick $n of 200, where the recorded run ended (link stop)$" $T/stop_re.out && ok ||
+    bad "replay of a run its stop policy ended: exit $rc, $(grep -E '^(ticks|hash|replayed)' $T/stop_re.out | tr '\n' ' ')vs $(grep -E '^(ticks|hash)' $T/stop.out | tr '\n' ' ')"
 
 # 4b. duplicates in real time: counted as link_dup (a stale one was link_bad.seq), no
 # fault: exit 0, or 3 if the shared machine missed a deadline, never 1
@@ -272,6 +310,12 @@ done
 [ "$(field skipped_deadlines $T/fast_skip.out)" != 0 ] && ok || bad "--overrun skip skipped nothing"
 $M run $T/fast.scn --realtime --overrun stop > $T/fast_stop.out; rc=$?
 [ $rc -eq 1 ] && [ "$(field ticks $T/fast_stop.out)" = 1 ] && ok || bad "--overrun stop: exit $rc"
+# ... and its replay log says so: the replay stops at that tick with the same hash and status
+$M run $T/fast.scn --realtime --overrun stop --record $T/fast_stop.mrl > $T/fast_stop.out
+$M replay $T/fast_stop.mrl > $T/fast_stop_re.out; rc=$?
+[ $rc -eq 1 ] && [ "$(field ticks $T/fast_stop_re.out)" = 1 ] && [ "$(field status $T/fast_stop_re.out)" = "$(field status $T/fast_stop.out)" ] &&
+    [ "$(field hash $T/fast_stop_re.out)" = "$(field hash $T/fast_stop.out)" ] && ok ||
+    bad "replay of an --overrun stop run: exit $rc, $(grep -E '^(ticks|status|hash)' $T/fast_stop_re.out | tr '\n' ' ')"
 $M run pi_loop --overrun late > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "--overrun late accepted"
 
 echo "link: $pass passed, $fail failed"

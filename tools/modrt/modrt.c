@@ -527,11 +527,22 @@ static int stop_link(const run_args *a, rt_sim *s, link_counts *c)
     return 1;
 }
 
-/* finishes the log (its end marker written); CLI_IO if it could not be written */
-static int stop_record(mrl_writer *rec)
+/* how the run ended, as its replay log says it */
+static mrl_end run_end(const rt_sim *s, rt_status st, const port_run_result *r)
+{
+    if (r->signal)
+        return r->signal == SIGINT ? MRL_END_SIGINT : MRL_END_SIGTERM;
+    if (st == RT_E_LINK)
+        return MRL_END_LINK;
+    return s->state.tick < rt_tick_count(s) ? MRL_END_STOPPED : MRL_END_DONE;
+}
+
+/* finishes the log (its end marker written: how the run ended, the tick it reached);
+   CLI_IO if it could not be written */
+static int stop_record(mrl_writer *rec, const rt_sim *s, rt_status st, const port_run_result *r)
 {
     char err[512];
-    if (rec && mrl_finish(rec, err, sizeof err) != 0)
+    if (rec && mrl_finish(rec, run_end(s, st, r), s->state.tick, err, sizeof err) != 0)
         return cli_fail("--record", err), CLI_IO;
     return CLI_OK;
 }
@@ -627,7 +638,7 @@ static int cmd_run(void *ctx, int npos, char **pos)
     if (a->rt_log && !(rt_log = open_out(a->rt_log, "cannot write the --rt-log file")))
         return CLI_IO;
     port_run_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
-                       a->check ? check_observe : NULL};
+                       a->check ? check_observe : NULL, NULL};
     port_run_result r;
     mrl_writer *rec;
     int rc = start_inputs(a, pos[0], &sc, &o, &rec);
@@ -645,7 +656,7 @@ static int cmd_run(void *ctx, int npos, char **pos)
         rtloop_print(out, (rtloop_policy)a->overrun, &r.rt);
     if (linked)
         link_print(out, &lc);
-    io |= stop_record(rec);
+    io |= stop_record(rec, &sim, st, &r);
     int sev = rt_status_severity(sim.stats.status);
     if (a->check && !r.signal) { /* an interrupted run has no whole run to check */
         static check_result cr;
@@ -763,6 +774,18 @@ static int replay_scene(const mrl_header *h, rt_scene *sc, const char *path)
     return CLI_OK;
 }
 
+/* a replay that reached the tick where the recorded run was stopped ends as it did: the
+   signal that interrupted it (its summary and exit status), or --overrun stop's status */
+static int replay_end(const mrl_header *h, rt_sim *s)
+{
+    if (h->version < 3 || s->state.tick != h->last_tick)
+        return 0;
+    if (h->ended == MRL_END_STOPPED &&
+        rt_status_severity(RT_E_STOPPED) > rt_status_severity(s->stats.status))
+        s->stats.status = RT_E_STOPPED;
+    return h->ended == MRL_END_SIGINT ? SIGINT : h->ended == MRL_END_SIGTERM ? SIGTERM : 0;
+}
+
 static int cmd_replay(void *ctx, int npos, char **pos)
 {
     static mrl_header h;
@@ -778,21 +801,32 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     if (mrl_open(pos[0], &h, err, sizeof err) != 0)
         return cli_fail("replay", err);
     int rc = replay_scene(&h, &sc, pos[0]);
+    if (rc == CLI_OK && mrl_check_end(rt_tick_count(&sim), err, sizeof err) != 0)
+        rc = cli_fail("replay", err);
     if (rc != CLI_OK)
         return mrl_close(), rc;
     FILE *csv = NULL;
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : open_out(a->csv, "cannot write the CSV file")))
         return mrl_close(), CLI_IO;
-    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
+    /* a run stopped between two ticks (a signal, --overrun stop) replays to that tick; a
+       link's stop policy ends the replay at its exchange (mrl_replay_exchange) */
+    int early = h.version >= 3 && h.ended != MRL_END_DONE && h.ended != MRL_END_LINK;
+    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL,
+                       early ? &h.last_tick : NULL};
     port_run_result r;
     rt_status st = port_run(&sc, &sim, &o, &r);
     mrl_close();
     int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
     FILE *out = to_stdout ? stderr : stdout;
-    summary(out, &sc, &sim, st, r.wall_s, r.signal);
+    int sig = r.signal ? r.signal : replay_end(&h, &sim);
+    summary(out, &sc, &sim, st, r.wall_s, sig);
+    if (!r.signal && h.version >= 3 && h.ended != MRL_END_DONE)
+        fprintf(out, "replayed: to tick %llu of %llu, where the recorded run ended (%s)\n",
+                (unsigned long long)sim.state.tick, (unsigned long long)rt_tick_count(&sim),
+                mrl_end_name((mrl_end)h.ended));
     io |= close_out(out, 1, "error writing the summary to", to_stdout ? "stderr" : "stdout");
-    return run_exit(r.signal, io, rt_status_severity(sim.stats.status));
+    return run_exit(sig, io, rt_status_severity(sim.stats.status));
 }
 
 /* the compile-time limits that fit this scene exactly, as -D flags for a per-scene build

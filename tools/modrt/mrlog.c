@@ -1,13 +1,15 @@
 /* mrlog.c - the replay log (format in mrlog.h and docs/link.md): writing during a live
  * run, checking the whole file before a replay, and applying its records at their ticks.
  *
- *   header  "MRTR" u16 version=2 u16 header_size u32 link_id u16 nimp u8 real_size
+ *   header  "MRTR" u16 version=3 u16 header_size u32 link_id u16 nimp u8 real_size
  *           u8 realtime f64 t_end u32 every u16 nsets u16 0  u64 scene_fingerprint
  *           u64 run_nonce  char scene[256]  nsets x char set[128]
  *           u32 CRC-32 of everything before it
  *           (version 1, still read: without scene_fingerprint and run_nonce)
  *   record  u64 tick  nimp x f64  u32 CRC-32 of the record's tick and values
- *   end     "MRTE" u64 records  u32 CRC-32 of the marker and count
+ *   end     "MRTE" u64 records  u64 last_tick  u8 ended (mrl_end)  u8[3] 0
+ *           u32 CRC-32 of everything before it in the marker
+ *           (versions 1 and 2, still read: "MRTE" u64 records u32 CRC-32, no end tick)
  * little-endian throughout (the CRC is link_crc32, ports/common/link_wire.c). */
 #define _XOPEN_SOURCE 700 /* realpath, PATH_MAX */
 #include "mrlog.h"
@@ -20,9 +22,11 @@
 
 #include "common/link_wire.h"
 
-#define MRL_VERSION 2
+#define MRL_VERSION 3
 #define MRL_FIXED_V1 32 /* header bytes before the scene name, version 1 */
-#define MRL_FIXED 48    /* version 2 */
+#define MRL_FIXED 48    /* versions 2 and 3 */
+#define MRL_END_V2 16   /* end marker bytes, versions 1 and 2 */
+#define MRL_END 28      /* version 3 */
 #define MRL_MAX_RECORD (8 + 8 * LINK_MAX_VALUES + 4)
 
 struct mrl_writer {
@@ -99,13 +103,22 @@ int mrl_append(mrl_writer *w, uint64_t tick, const real_t *v)
     return w->failed ? -1 : 0;
 }
 
-int mrl_finish(mrl_writer *w, char *err, size_t n)
+const char *mrl_end_name(mrl_end e)
 {
-    uint8_t b[16];
+    static const char *const names[MRL_END_COUNT_] = {"end time", "SIGINT", "SIGTERM",
+                                                       "overrun stop", "link stop"};
+    return (unsigned)e < MRL_END_COUNT_ ? names[e] : "unknown";
+}
+
+int mrl_finish(mrl_writer *w, mrl_end ended, uint64_t last_tick, char *err, size_t n)
+{
+    uint8_t b[MRL_END] = {0};
     memcpy(b, "MRTE", 4);
     link_put_le(b + 4, w->count, 8);
-    link_put_le(b + 12, link_crc32(0, b, 12), 4);
-    if (fwrite(b, 1, 16, w->f) != 16)
+    link_put_le(b + 12, last_tick, 8);
+    b[20] = (uint8_t)ended;
+    link_put_le(b + MRL_END - 4, link_crc32(0, b, MRL_END - 4), 4);
+    if (fwrite(b, 1, MRL_END, w->f) != MRL_END)
         w->failed = 1;
     if (fclose(w->f) != 0)
         w->failed = 1;
@@ -119,9 +132,13 @@ int mrl_finish(mrl_writer *w, char *err, size_t n)
 static struct {
     FILE *f;
     const char *path;
+    uint16_t version;
     uint16_t nimp;
     long first;       /* offset of the first record */
     uint64_t count;   /* records, from the end marker */
+    uint64_t last;    /* the last tick, from the end marker (version 3) */
+    uint8_t ended;    /* mrl_end, from the end marker (version 3) */
+    long end_at;      /* the end marker's offset */
     uint64_t next;    /* records read */
     uint64_t tick;    /* the next record's tick (valid when have) */
     real_t v[LINK_MAX_VALUES];
@@ -145,8 +162,12 @@ static int read_header(mrl_header *h, char *err, size_t n)
     if (got != MRL_FIXED_V1)
         return fail(err, n, "truncated header", (long)got);
     h->version = (uint16_t)link_get_le(b + 4, 2);
-    if (h->version < 1 || h->version > MRL_VERSION)
-        return fail(err, n, "unsupported replay log version", 4);
+    if (h->version < 1 || h->version > MRL_VERSION) {
+        char what[96];
+        snprintf(what, sizeof what, "replay log version %u, this build reads versions 1 to %u",
+                 (unsigned)h->version, MRL_VERSION);
+        return fail(err, n, what, 4);
+    }
     size_t fixed = fixed_size(h->version);
     h->nsets = (uint16_t)link_get_le(b + 28, 2);
     size_t sz = link_get_le(b + 6, 2);
@@ -176,6 +197,24 @@ static int read_header(mrl_header *h, char *err, size_t n)
     return 0;
 }
 
+/* the end marker after its "MRTE" (in b): 0, or -1 with the reason */
+static int read_end(uint8_t *b, char *err, size_t n, long at)
+{
+    size_t len = rd.version >= 3 ? MRL_END : MRL_END_V2;
+    if (fread(b + 4, 1, len - 4, rd.f) != len - 4)
+        return fail(err, n, "truncated end marker", at);
+    if (link_get_le(b + len - 4, 4) != link_crc32(0, b, len - 4))
+        return fail(err, n, "end marker CRC mismatch", at);
+    rd.count = link_get_le(b + 4, 8);
+    rd.last = 0, rd.ended = MRL_END_UNKNOWN;
+    if (rd.version < 3)
+        return 0;
+    rd.last = link_get_le(b + 12, 8), rd.ended = b[20];
+    if (rd.ended >= MRL_END_COUNT_ || b[21] || b[22] || b[23])
+        return fail(err, n, "unknown end of the run in the end marker", at + 20);
+    return 0;
+}
+
 /* one record at the current position: 1 read, 0 the end marker, -1 an error */
 static int read_record(char *err, size_t n, uint64_t prev, int check_order)
 {
@@ -183,14 +222,8 @@ static int read_record(char *err, size_t n, uint64_t prev, int check_order)
     long at = ftell(rd.f);
     size_t rec = 8 + 8 * (size_t)rd.nimp;
     size_t got = fread(b, 1, 4, rd.f);
-    if (got == 4 && memcmp(b, "MRTE", 4) == 0) {
-        if (fread(b + 4, 1, 12, rd.f) != 12)
-            return fail(err, n, "truncated end marker", at);
-        if (link_get_le(b + 12, 4) != link_crc32(0, b, 12))
-            return fail(err, n, "end marker CRC mismatch", at);
-        rd.count = link_get_le(b + 4, 8);
-        return 0;
-    }
+    if (got == 4 && memcmp(b, "MRTE", 4) == 0)
+        return read_end(b, err, n, at);
     if (got != 4 || fread(b + 4, 1, rec, rd.f) != rec)
         return fail(err, n, got == 0 ? "truncated: no end marker after the last record"
                                      : "truncated record", at);
@@ -210,22 +243,25 @@ static int read_record(char *err, size_t n, uint64_t prev, int check_order)
 
 int mrl_open(const char *path, mrl_header *h, char *err, size_t n)
 {
-    rd.path = path, rd.next = 0, rd.have = 0;
+    rd.path = path, rd.next = 0, rd.have = 0, rd.version = 0;
+    rd.last = 0, rd.ended = MRL_END_UNKNOWN;
     if (!(rd.f = fopen(path, "rb"))) {
         snprintf(err, n, "%s: cannot read the replay log: %s", path, strerror(errno));
         return -1;
     }
     if (read_header(h, err, n) != 0)
         return -1;
-    rd.nimp = h->nimp;
+    rd.nimp = h->nimp, rd.version = h->version;
     uint64_t prev = 0;
     int r;
     while ((r = read_record(err, n, prev, 1)) == 1)
         prev = rd.tick, rd.next++;
     if (r < 0)
         return -1;
+    rd.end_at = ftell(rd.f) - (long)(rd.version >= 3 ? MRL_END : MRL_END_V2);
     if (rd.count != rd.next)
-        return fail(err, n, "end marker counts another number of records", ftell(rd.f) - 16);
+        return fail(err, n, "end marker counts another number of records", rd.end_at);
+    h->ended = rd.ended, h->last_tick = rd.last;
     uint8_t extra;
     if (fread(&extra, 1, 1, rd.f) == 1)
         return fail(err, n, "data after the end marker", ftell(rd.f) - 1);
@@ -239,6 +275,8 @@ int mrl_check_schedule(uint64_t last, uint32_t period, int realtime, char *err, 
     uint64_t tick, bad = 0, first = 0;
     long at = 0, first_at = 0;
     real_t v[LINK_MAX_VALUES];
+    if (rd.version >= 3 && rd.last < last) /* the run ended there (mrl_check_end) */
+        last = rd.last;
     for (;;) {
         at = ftell(rd.f);
         if (!mrl_next(&tick, v))
@@ -259,6 +297,17 @@ int mrl_check_schedule(uint64_t last, uint32_t period, int realtime, char *err, 
              first > last ? "past the end" : "not an exchange tick of a lock-step run",
              (unsigned long long)last, (unsigned long)period);
     return fail(err, n, what, first_at);
+}
+
+int mrl_check_end(uint64_t last, char *err, size_t n)
+{
+    if (rd.version < 3 || (rd.last <= last && (rd.ended != MRL_END_DONE || rd.last == last)))
+        return 0;
+    char what[200];
+    snprintf(what, sizeof what, "the end marker says the run ended at tick %llu (%s), but "
+             "the scene's run ends at tick %llu", (unsigned long long)rd.last,
+             mrl_end_name((mrl_end)rd.ended), (unsigned long long)last);
+    return fail(err, n, what, rd.end_at + 12);
 }
 
 int mrl_scene_name(const char *scene, char *out, size_t n, char *err, size_t en)
@@ -309,5 +358,6 @@ int mrl_replay_exchange(void *ctx, const rt_scene *sc, rt_sim *sim)
         rt_link_apply(sc, sim, v);
         rd.have = 0;
     }
-    return 0;
+    /* the recorded run's link stopped it here (an import's stop policy): so does this */
+    return rd.ended == MRL_END_LINK && sim->state.tick >= rd.last;
 }

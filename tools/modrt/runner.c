@@ -154,6 +154,12 @@ static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const port_run_op
     return st == RT_OK ? RT_E_STOPPED : st;
 }
 
+/* the tick a replay of an interrupted run stops at, reached */
+static int stop_reached(const port_run_opts *o, const rt_sim *sim)
+{
+    return o->stop_tick && sim->state.tick >= *o->stop_tick;
+}
+
 rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port_run_result *r)
 {
     rt_status st = RT_OK;
@@ -166,7 +172,7 @@ rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port
     catch_stop();
     if (!running(st)) {
     } else if (!o->realtime) {
-        while (running(st) && !stop_signal)
+        while (running(st) && !stop_signal && !stop_reached(o, sim))
             st = tick_and_record(sc, sim, o);
     } else {
         st = run_realtime(sc, sim, o, r);

@@ -22,6 +22,9 @@ typedef struct port_run_opts {
     /* simulated clock: called after every tick (the global-error check, check.h), or
        NULL */
     void (*observe)(const rt_scene *sc, const rt_sim *sim);
+    /* simulated clock: end the run between ticks once this tick is reached, as a signal
+       would (a replay of a run that was interrupted there), or NULL: at its end */
+    const uint64_t *stop_tick;
 } port_run_opts;
 
 typedef struct port_run_result {

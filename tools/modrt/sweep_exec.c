@@ -176,7 +176,7 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
     if (a->csv && !csv)
         return cli_fail("cannot write the CSV file", a->csv);
     port_run_opts o = {csv, 1, 0, a->replay ? mrl_replay_exchange : NULL, NULL, 0, NULL,
-                       observe};
+                       observe, NULL};
     port_run_result r;
     sweep_metrics_sample(c, &sc, &sim, acc, (double)rt_time(&sc, &sim)); /* tick 0 */
     rt_status st = port_run(&sc, &sim, &o, &r);
