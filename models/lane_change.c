@@ -26,6 +26,8 @@
 #include "models.h"
 
 static const real_t sections[6] = {15, 30, 25, 25, 15, 15};
+/* lane widths k b + 0.25 m of sections 1, 3 and 5-6 (b the vehicle width) */
+static const real_t width_k[3] = {(real_t)1.1, (real_t)1.2, (real_t)1.3};
 
 /* the lane centres of sections 3 and 5-6 (section 1's is 0) */
 typedef struct course {
@@ -74,12 +76,15 @@ static void pursue(const rt_args *a, course k, real_t *y)
     y[1] = centre(u[0], p[D_X0], k);
 }
 
-/* the course as ISO 3888-1 draws it: lane widths k b + 0.25 m, so the centres sit
-   (k3 - k1) b / 2 and (k56 - k1) b / 2 left of where the right-hand lines put them */
+/* the course as ISO 3888-1 draws it: section 1's right-hand line at -(k1 b + 0.25) / 2,
+   section 3's the offset to its left, that of sections 5-6 on it; a lane's centre lies
+   half its width left of its right-hand line */
 static void drv_output(const rt_args *a, real_t *y)
 {
     const real_t *p = a->p;
-    course k = {p[D_OFF] + (real_t)0.05 * p[D_B], (real_t)0.1 * p[D_B]};
+    real_t r1 = -(width_k[0] * p[D_B] + (real_t)0.25) / 2;
+    course k = {r1 + p[D_OFF] + (width_k[1] * p[D_B] + (real_t)0.25) / 2,
+                r1 + (width_k[2] * p[D_B] + (real_t)0.25) / 2};
     pursue(a, k, y);
 }
 

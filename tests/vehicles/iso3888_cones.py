@@ -2,9 +2,9 @@
 """iso3888_cones.py - the cone lines of the ISO 3888-1:2018 double lane change, computed
 here from the standard's dimensions alone (Table 1 and Figure 1; sources in
 docs/vehicles.md), as the reference of the course check in vehicles.py. It shares no code
-or formula with models/lane_change.c: the model builds lane centres and blends between
-them; this script draws the cone lines the way the figure dimensions them, each from the
-right-hand line it is measured from.
+with models/lane_change.c (which needs only the lane centres): it draws every cone line
+the way the figure dimensions it, from the right-hand line it is measured from, and the
+test takes the centres from those lines.
 
 Figure 1 dimensions the track from its right-hand cone line (the lane change is to the
 left): section 3's right-hand line lies 3.5 m to the left of section 1's (the lane offset),
