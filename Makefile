@@ -60,7 +60,7 @@ MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
 POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/modrt/cli.c \
                tools/modrt/info.c tools/modrt/study.c tools/modrt/check.c tools/modrt/rtloop.c tools/modrt/trace.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c \
                tools/modrt/link_udp.c tools/modrt/fingerprint.c ports/common/link_hmac.c \
-               tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c \
+               tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c tools/modrt/replay.c \
                $(wildcard tools/modrt/sweep*.c)
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c) \

@@ -206,6 +206,37 @@ EOF
 grep -q '^status: crashed$' "$T/crash/runs/000000.txt" && grep -q '^why: the run ended by signal' "$T/crash/runs/000000.txt" && ok || \
     bad "a run killed by a signal: $(cat "$T/crash/runs/000000.txt")"
 
+# ---- replay runs: set up as `modrt replay` sets them up (tools/modrt/replay.c) ----
+# pi_link without its controller (--link none: the command holds 0) decays from
+# Plant.y = 1 as y' = -y/T; a log recorded with --method, --step and --set replays to the
+# live run, and the campaign's method, applied after the log's, gives the closed form of
+# that method's step: euler (1 - h/T)^n, heun (1 - h/T + (h/T)^2/2)^n, h = 2 ms, n = 250
+cp "$D/../../models/scenes/pi_link.scn" "$T/pl.scn"
+rec="--link none --t-end 0.5 --method main=euler --step main=0.002 --set Plant.y=1"
+h_live=$($M run "$T/pl.scn" $rec --record "$T/opt.mrl" | sed -n 's/^hash: //p')
+printf '%s\n' 'replay ("opt.mrl");' 'grid method (main) values (euler, heun);' \
+    'metric (y_end) final (Plant.y);' > "$T/rp.swp"
+$M sweep run "$T/rp.swp" --out "$T/rp" -j 1 2> "$T/err"
+h_rp=$(sed -n 's/^hash: //p' "$T/rp/runs/000000.txt" 2>/dev/null)
+[ -n "$h_live" ] && [ "$h_rp" = "$h_live" ] && ok ||
+    bad "a replay run of a log with --method/--step/--set: hash '$h_rp', live '$h_live' ($(head -c 300 "$T/err"))"
+python3 - "$T/rp/runs/000000.txt" "$T/rp/runs/000001.txt" <<'PY' && ok || bad "replay runs against the closed forms"
+import sys
+want = [(1 - 0.004) ** 250, (1 - 0.004 + 0.004 ** 2 / 2) ** 250]
+for path, w in zip(sys.argv[1:], want):
+    try:
+        got = float(dict(l.split(": ", 1) for l in open(path).read().splitlines())["metric.y_end"])
+    except (OSError, KeyError, ValueError) as e:
+        sys.exit("replay run: %s: %s" % (path, e))
+    if not abs(got - w) <= 1e-12 * w:
+        sys.exit("replay run %s: y_end %r, closed form %r" % (path, got, w))
+PY
+# a log whose scene changed since is refused before any task, as modrt replay refuses it
+sed 's/Plant.T = 0.5;/Plant.T = 0.6;/' "$T/pl.scn" > "$T/pl.new" && mv "$T/pl.new" "$T/pl.scn"
+$M sweep plan "$T/rp.swp" --out "$T/rp2" > /dev/null 2> "$T/err"; rc=$?
+[ $rc -eq 2 ] && grep -q "opt.mrl: recorded with scene fingerprint .*: the scene changed since" "$T/err" && ok ||
+    bad "a replay of a changed scene: exit $rc, $(cat "$T/err")"
+
 # ---- one campaign, three engines, identical CSVs ----
 $M sweep run "$D/engines.swp" --out "$T/local" -j 2 2>/dev/null
 $M sweep collect "$T/local" > "$T/local.out" 2>/dev/null
