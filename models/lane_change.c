@@ -12,6 +12,10 @@
  * frame and d its distance, delta = atan(2 L e / d^2) (L the wheelbase), bounded by
  * delta_max.
  *
+ * iso_cones (the course check): the smallest margin of a car's footprint, a box turned by
+ * its heading, to the cone lines of the lane sections 1, 3 and 5-6 it overlaps, so that a
+ * run records it and a campaign's metric takes its minimum (docs/sweeps.md).
+ *
  * tow_steer (the paper's SteeringPrinciple): the tow bar runs from the second vehicle's
  * front hitch to the first's rear hitch; mu1 = psi1 - theta and mu2 = theta - psi2 with
  * theta the bar's heading; delta2 = K1 mu1 + K2 mu2. */
@@ -76,6 +80,84 @@ const rt_kind mdl_iso_driver_kind = {
         "distance: delta = atan(2 L e / d^2), |delta| <= delta_max. Output yref: the\n"
         "centre line at the car's x. L: wheelbase (CommonRoad vehicle 1)."),
     .units = RT_DOC("m m rad m/s rad m m m s m m rad"),
+};
+
+/* ---------------------------------------------------------------- iso_cones */
+
+/* the cone lanes: first and last cone from the start [m], centre line (0 or the offset),
+   width as a multiple of the vehicle's width plus 0.25 m (ISO 3888-1) */
+static const real_t lane_from[3] = {0, 45, 95}, lane_to[3] = {15, 70, 125};
+static const real_t lane_k[3] = {(real_t)1.1, (real_t)1.2, (real_t)1.3};
+static const uint8_t lane_off[3] = {0, 1, 0};
+
+enum { C_X0, C_OFF, C_LEN, C_WID, C_AHEAD, C_CAP, C_NP };
+static const char *const cone_u[] = {"x", "y", "psi"};
+static const char *const cone_y[] = {"margin"};
+static const char *const cone_p[] = {"x0", "offset", "length", "width", "ahead", "cap"};
+/* the footprint of lane_change's cars (CommonRoad vehicle 1: 4.298 m by 1.674 m), centred
+   between the axles, (lf - lr) / 2 = -0.31242 m ahead of the centre of mass */
+static const real_t cone_def[C_NP] = {0, (real_t)3.5, (real_t)4.298, (real_t)1.674,
+                                      (real_t)-0.31242, 1};
+
+/* the footprint's margin to lane l's cone lines, lowered into *m: the part of a convex box
+   inside the lane's x range has its extreme y at a corner in the range or where an edge
+   crosses the lane's first or last cone (a side can touch a cone there while every corner
+   in the lane is clear) */
+static void lane_margin(const real_t bx[4], const real_t by[4], real_t xa, real_t xb,
+                        real_t c, real_t w, real_t *m)
+{
+    for (int i = 0; i < 4; i++) {
+        int j = (i + 1) & 3;
+        if (bx[i] >= xa && bx[i] <= xb)
+            *m = rt_fmin(*m, w - rt_fabs(by[i] - c));
+        for (int e = 0; e < 2; e++) {
+            real_t xe = e ? xb : xa;
+            if ((bx[i] - xe) * (bx[j] - xe) < 0) {
+                real_t ye = by[i] + (by[j] - by[i]) * (xe - bx[i]) / (bx[j] - bx[i]);
+                *m = rt_fmin(*m, w - rt_fabs(ye - c));
+            }
+        }
+    }
+}
+
+static void cone_output(const rt_args *a, real_t *y)
+{
+    const real_t *u = a->u, *p = a->p;
+    real_t c = rt_cos(u[2]), s = rt_sin(u[2]), bx[4], by[4];
+    real_t cx = u[0] + p[C_AHEAD] * c, cy = u[1] + p[C_AHEAD] * s;
+    static const int8_t sa[4] = {1, 1, -1, -1}, sb[4] = {1, -1, -1, 1}; /* around the box */
+    for (int i = 0; i < 4; i++) {
+        real_t l = sa[i] * p[C_LEN] / 2, w = sb[i] * p[C_WID] / 2;
+        bx[i] = cx + l * c - w * s, by[i] = cy + l * s + w * c;
+    }
+    real_t m = p[C_CAP];
+    for (int l = 0; l < 3; l++)
+        lane_margin(bx, by, p[C_X0] + lane_from[l], p[C_X0] + lane_to[l],
+                    lane_off[l] ? p[C_OFF] : 0, (lane_k[l] * p[C_WID] + (real_t)0.25) / 2, &m);
+    y[0] = m;
+}
+
+static rt_status cone_check(const real_t *p, const void *spec)
+{
+    (void)spec;
+    return rt_isfinite(p[C_X0]) && rt_isfinite(p[C_OFF]) && rt_isfinite(p[C_AHEAD]) &&
+                   p[C_LEN] > 0 && p[C_WID] > 0 && p[C_CAP] > 0 && rt_isfinite(p[C_LEN]) &&
+                   rt_isfinite(p[C_WID]) && rt_isfinite(p[C_CAP])
+               ? RT_OK
+               : RT_E_PARAM;
+}
+
+const rt_kind mdl_iso_cones_kind = {
+    .name = "iso_cones", .type = RT_KIND_OUTPUT, .nu = 3, .ny = 1, .np = C_NP,
+    .u_names = cone_u, .y_names = cone_y, .p_names = cone_p, .p_default = cone_def,
+    .feed = RT_FEED_ALL, .autonomous = 1, .check = cone_check, .output = cone_output,
+    .doc = RT_DOC(
+        "The ISO 3888-1 course check: margin, the smallest distance of a car's footprint\n"
+        "(a length x width box centred `ahead` of the inputs' point along the heading psi)\n"
+        "to the cone lines of the lane sections it overlaps (sections 1, 3, 5-6 from x0,\n"
+        "half widths (1.1, 1.2, 1.3 width + 0.25 m) / 2 about 0, offset, 0), edges as well\n"
+        "as corners; negative: a cone is hit. At most cap (outside every lane: cap)."),
+    .units = RT_DOC("m m rad m m m m m m m"),
 };
 
 /* ---------------------------------------------------------------- tow_steer */

@@ -206,6 +206,33 @@ EOF
 grep -q '^status: crashed$' "$T/crash/runs/000000.txt" && grep -q '^why: the run ended by signal' "$T/crash/runs/000000.txt" && ok || \
     bad "a run killed by a signal: $(cat "$T/crash/runs/000000.txt")"
 
+# ---- the lane change's cone margin (docs/sweeps.md): the campaign cut to two draws;
+# run 1's metric against tests/vehicles/vehicles.py's footprint check over its trace ----
+[ "$($M sweep plan "$D/../../docs/sweeps/lane_change_mc.swp" --out "$T/doc" | wc -l)" -eq 400 ] && ok || \
+    bad "docs/sweeps/lane_change_mc.swp does not plan 400 runs"
+DS=$(cd "$D/../../docs/sweeps" && pwd)
+sed -e 's/^draws (400);/draws (2);/' -e "s|^scene (\"|scene (\"$DS/|" "$DS/lane_change_mc.swp" > "$T/lc2.swp"
+$M sweep run "$T/lc2.swp" --out "$T/lc" -j 2 2> "$T/err"
+line=$($M sweep plan "$T/lc2.swp" --out "$T/lc1" --index 1 --count 1 | cut -f2-)
+eval "$line --csv $T/lc1.csv" 2>> "$T/err"
+python3 - "$T/lc/runs/000001.txt" "$T/lc1.csv" "$D/../vehicles" <<'PY' && ok || bad "the lane change's margin metric ($(head -c 300 "$T/err"))"
+import csv, sys
+sys.path.insert(0, sys.argv[3])
+from vehicles import lane_margin
+try:
+    got = dict(l.split(": ", 1) for l in open(sys.argv[1]).read().splitlines())
+    rows = list(csv.DictReader(open(sys.argv[2])))
+    want = min(lane_margin(float(r["V1.x"]), float(r["V1.y"]), float(r["V1.psi"]), 20.0)
+               for r in rows)
+    m = float(got["metric.margin"])
+except (OSError, KeyError, ValueError) as e:
+    sys.exit("lane change campaign: %s" % e)
+# the draw moved the margin off the nominal car's 0.1548 m, and the metric is the check's
+if not (got["status"] == "ok" and abs(m - want) <= 1e-12 and abs(m - 0.15484) > 1e-4):
+    sys.exit("lane change run 1: metric.margin %r, footprint check %r, status %s"
+             % (m, want, got["status"]))
+PY
+
 # ---- replay runs: set up as `modrt replay` sets them up (tools/modrt/replay.c) ----
 # pi_link without its controller (--link none: the command holds 0) decays from
 # Plant.y = 1 as y' = -y/T; a log recorded with --method, --step and --set replays to the
