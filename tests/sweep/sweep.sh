@@ -233,6 +233,41 @@ if not (got["status"] == "ok" and abs(m - want) <= 1e-12 and abs(m - 0.15484) > 
              % (m, want, got["status"]))
 PY
 
+# ---- a grid of scene files and the error against a reference table (make study) ----
+# metrics.scn's lag by Euler at 1 and 2 ticks (the set's step, in two scene files) against
+# its closed form 1 - exp(-t/T) at a few instants: Euler's y_n = 1 - (1 - h/T)^n; at 3 ms
+# the table says 5 (no solution): the 1-tick run's error is its distance to 5 there, while
+# 3 ms is no step of the 2-tick set, so that run leaves the instant out
+for k in 1 2; do
+    sed "s/^set (main) method (rk4) step (1 tick);/set (main) method (euler) step ($k tick);/" \
+        "$D/metrics.scn" > "$T/lag$k.scn"
+done
+python3 -c 'import math
+print("t,Lag.y")
+for t in (0.003, 0.1, 0.5, 1.0, 2.0): print("%r,%r" % (t, 5 if t == 0.003 else 1 - math.exp(-t / 0.5)))' > "$T/lag_ref.csv"
+printf '%s\n' 'grid scene values ("lag1.scn", "lag2.scn");' \
+    'metric (err) error against ("lag_ref.csv");' > "$T/err.swp"
+$M sweep run "$T/err.swp" --out "$T/err" -j 2 2> "$T/err.txt"
+python3 - "$T/err/runs" <<'PY' && ok || bad "error against a reference over a grid of scenes ($(head -c 300 "$T/err.txt"))"
+import math, sys
+for k, h in ((0, 0.001), (1, 0.002)):
+    try:
+        got = dict(l.split(": ", 1) for l in open("%s/%06d.txt" % (sys.argv[1], k)).read().splitlines())
+        v = float(got["metric.err"])
+    except (OSError, KeyError, ValueError) as e:
+        sys.exit("error metric run %d: %s" % (k, e))
+    ts = [t for t in (0.003, 0.1, 0.5, 1.0, 2.0) if abs(t / h - round(t / h)) < 1e-9]
+    want = max(abs(1 - (1 - h / 0.5) ** round(t / h) - (5 if t == 0.003 else 1 - math.exp(-t / 0.5)))
+               for t in ts)
+    if got.get("scene_file") != "lag%d.scn" % (k + 1) or not abs(v - want) <= 1e-12:
+        sys.exit("error metric run %d (%s): %r, closed form %r" % (k, got.get("scene_file"), v, want))
+PY
+printf 't,Lag.z\n0.1,1\n' > "$T/lag_bad.csv"
+sed 's/lag_ref.csv/lag_bad.csv/' "$T/err.swp" > "$T/bad_ref.swp"
+$M sweep plan "$T/bad_ref.swp" --out "$T/bad_ref" > /dev/null 2> "$T/err.txt"; rc=$?
+[ $rc -eq 2 ] && grep -q "lag_bad.csv:1: error: scene sweep_metrics records no signal: Lag.z" "$T/err.txt" && ok ||
+    bad "a reference table naming an unrecorded signal: exit $rc, $(cat "$T/err.txt")"
+
 # ---- replay runs: set up as `modrt replay` sets them up (tools/modrt/replay.c) ----
 # pi_link without its controller (--link none: the command holds 0) decays from
 # Plant.y = 1 as y' = -y/T; a log recorded with --method, --step and --set replays to the

@@ -62,10 +62,11 @@ static int setup(const sweep_campaign *c, const sweep_exec_args *a, rt_scene *sc
             return cli_fail("replay", err);
         return replay_scene(&h, path, &more, sc, &sim);
     }
-    rel_path(c, c->scene, path, sizeof path);
-    size_t n = strlen(c->scene); /* a scene file (FILE.scn), else a library name */
-    int file = n > 4 && strcmp(c->scene + n - 4, ".scn") == 0;
-    const rt_scene *base = cli_scene(file ? path : c->scene);
+    const char *scene = a->scene ? a->scene : c->scene; /* a grid's, else the campaign's */
+    rel_path(c, scene, path, sizeof path);
+    size_t n = strlen(scene); /* a scene file (FILE.scn), else a library name */
+    int file = n > 4 && strcmp(scene + n - 4, ".scn") == 0;
+    const rt_scene *base = cli_scene(file ? path : scene);
     if (!base)
         return CLI_USAGE;
     *sc = *base;
@@ -105,6 +106,8 @@ static void values(FILE *f, const sweep_exec_args *a)
     }
     if (a->replay)
         fprintf(f, "replay: %s\n", a->replay);
+    if (a->scene)
+        fprintf(f, "scene_file: %s\n", a->scene);
 }
 
 /* the result of a run that completed (whatever its status) */
@@ -126,6 +129,9 @@ static int write_result(const sweep_campaign *c, const sweep_exec_args *a, const
             (unsigned long long)c->hash);
     for (int i = 0; i < RT_CNT_COUNT; i++)
         fprintf(f, "count.%s: %u\n", rt_counter_key((rt_counter)i), (unsigned)sim.stats.count[i]);
+    for (uint8_t k = 0; k < sc->nsets; k++) /* what the run cost, in right-hand sides */
+        fprintf(f, "rhs_evals.%s: %llu\n", sc->sets[k].name,
+                (unsigned long long)sim.stats.rhs_evals[k]);
     values(f, a);
     for (int i = 0; i < c->nmetrics; i++)
         fprintf(f, "metric.%s: %s\n", c->metrics[i].name,
