@@ -247,8 +247,8 @@ print("t,Lag.y")
 for t in (0.003, 0.1, 0.5, 1.0, 2.0): print("%r,%r" % (t, 5 if t == 0.003 else 1 - math.exp(-t / 0.5)))' > "$T/lag_ref.csv"
 printf '%s\n' 'grid scene values ("lag1.scn", "lag2.scn");' \
     'metric (err) error against ("lag_ref.csv");' > "$T/err.swp"
-$M sweep run "$T/err.swp" --out "$T/err" -j 2 2> "$T/err.txt"
-python3 - "$T/err/runs" <<'PY' && ok || bad "error against a reference over a grid of scenes ($(head -c 300 "$T/err.txt"))"
+$M sweep run "$T/err.swp" --out "$T/errm" -j 2 2> "$T/err.txt"
+python3 - "$T/errm/runs" <<'PY' && ok || bad "error against a reference over a grid of scenes ($(head -c 300 "$T/err.txt"))"
 import math, sys
 for k, h in ((0, 0.001), (1, 0.002)):
     try:
