@@ -5,14 +5,16 @@
 # 1, 2, 5, 10, 30 and 100 runs per array task. Per engine: the wall time by the clock around
 # it, the CPU time its processes used (user + system of every process it waited for,
 # getrusage; a shared machine's load stretches the wall time far more than this), the runs'
-# own tick loops (from collect) and the load average while it ran. For Slurm, whose runs
-# are the daemons' children and not ours, the wall time per array task, and a least-squares
-# line wall = a + b * tasks: b is what one array task costs on this cluster. Prints
-# Markdown. Wall-clock figures are never a test.
+# own tick loops (from collect) and the load average while it ran. Slurm's runs are the
+# daemons' descendants, not ours: its CPU time is slurmctld's and slurmd's with every job
+# step (slurmd under tools/bench/reaper.py, a subreaper that collects the double-forked
+# slurmstepd); least-squares lines over the six jobs, wall = a + b * tasks and
+# CPU = c + d * tasks, give what one array task costs. Prints Markdown. Wall-clock figures
+# are never a test.
 # Usage: sh tools/bench/sweep_bench.sh BUILD_DIR [N]
 set -u
 B=${1:-build/host}
-N=${2:-300}
+N=${2:-200}
 M=$(cd "$B" && pwd)/modrt
 R=$(cd "$(dirname "$0")/../.." && pwd)
 T=$(mktemp -d)
@@ -49,21 +51,32 @@ if command -v parallel > /dev/null; then
     row "GNU parallel -j 2" "$r" "$T/par" "$l0"
 fi
 . "$R/tests/sweep/slurm.sh"
-SLURM_LIFE=1800
+SLURM_LIFE=1800 SLURM_WAIT=20000
+# slurmd under a subreaper: its job steps (double-forked slurmstepd, the runs under them)
+# are reaped there, so their CPU time is counted; slurmctld's from /proc (own + reaped)
+SLURMD_WRAP="python3 $R/tools/bench/reaper.py $T/stepd.cpu"
+slurm_cpu() { # CPU seconds of the cluster so far: slurmd's tree and slurmctld
+    kill -USR1 "$reaper" 2>/dev/null; sleep 0.3
+    awk -v t="$(getconf CLK_TCK)" -v d="$(cat "$T/stepd.cpu" 2>/dev/null || echo 0)" \
+        '{ sub(/^.*\) /, ""); print d + ($12 + $13 + $14 + $15) / t }' "/proc/$(cat "$S/slurmctld.pid")/stat"
+}
 fit=""
 if slurm_up; then
+    reaper=$(echo $pids | awk '{ print $NF }')  # the last started: slurmd's wrapper
     for per in 1 2 5 10 30 100; do
         $M sweep slurm "$T/c.swp" --out "$T/sl$per" --per-task "$per" > /dev/null 2>&1
         tasks=$(( (N + per - 1) / per ))
-        l0=$(load); t0=$(date +%s.%N); slurm_run "$T/sl$per/sweep.sbatch"
+        l0=$(load); c0=$(slurm_cpu); t0=$(date +%s.%N); slurm_run "$T/sl$per/sweep.sbatch"
         w=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
-        row "Slurm, $per run(s) per array task ($tasks tasks)" "$w -" "$T/sl$per" "$l0"
-        fit="$fit $tasks:$w"
+        c=$(awk -v a="$c0" -v b="$(slurm_cpu)" 'BEGIN { print b - a }')
+        row "Slurm, $per run(s) per array task ($tasks tasks)" "$w $c" "$T/sl$per" "$l0"
+        fit="$fit $tasks:$w:$c"
     done
     echo
-    echo "$fit" | tr ' ' '\n' | awk -F: 'NF == 2 { n++; x += $1; y += $2; xx += $1 * $1; xy += $1 * $2 }
+    echo "$fit" | tr ' ' '\n' | awk -F: -v n0="$N" 'NF == 3 { n++; x += $1; y += $2; z += $3; xx += $1 * $1; xy += $1 * $2; xz += $1 * $3 }
         END { b = (n * xy - x * y) / (n * xx - x * x); a = (y - b * x) / n
-              printf "Slurm: wall = %.2f s + %.3f s per array task (least squares over %d jobs)\n", a, b, n }'
+              d = (n * xz - x * z) / (n * xx - x * x); e = (z - d * x) / n
+              printf "Slurm (least squares over %d jobs of %d runs): wall = %.2f s + %.3f s per array task; CPU = %.2f s + %.1f ms per array task (the runs themselves: %.1f ms each)\n", n, n0, a, b, e, d * 1000, e / n0 * 1000 }'
 else
     echo "(Slurm: $why)"
 fi
