@@ -227,8 +227,8 @@ try:
     m = float(got["metric.margin"])
 except (OSError, KeyError, ValueError) as e:
     sys.exit("lane change campaign: %s" % e)
-# the draw moved the margin off the nominal car's 0.1548 m, and the metric is the check's
-if not (got["status"] == "ok" and abs(m - want) <= 1e-12 and abs(m - 0.15484) > 1e-4):
+# the draw moved the margin off the nominal car's 0.1536 m, and the metric is the check's
+if not (got["status"] == "ok" and abs(m - want) <= 1e-12 and abs(m - 0.1536) > 1e-4):
     sys.exit("lane change run 1: metric.margin %r, footprint check %r, status %s"
              % (m, want, got["status"]))
 PY
