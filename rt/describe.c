@@ -10,7 +10,7 @@ uint8_t rt_set_at(const rt_sim *sim, uint8_t i)
 
 uint16_t rt_set_nx(const rt_sim *sim, uint8_t set)
 {
-    return (uint16_t)(sim->plan.set_x[set + 1] - sim->plan.set_x[set]);
+    return rti_set_nx(sim, set);
 }
 
 rt_step_work rt_step_bound(const rt_scene *sc, uint8_t s, uint16_t n)

@@ -37,7 +37,7 @@ RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b, real_t t)
 /* a DSS block produces new outputs only at its sample hits */
 static int dss_hit(const rt_sim *sim, uint16_t b, rti_mode mode)
 {
-    return (mode == RTI_AT_TICK || mode == RTI_RENEW) &&
+    return (mode == RTI_AT_TICK || mode == RTI_AT_TICK_RECALL) &&
            sim->state.tick % sim->plan.period[b] == 0;
 }
 
@@ -240,7 +240,7 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
         uint8_t *fl = &sim->plan.seq_flags[s];
         *fl = RTI_RHS_CALL;
         if (st->kind != RT_SEQ_CALL) {
-            *fl |= RTI_SEQ_RENEW;
+            *fl |= RTI_SEQ_RECALL;
             renew_loop(sim, st->index, seen);
             continue;
         }
@@ -252,7 +252,7 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
         else if (!(live[st->index] & LIVE_RICH))
             *fl = RTI_RHS_LEAN;
         if (renewed(sc, sim, st->index, seen)) {
-            *fl |= RTI_SEQ_RENEW;
+            *fl |= RTI_SEQ_RECALL;
             seen[st->index] |= SEEN_RENEWED;
         }
     }
@@ -262,15 +262,11 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
         for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
             sim->plan.rhs_calls[set] = (uint16_t)(sim->plan.rhs_calls[set] +
                 ((sim->plan.seq_flags[sim->plan.set_seq[i]] & RTI_SEQ_RHS) != RTI_RHS_SKIP));
-        if (rt_set_nx(sim, set) == 0 && sim->plan.set_r[set + 1] == sim->plan.set_r[set] &&
+        if (rti_set_nx(sim, set) == 0 && sim->plan.set_r[set + 1] == sim->plan.set_r[set] &&
             sim->plan.rhs_calls[set] == 0)
-            sim->plan.set_flags[set] |= RTI_SET_STATIC;
-        if (rti_set_holds(sc, set))
-            sim->plan.set_flags[set] |= RTI_SET_HELD_SIG;
+            sim->plan.set_flags[set] |= RTI_SET_NO_STEP;
         if (rti_xset_extrapolates(sc, sim, set))
             sim->plan.set_flags[set] |= RTI_SET_XPRED;
-        if (sc->sets[set].ratio > 1 && !sc->sets[set].background && sim->plan.set_xout[set])
-            sim->plan.set_flags[set] |= RTI_SET_NEXT;
     }
     return RT_OK;
 }
@@ -290,7 +286,7 @@ static void set_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
     for (uint16_t i = sim->plan.seq_of[at.set]; i < sim->plan.seq_of[at.set + 1]; i++) {
         uint16_t s = sim->plan.set_seq[i];
         const rt_seq_step *st = &sim->plan.seq[s];
-        if (at.mode == RTI_RENEW && !(fl[s] & RTI_SEQ_RENEW))
+        if (at.mode == RTI_AT_TICK_RECALL && !(fl[s] & RTI_SEQ_RECALL))
             continue;
         if (st->kind == RT_SEQ_LOOP)
             solve_loop(sc, sim, st, at);

@@ -87,7 +87,7 @@ rt_status rt_restore(rt_sim *sim, const rt_state *in)
     for (uint16_t b = 0; b < RT_MAX_BLOCKS; b++)
         sim->work.mbs.m_valid[b] = 0;
     if (sim->bg && sim->plan.bg_set >= 0) {
-        sim->state.imp_stale[sim->plan.bg_set] = 1;
+        sim->state.param_changed[sim->plan.bg_set] = 1;
         return rt_bg_attach(sim->sc, sim, sim->bg); /* the context from the restored state */
     }
     return RT_OK;

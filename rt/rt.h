@@ -699,19 +699,19 @@ typedef struct rt_state {
     real_t hist_y[RT_HIST][RT_MAX_HIST_Y];/* cross-set outputs at those times */
     rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
     /* the background set's step in flight (rt/bg.c): released at tick bg_due - ratio,
-       published at tick bg_due; bg_new holds its result (x slice, then the outputs of its
-       blocks) until then when it ran inline (no background context attached) */
+       published at tick bg_due; bg_result holds its result (x slice, then the outputs of
+       its blocks) until then when it ran inline (no background context attached) */
     uint64_t bg_due;                 /* tick its result is due */
-    real_t bg_new[RT_MAX_BG];        /* inline result, published at bg_due */
+    real_t bg_result[RT_MAX_BG];     /* inline result, published at bg_due */
     /* per output of the background set another set reads: what the parabolic
        extrapolation showed at the newest point, minus that point; faded out over the next
        macro step, so the value read stays continuous (rt/xset.c) */
     real_t bg_jump[RT_MAX_HIST_Y];
 #if RT_MAX_HELD_Y > 0
     /* a set stepping over several ticks in the tick whose outputs another set reads: its
-       outputs at its step's end, evaluated then for its history and renewed from here when
-       its state reaches the tick (rt/sim.c) */
-    real_t y_next[RT_MAX_HELD_Y];
+       outputs at its step's end, evaluated then for its history and taken from here when
+       its state reaches the tick (RTI_SET_KEEPS_END, rt/held.c) */
+    real_t y_end[RT_MAX_HELD_Y];
 #endif
 #if RT_MAX_XPRED > 0
     /* per input of plan.xpred_in: the value its scheme gave for the end of its set's step,
@@ -729,10 +729,10 @@ typedef struct rt_state {
     /* recorded (in record order), then link-exported (in export order) multibody signals
        of the sets held between steps: they change with the set's state only, so they are
        computed when its outputs are; a background set's by its step, at the step's end,
-       into bg_sig_new (in the context the step runs in), taken over at its publication
-       (rt/bg.c) */
+       into bg_result_sig (in the context the step runs in), taken over at its
+       publication (rt/held.c, rt/bg.c) */
     real_t held_sig[RT_MAX_HELD_SIG];
-    real_t bg_sig_new[RT_MAX_HELD_SIG];
+    real_t bg_result_sig[RT_MAX_HELD_SIG];
 #endif
 #if RT_MAX_TEV > 0
     /* per set holding a kind with known time events: the base tick of its next instant,
@@ -744,9 +744,11 @@ typedef struct rt_state {
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
     uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
-    uint8_t imp_stale[RT_MAX_SETS];  /* a parameter of the set changed (rt_set_param):
+    uint8_t param_changed[RT_MAX_SETS]; /* a parameter of the set changed (rt_set_param):
                                         its next step forms its Jacobian anew (rt/step.c;
-                                        a background set's in the context that runs it) */
+                                        a background set's in the context that runs it)
+                                        and a multi-tick set's renewal evaluates its
+                                        outputs in full (rt/held.c) */
     uint8_t bg_busy;                 /* 1: a step is released and not yet published */
     int8_t r_side[RT_MAX_ROOTS];     /* per root, the side (+1 above r_lvl, -1 below) a
                                         handler sent it back to (or stopped it on) and
@@ -802,7 +804,8 @@ typedef struct rt_work {
     real_t xs[RT_MAX_X];             /* saved state for event location */
     real_t rs[RT_MAX_ROOTS];         /* root values scratch */
 #if RT_MAX_HELD_Y > 0
-    real_t y_held[RT_MAX_HELD_Y];    /* a multi-tick set's outputs during its step (sim.c) */
+    real_t y_shown[RT_MAX_HELD_Y];   /* a multi-tick set's outputs at the tick it steps
+                                        from, kept while its step overwrites y (held.c) */
 #endif
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];

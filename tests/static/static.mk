@@ -1,7 +1,9 @@
-# static.mk - `make test-static`: cppcheck and clang-tidy on rt/, models/ and ports/ with
-# zero findings (tests/static/static.sh, docs/reliability.md). Included at the end of the
-# Makefile.
+# static.mk - `make test-static`: no circle in the include-and-call graph between the files
+# of rt/ and tools/scenec (tests/static/file_graph.py, docs/architecture.md), then
+# cppcheck and clang-tidy on rt/, models/ and ports/ with zero findings
+# (tests/static/static.sh, docs/reliability.md). Included at the end of the Makefile.
 test-static: deps
+	@python3 tests/static/file_graph.py rt tools/scenec
 	@sh tests/static/static.sh
 
 TEST_SUITES += test-static
