@@ -404,10 +404,8 @@ typedef enum {
 #undef RT_X_ENUM
     RT_INTERP_COUNT
 } rt_interp;
-/* The scene language's name of an interpolation scheme ("?" if out of range), and the
-   scheme of a name (-1 if none). */
+/* The scene language's name of an interpolation scheme ("?" if out of range). */
 const char *rt_interp_name(rt_interp i);
-int rt_interp_find(const char *name);
 
 /* One connection of the incidence y = P u (eq. 2): output port -> input port. */
 typedef struct rt_conn {
@@ -524,7 +522,7 @@ typedef struct rt_bg_ops {
 } rt_bg_ops;
 extern const rt_bg_ops rt_bg;
 
-/* Post-stabilization of multibody sets; declared once (rt_stab_name, rt_stab_find). */
+/* Post-stabilization of multibody sets; declared once (rt_stab_find). */
 #define RT_STAB_LIST(X)                                                          \
     X(RT_STAB_PROJECT, "project")   /* two-iteration position and direct velocity   \
                                        projection (eq. 10) */                       \
@@ -538,7 +536,7 @@ typedef enum {
 #undef RT_X_ENUM
     RT_STAB_COUNT
 } rt_stab;
-const char *rt_stab_name(rt_stab s);
+/* the method of a scene language name (-1 if none) */
 int rt_stab_find(const char *name);
 
 /* Registry row of a scene; registries end with {NULL, NULL}. */

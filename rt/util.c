@@ -71,16 +71,6 @@ const char *rt_interp_name(rt_interp i)
     return (unsigned)i < RT_INTERP_COUNT ? interp_names[i] : "?";
 }
 
-int rt_interp_find(const char *name)
-{
-    return find_name(interp_names, RT_INTERP_COUNT, name);
-}
-
-const char *rt_stab_name(rt_stab s)
-{
-    return (unsigned)s < RT_STAB_COUNT ? stab_names[s] : "?";
-}
-
 int rt_stab_find(const char *name)
 {
     return find_name(stab_names, RT_STAB_COUNT, name);

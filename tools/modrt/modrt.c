@@ -484,7 +484,7 @@ static int record_header(const run_args *a, const char *scene, const rt_scene *s
 
 /* the inputs of a run: the controller link (and the log it writes), or nothing */
 static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc,
-                        port_run_opts *o, mrl_writer **rec)
+                        runner_opts *o, mrl_writer **rec)
 {
     static link_key key;
     char err[512];
@@ -626,14 +626,14 @@ static int cmd_run(void *ctx, int npos, char **pos)
     FILE *rt_log = NULL;
     if (a->rt_log && !(rt_log = open_out(a->rt_log, "cannot write the --rt-log file")))
         return CLI_IO;
-    port_run_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
+    runner_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
                        a->check ? check_observe : NULL};
-    port_run_result r;
+    runner_result r;
     mrl_writer *rec;
     int rc = start_inputs(a, pos[0], &sc, &o, &rec);
     if (rc != CLI_OK)
         return rc;
-    st = port_run(&sc, &sim, &o, &r);
+    st = runner_run(&sc, &sim, &o, &r);
     /* whatever was lost, the summary is printed and the replay log finished */
     int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
     io |= close_out(rt_log, 0, "error writing the --rt-log file", a->rt_log);
@@ -784,9 +784,9 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : open_out(a->csv, "cannot write the CSV file")))
         return mrl_close(), CLI_IO;
-    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
-    port_run_result r;
-    rt_status st = port_run(&sc, &sim, &o, &r);
+    runner_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
+    runner_result r;
+    rt_status st = runner_run(&sc, &sim, &o, &r);
     mrl_close();
     int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
     FILE *out = to_stdout ? stderr : stdout;

@@ -259,7 +259,7 @@ rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void 
     go_realtime(warn, &s);
     bg_start(sc, sim, s.fifo);
     int64_t period = (int64_t)(period_ns + 0.5), d = now_ns() + period;
-    while (running(st) && !s.stopped && !port_stop_signal()) {
+    while (running(st) && !s.stopped && !runner_stop_signal()) {
         sleep_until(d);
         int64_t wake = now_ns();
         st = tick(sc, sim, ctx);

@@ -175,11 +175,11 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
     FILE *csv = a->csv ? fopen(a->csv, "w") : NULL;
     if (a->csv && !csv)
         return cli_fail("cannot write the CSV file", a->csv);
-    port_run_opts o = {csv, 1, 0, a->replay ? mrl_replay_exchange : NULL, NULL, 0, NULL,
+    runner_opts o = {csv, 1, 0, a->replay ? mrl_replay_exchange : NULL, NULL, 0, NULL,
                        observe};
-    port_run_result r;
+    runner_result r;
     sweep_metrics_sample(c, &sc, &sim, acc, (double)rt_time(&sc, &sim)); /* tick 0 */
-    rt_status st = port_run(&sc, &sim, &o, &r);
+    rt_status st = runner_run(&sc, &sim, &o, &r);
     if (a->replay)
         mrl_close();
     if (csv && fclose(csv) != 0)

@@ -36,7 +36,7 @@ void trace_publish(void)
 static void write_row(const trace_row *r)
 {
     if (csv_out && r->record)
-        port_csv_row_at(csv_out, scene, r->t, r->vals);
+        runner_csv_row_at(csv_out, scene, r->t, r->vals);
     if (log_out)
         fprintf(log_out, "%llu,%.3f,%.3f,%u\n", (unsigned long long)r->tick,
                 1e-3 * (double)r->latency_ns, 1e-3 * (double)r->exec_ns, (unsigned)r->late);
