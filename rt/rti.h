@@ -3,7 +3,7 @@
 #ifndef RTI_H
 #define RTI_H
 
-#include "rt.h"
+#include "rt_sim.h"
 
 /* evaluation modes of the output sequence */
 typedef enum {

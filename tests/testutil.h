@@ -5,6 +5,7 @@
 
 #include "harness.h"
 #include "rt.h"
+#include "rt_sim.h"
 
 /* one simulator for all tests (large: it holds every static limit), and a second one a
    test may use for anything (a copy, a background context): the cross targets' RAM

@@ -20,6 +20,7 @@
  * the timer does. */
 #include "port.h"
 #include "rt.h"
+#include "rt_sim.h"
 
 #ifndef RT_SCENE
 #define RT_SCENE mdl_scene_pi_loop
@@ -70,7 +71,7 @@ typedef struct timer_count {
 static int finished(rt_status st)
 {
 #if RT_IMAGE_TICKS > 0
-    if (sim.state.tick >= RT_IMAGE_TICKS)
+    if (rt_ticks_done(&sim) >= RT_IMAGE_TICKS)
         return 1;
 #endif
     return st == RT_E_DONE || st == RT_E_LINK;
@@ -192,7 +193,7 @@ int app_main(void)
     port_write("rt scene ");
     port_write(sc->name);
     port_write(" ticks ");
-    put_u64(sim.state.tick, 10, 1);
+    put_u64(rt_ticks_done(&sim), 10, 1);
     port_write(" timer ");
     put_u64(count.ticks, 10, 1);
     port_write(" overruns ");
@@ -209,7 +210,7 @@ int app_main(void)
     int link_bad = 0;
 #endif
     port_write(" hash ");
-    put_u64(sim.state.hash, 16, 16);
+    put_u64(rt_trace_hash(&sim), 16, 16);
     port_write(" status ");
     port_write(rt_status_name(sim.stats.status));
     port_write("\n");

@@ -11,6 +11,7 @@
 #include "harness.h"
 #include "port.h"
 #include "rt.h"
+#include "rt_sim.h"
 #include "scenes/scenes.h"
 
 static rt_sim ref, sim, ctx;

@@ -26,6 +26,7 @@
 #include "runner.h"
 #include "tune.h"
 #include "version.h"
+#include "rt_sim.h"
 
 #define MAX_SETS_ARGS 32 /* --set options on one command line */
 
@@ -105,10 +106,10 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
                     int sig)
 {
     fprintf(f, "scene: %s\nticks: %llu\nsim_time: %.17g\nwall_s: %.6f\n", sc->name,
-            (unsigned long long)s->state.tick, (double)rt_time(sc, s), wall);
+            (unsigned long long)rt_ticks_done(s), (double)rt_time(sc, s), wall);
     if (sig)
         fprintf(f, "status: interrupted\ninterrupted: %s at tick %llu of %llu\n",
-                sig == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)s->state.tick,
+                sig == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)rt_ticks_done(s),
                 (unsigned long long)rt_tick_count(s));
     else
         fprintf(f, "status: %s\n", s->stats.status == RT_OK
@@ -129,8 +130,7 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     for (uint8_t k = 0; k < sc->nsets; k++) /* the most one step took, and its bound */
         fprintf(f, "rhs_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
                 (unsigned)s->stats.istats[k].rhs_step_max,
-                (unsigned)rt_step_bound(sc, k, (uint16_t)(s->plan.set_x[k + 1] -
-                                                          s->plan.set_x[k])).rhs);
+                (unsigned)rt_step_bound(sc, k, rt_set_nx(s, k)).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) /* a whole step: events, parts, couplings */
         fprintf(f, "rhs_set_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
                 (unsigned)s->stats.istats[k].rhs_set_step_max,
@@ -161,7 +161,7 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
         fprintf(f, "\nloop_residual: %g\n", (double)s->stats.loop_residual);
     }
     fmu_summary(f); /* FMU blocks: their faults with the FMU's own account */
-    fprintf(f, "hash: %016llx\n", (unsigned long long)s->state.hash);
+    fprintf(f, "hash: %016llx\n", (unsigned long long)rt_trace_hash(s));
 }
 
 /* ------------------------------------------------------------------ output files */

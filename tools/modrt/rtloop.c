@@ -23,6 +23,7 @@
 #include "rtloop.h"
 #include "runner.h"
 #include "trace.h"
+#include "rt_sim.h"
 
 #define NS_PER_S 1000000000LL
 #define HIST_US 100000     /* 1 us bins up to 100 ms; beyond: the last bin (max is exact) */
@@ -218,9 +219,9 @@ static trace_row *fill_row(const rt_scene *sc, rt_sim *sim, unsigned every, rt_s
     trace_row *r = trace_claim();
     *in_ring = r != NULL;
     r = r ? r : &scratch;
-    r->tick = sim->state.tick;
+    r->tick = rt_ticks_done(sim);
     r->t = (double)rt_time(sc, sim);
-    r->record = sim->state.tick % every == 0 || !running(st);
+    r->record = rt_ticks_done(sim) % every == 0 || !running(st);
     if (r->record)
         rt_record(sc, sim, r->vals);
     return r;

@@ -9,6 +9,7 @@
 
 #include "port.h"
 #include "runner.h"
+#include "rt_sim.h"
 
 static double now_s(void)
 {
@@ -119,7 +120,7 @@ static rt_status tick_and_record(const rt_scene *sc, rt_sim *sim, const runner_o
     rt_status st = exchange(sc, sim, o, rt_tick(sc, sim));
     if (o->observe)
         o->observe(sc, sim);
-    if (sim->state.tick % o->every == 0 || !running(st))
+    if (rt_ticks_done(sim) % o->every == 0 || !running(st))
         record(sc, sim, o);
     return st;
 }
@@ -137,7 +138,7 @@ static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const runner_opts
                               runner_result *r)
 {
     rt_status st = RT_E_DONE;
-    if (sim->state.tick < rt_tick_count(sim)) {
+    if (rt_ticks_done(sim) < rt_tick_count(sim)) {
         if (o->csv)
             fflush(o->csv); /* the header and row 0, before the writer thread takes over */
         st = rtloop_run(sc, sim, rt_tick_exchange, (void *)o, o->every,

@@ -20,6 +20,7 @@
 #include "runner.h"
 #include "study.h"
 #include "sweep.h"
+#include "rt_sim.h"
 
 static rt_sim sim;                       /* the run's storage */
 static sweep_acc acc[SWEEP_MAX_METRICS];  /* its metrics */
@@ -151,9 +152,9 @@ static int write_result(const sweep_campaign *c, const sweep_exec_args *a, const
             (unsigned long long)a->index,
             sim.stats.status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
                                       : rt_status_name(sim.stats.status),
-            code, sc->name, (unsigned long long)sim.state.tick, wall);
-    fprintf(f, "hash: %016llx\ncampaign_hash: %016llx\n", (unsigned long long)sim.state.hash,
-            (unsigned long long)c->hash);
+            code, sc->name, (unsigned long long)rt_ticks_done(&sim), wall);
+    fprintf(f, "hash: %016llx\ncampaign_hash: %016llx\n",
+            (unsigned long long)rt_trace_hash(&sim), (unsigned long long)c->hash);
     for (int i = 0; i < RT_CNT_COUNT; i++)
         fprintf(f, "count.%s: %u\n", rt_counter_key((rt_counter)i), (unsigned)sim.stats.count[i]);
     values(f, a);

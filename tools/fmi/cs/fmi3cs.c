@@ -15,6 +15,7 @@
 #include "fmi_api.h"
 #include "fmu_cs_vars.h"
 #include "rt.h"
+#include "rt_sim.h"
 
 #define EXPORT __attribute__((visibility("default")))
 #define CS_MAGIC "modrt-cs-state-1" /* serialized FMU states begin with it */
