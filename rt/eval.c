@@ -190,15 +190,15 @@ static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set)
                      (rti_nonlinear_block(sc, sim, set) < 0 ? RTI_SET_LINEAR : 0));
 }
 
-/* rti_eval_plan's marks per block: called once in the sequence; renewed by a tick */
-enum { SEEN_CALLED = 1, SEEN_RENEWED = 2 };
+/* rti_eval_plan's marks per block: called once in the sequence; called again by a renewal */
+enum { SEEN_CALLED = 1, SEEN_RECALLED = 2 };
 
-/* does a tick's renewal call block b: sampled (its outputs change at sample hits, which
-   the step's end evaluation does not call), or with throughput and an input that may
-   have changed since that evaluation (another set's history or sampled output, a renewed
-   block's output). One without throughput gives what it gave there. (A torn input is a
-   loop's, whose entry a renewal always solves: renew_loop) */
-static int renewed(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint8_t *seen)
+/* does a tick's renewal call block b again: sampled (its outputs change at sample hits,
+   which the step's end evaluation does not call), or with throughput and an input that
+   may have changed since that evaluation (another set's history or sampled output, a
+   recalled block's output). One without throughput gives what it gave there. (A torn input is a
+   loop's, whose entry a renewal always solves: recall_loop) */
+static int recalled(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint8_t *seen)
 {
     const rt_kind *k = sc->blocks[b].kind;
     if (k->type == RT_KIND_DSS)
@@ -209,18 +209,18 @@ static int renewed(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint
         uint8_t src = sim->plan.src_kind[j];
         if (src == RT_SRC_XSET || src == RT_SRC_HELD)
             return 1;
-        if (src == RT_SRC_Y && (seen[writer(sc, sim, sim->plan.src[j])] & SEEN_RENEWED))
+        if (src == RT_SRC_Y && (seen[writer(sc, sim, sim->plan.src[j])] & SEEN_RECALLED))
             return 1;
     }
     return 0;
 }
 
-/* a loop is solved again in a renewal; its blocks count as renewed for those after it */
-static void renew_loop(const rt_sim *sim, uint16_t l, uint8_t *seen)
+/* a loop is solved again in a renewal; its blocks count as recalled for those after it */
+static void recall_loop(const rt_sim *sim, uint16_t l, uint8_t *seen)
 {
     const rt_loop *lp = &sim->plan.loops[l];
     for (uint16_t i = lp->first; i < lp->first + lp->nblocks; i++)
-        seen[sim->plan.loop_blocks[i]] |= SEEN_RENEWED;
+        seen[sim->plan.loop_blocks[i]] |= SEEN_RECALLED;
 }
 
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
@@ -241,7 +241,7 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
         *fl = RTI_RHS_CALL;
         if (st->kind != RT_SEQ_CALL) {
             *fl |= RTI_SEQ_RECALL;
-            renew_loop(sim, st->index, seen);
+            recall_loop(sim, st->index, seen);
             continue;
         }
         uint8_t need = (seen[st->index] & SEEN_CALLED) ? LIVE_FED : LIVE_ANY;
@@ -251,9 +251,9 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
             *fl = RTI_RHS_SKIP;
         else if (!(live[st->index] & LIVE_RICH))
             *fl = RTI_RHS_LEAN;
-        if (renewed(sc, sim, st->index, seen)) {
+        if (recalled(sc, sim, st->index, seen)) {
             *fl |= RTI_SEQ_RECALL;
-            seen[st->index] |= SEEN_RENEWED;
+            seen[st->index] |= SEEN_RECALLED;
         }
     }
     for (uint8_t set = 0; set < sc->nsets; set++) {
