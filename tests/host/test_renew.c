@@ -257,7 +257,7 @@ static void test_static_set(void)
         bad += differing(&tu_sim, &alone_sim, ny);
     }
     TH_CHECK(bad == 0);
-    TH_CHECK(alone_sim.stats.rhs_evals[0] == 0 && alone_sim.stats.rhs_evals[1] > 0);
+    TH_CHECK(rt_stats_of(&alone_sim)->rhs_evals[0] == 0 && rt_stats_of(&alone_sim)->rhs_evals[1] > 0);
 }
 
 static void test_renew_full(void)
