@@ -156,39 +156,27 @@ void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
    renewal calls again (RTI_SEQ_RECALL); the set flags it owns (plan.set_flags). Returns
    RT_OK. */
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
-/* what init found of a set (plan.set_flags), one bit each */
+/* what init found of a set (plan.set_flags), one bit each, and the file that finds it */
 enum {
-    RTI_SET_DERIV = 1,      /* a block has its own derivative (an NSS or LSS kind: a
-                               right-hand side walks its blocks; a multibody set's have
-                               none); rti_eval_plan */
-    RTI_SET_AUTONOMOUS = 2, /* its right-hand side does not depend on t over a step (each
-                               block not sampled of an autonomous kind, no history input,
-                               no torn one); rti_eval_plan */
-    RTI_SET_LINEAR = 4,     /* linear in its state (the transition method's condition,
-                               rti_nonlinear_block); rti_eval_plan */
-    RTI_SET_NO_STEP = 8,    /* nothing to integrate: no state, no root, no entry its
-                               right-hand side calls (sampled blocks only); rt_tick skips
-                               its step; rti_eval_plan */
-    RTI_SET_HOLDS_SIG = 16, /* holds recorded or exported multibody signals between its
-                               steps (state.held_sig): its renewal computes them, a walk
-                               the other sets skip; rti_held_plan */
-    RTI_SET_XPRED = 32,     /* extrapolates another set: its predictions are checked
-                               (rti_xset_predict); rti_eval_plan */
-    RTI_SET_KEEPS_END = 64, /* steps over several ticks in the tick and other sets read
-                               it: its step's end outputs (for its history) wait in
-                               state.y_end and are taken when its state reaches the tick
-                               (rt/held.c); rti_held_plan */
-    RTI_SET_TEV = 128       /* holds a kind with known time events: its steps end at their
-                               instants; rti_tev_init */
+    RTI_SET_DERIV = 1,      /* a block has a deriv (NSS, LSS): rti_rhs walks them  eval.c */
+    RTI_SET_AUTONOMOUS = 2, /* its right-hand side does not read t over a step     eval.c */
+    RTI_SET_LINEAR = 4,     /* linear in its state (the transition method's test)  eval.c */
+    RTI_SET_NO_STEP = 8,    /* no state, root or rhs call: the tick skips its step eval.c */
+    RTI_SET_HOLDS_SIG = 16, /* holds recorded/exported multibody signals (held_sig) held.c */
+    RTI_SET_XPRED = 32,     /* extrapolates another set: its predictions checked   eval.c */
+    RTI_SET_KEEPS_END = 64, /* multi-tick, read by others: step end kept in y_end  held.c */
+    RTI_SET_TEV = 128       /* holds a kind with known time events                 tev.c */
 };
 /* The first block of set s that keeps it from being linear in its state, or -1. */
 int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t s);
-/* what a right-hand side does with an entry of the sequence (plan.seq_flags, the bits
-   under RTI_SEQ_RHS), and whether a tick's renewal calls it (RTI_SEQ_RECALL: a loop, a
-   sampled block, or a block with throughput reading an input from another set's history
-   or a sampled output of another set, or a renewed entry's output) */
+/* what a right-hand side does with an entry of the sequence (plan.seq_flags & RTI_SEQ_RHS) */
 typedef enum { RTI_RHS_CALL = 0, RTI_RHS_SKIP, RTI_RHS_LEAN } rti_rhs_call;
-enum { RTI_SEQ_RHS = 3, RTI_SEQ_RECALL = 4 };
+/* the bits of plan.seq_flags (rti_eval_plan) */
+enum {
+    RTI_SEQ_RHS = 3,   /* the entry's rti_rhs_call */
+    RTI_SEQ_RECALL = 4 /* a renewal calls it again: a loop, a sampled block, or one with
+                          throughput reading a history, a sampled or a recalled output */
+};
 /* The next run of consecutive blocks of set s from its k-th (plan.set_blk, ascending):
    their outputs are one range of y, [y_off[b], y_off[*end]); returns b, advances k. */
 static inline uint16_t rti_block_run(const rt_sim *sim, uint8_t s, uint16_t *k, uint16_t *end)
