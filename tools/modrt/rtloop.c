@@ -21,7 +21,6 @@
 #include <time.h>
 
 #include "rtloop.h"
-#include "runner.h"
 #include "trace.h"
 #include "rt_sim.h"
 
@@ -247,7 +246,7 @@ static int64_t next_deadline(int64_t d, int64_t period, int64_t end, rtloop_poli
 }
 
 rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void *ctx,
-                     unsigned every, rtloop_policy policy, FILE *csv, FILE *log, FILE *warn,
+                     int (*stop)(void), unsigned every, rtloop_policy policy, FILE *csv, FILE *log, FILE *warn,
                      rtloop_stats *out)
 {
     rtloop_stats s;
@@ -260,7 +259,7 @@ rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void 
     go_realtime(warn, &s);
     bg_start(sc, sim, s.fifo);
     int64_t period = (int64_t)(period_ns + 0.5), d = now_ns() + period;
-    while (running(st) && !s.stopped && !runner_stop_signal()) {
+    while (running(st) && !s.stopped && !stop()) {
         sleep_until(d);
         int64_t wake = now_ns();
         st = tick(sc, sim, ctx);

@@ -9,6 +9,7 @@
 
 #include "port.h"
 #include "runner.h"
+#include "trace.h"
 #include "rt_sim.h"
 
 static double now_s(void)
@@ -18,36 +19,13 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-void runner_csv_header(FILE *f, const rt_scene *sc)
-{
-    fputs("t", f);
-    for (uint16_t i = 0; i < sc->nrecs; i++)
-        fprintf(f, ",%s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
-    fputc('\n', f);
-}
-
-void runner_csv_row(FILE *f, const rt_scene *sc, const rt_sim *sim, const real_t *vals)
-{
-    runner_csv_row_at(f, sc, (double)rt_time(sc, sim), vals);
-}
-
-void runner_csv_row_at(FILE *f, const rt_scene *sc, double t, const real_t *vals)
-{
-    /* 17 significant digits round-trip a double; 9 a float */
-    const char *fmt = RT_REAL_IS_FLOAT ? ",%.9g" : ",%.17g";
-    fprintf(f, RT_REAL_IS_FLOAT ? "%.9g" : "%.17g", t);
-    for (uint16_t i = 0; i < sc->nrecs; i++)
-        fprintf(f, fmt, (double)vals[i]);
-    fputc('\n', f);
-}
-
 /* records the current state into the hash and, if wanted, the CSV */
 static void record(const rt_scene *sc, rt_sim *sim, const runner_opts *o)
 {
     real_t vals[RT_MAX_REC];
     rt_record(sc, sim, vals);
     if (o->csv)
-        runner_csv_row(o->csv, sc, sim, vals);
+        trace_csv_row(o->csv, sc, sim, vals);
 }
 
 
@@ -141,7 +119,7 @@ static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const runner_opts
     if (rt_ticks_done(sim) < rt_tick_count(sim)) {
         if (o->csv)
             fflush(o->csv); /* the header and row 0, before the writer thread takes over */
-        st = rtloop_run(sc, sim, rt_tick_exchange, (void *)o, o->every,
+        st = rtloop_run(sc, sim, rt_tick_exchange, (void *)o, runner_stop_signal, o->every,
                         (rtloop_policy)o->overrun, o->csv, o->rt_log, stderr, &r->rt);
     }
     r->overruns = r->rt.misses;
@@ -160,7 +138,7 @@ rt_status runner_run(const rt_scene *sc, rt_sim *sim, const runner_opts *o, runn
     rt_status st = RT_OK;
     memset(r, 0, sizeof *r);
     if (o->csv)
-        runner_csv_header(o->csv, sc);
+        trace_csv_header(o->csv, sc);
     st = exchange(sc, sim, o, st);
     record(sc, sim, o);
     double t0 = now_s();

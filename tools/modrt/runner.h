@@ -38,11 +38,5 @@ typedef struct runner_result {
 rt_status runner_run(const rt_scene *sc, rt_sim *sim, const runner_opts *o, runner_result *r);
 /* The signal that asked the run under way to stop, 0: none (the tick loops poll it). */
 int runner_stop_signal(void);
-/* Writes the CSV header: t, then Block.signal for each recorded signal. */
-void runner_csv_header(FILE *f, const rt_scene *sc);
-/* Writes one CSV row of the current state (values as recorded, full precision). */
-void runner_csv_row(FILE *f, const rt_scene *sc, const rt_sim *sim, const real_t *vals);
-/* The same for a row recorded at simulated time t (the real-time trace's writer). */
-void runner_csv_row_at(FILE *f, const rt_scene *sc, double t, const real_t *vals);
 
 #endif /* RUNNER_H */
