@@ -644,6 +644,9 @@ const char *rt_error_text(const rt_sim *sim);
 /* Advances the scene by one base tick. Always completes the tick; faults go to the
  * counters and to sim->stats.status. Returns RT_E_DONE once t_end is reached. */
 rt_status rt_tick(const rt_scene *scene, rt_sim *sim);
+/* A fault the application met outside the tick (a lost link): the run's status becomes
+ * status if that is more severe (rt_status_severity), as a counted fault makes it. */
+void rt_note_status(rt_sim *sim, rt_status status);
 /* Time of the current state [s]. */
 real_t rt_time(const rt_scene *scene, const rt_sim *sim);
 /* Re-evaluates the outputs and root values of every set whose state belongs to the current

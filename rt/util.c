@@ -169,6 +169,12 @@ void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status)
         sim->stats.status = status; /* the worst; the first of equally bad ones */
 }
 
+void rt_note_status(rt_sim *sim, rt_status status)
+{
+    if (rt_status_severity(status) > rt_status_severity(sim->stats.status))
+        sim->stats.status = status;
+}
+
 uint64_t rt_hash_real(uint64_t h, real_t v)
 {
     return rti_hash(h, v);

@@ -87,8 +87,7 @@ static rt_status exchange(const rt_scene *sc, rt_sim *sim, const runner_opts *o,
     /* the last tick too: a sampled controller samples at the end time as well */
     if (!o->exchange || !o->exchange(o->xctx, sc, sim))
         return st;
-    if (rt_status_severity(RT_E_LINK) > rt_status_severity(sim->stats.status))
-        sim->stats.status = RT_E_LINK;
+    rt_note_status(sim, RT_E_LINK);
     return RT_E_LINK;
 }
 
