@@ -27,6 +27,7 @@
 #include "runner.h"
 #include "tune.h"
 #include "version.h"
+#include "rt_sim.h"
 
 #define MAX_SETS_ARGS 32 /* --set options on one command line */
 
@@ -106,10 +107,10 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
                     int sig)
 {
     fprintf(f, "scene: %s\nticks: %llu\nsim_time: %.17g\nwall_s: %.6f\n", sc->name,
-            (unsigned long long)s->state.tick, (double)rt_time(sc, s), wall);
+            (unsigned long long)rt_ticks_done(s), (double)rt_time(sc, s), wall);
     if (sig)
         fprintf(f, "status: interrupted\ninterrupted: %s at tick %llu of %llu\n",
-                sig == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)s->state.tick,
+                sig == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)rt_ticks_done(s),
                 (unsigned long long)rt_tick_count(s));
     else
         fprintf(f, "status: %s\n", s->stats.status == RT_OK
@@ -130,8 +131,7 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     for (uint8_t k = 0; k < sc->nsets; k++) /* the most one step took, and its bound */
         fprintf(f, "rhs_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
                 (unsigned)s->stats.istats[k].rhs_step_max,
-                (unsigned)rt_step_bound(sc, k, (uint16_t)(s->plan.set_x[k + 1] -
-                                                          s->plan.set_x[k])).rhs);
+                (unsigned)rt_step_bound(sc, k, rt_set_nx(s, k)).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) /* a whole step: events, parts, couplings */
         fprintf(f, "rhs_set_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
                 (unsigned)s->stats.istats[k].rhs_set_step_max,
@@ -162,7 +162,7 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
         fprintf(f, "\nloop_residual: %g\n", (double)s->stats.loop_residual);
     }
     fmu_summary(f); /* FMU blocks: their faults with the FMU's own account */
-    fprintf(f, "hash: %016llx\n", (unsigned long long)s->state.hash);
+    fprintf(f, "hash: %016llx\n", (unsigned long long)rt_trace_hash(s));
 }
 
 /* ------------------------------------------------------------------ output files */
@@ -485,7 +485,7 @@ static int record_header(const run_args *a, const char *scene, const rt_scene *s
 
 /* the inputs of a run: the controller link (and the log it writes), or nothing */
 static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc,
-                        port_run_opts *o, mrl_writer **rec)
+                        runner_opts *o, mrl_writer **rec)
 {
     static link_key key;
     char err[512];
@@ -610,14 +610,14 @@ static int cmd_run(void *ctx, int npos, char **pos)
     FILE *rt_log = NULL;
     if (a->rt_log && !(rt_log = open_out(a->rt_log, "cannot write the --rt-log file")))
         return CLI_IO;
-    port_run_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
+    runner_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
                        a->check ? check_observe : NULL};
-    port_run_result r;
+    runner_result r;
     mrl_writer *rec;
     int rc = start_inputs(a, pos[0], &sc, &o, &rec);
     if (rc != CLI_OK)
         return rc;
-    st = port_run(&sc, &sim, &o, &r);
+    st = runner_run(&sc, &sim, &o, &r);
     /* whatever was lost, the summary is printed and the replay log finished */
     int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
     io |= close_out(rt_log, 0, "error writing the --rt-log file", a->rt_log);
@@ -688,9 +688,9 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : open_out(a->csv, "cannot write the CSV file")))
         return mrl_close(), CLI_IO;
-    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
-    port_run_result r;
-    rt_status st = port_run(&sc, &sim, &o, &r);
+    runner_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
+    runner_result r;
+    rt_status st = runner_run(&sc, &sim, &o, &r);
     mrl_close();
     int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
     FILE *out = to_stdout ? stderr : stdout;

@@ -21,6 +21,7 @@
 #include "runner.h"
 #include "study.h"
 #include "sweep.h"
+#include "rt_sim.h"
 
 static rt_sim sim;                       /* the run's storage */
 static sweep_acc acc[SWEEP_MAX_METRICS];  /* its metrics */
@@ -124,9 +125,9 @@ static int write_result(const sweep_campaign *c, const sweep_exec_args *a, const
             (unsigned long long)a->index,
             sim.stats.status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
                                       : rt_status_name(sim.stats.status),
-            code, sc->name, (unsigned long long)sim.state.tick, wall);
-    fprintf(f, "hash: %016llx\ncampaign_hash: %016llx\n", (unsigned long long)sim.state.hash,
-            (unsigned long long)c->hash);
+            code, sc->name, (unsigned long long)rt_ticks_done(&sim), wall);
+    fprintf(f, "hash: %016llx\ncampaign_hash: %016llx\n",
+            (unsigned long long)rt_trace_hash(&sim), (unsigned long long)c->hash);
     for (int i = 0; i < RT_CNT_COUNT; i++)
         fprintf(f, "count.%s: %u\n", rt_counter_key((rt_counter)i), (unsigned)sim.stats.count[i]);
     for (uint8_t k = 0; k < sc->nsets; k++) /* what the run cost, in right-hand sides */
@@ -151,11 +152,11 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
     FILE *csv = a->csv ? fopen(a->csv, "w") : NULL;
     if (a->csv && !csv)
         return cli_fail("cannot write the CSV file", a->csv);
-    port_run_opts o = {csv, 1, 0, a->replay ? mrl_replay_exchange : NULL, NULL, 0, NULL,
+    runner_opts o = {csv, 1, 0, a->replay ? mrl_replay_exchange : NULL, NULL, 0, NULL,
                        observe};
-    port_run_result r;
+    runner_result r;
     sweep_metrics_sample(c, &sc, &sim, acc, (double)rt_time(&sc, &sim)); /* tick 0 */
-    rt_status st = port_run(&sc, &sim, &o, &r);
+    rt_status st = runner_run(&sc, &sim, &o, &r);
     if (a->replay)
         mrl_close();
     if (csv && fclose(csv) != 0)
