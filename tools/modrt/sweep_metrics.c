@@ -181,7 +181,7 @@ static void fold(const sweep_metric *m, sweep_acc *a, double t, double y)
 static int all_stepped(const rt_scene *sc, const rt_sim *sim)
 {
     for (uint8_t k = 0; k < sc->nsets; k++)
-        if (sim->state.tick % (sc->sets[k].ratio ? sc->sets[k].ratio : 1) != 0)
+        if (rt_ticks_done(sim) % (sc->sets[k].ratio ? sc->sets[k].ratio : 1) != 0)
             return 0;
     return 1;
 }
