@@ -185,7 +185,7 @@ static void cone_output(const rt_args *a, real_t *y)
         bx[i] = cx + l * c - w * s, by[i] = cy + l * s + w * c;
     }
     real_t r1 = -(width_k[0] * p[C_WID] + (real_t)0.25) / 2, m = p[C_CAP], x = p[C_X0];
-    for (int k = 0; k < 3; k++) { /* sections 1, 3 and 5-6: from the start of 1, 3, 5 */
+    for (size_t k = 0; k < 3; k++) { /* sections 1, 3 and 5-6: from the start of 1, 3, 5 */
         real_t xa = x, xb = x + sections[2 * k] + (k == 2 ? sections[5] : 0);
         real_t r = r1 + (k == 1 ? p[C_OFF] : 0);
         lane_margin(bx, by, xa, xb, r, r + width_k[k] * p[C_WID] + (real_t)0.25, &m);
