@@ -237,10 +237,9 @@ CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := ports/common/image_main.c
 # the background set preempted for real (cross-test-<t> of these targets): pendulum10_actuated
 # ticked in SysTick every 40 us of virtual time (40,000 instructions under -icount), its
-# chain stepping in PendSV below it (58,500 instructions a step since the points-only
-# multibody path; 68,000 before), preempted by the ticks that fall while it runs (at 80 us
-# every step has fitted between two ticks since the multibody path got faster, d3a6ffb; at
-# 100 us since a tick checks and roots only the sets it evaluated)
+# chain stepping in PendSV below it, preempted by the ticks that fall while it runs (a
+# chain step takes longer than the 40 us between two ticks; at 80 or 100 us each step
+# fits between two ticks, and nothing is preempted)
 CROSS_BG_TARGETS := m7
 CROSS_BG_TICKS := 1000
 CROSS_BG_DEFS = -DRT_SCENE=mdl_scene_pendulum10_actuated -DRT_IMAGE_BG=1 \
@@ -250,9 +249,9 @@ CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 # (tests/cross/tests_main.c, scenes_main.c), so that no one emulated run is long. Each
 # run is bounded by an instruction budget (tests/cross/run.sh, the limit of
 # tools/qemu/insn_count.c), set from what rv32 (binary64 in software, the most
-# expensive target) executed: softfloat 6.6e7; a quarter of the unit tests at most 4.0e10
-# (a tenth now); pendulum10_actuated_single's whole run about 3.2e10; the timer-paced
-# pi_loop 4e7. An image that runs past its budget stops and names it (raise it when
+# expensive target) executed, with room to grow: softfloat 6.6e7; a tenth of the unit
+# tests at most 4.0e10; pendulum10_actuated_single's whole run about 3.2e10; the
+# timer-paced pi_loop 4e7. An image that runs past its budget stops and names it (raise it when
 # many tests are added).
 CROSS_PARTS := 10
 CROSS_SCENE_PARTS = $(words $(SCN_FILES))

@@ -107,7 +107,7 @@ fi
 # bad input: one clear line, exit 2, nothing crashes
 expect_err "tune without tol" 2 "tune needs --tol" $M tune oscillator
 # the transition method iterates nothing: no silent no-op (as the scene compiler)
-expect_err "newton for transition" 2 "applies to iterating implicit methods only" \
+expect_err "newton for transition" 2 "newton applies to the implicit methods that iterate only; its method is transition" \
     $M run oscillator --method main=transition --newton main=2
 expect_err "unknown command" 2 "unknown command (modrt --help lists them): frobnicate" $M frobnicate
 expect_err "unknown scene" 2 "unknown scene (modrt list names them): nope" $M run nope
