@@ -316,7 +316,7 @@ typedef struct rt_istats {
 #define RT_SET_CFG_LIST(X)                                                                  \
     X(RT_CFG_NEWTON, "newton", "newton", newton_max, RT_CFG_COUNT, 255, RT_CFG_ITER,        \
       RT_IMP_NEWTON_MAX, "Newton iterations per stage of an implicit set")                  \
-    X(RT_CFG_JACOBIAN, "jacobian", 0, jac_every, RT_CFG_COUNT, 65535, RT_CFG_ITER,          \
+    X(RT_CFG_JACOBIAN, "jacobian", "jacobian", jac_every, RT_CFG_COUNT, 65535, RT_CFG_ITER, \
       RT_IMP_JAC_EVERY, "steps between Jacobian refreshes of an implicit set")              \
     X(RT_CFG_TOL, "tolerance", "tol", tol, RT_CFG_REAL, 0, RT_CFG_ITER, RT_IMP_TOL,         \
       "Newton residual tolerance of an implicit set, scaled norm")                          \
