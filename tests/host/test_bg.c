@@ -233,7 +233,7 @@ static void positions(const rt_sim *s, double *p)
 }
 
 /* the background transition of pendulum10_actuated against a fine reference (one set,
-   Dormand-Prince at 0.1 ms, as tools/bench/multirate_bench.c) every 0.128 s for 10 s:
+   Dormand-Prince at 0.1 ms, as tools/dev/bench/multirate_bench.c) every 0.128 s for 10 s:
    within the benchmark's bound of 1e-4 m (8.8e-5 m measured; binary32: 9.5e-5 m, checked
    against twice the bound) */
 static void test_bg_reference(void)

@@ -1,7 +1,7 @@
 # slurm.sh - sourced: slurm_up starts a single-node Slurm cluster in $T/slurm (munged,
 # slurmctld, slurmd on 127.0.0.1, each under `timeout "${SLURM_LIFE:-120}"`, their PIDs appended to $pids
 # for the caller to stop); returns 0 when the node is idle, else 1 with the reason in
-# $why. Used by tests/sweep/sweep.sh and tools/bench/sweep_bench.sh.
+# $why. Used by tests/sweep/sweep.sh and tools/dev/bench/sweep_bench.sh.
 slurm_up() {
     S=$T/slurm why=""
     for c in slurmctld slurmd munged munge sbatch; do

@@ -5,12 +5,12 @@
 # one run per array task and with N/8; wall times by the clock around each engine, the
 # runs' own times (their tick loops) from collect. Prints a Markdown table. Wall-clock
 # figures: run it on an idle machine (they are never a test).
-# Usage: sh tools/bench/sweep_bench.sh BUILD_DIR [N]
+# Usage: sh tools/dev/bench/sweep_bench.sh BUILD_DIR [N]
 set -u
 B=${1:-build/host}
 N=${2:-240}
 M=$(cd "$B" && pwd)/modrt
-R=$(cd "$(dirname "$0")/../.." && pwd)
+R=$(cd "$(dirname "$0")/../../.." && pwd)
 T=$(mktemp -d)
 pids=""
 trap 'for p in $pids; do kill "$p" 2>/dev/null; done; sleep 1; rm -rf "$T"' EXIT

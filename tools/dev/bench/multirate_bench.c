@@ -19,7 +19,7 @@
  * speedup under the bound of issue 6.
  *
  * `make bench` does not run this CPU-time sweep: the speedup it reports comes from
- * deterministic instruction counts (tools/bench/speedup.py, `make speedup`,
+ * deterministic instruction counts (tools/dev/bench/speedup.py, `make speedup`,
  * docs/multirate.md "The benchmark"). This program gives the table of rate transitions
  * (--transition, docs/multirate.md "Background sets") and a quick check.
  *
