@@ -60,7 +60,7 @@ MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
 POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/modrt/cli.c \
                tools/modrt/info.c tools/modrt/study.c tools/modrt/check.c tools/modrt/rtloop.c tools/modrt/trace.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c \
                tools/modrt/link_udp.c tools/modrt/fingerprint.c ports/common/link_hmac.c \
-               tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c \
+               tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c tools/modrt/replay.c \
                $(wildcard tools/modrt/sweep*.c)
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c) \
@@ -187,7 +187,7 @@ TEST_HELP_test-image := per-scene firmware images (make image) against the host 
 TEST_HELP_test-link := the controller link end to end (UDP, real time, replay)
 TEST_HELP_test-link-fuzz := the datagram and replay-log fuzzer for 5 s
 TEST_HELP_test-hard := the hard-case suite at CI sizes (make hard: full size)
-TEST_HELP_test-static := cppcheck and clang-tidy on rt/, models/, ports/
+TEST_HELP_test-static := file graph and docs tables of rt/, tools; cppcheck, clang-tidy
 TEST_HELP_test-vehicles := the vehicle models against their references
 TEST_HELP_test-study := the quick configurations (make study: all)
 TEST_HELP_test-fmi := own test FMUs against closed forms, bad FMUs, export round trip

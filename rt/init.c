@@ -363,6 +363,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         /* the link's exports count among the held signals (check_history) */
         (st = rti_link_check(sc, sim)) != RT_OK || (st = check_history(sc, sim)) != RT_OK ||
         (st = rti_eval_plan(sc, sim)) != RT_OK || (st = check_methods(sc, sim)) != RT_OK ||
+        (st = rti_held_plan(sc, sim)) != RT_OK ||
         (st = bg_init(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */

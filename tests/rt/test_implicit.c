@@ -141,7 +141,7 @@ static void test_dahlquist(void)
         double r1 = 0, r2 = 0, x100 = 0;
         if (run(&dahl, lam6, one, m, cfg, (real_t)1e-3, (real_t)1e-3))
             r1 = (double)tu_sim.state.x[0];
-        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0);
         if (run(&dahl, lam6, one, m, cfg, (real_t)1e-3, (real_t)0.1))
             x100 = (double)tu_sim.state.x[0];
         if (run(&dahl, lam12, one, m, cfg, (real_t)1e-3, (real_t)1e-3))
@@ -176,7 +176,7 @@ static double growth_error(const rt_integrator *m, rt_set_cfg cfg, real_t h)
     static const real_t one[] = {1};
     if (!run(&growth, 0, one, m, cfg, h, 2))
         return 1e30;
-    TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0);
     return dabs((double)tu_sim.state.x[0] - (double)rt_exp(rt_sin(rt_time(&scene, &tu_sim))));
 }
 
@@ -259,8 +259,8 @@ static double stiff_error(const rt_integrator *m, real_t h)
         e = d > e ? d : e;
     }
     /* linear: one Jacobian for the run, a few iterations per stage, never degraded */
-    TH_CHECK(tu_sim.stats.istats[0].jac_evals == 1 && tu_sim.stats.istats[0].degraded == 0);
-    TH_CHECK(tu_sim.stats.istats[0].newton_iter_max <= 4u * m->stages);
+    TH_CHECK(rt_stats_of(&tu_sim)->istats[0].jac_evals == 1 && rt_stats_of(&tu_sim)->istats[0].degraded == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->istats[0].newton_iter_max <= 4u * m->stages);
     return e;
 }
 
@@ -307,9 +307,9 @@ static void test_ros2_split(void)
             e = dabs((double)tu_sim.state.x[i] - ex[i]) > e ? dabs((double)tu_sim.state.x[i] - ex[i]) : e;
         *(split ? &e_split : &e_one) = e;
         if (split)
-            TH_CHECK(tu_sim.stats.istats[0].substepped > 0 && tu_sim.stats.count[RT_CNT_SUBSTEP] > 0);
+            TH_CHECK(rt_stats_of(&tu_sim)->istats[0].substepped > 0 && rt_stats_of(&tu_sim)->count[RT_CNT_SUBSTEP] > 0);
         else
-            TH_CHECK(tu_sim.stats.istats[0].substepped == 0);
+            TH_CHECK(rt_stats_of(&tu_sim)->istats[0].substepped == 0);
     }
     th_note("ROS2 at h = 0.1, error without splitting", e_one);
     th_note("ROS2 at h = 0.1, error with splitting", e_split);
@@ -341,13 +341,13 @@ static void test_degraded(void)
         th_put(m->name);
         th_note("retried steps of 300 with a frozen Jacobian", s->retried);
         TH_CHECK(s->retried > 0 && s->degraded == 0 && s->jac_evals > s->retried);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.count[RT_CNT_NAN] == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_NAN] == 0);
         /* the attempt (2 per stage) and the retry (4 per stage) */
         TH_CHECK(s->newton_iter_max <= 6u * m->stages);
         double x_bad = (double)tu_sim.state.x[0];
 
         TH_CHECK(run(&cubic, p, zero, m, good, (real_t)0.01, 3));
-        TH_CHECK(s->degraded == 0 && s->retried == 0 && tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+        TH_CHECK(s->degraded == 0 && s->retried == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0);
         TH_CHECK(s->jac_evals == 300 && s->newton_iter_max <= 8u * m->stages);
         TH_CHECK(s->last_residual <= (FLT ? 1e-5 : 1e-8));
         th_note("|x(3) - converged x(3)|", dabs(x_bad - (double)tu_sim.state.x[0]));
@@ -359,10 +359,10 @@ static void test_degraded(void)
     TH_CHECK(run(&cubic, p, zero, &rt_sdirk2,
                  (rt_set_cfg){.newton_max = 1, .substeps = 1}, (real_t)0.01, 1));
     /* (float's tolerance 1e-5 is met by two full-Newton iterations at some steps) */
-    th_note("degraded of 100 with one iteration", tu_sim.stats.istats[0].degraded);
-    TH_CHECK(FLT ? tu_sim.stats.istats[0].degraded > 0 : tu_sim.stats.istats[0].degraded == 100);
+    th_note("degraded of 100 with one iteration", rt_stats_of(&tu_sim)->istats[0].degraded);
+    TH_CHECK(FLT ? rt_stats_of(&tu_sim)->istats[0].degraded > 0 : rt_stats_of(&tu_sim)->istats[0].degraded == 100);
     TH_CHECK(rt_isfinite(tu_sim.state.x[0]));
-    TH_CHECK(tu_sim.stats.status == RT_E_DEGRADED && tu_sim.state.x[0] != 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_E_DEGRADED && tu_sim.state.x[0] != 0);
 }
 
 /* ------------------------------------------------------------------ Jacobian reuse */
@@ -378,13 +378,13 @@ static void test_jac_reuse(void)
         TH_CHECK(run(&cubic, p, zero, m, (rt_set_cfg){.newton_max = 8, .substeps = 1},
                      (real_t)0.01, 3));
         double x1 = (double)tu_sim.state.x[0];
-        uint32_t j1 = tu_sim.stats.istats[0].jac_evals, it1 = tu_sim.stats.istats[0].newton_iter_max;
-        TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
+        uint32_t j1 = rt_stats_of(&tu_sim)->istats[0].jac_evals, it1 = rt_stats_of(&tu_sim)->istats[0].newton_iter_max;
+        TH_CHECK(rt_stats_of(&tu_sim)->istats[0].degraded == 0);
         TH_CHECK(run(&cubic, p, zero, m,
                      (rt_set_cfg){.newton_max = 8, .jac_every = 10, .substeps = 1},
                      (real_t)0.01, 3));
         double x10 = (double)tu_sim.state.x[0];
-        uint32_t j10 = tu_sim.stats.istats[0].jac_evals, it10 = tu_sim.stats.istats[0].newton_iter_max;
+        uint32_t j10 = rt_stats_of(&tu_sim)->istats[0].jac_evals, it10 = rt_stats_of(&tu_sim)->istats[0].newton_iter_max;
         th_put("  ");
         th_put(m->name);
         th_note("jac_evals every step", j1);
@@ -392,7 +392,7 @@ static void test_jac_reuse(void)
         th_note("Newton iterations per step, max", it10 > it1 ? it10 : it1);
         th_note("|x(3) difference|", dabs(x1 - x10));
         TH_CHECK(j1 == 300 && j10 == 30);
-        TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->istats[0].degraded == 0);
         TH_CHECK(dabs(x1 - x10) < (m == &rt_ros2 ? 1e-3 : FLT ? 1e-4 : 1e-8));
     }
 }
@@ -449,8 +449,8 @@ static void test_singular(void)
     x[0] = 1, x[1] = 1;
     w = direct_work(&cfg);
     st = rt_beuler.step(&rt_beuler, &f, 0, h, x, 2, &w);
-    TH_CHECK(st == RT_OK && tu_sim.stats.istats[0].substepped == 1);
-    TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
+    TH_CHECK(st == RT_OK && rt_stats_of(&tu_sim)->istats[0].substepped == 1);
+    TH_CHECK(rt_stats_of(&tu_sim)->istats[0].degraded == 0);
     TH_NEAR(x[0], 4, FLT ? 1e-5 : 1e-12);
     TH_NEAR(x[1], 1 / ((1 + h / 2) * (1 + h / 2)), FLT ? 1e-6 : 1e-14);
 
@@ -458,9 +458,9 @@ static void test_singular(void)
     x[0] = 1, x[1] = 1;
     w = direct_work(&nosplit);
     st = rt_beuler.step(&rt_beuler, &f, 0, h, x, 2, &w);
-    TH_CHECK(st == RT_E_NOCONV && tu_sim.stats.istats[0].degraded == 1);
+    TH_CHECK(st == RT_E_NOCONV && rt_stats_of(&tu_sim)->istats[0].degraded == 1);
     TH_CHECK(rt_isfinite(x[0]) && rt_isfinite(x[1]));
-    TH_CHECK(rt_isfinite(tu_sim.stats.istats[0].last_residual));
+    TH_CHECK(rt_isfinite(rt_stats_of(&tu_sim)->istats[0].last_residual));
 }
 
 /* ------------------------------------------------------------------ multibody set */
@@ -534,7 +534,7 @@ static void test_multibody(void)
         th_note("pendulum state error at 1 s", e);
         TH_CHECK(e < tol[i] + (FLT ? 1e-3 : 0));
         TH_NEAR(c, 1, FLT ? 1e-6 : 1e-14);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.istats[0].jac_evals == 1000);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0 && rt_stats_of(&tu_sim)->istats[0].jac_evals == 1000);
     }
 }
 
@@ -581,9 +581,9 @@ static void test_pendulum10(void)
     }
     th_note("pendulum10, sdirk2 vs dopri5 at 0.5 s, largest state difference", e);
     th_note("largest constraint residual [m]", chain_residual());
-    th_note("Newton iterations per step, max", tu_sim.stats.istats[0].newton_iter_max);
+    th_note("Newton iterations per step, max", rt_stats_of(&tu_sim)->istats[0].newton_iter_max);
     TH_CHECK(e < 1e-4 && chain_residual() < (FLT ? 1e-5 : 1e-12));
-    TH_CHECK(tu_sim.stats.istats[0].degraded == 0 && tu_sim.stats.istats[0].jac_evals == 50);
+    TH_CHECK(rt_stats_of(&tu_sim)->istats[0].degraded == 0 && rt_stats_of(&tu_sim)->istats[0].jac_evals == 50);
 }
 
 /* ------------------------------------------------------------------ state events */
@@ -607,8 +607,8 @@ static void test_events(void)
         th_put(m->name);
         th_note("impacts", n);
         th_note("last impact time - RK4's [s]", t - t_ref);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_EVENTS] == (uint32_t)n && tu_sim.stats.istats[0].jac_evals == 1);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.count[RT_CNT_EVENT_NOLOC] == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_EVENTS] == (uint32_t)n && rt_stats_of(&tu_sim)->istats[0].jac_evals == 1);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_EVENT_NOLOC] == 0);
         if (m->order >= 2)
             TH_CHECK(n == n_ref && dabs(t - t_ref) < (FLT ? 1e-4 : 1e-12));
         else
@@ -627,14 +627,14 @@ static void test_replay(void)
         real_t x;
         rt_istats s;
         TH_CHECK(run(&cubic, p, zero, methods[i], cfg, (real_t)0.01, 2));
-        x = tu_sim.state.x[0], s = tu_sim.stats.istats[0];
+        x = tu_sim.state.x[0], s = rt_stats_of(&tu_sim)->istats[0];
         TH_CHECK(run(&cubic, p, zero, methods[i], cfg, (real_t)0.01, 2));
         TH_CHECK(rt_hash_real(0, x) == rt_hash_real(0, tu_sim.state.x[0]));
-        TH_CHECK(s.degraded == tu_sim.stats.istats[0].degraded &&
-                 s.jac_evals == tu_sim.stats.istats[0].jac_evals &&
-                 s.newton_iter_max == tu_sim.stats.istats[0].newton_iter_max &&
+        TH_CHECK(s.degraded == rt_stats_of(&tu_sim)->istats[0].degraded &&
+                 s.jac_evals == rt_stats_of(&tu_sim)->istats[0].jac_evals &&
+                 s.newton_iter_max == rt_stats_of(&tu_sim)->istats[0].newton_iter_max &&
                  rt_hash_real(0, s.last_residual) ==
-                     rt_hash_real(0, tu_sim.stats.istats[0].last_residual));
+                     rt_hash_real(0, rt_stats_of(&tu_sim)->istats[0].last_residual));
     }
 }
 
@@ -665,7 +665,7 @@ static void test_ros2_autonomous(void)
                  (real_t)0.01, 1))
             return;
         x[v] = tu_sim.state.x[0];
-        evals[v] = tu_sim.stats.rhs_evals[0];
+        evals[v] = rt_stats_of(&tu_sim)->rhs_evals[0];
         flags[v] = tu_sim.plan.set_flags[0];
     }
     TH_CHECK(!(flags[0] & RTI_SET_AUTONOMOUS) && (flags[1] & RTI_SET_AUTONOMOUS));

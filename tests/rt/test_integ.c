@@ -3,6 +3,7 @@
  * method's error estimate against its true local error (with the implicit methods of
  * rt/integ_implicit.c, whose estimates follow the same rule). */
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 static void deriv(const rt_args *a, real_t *xdot) { xdot[0] = a->x[0] * rt_cos(a->t); }
 static void output(const rt_args *a, real_t *y) { y[0] = a->x[0]; }

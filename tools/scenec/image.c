@@ -4,6 +4,7 @@
  * then checks the whole, so a scene scenec accepts initialises on every target.
  * Also scn_compile, the one entry point of a compilation. */
 #include "scn.h"
+#include "rt_sim.h" /* allocates the rt_sim it checks the scene with */
 
 #include <string.h>
 

@@ -269,7 +269,7 @@ static void joint_params(scn_ctx *c, scn_joint *j)
                  "values the joint type accepts (e.g. a length above 0)");
 }
 
-void scn_check_links(scn_ctx *c)
+void scn_check_joint_links(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
     for (uint16_t i = 0; i < s->nlnk && !c->err; i++)
@@ -451,8 +451,6 @@ void scn_check_rest(scn_ctx *c)
         record(c, &s->rec[i]);
     if (!c->err)
         options(c);
-    if (!c->err)
-        scn_check_link(c);
 }
 
 /* ------------------------------------------------------------------ services */

@@ -24,6 +24,7 @@
 #include <time.h>
 
 #include "scenes/scenes.h"
+#include "rt_sim.h"
 
 #define NB 10            /* bodies of pendulum10 */
 #define T_CHECK 2.0      /* time of the error measurement [s] */

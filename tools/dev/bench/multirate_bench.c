@@ -41,6 +41,7 @@
 #include <time.h>
 
 #include "scenes/scenes.h"
+#include "rt_sim.h"
 
 #define NB 10              /* bodies of the chain */
 #define TOL 1e-4           /* accuracy every configuration must reach [m] */
@@ -135,8 +136,9 @@ static double run(const config *c, double *p, int *clean)
     uint64_t every = (uint64_t)(T_SAMPLE / c->h + 0.5);
     for (rt_status st = RT_OK; st == RT_OK;) {
         st = rt_tick(&sc, &sim);
-        if (p && sim.state.tick % every == 0 && sim.state.tick / every <= NSAMPLE)
-            positions(run_pos[sim.state.tick / every - 1]);
+        uint64_t k = rt_ticks_done(&sim);
+        if (p && k % every == 0 && k / every <= NSAMPLE)
+            positions(run_pos[k / every - 1]);
     }
     double secs = cpu_s() - t0;
     if (p)

@@ -32,6 +32,7 @@
 #include "actuated_mr_mono.h"
 #include "pendulum_mono.h"
 #include "scenes/scenes.h"
+#include "rt_sim.h"
 
 #define CHECK_T 2.0     /* simulated time of the trajectory check [s] */
 #define CHECK_TOL 1e-11 /* largest position difference accepted [m]: rounding grows in the
@@ -113,7 +114,7 @@ static void servo_states(const rt_scene *sc, double *s)
 {
     int sv = rt_block_index(sc, "Servo");
     for (int j = 0; j < 2; j++)
-        s[j] = (double)sim.state.x[sim.plan.x_off[sv] + j];
+        s[j] = (double)rt_block_x(&sim, (uint16_t)sv, (uint16_t)j);
 }
 
 /* the largest position difference of the chain between modrt's outputs and the
@@ -195,7 +196,7 @@ static void mr_start(amr *m, int solver, int estimate, const rt_scene *sc)
     double x0[6 * MONO_NB], s0[2];
     for (uint16_t b = 0; b < MONO_NB; b++)
         for (uint16_t j = 0; j < 6; j++)
-            x0[6 * b + j] = (double)sim.state.x[sim.plan.x_off[b] + j];
+            x0[6 * b + j] = (double)rt_block_x(&sim, b, j);
     servo_states(sc, s0);
     m->solver = solver, m->estimate = estimate;
     m->dt = (double)sc->dt;
@@ -210,7 +211,7 @@ static double mr_diff(const amr *m, const rt_scene *sc, double *dy, double *dc)
     double s[2];
     servo_states(sc, s);
     *dy = fabs(s[0] - m->s[0]);
-    *dc = fabs((double)sim.state.d[sim.plan.d_off[rt_block_index(sc, "Ctrl")]] - m->c);
+    *dc = fabs((double)rt_block_d(&sim, (uint16_t)rt_block_index(sc, "Ctrl"), 0) - m->c);
     return chain_diff(m->x);
 }
 

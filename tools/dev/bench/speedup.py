@@ -580,7 +580,7 @@ def split_md(ex, c, label, total, edges, incl):
         return sum(v for (a, b), v in edges.items() if b in fns and (frm is None or a in frm))
     rec = incl.get("rt_record", 0)
     # the recorded multibody signals: a multi-tick set's computed in its refresh, the
-    # others' in rt_record (rt/sim.c); the refresh's share is what rt_record's calls of
+    # others' in rt_record (rt/held.c); the refresh's share is what rt_record's calls of
     # rti_sig_value leave (the compiler may inline the refresh's callers of it, so no
     # edge of theirs is counted on)
     sig = into("signal", frm=("rti_sig_value",))

@@ -14,6 +14,9 @@ bounds), and for each variant
     coordinates, tools/dev/study/pendulum_ref.py and the long-double values of
     tests/rt/test_mbs_scene.c; the others: two fine single-rate runs of different
     methods, whose difference is the reference's own error and bounds the plotted range),
+    computed by `modrt sweep`: one campaign per example and number type over the
+    variants' scene files, its metric `error against` the reference as a table, at the
+    reference's instants where every set of the variant has stepped,
   - the host's instructions per simulated second: callgrind counting rt_tick and
     rt_record only (`--toggle-collect`), over the first W simulated seconds,
   - Cortex-M7 and Cortex-M4F instructions per simulated second and the worst tick: a
@@ -339,21 +342,6 @@ def summary(text):
     return dict(re.findall(r"^([\w.]+): (.*)$", text, re.M))
 
 
-def error_of(ex, rows):
-    worst, at = 0.0, None
-    n = 0
-    for k, ref in ex.ref_rows.items():
-        y = rows.get(k)
-        if y is None:
-            continue
-        n += 1
-        for a, b in zip(y, ref):
-            d = abs(a - b) if a == a else math.inf
-            if d > worst:
-                worst, at = d, k / TKEY
-    return (worst if n else math.nan), at, n
-
-
 def estimate_of(ex, path, real, every, te):
     """`modrt check --observe` on the variant: its largest estimated global error over the
     error's signals at the reference's instants, with the methods' order p and with each
@@ -453,29 +441,65 @@ class Cross:
         return {"sum": sum(iv), "max": max(iv), "ticks": len(iv), "hash": h.group(1)}
 
 
+def sweep_errors(ex, jobs, sc_end):
+    """the error runs of every configuration of ex: one `modrt sweep` campaign per number
+    type over the configurations' scene files, its metric the error against the reference
+    (written as B/KEY/ref.csv) at the reference's instants where every set has stepped;
+    each configuration gets its run's status, exit code, wall time, right-hand sides and
+    error (c["sweep"])"""
+    d = "%s/%s" % (B, ex.key)
+    with open(d + "/ref.csv", "w") as f:
+        f.write(",".join(["t"] + ex.signals) + "\n")
+        for k in sorted(ex.ref_rows):
+            f.write(",".join([repr(k / TKEY)] + [repr(v) for v in ex.ref_rows[k]]) + "\n")
+    te = ex.t_err or sc_end
+    for real in sorted({c["real"] for c in ex.cfgs}):
+        cfgs = [c for c in ex.cfgs if c["real"] == real]
+        for c in cfgs:
+            with open("%s/%s.scn" % (d, c["key"]), "w") as f:
+                f.write(c["text"])
+        camp = "%s/errors-%s.swp" % (d, real)
+        with open(camp, "w") as f:
+            f.write("campaign (study_%s_%s);\nend time (%.17g s);\ntimeout (3600 s);\n"
+                    "grid scene values (%s);\nmetric (err) error against (\"ref.csv\");\n"
+                    % (ex.key, real, te, ", ".join('"%s.scn"' % c["key"] for c in cfgs)))
+        out = "%s/errors-%s" % (d, real)
+        shutil.rmtree(out, ignore_errors=True)
+        r = sh([MODRT[real], "sweep", "run", camp, "--out", out, "--jobs", str(jobs)])
+        if r.returncode == 2:
+            raise SystemExit("study: modrt sweep run %s: %s" % (camp, r.stderr[-500:]))
+        for k, c in enumerate(cfgs):
+            try:
+                c["sweep"] = summary(open("%s/runs/%06d.txt" % (out, k)).read())
+            except OSError:
+                c["sweep"] = {"status": "missing"}
+
+
 def run_cfg(ex, c, cross, sc_end):
     d = "%s/%s" % (B, ex.key)
     path = "%s/%s.scn" % (d, c["key"])
-    with open(path, "w") as f:
-        f.write(c["text"])
     sc = S.Scene(path)
     c["tick"] = sc.tick
     c["steps"] = sc.steps()
     c["methods"] = {n: sc.method_of(n) for n, _ in sc.sets}
     t0 = time.time()
-    # error
+    # error: from the campaign's run (sweep_errors)
     lcm = S.lcm_ticks(list(sc.steps().values()), sc.tick)
     every = S._ticks(ex.grid, sc.tick)
     every = every * lcm // math.gcd(every, lcm)  # where every set of it has stepped
     te = ex.t_err or sc_end
-    rc, s = host_run(ex, path, c["real"], every, te, path[:-4] + ".csv")
-    c["status"] = s.get("status", "no summary (exit %d)" % rc)
+    s = c["sweep"]
+    rc = int(s.get("exit", "1"))
+    c["status"] = s.get("status", "no result")
     c["rc"] = rc
-    if rc not in (0, 3):
-        c["fail"] = c["status"]
+    if rc not in (0, 3) or "exit" not in s:
+        c["fail"] = c["status"] + (" (%s)" % s["why"] if "why" in s else "")
         return c
     c["wall"] = float(s.get("wall_s", "nan")) / te
-    c["err"], c["err_at"], c["n_cmp"] = error_of(ex, read_csv(path[:-4] + ".csv", ex.signals))
+    err = float(s.get("metric.err", "nan"))
+    # a NaN value compared is an infinite error; no instant compared, NaN
+    c["err"] = math.inf if err != err and int(s.get("count.nan", "0")) else err
+    c["err_at"], c["n_cmp"] = None, None
     c["est_p"], c["est"], c["global_status"] = estimate_of(ex, path, c["real"], every, te)
     c["rhs_per_s"] = sum(float(v) for k, v in s.items() if k.startswith("rhs_evals.")) / te
     # host instructions
@@ -948,7 +972,11 @@ def write_doc(exs, out_dir, started, elapsed, all_checks, jobs, where):
          "scene, whose own error is its difference to a second fine run with another method "
          "and step. The grey band in each "
          "figure lies below ten times that: errors there are not resolved (open markers sit "
-         "on its floor), and the tables stop there.",
+         "on its floor), and the tables stop there. The error runs are one `modrt sweep` "
+         "campaign per example and number type (build/study/KEY/errors-*.swp: a grid of the "
+         "configurations' scene files, the metric `error against` the reference as a table, "
+         "compared at the reference's instants where every set of the configuration has "
+         "completed a step; docs/sweeps.md).",
          ""]
     for ex in exs:
         o += ["## %s" % ex.key, "",
@@ -1037,6 +1065,10 @@ def main():
                                                                          ex.unit))
         print("study: %s: reference ready (own error %s), %d configurations" % (
             ex.key, ex.ref_err, len(ex.cfgs)), flush=True)
+    for ex in exs:
+        sweep_errors(ex, a.jobs, ex.sc_end)
+        print("study: %s: %d error runs by modrt sweep (%.0f s)" % (
+            ex.key, len(ex.cfgs), time.time() - started), flush=True)
     futs = [(ex, pool.submit(run_cfg, ex, c, cross, ex.sc_end)) for ex in exs for c in ex.cfgs]
     done = 0
     for ex, f in futs:
