@@ -18,7 +18,7 @@ rt_step_work rt_step_bound(const rt_scene *sc, uint8_t s, uint16_t n)
 {
     rt_step_work w = {0, 0};
     const rt_integrator *m = sc->sets[s].method;
-    m->bound(m, &sc->sets[s].implicit, n, &w);
+    m->bound(m, &sc->sets[s].cfg, n, &w);
     return w;
 }
 
@@ -166,7 +166,7 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
     z->x = sim->plan.x_off[nb], z->d = sim->plan.d_off[nb];
     z->u = sim->plan.u_off[nb], z->y = sim->plan.y_off[nb], z->p = sim->plan.p_off[nb];
     z->roots = sim->plan.set_r[sc->nsets];
-    z->sets = sc->nsets, z->recs = sc->nrecs;
+    z->sets = sc->nsets, z->recs = sc->nrecs, z->joints = sc->njoints;
     z->loops = sim->plan.nloops, z->torn = sim->plan.ntorn;
     z->implicit_n = z->transition_n = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {

@@ -304,20 +304,65 @@ typedef struct rt_istats {
                                  rt_set_step_bound's */
 } rt_istats;
 
-/* Per-set settings of an implicit method (rt_set; zeros select the defaults). */
-typedef struct rt_implicit_cfg {
-    uint8_t newton_max;       /* Newton iterations per stage (default 4) */
-    uint8_t substeps;         /* most substeps a failing step is split into, a power of
-                                 two (default RT_IMP_SUBSTEPS; 1: no splitting) */
-    uint16_t jac_every;       /* refresh the Jacobian every N steps (default 1) */
-    real_t tol;               /* residual tolerance, scaled norm (default 1e-8;
-                                 1e-5 with RT_REAL_FLOAT) */
-    real_t accuracy;          /* local error a step may show, scaled norm max_i |e_i| /
-                                 (1 + |x_i|) (default RT_ERR_TOL); above it: errest */
-    real_t atol;              /* absolute part of the accuracy (0: = accuracy): a step
-                                 may show |e_i| <= atol + accuracy |x_i|, i.e. the norm is
-                                 max_i |e_i| / (atol / accuracy + |x_i|) (rti_err_floor) */
-} rt_implicit_cfg;
+/* The settings of a set's method, one row each: the one list every reader takes them
+ * from (the scene compiler's clauses, its C and image, modrt's per-set options and info,
+ * the checks of rt_set_check, the defaults of rt_set_cfg_of). Columns: id; the
+ * scene-language clause; modrt's option (--OPT SET=VALUE; 0: none); the rt_set_cfg field;
+ * its kind (RT_CFG_COUNT: a whole number 1..max, RT_CFG_POW2: a power of two 1..max,
+ * RT_CFG_REAL: positive and finite, RT_CFG_PAIR: the optional second value of the row
+ * before, as in accuracy (rtol, atol)); max; the methods it applies to (RT_CFG_ALL, or
+ * RT_CFG_ITER: the implicit methods that iterate, not the transition method); the value
+ * a zero selects (rt_config.h); what it means. */
+#define RT_SET_CFG_LIST(X)                                                                  \
+    X(RT_CFG_NEWTON, "newton", "newton", newton_max, RT_CFG_COUNT, 255, RT_CFG_ITER,        \
+      RT_IMP_NEWTON_MAX, "Newton iterations per stage of an implicit set")                  \
+    X(RT_CFG_JACOBIAN, "jacobian", "jacobian", jac_every, RT_CFG_COUNT, 65535, RT_CFG_ITER, \
+      RT_IMP_JAC_EVERY, "steps between Jacobian refreshes of an implicit set")              \
+    X(RT_CFG_TOL, "tolerance", "tol", tol, RT_CFG_REAL, 0, RT_CFG_ITER, RT_IMP_TOL,         \
+      "Newton residual tolerance of an implicit set, scaled norm")                          \
+    X(RT_CFG_SUBSTEPS, "substeps", "substeps", substeps, RT_CFG_POW2, 128, RT_CFG_ITER,     \
+      RT_IMP_SUBSTEPS, "most substeps a failing implicit step is split into (1: none)")     \
+    X(RT_CFG_ACCURACY, "accuracy", "accuracy", accuracy, RT_CFG_REAL, 0, RT_CFG_ALL,        \
+      RT_ERR_TOL, "local error a step may show before it is counted (errest): max_i "      \
+      "|e_i| / (1 + |x_i|)")                                                                \
+    X(RT_CFG_ATOL, "accuracy", 0, atol, RT_CFG_PAIR, 0, RT_CFG_ALL, 0,                      \
+      "absolute part of the accuracy (0: none): |e_i| <= atol + accuracy |x_i|")
+
+typedef enum {
+#define RT_X_ENUM_C(id, word, opt, field, kind, max, scope, dflt, help) id,
+    RT_SET_CFG_LIST(RT_X_ENUM_C)
+#undef RT_X_ENUM_C
+    RT_CFG_N
+} rt_cfg_id;
+enum { RT_CFG_COUNT, RT_CFG_POW2, RT_CFG_REAL, RT_CFG_PAIR }; /* kinds of a setting */
+enum { RT_CFG_ALL, RT_CFG_ITER };                             /* methods it applies to */
+
+/* A set's settings (rt_set.cfg; zeros select the defaults, rt_set_cfg_of). */
+typedef struct rt_set_cfg {
+    uint8_t newton_max;
+    uint8_t substeps;
+    uint16_t jac_every;
+    real_t tol;
+    real_t accuracy;
+    real_t atol;
+} rt_set_cfg;
+
+/* A row of RT_SET_CFG_LIST for the tools that read settings by name (rt_set_opts). */
+typedef struct rt_set_opt {
+    const char *word;      /* scene-language clause */
+    const char *opt;       /* modrt's option, or 0 */
+    uint8_t kind, scope;   /* RT_CFG_COUNT..., RT_CFG_ALL or RT_CFG_ITER */
+    uint32_t max;          /* counts: the largest */
+    const char *help;
+} rt_set_opt;
+extern const rt_set_opt rt_set_opts[RT_CFG_N];
+/* setting id of c (0: its default), and setting it */
+real_t rt_set_cfg_get(const rt_set_cfg *c, rt_cfg_id id);
+void rt_set_cfg_put(rt_set_cfg *c, rt_cfg_id id, real_t v);
+/* c with every zero replaced by its default */
+rt_set_cfg rt_set_cfg_of(const rt_set_cfg *c);
+/* 1: method m iterates (the settings of scope RT_CFG_ITER apply to it) */
+int rt_method_iterates(const struct rt_integrator *m);
 
 /* Workspace an integrator may use for one step of one set (carved from rt_sim). */
 typedef struct rt_iwork {
@@ -327,7 +372,7 @@ typedef struct rt_iwork {
     real_t *tm;               /* 2 RT_MAX_TRANSITION_N^2 scratch (method transition) */
     rt_implicit_ws *imp;      /* persistent implicit data of this set */
     rt_istats *stats;         /* statistics of this set */
-    const rt_implicit_cfg *cfg; /* settings of this set */
+    const rt_set_cfg *cfg; /* settings of this set */
 } rt_iwork;
 
 /* The most work of one step: right-hand-side evaluations and LU factorizations. */
@@ -352,7 +397,7 @@ typedef struct rt_integrator {
     const void *tab;   /* method data, e.g. a Butcher tableau */
     /* the most work one step of n states can take with the settings cfg, whatever the
        model does (the fixed bound of docs/solvers.md, "Bounded work") */
-    void (*bound)(const struct rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+    void (*bound)(const struct rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                   struct rt_step_work *w);
 } rt_integrator;
 
@@ -425,10 +470,15 @@ typedef struct rt_set {
     const rt_integrator *method;
     uint32_t ratio;        /* step = ratio * base tick */
     uint8_t interp;        /* rt_interp of its inputs from other sets (0: hold) */
-    rt_implicit_cfg implicit; /* settings of an implicit method; zeros: defaults */
+    rt_set_cfg cfg;        /* settings of its method (RT_SET_CFG_LIST); zeros: defaults */
     uint8_t background;    /* 1: steps preemptible below the tick, Jacobi-coupled
                               (rt/bg.c, docs/multirate.md "Background sets") */
 } rt_set;
+/* Checks set st's method, step and settings (RT_SET_CFG_LIST), for the scene compiler,
+   modrt's per-set options and rt_init alike: 0 when sound, else what is wrong (e.g.
+   "tolerance must be positive and finite") with *bad the setting at fault (RT_CFG_N: the
+   method or the step). */
+const char *rt_set_check(const rt_set *st, rt_cfg_id *bad);
 
 /* What a recorded signal reads. RT_SIG_MBS: a multibody quantity computed by the scene's
    MBS services (energy, constraint residuals, joint reactions; index from rt_mbs.h). */
@@ -750,26 +800,12 @@ typedef struct rt_torn {
 } rt_torn;
 uint16_t rt_torn_count(const rt_sim *sim);
 rt_torn rt_torn_at(const rt_scene *scene, const rt_sim *sim, uint16_t k);
-/* The exact sizes of this scene: what its per-scene build's limits must hold. */
+/* The exact sizes of this scene: what its per-scene build's limits must hold, one member
+   per row of RT_LIMIT_LIST (rt_config.h: what each counts). */
 typedef struct rt_sizes {
-    uint16_t blocks, x, d, u, y, p, roots, sets, recs, loops, torn;
-    uint16_t implicit_n;   /* states of the largest set with an implicit method */
-    uint16_t transition_n; /* ... with the transition method */
-    uint16_t mbs_z, mbs_q, mbs_c; /* largest multibody set: velocities, coordinates, rows */
-    uint16_t mbs_qt;       /* ... coordinates with a q-dependent K or a kinb */
-    uint16_t mbs_bz;       /* velocities of the largest multibody block */
-    uint16_t hist_y;       /* highest output index read by another set, plus one */
-    uint16_t held_y;       /* highest output index of a multi-tick set, plus one */
-    uint16_t held_sig;     /* recorded and exported multibody signals of held sets (may
-                              be 0) */
-    uint16_t event_x;      /* states of the largest set with roots */
-    uint16_t seq;          /* entries of the evaluation sequence */
-    uint16_t loop_hist;    /* the loops' iteration bound plus one (0 without loops) */
-    /* multibody tables over all sets (rt_config.h, RT_MAX_MBS_*) */
-    uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_ty, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
-    uint16_t bg;           /* states plus outputs of the background set (RT_MAX_BG) */
-    uint16_t xpred;        /* inputs extrapolated from another set (RT_MAX_XPRED; may be 0) */
-    uint16_t tev;          /* sets with known time events (RT_MAX_TEV; may be 0) */
+#define RT_X_SIZE(name, field, least, what) uint16_t field;
+    RT_LIMIT_LIST(RT_X_SIZE)
+#undef RT_X_SIZE
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

@@ -69,14 +69,24 @@ const char *rti_real_text(char *buf, real_t v);
 #define RTI_STR2(x) #x
 #define RTI_STR(x) RTI_STR2(x)
 #define RTI_LIMIT(name) #name " (" RTI_STR(name) " in rt_config.h)"
+/* the limits of RT_LIMIT_LIST by name (RTI_LIM_BLOCKS, ...) */
+typedef enum {
+#define RT_X_LIM(name, field, least, what) RTI_LIM_##name,
+    RT_LIMIT_LIST(RT_X_LIM)
+#undef RT_X_LIM
+    RTI_LIM_COUNT
+} rti_limit;
+/* RT_E_CAPACITY with the limit's own message, "[set NAME: ]<what it counts> exceed
+   RT_MAX_<NAME> (<value> in rt_config.h)" (set: 0 for none) */
+rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim);
 /* Sets n bytes at p to zero (freestanding memset). */
 void rti_zero(void *p, size_t n);
 /* The trace hash of one more value (rt_hash_real): one multiply and one xor-shift, on the
    value's bit pattern as an integer (a float's zero-extended), so it does not depend on
    the target's byte order. Every bit of a value reaches the high half through the odd
    multiplier and the high half the low half through the shift, ahead of the next value's
-   multiply. It runs at every tick over every recorded value: the byte-wise FNV-1a it
-   replaced cost 8 multiplies per value (13 % of a multirate tick, docs/overhead.md). */
+   multiply. It runs at every tick over every recorded value, so it takes one multiply per
+   value where a byte-wise hash (FNV-1a) takes eight. */
 static inline uint64_t rti_hash(uint64_t h, real_t v)
 {
     union {
@@ -206,16 +216,29 @@ static inline uint16_t rti_set_nx(const rt_sim *sim, uint8_t s)
 }
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
-/* the accuracy a set's error estimates are held to: its own, else RT_ERR_TOL */
-static inline real_t rti_accuracy(const rt_implicit_cfg *c)
+/* a set's settings with every zero replaced by its default (RT_SET_CFG_LIST): the one
+   place a default is chosen (rt_set_cfg_of for the tools) */
+static inline rt_set_cfg rti_set_cfg_of(const rt_set_cfg *c)
 {
-    return c->accuracy > 0 ? c->accuracy : RT_ERR_TOL;
+    rt_set_cfg r = *c;
+#define RT_X_DFLT(id, word, opt, field, kind, max, scope, dflt, help)                       \
+    if (!(r.field > 0))                                                                     \
+        r.field = dflt;
+    RT_SET_CFG_LIST(RT_X_DFLT)
+#undef RT_X_DFLT
+    return r;
+}
+/* the accuracy a set's error estimates are held to */
+static inline real_t rti_accuracy(const rt_set_cfg *c)
+{
+    return rti_set_cfg_of(c).accuracy;
 }
 /* the floor of the error norm of a set's estimates, max_i |e_i| / (floor + |x_i|): 1
    unless the set declares an absolute tolerance (atol / accuracy; docs/solvers.md) */
-static inline real_t rti_err_floor(const rt_implicit_cfg *c)
+static inline real_t rti_err_floor(const rt_set_cfg *c)
 {
-    return c->atol > 0 ? c->atol / rti_accuracy(c) : (real_t)1;
+    rt_set_cfg d = rti_set_cfg_of(c);
+    return d.atol > 0 ? d.atol / d.accuracy : (real_t)1;
 }
 /* Forward-difference Jacobian of f at (t, x) around fb = f(t, x) into the n x n row-major
    jac, column by column: x_j moves in place by inc max(1, |x_j|), re-measured as the

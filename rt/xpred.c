@@ -89,7 +89,7 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
                   real_t e, real_t t, real_t h)
 {
-    real_t acc = rti_accuracy(&sc->sets[s].implicit);
+    real_t acc = rti_accuracy(&sc->sets[s].cfg);
     real_t est = (real_t)0.5 * h * sim->state.xgain[k] * e;
     if (!(est <= RT_XSET_FRESH * acc)) {
         if (!sc->sets[s].background) {

@@ -2,7 +2,7 @@
  * at compile time (-DFOOT_SCENE=mdl_scene_<name>) and the models that scene uses, paints
  * the stack, runs the scene to its end calling port_cycles() before every tick and
  * foot_tick_end() after it (the markers of the QEMU instruction-count plugin,
- * tools/qemu/insn_count.c: the tick context), and prints the trace hash and the stack
+ * tools/dev/qemu/insn_count.c: the tick context), and prints the trace hash and the stack
  * high-water mark. A scene with a background set gets a background context
  * (rt_bg_attach): its step runs between ticks at the port's background level (PendSV on
  * Cortex-M, else called from here), between foot_bg_begin() and foot_bg_end() (the

@@ -83,7 +83,7 @@ static void test_servo_stiff(void)
     /* accuracy: the step input's first 1 ms (omega h = 6.3) is not resolved, and its
        estimate says so; what this test checks is the settled value */
     static const rt_set set[] = {{.name = "s", .method = &rt_sdirk2, .ratio = 1,
-                                  .implicit = {.accuracy = 1}}};
+                                  .cfg = {.accuracy = 1}}};
     const rt_block bl[] = {
         {.name = "U", .kind = &mdl_step_kind, .p = step_p},
         {.name = "S", .kind = &mdl_servo2_kind},

@@ -111,7 +111,7 @@ static void test_bg_param_jacobian(void)
     if (!TH_CHECK(chain >= 0))
         return;
     sets[chain].method = &rt_ros2;
-    sets[chain].implicit = (rt_implicit_cfg){.jac_every = 1024, .accuracy = (real_t)1e-2};
+    sets[chain].cfg = (rt_set_cfg){.jac_every = 1024, .accuracy = (real_t)1e-2};
     sc.sets = sets;
     int ok = 1;
     for (int i = 0; i < 3; i++)

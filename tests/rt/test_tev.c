@@ -70,7 +70,7 @@ static rt_scene scene(int which, const rt_integrator *m, uint32_t ratio, int bg,
     /* no substeps on the estimate (ROS2 splits a step above its accuracy): the method's
        own order is measured */
     *set = (rt_set){.name = "main", .method = m, .ratio = ratio, .background = (uint8_t)bg,
-                    .implicit = {.accuracy = 1}};
+                    .cfg = {.accuracy = 1}};
     return (rt_scene){.name = "tev", .dt = (real_t)DT, .t_end = 1, .blocks = bl, .nblocks = 2,
                       .conns = conn, .nconns = 1, .sets = set, .nsets = 1,
                       .bg = bg ? &rt_bg : 0};

@@ -103,7 +103,7 @@ static int setup(uint16_t n, const rt_integrator *m, real_t h, real_t t_end, int
                  int defaulted)
 {
     set = (rt_set){.name = "s", .method = m, .ratio = 1,
-                   .implicit = {.jac_every = 1024, .accuracy = (real_t)1e-2}};
+                   .cfg = {.jac_every = rt_method_iterates(m) ? 1024 : 0, .accuracy = (real_t)1e-2}};
     scene = (rt_scene){.name = "transition", .dt = h, .t_end = t_end, .blocks = blks,
                        .nblocks = n, .sets = &set, .nsets = 1,
                        .conns = connected ? &conn : 0, .nconns = (uint16_t)connected,

@@ -181,7 +181,7 @@ static int run_reader(const reader_case *c)
     /* (its own estimates never counted: errest is the coupling's alone here) */
     sets[rot] = (rt_set){.name = "reader", .method = &rt_rk4, .ratio = c->rr,
                          .interp = RT_INTERP_EXTRAP, .background = (uint8_t)c->bg,
-                         .implicit = {.accuracy = c->acc > 0 ? c->acc : (real_t)1e30}};
+                         .cfg = {.accuracy = c->acc > 0 ? c->acc : (real_t)1e30}};
     static rt_scene sc;
     sc = (rt_scene){.name = "reader", .dt = (real_t)1e-3, .t_end = c->t_end, .blocks = bl,
                     .nblocks = c->loop ? 3 : 2, .conns = cn, .nconns = c->loop ? 2 : 1,

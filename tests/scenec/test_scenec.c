@@ -143,7 +143,7 @@ static void test_times_and_sets(void)
         const rt_scene *sc = &c->image;
         TH_CHECK(sc->dt == (real_t)0.0005 && c->sc.dt == 0.5e-3);
         TH_CHECK(sc->nsets == 2 && sc->sets[0].ratio == 1 && sc->sets[1].ratio == 5);
-        TH_CHECK(sc->sets[0].implicit.newton_max == 6 && sc->sets[0].implicit.jac_every == 4);
+        TH_CHECK(sc->sets[0].cfg.newton_max == 6 && sc->sets[0].cfg.jac_every == 4);
         TH_CHECK(sc->blocks[0].set == 0 && sc->blocks[1].set == 1);
         TH_CHECK(sc->sets[0].interp == RT_INTERP_HERMITE);
         TH_CHECK(sc->sets[1].interp == RT_INTERP_EXTRAP);

@@ -1,8 +1,8 @@
 # slurm.sh - sourced: slurm_up starts a single-node Slurm cluster in $T/slurm (munged,
 # slurmctld, slurmd on 127.0.0.1, each under `timeout "${SLURM_LIFE:-120}"`, their PIDs appended to $pids
 # for the caller to stop); returns 0 when the node is idle, else 1 with the reason in
-# $why. SLURMD_WRAP: a command slurmd runs under (the benchmark's tools/bench/reaper.py).
-# Used by tests/sweep/sweep.sh and tools/bench/sweep_bench.sh.
+# $why. SLURMD_WRAP: a command slurmd runs under (the benchmark's tools/dev/bench/reaper.py).
+# Used by tests/sweep/sweep.sh and tools/dev/bench/sweep_bench.sh.
 slurm_up() {
     S=$T/slurm why=""
     for c in slurmctld slurmd munged munge sbatch; do

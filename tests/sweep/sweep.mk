@@ -2,7 +2,7 @@
 #   make test-sweep   metrics against closed forms, the draws, located errors, and one
 #                     campaign run locally, under GNU parallel and as a Slurm array job on
 #                     a single-node cluster the test starts (tests/sweep/sweep.sh)
-#   make sweep-bench  what each engine costs per run (tools/bench/sweep_bench.sh)
+#   make sweep-bench  what each engine costs per run (tools/dev/bench/sweep_bench.sh)
 #   make sweep-figures  the example campaigns of docs/sweeps.md and their figures
 test-sweep: deps-sweep build/host/modrt build/host/svgplot
 	@sh tests/sweep/sweep.sh build/host
@@ -10,7 +10,7 @@ deps-sweep:
 	@sh tools/install-deps.sh --auto sweep
 # the figures of docs/sweeps.md, "What a campaign costs" (wall clock: on an idle machine)
 sweep-bench: deps-sweep build/host/modrt build/host/svgplot
-	@sh tools/bench/sweep_bench.sh build/host
+	@sh tools/dev/bench/sweep_bench.sh build/host
 # the figures of docs/sweeps.md's examples: each campaign run whole, its plots copied
 SWEEP_FIG := build/sweep-figures
 SWEEP_FIGS := pi_loop_mc:overshoot-hist:overshoot pi_loop_mc:settling-hist:settling \

@@ -87,8 +87,7 @@ static void sig_tol(const rt_scene *sc, uint16_t i, const check_opts *o, double 
                     double *rtol)
 {
     const rt_set *st = &sc->sets[sc->blocks[sc->recs[i].block].set];
-    double acc = st->implicit.accuracy > 0 ? (double)st->implicit.accuracy
-                                           : (double)RT_ERR_TOL;
+    double acc = (double)rt_set_cfg_of(&st->cfg).accuracy;
     *atol = o->atol >= 0 ? o->atol : acc;
     *rtol = o->rtol >= 0 ? o->rtol : acc;
 }

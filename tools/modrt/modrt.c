@@ -137,11 +137,10 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
                 (unsigned)s->stats.istats[k].rhs_set_step_max,
                 (unsigned)rt_set_step_bound(sc, s, k).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) {
-        const rt_implicit_cfg *c = &sc->sets[k].implicit;
+        rt_set_cfg c = rt_set_cfg_of(&sc->sets[k].cfg);
         fprintf(f, "err_max.%s: %g (accuracy %g", sc->sets[k].name,
-                (double)s->stats.istats[k].err_max,
-                (double)(c->accuracy > 0 ? c->accuracy : RT_ERR_TOL));
-        fprintf(f, c->atol > 0 ? ", absolute %g)\n" : ")\n", (double)c->atol);
+                (double)s->stats.istats[k].err_max, (double)c.accuracy);
+        fprintf(f, c.atol > 0 ? ", absolute %g)\n" : ")\n", (double)c.atol);
         if (s->stats.errest[k] || s->stats.unstable[k])
             fprintf(f, "errest.%s: %u\nunstable.%s: %u\n", sc->sets[k].name,
                     (unsigned)s->stats.errest[k], sc->sets[k].name,
@@ -300,18 +299,29 @@ static int opt_link_timeout(void *ctx, const char *v)
     return CLI_OK;
 }
 
-#define STUDY_OPT(name)                                                           \
-    static int opt_##name(void *ctx, const char *v)                               \
-    {                                                                             \
-        return study_add(&((run_args *)ctx)->study, #name, v);                    \
+static int opt_method(void *ctx, const char *v)
+{
+    return study_add(&((run_args *)ctx)->study, "method", v);
+}
+
+static int opt_step(void *ctx, const char *v)
+{
+    return study_add(&((run_args *)ctx)->study, "step", v);
+}
+
+/* one handler per set setting (RT_SET_CFG_LIST), each recording its own option */
+#define STUDY_OPT(id, w_, o_, f_, k_, m_, s_, d_, h_)                        \
+    static int opt_##id(void *ctx, const char *v)                                           \
+    {                                                                                       \
+        return study_add(&((run_args *)ctx)->study, rt_set_opts[id].opt, v);                \
     }
-STUDY_OPT(method)
-STUDY_OPT(step)
-STUDY_OPT(tol)
-STUDY_OPT(accuracy)
-STUDY_OPT(substeps)
-STUDY_OPT(newton)
+RT_SET_CFG_LIST(STUDY_OPT)
 #undef STUDY_OPT
+static int (*const opt_setting[RT_CFG_N])(void *, const char *) = {
+#define STUDY_OPT_FN(id, w_, o_, f_, k_, m_, s_, d_, h_) opt_##id,
+    RT_SET_CFG_LIST(STUDY_OPT_FN)
+#undef STUDY_OPT_FN
+};
 
 static int opt_overrun(void *ctx, const char *v)
 {
@@ -390,7 +400,7 @@ static int opt_check_csv(void *ctx, const char *v)
      "signal's order of convergence; an order below the methods' replaces theirs",         \
      opt_observe}
 
-static const cli_opt run_opts[] = {
+static const cli_opt run_opts_fixed[] = {
     {"t-end", "S", "end time [s] instead of the scene's", opt_t_end},
     {"csv", "FILE", "write the recorded signals as CSV to FILE (- : stdout, summary to stderr)",
      opt_csv},
@@ -414,15 +424,8 @@ static const cli_opt run_opts[] = {
     {"record", "FILE", "write every imported vector and its tick to a replay log "
      "(modrt replay FILE)", opt_record},
     {"method", "SET=NAME", "integrate set SET by method NAME instead of the scene's; repeatable "
-     "(as are the five below)", opt_method},
+     "(as are the per-set options below)", opt_method},
     {"step", "SET=TIME", "set SET's step [s], a whole number of base ticks", opt_step},
-    {"tol", "SET=E", "Newton residual tolerance of an implicit set", opt_tol},
-    {"accuracy", "SET=E[,A]", "local error a step of SET may show before it is counted "
-     "(errest): |e| <= A + E |x| (A = E if omitted)",
-     opt_accuracy},
-    {"substeps", "SET=N", "most substeps a failing implicit step is split into (power of 2)",
-     opt_substeps},
-    {"newton", "SET=N", "Newton iterations per stage of an implicit set", opt_newton},
     {"check", NULL, "estimate the global error of every recorded signal: the scene again at "
      "half the steps (as `modrt check`)", opt_check},
     CHECK_OPTS,
@@ -430,7 +433,7 @@ static const cli_opt run_opts[] = {
 };
 
 /* `modrt check`: the options of a run that make sense beside a second run */
-static const cli_opt check_opts_tab[] = {
+static const cli_opt check_opts_tab_fixed[] = {
     {"t-end", "S", "end time [s] instead of the scene's", opt_t_end},
     {"csv", "FILE", "write the recorded signals of the run (at the scene's steps) as CSV to "
      "FILE (- : stdout, summary to stderr)", opt_csv},
@@ -438,18 +441,36 @@ static const cli_opt check_opts_tab[] = {
     {"set", "BLOCK.PARAM=VALUE", "set parameter (or initial state) P of block B to V, in "
      "both runs; repeatable", opt_set},
     {"method", "SET=NAME", "integrate set SET by method NAME instead of the scene's; "
-     "repeatable (as are the five below)", opt_method},
+     "repeatable (as are the per-set options below)", opt_method},
     {"step", "SET=TIME", "set SET's step [s], a whole number of base ticks (the check "
      "halves it)", opt_step},
-    {"tol", "SET=E", "Newton residual tolerance of an implicit set", opt_tol},
-    {"accuracy", "SET=E", "local error a step of SET may show before it is counted (errest)",
-     opt_accuracy},
-    {"substeps", "SET=N", "most substeps a failing implicit step is split into (power of 2)",
-     opt_substeps},
-    {"newton", "SET=N", "Newton iterations per stage of an implicit set", opt_newton},
     CHECK_OPTS,
     {NULL, NULL, NULL, NULL},
 };
+
+/* the options of run and check: the fixed ones, and after --step modrt's option of each
+   set setting (RT_SET_CFG_LIST: its help, "SET=N" or "SET=E", ",A" for a second value) */
+static cli_opt run_opts[sizeof run_opts_fixed / sizeof run_opts_fixed[0] + RT_CFG_N];
+static cli_opt check_opts_tab[sizeof check_opts_tab_fixed / sizeof check_opts_tab_fixed[0] +
+                              RT_CFG_N];
+static void with_settings(cli_opt *out, const cli_opt *fixed)
+{
+    for (;; fixed++) {
+        *out++ = *fixed;
+        if (!fixed->name)
+            return;
+        if (strcmp(fixed->name, "step") != 0)
+            continue;
+        for (int id = 0; id < RT_CFG_N; id++) {
+            const rt_set_opt *o = &rt_set_opts[id];
+            int pair = id + 1 < RT_CFG_N && rt_set_opts[id + 1].kind == RT_CFG_PAIR;
+            if (o->opt)
+                *out++ = (cli_opt){o->opt, o->kind == RT_CFG_REAL ? (pair ? "SET=E[,A]" : "SET=E")
+                                                                   : "SET=N",
+                                   o->help, opt_setting[id]};
+        }
+    }
+}
 
 /* the options that change the numbers, as the log lists them */
 static int record_options(const run_args *a, mrl_header *h)
@@ -823,6 +844,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "sweep") == 0)
         sweep_short_opts(argc, argv);
+    with_settings(run_opts, run_opts_fixed);
+    with_settings(check_opts_tab, check_opts_tab_fixed);
     for (const cli_cmd *c = commands; c->name; c++)
         if (strcmp(argv[1], c->name) == 0)
             return cli_dispatch(c, argc - 2, argv + 2);

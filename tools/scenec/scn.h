@@ -280,16 +280,13 @@ typedef struct scn_set {
     uint8_t interp;             /* rt_interp of inputs from other sets (0: hold) */
     uint8_t has_members;
     uint16_t m0, m1;            /* its members in scn_scene.members */
-    uint32_t newton, jacobian;
-    double tol, accuracy;
-    uint32_t substeps;
-    uint8_t has_newton, has_jacobian, has_tol, has_substeps, has_accuracy;
+    rt_set_cfg cfg;             /* its settings (RT_SET_CFG_LIST), as rt_set.cfg */
+    uint8_t has_cfg[RT_CFG_N];  /* a clause (or accuracy's second value) gave it */
+    scn_pos cfg_pos[RT_CFG_N];  /* where */
     uint8_t background;         /* 1: steps below the tick (rt_set.background) */
     /* resolved */
     const rt_integrator *m;
     uint32_t ratio;
-    double atol;                /* accuracy's absolute part (rt_implicit_cfg.atol) */
-    uint8_t has_atol;
 } scn_set;
 
 typedef struct scn_rec {

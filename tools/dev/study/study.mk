@@ -1,5 +1,5 @@
 # study.mk - `make study`: what accuracy costs in time, over the four paper examples, on the
-# host and on Cortex-M (tools/study/study.py writes docs/study.md and docs/study/*.svg);
+# host and on Cortex-M (tools/dev/study/study.py writes docs/study.md and docs/study/*.svg);
 # `make test-study`: its quick subset (STUDY=quick), a test suite. Included by the Makefile.
 #
 # The cross images of the study link one generated scene against a library of the runtime
@@ -30,9 +30,9 @@ study-deps: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 	$(MAKE) --no-print-directory -j$(JOBS) REAL=float study-libs
 
 study: study-deps
-	python3 tools/study/study.py --mode $(STUDY) --jobs $(JOBS)
+	python3 tools/dev/study/study.py --mode $(STUDY) --jobs $(JOBS)
 
 TEST_SUITES += test-study
 test-study: study-deps
-	@python3 tools/study/study.py --mode quick --jobs $(JOBS)
+	@python3 tools/dev/study/study.py --mode quick --jobs $(JOBS)
 .PHONY: study study-deps study-libs test-study

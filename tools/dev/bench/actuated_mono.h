@@ -1,6 +1,6 @@
 /* actuated_mono.h - the hand-written monolith of scene pendulum10_actuated_single
  * (actuated_mono.c), the yardstick of modrt's modular overhead with ROS2
- * (tools/bench/overhead_bench.c, docs/overhead.md). */
+ * (tools/dev/bench/overhead_bench.c, docs/overhead.md). */
 #ifndef ACTUATED_MONO_H
 #define ACTUATED_MONO_H
 

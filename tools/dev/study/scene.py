@@ -1,4 +1,4 @@
-"""scene.py - variant scenes for the study (tools/study/study.py): reads a scene file as it
+"""scene.py - variant scenes for the study (tools/dev/study/study.py): reads a scene file as it
 is (includes inlined, comments dropped), and writes a variant with another base tick,
 other set statements (one set for all, or a set's method, step, Newton or Jacobian
 clauses changed), another stabilization or Broyden bound. Sets are also found by role:

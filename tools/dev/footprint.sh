@@ -10,7 +10,7 @@
 # set (rt/bg.c) runs its steps between ticks (PendSV on Cortex-M): the tick context is
 # counted from port_cycles() to foot_tick_end(), and a second table gives the background
 # context (foot_bg_begin() to foot_bg_end(), one interval per step).
-# Usage: [FOOT_SCENES="a b"] sh tools/footprint.sh "m3 m4f m7 rv32 rv64" ["m4f m7"]
+# Usage: [FOOT_SCENES="a b"] sh tools/dev/footprint.sh "m3 m4f m7 rv32 rv64" ["m4f m7"]
 set -eu
 targets=$1
 float_targets=${2:-}
@@ -26,11 +26,11 @@ cat <<HDR
 Figures of commit \`$commit\`: a later change to the runtime, the models or the scenes
 may move them until \`make footprint\` runs again.
 
-Written by \`make footprint\` (tools/footprint.sh); do not edit by hand. One image per
+Written by \`make footprint\` (tools/dev/footprint.sh); do not edit by hand. One image per
 scene and target: \`tests/cross/footprint_main.c\`, the scene's const tables, the runtime
 and only the models the scene names (\`-ffunction-sections -fdata-sections
 -Wl,--gc-sections\`, no registries), compiled with the exact limits \`modrt sizes SCENE\`
-prints. Instruction counts come from QEMU's TCG plugin \`tools/qemu/insn_count.c\`,
+prints. Instruction counts come from QEMU's TCG plugin \`tools/dev/qemu/insn_count.c\`,
 counting guest instructions from the \`port_cycles()\` call the image makes before each
 tick to the \`foot_tick_end()\` call after it: one interval is one \`rt_tick\` plus
 recording the traced values into the hash (the tick context). Counts are deterministic (run under \`-icount shift=0\`). The stack column is the
@@ -51,7 +51,7 @@ and the table after it the background context.
 |---|---|---|---:|---:|---:|---:|---:|---:|:-:|---|---:|:-:|
 HDR
 
-. tools/foot_lib.sh
+. tools/dev/foot_lib.sh
 
 BG_ROWS=
 # one row: scene, target, real (double|float), host hash, base tick [s]

@@ -1,6 +1,6 @@
 /* actuated_mr_mono.h - the hand-written monolith of the multirate scene pendulum10_actuated
  * (actuated_mr_mono.c), the yardstick of modrt's modular overhead on a multirate schedule
- * (tools/bench/overhead_bench.c, docs/overhead.md). */
+ * (tools/dev/bench/overhead_bench.c, docs/overhead.md). */
 #ifndef ACTUATED_MR_MONO_H
 #define ACTUATED_MR_MONO_H
 

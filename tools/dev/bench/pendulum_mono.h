@@ -1,5 +1,5 @@
 /* pendulum_mono.h - the hand-written monolith of scene pendulum10 (pendulum_mono.c), the
- * yardstick of modrt's modular overhead (tools/bench/overhead_bench.c). */
+ * yardstick of modrt's modular overhead (tools/dev/bench/overhead_bench.c). */
 #ifndef PENDULUM_MONO_H
 #define PENDULUM_MONO_H
 

@@ -3,19 +3,19 @@
 # one variant per omitted effect (tests/vehicles/variants/lcv_*.scn: linear tires instead
 # of the Magic Formula, planar single-track cars instead of the suspended chassis, no
 # drag, ideal steering instead of V2's steering chain, no second vehicle) and the minimal
-# lane_change_planar. Each is built as a Cortex-M7 footprint image (tools/foot_lib.sh:
+# lane_change_planar. Each is built as a Cortex-M7 footprint image (tools/dev/foot_lib.sh:
 # only its scene and the models it names) and run over the whole scene under QEMU with the
 # instruction-count plugin, and run on the host under callgrind (instructions, so
 # deterministic and independent of the machine's load). Prints the "Effects of the lane
 # change" section of docs/footprint.md (make effects splices it in; make footprint
 # appends it).
-# Usage: sh tools/effects.sh [TARGET]   (default m7)
+# Usage: sh tools/dev/effects.sh [TARGET]   (default m7)
 set -eu
 t=${1:-m7}
 M=build/host/modrt
 so=$(make -s print-INSN_COUNT_SO)
 V=tests/vehicles/variants
-. tools/foot_lib.sh
+. tools/dev/foot_lib.sh
 
 commit=$(git describe --always --dirty 2>/dev/null || echo unknown)
 cat <<HDR
@@ -24,7 +24,7 @@ cat <<HDR
 
 Figures of commit \`$commit\`.
 
-Written by \`make effects\` (tools/effects.sh; \`make footprint\` runs it too); do not edit
+Written by \`make effects\` (tools/dev/effects.sh; \`make footprint\` runs it too); do not edit
 by hand. Each row omits one effect of the full \`lane_change\` (the variants are
 \`tests/vehicles/variants/*.scn\`, kept out of the library); the last row omits them all.
 Every effect is its own block kind or service, so an omitted one is neither linked nor

@@ -18,10 +18,10 @@
  * are then timed again in turn, best of --final rounds; the last line printed is the
  * speedup under the bound of issue 6.
  *
- * `make bench` no longer runs this CPU-time sweep: the speedup it reports comes from
- * deterministic instruction counts now (tools/bench/speedup.py, `make speedup`,
- * docs/multirate.md "The benchmark"). The program remains for the table of rate
- * transitions (--transition, docs/multirate.md "Background sets") and as a quick check.
+ * `make bench` does not run this CPU-time sweep: the speedup it reports comes from
+ * deterministic instruction counts (tools/dev/bench/speedup.py, `make speedup`,
+ * docs/multirate.md "The benchmark"). This program gives the table of rate transitions
+ * (--transition, docs/multirate.md "Background sets") and a quick check.
  *
  * Host program (libc, libm, POSIX CPU clock). Usage: multirate_bench [--csv FILE]
  * [--md FILE] [--doc FILE] [--reps N] [--final N] [--quick]
@@ -99,14 +99,14 @@ static rt_scene make_scene(const config *c, rt_set *sets)
     sets[0].method = c->m[0];
     if (!c->multi) {
         sets[0].ratio = 1;
-        sets[0].implicit.jac_every = c->jac_every;
+        sets[0].cfg.jac_every = rt_method_iterates(c->m[0]) ? c->jac_every : 0;
         return sc;
     }
     /* set 0 is the chain, set 1 the servo (models/scenes/pendulum10_actuated.c) */
     sets[0].ratio = c->ratio;
     sets[1].method = c->m[1];
     sets[1].ratio = 1;
-    sets[1].implicit.jac_every = c->jac_every;
+    sets[1].cfg.jac_every = rt_method_iterates(c->m[1]) ? c->jac_every : 0;
     sets[0].background = c->bg;
     if (c->in_chain)
         sets[0].interp = c->in_chain;

@@ -1,6 +1,6 @@
 /* overhead_bench.c - modrt against the hand-written monolith of the same formulation
  * (pendulum_mono.c, actuated_mono.c, actuated_mr_mono.c): the trajectory checks, and the
- * runs that tools/bench/overhead.sh counts with callgrind to print the modular overhead
+ * runs that tools/dev/bench/overhead.sh counts with callgrind to print the modular overhead
  * (docs/overhead.md).
  *
  * The modrt side is the library as an application runs it: rt_init, then rt_tick per

@@ -5,13 +5,13 @@ Cortex-M4F and Cortex-M7. Writes docs/study.md and docs/study/*.svg (--mode full
 checks a quick subset and writes only into build/study/ (--mode quick, `make test-study`).
 
 For every example it generates variant scenes from the scene files as they are at run time
-(tools/study/scene.py: method, step, base tick, sets, stabilization, Newton and Broyden
+(tools/dev/study/scene.py: method, step, base tick, sets, stabilization, Newton and Broyden
 bounds), and for each variant
   - the estimated global error of `modrt check` (the variant again at half its steps,
     Richardson), read at the same instants and signals, beside the error, to show how
     well the estimate tracks it,
   - the error against an independent reference (pendulum10: the chain in minimal
-    coordinates, tools/study/pendulum_ref.py and the long-double values of
+    coordinates, tools/dev/study/pendulum_ref.py and the long-double values of
     tests/rt/test_mbs_scene.c; the others: two fine single-rate runs of different
     methods, whose difference is the reference's own error and bounds the plotted range),
     computed by `modrt sweep`: one campaign per example and number type over the
@@ -21,7 +21,7 @@ bounds), and for each variant
     rt_record only (`--toggle-collect`), over the first W simulated seconds,
   - Cortex-M7 and Cortex-M4F instructions per simulated second and the worst tick: a
     per-variant image (tests/cross/footprint_main.c) under QEMU with the counting plugin
-    tools/qemu/insn_count.c, over the first W seconds (shorter for software doubles),
+    tools/dev/qemu/insn_count.c, over the first W seconds (shorter for software doubles),
   - host wall time per simulated second of the error run (secondary, noisy).
 Every image's trace hash is checked against the host's run of the same variant."""
 import argparse
@@ -250,7 +250,7 @@ def plan_beltgear(quick):
     ex = Example("beltgear", path, "rad/s",
                  "largest error of R1.omega, R2.omega every 5 ms over 0.5 s [rad/s]",
                  sig_re(r"^R\d+\.omega$"), 0.5, 0.005, 0.05, 0.02)
-    # the reference: tools/study/beltgear_ref.py; a fine run of modrt is compared with it
+    # the reference: tools/dev/study/beltgear_ref.py; a fine run of modrt is compared with it
     ex.ref_fn = beltgear_refs
     ex.refs.append(("dopri5", 1e-6))
     ex.note = beltgear_note
@@ -557,19 +557,19 @@ def run_ref(ex, method, h, i, sc_end):
 
 
 def beltgear_refs(full):
-    """beltgear's reference: tools/study/beltgear_ref.py at 5e-6 s, its own error against
+    """beltgear's reference: tools/dev/study/beltgear_ref.py at 5e-6 s, its own error against
     1e-5 s"""
-    r = sh([sys.executable, "tools/study/beltgear_ref.py", "1e-5", "5e-6"])
+    r = sh([sys.executable, "tools/dev/study/beltgear_ref.py", "1e-5", "5e-6"])
     runs = []
     for ln in r.stdout.splitlines():
         v = [float(x) for x in ln.split()[2:]]
         runs.append({tkey(v[i]): [v[i + 1], v[i + 2]] for i in range(0, len(v), 3)})
     if len(runs) != 2:
-        raise SystemExit("study: tools/study/beltgear_ref.py failed: " + r.stderr[-300:])
+        raise SystemExit("study: tools/dev/study/beltgear_ref.py failed: " + r.stderr[-300:])
     own = max(abs(a - b) for k in runs[1] for a, b in zip(runs[0][k], runs[1][k]))
     note = ("the belt gear as one ODE in five states with the drive train's loop solved in "
             "closed form, integrated piecewise (the command's jump at 10 ms is a step "
-            "boundary) by RK4 in binary64 at 5e-6 s (tools/study/beltgear_ref.py); against "
+            "boundary) by RK4 in binary64 at 5e-6 s (tools/dev/study/beltgear_ref.py); against "
             "1e-5 s it moves by %.1e rad/s" % own)
     return runs[1], own, note
 
@@ -585,13 +585,13 @@ def pendulum_refs(full):
     if not full:
         return rows, None, "the chain in minimal coordinates (RK4 in long double at 5e-6 s, " \
             "tests/rt/test_mbs_scene.c)"
-    r = sh([sys.executable, "tools/study/pendulum_ref.py", "2e-4", "1e-4"])
+    r = sh([sys.executable, "tools/dev/study/pendulum_ref.py", "2e-4", "1e-4"])
     lines = [ln.split() for ln in r.stdout.splitlines() if ln.startswith("h ")]
     runs = [[float(v) for v in ln[2:]] for ln in lines]
     diff = max(abs(a - b) for run in runs for a, b in zip(run, vals))
     note = ("the chain in minimal coordinates (ten link angles, Lagrange's equations): the "
             "long-double values of tests/rt/test_mbs_scene.c (RK4 at 5e-6 s); recomputed "
-            "independently by tools/study/pendulum_ref.py (RK4 in binary64 at 2e-4 s and "
+            "independently by tools/dev/study/pendulum_ref.py (RK4 in binary64 at 2e-4 s and "
             "1e-4 s), which differs from them by at most %.1e m" % diff)
     return rows, diff, note
 
@@ -933,7 +933,7 @@ def machine():
 def write_doc(exs, out_dir, started, elapsed, all_checks, jobs, where):
     o = ["# What accuracy costs in time",
          "",
-         "Written by `make study` (tools/study/study.py); do not edit by hand. Made %s UTC on "
+         "Written by `make study` (tools/dev/study/study.py); do not edit by hand. Made %s UTC on "
          "%s, in %.0f s with %d jobs." % (time.strftime("%Y-%m-%d %H:%M", time.gmtime(started)),
                                         where, elapsed, jobs),
          "",
@@ -943,7 +943,7 @@ def write_doc(exs, out_dir, started, elapsed, all_checks, jobs, where):
          "(including those `modrt tune` picks), double and float, and Newton and Broyden "
          "bounds; the implicit single-rate methods refresh their Jacobian every 1024 steps, "
          "as the shipped single-rate scenes do. Each configuration is a variant of the scene file as it is at run time "
-         "(tools/study/scene.py writes it: base tick, set statements, stabilization, loop "
+         "(tools/dev/study/scene.py writes it: base tick, set statements, stabilization, loop "
          "bound), so the study follows the scenes when they change.",
          "",
          "**Cost.** Host: instructions of `rt_tick` and `rt_record` (with everything they "
@@ -952,7 +952,7 @@ def write_doc(exs, out_dir, started, elapsed, all_checks, jobs, where):
          "the secondary, noisy axis on top of the host figures. Cortex-M7 and Cortex-M4F: one "
          "image per configuration and target (tests/cross/footprint_main.c linked with the "
          "variant's generated C, the runtime and the models at their default limits), run "
-         "under QEMU with the counting plugin tools/qemu/insn_count.c, which counts the "
+         "under QEMU with the counting plugin tools/dev/qemu/insn_count.c, which counts the "
          "instructions of every tick (one `rt_tick` plus recording into the hash). All counts "
          "are taken over the first W simulated seconds of the run (W per example below, a "
          "whole number of the configuration's largest step; on the M4F in double, whose "
@@ -967,7 +967,7 @@ def write_doc(exs, out_dir, started, elapsed, all_checks, jobs, where):
          "",
          "**Error.** Against a reference that is not the configuration's own output: "
          "pendulum10 against the chain in minimal coordinates, beltgear against the same "
-         "model written as one ODE (both in python, tools/study/), whose own error is the "
+         "model written as one ODE (both in python, tools/dev/study/), whose own error is the "
          "difference of two steps; the others against a fine single-rate run of the same "
          "scene, whose own error is its difference to a second fine run with another method "
          "and step. The grey band in each "

@@ -1,6 +1,6 @@
 #!/bin/sh
 # overhead.sh - modular overhead of modrt against the hand-written monolith
-# (tools/bench/pendulum_mono.c, actuated_mono.c, actuated_mr_mono.c): instructions per
+# (tools/dev/bench/pendulum_mono.c, actuated_mono.c, actuated_mr_mono.c): instructions per
 # simulated second of each side counted by callgrind inside the run only (--toggle-collect
 # on modrt_ticks, mono_steps, amono_steps or amr_steps: start-up excluded), deterministic;
 # prints one line per scene and method,
@@ -13,7 +13,7 @@
 # pendulum10_actuated last (bs3 chain in the background, ROS2 servo; its monolith with
 # modrt's estimates, then without bs3's error estimate and the history monitors, and with
 # the Thomas solve).
-# Usage: sh tools/bench/overhead.sh build/host/overhead_bench [SECONDS]
+# Usage: sh tools/dev/bench/overhead.sh build/host/overhead_bench [SECONDS]
 set -eu
 B=$1
 S=${2:-1}

@@ -7,16 +7,16 @@
 # getrusage; a shared machine's load stretches the wall time far more than this), the runs'
 # own tick loops (from collect) and the load average while it ran. Slurm's runs are the
 # daemons' descendants, not ours: its CPU time is slurmctld's and slurmd's with every job
-# step (slurmd under tools/bench/reaper.py, a subreaper that collects the double-forked
+# step (slurmd under tools/dev/bench/reaper.py, a subreaper that collects the double-forked
 # slurmstepd); least-squares lines over the six jobs, wall = a + b * tasks and
 # CPU = c + d * tasks, give what one array task costs. Prints Markdown. Wall-clock figures
 # are never a test.
-# Usage: sh tools/bench/sweep_bench.sh BUILD_DIR [N]
+# Usage: sh tools/dev/bench/sweep_bench.sh BUILD_DIR [N]
 set -u
 B=${1:-build/host}
 N=${2:-200}
 M=$(cd "$B" && pwd)/modrt
-R=$(cd "$(dirname "$0")/../.." && pwd)
+R=$(cd "$(dirname "$0")/../../.." && pwd)
 T=$(mktemp -d)
 pids=""
 trap 'for p in $pids; do kill "$p" 2>/dev/null; done; sleep 1; rm -rf "$T"' EXIT
@@ -54,7 +54,7 @@ fi
 SLURM_LIFE=1800 SLURM_WAIT=20000
 # slurmd under a subreaper: its job steps (double-forked slurmstepd, the runs under them)
 # are reaped there, so their CPU time is counted; slurmctld's from /proc (own + reaped)
-SLURMD_WRAP="python3 $R/tools/bench/reaper.py $T/stepd.cpu"
+SLURMD_WRAP="python3 $R/tools/dev/bench/reaper.py $T/stepd.cpu"
 slurm_cpu() { # CPU seconds of the cluster so far: slurmd's tree and slurmctld
     kill -USR1 "$reaper" 2>/dev/null; sleep 0.3
     awk -v t="$(getconf CLK_TCK)" -v d="$(cat "$T/stepd.cpu" 2>/dev/null || echo 0)" \

@@ -3,7 +3,7 @@
 so the processes it leaves orphaned (slurmd's double-forked slurmstepd and the job steps
 under it) are reaped here and their CPU time adds to this process's children's. On
 SIGUSR1 it writes the CPU time (user + system, seconds) of everything reaped so far to
-FILE; SIGTERM goes on to the command. tools/bench/sweep_bench.sh: what Slurm's array tasks
+FILE; SIGTERM goes on to the command. tools/dev/bench/sweep_bench.sh: what Slurm's array tasks
 cost in CPU time, which a loaded machine does not stretch as it stretches wall time.
 Usage: reaper.py FILE COMMAND [ARGS...]"""
 import ctypes

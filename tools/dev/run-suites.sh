@@ -5,7 +5,7 @@
 # A suite's count is the sum of the `N passed, N failed` lines it printed; a suite that
 # printed none counts as one check. With V=1 every suite's output goes to the console too.
 #
-# Usage: sh tools/run-suites.sh MAKE SUITE...
+# Usage: sh tools/dev/run-suites.sh MAKE SUITE...
 set -u
 MAKE_CMD=$1; shift
 LOGS=build/test-logs

@@ -1,5 +1,5 @@
 """svg.py - log-log work-precision figures as standalone SVG (python3 stdlib only), for
-tools/study/study.py: labelled axes with units, decade ticks and grid, a legend, one line
+tools/dev/study/study.py: labelled axes with units, decade ticks and grid, a legend, one line
 with markers per series, starred and named points for the shipped configurations, a
 shaded band below the smallest error the reference resolves, and an optional second x
 axis on top (a fixed factor of the bottom one)."""

@@ -4,7 +4,7 @@ from deterministic instruction counts. For pendulum10_actuated (and lane_change)
 single-rate configurations (one set: method, step, Jacobian refresh interval) and
 multirate ones (the slow set's method, macro step, in the tick or in the background, the
 fast set's method, the slow set's inputs extrapolated or held), all written as variant
-scenes of the scene file by tools/study/scene.py, and for each
+scenes of the scene file by tools/dev/study/scene.py, and for each
 
   - the error: the largest error of the example's signals (pendulum10_actuated: the
     positions of B1..B10) every GRID s over the whole run, against a fine single-rate
@@ -702,7 +702,7 @@ def main():
     with cf.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
         for key in a.only.split(","):
             mds.append(run_example(plans[key](a.quick), pool, log))
-    head = ("Deterministic counts (`make speedup`, tools/bench/speedup.py), %d jobs, %.0f s "
+    head = ("Deterministic counts (`make speedup`, tools/dev/bench/speedup.py), %d jobs, %.0f s "
             "at %s.\n" % (a.jobs, time.time() - started, sh(["git", "rev-parse", "--short",
                                                               "HEAD"]).stdout.strip()))
     md = head + "\n" + "\n".join(mds)

@@ -1,7 +1,7 @@
 /* insn_count.c - QEMU TCG plugin counting executed guest instructions, in total and
  * between successive executions of a marker address (for cost per tick).
  *
- * Build (host):  gcc -O2 -shared -fPIC -o build/host/libinsn_count.so tools/qemu/insn_count.c
+ * Build (host):  gcc -O2 -shared -fPIC -o build/host/libinsn_count.so tools/dev/qemu/insn_count.c
  * Use:           qemu-system-arm ... -plugin ./build/host/libinsn_count.so -d plugin -kernel app.elf
  *                qemu-aarch64 -plugin ./build/host/libinsn_count.so,addr=0x4005d0 -d plugin ./app
  * Arguments (comma separated after the .so):

@@ -5,7 +5,7 @@
 # foot_tick_end(): the tick interrupt's work) and in the background context (each step of
 # the background set, run in PendSV), with the max/median of each; appended to
 # build/bench/bg.txt. Skipped when the M7 toolchain or QEMU is missing.
-# Usage: sh tools/bench/bg_bench.sh [SCENE] [TARGET]
+# Usage: sh tools/dev/bench/bg_bench.sh [SCENE] [TARGET]
 set -u
 S=${1:-pendulum10_actuated}
 T=${2:-m7}
@@ -16,7 +16,7 @@ if ! make -s "check-target-$T" 2>/dev/null; then
     exit 0
 fi
 make -s build/host/libinsn_count.so
-out=$(FOOT_SCENES=$S sh tools/footprint.sh "$T")
+out=$(FOOT_SCENES=$S sh tools/dev/footprint.sh "$T")
 # the scene's row of each table: flash | RAM | stack and the tick context's min | median |
 # max, then the background table's max/median | steps | min | median | max
 tick=$(echo "$out" | awk -F' [|] ' -v s="$S" '$1 == "| " s && NF > 10 {print $7, $8, $9; exit}')

@@ -7,7 +7,7 @@
 # paced line. Round trip p50 / p99 / max from modrt's summary; the bytes per exchange and
 # the highest exchange rate each line allows, from the frame sizes. Wall-clock figures of a
 # shared machine: printed and kept in build/bench/serial.txt, never asserted.
-# Usage: sh tools/bench/serial_bench.sh [MODRT]
+# Usage: sh tools/dev/bench/serial_bench.sh [MODRT]
 set -u
 M=${1:-build/host/modrt}
 C=build/host/pi_controller
