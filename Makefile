@@ -407,12 +407,18 @@ $(O)/overhead_bench: $(call obj,tools/bench/overhead_bench.c tools/bench/pendulu
                     tools/bench/actuated_mono.c tools/bench/actuated_mr_mono.c) \
                     $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
-# modrt against the hand-written monolith (docs/overhead.md): the trajectory check (fails
-# the target when they differ), then instruction counts and ratios
-overhead: $(O)/overhead_bench
+$(O)/tight_bench: $(call obj,tools/bench/tight_bench.c tools/bench/pendulum_tight.c) \
+                  $(RT_OBJS) $(MODEL_OBJS)
+	$(Q)$(CC) $(LDSAN) $^ -lm -o $@
+# modrt against the hand-written programs (docs/overhead.md): the trajectory checks (fail
+# the target when they differ), then instruction counts, ratios and the scaling with the
+# model's size, spliced into a copy of docs/overhead.md in build/bench/
+overhead: $(O)/overhead_bench $(O)/tight_bench
 	@mkdir -p build/bench
 	$(O)/overhead_bench check
-	@sh tools/bench/overhead.sh $(O)/overhead_bench | tee build/bench/overhead.txt
+	$(O)/tight_bench check
+	@cp docs/overhead.md build/bench/
+	@sh tools/bench/overhead.sh $(O) 1 build/bench/overhead.md | tee build/bench/overhead.txt
 .PHONY: overhead
 # the multirate speedup at equal accuracy (issue 14, goal 4; docs/multirate.md, "The
 # benchmark"): single-rate and multirate sweeps of pendulum10_actuated and lane_change,
@@ -432,7 +438,7 @@ speedup: $(O)/modrt $(O)/svgplot
 .PHONY: speedup
 # benchmarks write into build/bench/ only (documents are spliced into copies there);
 # `make docs` runs them and copies the figures over the committed ones in docs/
-BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
+BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg overhead.md
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
 bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
 	@mkdir -p build/bench
