@@ -101,11 +101,14 @@ help:
 	@echo "make study        what accuracy costs: docs/study.md and docs/study/*.svg, the four"
 	@echo "                  paper examples on the host, Cortex-M4F and M7 (STUDY=quick: a subset)"
 	@echo "make image TARGET=<t> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
-	@echo "           [REAL=float] [IMAGE_CFLAGS=...]"
+	@echo "           [REAL=float] [IMAGE_CFLAGS=...] [CLOCK_MHZ=...] [TICKS=...] [MEASURE=0]"
 	@echo "                  a firmware image of one scene (docs/porting.md) into"
 	@echo "                  build/image/<t>/ (REAL=float: binary32, into build/image/<t>-float/);"
 	@echo "                  IMAGE_CFLAGS are added to the compile, e.g. -DCM_EXIT_SEMIHOST=1;"
-	@echo "                  prints the QEMU command that runs it"
+	@echo "                  prints the QEMU command that runs it, then instructions per tick"
+	@echo "                  (median/max over TICKS ticks under QEMU), stack, and whether the"
+	@echo "                  slowest tick fits the base tick at CLOCK_MHZ (default: the"
+	@echo "                  target's clock of make footprint); MEASURE=0 builds only"
 	@echo "make hard         the hard-case suite at full length, table into build/hard-table.md"
 	@echo "make test-<suite> one suite of make test: $(patsubst test-%,%,$(filter test-%,$(TEST_SUITES)))"
 	@echo "                  (also check-freestanding, cross-test-<t>)"
@@ -386,8 +389,8 @@ $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 	$(INSN_COUNT_CC) $(INSN_COUNT_CFLAGS) -o $@ $<
 # ---- image: one scene file on one target (docs/porting.md) ----
 # make image TARGET=m4f SCENE=path/to/my.scn [CONSOLE=semihost|uart|itm|none] [IMAGE_CFLAGS=...]
-image: deps build/host/modrt $(SCENEC)
-	@sh tools/image.sh "$(TARGET)" "$(SCENE)" "$(CONSOLE)" "$(IMAGE_CFLAGS)"
+image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
+	@sh tools/image.sh "$(TARGET)" "$(SCENE)" "$(CONSOLE)" "$(IMAGE_CFLAGS)" "$(CLOCK_MHZ)" "$(TICKS)" "$(MEASURE)"
 TEST_SUITES += test-image
 test-image: deps build/host/modrt $(SCENEC)
 	@sh tests/image.sh
