@@ -416,12 +416,16 @@ $(O)/tight_bench: $(call obj,tools/bench/tight_bench.c tools/bench/pendulum_tigh
 # modrt against the hand-written programs (docs/overhead.md): the trajectory checks (fail
 # the target when they differ), then instruction counts, ratios and the scaling with the
 # model's size, spliced into a copy of docs/overhead.md in build/bench/
+SCALE_STEPS ?= 20 # steps each scaling run counts
 overhead: $(O)/overhead_bench $(O)/tight_bench
 	@mkdir -p build/bench
 	$(O)/overhead_bench check
 	$(O)/tight_bench check
 	@cp docs/overhead.md build/bench/
 	@sh tools/bench/overhead.sh $(O) 1 build/bench/overhead.md | tee build/bench/overhead.txt
+	sh tools/bench/scale.sh $(SCALE_STEPS) > build/bench/scale.md
+	@sh tools/bench/splice.sh scale build/bench/overhead.md build/bench/scale.md
+	@cat build/bench/scale.md
 .PHONY: overhead
 # the multirate speedup at equal accuracy (issue 14, goal 4; docs/multirate.md, "The
 # benchmark"): single-rate and multirate sweeps of pendulum10_actuated and lane_change,

@@ -3,7 +3,9 @@
 #ifndef PENDULUM_TIGHT_H
 #define PENDULUM_TIGHT_H
 
-#define TIGHT_NB 10 /* bodies and constraints of pendulum10 */
+#ifndef TIGHT_NB
+#define TIGHT_NB 10 /* bodies and constraints of pendulum10 (tools/bench/scale.sh: any chain) */
+#endif
 
 enum { TIGHT_BS3, TIGHT_RK4, TIGHT_DOPRI5 }; /* methods (tableaus of rt/integ_erk.c) */
 

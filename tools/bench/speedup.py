@@ -74,10 +74,17 @@ class Example:
         self.what = what
         self.t_end = end_time(self.sc)
         self.cfgs = []
+        self.ladders = {}  # ladder -> its configurations, largest step first
+        self.pruned = 0    # configurations a larger step of their ladder made needless
+        self.outside = 0   # configurations run but outside every bound (not counted)
+        self.sweep_note = ""
 
-    def add(self, variant, desc, text, series, shipped=False):
-        self.cfgs.append({"variant": variant, "desc": desc, "text": text, "series": series,
-                          "key": "%s%03d" % (variant[0], len(self.cfgs)), "shipped": shipped})
+    def add(self, variant, desc, text, series, shipped=False, ladder=None):
+        c = {"variant": variant, "desc": desc, "text": text, "series": series,
+             "key": "%s%03d" % (variant[0], len(self.cfgs)), "shipped": shipped}
+        self.cfgs.append(c)
+        if ladder is not None:
+            self.ladders.setdefault(ladder, []).append(c)
 
 
 def end_time(sc):
@@ -105,6 +112,67 @@ def single_sweep(ex, explicit, implicit, jacs, newton=None):
                 ex.add("single", "%s %s, Jacobian every %d%s" % (
                     m, h_ms(h), j, ", newton %d" % newton if newton else ""),
                     S.variant(ex.sc, tick=h, single=(m, cl)), "single " + m)
+
+
+# the single-rate competitors swept over their whole range (issue 32, goal 3): every method,
+# every step of a ladder halving from the scene's tick, every Jacobian interval from 1 to
+# never (the start only), every Newton count; see single_walk
+EXPLICIT_ALL = ("euler", "heun", "bs3", "rk4", "dopri5")
+NEWTON_METHODS = ("trap", "sdirk2", "sdirk3", "beuler")
+JACS = tuple(2 ** i for i in range(13)) + (65535,)  # 1 .. 4096, and 65535: the start only
+NEWTONS = (1, 2, 3, 4)
+
+
+def jac_text(j):
+    return "Jacobian at the start only" if j == 65535 else "Jacobian every %d" % j
+
+
+def single_walk(ex, steps_explicit, steps_implicit):
+    """every single-rate configuration as a ladder of steps, largest first: a method with
+    its Jacobian interval and Newton count (run_example walks each ladder down only while
+    its step misses the tightest bound: at a fixed step the work per step is the same, so
+    a smaller step costs more per simulated second)"""
+    for m in EXPLICIT_ALL:
+        for h in steps_explicit:
+            ex.add("single", "%s %s" % (m, h_ms(h)),
+                   S.variant(ex.sc, tick=h, single=(m, {"accuracy": ACCURACY})),
+                   "single " + m, ladder=(m,))
+    for m in ("ros2",) + NEWTON_METHODS:
+        for j in JACS:
+            for nw in ((None,) if m == "ros2" else NEWTONS):
+                for h in steps_implicit:
+                    cl = {"jacobian": str(j), "accuracy": ACCURACY}
+                    if nw:
+                        cl["newton"] = str(nw)
+                    ex.add("single", "%s %s, %s%s" % (
+                        m, h_ms(h), jac_text(j), ", newton %d" % nw if nw else ""),
+                        S.variant(ex.sc, tick=h, single=(m, cl)), "single " + m,
+                        ladder=(m, j, nw))
+                    c = ex.cfgs[-1]
+                    c["group"], c["jac"] = (m, h, nw), j
+                    # a Jacobian cycle as long as the window: its cost follows from the
+                    # start-only run's (derive)
+                    c["derive"] = j * h >= WINDOW - 1e-12
+    ex.sweep_note = (
+        "Single-rate competitors: every method of the runtime (%s explicit at %s; ROS2 and "
+        "%s at %s), every Jacobian interval 1, 2, 4, ... 4096 steps and the start only, "
+        "Newton counts 1-4 (at most that many iterations per stage; ROS2 has none). The "
+        "steps halve from the scene's tick, which bounds them: the controller samples "
+        "every tick. Each method, Jacobian interval and Newton count is a ladder walked "
+        "from its largest step down only while the step misses the tightest bound with no "
+        "fault: at a fixed step an explicit method does the same work per step, so a "
+        "smaller step costs more per simulated second, and an implicit one refreshes its "
+        "Jacobian as many times more often; a configuration outside every bound is run "
+        "(error, status) but not counted. " % (
+            ", ".join(EXPLICIT_ALL), ", ".join(h_ms(h) for h in steps_explicit),
+            ", ".join(NEWTON_METHODS), ", ".join(h_ms(h) for h in steps_implicit)) +
+        "Where the Jacobian cycle is at least the %g s window, the cost comes from the run "
+        "with the Jacobian at the start only at the same step and Newton count, counted "
+        "over two windows from t = 0 (%g and %g s, one refresh each): their difference is "
+        "the work per step, the rest the refresh's, and the run's cost is the steps' plus "
+        "one refresh per cycle (window 0 in the table; a run with a substep, which "
+        "refreshes out of turn, is counted over the whole run instead)." % (
+            WINDOW, WINDOW / 2, WINDOW))
 
 
 def no_background(text):
@@ -201,23 +269,13 @@ def plan_actuated(quick):
         single_sweep(ex, [("dopri5", [0.5 * ms])], [("ros2", [1 * ms])], [1024])
         multirate_sweep(ex, ["bs3"], [4, 16], ["ros2"], 64)
         return ex
-    single_sweep(ex, [("dopri5", [0.5 * ms, 0.25 * ms]), ("rk4", [0.25 * ms]),
-                      ("heun", [0.25 * ms])],
-                 [(m, [1 * ms, 0.5 * ms]) for m in ("ros2", "trap", "sdirk2", "sdirk3",
-                                                    "beuler")], [1, 32, 1024])
-    multirate_sweep(ex, ["bs3", "rk4", "dopri5"], [4, 8, 16, 32], ["ros2", "trap"], 64)
-    # fewer Newton iterations (the default is 4 per stage): 2 saves work at the same error
-    # in the trapezoidal rule (1 does not converge and falls back to full Newton)
-    single_sweep(ex, [], [(m, [1 * ms]) for m in ("trap", "sdirk2", "beuler")], [32, 1024],
-                 newton=2)
-    multirate_sweep(ex, ["bs3", "rk4", "dopri5"], [8, 16], ["trap"], 64, held=False,
-                    bgs=(False,), newton=2)
-    # the servo set is linear (controller sampled, servo2 linear): its transition matrix
-    # steps it exactly under the held command (docs/solvers.md); the chain also by Heun's
-    # method, which that leaves accurate enough at 1e-3. No single-rate competitor can
+    single_walk(ex, [1 * ms / 2 ** i for i in range(6)], [1 * ms / 2 ** i for i in range(3)])
+    # the multirate side around its cheapest configurations (a narrower search there can
+    # only make the speedup smaller): the servo set is linear (controller sampled, servo2
+    # linear), so its transition matrix steps it exactly under the held command
+    # (docs/solvers.md); the chain by Heun's method or bs3. No single-rate competitor can
     # take it: the chain is not linear
-    multirate_sweep(ex, ["heun", "bs3", "rk4", "dopri5"], [4, 8, 16, 32], ["transition"], 64,
-                    held=False)
+    multirate_sweep(ex, ["heun", "bs3"], [8, 16, 32], ["transition"], 64, held=False)
     # the controller (sampled every 1 ms) in a set of its own: the servo's transition step
     # may then take 2 or 4 ms under the held command, which the 1e-3 m bound allows
     split_sweep(ex, ["heun", "bs3"], [8, 16], "transition", [1, 2, 4], ["linear", "hermite"])
@@ -341,18 +399,63 @@ def run_cfg(ex, c, ref):
     c["err"] = error_of(ref, read_csv(out, ex.signals))[0] if os.path.exists(out) and \
         rc in (0, 3) else math.inf
     c["rhs_run"] = rhs_of(s) / ex.t_end if s else None
+    if not (c["clean"] and c["err"] <= max(ex.tols)):
+        # outside every bound: no competitor, not counted
+        c["cost"] = c["cost_run"] = c["window"] = c["period"] = c["rhs_window"] = None
+        return c
+    run = S._ticks(ex.t_end, sc.tick)
+    if c.get("derive") and c["jac"] != 65535 and c["substep"] == 0:
+        return c  # its cost follows from the start-only run's (derive_costs)
+    if c.get("derive") and c["jac"] == 65535 and c["substep"] == 0:
+        n1, n2 = S._ticks(WINDOW / 2, sc.tick), S._ticks(WINDOW, sc.tick)
+        i1, _ = callgrind(path, n1, sc.tick)
+        i2, sw = callgrind(path, n2, sc.tick)
+        c["per_step"] = (i2 - i1) / (n2 - n1)
+        c["refresh"] = i1 - n1 * c["per_step"]
+        c["run_steps"] = run
+        c["rhs_window"] = rhs_of(sw) / (n2 * sc.tick)
+        c["window"] = c["period"] = 0
+        c["cost"] = c["cost_run"] = (run * c["per_step"] + c["refresh"]) / ex.t_end
+        return c
+    return run_window(ex, c)
+
+
+def run_window(ex, c):
+    """instructions over a window of whole periods of the variant from t = 0"""
+    sc = S.Scene(c["path"])
+    run = S._ticks(ex.t_end, sc.tick)
     p = period_ticks(sc)
     n = max(1, math.ceil(WINDOW / (p * sc.tick) - 1e-9)) * p
-    if ex.whole:
-        n = S._ticks(ex.t_end, sc.tick)
-    ins, sw = callgrind(path, n, sc.tick)
+    if ex.whole or n >= run:  # a period as long as the run (the Jacobian at the start)
+        n = run
+    ins, sw = callgrind(c["path"], n, sc.tick)
     c["window"] = n * sc.tick
     c["period"] = p * sc.tick
     c["cost"] = ins / c["window"]
     c["rhs_window"] = rhs_of(sw) / c["window"]
-    if ex.whole:
+    if ex.whole or n == run:
         c["cost_run"] = c["cost"]
     return c
+
+
+def derive_costs(ex):
+    """the cost of a run whose Jacobian cycle is at least the window, from the start-only
+    run at its step and Newton count: steps, plus one refresh per cycle"""
+    base = {c["group"]: c for c in ex.cfgs if c.get("derive") and c["jac"] == 65535
+            and c.get("per_step") is not None}
+    for c in ex.cfgs:
+        if not c.get("derive") or c["jac"] == 65535 or c.get("cost") is not None or \
+                c.get("substep") or not (c["clean"] and c["err"] <= max(ex.tols)):
+            continue
+        b = base.get(c["group"])
+        if b is None:  # the start-only run was outside every bound: count this one
+            run_window(ex, c)
+            continue
+        cycles = math.ceil(b["run_steps"] / c["jac"])
+        c["window"] = c["period"] = 0
+        c["rhs_window"] = b["rhs_window"]
+        c["cost"] = c["cost_run"] = (b["run_steps"] * b["per_step"] + cycles * b["refresh"]) \
+            / ex.t_end
 
 
 def run_full(ex, c):
@@ -496,7 +599,7 @@ def write_csv(ex):
     path = "build/bench/speedup-%s.csv" % ex.key
     series = {}
     for c in ex.cfgs:
-        if c["clean"] and c["err"] < 1:
+        if c["clean"] and c["err"] < 1 and c["cost"]:
             series.setdefault(c["series"], []).append((c["cost"], max(c["err"], 1e-14)))
     with open(path, "w") as f:
         f.write("series,x,y\n")
@@ -530,8 +633,9 @@ def results_md(ex, ref_note, splits):
                "gives the speedup" % (WINDOW, FINALIST, ex.t_end))
     o = ["#### %s\n" % ex.key,
          "Error: %s. Reference: %s. Cost: host instructions of rt_tick + rt_record per "
-         "simulated second (callgrind), %s. Every set at `accuracy (%s)`.\n" % (
-             ex.what, ref_note, how, ACCURACY),
+         "simulated second (callgrind), %s. Every set at `accuracy (%s)`.%s\n" % (
+             ex.what, ref_note, how, ACCURACY, "\n\n" + ex.sweep_note if ex.sweep_note
+             else ""),
          "| criterion | bound | variant | cheapest configuration | error [m] "
          "| insn/s window | insn/s whole run |",
          "|---|---|---|---|---:|---:|---:|"]
@@ -558,10 +662,14 @@ def results_md(ex, ref_note, splits):
              "data; status: ok, errest = a step's estimate above its set's accuracy (doubtful,"
              " no fault), **fault** (its status) = a failed run):\n" % (" (here the whole run)"
                                                           if ex.whole else ""))
+    o.append("Configurations run: %d; outside every bound (error above %g m or a fault), "
+             "not counted and not listed: %d; smaller steps pruned: %d.\n" % (
+                 len(ex.cfgs), max(ex.tols), ex.outside, ex.pruned))
     o.append("| variant | configuration | error [m] | status | insn/s | window [s] "
              "| rhs/s window | rhs/s run |")
     o.append("|---|---|---:|---|---:|---:|---:|---:|")
-    for c in sorted(ex.cfgs, key=lambda c: (c["variant"] != "single", c["cost"])):
+    for c in sorted([c for c in ex.cfgs if c["cost"]],
+                    key=lambda c: (c["variant"] != "single", c["cost"])):
         o.append("| %s | %s | %s | %s | %s | %g | %.4g | %s |" % (
             c["variant"], c["desc"], err_text(c["err"]), status_text(c), fmt(c["cost"]),
             c["window"], c["rhs_window"], "%.4g" % c["rhs_run"] if c["rhs_run"] else "-"))
@@ -641,9 +749,27 @@ def run_example(ex, pool, log):
     if own > ex.tols[-1] / 100:
         log("%s: WARNING the reference's own error %.1e is above 1/100 of %g m" % (
             ex.key, own, ex.tols[-1]))
-    list(pool.map(lambda c: run_cfg(ex, c, ref), ex.cfgs))
-    log("%s: %d configurations swept (%.0f s)" % (ex.key, len(ex.cfgs), time.time() - t0))
-    fin = [c for c in finalists(ex) if not ex.whole]
+    rungs = {id(c) for lad in ex.ladders.values() for c in lad[1:]}
+    list(pool.map(lambda c: run_cfg(ex, c, ref), [c for c in ex.cfgs if id(c) not in rungs]))
+    # the ladders: the next smaller step only where this one misses the tightest bound
+    pruned = []
+    for r in range(1, max([len(v) for v in ex.ladders.values()] or [0])):
+        todo = []
+        for lad in ex.ladders.values():
+            if r >= len(lad) or lad[r - 1] in pruned:
+                continue
+            if lad[r - 1]["clean"] and lad[r - 1]["err"] <= min(ex.tols):
+                pruned += lad[r:]
+            else:
+                todo.append(lad[r])
+        list(pool.map(lambda c: run_cfg(ex, c, ref), todo))
+    ex.cfgs = [c for c in ex.cfgs if c not in pruned]
+    derive_costs(ex)
+    ex.pruned = len(pruned)
+    ex.outside = len([c for c in ex.cfgs if c.get("cost") is None])
+    log("%s: %d configurations run, %d of them outside every bound, %d smaller steps "
+        "pruned (%.0f s)" % (ex.key, len(ex.cfgs), ex.outside, ex.pruned, time.time() - t0))
+    fin = [c for c in finalists(ex) if not ex.whole and c.get("cost_run") is None]
     list(pool.map(lambda c: run_full(ex, c), fin))
     if not ex.whole:
         log("%s: %d finalists counted over the whole run (%.0f s)" % (ex.key, len(fin),
