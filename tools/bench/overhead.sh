@@ -48,12 +48,12 @@ awk -v r=$r -v d=$d -v t=$t -v T=$T 'BEGIN {
     printf "| pendulum10_actuated_single | ros2 | %d | %d (Thomas monolith) | **%.2f** | - | - | %d | %.2f |\n", r, t, r / t, d, r / d >> T }'
 r=$(count overhead_bench modrt bs3+ros2 modrt_ticks)
 d=$(count overhead_bench mono bs3+ros2 amr_steps)
-n=$(count overhead_bench mono-noest bs3+ros2 amr_steps)
-t=$(count overhead_bench thomas bs3+ros2 amr_steps)
+t=$(count overhead_bench tight bs3+ros2 amr_steps)
+n=$(count overhead_bench tight-noest bs3+ros2 amr_steps)
 awk -v r=$r -v d=$d -v n=$n -v t=$t -v T=$T 'BEGIN {
-    printf "overhead pendulum10_actuated bs3+ros2: %.2f against the Thomas monolith; dense monolith: %.2f (%.2f without its estimates)\n", r / t, r / d, r / n
-    printf "  instructions per simulated s: modrt %d, Thomas monolith %d, dense monolith %d (without estimates %d)\n", r, t, d, n
-    printf "| pendulum10_actuated (multirate) | bs3+ros2 | %d | %d (Thomas monolith) | **%.2f** | - | - | %d | %.2f |\n", r, t, r / t, d, r / d >> T }'
+    printf "overhead pendulum10_actuated bs3+ros2: %.2f against the tight program (%.2f without the estimates); old yardstick, the dense monolith: %.2f\n", r / t, r / n, r / d
+    printf "  instructions per simulated s: modrt %d, tight %d, tight without estimates %d, dense monolith %d\n", r, t, n, d
+    printf "| pendulum10_actuated (multirate) | bs3 chain every 4 ms in the background, ros2 servo | %d | %d | **%.2f** | %d | **%.2f** | %d | %.2f |\n", r, t, r / t, n, r / n, d, r / d >> T }'
 # where the instructions go (dopri5, inclusive costs): modrt's parts against the tight
 # program's
 prof() { # binary side function -> callgrind file

@@ -8,7 +8,8 @@
  * engineer writes it for this one scene:
  *   - a chain makes A tridiagonal: it is factored by the Thomas algorithm (LDL^T) in the
  *     same sweep that forms link k's direction, A's row k and eliminates it; the backward
- *     sweep gives lam_k and body k's acceleration together (no W, no A stored);
+ *     sweep gives lam_k and body k's acceleration together (no W, no A stored; the
+ *     kernels are tight_chain.h's);
  *   - the unit mass and unit length are folded in, gravity acts on z only;
  *   - each method's stage sums are written out over the nonzero coefficients only, the
  *     positions' and velocities' sums in one loop; the positions' stage derivatives are
@@ -18,133 +19,25 @@
  * Schur complement's solve (tested to 1e-12 m: overhead_bench check). With estimate = 1
  * the step also computes modrt's embedded error estimate (one evaluation more) and the
  * projection's largest residual, as modrt's step does. */
-#include <math.h>
-
 #include "pendulum_tight.h"
+
+#define TC_NB TIGHT_NB
+#include "tight_chain.h"
 
 #define NB TIGHT_NB
 #define N3 (3 * NB)
-#define AI __attribute__((always_inline)) static inline
-static const double GZ = -9.81; /* gravity along z [m/s^2] */
+#define AI TC_AI
 
-/* ------------------------------------------------------------------ right-hand side */
-
-/* accelerations a at positions q, velocities v: A lam = W a_free + gam, a = g - W^T lam */
+/* accelerations a at positions q, velocities v (tight_chain.h) */
 static void accel(const double *restrict q, const double *restrict v, double *restrict a)
 {
-    double e[NB][3], dia[NB], low[NB], b[NB];
-    double px = 0, py = 0, pz = 0, ux0 = 0, uy0 = 0, uz0 = 0; /* the anchor */
-    for (int k = 0; k < NB; k++) {
-        const double *r = q + 3 * k, *u = v + 3 * k;
-        double dx = r[0] - px, dy = r[1] - py, dz = r[2] - pz;
-        double wx = u[0] - ux0, wy = u[1] - uy0, wz = u[2] - uz0;
-        px = r[0], py = r[1], pz = r[2], ux0 = u[0], uy0 = u[1], uz0 = u[2];
-        double len = sqrt(dx * dx + dy * dy + dz * dz);
-        double ex = dx / len, ey = dy / len, ez = dz / len;
-        double ed = ex * wx + ey * wy + ez * wz;
-        double gam = (wx * wx + wy * wy + wz * wz - ed * ed) / len;
-        double ee = ex * ex + ey * ey + ez * ez;
-        e[k][0] = ex, e[k][1] = ey, e[k][2] = ez;
-        if (k == 0) {
-            dia[0] = ee;
-            b[0] = gam + ez * GZ; /* only the first link sees gravity relative to its base */
-        } else {
-            double off = -(ex * e[k - 1][0] + ey * e[k - 1][1] + ez * e[k - 1][2]);
-            low[k] = off / dia[k - 1];
-            dia[k] = ee * 2 - low[k] * off;
-            b[k] = gam - low[k] * b[k - 1];
-        }
-    }
-    double ln = b[NB - 1] / dia[NB - 1];
-    double *ak = a + 3 * (NB - 1);
-    ak[0] = -(e[NB - 1][0] * ln), ak[1] = -(e[NB - 1][1] * ln), ak[2] = GZ - e[NB - 1][2] * ln;
-    for (int k = NB - 2; k >= 0; k--) {
-        double l = b[k] / dia[k] - low[k + 1] * ln;
-        ak = a + 3 * k;
-        ak[0] = -(e[k][0] * l - e[k + 1][0] * ln);
-        ak[1] = -(e[k][1] * l - e[k + 1][1] * ln);
-        ak[2] = GZ - (e[k][2] * l - e[k + 1][2] * ln);
-        ln = l;
-    }
+    tc_accel(q, v, a, 3, 0, 0, 0);
 }
 
-/* ------------------------------------------------------------------ projection (eq. 10) */
-
-/* the backward sweep of the Thomas solve, applying dz = -W^T lam to x as it goes */
-AI void back_apply(double e[NB][3], const double *dia, const double *low, const double *b,
-                   double *x)
-{
-    double ln = b[NB - 1] / dia[NB - 1];
-    double *xk = x + 3 * (NB - 1);
-    xk[0] -= e[NB - 1][0] * ln, xk[1] -= e[NB - 1][1] * ln, xk[2] -= e[NB - 1][2] * ln;
-    for (int k = NB - 2; k >= 0; k--) {
-        double l = b[k] / dia[k] - low[k + 1] * ln;
-        xk = x + 3 * k;
-        xk[0] -= e[k][0] * l - e[k + 1][0] * ln;
-        xk[1] -= e[k][1] * l - e[k + 1][1] * ln;
-        xk[2] -= e[k][2] * l - e[k + 1][2] * ln;
-        ln = l;
-    }
-}
-
-/* two position iterations with W and A frozen at the predicted q, one velocity solve at
-   the projected q; returns the largest |g| there */
+/* the projection of eq. 10; the largest |g| after it */
 static double project(double *restrict q, double *restrict v)
 {
-    double e[NB][3], dia[NB], low[NB], b[NB];
-    double px = 0, py = 0, pz = 0;
-    for (int k = 0; k < NB; k++) { /* geometry, factors, forward sweep of g */
-        const double *r = q + 3 * k;
-        double dx = r[0] - px, dy = r[1] - py, dz = r[2] - pz;
-        px = r[0], py = r[1], pz = r[2];
-        double len = sqrt(dx * dx + dy * dy + dz * dz);
-        double ex = dx / len, ey = dy / len, ez = dz / len;
-        double ee = ex * ex + ey * ey + ez * ez;
-        e[k][0] = ex, e[k][1] = ey, e[k][2] = ez;
-        if (k == 0)
-            dia[0] = ee, b[0] = len - 1;
-        else {
-            double off = -(ex * e[k - 1][0] + ey * e[k - 1][1] + ez * e[k - 1][2]);
-            low[k] = off / dia[k - 1];
-            dia[k] = ee * 2 - low[k] * off;
-            b[k] = (len - 1) - low[k] * b[k - 1];
-        }
-    }
-    back_apply(e, dia, low, b, q);
-    px = py = pz = 0;
-    for (int k = 0; k < NB; k++) { /* g at the corrected q, the same factors */
-        const double *r = q + 3 * k;
-        double dx = r[0] - px, dy = r[1] - py, dz = r[2] - pz;
-        px = r[0], py = r[1], pz = r[2];
-        double g = sqrt(dx * dx + dy * dy + dz * dz) - 1;
-        b[k] = k ? g - low[k] * b[k - 1] : g;
-    }
-    back_apply(e, dia, low, b, q);
-    double res = 0, ux0 = 0, uy0 = 0, uz0 = 0;
-    px = py = pz = 0;
-    for (int k = 0; k < NB; k++) { /* velocities: W, A at the projected q; g' */
-        const double *r = q + 3 * k, *u = v + 3 * k;
-        double dx = r[0] - px, dy = r[1] - py, dz = r[2] - pz;
-        double wx = u[0] - ux0, wy = u[1] - uy0, wz = u[2] - uz0;
-        px = r[0], py = r[1], pz = r[2], ux0 = u[0], uy0 = u[1], uz0 = u[2];
-        double len = sqrt(dx * dx + dy * dy + dz * dz);
-        double g = fabs(len - 1);
-        res = g <= res ? res : g; /* NaN counts as worst */
-        double ex = dx / len, ey = dy / len, ez = dz / len;
-        double ee = ex * ex + ey * ey + ez * ez;
-        double ed = ex * wx + ey * wy + ez * wz;
-        e[k][0] = ex, e[k][1] = ey, e[k][2] = ez;
-        if (k == 0)
-            dia[0] = ee, b[0] = ed;
-        else {
-            double off = -(ex * e[k - 1][0] + ey * e[k - 1][1] + ez * e[k - 1][2]);
-            low[k] = off / dia[k - 1];
-            dia[k] = ee * 2 - low[k] * off;
-            b[k] = ed - low[k] * b[k - 1];
-        }
-    }
-    back_apply(e, dia, low, b, v);
-    return res;
+    return tc_project(q, v, 3);
 }
 
 /* ------------------------------------------------------------------ Runge-Kutta */
