@@ -84,8 +84,8 @@ echo "image: run it with: $run $dir/$name.elf"
 [ "$measure" = 1 ] || exit 0
 
 # will it meet its tick? (tools/foot_lib.sh measures as make footprint does)
-M=build/host/modrt
-so=$(make -s print-INSN_COUNT_SO)
+# shellcheck disable=SC2034 # M and so are read by tools/foot_lib.sh
+M=build/host/modrt so=$(make -s print-INSN_COUNT_SO)
 . tools/foot_lib.sh
 info=$($M info "$scene") || fail "modrt info $scene failed (see above)"
 dt=$(echo "$info" | sed -n 's/^base tick: \([^ ]*\) s$/\1/p')
@@ -93,6 +93,7 @@ t_end=$(echo "$info" | sed -n 's/^end time: \([^ ]*\) s$/\1/p')
 [ -n "$ticks" ] || ticks=$(awk -v e="$t_end" -v d="$dt" -v m=$IMAGE_TICKS_MAX 'BEGIN {
     n = int(e / d + 0.5); print n < m ? n : m }')
 [ -n "$clock" ] || clock=$(mhz "$target")
+# shellcheck disable=SC2034 # read by foot_measure
 FOOT_TICKS=$ticks
 foot_measure "$target" "${sym#mdl_scene_}" "$real" "$scene" ||
     fail "the measuring image of $scene on $target failed (see above)"
