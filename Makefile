@@ -423,7 +423,7 @@ $(O)/tight_bench: $(call obj,tools/bench/tight_bench.c tools/bench/pendulum_tigh
 # modrt against the hand-written programs (docs/overhead.md): the trajectory checks (fail
 # the target when they differ), then instruction counts, ratios and the scaling with the
 # model's size, spliced into a copy of docs/overhead.md in build/bench/
-SCALE_STEPS ?= 20 # steps each scaling run counts
+SCALE_STEPS ?= 10 # steps each scaling run counts
 overhead: $(O)/overhead_bench $(O)/tight_bench
 	@mkdir -p build/bench
 	$(O)/overhead_bench check

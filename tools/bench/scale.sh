@@ -12,9 +12,11 @@
 # tight_steps; start-up outside). Prints a Markdown table and the lines
 #   scaling <shape> <side>: cost ~ N^<p>
 # Usage: sh tools/bench/scale.sh [STEPS [N...]]
+#        SCALE_DATA=FILE sh tools/bench/scale.sh   the table of measured lines
+#                                                  "shape N modrt tight" in FILE
 set -eu
 STEPS=${1:-20}
-shift 2>/dev/null || true
+if [ $# -gt 0 ]; then shift; fi
 NS=${*:-10 30 100 300 1000}
 B=build/scale
 mkdir -p $B
@@ -26,20 +28,23 @@ BIG="-DRT_MAX_BLOCKS=1024 -DRT_MAX_X=6144 -DRT_MAX_Y=6144 -DRT_MAX_P=4096 -DRT_M
  -DRT_MAX_MBS_ROWS=1024 -DRT_MAX_MBS_TOUCH=2048 -DRT_MAX_MBS_M=12288 -DRT_MAX_MBS_JROWS=1024"
 count() { # binary side function -> instructions per step
     f=$(mktemp)
-    valgrind --tool=callgrind --callgrind-out-file=$f --toggle-collect="$3" "$1" "$2" "$STEPS" \
-        > /dev/null 2>&1 || { echo "scale.sh: $1 $2 failed" >&2; rm -f $f; exit 1; }
-    n=$(sed -n 's/^summary: //p' $f)
-    rm -f $f
+    valgrind --tool=callgrind --callgrind-out-file="$f" --toggle-collect="$3" "$1" "$2" \
+        "$STEPS" > /dev/null 2>&1 || { echo "scale.sh: $1 $2 failed" >&2; rm -f "$f"; exit 1; }
+    n=$(sed -n 's/^summary: //p' "$f")
+    rm -f "$f"
     echo $((n / STEPS))
 }
 T=$(mktemp)
 trap 'rm -f $T' EXIT
-# the runtime and the point model, once, with BIG
+[ -z "${SCALE_DATA:-}" ] || { cp "$SCALE_DATA" "$T"; NS=; }
+# the runtime and the point model, once, with BIG (again when a source or this script is
+# newer)
 mkdir -p $B/obj
-for f in $(ls rt/*.c | grep -v registry.c) models/mbs_point.c; do
+[ -z "$NS" ] || for f in rt/*.c models/mbs_point.c; do
+    [ "$f" = rt/registry.c ] && continue
     o=$B/obj/$(echo $f | tr / _ | sed 's/\.c$/.o/')
     # shellcheck disable=SC2086 # the flag lists are meant to split
-    [ $o -nt $f ] && [ $o -nt $0 ] || gcc $CF $BIG -c $f -o $o
+    [ -n "$(find "$o" -newer "$f" -newer "$0" 2>/dev/null)" ] || gcc $CF $BIG -c $f -o "$o"
 done
 for shape in chain tree; do
     tree=0
