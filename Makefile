@@ -101,11 +101,14 @@ help:
 	@echo "make study        what accuracy costs: docs/study.md and docs/study/*.svg, the four"
 	@echo "                  paper examples on the host, Cortex-M4F and M7 (STUDY=quick: a subset)"
 	@echo "make image TARGET=<t> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
-	@echo "           [REAL=float] [IMAGE_CFLAGS=...]"
+	@echo "           [REAL=float] [IMAGE_CFLAGS=...] [CLOCK_MHZ=...] [TICKS=...] [MEASURE=0]"
 	@echo "                  a firmware image of one scene (docs/porting.md) into"
 	@echo "                  build/image/<t>/ (REAL=float: binary32, into build/image/<t>-float/);"
 	@echo "                  IMAGE_CFLAGS are added to the compile, e.g. -DCM_EXIT_SEMIHOST=1;"
-	@echo "                  prints the QEMU command that runs it"
+	@echo "                  prints the QEMU command that runs it, then instructions per tick"
+	@echo "                  (median/max over TICKS ticks under QEMU), stack, and whether the"
+	@echo "                  slowest tick fits the base tick at CLOCK_MHZ (default: the"
+	@echo "                  target's clock of make footprint); MEASURE=0 builds only"
 	@echo "make hard         the hard-case suite at full length, table into build/hard-table.md"
 	@echo "make test-<suite> one suite of make test: $(patsubst test-%,%,$(filter test-%,$(TEST_SUITES)))"
 	@echo "                  (also check-freestanding, cross-test-<t>)"
@@ -389,8 +392,9 @@ $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 	$(INSN_COUNT_CC) $(INSN_COUNT_CFLAGS) -o $@ $<
 # ---- image: one scene file on one target (docs/porting.md) ----
 # make image TARGET=m4f SCENE=path/to/my.scn [CONSOLE=semihost|uart|itm|none] [IMAGE_CFLAGS=...]
-image: deps build/host/modrt $(SCENEC)
-	@JOBS=$(JOBS) sh tools/image.sh "$(TARGET)" "$(SCENE)" "$(CONSOLE)" "$(IMAGE_CFLAGS)"
+image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
+	@JOBS=$(JOBS) sh tools/image.sh "$(TARGET)" "$(SCENE)" "$(CONSOLE)" "$(IMAGE_CFLAGS)" \
+	    "$(CLOCK_MHZ)" "$(TICKS)" "$(MEASURE)"
 TEST_SUITES += test-image
 # the CMSIS port's hand-built images beside `make image`'s (their build dirs are apart)
 test-image: deps build/host/modrt $(SCENEC)
@@ -412,12 +416,22 @@ $(O)/overhead_bench: $(call obj,tools/dev/bench/overhead_bench.c tools/dev/bench
                     tools/dev/bench/actuated_mono.c tools/dev/bench/actuated_mr_mono.c) \
                     $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
-# modrt against the hand-written monolith (docs/overhead.md): the trajectory check (fails
-# the target when they differ), then instruction counts and ratios
-overhead: $(O)/overhead_bench
+$(O)/tight_bench: $(call obj,tools/dev/bench/tight_bench.c tools/dev/bench/pendulum_tight.c) \
+                  $(RT_OBJS) $(MODEL_OBJS)
+	$(Q)$(CC) $(LDSAN) $^ -lm -o $@
+# modrt against the hand-written programs (docs/overhead.md): the trajectory checks (fail
+# the target when they differ), then instruction counts, ratios and the scaling with the
+# model's size, spliced into a copy of docs/overhead.md in build/bench/
+SCALE_STEPS ?= 10 # steps each scaling run counts
+overhead: $(O)/overhead_bench $(O)/tight_bench
 	@mkdir -p build/bench
 	$(O)/overhead_bench check
-	@sh tools/dev/bench/overhead.sh $(O)/overhead_bench | tee build/bench/overhead.txt
+	$(O)/tight_bench check
+	@cp docs/overhead.md build/bench/
+	@sh tools/dev/bench/overhead.sh $(O) 1 build/bench/overhead.md | tee build/bench/overhead.txt
+	sh tools/dev/bench/scale.sh $(SCALE_STEPS) > build/bench/scale.md
+	@sh tools/dev/bench/splice.sh scale build/bench/overhead.md build/bench/scale.md
+	@cat build/bench/scale.md
 .PHONY: overhead
 # the multirate speedup at equal accuracy (issue 14, goal 4; docs/multirate.md, "The
 # benchmark"): single-rate and multirate sweeps of pendulum10_actuated and lane_change,
@@ -437,7 +451,7 @@ speedup: $(O)/modrt $(O)/svgplot
 .PHONY: speedup
 # benchmarks write into build/bench/ only (documents are spliced into copies there);
 # `make docs` runs them and copies the figures over the committed ones in docs/
-BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
+BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg overhead.md
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
 bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
 	@mkdir -p build/bench

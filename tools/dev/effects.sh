@@ -3,7 +3,7 @@
 # one variant per omitted effect (tests/vehicles/variants/lcv_*.scn: linear tires instead
 # of the Magic Formula, planar single-track cars instead of the suspended chassis, no
 # drag, ideal steering instead of V2's steering chain, no second vehicle) and the minimal
-# lane_change_planar. Each is built as a Cortex-M7 footprint image (tools/dev/foot_lib.sh:
+# lane_change_planar. Each is built as a Cortex-M7 footprint image (tools/foot_lib.sh:
 # only its scene and the models it names) and run over the whole scene under QEMU with the
 # instruction-count plugin, and run on the host under callgrind (instructions, so
 # deterministic and independent of the machine's load). Prints the "Effects of the lane
@@ -15,7 +15,7 @@ t=${1:-m7}
 M=build/host/modrt
 so=$(make -s print-INSN_COUNT_SO)
 V=tests/vehicles/variants
-. tools/dev/foot_lib.sh
+. tools/foot_lib.sh
 
 commit=$(git describe --always --dirty 2>/dev/null || echo unknown)
 cat <<HDR

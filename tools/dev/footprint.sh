@@ -51,7 +51,7 @@ and the table after it the background context.
 |---|---|---|---:|---:|---:|---:|---:|---:|:-:|---|---:|:-:|
 HDR
 
-. tools/dev/foot_lib.sh
+. tools/foot_lib.sh
 
 BG_ROWS=
 # one row: scene, target, real (double|float), host hash, base tick [s]

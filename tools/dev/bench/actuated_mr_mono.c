@@ -35,6 +35,7 @@
 #include <string.h>
 
 #include "actuated_model.h"
+#include "tight_chain.h"
 
 /* the servo set's Jacobian refresh and accuracy (ROS2's gamma: actuated_model.h) */
 static const int JAC_EVERY = 64;
@@ -58,7 +59,17 @@ static double torque(const amr *m, double t)
 /* x' of the chain with the motor's force from the torque the chain reads at t */
 static void rhs(const amr *m, double t, const double *x, double *xd)
 {
-    motor_chain_rhs(x, torque(m, t), m->solver, xd);
+    if (m->solver != MONO_TIGHT) {
+        motor_chain_rhs(x, torque(m, t), m->solver, xd);
+        return;
+    }
+    /* the tight program: the motor's force on B1 as motor_chain_rhs forms it, then the
+       fused Thomas sweeps of tight_chain.h */
+    double tau = torque(m, t), bx = x[0], bz = x[2], rr = bx * bx + bz * bz;
+    double fm = rr > 0 ? tau / rr : 0;
+    for (int k = 0; k < NB; k++)
+        xd[6 * k] = x[6 * k + 3], xd[6 * k + 1] = x[6 * k + 4], xd[6 * k + 2] = x[6 * k + 5];
+    tc_accel(x, x + 3, xd + 3, 6, 1, -fm * bz / MASS, (MASS * G_Z + fm * bx) / MASS);
 }
 
 /* one bs3 step of H from t (three stages; the fourth only for the estimate), then the
@@ -87,7 +98,10 @@ static void chain_step(amr *m, double t, double H)
         }
         m->err_chain = err > m->err_chain ? err : m->err_chain;
     }
-    project(x, m->solver);
+    if (m->solver == MONO_TIGHT)
+        tc_project(x, x + 3, 6);
+    else
+        project(x, m->solver);
 }
 
 /* the distance of a new history value y from the line through the last two points */

@@ -6,7 +6,9 @@
 #define MONO_NB 10 /* bodies and constraints of pendulum10 */
 
 enum { MONO_BS3, MONO_RK4, MONO_DOPRI5 };  /* methods (tableaus of rt/integ_erk.c) */
-enum { MONO_DENSE, MONO_THOMAS };          /* solvers of the Schur complement */
+enum { MONO_DENSE, MONO_THOMAS, MONO_TIGHT }; /* solvers of the Schur complement (MONO_TIGHT:
+                                                the fused kernels of tight_chain.h, in
+                                                actuated_mr_mono.c) */
 
 typedef struct mono {
     int method, solver;

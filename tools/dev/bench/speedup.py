@@ -34,6 +34,8 @@ with --doc FILE, the Markdown between "<!-- bench:begin -->" and "<!-- bench:end
 import argparse
 import concurrent.futures as cf
 import csv
+import hashlib
+import json
 import math
 import os
 import re
@@ -47,7 +49,7 @@ import scene as S  # noqa: E402
 
 OUT = "build/bench/speedup"
 MODRT = "build/host/modrt"
-WINDOW = 0.512     # shortest cost window [s] (then whole periods of the variant)
+WINDOW = 0.256     # shortest cost window [s] (then whole periods of the variant)
 FINALIST = 1.25    # finalists: window count within this factor of the variant's cheapest
 ACCURACY = "1e-2"  # every set's `accuracy` (the shipped implicit sets'): errest's threshold
 BEGIN, END = "<!-- bench:begin -->", "<!-- bench:end -->"
@@ -74,10 +76,18 @@ class Example:
         self.what = what
         self.t_end = end_time(self.sc)
         self.cfgs = []
+        self.ladders = {}  # ladder -> its configurations, largest step first
+        self.pruned = 0    # configurations a larger step of their ladder made needless
+        self.outside = 0   # configurations run but outside every bound (not counted)
+        self.sweep_note = ""
+        self.rhs_insn = None  # instructions of one right-hand side (rhs_cost)
 
-    def add(self, variant, desc, text, series, shipped=False):
-        self.cfgs.append({"variant": variant, "desc": desc, "text": text, "series": series,
-                          "key": "%s%03d" % (variant[0], len(self.cfgs)), "shipped": shipped})
+    def add(self, variant, desc, text, series, shipped=False, ladder=None):
+        c = {"variant": variant, "desc": desc, "text": text, "series": series,
+             "key": "%s%03d" % (variant[0], len(self.cfgs)), "shipped": shipped}
+        self.cfgs.append(c)
+        if ladder is not None:
+            self.ladders.setdefault(ladder, []).append(c)
 
 
 def end_time(sc):
@@ -105,6 +115,72 @@ def single_sweep(ex, explicit, implicit, jacs, newton=None):
                 ex.add("single", "%s %s, Jacobian every %d%s" % (
                     m, h_ms(h), j, ", newton %d" % newton if newton else ""),
                     S.variant(ex.sc, tick=h, single=(m, cl)), "single " + m)
+
+
+# the single-rate competitors swept over their whole range (issue 32, goal 3): every method,
+# every step of a ladder halving from the scene's tick, every Jacobian interval from 1 to
+# never (the start only), every Newton count; see single_walk
+EXPLICIT_ALL = ("euler", "heun", "bs3", "rk4", "dopri5")
+NEWTON_METHODS = ("trap", "sdirk2", "sdirk3", "beuler")
+JACS = tuple(2 ** i for i in range(13)) + (65535,)  # 1 .. 4096, and 65535: the start only
+NEWTONS = (1, 2, 3, 4)
+
+
+def jac_text(j):
+    return "Jacobian at the start only" if j == 65535 else "Jacobian every %d" % j
+
+
+def single_walk(ex, steps_explicit, steps_implicit):
+    """every single-rate configuration as a ladder of steps, largest first: a method with
+    its Jacobian interval and Newton count (run_example walks each ladder down only while
+    its step misses the tightest bound: at a fixed step the work per step is the same, so
+    a smaller step costs more per simulated second)"""
+    for m in EXPLICIT_ALL:
+        for h in steps_explicit:
+            ex.add("single", "%s %s" % (m, h_ms(h)),
+                   S.variant(ex.sc, tick=h, single=(m, {"accuracy": ACCURACY})),
+                   "single " + m, ladder=(m,))
+    for m in ("ros2",) + NEWTON_METHODS:
+        for j in JACS:
+            for nw in ((None,) if m == "ros2" else NEWTONS):
+                for h in steps_implicit:
+                    cl = {"jacobian": str(j), "accuracy": ACCURACY}
+                    if nw:
+                        cl["newton"] = str(nw)
+                    ex.add("single", "%s %s, %s%s" % (
+                        m, h_ms(h), jac_text(j), ", newton %d" % nw if nw else ""),
+                        S.variant(ex.sc, tick=h, single=(m, cl)), "single " + m,
+                        ladder=(m, j, nw))
+                    c = ex.cfgs[-1]
+                    c["group"], c["jac"] = (m, h, nw), j
+                    # a Jacobian cycle as long as the window: its cost follows from the
+                    # start-only run's (derive)
+                    c["derive"] = j * h >= WINDOW - 1e-12
+    ex.sweep_note = (
+        "Single-rate competitors: every method of the runtime (%s explicit at %s; ROS2 and "
+        "%s at %s), every Jacobian interval 1, 2, 4, ... 4096 steps and the start only, "
+        "Newton counts 1-4 (at most that many iterations per stage; ROS2 has none). The "
+        "steps halve from the scene's tick, which bounds them: the controller samples "
+        "every tick. Each method, Jacobian interval and Newton count is a ladder walked "
+        "from its largest step down only while the step misses the tightest bound with no "
+        "fault: at a fixed step an explicit method does the same work per step, so a "
+        "smaller step costs more per simulated second, and an implicit one refreshes its "
+        "Jacobian as many times more often; a configuration outside every bound is run "
+        "(error, status) but not counted. " % (
+            ", ".join(EXPLICIT_ALL), ", ".join(h_ms(h) for h in steps_explicit),
+            ", ".join(NEWTON_METHODS), ", ".join(h_ms(h) for h in steps_implicit)) +
+        "Where the Jacobian cycle is at least the %g s window, the cost comes from the run "
+        "with the Jacobian at the start only at the same step and Newton count, counted "
+        "over two windows from t = 0 (%g and %g s, one refresh each): their difference is "
+        "the work per step, the rest the refresh's, and the run's cost is the steps' plus "
+        "one refresh per cycle (window 0 in the table; a run with a substep, which "
+        "refreshes out of turn, is counted over the whole run instead). A configuration "
+        "is left out as dominated when a run of %g s shows that its right-hand sides "
+        "alone, at %g times the instructions of one (measured: rti_rhs in a short dopri5 "
+        "run), cost more per simulated second than the cheapest configuration counted so "
+        "far within the tightest bound with status ok: every method evaluates the whole "
+        "model's right-hand side, so no method is cheaper than its evaluations." % (
+            WINDOW, WINDOW / 2, WINDOW, WINDOW, RHS_MARGIN))
 
 
 def no_background(text):
@@ -201,23 +277,13 @@ def plan_actuated(quick):
         single_sweep(ex, [("dopri5", [0.5 * ms])], [("ros2", [1 * ms])], [1024])
         multirate_sweep(ex, ["bs3"], [4, 16], ["ros2"], 64)
         return ex
-    single_sweep(ex, [("dopri5", [0.5 * ms, 0.25 * ms]), ("rk4", [0.25 * ms]),
-                      ("heun", [0.25 * ms])],
-                 [(m, [1 * ms, 0.5 * ms]) for m in ("ros2", "trap", "sdirk2", "sdirk3",
-                                                    "beuler")], [1, 32, 1024])
-    multirate_sweep(ex, ["bs3", "rk4", "dopri5"], [4, 8, 16, 32], ["ros2", "trap"], 64)
-    # fewer Newton iterations (the default is 4 per stage): 2 saves work at the same error
-    # in the trapezoidal rule (1 does not converge and falls back to full Newton)
-    single_sweep(ex, [], [(m, [1 * ms]) for m in ("trap", "sdirk2", "beuler")], [32, 1024],
-                 newton=2)
-    multirate_sweep(ex, ["bs3", "rk4", "dopri5"], [8, 16], ["trap"], 64, held=False,
-                    bgs=(False,), newton=2)
-    # the servo set is linear (controller sampled, servo2 linear): its transition matrix
-    # steps it exactly under the held command (docs/solvers.md); the chain also by Heun's
-    # method, which that leaves accurate enough at 1e-3. No single-rate competitor can
+    single_walk(ex, [1 * ms / 2 ** i for i in range(6)], [1 * ms / 2 ** i for i in range(3)])
+    # the multirate side around its cheapest configurations (a narrower search there can
+    # only make the speedup smaller): the servo set is linear (controller sampled, servo2
+    # linear), so its transition matrix steps it exactly under the held command
+    # (docs/solvers.md); the chain by Heun's method or bs3. No single-rate competitor can
     # take it: the chain is not linear
-    multirate_sweep(ex, ["heun", "bs3", "rk4", "dopri5"], [4, 8, 16, 32], ["transition"], 64,
-                    held=False)
+    multirate_sweep(ex, ["heun", "bs3"], [8, 16, 32], ["transition"], 64, held=False)
     # the controller (sampled every 1 ms) in a set of its own: the servo's transition step
     # may then take 2 or 4 ms under the held command, which the 1e-3 m bound allows
     split_sweep(ex, ["heun", "bs3"], [8, 16], "transition", [1, 2, 4], ["linear", "hermite"])
@@ -326,11 +392,77 @@ def rhs_of(s):
 
 
 def run_cfg(ex, c, ref):
+    # a configuration already swept (the same scene text, the same modrt) is read back: an
+    # interrupted sweep resumes where it stopped
+    cache = "%s/%s/%s.json" % (OUT, ex.key, hashlib.sha1(
+        (c["text"] + CACHE_SALT).encode()).hexdigest()[:16])
+    if os.path.exists(cache):
+        with open(cache) as f:
+            c.update(json.load(f))
+    else:
+        c = run_cfg1(ex, c, ref)
+        keep = {k: c[k] for k in RESULTS if k in c}
+        with open(cache + ".tmp", "w") as f:
+            json.dump(keep, f)
+        os.replace(cache + ".tmp", cache)
+    # progress, one line per configuration (stderr: a long sweep can be followed)
+    print("  swept %s: %s, error %.3g m, %s, insn/s %s" % (
+        c["key"], c["desc"], c["err"], c["status"],
+        "%.4g" % c["cost"] if c.get("cost") else "-"), file=sys.stderr, flush=True)
+    return c
+
+
+# dominance: a single-rate configuration whose right-hand sides alone cost more than the
+# cheapest counted one within the tightest bound with status ok is left out after a
+# short run (instructions of one right-hand side: RHS_MARGIN times the least measured)
+RHS_MARGIN = 0.9
+
+
+def rhs_cost(ex):
+    """instructions of one evaluation of the scene's right-hand side (rti_rhs inclusive,
+    explicit dopri5 in one set at half the tick, a short run)"""
+    path = "%s/%s/rhs.scn" % (OUT, ex.key)
+    with open(path, "w") as f:
+        f.write(S.variant(ex.sc, tick=ex.sc.tick / 2, single=("dopri5", {})))
+    r = sh(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
+            "--collect-atstart=no", "--toggle-collect=rti_rhs", MODRT, "run", path,
+            "--t-end=%.17g" % (64 * ex.sc.tick)])
+    m = re.search(r"Collected : (\d+)", r.stderr)
+    return int(m.group(1)) / rhs_of(summary(r.stdout))
+
+
+def dominated(ex, c, path, tick):
+    """True if a short run shows the configuration's right-hand sides alone cost more than
+    the cheapest counted single-rate configuration within every bound, status ok"""
+    best = [d["cost"] for d in ex.cfgs if d["variant"] == "single" and d.get("cost") and
+            d["ok"] and d["err"] <= min(ex.tols) and d.get("window") is not None]
+    if c["variant"] != "single" or not best or not ex.rhs_insn:
+        return False
+    n = S._ticks(WINDOW, tick)
+    r = sh([MODRT, "run", path, "--t-end=%.17g" % (n * tick)])
+    lb = rhs_of(summary(r.stdout)) / (n * tick) * ex.rhs_insn * RHS_MARGIN
+    if lb <= min(best):
+        return False
+    c.update(status="dominated", clean=False, ok=False, substep=0, counters="", err=math.inf,
+             rhs_run=None, cost=None, cost_run=None, window=None, period=None,
+             rhs_window=None, lower_bound=lb)
+    return True
+
+
+CACHE_SALT = ""  # the modrt binary's hash and the window (main)
+RESULTS = ("path", "tick", "status", "clean", "ok", "substep", "counters", "err", "rhs_run",
+           "cost", "cost_run", "window", "period", "rhs_window", "per_step", "refresh",
+           "run_steps", "lower_bound")
+
+
+def run_cfg1(ex, c, ref):
     path = "%s/%s/%s.scn" % (OUT, ex.key, c["key"])
     with open(path, "w") as f:
         f.write(c["text"])
     sc = S.Scene(path)
     c["path"], c["tick"] = path, sc.tick
+    if dominated(ex, c, path, sc.tick):
+        return c
     rc, s, out = host_run(ex, path, sc.tick)
     c["status"] = s.get("status", "exit %d" % rc)
     c["clean"], c["ok"] = clean_of(rc, s)
@@ -341,18 +473,63 @@ def run_cfg(ex, c, ref):
     c["err"] = error_of(ref, read_csv(out, ex.signals))[0] if os.path.exists(out) and \
         rc in (0, 3) else math.inf
     c["rhs_run"] = rhs_of(s) / ex.t_end if s else None
+    if not (c["clean"] and c["err"] <= max(ex.tols)):
+        # outside every bound: no competitor, not counted
+        c["cost"] = c["cost_run"] = c["window"] = c["period"] = c["rhs_window"] = None
+        return c
+    run = S._ticks(ex.t_end, sc.tick)
+    if c.get("derive") and c["jac"] != 65535 and c["substep"] == 0:
+        return c  # its cost follows from the start-only run's (derive_costs)
+    if c.get("derive") and c["jac"] == 65535 and c["substep"] == 0:
+        n1, n2 = S._ticks(WINDOW / 2, sc.tick), S._ticks(WINDOW, sc.tick)
+        i1, _ = callgrind(path, n1, sc.tick)
+        i2, sw = callgrind(path, n2, sc.tick)
+        c["per_step"] = (i2 - i1) / (n2 - n1)
+        c["refresh"] = i1 - n1 * c["per_step"]
+        c["run_steps"] = run
+        c["rhs_window"] = rhs_of(sw) / (n2 * sc.tick)
+        c["window"] = c["period"] = 0
+        c["cost"] = c["cost_run"] = (run * c["per_step"] + c["refresh"]) / ex.t_end
+        return c
+    return run_window(ex, c)
+
+
+def run_window(ex, c):
+    """instructions over a window of whole periods of the variant from t = 0"""
+    sc = S.Scene(c["path"])
+    run = S._ticks(ex.t_end, sc.tick)
     p = period_ticks(sc)
     n = max(1, math.ceil(WINDOW / (p * sc.tick) - 1e-9)) * p
-    if ex.whole:
-        n = S._ticks(ex.t_end, sc.tick)
-    ins, sw = callgrind(path, n, sc.tick)
+    if ex.whole or n >= run:  # a period as long as the run (the Jacobian at the start)
+        n = run
+    ins, sw = callgrind(c["path"], n, sc.tick)
     c["window"] = n * sc.tick
     c["period"] = p * sc.tick
     c["cost"] = ins / c["window"]
     c["rhs_window"] = rhs_of(sw) / c["window"]
-    if ex.whole:
+    if ex.whole or n == run:
         c["cost_run"] = c["cost"]
     return c
+
+
+def derive_costs(ex):
+    """the cost of a run whose Jacobian cycle is at least the window, from the start-only
+    run at its step and Newton count: steps, plus one refresh per cycle"""
+    base = {c["group"]: c for c in ex.cfgs if c.get("derive") and c["jac"] == 65535
+            and c.get("per_step") is not None}
+    for c in ex.cfgs:
+        if not c.get("derive") or c["jac"] == 65535 or c.get("cost") is not None or \
+                c.get("substep") or not (c["clean"] and c["err"] <= max(ex.tols)):
+            continue
+        b = base.get(c["group"])
+        if b is None:  # the start-only run was outside every bound: count this one
+            run_window(ex, c)
+            continue
+        cycles = math.ceil(b["run_steps"] / c["jac"])
+        c["window"] = c["period"] = 0
+        c["rhs_window"] = b["rhs_window"]
+        c["cost"] = c["cost_run"] = (b["run_steps"] * b["per_step"] + cycles * b["refresh"]) \
+            / ex.t_end
 
 
 def run_full(ex, c):
@@ -496,7 +673,7 @@ def write_csv(ex):
     path = "build/bench/speedup-%s.csv" % ex.key
     series = {}
     for c in ex.cfgs:
-        if c["clean"] and c["err"] < 1:
+        if c["clean"] and c["err"] < 1 and c["cost"]:
             series.setdefault(c["series"], []).append((c["cost"], max(c["err"], 1e-14)))
     with open(path, "w") as f:
         f.write("series,x,y\n")
@@ -530,8 +707,9 @@ def results_md(ex, ref_note, splits):
                "gives the speedup" % (WINDOW, FINALIST, ex.t_end))
     o = ["#### %s\n" % ex.key,
          "Error: %s. Reference: %s. Cost: host instructions of rt_tick + rt_record per "
-         "simulated second (callgrind), %s. Every set at `accuracy (%s)`.\n" % (
-             ex.what, ref_note, how, ACCURACY),
+         "simulated second (callgrind), %s. Every set at `accuracy (%s)`.%s\n" % (
+             ex.what, ref_note, how, ACCURACY, "\n\n" + ex.sweep_note if ex.sweep_note
+             else ""),
          "| criterion | bound | variant | cheapest configuration | error [m] "
          "| insn/s window | insn/s whole run |",
          "|---|---|---|---|---:|---:|---:|"]
@@ -558,10 +736,16 @@ def results_md(ex, ref_note, splits):
              "data; status: ok, errest = a step's estimate above its set's accuracy (doubtful,"
              " no fault), **fault** (its status) = a failed run):\n" % (" (here the whole run)"
                                                           if ex.whole else ""))
+    o.append("Configurations run: %d; outside every bound (error above %g m or a fault), "
+             "not counted and not listed: %d; dominated by their right-hand sides alone "
+             "(below): %d; smaller steps pruned: %d.\n" % (
+                 len(ex.cfgs), max(ex.tols), ex.outside, getattr(ex, "dominated", 0),
+                 ex.pruned))
     o.append("| variant | configuration | error [m] | status | insn/s | window [s] "
              "| rhs/s window | rhs/s run |")
     o.append("|---|---|---:|---|---:|---:|---:|---:|")
-    for c in sorted(ex.cfgs, key=lambda c: (c["variant"] != "single", c["cost"])):
+    for c in sorted([c for c in ex.cfgs if c["cost"]],
+                    key=lambda c: (c["variant"] != "single", c["cost"])):
         o.append("| %s | %s | %s | %s | %s | %g | %.4g | %s |" % (
             c["variant"], c["desc"], err_text(c["err"]), status_text(c), fmt(c["cost"]),
             c["window"], c["rhs_window"], "%.4g" % c["rhs_run"] if c["rhs_run"] else "-"))
@@ -641,9 +825,30 @@ def run_example(ex, pool, log):
     if own > ex.tols[-1] / 100:
         log("%s: WARNING the reference's own error %.1e is above 1/100 of %g m" % (
             ex.key, own, ex.tols[-1]))
-    list(pool.map(lambda c: run_cfg(ex, c, ref), ex.cfgs))
-    log("%s: %d configurations swept (%.0f s)" % (ex.key, len(ex.cfgs), time.time() - t0))
-    fin = [c for c in finalists(ex) if not ex.whole]
+    ex.rhs_insn = rhs_cost(ex)
+    log("%s: one right-hand side costs %.0f instructions" % (ex.key, ex.rhs_insn))
+    rungs = {id(c) for lad in ex.ladders.values() for c in lad[1:]}
+    list(pool.map(lambda c: run_cfg(ex, c, ref), [c for c in ex.cfgs if id(c) not in rungs]))
+    # the ladders: the next smaller step only where this one misses the tightest bound
+    pruned = []
+    for r in range(1, max([len(v) for v in ex.ladders.values()] or [0])):
+        todo = []
+        for lad in ex.ladders.values():
+            if r >= len(lad) or lad[r - 1] in pruned:
+                continue
+            if lad[r - 1]["clean"] and lad[r - 1]["err"] <= min(ex.tols):
+                pruned += lad[r:]
+            else:
+                todo.append(lad[r])
+        list(pool.map(lambda c: run_cfg(ex, c, ref), todo))
+    ex.cfgs = [c for c in ex.cfgs if c not in pruned]
+    derive_costs(ex)
+    ex.pruned = len(pruned)
+    ex.dominated = len([c for c in ex.cfgs if c["status"] == "dominated"])
+    ex.outside = len([c for c in ex.cfgs if c.get("cost") is None]) - ex.dominated
+    log("%s: %d configurations run, %d of them outside every bound, %d smaller steps "
+        "pruned (%.0f s)" % (ex.key, len(ex.cfgs), ex.outside, ex.pruned, time.time() - t0))
+    fin = [c for c in finalists(ex) if not ex.whole and c.get("cost_run") is None]
     list(pool.map(lambda c: run_full(ex, c), fin))
     if not ex.whole:
         log("%s: %d finalists counted over the whole run (%.0f s)" % (ex.key, len(fin),
@@ -690,6 +895,9 @@ def main():
     ap.add_argument("--doc", help="Markdown file whose bench markers receive the results")
     a = ap.parse_args()
     MODRT = a.modrt
+    global CACHE_SALT
+    with open(MODRT, "rb") as f:
+        CACHE_SALT = hashlib.sha1(f.read()).hexdigest() + " %g" % WINDOW
     os.makedirs("build/bench", exist_ok=True)
     txt = open("build/bench/speedup.txt", "w")
 
