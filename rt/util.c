@@ -1,5 +1,5 @@
-/* util.c - status and counter names, the trace hash, and the few string helpers that
- * freestanding code needs (no libc). */
+/* util.c - status and counter names, capacity faults, the trace hash, and the few string
+ * helpers that freestanding code needs (no libc). */
 #include <stdarg.h>
 
 #include "rti.h"
@@ -69,16 +69,6 @@ const char *rt_kind_type_name(rt_kind_type t)
 const char *rt_interp_name(rt_interp i)
 {
     return (unsigned)i < RT_INTERP_COUNT ? interp_names[i] : "?";
-}
-
-int rt_interp_find(const char *name)
-{
-    return find_name(interp_names, RT_INTERP_COUNT, name);
-}
-
-const char *rt_stab_name(rt_stab s)
-{
-    return (unsigned)s < RT_STAB_COUNT ? stab_names[s] : "?";
 }
 
 int rt_stab_find(const char *name)
@@ -179,7 +169,31 @@ void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status)
         sim->stats.status = status; /* the worst; the first of equally bad ones */
 }
 
+void rt_note_status(rt_sim *sim, rt_status status)
+{
+    if (rt_status_severity(status) > rt_status_severity(sim->stats.status))
+        sim->stats.status = status;
+}
+
 uint64_t rt_hash_real(uint64_t h, real_t v)
 {
     return rti_hash(h, v);
+}
+
+/* a capacity fault: the limit's own message from the list of limits (rt_config.h) */
+rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim)
+{
+    const char *what = "";
+    switch (lim) {
+#define RT_X_TEXT(name, field, least, what_)                                                 \
+    case RTI_LIM_##name:                                                                    \
+        what = what_ " exceed " RTI_LIMIT(RT_MAX_##name);                                   \
+        break;
+        RT_LIMIT_LIST(RT_X_TEXT)
+#undef RT_X_TEXT
+    default:
+        break;
+    }
+    return set ? rti_fail(sim, RT_E_CAPACITY, "set ", set, ": ", what, (const char *)0)
+               : rti_fail(sim, RT_E_CAPACITY, what, (const char *)0);
 }

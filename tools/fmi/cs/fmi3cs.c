@@ -15,6 +15,7 @@
 #include "fmi_api.h"
 #include "fmu_cs_vars.h"
 #include "rt.h"
+#include "rt_sim.h"
 
 #define EXPORT __attribute__((visibility("default")))
 #define CS_MAGIC "modrt-cs-state-1" /* serialized FMU states begin with it */
@@ -276,12 +277,12 @@ EXPORT fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunica
             "(%.17g s)", communicationStepSize, (double)sc->dt);
         return fmi3Error;
     }
-    if (at != (int64_t)in->sim.state.tick) {
+    if (at != (int64_t)rt_ticks_done(&in->sim)) {
         say(in, fmi3Error, "communication point %.17g s is not the FMU's time (%.17g s)",
             currentCommunicationPoint, (double)rt_time(sc, &in->sim));
         return fmi3Error;
     }
-    if (in->sim.state.tick + (uint64_t)n > rt_tick_count(&in->sim)) {
+    if (rt_ticks_done(&in->sim) + (uint64_t)n > rt_tick_count(&in->sim)) {
         say(in, fmi3Error, "the step ends past the scene's end time (%.17g s)",
             (double)sc->t_end);
         *terminateSimulation = 1;
