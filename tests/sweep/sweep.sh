@@ -298,6 +298,17 @@ sed 's/Plant.T = 0.5;/Plant.T = 0.6;/' "$T/pl.scn" > "$T/pl.new" && mv "$T/pl.ne
 $M sweep plan "$T/rp.swp" --out "$T/rp2" > /dev/null 2> "$T/err"; rc=$?
 [ $rc -eq 2 ] && grep -q "opt.mrl: recorded with scene fingerprint .*: the scene changed since" "$T/err" && ok ||
     bad "a replay of a changed scene: exit $rc, $(cat "$T/err")"
+# a log of a run ended by SIGTERM replays to the tick the run reached, as modrt replay
+# does (its end marker names the tick), not on to the scene's end time (1e9 ticks here)
+cp "$D/../../models/scenes/pi_loop.scn" "$T/pi.scn"
+$M run "$T/pi.scn" --t-end 1e6 --record "$T/int.mrl" > "$T/live.txt" 2>&1 &
+pid=$!; sleep 1; kill -TERM $pid; wait $pid
+printf '%s\n' 'replay ("int.mrl");' 'metric (y_end) final (Plant.y);' > "$T/int.swp"
+timeout 120 $M sweep run "$T/int.swp" --out "$T/int" -j 1 2> "$T/err"
+h_int=$(sed -n 's/^hash: //p' "$T/live.txt") n_int=$(sed -n 's/^ticks: //p' "$T/live.txt")
+[ -n "$h_int" ] && [ "$(sed -n 's/^hash: //p' "$T/int/runs/000000.txt" 2>/dev/null)" = "$h_int" ] &&
+    [ "$(sed -n 's/^ticks: //p' "$T/int/runs/000000.txt")" = "$n_int" ] && ok ||
+    bad "a replay run of an interrupted log: live $n_int ticks $h_int; run $(grep -E '^(ticks|hash)' "$T/int/runs/000000.txt" 2>/dev/null | tr '\n' ' ')"
 
 # ---- one campaign, three engines, identical CSVs ----
 $M sweep run "$D/engines.swp" --out "$T/local" -j 2 2>/dev/null

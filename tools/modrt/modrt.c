@@ -734,11 +734,8 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : open_out(a->csv, "cannot write the CSV file")))
         return mrl_close(), CLI_IO;
-    /* a run stopped between two ticks (a signal, --overrun stop) replays to that tick; a
-       link's stop policy ends the replay at its exchange (mrl_replay_exchange) */
-    int early = h.version >= 3 && h.ended != MRL_END_DONE && h.ended != MRL_END_LINK;
     runner_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL,
-                     early ? &h.last_tick : NULL};
+                     replay_stop_tick(&h)};
     runner_result r;
     rt_status st = runner_run(&sc, &sim, &o, &r);
     mrl_close();

@@ -99,3 +99,9 @@ int replay_scene(const mrl_header *h, const char *path, const replay_more *more,
         rt_refresh(sc, sim);
     return CLI_OK;
 }
+
+const uint64_t *replay_stop_tick(const mrl_header *h)
+{
+    int early = h->version >= 3 && h->ended != MRL_END_DONE && h->ended != MRL_END_LINK;
+    return early ? &h->last_tick : NULL;
+}

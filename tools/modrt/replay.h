@@ -24,4 +24,9 @@ typedef struct replay_more {
 int replay_scene(const mrl_header *h, const char *path, const replay_more *more, rt_scene *sc,
                  rt_sim *sim);
 
+/* where a replay stops: the tick the recorded run reached when a signal or `--overrun stop`
+   ended it between two ticks (a version-3 log's end marker), or NULL: at its end (a link's
+   stop policy ends the replay at its exchange instead) */
+const uint64_t *replay_stop_tick(const mrl_header *h);
+
 #endif /* MODRT_REPLAY_H */

@@ -153,7 +153,7 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
     if (a->csv && !csv)
         return cli_fail("cannot write the CSV file", a->csv);
     runner_opts o = {csv, 1, 0, a->replay ? mrl_replay_exchange : NULL, NULL, 0, NULL,
-                     observe, NULL};
+                     observe, a->replay ? replay_stop_tick(&h) : NULL};
     runner_result r;
     sweep_metrics_sample(c, &sc, &sim, acc, (double)rt_time(&sc, &sim)); /* tick 0 */
     rt_status st = runner_run(&sc, &sim, &o, &r);
