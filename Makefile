@@ -389,7 +389,7 @@ $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 image: deps build/host/modrt $(SCENEC)
 	@sh tools/image.sh "$(TARGET)" "$(SCENE)" "$(CONSOLE)" "$(IMAGE_CFLAGS)"
 TEST_SUITES += test-image
-test-image: deps build/host/modrt $(SCENEC)
+test-image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 	@sh tests/image.sh
 	@sh tests/cmsis/check.sh
 

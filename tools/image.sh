@@ -56,6 +56,38 @@ if grep -q '^static const rt_link link = {' "$dir/$name.c"; then
 fi
 
 cc=$(make -s "print-TARGET_CC_$target")
+# FMU blocks (docs/fmi.md, "FMUs in images"): scenec wrote one "// fmu-build:" line each,
+# BLOCK VERSION ID SOURCES WORDS...; their sources are compiled with their functions named
+# <ID>_fmi*, FMI 3.0's calloc, malloc and free naming the static arena (fmu_arena.c), and
+# linked with the importer's calling sequence built for targets (FMU_TARGET)
+fmuobjs= fmusrc=
+fmu_lines=$(sed -n 's#^// fmu-build: ##p' "$dir/$name.c")
+if [ -n "$fmu_lines" ]; then
+    fmusrc="tools/fmi/fmu_inst.c tools/fmi/fmu_call.c tools/fmi/fmu_arena.c tools/fmi/fmu_libc.c"
+    echo "$fmu_lines" > "$dir/$name.fmu"
+    while read -r blk ver id src words; do
+        defs="-DFMI${ver}_FUNCTION_PREFIX=${id}_"
+        [ "$ver" = 3 ] && defs="$defs -Dcalloc=fmu_arena_calloc -Dmalloc=fmu_arena_malloc -Dfree=fmu_arena_free"
+        files= flags=
+        for w in $words; do
+            case "$w" in
+            -I*) flags="$flags -I$src/${w#-I}" ;;
+            -D*) flags="$flags $w" ;;
+            -l*) ;;
+            *) files="$files $src/$w" ;;
+            esac
+        done
+        k=0
+        for f in $files; do
+            k=$((k + 1)) o=$dir/$name.fmu_${blk}_$k.o
+            # shellcheck disable=SC2086 # the flag lists are meant to split
+            $(make -s "print-TARGET_CC_$target") -std=c11 -O2 -w -ffp-contract=off -fno-math-errno \
+                -ffunction-sections -fdata-sections $(make -s "print-TARGET_CFLAGS_$target") \
+                -I"$src" $flags $defs -c "$f" -o "$o" || fail "the $target build of FMU $blk's $f failed (see above)"
+            fmuobjs="$fmuobjs $o"
+        done
+    done < "$dir/$name.fmu"
+fi
 cflags="$(make -s print-CSTD) -O2 -ffunction-sections -fdata-sections $(make -s print-CINC) \
  $(make -s print-CDEFS) -DRT_KIND_DOCS=0 $(make -s "print-TARGET_CFLAGS_$target")"
 ldflags=$(make -s "print-TARGET_LDFLAGS_$target")
@@ -64,7 +96,8 @@ rt=$(ls rt/*.c | grep -v '^rt/registry.c$')
 models=$(ls models/*.c | grep -v '^models/registry.c$')
 # shellcheck disable=SC2086 # the flag lists are meant to split
 $cc $cflags $cdef $sizes -DRT_SCENE="$sym" $extra ports/common/image_main.c "$dir/$name.c" \
-    $rt $models $ports $linksrc $ldflags -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
+    $rt $models $ports $linksrc ${fmusrc:+-DFMU_TARGET -Itools/fmi $fmusrc $fmuobjs} $ldflags \
+    -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
 size=$(make -s "print-TARGET_SIZE_$target")
 echo "image: $dir/$name.elf (scene $sym, target $target, $real${console:+, console $console}${linksrc:+, link on the UART})"
 $size "$dir/$name.elf" | tail -1 | awk '{printf "image: flash %d bytes, RAM %d bytes\n", $1 + $2, $2 + $3}'

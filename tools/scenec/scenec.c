@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "fmu_export.h"
+#include "fmu_scn.h"
 #include "scn.h"
 #include "scn_host.h"
 
@@ -83,6 +84,9 @@ static scn_ctx *compile(const opts *o, const char *path)
     }
     for (int i = 0; i < o->ninc; i++)
         c->incdirs[c->nincdirs++] = o->inc[i];
+    /* FMU systems: loaded on the host; their C for an image needs their sources. An
+       exported FMU or a registry holds library kinds and defines only */
+    c->fmu = o->mode == 'f' || o->mode == 'g' ? NULL : &fmu_scn_ops;
     if (scn_compile(c, path, NULL, 0) == 0)
         return c;
     fprintf(stderr, "%s\n", c->msg);
@@ -141,10 +145,16 @@ static int cmd_compile(const opts *o)
         rc = scn_emit(c, stdout) != 0;
     } else if (o->mode == 'c') {
         FILE *f = open_out(o->out, tmp, sizeof tmp);
-        rc = !f || commit(f, scn_emit(c, f) == 0, tmp, o->out);
+        int ok = f && scn_emit(c, f) == 0;
+        if (f && !ok && c->err) /* what stopped the C (an FMU without sources): not written */
+            fprintf(stderr, "%s\n", c->msg), fclose(f), remove(tmp), rc = 1;
+        else
+            rc = !f || commit(f, ok, tmp, o->out);
         if (!rc && o->deps)
             rc = write_deps(c, o->deps, o->out);
     }
+    if (rc && c->err && !o->out)
+        fprintf(stderr, "%s\n", c->msg);
     scn_free(c);
     return rc;
 }
