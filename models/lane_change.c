@@ -2,10 +2,18 @@
  * (docs/vehicles.md): the centre line of the course, a preview driver that follows it,
  * and the steering principle of the second vehicle from the tow-bar angles.
  *
- * Course (ISO 3888-1, NUMERICS.md): sections of 15, 30, 25, 25, 15, 15 m from the start
- * x0; the centre line is y = 0 in section 1, rises by the offset (3.5 m, centre to centre,
- * our choice) over section 2 along the quintic S(s) = 10 s^3 - 15 s^4 + 6 s^5, stays in
- * section 3, returns over section 4 and stays at 0 in sections 5 and 6.
+ * Course (ISO 3888-1:2018, Table 1 and Figure 1; docs/vehicles.md): sections of 15, 30,
+ * 25, 25, 15, 15 m from the start x0, coned lanes in sections 1, 3 and 5-6 of widths
+ * 1.1 b + 0.25, 1.2 b + 0.25 and 1.3 b + 0.25 m (b the vehicle width). The figure
+ * dimensions the track from its right-hand cone line: section 3's lies the offset (3.5 m)
+ * to the left of section 1's, and sections 5-6 continue section 1's. With section 1
+ * centred on y = 0 the lane centres are 0, offset + 0.05 b and 0.1 b (the 0.25 m cancels).
+ * The centre line is section 1's centre up to the end of section 1, section 3's over
+ * section 3, that of sections 5-6 from their start, and a quintic blend
+ * S(s) = 10 s^3 - 15 s^4 + 6 s^5 between them over sections 2 and 4.
+ *
+ * iso_driver_cc keeps the project's earlier variant for a scene that names it: the offset
+ * between lane centres and sections 5-6 centred on section 1 (centres 0, offset, 0).
  *
  * iso_driver (pure pursuit): the target is the centre line a look-ahead distance
  * ld = max(ld_min, u Tp) ahead along the track; with e its lateral offset in the car's
@@ -18,48 +26,82 @@
 #include "models.h"
 
 static const real_t sections[6] = {15, 30, 25, 25, 15, 15};
+/* lane widths k b + 0.25 m of sections 1, 3 and 5-6 (b the vehicle width) */
+static const real_t width_k[3] = {(real_t)1.1, (real_t)1.2, (real_t)1.3};
 
-/* the centre line at x: 0, the offset, or a quintic blend between them */
-static real_t centre(real_t x, real_t x0, real_t off)
+/* the lane centres of sections 3 and 5-6 (section 1's is 0) */
+typedef struct course {
+    real_t c3, c56;
+} course;
+
+/* the centre line at x: a lane centre, or a quintic blend between two */
+static real_t centre(real_t x, real_t x0, course k)
 {
     real_t s = x - x0, a = sections[0], b = a + sections[1], c = b + sections[2],
            d = c + sections[3];
-    real_t w;
-    if (s <= a || s >= d)
+    real_t w, from, to;
+    if (s <= a)
         return 0;
+    if (s >= d)
+        return k.c56;
     if (s >= b && s <= c)
-        return off;
-    w = s < b ? (s - a) / sections[1] : 1 - (s - c) / sections[3];
-    return off * w * w * w * (10 + w * (-15 + 6 * w));
+        return k.c3;
+    if (s < b)
+        w = (s - a) / sections[1], from = 0, to = k.c3;
+    else
+        w = (s - c) / sections[3], from = k.c3, to = k.c56;
+    return from + (to - from) * w * w * w * (10 + w * (-15 + 6 * w));
 }
 
 /* ---------------------------------------------------------------- iso_driver */
 
-enum { D_X0, D_OFF, D_TP, D_LDMIN, D_L, D_DMAX, D_NP };
+enum { D_X0, D_OFF, D_TP, D_LDMIN, D_L, D_DMAX, D_B, D_NP };
 static const char *const drv_u[] = {"x", "y", "psi", "u"};
 static const char *const drv_y[] = {"delta", "yref"};
-static const char *const drv_p[] = {"x0", "offset", "Tp", "ldmin", "L", "delta_max"};
+static const char *const drv_p[] = {"x0", "offset", "Tp", "ldmin", "L", "delta_max", "b"};
+/* b: the width of CommonRoad vehicle 1, the cars of the lane change scenes */
 static const real_t drv_def[D_NP] = {0, (real_t)3.5, (real_t)0.5, 5, (real_t)2.39268,
-                                     (real_t)0.5};
+                                     (real_t)0.5, (real_t)1.674};
 
-static void drv_output(const rt_args *a, real_t *y)
+/* pure pursuit of the centre line of course k */
+static void pursue(const rt_args *a, course k, real_t *y)
 {
     const real_t *u = a->u, *p = a->p;
     real_t ld = u[3] * p[D_TP] > p[D_LDMIN] ? u[3] * p[D_TP] : p[D_LDMIN];
-    real_t xt = u[0] + ld, yt = centre(xt, p[D_X0], p[D_OFF]);
+    real_t xt = u[0] + ld, yt = centre(xt, p[D_X0], k);
     real_t c = rt_cos(u[2]), s = rt_sin(u[2]), dx = xt - u[0], dy = yt - u[1];
     real_t e = -s * dx + c * dy, d2 = dx * dx + dy * dy;
     real_t delta = rt_atan(2 * p[D_L] * e / d2);
     y[0] = rt_fmax(-p[D_DMAX], rt_fmin(p[D_DMAX], delta));
-    y[1] = centre(u[0], p[D_X0], p[D_OFF]);
+    y[1] = centre(u[0], p[D_X0], k);
+}
+
+/* the course as ISO 3888-1 draws it: section 1's right-hand line at -(k1 b + 0.25) / 2,
+   section 3's the offset to its left, that of sections 5-6 on it; a lane's centre lies
+   half its width left of its right-hand line */
+static void drv_output(const rt_args *a, real_t *y)
+{
+    const real_t *p = a->p;
+    real_t r1 = -(width_k[0] * p[D_B] + (real_t)0.25) / 2;
+    course k = {r1 + p[D_OFF] + (width_k[1] * p[D_B] + (real_t)0.25) / 2,
+                r1 + (width_k[2] * p[D_B] + (real_t)0.25) / 2};
+    pursue(a, k, y);
+}
+
+/* the project's earlier variant: the offset between lane centres, sections 5-6 on 0 */
+static void drv_cc_output(const rt_args *a, real_t *y)
+{
+    course k = {a->p[D_OFF], 0};
+    pursue(a, k, y);
 }
 
 static rt_status drv_check(const real_t *p, const void *spec)
 {
     (void)spec;
     return rt_isfinite(p[D_X0]) && rt_isfinite(p[D_OFF]) && p[D_TP] > 0 &&
-                   p[D_LDMIN] > 0 && p[D_L] > 0 && p[D_DMAX] > 0 && rt_isfinite(p[D_TP]) &&
-                   rt_isfinite(p[D_LDMIN]) && rt_isfinite(p[D_L]) && rt_isfinite(p[D_DMAX])
+                   p[D_LDMIN] > 0 && p[D_L] > 0 && p[D_DMAX] > 0 && p[D_B] > 0 &&
+                   rt_isfinite(p[D_TP]) && rt_isfinite(p[D_LDMIN]) && rt_isfinite(p[D_L]) &&
+                   rt_isfinite(p[D_DMAX]) && rt_isfinite(p[D_B])
                ? RT_OK
                : RT_E_PARAM;
 }
@@ -69,13 +111,28 @@ const rt_kind mdl_iso_driver_kind = {
     .u_names = drv_u, .y_names = drv_y, .p_names = drv_p, .p_default = drv_def,
     .feed = RT_FEED_ALL, .autonomous = 1, .check = drv_check, .output = drv_output,
     .doc = RT_DOC(
-        "Preview driver on the ISO 3888-1 double lane change (pure pursuit): the course\n"
-        "starts at x0 (sections 15, 30, 25, 25, 15, 15 m; centre line 0, the offset over\n"
-        "section 3, quintic blends over sections 2 and 4). Target: the centre line\n"
-        "ld = max(ldmin, u Tp) ahead; e its lateral offset in the car frame, d its\n"
-        "distance: delta = atan(2 L e / d^2), |delta| <= delta_max. Output yref: the\n"
-        "centre line at the car's x. L: wheelbase (CommonRoad vehicle 1)."),
-    .units = RT_DOC("m m rad m/s rad m m m s m m rad"),
+        "Preview driver on the ISO 3888-1 double lane change (pure pursuit) as the\n"
+        "standard draws it: the course starts at x0 (sections 15, 30, 25, 25, 15, 15 m;\n"
+        "lanes 1.1 b + 0.25, 1.2 b + 0.25, 1.3 b + 0.25 m wide in sections 1, 3, 5-6 for\n"
+        "the vehicle width b); section 3's right-hand cone line lies offset to the left of\n"
+        "section 1's, sections 5-6 continue section 1's. Centre line: the lane centres\n"
+        "(0, offset + 0.05 b, 0.1 b), quintic blends over sections 2 and 4. Target: the\n"
+        "centre line ld = max(ldmin, u Tp) ahead; e its lateral offset in the car frame,\n"
+        "d its distance: delta = atan(2 L e / d^2), |delta| <= delta_max. Output yref:\n"
+        "the centre line at the car's x. L: wheelbase (CommonRoad vehicle 1)."),
+    .units = RT_DOC("m m rad m/s rad m m m s m m rad m"),
+};
+
+const rt_kind mdl_iso_driver_cc_kind = {
+    .name = "iso_driver_cc", .type = RT_KIND_OUTPUT, .nu = 4, .ny = 2, .np = D_NP,
+    .u_names = drv_u, .y_names = drv_y, .p_names = drv_p, .p_default = drv_def,
+    .feed = RT_FEED_ALL, .autonomous = 1, .check = drv_check, .output = drv_cc_output,
+    .doc = RT_DOC(
+        "iso_driver on a variant of the ISO 3888-1 course that is not the standard's:\n"
+        "the offset between the lane centres of sections 1 and 3, sections 5-6 centred\n"
+        "on section 1 (centre line 0, offset, 0; b is not used). For a scene that asks\n"
+        "for this variant by name; the standard's course is iso_driver."),
+    .units = RT_DOC("m m rad m/s rad m m m s m m rad m"),
 };
 
 /* ---------------------------------------------------------------- tow_steer */

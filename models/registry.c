@@ -27,6 +27,7 @@ const mdl_entry mdl_kinds[] = {
     {"car3d_mf", &mdl_car3d_mf_kind},
     {"drag", &mdl_drag_kind},
     {"iso_driver", &mdl_iso_driver_kind},
+    {"iso_driver_cc", &mdl_iso_driver_cc_kind},
     {"tow_steer", &mdl_tow_steer_kind},
     {"pulley", &mdl_pulley_kind},
     {"rotor", &mdl_rotor_kind},

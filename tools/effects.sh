@@ -29,9 +29,11 @@ by hand. Each row omits one effect of the full \`lane_change\` (the variants are
 \`tests/vehicles/variants/*.scn\`, kept out of the library); the last row omits them all.
 Every effect is its own block kind or service, so an omitted one is neither linked nor
 evaluated: the models column lists the kinds in the image. Cortex-M7 ($t, double):
-flash, RAM and instructions per tick over the whole scene (8000 ticks of 1 ms; the max is
-a tick in which the vehicles' 5 ms step lands; the slowest tick in microseconds at
-$(mhz "$t") MHz and one instruction per cycle), counted as above, the trace hash checked
+flash, RAM and instructions per tick over the whole scene (8000 ticks of 1 ms; the tick
+context only: the vehicles' background steps run in PendSV, outside it; the max is the
+busiest tick: in \`lane_change\` the steering set's Jacobian refresh, in
+\`lane_change_planar\` a tick in which its 5 ms step lands; the slowest tick in
+microseconds at $(mhz "$t") MHz and one instruction per cycle), counted as above, the trace hash checked
 against the host's. Host: instructions per simulated second, \`valgrind --tool=callgrind
 modrt run FILE.scn\` over the 8 s divided by 8 (x86-64, gcc -O2; includes reading the
 scene file, under 1 %).

@@ -94,10 +94,19 @@ ldflags=$(make -s "print-TARGET_LDFLAGS_$target")
 ports=$(make -s "print-TARGET_PORT_SRCS_$target")
 rt=$(ls rt/*.c | grep -v '^rt/registry.c$')
 models=$(ls models/*.c | grep -v '^models/registry.c$')
+# every source compiled on its own, JOBS at a time (make passes JOBS; one compile of
+# everything at once used to dominate `make test-image`), then linked in the listed order
+obj=$dir/obj-$name
+rm -rf "$obj" && mkdir -p "$obj"
+export IMG_CC="$cc" IMG_FLAGS="$cflags $cdef $sizes -DRT_SCENE=$sym $extra${fmusrc:+ -DFMU_TARGET -Itools/fmi}" IMG_OBJ="$obj"
+srcs="ports/common/image_main.c $dir/$name.c $rt $models $ports $linksrc $fmusrc"
+# shellcheck disable=SC2086,SC2016 # the lists are meant to split; $1 expands in the child
+printf '%s\n' $srcs | xargs -P "${JOBS:-2}" -I{} sh -c \
+    'o=$IMG_OBJ/$(echo "$1" | tr / _).o; $IMG_CC $IMG_FLAGS -c "$1" -o "$o"' sh {} ||
+    fail "the $target build of $scene failed (see above)"
+objs=$(for f in $srcs; do printf '%s/%s.o ' "$obj" "$(echo "$f" | tr / _)"; done)
 # shellcheck disable=SC2086 # the flag lists are meant to split
-$cc $cflags $cdef $sizes -DRT_SCENE="$sym" $extra ports/common/image_main.c "$dir/$name.c" \
-    $rt $models $ports $linksrc ${fmusrc:+-DFMU_TARGET -Itools/fmi $fmusrc $fmuobjs} $ldflags \
-    -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
+$cc $cflags $objs $fmuobjs $ldflags -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
 size=$(make -s "print-TARGET_SIZE_$target")
 echo "image: $dir/$name.elf (scene $sym, target $target, $real${console:+, console $console}${linksrc:+, link on the UART})"
 $size "$dir/$name.elf" | tail -1 | awk '{printf "image: flash %d bytes, RAM %d bytes\n", $1 + $2, $2 + $3}'
