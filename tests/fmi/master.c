@@ -11,6 +11,7 @@
  *      read back), steps on, goes back to the saved state and steps again: the same bits;
  *   4. asks for a step of 1.5 ticks and for one from a wrong communication point: both
  *      fmi3Error / fmi2Error with a logged reason, nothing changed;
+ *   5. resets the instance mid-run, initializes it again and steps: the first run's bits;
  *   (2.0) 6. the status functions after the last step (fmi2LastSuccessfulTime the stop
  *      time, fmi2Terminated true), an Integer request refused, every block it allocated
  *      for the FMU freed once the instances are.
@@ -43,6 +44,7 @@ typedef struct fns {
     fmi3SerializedFMUStateSizeTYPE *size;
     fmi3SerializeFMUStateTYPE *ser;
     fmi3DeserializeFMUStateTYPE *des;
+    fmi3ResetTYPE *reset;
     fmi3FreeInstanceTYPE *free;
 } fns;
 
@@ -64,6 +66,7 @@ typedef struct fns2 {
     fmi2SerializedFMUstateSizeTYPE *size;
     fmi2SerializeFMUstateTYPE *ser;
     fmi2DeSerializeFMUstateTYPE *des;
+    fmi2ResetTYPE *reset;
     fmi2FreeInstanceTYPE *free;
 } fns2;
 
@@ -195,6 +198,16 @@ static int reserialize(void *c, void *s, void **back, void **buf)
     return ok ? 0 : 3;
 }
 
+/* Reset, then initialized again as a fresh instance is */
+static int again(void *c)
+{
+    if (md.version == 2)
+        return f2.reset(c) == fmi2OK && f2.setup(c, 0, 0, 0, 1, t_end) == fmi2OK &&
+               f2.enter(c) == fmi2OK && f2.exit(c) == fmi2OK ? 0 : 3;
+    return f.reset(c) == fmi3OK && f.enter(c, 0, 0, 0, 1, t_end) == fmi3OK &&
+           f.exit(c) == fmi3OK ? 0 : 3;
+}
+
 static void finish(void *c)
 {
     if (md.version == 2)
@@ -224,7 +237,8 @@ static int bind2(void *so)
            SYM(f2.bstat, "fmi2GetBooleanStatus") && SYM(f2.gets, "fmi2GetFMUstate") &&
            SYM(f2.sets, "fmi2SetFMUstate") && SYM(f2.frees, "fmi2FreeFMUstate") &&
            SYM(f2.size, "fmi2SerializedFMUstateSize") && SYM(f2.ser, "fmi2SerializeFMUstate") &&
-           SYM(f2.des, "fmi2DeSerializeFMUstate") && SYM(f2.free, "fmi2FreeInstance");
+           SYM(f2.des, "fmi2DeSerializeFMUstate") && SYM(f2.free, "fmi2FreeInstance") &&
+           SYM(f2.reset, "fmi2Reset");
 }
 
 static int bind3(void *so)
@@ -236,7 +250,7 @@ static int bind3(void *so)
            SYM(f.gets, "fmi3GetFMUState") && SYM(f.sets, "fmi3SetFMUState") &&
            SYM(f.frees, "fmi3FreeFMUState") && SYM(f.size, "fmi3SerializedFMUStateSize") &&
            SYM(f.ser, "fmi3SerializeFMUState") && SYM(f.des, "fmi3DeserializeFMUState") &&
-           SYM(f.free, "fmi3FreeInstance");
+           SYM(f.free, "fmi3FreeInstance") && SYM(f.reset, "fmi3Reset");
 }
 
 static int load(const char *dir)
@@ -281,7 +295,7 @@ static int vr_of(const char *name)
     exit(1);
 }
 
-/* 5 (MASTER_PI_CSV): pi_link's controller closed by this master, with the PI law of
+/* 7 (MASTER_PI_CSV): pi_link's controller closed by this master, with the PI law of
    models/pi.c (c = Kp e + I, I += Ki Ts e, every 10 ms on the exported Ref.y and
    Plant.y): Plant.y must be the same bits as pi_loop's, whose PI is inside the scene */
 static int closed_loop(const char *dir, const char *csv, long n)
@@ -412,6 +426,14 @@ int main(int argc, char **argv)
           "a step from a wrong communication point: Error, logged");
     outputs(b, w);
     check(!memcmp(v, w, nout * sizeof *v), "a refused step changes nothing");
+
+    /* 5: Reset mid-run, initialized again: the first run's bits from the start */
+    int ok5 = again(b) == 0;
+    for (long k = 0; ok5 && k < k0; k++)
+        ok5 = step(b, k * dt, dt) == 0;
+    outputs(b, v);
+    check(ok5 && !memcmp(v, first + (size_t)k0 * nout, nout * sizeof *v),
+          "Reset and initialized again, it steps to the first run's bits");
     finish(a), finish(b);
     free(first), free(ser);
     if (getenv("MASTER_PI_CSV"))

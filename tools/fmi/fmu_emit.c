@@ -42,21 +42,14 @@ static void names(FILE *f, const char *pre, const char *what, const char *const 
     fputs("NULL};\n", f);
 }
 
-static void doubles(FILE *f, const char *type, const char *pre, const char *what,
-                    const double *v, uint32_t n)
+/* n values (double, or real_t when real), in 17 digits: read back, the same bits */
+static void values(FILE *f, const char *pre, const char *what, const void *v, uint32_t n,
+                   int real)
 {
-    fprintf(f, "static %s %s_%s[] = {", type, pre, what);
+    fprintf(f, "static %s %s_%s[] = {", real ? "real_t" : "double", pre, what);
     for (uint32_t i = 0; v && i < n; i++)
-        fprintf(f, "%.17g, ", v[i]);
+        fprintf(f, "%.17g, ", real ? (double)((const real_t *)v)[i] : ((const double *)v)[i]);
     fputs("0};\n", f);
-}
-
-static void reals(FILE *f, const char *pre, const char *what, const real_t *v, uint32_t n)
-{
-    double d[n + 1];
-    for (uint32_t i = 0; i < n; i++)
-        d[i] = (double)v[i];
-    doubles(f, "real_t", pre, what, d, n);
 }
 
 /* the model's variables: only what fmu_inst.c reads of them (name, causality,
@@ -116,7 +109,7 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
     u32s(f, pre, "vx", m->vx, m->nx);
     names(f, pre, "un", m->u_names, m->nu), names(f, pre, "yn", m->y_names, m->ny);
     names(f, pre, "pn", m->p_names, m->np), names(f, pre, "xn", m->x_names, m->nx);
-    reals(f, pre, "pdef", m->p_def, m->np), reals(f, pre, "xdef", m->x_def, m->nx);
+    values(f, pre, "pdef", m->p_def, m->np, 1), values(f, pre, "xdef", m->x_def, m->nx, 1);
     fprintf(f, "static uint8_t %s_feed[] = {", pre);
     for (uint32_t i = 0; i < m->ny * m->nu; i++)
         fprintf(f, "%u, ", m->feed[i]);
@@ -147,7 +140,7 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
     fprintf(f, "static double %s_x[%u], %s_u[%u], %s_p[%u], %s_buf[%u], %s_evx[%u];\n", pre,
             (unsigned)m->nx + 1, pre, (unsigned)m->nu + 1, pre, (unsigned)m->np + 1, pre,
             (unsigned)nb + 1, pre, (unsigned)m->nx + 1);
-    doubles(f, "double", pre, "xs", in->x_start, m->nx);
+    values(f, pre, "xs", in->x_start, m->nx, 0);
     fprintf(f, "static uint8_t %s_xg[] = {", pre);
     for (uint32_t i = 0; i < m->nx; i++)
         fprintf(f, "%u, ", in->x_given[i]);
