@@ -60,7 +60,7 @@ MODEL_SRCS  := $(wildcard models/*.c) build/gen/scenes/registry.c \
 POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/modrt/cli.c \
                tools/modrt/info.c tools/modrt/study.c tools/modrt/check.c tools/modrt/rtloop.c tools/modrt/trace.c tools/modrt/link.c tools/modrt/mrlog.c ports/common/link_wire.c \
                tools/modrt/link_udp.c tools/modrt/fingerprint.c ports/common/link_hmac.c \
-               tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c \
+               tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c tools/modrt/replay.c \
                $(wildcard tools/modrt/sweep*.c)
 TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
 HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c) \
@@ -101,11 +101,14 @@ help:
 	@echo "make study        what accuracy costs: docs/study.md and docs/study/*.svg, the four"
 	@echo "                  paper examples on the host, Cortex-M4F and M7 (STUDY=quick: a subset)"
 	@echo "make image TARGET=<t> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
-	@echo "           [REAL=float] [IMAGE_CFLAGS=...]"
+	@echo "           [REAL=float] [IMAGE_CFLAGS=...] [CLOCK_MHZ=...] [TICKS=...] [MEASURE=0]"
 	@echo "                  a firmware image of one scene (docs/porting.md) into"
 	@echo "                  build/image/<t>/ (REAL=float: binary32, into build/image/<t>-float/);"
 	@echo "                  IMAGE_CFLAGS are added to the compile, e.g. -DCM_EXIT_SEMIHOST=1;"
-	@echo "                  prints the QEMU command that runs it"
+	@echo "                  prints the QEMU command that runs it, then instructions per tick"
+	@echo "                  (median/max over TICKS ticks under QEMU), stack, and whether the"
+	@echo "                  slowest tick fits the base tick at CLOCK_MHZ (default: the"
+	@echo "                  target's clock of make footprint); MEASURE=0 builds only"
 	@echo "make hard         the hard-case suite at full length, table into build/hard-table.md"
 	@echo "make test-<suite> one suite of make test: $(patsubst test-%,%,$(filter test-%,$(TEST_SUITES)))"
 	@echo "                  (also check-freestanding, cross-test-<t>)"
@@ -169,7 +172,7 @@ check-freestanding: $(RT_OBJS) $(MODEL_OBJS)
 	  echo "$$bad"; exit 1; fi; echo "check-freestanding: ok ($(words $^) objects, no libc or libm)"
 
 # every suite is a make target; `make test` runs them one after another, one line each,
-# and ends with the grand total (tools/run-suites.sh). Other makefiles add theirs to
+# and ends with the grand total (tools/dev/run-suites.sh). Other makefiles add theirs to
 # TEST_SUITES.
 TEST_SUITES = check-freestanding test-unit test-san test-float test-faults test-cli test-scenec \
                test-fuzz test-fmi $(addprefix cross-test-,$(CROSS_TARGETS))
@@ -187,7 +190,7 @@ TEST_HELP_test-image := per-scene firmware images (make image) against the host 
 TEST_HELP_test-link := the controller link end to end (UDP, real time, replay)
 TEST_HELP_test-link-fuzz := the datagram and replay-log fuzzer for 5 s
 TEST_HELP_test-hard := the hard-case suite at CI sizes (make hard: full size)
-TEST_HELP_test-static := cppcheck and clang-tidy on rt/, models/, ports/
+TEST_HELP_test-static := file graph and docs tables of rt/, tools; cppcheck, clang-tidy
 TEST_HELP_test-vehicles := the vehicle models against their references
 TEST_HELP_test-study := the quick configurations (make study: all)
 TEST_HELP_test-fmi := own test FMUs against closed forms, bad FMUs, export round trip
@@ -196,7 +199,7 @@ TEST_HELP_test-serial-qemu := firmware controller and plant image on a Cortex-M 
 TEST_HELP_test-frame-fuzz := the serial frame decoder fuzzer (COBS, resync) for 5 s
 TEST_HELP_test-sweep := modrt sweep: metrics, draws, errors; local, GNU parallel, Slurm
 test: deps
-	@V=$(V) sh tools/run-suites.sh "$(MAKE) JOBS=$(JOBS) V=$(V)" $(TEST_SUITES)
+	@V=$(V) sh tools/dev/run-suites.sh "$(MAKE) JOBS=$(JOBS) V=$(V)" $(TEST_SUITES)
 test-unit:
 	$(MAKE) --no-print-directory -j$(JOBS) unit
 test-san:
@@ -237,10 +240,9 @@ CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := ports/common/image_main.c
 # the background set preempted for real (cross-test-<t> of these targets): pendulum10_actuated
 # ticked in SysTick every 40 us of virtual time (40,000 instructions under -icount), its
-# chain stepping in PendSV below it (58,500 instructions a step since the points-only
-# multibody path; 68,000 before), preempted by the ticks that fall while it runs (at 80 us
-# every step has fitted between two ticks since the multibody path got faster, d3a6ffb; at
-# 100 us since a tick checks and roots only the sets it evaluated)
+# chain stepping in PendSV below it, preempted by the ticks that fall while it runs (a
+# chain step takes longer than the 40 us between two ticks; at 80 or 100 us each step
+# fits between two ticks, and nothing is preempted)
 CROSS_BG_TARGETS := m7
 CROSS_BG_TICKS := 1000
 CROSS_BG_DEFS = -DRT_SCENE=mdl_scene_pendulum10_actuated -DRT_IMAGE_BG=1 \
@@ -249,10 +251,10 @@ CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 # The unit tests run as several images, and each library scene as an image of its own
 # (tests/cross/tests_main.c, scenes_main.c), so that no one emulated run is long. Each
 # run is bounded by an instruction budget (tests/cross/run.sh, the limit of
-# tools/qemu/insn_count.c), set from what rv32 (binary64 in software, the most
-# expensive target) executed: softfloat 6.6e7; a quarter of the unit tests at most 4.0e10
-# (a tenth now); pendulum10_actuated_single's whole run about 3.2e10; the timer-paced
-# pi_loop 4e7. An image that runs past its budget stops and names it (raise it when
+# tools/dev/qemu/insn_count.c), set from what rv32 (binary64 in software, the most
+# expensive target) executed, with room to grow: softfloat 6.6e7; a tenth of the unit
+# tests at most 4.0e10; pendulum10_actuated_single's whole run about 3.2e10; the
+# timer-paced pi_loop 4e7. An image that runs past its budget stops and names it (raise it when
 # many tests are added).
 CROSS_PARTS := 10
 CROSS_SCENE_PARTS = $(words $(SCN_FILES))
@@ -358,13 +360,13 @@ FOOT_SRCS = tests/cross/footprint_main.c tests/harness.c \
             $(filter-out models/registry.c models/scenes/% build/gen/%,$(MODEL_SRCS))
 footprint: deps build/host/modrt $(INSN_COUNT_SO) scenes
 	$(MAKE) --no-print-directory REAL=float build/host-float/modrt
-	sh tools/footprint.sh "$(FOOT_TARGETS)" "$(FOOT_FLOAT_TARGETS)" > docs/footprint.md
-	sh tools/effects.sh >> docs/footprint.md
+	sh tools/dev/footprint.sh "$(FOOT_TARGETS)" "$(FOOT_FLOAT_TARGETS)" > docs/footprint.md
+	sh tools/dev/effects.sh >> docs/footprint.md
 	@echo "footprint: wrote docs/footprint.md"
 # the effects of the lane change alone (Cortex-M7 and the host, a few minutes): replaces
 # the section "Effects of the lane change" at the end of docs/footprint.md
 effects: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
-	sh tools/effects.sh > build/effects.md
+	sh tools/dev/effects.sh > build/effects.md
 	awk '/^## Effects of the lane change$$/ { exit } { print }' docs/footprint.md | \
 	    sed -e :a -e '/^\n*$$/{$$d;N;ba' -e '}' > build/footprint.md
 	cat build/effects.md >> build/footprint.md
@@ -390,8 +392,9 @@ $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 	$(INSN_COUNT_CC) $(INSN_COUNT_CFLAGS) -o $@ $<
 # ---- image: one scene file on one target (docs/porting.md) ----
 # make image TARGET=m4f SCENE=path/to/my.scn [CONSOLE=semihost|uart|itm|none] [IMAGE_CFLAGS=...]
-image: deps build/host/modrt $(SCENEC)
-	@JOBS=$(JOBS) sh tools/image.sh "$(TARGET)" "$(SCENE)" "$(CONSOLE)" "$(IMAGE_CFLAGS)"
+image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
+	@JOBS=$(JOBS) sh tools/image.sh "$(TARGET)" "$(SCENE)" "$(CONSOLE)" "$(IMAGE_CFLAGS)" \
+	    "$(CLOCK_MHZ)" "$(TICKS)" "$(MEASURE)"
 TEST_SUITES += test-image
 # the CMSIS port's hand-built images beside `make image`'s (their build dirs are apart)
 test-image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
@@ -399,26 +402,36 @@ test-image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 	 sh tests/image.sh; r=$$?; wait $$p; c=$$?; cat build/cmsis/check.log; \
 	 [ $$r -eq 0 ] && [ $$c -eq 0 ]
 
-# prints a make variable (used by tools/footprint.sh)
+# prints a make variable (used by tools/dev/footprint.sh)
 print-%:
 	@echo '$($*)'
 
 # ---- benchmarks: figures and plots into docs/ (never timed tests) ----
-$(O)/mbs_bench: $(call obj,tools/bench/mbs_bench.c tools/bench/bench_doc.c) $(RT_OBJS) $(MODEL_OBJS)
+$(O)/mbs_bench: $(call obj,tools/dev/bench/mbs_bench.c tools/dev/bench/bench_doc.c) $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
-$(O)/multirate_bench: $(call obj,tools/bench/multirate_bench.c tools/bench/bench_doc.c) \
+$(O)/multirate_bench: $(call obj,tools/dev/bench/multirate_bench.c tools/dev/bench/bench_doc.c) \
                      $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
-$(O)/overhead_bench: $(call obj,tools/bench/overhead_bench.c tools/bench/pendulum_mono.c \
-                    tools/bench/actuated_mono.c tools/bench/actuated_mr_mono.c) \
+$(O)/overhead_bench: $(call obj,tools/dev/bench/overhead_bench.c tools/dev/bench/pendulum_mono.c \
+                    tools/dev/bench/actuated_mono.c tools/dev/bench/actuated_mr_mono.c) \
                     $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
-# modrt against the hand-written monolith (docs/overhead.md): the trajectory check (fails
-# the target when they differ), then instruction counts and ratios
-overhead: $(O)/overhead_bench
+$(O)/tight_bench: $(call obj,tools/dev/bench/tight_bench.c tools/dev/bench/pendulum_tight.c) \
+                  $(RT_OBJS) $(MODEL_OBJS)
+	$(Q)$(CC) $(LDSAN) $^ -lm -o $@
+# modrt against the hand-written programs (docs/overhead.md): the trajectory checks (fail
+# the target when they differ), then instruction counts, ratios and the scaling with the
+# model's size, spliced into a copy of docs/overhead.md in build/bench/
+SCALE_STEPS ?= 10 # steps each scaling run counts
+overhead: $(O)/overhead_bench $(O)/tight_bench
 	@mkdir -p build/bench
 	$(O)/overhead_bench check
-	@sh tools/bench/overhead.sh $(O)/overhead_bench | tee build/bench/overhead.txt
+	$(O)/tight_bench check
+	@cp docs/overhead.md build/bench/
+	@sh tools/dev/bench/overhead.sh $(O) 1 build/bench/overhead.md | tee build/bench/overhead.txt
+	sh tools/dev/bench/scale.sh $(SCALE_STEPS) > build/bench/scale.md
+	@sh tools/dev/bench/splice.sh scale build/bench/overhead.md build/bench/scale.md
+	@cat build/bench/scale.md
 .PHONY: overhead
 # the multirate speedup at equal accuracy (issue 14, goal 4; docs/multirate.md, "The
 # benchmark"): single-rate and multirate sweeps of pendulum10_actuated and lane_change,
@@ -428,7 +441,7 @@ SPEEDUP_JOBS ?= 2
 speedup: $(O)/modrt $(O)/svgplot
 	@mkdir -p build/bench
 	@cp docs/multirate.md build/bench/
-	python3 tools/bench/speedup.py --modrt $(O)/modrt --jobs $(SPEEDUP_JOBS) \
+	python3 tools/dev/bench/speedup.py --modrt $(O)/modrt --jobs $(SPEEDUP_JOBS) \
 	    --doc build/bench/multirate.md
 	$(O)/svgplot --xy --logx --logy \
 	    -t "pendulum10_actuated: error against instructions" \
@@ -438,7 +451,7 @@ speedup: $(O)/modrt $(O)/svgplot
 .PHONY: speedup
 # benchmarks write into build/bench/ only (documents are spliced into copies there);
 # `make docs` runs them and copies the figures over the committed ones in docs/
-BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg
+BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg overhead.md
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
 bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
 	@mkdir -p build/bench
@@ -447,10 +460,10 @@ bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
 	$(O)/svgplot --xy --logx --logy -t "pendulum10: position error at 2 s against host CPU time" \
 	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
 	    -o build/bench/mbs_bench.svg build/bench/mbs.csv
-	@sh tools/bench/rt_bench.sh $(O)/modrt $(RT_BENCH_S)
+	@sh tools/dev/bench/rt_bench.sh $(O)/modrt $(RT_BENCH_S)
 	@rm -f build/bench/bg.txt
-	@sh tools/bench/bg_bench.sh pendulum10 m7
-	@sh tools/bench/bg_bench.sh pendulum10_actuated m7
+	@sh tools/dev/bench/bg_bench.sh pendulum10 m7
+	@sh tools/dev/bench/bg_bench.sh pendulum10_actuated m7
 	@echo "bench: figures in build/bench/ (make docs copies them into docs/)"
 
 # the committed references and figures: the block reference from the kinds' tables, and
@@ -506,5 +519,5 @@ include tests/link/link.mk
 include tests/hard/hard.mk
 include tests/static/static.mk
 include tests/vehicles/vehicles.mk
-include tools/study/study.mk
+include tools/dev/study/study.mk
 include tests/sweep/sweep.mk

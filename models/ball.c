@@ -6,8 +6,8 @@
  *
  * Contact that comes to rest. With e < 1 the flights shrink geometrically and the impacts
  * accumulate at a finite time (Zeno): no fixed step can follow them, and a step that
- * ends below the floor moving down never sees another crossing (the ball used to fall
- * through after its 32nd impact). An impact whose rebound flight 2 v+ / g is shorter than
+ * ends below the floor moving down never sees another crossing (without a rest the ball
+ * falls through after its 32nd impact). An impact whose rebound flight 2 v+ / g is shorter than
  * t_min ends the bouncing: the ball rests on the floor (h = v = 0, no acceleration: the
  * floor's reaction balances g), and t_rest is the accumulation time of the remaining
  * flights, t + 2 v+ / (g (1 - e)), the analytic time of rest. The root is a guard (the

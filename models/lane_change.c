@@ -20,6 +20,10 @@
  * frame and d its distance, delta = atan(2 L e / d^2) (L the wheelbase), bounded by
  * delta_max.
  *
+ * iso_cones (the course check): the smallest margin of a car's footprint, a box turned by
+ * its heading, to the cone lines of the lane sections 1, 3 and 5-6 it overlaps, so that a
+ * run records it and a campaign's metric takes its minimum (docs/sweeps.md).
+ *
  * tow_steer (the paper's SteeringPrinciple): the tow bar runs from the second vehicle's
  * front hitch to the first's rear hitch; mu1 = psi1 - theta and mu2 = theta - psi2 with
  * theta the bar's heading; delta2 = K1 mu1 + K2 mu2. */
@@ -133,6 +137,86 @@ const rt_kind mdl_iso_driver_cc_kind = {
         "on section 1 (centre line 0, offset, 0; b is not used). For a scene that asks\n"
         "for this variant by name; the standard's course is iso_driver."),
     .units = RT_DOC("m m rad m/s rad m m m s m m rad m"),
+};
+
+/* ---------------------------------------------------------------- iso_cones */
+
+enum { C_X0, C_OFF, C_LEN, C_WID, C_AHEAD, C_CAP, C_NP };
+static const char *const cone_u[] = {"x", "y", "psi"};
+static const char *const cone_y[] = {"margin"};
+static const char *const cone_p[] = {"x0", "offset", "length", "width", "ahead", "cap"};
+/* the footprint of lane_change's cars (CommonRoad vehicle 1: 4.298 m by 1.674 m), centred
+   between the axles, (lf - lr) / 2 = -0.31242 m ahead of the centre of mass; the lanes'
+   widths follow the same width b */
+static const real_t cone_def[C_NP] = {0, (real_t)3.5, (real_t)4.298, (real_t)1.674,
+                                      (real_t)-0.31242, 1};
+
+/* the footprint's margin to the cone lines r (right-hand) and l of the lane from xa to xb,
+   lowered into *m: the part of a convex box inside the lane's x range has its extreme y
+   at a corner in the range or where an edge crosses the lane's first or last cone (a side
+   can touch a cone there while every corner in the lane is clear) */
+static void lane_margin(const real_t bx[4], const real_t by[4], real_t xa, real_t xb,
+                        real_t r, real_t l, real_t *m)
+{
+    for (int i = 0; i < 4; i++) {
+        int j = (i + 1) & 3;
+        if (bx[i] >= xa && bx[i] <= xb)
+            *m = rt_fmin(*m, rt_fmin(by[i] - r, l - by[i]));
+        for (int e = 0; e < 2; e++) {
+            real_t xe = e ? xb : xa;
+            if ((bx[i] - xe) * (bx[j] - xe) < 0) {
+                real_t ye = by[i] + (by[j] - by[i]) * (xe - bx[i]) / (bx[j] - bx[i]);
+                *m = rt_fmin(*m, rt_fmin(ye - r, l - ye));
+            }
+        }
+    }
+}
+
+/* the cone lines as iso_driver's course draws them: section 1 centred on 0, section 3's
+   right-hand line the offset to the left of section 1's, sections 5-6 on section 1's */
+static void cone_output(const rt_args *a, real_t *y)
+{
+    const real_t *u = a->u, *p = a->p;
+    real_t c = rt_cos(u[2]), s = rt_sin(u[2]), bx[4], by[4];
+    real_t cx = u[0] + p[C_AHEAD] * c, cy = u[1] + p[C_AHEAD] * s;
+    static const int8_t sa[4] = {1, 1, -1, -1}, sb[4] = {1, -1, -1, 1}; /* around the box */
+    for (int i = 0; i < 4; i++) {
+        real_t l = sa[i] * p[C_LEN] / 2, w = sb[i] * p[C_WID] / 2;
+        bx[i] = cx + l * c - w * s, by[i] = cy + l * s + w * c;
+    }
+    real_t r1 = -(width_k[0] * p[C_WID] + (real_t)0.25) / 2, m = p[C_CAP], x = p[C_X0];
+    for (size_t k = 0; k < 3; k++) { /* sections 1, 3 and 5-6: from the start of 1, 3, 5 */
+        real_t xa = x, xb = x + sections[2 * k] + (k == 2 ? sections[5] : 0);
+        real_t r = r1 + (k == 1 ? p[C_OFF] : 0);
+        lane_margin(bx, by, xa, xb, r, r + width_k[k] * p[C_WID] + (real_t)0.25, &m);
+        x = xb + sections[2 * k + 1];
+    }
+    y[0] = m;
+}
+
+static rt_status cone_check(const real_t *p, const void *spec)
+{
+    (void)spec;
+    return rt_isfinite(p[C_X0]) && rt_isfinite(p[C_OFF]) && rt_isfinite(p[C_AHEAD]) &&
+                   p[C_LEN] > 0 && p[C_WID] > 0 && p[C_CAP] > 0 && rt_isfinite(p[C_LEN]) &&
+                   rt_isfinite(p[C_WID]) && rt_isfinite(p[C_CAP])
+               ? RT_OK
+               : RT_E_PARAM;
+}
+
+const rt_kind mdl_iso_cones_kind = {
+    .name = "iso_cones", .type = RT_KIND_OUTPUT, .nu = 3, .ny = 1, .np = C_NP,
+    .u_names = cone_u, .y_names = cone_y, .p_names = cone_p, .p_default = cone_def,
+    .feed = RT_FEED_ALL, .autonomous = 1, .check = cone_check, .output = cone_output,
+    .doc = RT_DOC(
+        "The ISO 3888-1 course check: margin, the smallest distance of a car's footprint\n"
+        "(a length x width box centred `ahead` of the inputs' point along the heading psi)\n"
+        "to the cone lines of the lane sections it overlaps, edges as well as corners, on\n"
+        "iso_driver's course for b = width (sections 1, 3, 5-6 from x0, lanes\n"
+        "1.1 b + 0.25, 1.2 b + 0.25, 1.3 b + 0.25 m wide; section 1 centred on 0, section\n"
+        "3's right-hand line offset to the left of section 1's, sections 5-6 on section\n"
+        "1's); negative: a cone is hit. At most cap (outside every lane: cap)."),
+    .units = RT_DOC("m m rad m m m m m m m"),
 };
 
 /* ---------------------------------------------------------------- tow_steer */

@@ -69,9 +69,10 @@ extern const rt_kind mdl_car3d_kind, mdl_car3d_mf_kind; /* linear / Magic-Formul
 extern const rt_kind mdl_drag_kind;
 /* the ISO 3888-1 double lane change (lane_change.c): a pure-pursuit driver on its centre
    line (iso_driver: the course as the standard draws it; iso_driver_cc: the variant with
-   the offset between lane centres), and the towed vehicle's steering from the tow-bar
-   angles */
-extern const rt_kind mdl_iso_driver_kind, mdl_iso_driver_cc_kind, mdl_tow_steer_kind;
+   the offset between lane centres), its cone check (iso_cones: the footprint's margin),
+   and the towed vehicle's steering from the tow-bar angles */
+extern const rt_kind mdl_iso_driver_kind, mdl_iso_driver_cc_kind, mdl_iso_cones_kind,
+    mdl_tow_steer_kind;
 enum { MDL_ST_X, MDL_ST_Y, MDL_ST_PSI, MDL_ST_U, MDL_ST_V, MDL_ST_R, MDL_ST_AY };
 
 /* registry of model kinds by name, ending in {NULL, NULL} */

@@ -28,6 +28,7 @@ const mdl_entry mdl_kinds[] = {
     {"drag", &mdl_drag_kind},
     {"iso_driver", &mdl_iso_driver_kind},
     {"iso_driver_cc", &mdl_iso_driver_cc_kind},
+    {"iso_cones", &mdl_iso_cones_kind},
     {"tow_steer", &mdl_tow_steer_kind},
     {"pulley", &mdl_pulley_kind},
     {"rotor", &mdl_rotor_kind},

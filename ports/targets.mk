@@ -136,9 +136,9 @@ TARGET_VTIME_aarch64     := 0
 
 # ------------------------------------------------------------------ instruction-count plugin
 
-# Host-built TCG plugin (tools/qemu/insn_count.c); build it with
+# Host-built TCG plugin (tools/dev/qemu/insn_count.c); build it with
 #   $(INSN_COUNT_CC) $(INSN_COUNT_CFLAGS) -o $(INSN_COUNT_SO) $(INSN_COUNT_SRC)
-INSN_COUNT_SRC    := tools/qemu/insn_count.c
+INSN_COUNT_SRC    := tools/dev/qemu/insn_count.c
 INSN_COUNT_SO     := build/host/libinsn_count.so
 INSN_COUNT_CC     := gcc
 INSN_COUNT_CFLAGS := -std=c11 -Wall -Wextra -Werror -O2 -shared -fPIC

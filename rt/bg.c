@@ -14,7 +14,7 @@
  * preempt at any point.
  *
  * Without a background context the step runs inline at release in the tick's own
- * rt_sim, and its result (x slice and outputs) waits in rt_state.bg_new with the state
+ * rt_sim, and its result (x slice and outputs) waits in rt_state.bg_result with the state
  * the trace shows left as it was. With a context attached (rt_bg_attach, a second rt_sim
  * of the caller's) the step runs there, in memory the tick never touches while it runs:
  * the tick copies the inputs in at release and the result out at publication. */
@@ -62,8 +62,7 @@ static rt_status init(const rt_scene *sc, rt_sim *sim)
         if (st != RT_OK)
             return st;
         if (result_size(sc, sim, s) > RT_MAX_BG)
-            return rti_fail(sim, RT_E_CAPACITY, "background set ", sc->sets[s].name,
-                            ": states and outputs exceed ", RTI_LIMIT(RT_MAX_BG), (const char *)0);
+            return rti_capacity(sim, sc->sets[s].name, RTI_LIM_BG);
         sim->plan.bg_set = s;
     }
     return RT_OK;
@@ -118,7 +117,7 @@ static void copy_reals(real_t *dst, const real_t *src, uint32_t n)
 
 /* the set's result from one rt_sim to another of the same scene (same layout): from the
    context straight into the tick's state at publication, one pass instead of two through
-   bg_new (this runs in the publishing tick, the scene's slowest) */
+   bg_result (this runs in the publishing tick, the scene's slowest) */
 static void copy_result(const rt_sim *from, rt_sim *to, uint8_t s)
 {
     uint16_t x0 = from->plan.set_x[s];
@@ -172,7 +171,7 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         uint16_t b = sim->plan.set_blk[k];
         if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
                          (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
-            bg->work.mbs.m_valid[b] = 0, bg->state.imp_stale[s] = 1,
+            bg->work.mbs.m_valid[b] = 0, bg->state.param_changed[s] = 1,
             rti_tev_moved(bg, s); /* its time events may have moved (rt/tev.c) */
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             uint16_t v = sim->plan.src[i];
@@ -240,8 +239,8 @@ static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
 }
 
 /* release at the set's communication point: inline, the step runs now and its result is
-   swapped into bg_new (the trace keeps showing the state at release); with a context, the
-   inputs are copied there and the step is handed to rt_background */
+   swapped into bg_result (the trace keeps showing the state at release); with a context,
+   the inputs are copied there and the step is handed to rt_background */
 static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
     sim->state.bg_busy = 1;
@@ -252,16 +251,16 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
         rti_xset_predict(sc, sim, s, (real_t)sim->state.set_tick[s] * sc->dt,
                          sc->dt * (real_t)sc->sets[s].ratio);
     if (!sim->bg) {
-        move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 0);
+        move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_result, 0);
         run_step(sc, sim, s);
-        move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 2);
+        move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_result, 2);
         return;
     }
     /* a parameter set since the last release: the context's step forms the Jacobian
        anew, the step this release runs, as the inline step does (rt/step.c); copy_inputs
        adds parameters that changed another way (a restored snapshot) */
-    sim->bg->state.imp_stale[s] = sim->state.imp_stale[s];
-    sim->state.imp_stale[s] = 0;
+    sim->bg->state.param_changed[s] = sim->state.param_changed[s];
+    sim->state.param_changed[s] = 0;
     copy_inputs(sc, sim, sim->bg, s);
     /* the copies above become visible to the background context with the count */
     __atomic_store_n(&sim->bg_released, sim->bg_released + 1u, __ATOMIC_RELEASE);
@@ -276,7 +275,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
         merge_stats(sim, bg, s);
         copy_gains(sc, bg, sim, s); /* its step's, for the tick's check at the next release */
     } else {
-        move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_new, 1);
+        move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_result, 1);
     }
     sim->state.set_tick[s] = sim->state.bg_due;
     sim->state.bg_busy = 0;

@@ -1,6 +1,7 @@
 /* describe.c - what rt_init decided, for tools that print or size a scene (`modrt info`,
- * `modrt sizes`, the tuner, the scene compiler): read-only accessors, so that nothing
- * outside rt/ reads rt_sim.plan, whose layout is the runtime's own business. */
+ * `modrt sizes`, the tuner, the scene compiler), and what a run shows (its tick, trace
+ * hash, outputs, states and stats): read-only accessors, so that nothing outside rt/
+ * reads rt_sim's layout (rt_sim.h), which is the runtime's own business. */
 #include "rti.h"
 
 uint8_t rt_set_at(const rt_sim *sim, uint8_t i)
@@ -10,14 +11,14 @@ uint8_t rt_set_at(const rt_sim *sim, uint8_t i)
 
 uint16_t rt_set_nx(const rt_sim *sim, uint8_t set)
 {
-    return (uint16_t)(sim->plan.set_x[set + 1] - sim->plan.set_x[set]);
+    return rti_set_nx(sim, set);
 }
 
 rt_step_work rt_step_bound(const rt_scene *sc, uint8_t s, uint16_t n)
 {
     rt_step_work w = {0, 0};
     const rt_integrator *m = sc->sets[s].method;
-    m->bound(m, &sc->sets[s].implicit, n, &w);
+    m->bound(m, &sc->sets[s].cfg, n, &w);
     return w;
 }
 
@@ -165,7 +166,7 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
     z->x = sim->plan.x_off[nb], z->d = sim->plan.d_off[nb];
     z->u = sim->plan.u_off[nb], z->y = sim->plan.y_off[nb], z->p = sim->plan.p_off[nb];
     z->roots = sim->plan.set_r[sc->nsets];
-    z->sets = sc->nsets, z->recs = sc->nrecs;
+    z->sets = sc->nsets, z->recs = sc->nrecs, z->joints = sc->njoints;
     z->loops = sim->plan.nloops, z->torn = sim->plan.ntorn;
     z->implicit_n = z->transition_n = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
@@ -211,4 +212,29 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
 real_t rt_output(const rt_sim *sim, uint16_t block, uint16_t j)
 {
     return sim->state.y[sim->plan.y_off[block] + j];
+}
+
+real_t rt_block_x(const rt_sim *sim, uint16_t block, uint16_t i)
+{
+    return sim->state.x[sim->plan.x_off[block] + i];
+}
+
+real_t rt_block_d(const rt_sim *sim, uint16_t block, uint16_t i)
+{
+    return sim->state.d[sim->plan.d_off[block] + i];
+}
+
+uint64_t rt_ticks_done(const rt_sim *sim)
+{
+    return sim->state.tick;
+}
+
+uint64_t rt_trace_hash(const rt_sim *sim)
+{
+    return sim->state.hash;
+}
+
+const rt_stats *rt_stats_of(const rt_sim *sim)
+{
+    return &sim->stats;
 }

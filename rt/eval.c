@@ -37,7 +37,7 @@ RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b, real_t t)
 /* a DSS block produces new outputs only at its sample hits */
 static int dss_hit(const rt_sim *sim, uint16_t b, rti_mode mode)
 {
-    return (mode == RTI_AT_TICK || mode == RTI_RENEW) &&
+    return (mode == RTI_AT_TICK || mode == RTI_AT_TICK_RECALL) &&
            sim->state.tick % sim->plan.period[b] == 0;
 }
 
@@ -190,15 +190,15 @@ static uint8_t set_flags(const rt_scene *sc, const rt_sim *sim, uint8_t set)
                      (rti_nonlinear_block(sc, sim, set) < 0 ? RTI_SET_LINEAR : 0));
 }
 
-/* rti_eval_plan's marks per block: called once in the sequence; renewed by a tick */
-enum { SEEN_CALLED = 1, SEEN_RENEWED = 2 };
+/* rti_eval_plan's marks per block: called once in the sequence; called again by a renewal */
+enum { SEEN_CALLED = 1, SEEN_RECALLED = 2 };
 
-/* does a tick's renewal call block b: sampled (its outputs change at sample hits, which
-   the step's end evaluation does not call), or with throughput and an input that may
-   have changed since that evaluation (another set's history or sampled output, a renewed
-   block's output). One without throughput gives what it gave there. (A torn input is a
-   loop's, whose entry a renewal always solves: renew_loop) */
-static int renewed(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint8_t *seen)
+/* does a tick's renewal call block b again: sampled (its outputs change at sample hits,
+   which the step's end evaluation does not call), or with throughput and an input that
+   may have changed since that evaluation (another set's history or sampled output, a
+   recalled block's output). One without throughput gives what it gave there. (A torn input is a
+   loop's, whose entry a renewal always solves: recall_loop) */
+static int recalled(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint8_t *seen)
 {
     const rt_kind *k = sc->blocks[b].kind;
     if (k->type == RT_KIND_DSS)
@@ -209,18 +209,18 @@ static int renewed(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uint
         uint8_t src = sim->plan.src_kind[j];
         if (src == RT_SRC_XSET || src == RT_SRC_HELD)
             return 1;
-        if (src == RT_SRC_Y && (seen[writer(sc, sim, sim->plan.src[j])] & SEEN_RENEWED))
+        if (src == RT_SRC_Y && (seen[writer(sc, sim, sim->plan.src[j])] & SEEN_RECALLED))
             return 1;
     }
     return 0;
 }
 
-/* a loop is solved again in a renewal; its blocks count as renewed for those after it */
-static void renew_loop(const rt_sim *sim, uint16_t l, uint8_t *seen)
+/* a loop is solved again in a renewal; its blocks count as recalled for those after it */
+static void recall_loop(const rt_sim *sim, uint16_t l, uint8_t *seen)
 {
     const rt_loop *lp = &sim->plan.loops[l];
     for (uint16_t i = lp->first; i < lp->first + lp->nblocks; i++)
-        seen[sim->plan.loop_blocks[i]] |= SEEN_RENEWED;
+        seen[sim->plan.loop_blocks[i]] |= SEEN_RECALLED;
 }
 
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
@@ -240,8 +240,8 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
         uint8_t *fl = &sim->plan.seq_flags[s];
         *fl = RTI_RHS_CALL;
         if (st->kind != RT_SEQ_CALL) {
-            *fl |= RTI_SEQ_RENEW;
-            renew_loop(sim, st->index, seen);
+            *fl |= RTI_SEQ_RECALL;
+            recall_loop(sim, st->index, seen);
             continue;
         }
         uint8_t need = (seen[st->index] & SEEN_CALLED) ? LIVE_FED : LIVE_ANY;
@@ -251,9 +251,9 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
             *fl = RTI_RHS_SKIP;
         else if (!(live[st->index] & LIVE_RICH))
             *fl = RTI_RHS_LEAN;
-        if (renewed(sc, sim, st->index, seen)) {
-            *fl |= RTI_SEQ_RENEW;
-            seen[st->index] |= SEEN_RENEWED;
+        if (recalled(sc, sim, st->index, seen)) {
+            *fl |= RTI_SEQ_RECALL;
+            seen[st->index] |= SEEN_RECALLED;
         }
     }
     for (uint8_t set = 0; set < sc->nsets; set++) {
@@ -262,15 +262,11 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
         for (uint16_t i = sim->plan.seq_of[set]; i < sim->plan.seq_of[set + 1]; i++)
             sim->plan.rhs_calls[set] = (uint16_t)(sim->plan.rhs_calls[set] +
                 ((sim->plan.seq_flags[sim->plan.set_seq[i]] & RTI_SEQ_RHS) != RTI_RHS_SKIP));
-        if (rt_set_nx(sim, set) == 0 && sim->plan.set_r[set + 1] == sim->plan.set_r[set] &&
+        if (rti_set_nx(sim, set) == 0 && sim->plan.set_r[set + 1] == sim->plan.set_r[set] &&
             sim->plan.rhs_calls[set] == 0)
-            sim->plan.set_flags[set] |= RTI_SET_STATIC;
-        if (rti_set_holds(sc, set))
-            sim->plan.set_flags[set] |= RTI_SET_HELD_SIG;
+            sim->plan.set_flags[set] |= RTI_SET_NO_STEP;
         if (rti_xset_extrapolates(sc, sim, set))
             sim->plan.set_flags[set] |= RTI_SET_XPRED;
-        if (sc->sets[set].ratio > 1 && !sc->sets[set].background && sim->plan.set_xout[set])
-            sim->plan.set_flags[set] |= RTI_SET_NEXT;
     }
     return RT_OK;
 }
@@ -290,7 +286,7 @@ static void set_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
     for (uint16_t i = sim->plan.seq_of[at.set]; i < sim->plan.seq_of[at.set + 1]; i++) {
         uint16_t s = sim->plan.set_seq[i];
         const rt_seq_step *st = &sim->plan.seq[s];
-        if (at.mode == RTI_RENEW && !(fl[s] & RTI_SEQ_RENEW))
+        if (at.mode == RTI_AT_TICK_RECALL && !(fl[s] & RTI_SEQ_RECALL))
             continue;
         if (st->kind == RT_SEQ_LOOP)
             solve_loop(sc, sim, st, at);

@@ -63,10 +63,7 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
     for (uint8_t s = 0; s < sc->nsets; s++)
         if (sc->sets[s].method->implicit &&
             sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_IMPLICIT_N)
-            return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
-                            ": an implicit method's states exceed ",
-                            RTI_LIMIT(RT_MAX_IMPLICIT_N),
-                            (const char *)0);
+            return rti_capacity(sim, sc->sets[s].name, RTI_LIM_IMPLICIT_N);
 
     sim->plan.x_off[sc->nblocks] = (uint16_t)nx;
     for (uint16_t b = 0; b <= sc->nblocks; b++) {
@@ -191,12 +188,9 @@ static rt_status check_history(const rt_scene *sc, rt_sim *sim)
     /* (the outputs read by another set were checked against RT_MAX_HIST_Y as they were
        found, rti_xset_init) */
     if (rti_held_top(sc, sim) > RT_MAX_HELD_Y)
-        return rti_fail(sim, RT_E_CAPACITY, "outputs of sets stepping over several ticks exceed ",
-                        RTI_LIMIT(RT_MAX_HELD_Y), (const char *)0);
+        return rti_capacity(sim, 0, RTI_LIM_HELD_Y);
     if (rti_held_sigs(sc) > RT_MAX_HELD_SIG)
-        return rti_fail(sim, RT_E_CAPACITY, "recorded and exported multibody signals of sets "
-                        "stepping over several ticks exceed ", RTI_LIMIT(RT_MAX_HELD_SIG),
-                        (const char *)0);
+        return rti_capacity(sim, 0, RTI_LIM_HELD_SIG);
     uint32_t iters = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
     if (sim->plan.ntorn > 0 && iters > RT_MAX_LOOP_HIST - 1)
         return rti_fail(sim, RT_E_CAPACITY, "the loops' iteration bound exceeds ",
@@ -204,9 +198,7 @@ static rt_status check_history(const rt_scene *sc, rt_sim *sim)
     for (uint8_t s = 0; s < sc->nsets; s++)
         if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] &&
             sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_EVENT_X)
-            return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
-                            ": states of a set with roots exceed ", RTI_LIMIT(RT_MAX_EVENT_X),
-                            (const char *)0);
+            return rti_capacity(sim, sc->sets[s].name, RTI_LIM_EVENT_X);
     return RT_OK;
 }
 
@@ -216,30 +208,40 @@ static int tol_ok(real_t v)
     return v == 0 || (v > 0 && rt_isfinite(v));
 }
 
-/* one set's settings (rt_set, rt_implicit_cfg): what the scene language and the CLI
-   check, checked again for a hand-written scene */
+rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim)
+{
+    const char *what = "";
+    switch (lim) {
+#define RT_X_TEXT(name, field, least, what_)                                                 \
+    case RTI_LIM_##name:                                                                    \
+        what = what_ " exceed " RTI_LIMIT(RT_MAX_##name);                                   \
+        break;
+        RT_LIMIT_LIST(RT_X_TEXT)
+#undef RT_X_TEXT
+    default:
+        break;
+    }
+    return set ? rti_fail(sim, RT_E_CAPACITY, "set ", set, ": ", what, (const char *)0)
+               : rti_fail(sim, RT_E_CAPACITY, what, (const char *)0);
+}
+
+/* one set's method, step and settings (rt_set_check: what the scene compiler and modrt's
+   per-set options check, checked again for a hand-written scene) */
 static rt_status check_set(const rt_scene *sc, uint8_t s, rt_sim *sim)
 {
-    const rt_set *st = &sc->sets[s];
-    const rt_implicit_cfg *c = &st->implicit;
-    if (!st->method || st->ratio == 0 || st->method->stages > RT_MAX_STAGES)
-        return rti_fail(sim, RT_E_SCENE, "set ", st->name,
-                        ": needs a method and a step of at least one tick", (const char *)0);
-    if (!tol_ok(c->tol) || !tol_ok(c->accuracy) || !tol_ok(c->atol) ||
-        (c->substeps & (c->substeps - 1)) != 0 || c->substeps > 128)
-        return rti_fail(sim, RT_E_PARAM, "set ", st->name,
-                        ": tolerance, accuracy and atol must be 0 (default) or positive and "
-                        "finite, substeps 0 (default) or a power of two up to 128",
-                        (const char *)0);
-    return RT_OK;
+    rt_cfg_id bad;
+    const char *msg = rt_set_check(&sc->sets[s], &bad);
+    if (!msg)
+        return RT_OK;
+    return rti_fail(sim, bad == RT_CFG_N ? RT_E_SCENE : RT_E_PARAM, "set ", sc->sets[s].name,
+                    ": ", msg, (const char *)0);
 }
 
 /* scene-level checks before anything is laid out */
 static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
 {
     if (sc->nblocks > RT_MAX_BLOCKS)
-        return rti_fail(sim, RT_E_CAPACITY, "blocks exceed ", RTI_LIMIT(RT_MAX_BLOCKS),
-                        (const char *)0);
+        return rti_capacity(sim, 0, RTI_LIM_BLOCKS);
     if (sc->nsets == 0 || sc->nsets > RT_MAX_SETS)
         return rti_fail(sim, RT_E_CAPACITY, "a scene needs 1 to ", RTI_LIMIT(RT_MAX_SETS),
                         " sets", (const char *)0);
@@ -316,9 +318,7 @@ static rt_status check_methods(const rt_scene *sc, rt_sim *sim)
                             ") is not a linear kind (rt_kind.linear), is a multibody "
                             "module or has a torn input", (const char *)0);
         if (st->method->linear && rt_set_nx(sim, s) > RT_MAX_TRANSITION_N)
-            return rti_fail(sim, RT_E_CAPACITY, "set ", st->name, ": method ",
-                            st->method->name, " takes at most ",
-                            RTI_LIMIT(RT_MAX_TRANSITION_N), " states", (const char *)0);
+            return rti_capacity(sim, st->name, RTI_LIM_TRANSITION_N);
     }
     return RT_OK;
 }
@@ -363,6 +363,7 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
         /* the link's exports count among the held signals (check_history) */
         (st = rti_link_check(sc, sim)) != RT_OK || (st = check_history(sc, sim)) != RT_OK ||
         (st = rti_eval_plan(sc, sim)) != RT_OK || (st = check_methods(sc, sim)) != RT_OK ||
+        (st = rti_held_plan(sc, sim)) != RT_OK ||
         (st = bg_init(sc, sim)) != RT_OK)
         return st;
     /* the graph searches used the integrator scratch: zero it again */

@@ -142,7 +142,7 @@ static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, rea
 }
 
 /* stages, plus the end-point derivative of the error estimate */
-static void erk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+static void erk_bound(const rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                       rt_step_work *w)
 {
     const erk_tab *tab = m->tab;

@@ -19,8 +19,8 @@
  * r_m = max_i |d_i| / (1 + |Y_i|), i.e. |d| <= tol (atol + rtol |Y|) with atol = rtol = 1.
  * r_m <= tol: apply d, done. r_m not below r_{m-1} (not contracting) or not finite: stop
  * there (never back to the predictor: a step that returned its start state would meet the
- * same Jacobian at the same point next step and repeat the failure bit for bit, which is
- * how these methods used to freeze on Robertson's kinetics). Otherwise apply d and go on,
+ * same Jacobian at the same point next step and repeat the failure bit for bit: a method
+ * would freeze on Robertson's kinetics). Otherwise apply d and go on,
  * at most newton_max iterations. A first iteration cannot show convergence (its
  * correction is the whole stage increment).
  *
@@ -60,12 +60,6 @@
 
 #define R(v) ((real_t)(v))
 
-/* defaults of rt_implicit_cfg (zeros select them) */
-#define IMP_NEWTON_MAX 4 /* Newton iterations per stage */
-#define IMP_JAC_EVERY 1  /* steps between Jacobian refreshes */
-/* residual tolerance: 1e-8 in double; single precision resolves about 1e-7 relative,
-   so its default sits two digits above that */
-#define IMP_TOL (RT_REAL_IS_FLOAT ? R(1e-5) : R(1e-8))
 /* a pivot at most this times the largest entry of M marks M singular */
 #define IMP_PIVOT_TOL (R(100) * RT_EPS)
 
@@ -174,13 +168,12 @@ static void factor(imp_step *c)
 static void begin(imp_step *c, const rt_rhs *f, real_t *x, uint16_t n, const rt_iwork *w,
                   real_t hg)
 {
-    const rt_implicit_cfg *cfg = w->cfg;
-    uint16_t every = cfg->jac_every ? cfg->jac_every : IMP_JAC_EVERY;
+    rt_set_cfg cfg = rti_set_cfg_of(w->cfg);
     *c = (imp_step){.f = f, .x = x, .n = n, .w = w, .hg = hg, .r0 = -1};
-    c->tol = cfg->tol > 0 ? cfg->tol : IMP_TOL;
-    c->nmax = cfg->newton_max ? cfg->newton_max : IMP_NEWTON_MAX;
-    c->sa = rti_err_floor(cfg);
-    c->refresh = !w->imp->valid || w->imp->age >= every;
+    c->tol = cfg.tol;
+    c->nmax = cfg.newton_max;
+    c->sa = rti_err_floor(w->cfg);
+    c->refresh = !w->imp->valid || w->imp->age >= cfg.jac_every;
     if (!c->refresh && w->imp->h_factored != hg)
         factor(c);
     for (uint16_t i = 0; i < n; i++)
@@ -449,7 +442,7 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     /* 2: substeps, each with its own Jacobian at its start, and still full Newton with
        the retry's iterations (Robertson's first step at h = 0.1 s converges in no
        substep without them); dirk_bound counts it */
-    uint8_t kmax = w->cfg->substeps ? w->cfg->substeps : RT_IMP_SUBSTEPS;
+    uint8_t kmax = rti_set_cfg_of(w->cfg).substeps;
     for (uint8_t k = 2; k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
         c.err = 0, c.singular = 0;
         res = split(&c, dirk_attempt, tab, tab->gamma, t, h, k);
@@ -511,7 +504,7 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
        Robinson at 10 ms, 5e-9 off, showed 0.21), but only in a set that refreshes its
        Jacobian every step (jacobian (1), the default): a W-method's error grows with its
        Jacobian's age, which the raw difference shows and an old M would filter away */
-    real_t e = w->cfg->jac_every <= 1 ? estimate(c, ft) : scaled_norm(ft, x, n, c->sa);
+    real_t e = rti_set_cfg_of(w->cfg).jac_every <= 1 ? estimate(c, ft) : scaled_norm(ft, x, n, c->sa);
     return e == e ? e : R(1) / R(0);
 }
 
@@ -531,7 +524,7 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     for (uint16_t j = 0; j < n; j++)
         ws->xs[j] = x[j];
     real_t e = ros2_attempt(&c, tab, t, h), best = e;
-    uint8_t kmax = w->cfg->substeps ? w->cfg->substeps : RT_IMP_SUBSTEPS;
+    uint8_t kmax = rti_set_cfg_of(w->cfg).substeps;
     for (uint16_t j = 0; j < n; j++)
         ws->best[j] = x[j];
     for (uint8_t k = 2; e > acc && k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
@@ -563,12 +556,13 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
    Jacobian at its start: 2 K - 1 full attempts after the first, 2 K - 2 of them with a
    fresh Jacobian. Backward Euler adds f(t, x0) to each attempt (its estimate, in a set
    that is not autonomous). */
-static void dirk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+static void dirk_bound(const rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                        rt_step_work *w)
 {
     const dirk_tab *tab = m->tab;
-    uint32_t nmax = cfg->newton_max ? cfg->newton_max : IMP_NEWTON_MAX;
-    uint32_t k = cfg->substeps ? cfg->substeps : RT_IMP_SUBSTEPS, expl = tab->a[0] == 0;
+    rt_set_cfg d = rti_set_cfg_of(cfg);
+    uint32_t nmax = d.newton_max;
+    uint32_t k = d.substeps, expl = tab->a[0] == 0;
     uint32_t impl = tab->s - expl, full = 2 * nmax < 255 ? 2 * nmax : 255;
     uint32_t own = expl + (tab->s == 1); /* evaluations besides Jacobians and Newton */
     uint32_t first = n + own + impl * nmax, retry = own + impl * full * (1u + n);
@@ -578,10 +572,10 @@ static void dirk_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint1
 
 /* ROS2: an attempt is a Jacobian (n evaluations), f(t, x0), f(t + h, x0), f(t + h, x1)
    and one factorization; with the substeps 2, 4, ... K: 2 K - 1 attempts */
-static void ros2_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+static void ros2_bound(const rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                        rt_step_work *w)
 {
-    uint32_t k = cfg->substeps ? cfg->substeps : RT_IMP_SUBSTEPS;
+    uint32_t k = rti_set_cfg_of(cfg).substeps;
     (void)m;
     w->rhs = (2 * k - 1) * (3u + n), w->lu = 2 * k - 1;
 }

@@ -146,7 +146,7 @@ static rt_status transition_step(const rt_integrator *m, const rt_rhs *f, real_t
 
 /* a step: f(t, x0) and f(t + h, x0); a refresh: n more and the midpoint's (the phi work
    is counted as factorizations of n^3 / 3 multiply-adds each) */
-static void transition_bound(const rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+static void transition_bound(const rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                              rt_step_work *w)
 {
     (void)m, (void)cfg;

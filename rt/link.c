@@ -1,7 +1,6 @@
 /* link.c - the scene's link to an external controller, without any I/O: checks the link
- * description at init, reads exported signals, applies imported values, and copies the
- * state part of rt_sim for snapshots. The transport (UDP on POSIX, a UART or CAN driver
- * on a board) is the application's: docs/link.md. */
+ * description at init, reads exported signals and applies imported values. The transport
+ * (UDP on POSIX, a UART or CAN driver on a board) is the application's: docs/link.md. */
 #include "rti.h"
 
 static int rec_ok(const rt_scene *sc, const rt_rec *r)
@@ -68,27 +67,4 @@ void rt_link_apply(const rt_scene *sc, rt_sim *sim, const real_t *v)
     real_t *y = sim->state.y + sim->plan.y_off[l->block];
     for (uint16_t i = 0; i < l->nimp; i++)
         d[i] = y[i] = v[i];
-}
-
-void rt_snapshot(const rt_sim *sim, rt_state *out)
-{
-    *out = sim->state;
-}
-
-rt_status rt_restore(rt_sim *sim, const rt_state *in)
-{
-    /* with a context attached the step in flight is the context's, in no snapshot (and
-       the context may be running it): only a state between steps can be restored there */
-    if (sim->bg && (in->bg_busy || rt_bg_pending(sim) || sim->state.bg_busy))
-        return RT_E_ARG;
-    sim->state = *in;
-    /* the parameters may differ: constant mass matrices are factored anew, and so is the
-       background set's Jacobian, whose data a context kept and no snapshot holds */
-    for (uint16_t b = 0; b < RT_MAX_BLOCKS; b++)
-        sim->work.mbs.m_valid[b] = 0;
-    if (sim->bg && sim->plan.bg_set >= 0) {
-        sim->state.imp_stale[sim->plan.bg_set] = 1;
-        return rt_bg_attach(sim->sc, sim, sim->bg); /* the context from the restored state */
-    }
-    return RT_OK;
 }

@@ -346,7 +346,7 @@ static real_t reaction(const rt_scene *sc, const rt_sim *sim, uint16_t j, uint16
 static real_t signal(const rt_scene *sc, const rt_sim *sim, uint16_t block, uint16_t index)
 {
     uint8_t set = sc->blocks[block].set;
-    real_t t = rt_time(sc, sim);
+    real_t t = rti_time(sc, sim);
     switch (index) {
     case RT_MBS_SIG_ENERGY:
         return energy(sc, sim, set, t, 2);

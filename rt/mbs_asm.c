@@ -15,11 +15,6 @@ static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
     return (const rt_mbs_spec *)sc->blocks[b].kind->spec;
 }
 
-int rti_mbs_in_set(const rt_scene *sc, uint16_t b, uint8_t set)
-{
-    return sc->blocks[b].kind->type == RT_KIND_MBS && sc->blocks[b].set == set;
-}
-
 /* ------------------------------------------------------------------ nodes and joints */
 
 /* an inertial node: the joint's anchor point and frame, at rest */

@@ -304,20 +304,65 @@ typedef struct rt_istats {
                                  rt_set_step_bound's */
 } rt_istats;
 
-/* Per-set settings of an implicit method (rt_set; zeros select the defaults). */
-typedef struct rt_implicit_cfg {
-    uint8_t newton_max;       /* Newton iterations per stage (default 4) */
-    uint8_t substeps;         /* most substeps a failing step is split into, a power of
-                                 two (default RT_IMP_SUBSTEPS; 1: no splitting) */
-    uint16_t jac_every;       /* refresh the Jacobian every N steps (default 1) */
-    real_t tol;               /* residual tolerance, scaled norm (default 1e-8;
-                                 1e-5 with RT_REAL_FLOAT) */
-    real_t accuracy;          /* local error a step may show, scaled norm max_i |e_i| /
-                                 (1 + |x_i|) (default RT_ERR_TOL); above it: errest */
-    real_t atol;              /* absolute part of the accuracy (0: = accuracy): a step
-                                 may show |e_i| <= atol + accuracy |x_i|, i.e. the norm is
-                                 max_i |e_i| / (atol / accuracy + |x_i|) (rti_err_floor) */
-} rt_implicit_cfg;
+/* The settings of a set's method, one row each: the one list every reader takes them
+ * from (the scene compiler's clauses, its C and image, modrt's per-set options and info,
+ * the checks of rt_set_check, the defaults of rt_set_cfg_of). Columns: id; the
+ * scene-language clause; modrt's option (--OPT SET=VALUE; 0: none); the rt_set_cfg field;
+ * its kind (RT_CFG_COUNT: a whole number 1..max, RT_CFG_POW2: a power of two 1..max,
+ * RT_CFG_REAL: positive and finite, RT_CFG_PAIR: the optional second value of the row
+ * before, as in accuracy (rtol, atol)); max; the methods it applies to (RT_CFG_ALL, or
+ * RT_CFG_ITER: the implicit methods that iterate, not the transition method); the value
+ * a zero selects (rt_config.h); what it means. */
+#define RT_SET_CFG_LIST(X)                                                                  \
+    X(RT_CFG_NEWTON, "newton", "newton", newton_max, RT_CFG_COUNT, 255, RT_CFG_ITER,        \
+      RT_IMP_NEWTON_MAX, "Newton iterations per stage of an implicit set")                  \
+    X(RT_CFG_JACOBIAN, "jacobian", "jacobian", jac_every, RT_CFG_COUNT, 65535, RT_CFG_ITER, \
+      RT_IMP_JAC_EVERY, "steps between Jacobian refreshes of an implicit set")              \
+    X(RT_CFG_TOL, "tolerance", "tol", tol, RT_CFG_REAL, 0, RT_CFG_ITER, RT_IMP_TOL,         \
+      "Newton residual tolerance of an implicit set, scaled norm")                          \
+    X(RT_CFG_SUBSTEPS, "substeps", "substeps", substeps, RT_CFG_POW2, 128, RT_CFG_ITER,     \
+      RT_IMP_SUBSTEPS, "most substeps a failing implicit step is split into (1: none)")     \
+    X(RT_CFG_ACCURACY, "accuracy", "accuracy", accuracy, RT_CFG_REAL, 0, RT_CFG_ALL,        \
+      RT_ERR_TOL, "local error a step may show before it is counted (errest): max_i "      \
+      "|e_i| / (1 + |x_i|)")                                                                \
+    X(RT_CFG_ATOL, "accuracy", 0, atol, RT_CFG_PAIR, 0, RT_CFG_ALL, 0,                      \
+      "absolute part of the accuracy (0: none): |e_i| <= atol + accuracy |x_i|")
+
+typedef enum {
+#define RT_X_ENUM_C(id, word, opt, field, kind, max, scope, dflt, help) id,
+    RT_SET_CFG_LIST(RT_X_ENUM_C)
+#undef RT_X_ENUM_C
+    RT_CFG_N
+} rt_cfg_id;
+enum { RT_CFG_COUNT, RT_CFG_POW2, RT_CFG_REAL, RT_CFG_PAIR }; /* kinds of a setting */
+enum { RT_CFG_ALL, RT_CFG_ITER };                             /* methods it applies to */
+
+/* A set's settings (rt_set.cfg; zeros select the defaults, rt_set_cfg_of). */
+typedef struct rt_set_cfg {
+    uint8_t newton_max;
+    uint8_t substeps;
+    uint16_t jac_every;
+    real_t tol;
+    real_t accuracy;
+    real_t atol;
+} rt_set_cfg;
+
+/* A row of RT_SET_CFG_LIST for the tools that read settings by name (rt_set_opts). */
+typedef struct rt_set_opt {
+    const char *word;      /* scene-language clause */
+    const char *opt;       /* modrt's option, or 0 */
+    uint8_t kind, scope;   /* RT_CFG_COUNT..., RT_CFG_ALL or RT_CFG_ITER */
+    uint32_t max;          /* counts: the largest */
+    const char *help;
+} rt_set_opt;
+extern const rt_set_opt rt_set_opts[RT_CFG_N];
+/* setting id of c (0: its default), and setting it */
+real_t rt_set_cfg_get(const rt_set_cfg *c, rt_cfg_id id);
+void rt_set_cfg_put(rt_set_cfg *c, rt_cfg_id id, real_t v);
+/* c with every zero replaced by its default */
+rt_set_cfg rt_set_cfg_of(const rt_set_cfg *c);
+/* 1: method m iterates (the settings of scope RT_CFG_ITER apply to it) */
+int rt_method_iterates(const struct rt_integrator *m);
 
 /* Workspace an integrator may use for one step of one set (carved from rt_sim). */
 typedef struct rt_iwork {
@@ -327,7 +372,7 @@ typedef struct rt_iwork {
     real_t *tm;               /* 2 RT_MAX_TRANSITION_N^2 scratch (method transition) */
     rt_implicit_ws *imp;      /* persistent implicit data of this set */
     rt_istats *stats;         /* statistics of this set */
-    const rt_implicit_cfg *cfg; /* settings of this set */
+    const rt_set_cfg *cfg; /* settings of this set */
 } rt_iwork;
 
 /* The most work of one step: right-hand-side evaluations and LU factorizations. */
@@ -352,7 +397,7 @@ typedef struct rt_integrator {
     const void *tab;   /* method data, e.g. a Butcher tableau */
     /* the most work one step of n states can take with the settings cfg, whatever the
        model does (the fixed bound of docs/solvers.md, "Bounded work") */
-    void (*bound)(const struct rt_integrator *m, const rt_implicit_cfg *cfg, uint16_t n,
+    void (*bound)(const struct rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                   struct rt_step_work *w);
 } rt_integrator;
 
@@ -404,10 +449,8 @@ typedef enum {
 #undef RT_X_ENUM
     RT_INTERP_COUNT
 } rt_interp;
-/* The scene language's name of an interpolation scheme ("?" if out of range), and the
-   scheme of a name (-1 if none). */
+/* The scene language's name of an interpolation scheme ("?" if out of range). */
 const char *rt_interp_name(rt_interp i);
-int rt_interp_find(const char *name);
 
 /* One connection of the incidence y = P u (eq. 2): output port -> input port. */
 typedef struct rt_conn {
@@ -427,10 +470,15 @@ typedef struct rt_set {
     const rt_integrator *method;
     uint32_t ratio;        /* step = ratio * base tick */
     uint8_t interp;        /* rt_interp of its inputs from other sets (0: hold) */
-    rt_implicit_cfg implicit; /* settings of an implicit method; zeros: defaults */
+    rt_set_cfg cfg;        /* settings of its method (RT_SET_CFG_LIST); zeros: defaults */
     uint8_t background;    /* 1: steps preemptible below the tick, Jacobi-coupled
                               (rt/bg.c, docs/multirate.md "Background sets") */
 } rt_set;
+/* Checks set st's method, step and settings (RT_SET_CFG_LIST), for the scene compiler,
+   modrt's per-set options and rt_init alike: 0 when sound, else what is wrong (e.g.
+   "tolerance must be positive and finite") with *bad the setting at fault (RT_CFG_N: the
+   method or the step). */
+const char *rt_set_check(const rt_set *st, rt_cfg_id *bad);
 
 /* What a recorded signal reads. RT_SIG_MBS: a multibody quantity computed by the scene's
    MBS services (energy, constraint residuals, joint reactions; index from rt_mbs.h). */
@@ -524,7 +572,7 @@ typedef struct rt_bg_ops {
 } rt_bg_ops;
 extern const rt_bg_ops rt_bg;
 
-/* Post-stabilization of multibody sets; declared once (rt_stab_name, rt_stab_find). */
+/* Post-stabilization of multibody sets; declared once (rt_stab_find). */
 #define RT_STAB_LIST(X)                                                          \
     X(RT_STAB_PROJECT, "project")   /* two-iteration position and direct velocity   \
                                        projection (eq. 10) */                       \
@@ -538,7 +586,7 @@ typedef enum {
 #undef RT_X_ENUM
     RT_STAB_COUNT
 } rt_stab;
-const char *rt_stab_name(rt_stab s);
+/* the method of a scene language name (-1 if none) */
 int rt_stab_find(const char *name);
 
 /* Registry row of a scene; registries end with {NULL, NULL}. */
@@ -594,168 +642,14 @@ typedef struct rt_loop_ops {
 } rt_loop_ops;
 extern const rt_loop_ops rt_broyden;
 
-/* Scratch of the graph searches at init (shares storage with the integrator workspace). */
-typedef struct rt_scc_work {
-    uint16_t index[RT_MAX_NODES];
-    uint16_t low[RT_MAX_NODES];
-    uint16_t stack[RT_MAX_NODES];
-    uint16_t call[RT_MAX_NODES];   /* explicit depth-first call stack */
-    uint32_t cursor[RT_MAX_NODES]; /* successor cursor per node */
-    uint8_t on[RT_MAX_NODES];      /* node is on the component stack */
-    uint16_t comp[RT_MAX_NODES];   /* component of each node */
-    uint16_t done[RT_MAX_NODES];   /* sequence position where an output became final */
-    uint16_t orig[RT_MAX_NODES];   /* component before tearing */
-    uint8_t color[RT_MAX_NODES];   /* tearing search: 0 new, 1 on the path, 2 done */
-    uint16_t last[RT_MAX_BLOCKS];  /* sequence position of a block's last call */
-} rt_scc_work;
-
-#define RT_ALL_SETS 0xFF
-
-/* The plan of a running scene: computed once by rt_init from the scene, never written
- * during ticks (layout, routing, evaluation sequence, loops, schedule). Only rt/ reads it. */
-typedef struct rt_plan {
-    /* sets: slice of x each set integrates, and slice of r holding each set's roots */
-    uint16_t set_x[RT_MAX_SETS + 1];
-    uint16_t set_r[RT_MAX_SETS + 1];
-
-    /* layout: offsets of each block's slice in the value arrays (size nblocks + 1) */
-    uint16_t x_off[RT_MAX_BLOCKS + 1], d_off[RT_MAX_BLOCKS + 1];
-    uint16_t u_off[RT_MAX_BLOCKS + 1], y_off[RT_MAX_BLOCKS + 1];
-    uint16_t p_off[RT_MAX_BLOCKS + 1];
-    uint32_t period[RT_MAX_BLOCKS]; /* DSS sample period in base ticks, 0 otherwise */
-    uint16_t dss_first, dss_end;    /* the DSS blocks lie in [dss_first, dss_end) */
-
-    /* signal routing: each input reads y[src[i]] or def[i] */
-    uint8_t src_kind[RT_MAX_U];      /* rt_src_kind */
-    uint16_t src[RT_MAX_U];          /* global output index */
-    real_t def[RT_MAX_U];            /* default value */
-
-    /* evaluation order (rt/order.c) */
-    rt_seq_step seq[RT_MAX_SEQ];
-    uint8_t seq_flags[RT_MAX_SEQ];   /* per entry of seq, what a right-hand side does with
-                                        it (rti_rhs_call) and whether a tick's renewal
-                                        calls it (rti_eval_plan) */
-    uint16_t nseq;
-    /* per set, what a pass over that set alone walks (rti_eval_plan), so that the fast
-       set of a multirate scene does not scan the slow set's entries every stage: its
-       entries of seq in sequence order (a loop's entry stands for its calls), and its
-       blocks in block order */
-    uint16_t set_seq[RT_MAX_SEQ];    /* set s: set_seq[seq_of[s] .. seq_of[s + 1]) */
-    uint16_t seq_of[RT_MAX_SETS + 1];
-    uint16_t rhs_calls[RT_MAX_SETS]; /* entries of set s a right-hand side runs (0: none,
-                                        as in a multibody set without signal blocks) */
-    uint16_t set_blk[RT_MAX_BLOCKS]; /* set s: set_blk[blk_of[s] .. blk_of[s + 1]) */
-    uint16_t blk_of[RT_MAX_SETS + 1];
-    rt_loop loops[RT_MAX_LOOPS];
-    uint8_t nloops;
-    uint16_t loop_blocks[2 * RT_MAX_BLOCKS]; /* blocks of each loop, see rt_loop */
-
-    /* torn loop inputs (rt/loop.c): the unknowns of the actual loops */
-    uint16_t ntorn;
-    uint16_t torn_in[RT_MAX_TORN];   /* global input index of each torn input */
-    uint16_t torn_src[RT_MAX_TORN];  /* the output that drives it (loop-closing edge) */
-
-    /* multirate (rt/xset.c) */
-    uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
-    uint8_t rsched[RT_MAX_SETS];     /* order the sets' outputs are refreshed in at a tick:
-                                        sched's, but a set whose sampled outputs another
-                                        set reads (RT_SRC_HELD) before that set (rt/xset.c),
-                                        so the trace does not depend on how the scene
-                                        lists its sets */
-    uint8_t set_flags[RT_MAX_SETS];  /* rti_set_flag bits of each set (rti_eval_plan) */
-    uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
-    uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
-    uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);
-                                        sized like the history: higher outputs never are */
-    uint16_t set_xout[RT_MAX_SETS];  /* the set's highest output read by other sets, plus
-                                        one (0: none): its history push stops there */
-    int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
-#if RT_MAX_XPRED > 0
-    /* inputs a set extrapolates over its step from another set, whose prediction is
-       checked (rti_xset_predict), and the block each belongs to */
-    uint16_t xpred_in[RT_MAX_XPRED], xpred_blk[RT_MAX_XPRED];
-    uint16_t nxpred;
-#endif
-
-    uint64_t n_ticks;                /* ticks to reach t_end */
-} rt_plan;
-
-/* The state of a running scene: everything a snapshot or a replay needs to continue
- * bit for bit, in one struct, so that saving and restoring it is one copy. */
-typedef struct rt_state {
-    uint64_t tick;                   /* base ticks done; t = tick * dt */
-    uint64_t set_tick[RT_MAX_SETS];  /* tick each set's state belongs to */
-    real_t x[RT_MAX_X];              /* continuous state */
-    real_t d[RT_MAX_D];              /* discrete state */
-    real_t y[RT_MAX_Y];              /* outputs (DSS outputs held between hits) */
-    real_t p[RT_MAX_P];              /* parameters (may be changed before the run) */
-    real_t r[RT_MAX_ROOTS];          /* root values at the end of the last step */
-    real_t r_lvl[RT_MAX_ROOTS];      /* level each root crosses at: 0, or after a handler
-                                        that sent it back (or stopped it) the value it
-                                        was handled at, less a margin (rt/step.c) */
-    real_t torn_val[RT_MAX_TORN];    /* torn inputs' values (warm start of the next solve) */
-    real_t loop_h[RT_MAX_TORN * RT_MAX_TORN]; /* inverse Jacobians, Broyden-updated */
-    real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
-    real_t hist_y[RT_HIST][RT_MAX_HIST_Y];/* cross-set outputs at those times */
-    rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
-    /* the background set's step in flight (rt/bg.c): released at tick bg_due - ratio,
-       published at tick bg_due; bg_new holds its result (x slice, then the outputs of its
-       blocks) until then when it ran inline (no background context attached) */
-    uint64_t bg_due;                 /* tick its result is due */
-    real_t bg_new[RT_MAX_BG];        /* inline result, published at bg_due */
-    /* per output of the background set another set reads: what the parabolic
-       extrapolation showed at the newest point, minus that point; faded out over the next
-       macro step, so the value read stays continuous (rt/xset.c) */
-    real_t bg_jump[RT_MAX_HIST_Y];
-#if RT_MAX_HELD_Y > 0
-    /* a set stepping over several ticks in the tick whose outputs another set reads: its
-       outputs at its step's end, evaluated then for its history and renewed from here when
-       its state reaches the tick (rt/sim.c) */
-    real_t y_next[RT_MAX_HELD_Y];
-#endif
-#if RT_MAX_XPRED > 0
-    /* per input of plan.xpred_in: the value its scheme gave for the end of its set's step,
-       made at the step's start (NaN: none yet), checked at the next, and the largest |u|
-       the input has had at those checks, its scale (rti_xset_predict) */
-    real_t xpred[RT_MAX_XPRED], xscale[RT_MAX_XPRED];
-    /* per input of plan.xpred_in: the sensitivity of its set's derivatives to it, the
-       largest |df_i/du| / (1 + |x_i|) [1/s per unit of u], measured by a difference every
-       RT_XSET_GAIN_EVERY steps of the set and before a miss near its accuracy is judged
-       (NaN: due), which turns a missed prediction into an error of the set's state
-       (rti_xset_predict) */
-    real_t xgain[RT_MAX_XPRED];
-#endif
-#if RT_MAX_HELD_SIG > 0
-    /* recorded (in record order), then link-exported (in export order) multibody signals
-       of the sets held between steps: they change with the set's state only, so they are
-       computed when its outputs are; a background set's by its step, at the step's end,
-       into bg_sig_new (in the context the step runs in), taken over at its publication
-       (rt/bg.c) */
-    real_t held_sig[RT_MAX_HELD_SIG];
-    real_t bg_sig_new[RT_MAX_HELD_SIG];
-#endif
-#if RT_MAX_TEV > 0
-    /* per set holding a kind with known time events: the base tick of its next instant,
-       UINT64_MAX: none before the end, 0: to be found (at the start, after a parameter
-       change); so a step walks the set's blocks only at an instant (rt/tev.c) */
-    uint64_t tev_next[RT_MAX_SETS];
-#endif
-    uint64_t hash;                   /* trace hash of the recorded values (rt_hash_real) */
-    /* the byte-wide members last, together: no padding after each (RAM of small targets) */
-    uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
-    uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
-    uint8_t imp_stale[RT_MAX_SETS];  /* a parameter of the set changed (rt_set_param):
-                                        its next step forms its Jacobian anew (rt/step.c;
-                                        a background set's in the context that runs it) */
-    uint8_t bg_busy;                 /* 1: a step is released and not yet published */
-    int8_t r_side[RT_MAX_ROOTS];     /* per root, the side (+1 above r_lvl, -1 below) a
-                                        handler sent it back to (or stopped it on) and
-                                        it must not leave without a located crossing;
-                                        0: none (until it is seen on that side of 0) */
-} rt_state;
+/* One running scene (rt_sim) and its state, everything a run needs to continue
+ * (rt_state): their layout is rt_sim.h's, which an application includes only where it
+ * allocates them (static storage); the API below reads them for it. */
+typedef struct rt_sim rt_sim;
+typedef struct rt_state rt_state;
 
 /* What a run has met: fault counters, the first fault, high-water marks and monitors.
- * Read by applications through rt_stats_of (rt_sim.stats); written only by rt/. */
+ * Read by applications through rt_stats_of; written only by rt/. */
 typedef struct rt_stats {
     rt_status status;                /* first fault met (RT_OK while clean) */
     uint32_t count[RT_CNT_COUNT];    /* fault counters */
@@ -786,57 +680,6 @@ typedef struct rt_stats {
 #endif
 } rt_stats;
 
-/* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */
-typedef struct rt_work {
-    real_t u[RT_MAX_U];              /* gathered inputs */
-    /* integrator workspace; the graph searches of rt_init use the same storage */
-    union {
-        real_t k[RT_MAX_STAGES][RT_MAX_X];
-        rt_scc_work scc;
-    } w;
-    real_t x0[RT_MAX_X];
-#if RT_MAX_TRANSITION_N > 0
-    real_t tm[2 * RT_MAX_TRANSITION_N * RT_MAX_TRANSITION_N]; /* method transition */
-#endif
-    real_t xb[RT_MAX_EVENT_X];           /* state at the right end of an event bracket */
-    real_t xs[RT_MAX_X];             /* saved state for event location */
-    real_t rs[RT_MAX_ROOTS];         /* root values scratch */
-#if RT_MAX_HELD_Y > 0
-    real_t y_held[RT_MAX_HELD_Y];    /* a multi-tick set's outputs during its step (sim.c) */
-#endif
-    real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
-    uint16_t loop_piv[RT_MAX_TORN];
-    rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
-#if RT_MAX_TEV > 0
-    real_t t_piece;                  /* midpoint of the step part a set with known time
-                                        events is integrating [s] (rt_args.t_piece); 0:
-                                        none, at a tick (rt/tev.c) */
-#endif
-} rt_work;
-
-/* One running scene. The caller owns it (static storage); rt_init fills every part.
- * Sizes are the compile-time limits of rt_config.h. Who may read what:
- *   plan   rt/ only (init writes it, ticks read it)
- *   state  rt/; applications only to snapshot and restore it whole (rt_snapshot)
- *   stats  rt/ writes; applications read (summaries, tests)
- *   work   rt/ only */
-typedef struct rt_sim {
-    rt_plan plan;
-    rt_state state;
-    rt_stats stats;
-    rt_work work;
-    char err[RT_ERR_LEN];            /* what rt_init found wrong, and where */
-    const rt_scene *sc;              /* (the pointers last, beside each other: no padding
-                                        before the 8-byte-aligned plan on 32-bit targets) */
-    /* the background context (rt_bg_attach): a second rt_sim the background set steps
-       in, so that it shares no memory with the tick; NULL: its steps run inline at
-       release (the simulated clock). Two counters hand a step over, each written by one
-       side only and never reset, so no side can see a stale pair: bg_released counts the
-       steps the tick released, bg_finished (written by the background context) the
-       released step it finished; a step is pending while they differ. */
-    struct rt_sim *bg;
-    uint32_t bg_released, bg_finished;
-} rt_sim;
 
 /* ------------------------------------------------------------------ API */
 
@@ -851,6 +694,9 @@ const char *rt_error_text(const rt_sim *sim);
 /* Advances the scene by one base tick. Always completes the tick; faults go to the
  * counters and to sim->stats.status. Returns RT_E_DONE once t_end is reached. */
 rt_status rt_tick(const rt_scene *scene, rt_sim *sim);
+/* A fault the application met outside the tick (a lost link): the run's status becomes
+ * status if that is more severe (rt_status_severity), as a counted fault makes it. */
+void rt_note_status(rt_sim *sim, rt_status status);
 /* Time of the current state [s]. */
 real_t rt_time(const rt_scene *scene, const rt_sim *sim);
 /* Re-evaluates the outputs and root values of every set whose state belongs to the current
@@ -894,7 +740,7 @@ rt_status rt_background(const rt_scene *scene, rt_sim *sim);
 /* The scene's background set, -1 if it has none. */
 int rt_bg_set(const rt_sim *sim);
 
-/* Snapshots: the state part of rt_sim is everything a run needs to continue; one copy
+/* Snapshots (rt/snapshot.c): the state part of rt_sim is everything a run needs to continue; one copy
  * out and one copy in (the plan must be the same scene's: restore after rt_init of it).
  * With a background context attached the step in flight lives in the context: rt_restore
  * then takes only a snapshot without one (bg_busy 0, e.g. right after a publication)
@@ -927,8 +773,17 @@ int rt_set_is_source(const rt_sim *sim, uint8_t set);
 rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s);
 /* Base ticks to the end time. */
 uint64_t rt_tick_count(const rt_sim *sim);
-/* Output j of block b now (as the last tick or refresh left it). */
+/* What a run shows now (as the last tick or refresh left it): output j of block b, its
+   continuous state i and discrete state i. */
 real_t rt_output(const rt_sim *sim, uint16_t block, uint16_t j);
+real_t rt_block_x(const rt_sim *sim, uint16_t block, uint16_t i);
+real_t rt_block_d(const rt_sim *sim, uint16_t block, uint16_t i);
+/* Base ticks done (t = rt_ticks_done * dt), and the trace hash of every value rt_record
+   folded in so far (RT_HASH_INIT before the first). */
+uint64_t rt_ticks_done(const rt_sim *sim);
+uint64_t rt_trace_hash(const rt_sim *sim);
+/* What the run has met: fault counters, first fault, high-water marks, monitors. */
+const rt_stats *rt_stats_of(const rt_sim *sim);
 /* Where input u of block reads its value from, and (RT_SRC_XSET) how it is rebuilt. */
 rt_src_kind rt_input_source(const rt_sim *sim, uint16_t block, uint16_t u, rt_interp *interp);
 /* The evaluation sequence (rt/order.c): its length and entries. */
@@ -945,26 +800,12 @@ typedef struct rt_torn {
 } rt_torn;
 uint16_t rt_torn_count(const rt_sim *sim);
 rt_torn rt_torn_at(const rt_scene *scene, const rt_sim *sim, uint16_t k);
-/* The exact sizes of this scene: what its per-scene build's limits must hold. */
+/* The exact sizes of this scene: what its per-scene build's limits must hold, one member
+   per row of RT_LIMIT_LIST (rt_config.h: what each counts). */
 typedef struct rt_sizes {
-    uint16_t blocks, x, d, u, y, p, roots, sets, recs, loops, torn;
-    uint16_t implicit_n;   /* states of the largest set with an implicit method */
-    uint16_t transition_n; /* ... with the transition method */
-    uint16_t mbs_z, mbs_q, mbs_c; /* largest multibody set: velocities, coordinates, rows */
-    uint16_t mbs_qt;       /* ... coordinates with a q-dependent K or a kinb */
-    uint16_t mbs_bz;       /* velocities of the largest multibody block */
-    uint16_t hist_y;       /* highest output index read by another set, plus one */
-    uint16_t held_y;       /* highest output index of a multi-tick set, plus one */
-    uint16_t held_sig;     /* recorded and exported multibody signals of held sets (may
-                              be 0) */
-    uint16_t event_x;      /* states of the largest set with roots */
-    uint16_t seq;          /* entries of the evaluation sequence */
-    uint16_t loop_hist;    /* the loops' iteration bound plus one (0 without loops) */
-    /* multibody tables over all sets (rt_config.h, RT_MAX_MBS_*) */
-    uint16_t mbs_rows, mbs_touch, mbs_tw, mbs_ty, mbs_pairs, mbs_lnz, mbs_m, mbs_jrows, mbs_jz;
-    uint16_t bg;           /* states plus outputs of the background set (RT_MAX_BG) */
-    uint16_t xpred;        /* inputs extrapolated from another set (RT_MAX_XPRED; may be 0) */
-    uint16_t tev;          /* sets with known time events (RT_MAX_TEV; may be 0) */
+#define RT_X_SIZE(name, field, least, what) uint16_t field;
+    RT_LIMIT_LIST(RT_X_SIZE)
+#undef RT_X_SIZE
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
 

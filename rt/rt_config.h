@@ -308,6 +308,18 @@ typedef double real_t;
    then 2 + (2 + 4 + ... + RT_IMP_SUBSTEPS) = 2 RT_IMP_SUBSTEPS step-equivalents */
 #define RT_IMP_SUBSTEPS 8
 #endif
+/* the defaults of an implicit set's Newton iteration (RT_SET_CFG_LIST): iterations per
+   stage, steps between Jacobian refreshes, and the residual tolerance: 1e-8 in double;
+   single precision resolves about 1e-7 relative, so its default sits two digits above */
+#ifndef RT_IMP_NEWTON_MAX
+#define RT_IMP_NEWTON_MAX 4
+#endif
+#ifndef RT_IMP_JAC_EVERY
+#define RT_IMP_JAC_EVERY 1
+#endif
+#ifndef RT_IMP_TOL
+#define RT_IMP_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-5 : (real_t)1e-8)
+#endif
 #ifndef RT_IMP_STALL
 /* an implicit step whose first Newton correction moved the state by more than this times
    its residual tolerance but which ended within the tolerance of its start has stalled
@@ -391,6 +403,62 @@ typedef double real_t;
    its bound (rt_step_bound); a scene needing more is refused at rt_init */
 #define RT_TEV_PARTS_MAX 4
 #endif
+
+/* ------------------------------------------------------------------ the list of limits */
+
+/* Every capacity limit a per-scene build sizes from its scene, one row each, in the order
+ * `scenec --sizes` and `modrt sizes` print them: L(NAME, field, least, what) (L, as a row is named X). The limit is
+ * RT_MAX_NAME, its default the #ifndef block of that name above (the preprocessor cannot
+ * write a #define, so the default stays there; a row without one fails to compile);
+ * field: the member of rt_sizes that measures it in a scene (rt_sizes_of); least: the
+ * smallest value a per-scene build passes (0: the arrays it sizes may be left out); what:
+ * the things it counts, as its capacity message names them (rti_capacity). Not in the
+ * list: RT_MAX_STAGES (a property of the methods), RT_MAX_TICKS (of the tick counter) and
+ * RT_MAX_NODES (derived). */
+#define RT_LIMIT_LIST(L)                                                                    \
+    L(BLOCKS, blocks, 1, "blocks")                                                          \
+    L(X, x, 1, "continuous states")                                                         \
+    L(D, d, 1, "discrete states")                                                           \
+    L(U, u, 1, "block inputs")                                                              \
+    L(Y, y, 1, "block outputs")                                                             \
+    L(P, p, 1, "parameters")                                                                \
+    L(ROOTS, roots, 1, "state-event root functions")                                        \
+    L(SETS, sets, 1, "integration sets")                                                    \
+    L(REC, recs, 1, "recorded signals")                                                     \
+    L(LOOPS, loops, 1, "algebraic loops")                                                   \
+    L(TORN, torn, 1, "torn loop inputs")                                                    \
+    L(IMPLICIT_N, implicit_n, 1, "states of a set with an implicit method")                 \
+    L(TRANSITION_N, transition_n, 0, "states of a set with the transition method")          \
+    L(HIST_Y, hist_y, 1, "outputs read by another set")                                     \
+    L(HELD_Y, held_y, 0, "outputs of sets stepping over several ticks")                     \
+    L(HELD_SIG, held_sig, 0, "recorded and exported multibody signals of sets stepping "   \
+                             "over several ticks")                                          \
+    L(EVENT_X, event_x, 1, "states of a set with roots")                                    \
+    L(SEQ, seq, 1, "entries of the evaluation sequence")                                    \
+    L(LOOP_HIST, loop_hist, 1, "entries of the loops' iteration histogram")                 \
+    L(BG, bg, 1, "states and outputs of a background set")                                  \
+    L(XPRED, xpred, 0, "inputs extrapolated from another set")                              \
+    L(TEV, tev, 0, "sets with known time events")                                           \
+    L(JOINTS, joints, 1, "joints")                                                          \
+    L(MBS_Z, mbs_z, 1, "generalized velocities of a multibody set")                         \
+    L(MBS_Q, mbs_q, 1, "generalized coordinates of a multibody set")                        \
+    L(MBS_C, mbs_c, 1, "constraints of a multibody set")                                    \
+    L(MBS_BZ, mbs_bz, 1, "generalized velocities of a multibody block")                     \
+    L(MBS_ROWS, mbs_rows, 1, "constraint rows of all sets")                                 \
+    L(MBS_TOUCH, mbs_touch, 1, "(block, constraint row) pairs that can be non-zero in W")                       \
+    L(MBS_TW, mbs_tw, 1, "entries of W kept")                       \
+    L(MBS_QT, mbs_qt, 1, "coordinates with a q-dependent K or a kinb")                      \
+    L(MBS_TY, mbs_ty, 1, "entries of M^-1 W^T kept")                                        \
+    L(MBS_PAIRS, mbs_pairs, 1, "entries of W M^-1 W^T that blocks contribute")          \
+    L(MBS_LNZ, mbs_lnz, 1, "off-diagonal non-zeros of the LDL^T factors")                    \
+    L(MBS_M, mbs_m, 1, "entries of the mass matrices' factors")                             \
+    L(MBS_JROWS, mbs_jrows, 1, "rows of the joints' constraints")                           \
+    L(MBS_JZ, mbs_jz, 1, "velocities of a block whose nodes have Jacobians")
+
+/* every row has a value: RT_MAX_NAME of a row without its #ifndef block is undeclared */
+#define RT_X_HAS_VALUE(name, field, least, what) typedef char rt_limit_##name[RT_MAX_##name >= 0 ? 1 : -1];
+RT_LIMIT_LIST(RT_X_HAS_VALUE)
+#undef RT_X_HAS_VALUE
 
 #if RT_MAX_BLOCKS > 65535 || RT_MAX_Y > 65535 || RT_MAX_U > 65535 || RT_MAX_X > 65535
 #error "modrt indexes blocks, states and ports with 16-bit integers: keep every RT_MAX_* below 65536."

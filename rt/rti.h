@@ -3,7 +3,7 @@
 #ifndef RTI_H
 #define RTI_H
 
-#include "rt.h"
+#include "rt_sim.h"
 
 /* evaluation modes of the output sequence */
 typedef enum {
@@ -14,10 +14,10 @@ typedef enum {
                         block's repeated call if none reads an output that depends on
                         its inputs, nor a sampled block; a kind's lean output equation
                         where it gives all that is read (plan.seq_flags) */
-    RTI_RENEW        /* at a tick boundary, right after the step's end evaluation at the
-                        same time (RTI_IN_STEP, for the history): as RTI_AT_TICK, but only
-                        the entries whose outputs may differ from that evaluation's are
-                        called (RTI_SEQ_RENEW, rti_eval_plan) */
+    RTI_AT_TICK_RECALL /* at a tick boundary, right after the step's end evaluation at the
+                          same time (RTI_IN_STEP, for the history): as RTI_AT_TICK, but
+                          only the entries whose outputs may differ from that
+                          evaluation's are called again (RTI_SEQ_RECALL, rti_eval_plan) */
 } rti_mode;
 
 /* An evaluation instant, passed down explicitly (no ambient "current set/time" in
@@ -69,14 +69,24 @@ const char *rti_real_text(char *buf, real_t v);
 #define RTI_STR2(x) #x
 #define RTI_STR(x) RTI_STR2(x)
 #define RTI_LIMIT(name) #name " (" RTI_STR(name) " in rt_config.h)"
+/* the limits of RT_LIMIT_LIST by name (RTI_LIM_BLOCKS, ...) */
+typedef enum {
+#define RT_X_LIM(name, field, least, what) RTI_LIM_##name,
+    RT_LIMIT_LIST(RT_X_LIM)
+#undef RT_X_LIM
+    RTI_LIM_COUNT
+} rti_limit;
+/* RT_E_CAPACITY with the limit's own message, "[set NAME: ]<what it counts> exceed
+   RT_MAX_<NAME> (<value> in rt_config.h)" (set: 0 for none) */
+rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim);
 /* Sets n bytes at p to zero (freestanding memset). */
 void rti_zero(void *p, size_t n);
 /* The trace hash of one more value (rt_hash_real): one multiply and one xor-shift, on the
    value's bit pattern as an integer (a float's zero-extended), so it does not depend on
    the target's byte order. Every bit of a value reaches the high half through the odd
    multiplier and the high half the low half through the shift, ahead of the next value's
-   multiply. It runs at every tick over every recorded value: the byte-wise FNV-1a it
-   replaced cost 8 multiplies per value (13 % of a multirate tick, docs/overhead.md). */
+   multiply. It runs at every tick over every recorded value, so it takes one multiply per
+   value where a byte-wise hash (FNV-1a) takes eight. */
 static inline uint64_t rti_hash(uint64_t h, real_t v)
 {
     union {
@@ -91,10 +101,10 @@ static inline uint64_t rti_hash(uint64_t h, real_t v)
     h = (h ^ (uint64_t)bits.u) * RT_HASH_MUL;
     return h ^ (h >> 32);
 }
-/* the value of a signal reference (recorded or exported) at the current state (sim.c) */
+/* the value of a signal reference (recorded or exported) at the current state (held.c) */
 real_t rti_sig_value(const rt_scene *sc, const rt_sim *sim, const rt_rec *r);
 /* the link's exported signal i (i < nexp): its held value if it is a multibody signal of
-   a set held between steps, as recording shows it, else its value now (sim.c) */
+   a set held between steps, as recording shows it, else its value now (held.c) */
 real_t rti_export_value(const rt_scene *sc, const rt_sim *sim, uint16_t i);
 /* checks the scene's controller link (link.c), at init */
 rt_status rti_link_check(const rt_scene *sc, rt_sim *sim);
@@ -153,36 +163,30 @@ void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r);
    plan.set_blk), the entries a right-hand side need not call (plan.seq_flags): a
    block's first call if no input of its own set reads its outputs live, a repeated call
    (after its inputs changed) if none reads one that depends on them, and those a tick's
-   renewal calls (RTI_SEQ_RENEW); the set flags (plan.set_flags). Returns RT_OK. */
+   renewal calls again (RTI_SEQ_RECALL); the set flags it owns (plan.set_flags). Returns
+   RT_OK. */
 rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim);
-/* what rti_eval_plan found of a set (plan.set_flags): a block of it has its own
-   derivative (an NSS or LSS kind: a right-hand side walks its blocks; a multibody set's
-   have none), and its right-hand side does not depend on t over a step (each block not
-   sampled of an autonomous kind, no input from another set's history and no torn one:
-   an actual loop's solver carries its estimates from one evaluation to the next), and
-   it is linear in its state (each block not sampled of a linear kind, no multibody
-   block, no torn input: the transition method's condition, checked at init), and it has
-   nothing to integrate (no continuous state, no root, no entry its right-hand side calls:
-   a set of sampled blocks, such as a controller in a set of its own, whose step would
-   only evaluate nothing at its stages; rt_tick skips it), and it holds recorded or exported
-   multibody signals between its steps (rti_set_holds: its refresh walks the records for
-   them, a walk the other sets skip), and it extrapolates another set (rti_xset_predict checks
-   its predictions), and it steps over several ticks in the tick and other sets read it
-   (its step's end evaluates its outputs for its history: kept in state.y_next, they are
-   renewed when its state reaches the tick, rt/sim.c), and it holds a kind with known time
-   events (its steps end at their instants: rti_tev_init sets the flag, rt/tev.c) */
-enum { RTI_SET_DERIV = 1, RTI_SET_AUTONOMOUS = 2, RTI_SET_LINEAR = 4, RTI_SET_STATIC = 8,
-       RTI_SET_HELD_SIG = 16, RTI_SET_XPRED = 32, RTI_SET_NEXT = 64, RTI_SET_TEV = 128 };
-/* does set s hold a recorded or exported signal between its steps (rt/sim.c) */
-int rti_set_holds(const rt_scene *sc, uint8_t s);
+/* what init found of a set (plan.set_flags), one bit each, and the file that finds it */
+enum {
+    RTI_SET_DERIV = 1,      /* a block has a deriv (NSS, LSS): rti_rhs walks them  eval.c */
+    RTI_SET_AUTONOMOUS = 2, /* its right-hand side does not read t over a step     eval.c */
+    RTI_SET_LINEAR = 4,     /* linear in its state (the transition method's test)  eval.c */
+    RTI_SET_NO_STEP = 8,    /* no state, root or rhs call: the tick skips its step eval.c */
+    RTI_SET_HOLDS_SIG = 16, /* holds recorded/exported multibody signals (held_sig) held.c */
+    RTI_SET_XPRED = 32,     /* extrapolates another set: its predictions checked   eval.c */
+    RTI_SET_KEEPS_END = 64, /* multi-tick, read by others: step end kept in y_end  held.c */
+    RTI_SET_TEV = 128       /* holds a kind with known time events                 tev.c */
+};
 /* The first block of set s that keeps it from being linear in its state, or -1. */
 int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t s);
-/* what a right-hand side does with an entry of the sequence (plan.seq_flags, the bits
-   under RTI_SEQ_RHS), and whether a tick's renewal calls it (RTI_SEQ_RENEW: a loop, a
-   sampled block, or a block with throughput reading an input from another set's history
-   or a sampled output of another set, or a renewed entry's output) */
+/* what a right-hand side does with an entry of the sequence (plan.seq_flags & RTI_SEQ_RHS) */
 typedef enum { RTI_RHS_CALL = 0, RTI_RHS_SKIP, RTI_RHS_LEAN } rti_rhs_call;
-enum { RTI_SEQ_RHS = 3, RTI_SEQ_RENEW = 4 };
+/* the bits of plan.seq_flags (rti_eval_plan) */
+enum {
+    RTI_SEQ_RHS = 3,   /* the entry's rti_rhs_call */
+    RTI_SEQ_RECALL = 4 /* a renewal calls it again: a loop, a sampled block, or one with
+                          throughput reading a history, a sampled or a recalled output */
+};
 /* The next run of consecutive blocks of set s from its k-th (plan.set_blk, ascending):
    their outputs are one range of y, [y_off[b], y_off[*end]); returns b, advances k. */
 static inline uint16_t rti_block_run(const rt_sim *sim, uint8_t s, uint16_t *k, uint16_t *end)
@@ -193,18 +197,48 @@ static inline uint16_t rti_block_run(const rt_sim *sim, uint8_t s, uint16_t *k, 
     *end = e;
     return b;
 }
+/* the time of the current state: the tick count times the base step (rt_time) */
+static inline real_t rti_time(const rt_scene *sc, const rt_sim *sim)
+{
+    return (real_t)sim->state.tick * sc->dt;
+}
+/* does set s's state belong to the current tick: it has just stepped to it (each tick for
+   a set of ratio 1), its background step was published at it (rt/bg.c), or the run is
+   at its start. Between those ticks its outputs are held (rt/held.c) */
+static inline int rti_at_tick(const rt_sim *sim, uint8_t s)
+{
+    return sim->state.set_tick[s] == sim->state.tick;
+}
+/* continuous states set s integrates (rt_set_nx) */
+static inline uint16_t rti_set_nx(const rt_sim *sim, uint8_t s)
+{
+    return (uint16_t)(sim->plan.set_x[s + 1] - sim->plan.set_x[s]);
+}
 /* Right-hand side of set s: outputs, then derivatives of the set's blocks. */
 rt_status rti_rhs(void *ctx, real_t t, real_t *xdot);
-/* the accuracy a set's error estimates are held to: its own, else RT_ERR_TOL */
-static inline real_t rti_accuracy(const rt_implicit_cfg *c)
+/* a set's settings with every zero replaced by its default (RT_SET_CFG_LIST): the one
+   place a default is chosen (rt_set_cfg_of for the tools) */
+static inline rt_set_cfg rti_set_cfg_of(const rt_set_cfg *c)
 {
-    return c->accuracy > 0 ? c->accuracy : RT_ERR_TOL;
+    rt_set_cfg r = *c;
+#define RT_X_DFLT(id, word, opt, field, kind, max, scope, dflt, help)                       \
+    if (!(r.field > 0))                                                                     \
+        r.field = dflt;
+    RT_SET_CFG_LIST(RT_X_DFLT)
+#undef RT_X_DFLT
+    return r;
+}
+/* the accuracy a set's error estimates are held to */
+static inline real_t rti_accuracy(const rt_set_cfg *c)
+{
+    return rti_set_cfg_of(c).accuracy;
 }
 /* the floor of the error norm of a set's estimates, max_i |e_i| / (floor + |x_i|): 1
    unless the set declares an absolute tolerance (atol / accuracy; docs/solvers.md) */
-static inline real_t rti_err_floor(const rt_implicit_cfg *c)
+static inline real_t rti_err_floor(const rt_set_cfg *c)
 {
-    return c->atol > 0 ? c->atol / rti_accuracy(c) : (real_t)1;
+    rt_set_cfg d = rti_set_cfg_of(c);
+    return d.atol > 0 ? d.atol / d.accuracy : (real_t)1;
 }
 /* Forward-difference Jacobian of f at (t, x) around fb = f(t, x) into the n x n row-major
    jac, column by column: x_j moves in place by inc max(1, |x_j|), re-measured as the
@@ -225,19 +259,14 @@ typedef struct rti_rhs_ctx {
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
 /* Pushes set s's outputs read by other sets, at time t, into their history. */
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
-/* the highest output index of a set stepping over several ticks, plus one (rt/sim.c) */
-uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim);
-/* recorded and exported multibody signals held between their set's steps (rt/sim.c): how
-   many; compute set s's into held_sig (when a multi-tick set's state reaches the tick, and
-   every set's at the start: rt_refresh) */
-uint16_t rti_held_sigs(const rt_scene *sc);
-void rti_hold_signals(const rt_scene *sc, rt_sim *sim, uint8_t s);
-/* set s's held signals at the end of its background step, into bg_sig_new of the context
-   it ran in (tick: the tick there), and at its publication from there into held_sig */
-void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t tick);
-void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s);
 /* Output v of set q reconstructed at time t by the scheme. */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
+/* does set s extrapolate another set over its step (its predictions are checked);
+   _npred: the inputs that do, of every set (RT_MAX_XPRED) */
+int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s);
+uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim);
+
+/* ---- the communication-error monitor (xpred.c) ---- */
 /* at the start of set s's step over [t, t + h]: the inputs it extrapolates from other sets
    against what their schemes predicted at its last step (RT_E_COUPLING past
    RT_XSET_LOST), and their predictions for t + h kept. _reset: none (the run's start) */
@@ -245,14 +274,32 @@ void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
 void rti_xset_predict_reset(rt_sim *sim);
 /* set s's sensitivity to the inputs it extrapolates, at its step's start t (step h), when
    due (every RT_XSET_GAIN_EVERY steps of it, or NaN: none yet, or marked by a miss near
-   the accuracy): two right-hand sides per input,
-   in the context that runs the step (rti_xset_predict calls it for a set of the tick,
-   rt/bg.c for the background set) */
+   the accuracy): two right-hand sides per input, in the context that runs the step
+   (rti_xset_predict calls it for a set of the tick, rt/bg.c for the background set) */
 void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
-/* does set s extrapolate another set over its step (its predictions are checked);
-   _npred: the inputs that do, of every set (RT_MAX_XPRED) */
-int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s);
-uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim);
+
+/* ---- what a set shows between its steps (held.c) ---- */
+/* the highest output index of a set stepping over several ticks, plus one (RT_MAX_HELD_Y) */
+uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim);
+/* recorded and exported multibody signals held between their set's steps: how many
+   (RT_MAX_HELD_SIG) */
+uint16_t rti_held_sigs(const rt_scene *sc);
+/* at init (after rti_eval_plan): the set flags RTI_SET_HOLDS_SIG and RTI_SET_KEEPS_END */
+rt_status rti_held_plan(const rt_scene *sc, rt_sim *sim);
+/* around set s's step in the tick (ratio: its ticks per step): its outputs at this tick
+   kept aside (work.y_shown) before, and put back after, its step's end ones kept in
+   state.y_end when it keeps them */
+void rti_held_before_step(rt_sim *sim, uint8_t s, uint32_t ratio);
+void rti_held_after_step(rt_sim *sim, uint8_t s, uint32_t ratio);
+/* after the tick's steps and publication: the outputs, roots and held signals of every
+   set whose state reached the new tick; recall: a bit per set whose step's end evaluated
+   its outputs at that time already (only the entries RTI_SEQ_RECALL are called again) */
+void rti_held_renew(const rt_scene *sc, rt_sim *sim, uint32_t recall);
+/* set s's held signals at the end of its background step, into bg_result_sig of the
+   context it ran in (tick: the tick there), and at its publication from there into
+   held_sig */
+void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t tick);
+void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s);
 
 /* ---- the background set (bg.c; the rest through rt_scene.bg) ---- */
 /* Reals of the background set's result (states and outputs), 0 without one. */

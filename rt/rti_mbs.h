@@ -6,15 +6,20 @@
 
 #include "rti.h"
 
-/* What rti_mbs_assemble evaluates (rt/mbs_asm.c defines the functions below): */
+/* What rti_mbs_assemble evaluates (rt/mbs_asm.c defines the functions below but
+   rti_mbs_in_set): */
 enum {
     RTI_MBS_G = 0,     /* g (g' need not be: joint rows between points whose kind has
                           g_points get g alone and keep their old g') */
     RTI_MBS_JAC = 1,   /* also M (factored), W and gam */
     RTI_MBS_FORCE = 2  /* also the free accelerations M^-1 k (needs RTI_MBS_JAC) */
 };
-/* Is block b an MBS block of set `set`? */
-int rti_mbs_in_set(const struct rt_scene *sc, uint16_t b, uint8_t set);
+/* Is block b an MBS block of set `set`? (inline: the factorization, rt/mbs_ldl.c, asks
+   it too, below the assembly) */
+static inline int rti_mbs_in_set(const struct rt_scene *sc, uint16_t b, uint8_t set)
+{
+    return sc->blocks[b].kind->type == RT_KIND_MBS && sc->blocks[b].set == set;
+}
 /* Evaluates joint ji: its nodes (Jacobians into J1, J2 unless NULL) and its kind. */
 void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t ji, real_t t,
                    rt_mbs_node *n1, rt_mbs_node *n2, real_t *J1, real_t *J2,

@@ -71,10 +71,10 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
 #endif
     w.imp = &sim->state.imp[s];
     w.stats = &sim->stats.istats[s];
-    w.cfg = &sc->sets[s].implicit;
+    w.cfg = &sc->sets[s].cfg;
     w.autonomous = (sim->plan.set_flags[s] & RTI_SET_AUTONOMOUS) != 0;
-    if (sim->state.imp_stale[s]) /* a parameter changed since the last step */
-        sim->state.imp[s].valid = 0, sim->state.imp_stale[s] = 0;
+    if (sim->state.param_changed[s]) /* a parameter changed since the last step */
+        sim->state.imp[s].valid = 0, sim->state.param_changed[s] = 0;
     uint32_t split = w.stats->substepped;
     real_t before = keep_norm(sim->state.x + x0, sim->work.xs, n);
     w.stats->last_err = 0;

@@ -71,16 +71,6 @@ const char *rt_interp_name(rt_interp i)
     return (unsigned)i < RT_INTERP_COUNT ? interp_names[i] : "?";
 }
 
-int rt_interp_find(const char *name)
-{
-    return find_name(interp_names, RT_INTERP_COUNT, name);
-}
-
-const char *rt_stab_name(rt_stab s)
-{
-    return (unsigned)s < RT_STAB_COUNT ? stab_names[s] : "?";
-}
-
 int rt_stab_find(const char *name)
 {
     return find_name(stab_names, RT_STAB_COUNT, name);
@@ -177,6 +167,12 @@ void rti_count(rt_sim *sim, rt_counter c, int b, rt_status status)
     sim->stats.last_block[c] = (int16_t)b;
     if (rt_status_severity(status) > rt_status_severity(sim->stats.status))
         sim->stats.status = status; /* the worst; the first of equally bad ones */
+}
+
+void rt_note_status(rt_sim *sim, rt_status status)
+{
+    if (rt_status_severity(status) > rt_status_severity(sim->stats.status))
+        sim->stats.status = status;
 }
 
 uint64_t rt_hash_real(uint64_t h, real_t v)

@@ -107,7 +107,18 @@ fi
 # bad input: one clear line, exit 2, nothing crashes
 expect_err "tune without tol" 2 "tune needs --tol" $M tune oscillator
 # the transition method iterates nothing: no silent no-op (as the scene compiler)
-expect_err "newton for transition" 2 "applies to iterating implicit methods only" \
+# a set setting from the command line is the scene's clause (RT_SET_CFG_LIST): the same
+# run as a scene file that says jacobian (1000), and a different one than the default
+sed 's/method (rk4) step (1 tick);/method (sdirk2) step (1 tick) jacobian (1000);/' \
+    models/scenes/oscillator.scn > "$T/osc_jac.scn"
+h_file=$($M run "$T/osc_jac.scn" --t-end 1 | sed -n 's/^hash: //p')
+h_opt=$($M run oscillator --method main=sdirk2 --jacobian main=1000 --t-end 1 | sed -n 's/^hash: //p')
+h_def=$($M run oscillator --method main=sdirk2 --t-end 1 | sed -n 's/^hash: //p')
+[ -n "$h_file" ] && [ "$h_file" = "$h_opt" ] && [ "$h_opt" != "$h_def" ] && ok || \
+    bad "--jacobian: $h_opt, the scene's clause $h_file, default $h_def"
+expect_err "jacobian for rk4" 2 "jacobian applies to the implicit methods that iterate only" \
+    $M run oscillator --jacobian main=4
+expect_err "newton for transition" 2 "newton applies to the implicit methods that iterate only; its method is transition" \
     $M run oscillator --method main=transition --newton main=2
 expect_err "unknown command" 2 "unknown command (modrt --help lists them): frobnicate" $M frobnicate
 expect_err "unknown scene" 2 "unknown scene (modrt list names them): nope" $M run nope

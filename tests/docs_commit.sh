@@ -1,6 +1,6 @@
 #!/bin/sh
 # docs_commit.sh - measured figures say which commit they belong to: every section of
-# docs/footprint.md that tools/footprint.sh or tools/effects.sh writes starts with
+# docs/footprint.md that tools/dev/footprint.sh or tools/dev/effects.sh writes starts with
 # "Figures of commit `X`", X a commit of this repository (issue 30: the flash figures
 # trailed HEAD with nothing to tell).
 set -u

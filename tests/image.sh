@@ -12,7 +12,8 @@ bad() { fail=$((fail + 1)); echo "FAIL image: $*"; }
 
 # usage errors: exit 2, one line naming what is missing
 for args in "" "TARGET=m3" "TARGET=nosuch SCENE=pi_loop" "TARGET=m3 SCENE=no/such.scn" \
-            "TARGET=rv32 SCENE=pi_loop CONSOLE=uart" "TARGET=m3 SCENE=pi_loop CONSOLE=lcd"; do
+            "TARGET=rv32 SCENE=pi_loop CONSOLE=uart" "TARGET=m3 SCENE=pi_loop CONSOLE=lcd" \
+            "TARGET=m7 SCENE=pi_loop CLOCK_MHZ=fast" "TARGET=m7 SCENE=pi_loop TICKS=0"; do
     # shellcheck disable=SC2086
     out=$(make -s image $args 2>&1 >/dev/null); rc=$?
     if [ $rc -ne 0 ] && [ "$(echo "$out" | grep -c '^make image: ')" = 1 ]; then ok
@@ -31,12 +32,12 @@ run_check() { # target elf scene-or-file qemu-command...
 }
 
 f=tests/scenec/scenes/lang_sets.scn
-if make -s image TARGET=rv32 SCENE=$f >/dev/null; then
+if make -s image MEASURE=0 TARGET=rv32 SCENE=$f >/dev/null; then
     run_check rv32 build/image/rv32/lang_sets.elf $f timeout 60 qemu-system-riscv32 -M virt \
         -bios none -display none -monitor none -serial stdio -icount shift=0,sleep=off -kernel
 else bad "rv32 image of $f did not build"; fi
 
-if make -s image TARGET=m3 SCENE=pi_loop CONSOLE=uart IMAGE_CFLAGS=-DCM_EXIT_SEMIHOST=1 >/dev/null; then
+if make -s image MEASURE=0 TARGET=m3 SCENE=pi_loop CONSOLE=uart IMAGE_CFLAGS=-DCM_EXIT_SEMIHOST=1 >/dev/null; then
     run_check m3 build/image/m3/pi_loop.elf pi_loop timeout 60 qemu-system-arm -M mps2-an385 \
         -display none -monitor none -serial stdio -semihosting-config enable=on,target=native \
         -icount shift=0,sleep=off -kernel
@@ -45,7 +46,7 @@ else bad "m3 UART image did not build"; fi
 # a scene whose constraint rows fill its exactly sized multibody tables (two cars, one tow
 # bar): an exact fit must initialise (it used to fail with "constraint rows exceed")
 f=models/scenes/lane_change_planar.scn
-if make -s image TARGET=m7 SCENE=$f >/dev/null; then
+if make -s image MEASURE=0 TARGET=m7 SCENE=$f >/dev/null; then
     # shellcheck disable=SC2046 # the run command is meant to split into words
     run_check m7 build/image/m7/lane_change_planar.elf lane_change_planar $(make -s print-TARGET_RUN_m7)
     # an effect the scene omits is not linked: its cars have linear tires, no Magic Formula
@@ -54,24 +55,40 @@ if make -s image TARGET=m7 SCENE=$f >/dev/null; then
     else ok; fi
 else bad "m7 image of $f did not build"; fi
 
-if make -s image TARGET=m7 SCENE=pi_loop CONSOLE=none >/dev/null; then
+if make -s image MEASURE=0 TARGET=m7 SCENE=pi_loop CONSOLE=none >/dev/null; then
     n=$(arm-none-eabi-objdump -d build/image/m7/pi_loop.elf | grep -c 'bkpt')
     if [ "$n" = 0 ]; then ok; else bad "CONSOLE=none image has $n bkpt instructions"; fi
 else bad "m7 CONSOLE=none image did not build"; fi
-if make -s image TARGET=m7 SCENE=pi_loop >/dev/null &&
+if make -s image MEASURE=0 TARGET=m7 SCENE=pi_loop >/dev/null &&
    [ "$(arm-none-eabi-objdump -d build/image/m7/pi_loop.elf | grep -c 'bkpt')" -gt 0 ]; then ok
 else bad "the default (semihosting) image has no bkpt: the check above cannot fail"; fi
 
 # REAL=float goes beside the double image (it used to overwrite it), and the command the
 # build prints runs the image
-if make -s image TARGET=m4f SCENE=pi_loop >/dev/null &&
-   cmd=$(make -s image TARGET=m4f SCENE=pi_loop REAL=float | sed -n 's/^image: run it with: //p') &&
+if make -s image MEASURE=0 TARGET=m4f SCENE=pi_loop >/dev/null &&
+   cmd=$(make -s image MEASURE=0 TARGET=m4f SCENE=pi_loop REAL=float | sed -n 's/^image: run it with: //p') &&
    [ -f build/image/m4f/pi_loop.elf ] && [ -f build/image/m4f-float/pi_loop.elf ] &&
    ! cmp -s build/image/m4f/pi_loop.elf build/image/m4f-float/pi_loop.elf; then ok
 else bad "REAL=float and double images of pi_loop are not kept apart"; fi
 # shellcheck disable=SC2086 # the printed command is meant to split into words
 if [ -n "${cmd:-}" ] && $cmd 2>&1 | grep -q '^rt scene pi_loop .* status ok$'; then ok
 else bad "the printed command '${cmd:-}' does not run the float image"; fi
+
+# will the scene meet its tick: instructions per tick under QEMU, and the slowest tick in
+# time at the clock given (its microseconds are max / MHz), fitting the base tick or not
+out=$(make -s image TARGET=m7 SCENE=pi_loop TICKS=200 CLOCK_MHZ=400 2>&1)
+set -- $(echo "$out" | sed -n 's/^image: per tick over 200 ticks under QEMU: median \([0-9]*\), max \([0-9]*\) instructions (min \([0-9]*\)); stack \([0-9]*\) bytes$/\1 \2 \3 \4/p')
+if [ $# = 4 ] && [ "$3" -le "$1" ] && [ "$1" -le "$2" ] && [ "$3" -gt 0 ] && [ "$4" -gt 0 ]; then ok
+else bad "make image: no instructions per tick in '$out'"; fi
+us=$(awk -v n="${2:-0}" 'BEGIN { printf "%.1f", n / 400 }')
+dt_us=$($M info pi_loop | sed -n 's/^base tick: \([^ ]*\) s$/\1/p' | awk '{ printf "%g", $1 * 1e6 }')
+if echo "$out" | grep -q "^image: slowest tick at 400 MHz, one instruction per cycle: $us us of the $dt_us us base tick .*: fits$" &&
+   echo "$out" | grep -q '^image: trace hash [0-9a-f]* equals the host'; then ok
+else bad "make image: slowest tick not $us us of $dt_us us, fitting, with the host's hash: '$out'"; fi
+# a clock too slow for the scene's tick says so (the slowest tick takes max / 0.001 us)
+clk=$(awk -v n="${2:-0}" -v d="$dt_us" 'BEGIN { printf "%g", n / d / 2 }')
+if make -s image TARGET=m7 SCENE=pi_loop TICKS=200 CLOCK_MHZ=$clk 2>&1 | grep -q ': DOES NOT FIT$'; then ok
+else bad "make image at $clk MHz (half of what pi_loop's slowest tick needs) does not say it does not fit"; fi
 
 # a source FMU in a Cortex-M image (docs/fmi.md, "FMUs in images"): the bouncing-ball test
 # FMU as FMI 2.0 and 3.0 source FMUs (no binary), compiled into an m4f image with its

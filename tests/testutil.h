@@ -8,7 +8,8 @@
 
 /* one simulator for all tests (large: it holds every static limit), and a second one a
    test may use for anything (a copy, a background context): the cross targets' RAM
-   holds few */
+   holds few. Declared without the layout: a test that reads rt_sim's parts includes
+   rt_sim.h (or rti.h) itself, and so says it is a white-box test */
 extern rt_sim tu_sim, tu_spare;
 
 /* Initialises sc into tu_sim and checks it returned RT_OK. */

@@ -1,6 +1,6 @@
-# foot_lib.sh - what tools/footprint.sh and tools/effects.sh share: build one footprint
+# foot_lib.sh - what make image (tools/image.sh), tools/dev/footprint.sh and tools/dev/effects.sh share: build one footprint
 # image (make foot-elf), run it under QEMU with the instruction-count plugin
-# (tools/qemu/insn_count.c) and read its sizes, stack, instruction counts, models and hash.
+# (tools/dev/qemu/insn_count.c) and read its sizes, stack, instruction counts, models and hash.
 # Sourced (sh has no modules); the caller sets M (the host modrt) and so (the plugin).
 
 # MHz of the stated clock of a target

@@ -4,12 +4,21 @@
 # gives its exact limits, and the image links ports/common/image_main.c, the runtime and the
 # models without registries (unused kinds are dropped by --gc-sections). docs/porting.md
 # explains the pieces. Usage (through make, which passes its variables):
-#   sh tools/image.sh TARGET SCENE CONSOLE EXTRA_CFLAGS
+#   sh tools/image.sh TARGET SCENE CONSOLE EXTRA_CFLAGS [CLOCK_MHZ [TICKS [MEASURE]]]
+# Then it says whether the scene meets its tick: the scene's footprint image (the same
+# scene, runtime, models and limits, tests/cross/footprint_main.c) runs under QEMU with the
+# instruction-count plugin for TICKS ticks (default: the whole scene, at most
+# IMAGE_TICKS_MAX), and the slowest tick at CLOCK_MHZ (default: the target's stated clock
+# of make footprint) is compared with the scene's base tick. MEASURE=0: the image only.
 set -u
-target=$1 scene=$2 console=$3 extra=$4
+target=$1 scene=$2 console=$3 extra=$4 clock=${5:-} ticks=${6:-} measure=${7:-1}
+IMAGE_TICKS_MAX=10000
 targets=$(make -s print-CROSS_TARGETS)
 fail() { echo "make image: $*" >&2; exit 2; }
 
+case "$clock" in '' | *[!0-9.]* | .*) [ -z "$clock" ] || fail "CLOCK_MHZ '$clock' is not a clock in MHz (e.g. CLOCK_MHZ=400)" ;; esac
+case "$ticks" in *[!0-9]* | 0) fail "TICKS '$ticks' is not a number of ticks" ;; esac
+case "$measure" in 0 | 1) ;; *) fail "MEASURE '$measure': expected 0 (the image only) or 1" ;; esac
 [ -n "$target" ] || fail "TARGET is missing; usage: make image TARGET=<$(echo $targets | tr ' ' '|')> SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
 [ -n "$scene" ] || fail "SCENE is missing; usage: make image TARGET=$target SCENE=<file.scn|name> [CONSOLE=semihost|uart|itm|none]"
 case " $targets " in *" $target "*) ;; *) fail "unknown TARGET '$target'; expected one of: $targets" ;; esac
@@ -114,3 +123,36 @@ $size "$dir/$name.elf" | tail -1 | awk '{printf "image: flash %d bytes, RAM %d b
 run=$(make -s "print-TARGET_RUN_$target")
 [ "${console:-semihost}" = uart ] && run=$(echo "$run" | sed 's/-serial null/-serial stdio/')
 echo "image: run it with: $run $dir/$name.elf"
+[ "$measure" = 1 ] || exit 0
+
+# will it meet its tick? (tools/foot_lib.sh measures as make footprint does)
+# shellcheck disable=SC2034 # M and so are read by tools/foot_lib.sh
+M=build/host/modrt so=$(make -s print-INSN_COUNT_SO)
+. tools/foot_lib.sh
+info=$($M info "$scene") || fail "modrt info $scene failed (see above)"
+dt=$(echo "$info" | sed -n 's/^base tick: \([^ ]*\) s$/\1/p')
+t_end=$(echo "$info" | sed -n 's/^end time: \([^ ]*\) s$/\1/p')
+[ -n "$ticks" ] || ticks=$(awk -v e="$t_end" -v d="$dt" -v m=$IMAGE_TICKS_MAX 'BEGIN {
+    n = int(e / d + 0.5); print n < m ? n : m }')
+[ -n "$clock" ] || clock=$(mhz "$target")
+# shellcheck disable=SC2034 # read by foot_measure
+FOOT_TICKS=$ticks
+foot_measure "$target" "${sym#mdl_scene_}" "$real" "$scene" ||
+    fail "the measuring image of $scene on $target failed (see above)"
+[ -n "$stats" ] || fail "no instruction counts from the run of $fm_elf under QEMU"
+echo "$stats" | awk -F'|' -v n="$ticks" -v st="$stack" '{
+    printf "image: per tick over %d ticks under QEMU: median %d, max %d instructions (min %d); stack %d bytes\n", n, $2, $3, $1, st }'
+awk -v n="$max" -v f="$clock" -v dt="$dt" -v def="$( [ "$clock" = "$(mhz "$target")" ] && echo " (the stated clock of $target; set CLOCK_MHZ=...)")" 'BEGIN {
+    us = n / f; fit = us <= dt * 1e6
+    printf "image: slowest tick at %g MHz%s, one instruction per cycle: %.1f us of the %g us base tick (%.0f %%): %s\n",
+        f, def, us, dt * 1e6, 100 * us / (dt * 1e6), fit ? "fits" : "DOES NOT FIT" }'
+if echo "$info" | grep -q '^ *background:'; then
+    foot_count "$fm_elf" "$target" foot_bg_begin foot_bg_end |
+        sed -n 's/.*intervals \([0-9]*\) min \([0-9]*\) median \([0-9]*\) max \([0-9]*\).*/image: background context: \1 steps, median \3, max \4 instructions per step (min \2)/p'
+fi
+if [ "$real" = double ]; then # the float image's reference is the host's float build
+    host=$($M run "$scene" --t-end "$(awk -v d="$dt" -v n="$ticks" 'BEGIN { printf "%.17g", d * n }')" |
+           sed -n 's/^hash: //p')
+    [ "$hash" = "$host" ] && echo "image: trace hash $hash equals the host's over the same ticks" ||
+        echo "image: trace hash $hash differs from the host's $host over the same ticks"
+fi

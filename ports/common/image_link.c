@@ -41,7 +41,7 @@ static void send_exports(const rt_scene *sc, const rt_sim *sim)
     uint8_t d[LINK_MAX_PACKET];
     const char *name = sc->name;
     p->type = LINK_TYPE_EXPORTS, p->n = sc->link->nexp, p->id = sc->link->id;
-    p->seq = ++K.seq, p->tick = sim->state.tick, p->run = K.run;
+    p->seq = ++K.seq, p->tick = rt_ticks_done(sim), p->run = K.run;
     for (int i = 0; i < LINK_NAME_LEN; i++) { /* the scene's name, padded with zeros */
         p->name[i] = *name;
         name += *name != 0;

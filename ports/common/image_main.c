@@ -20,6 +20,7 @@
  * the timer does. */
 #include "port.h"
 #include "rt.h"
+#include "rt_sim.h"
 
 #ifndef RT_SCENE
 #define RT_SCENE mdl_scene_pi_loop
@@ -70,7 +71,7 @@ typedef struct timer_count {
 static int finished(rt_status st)
 {
 #if RT_IMAGE_TICKS > 0
-    if (sim.state.tick >= RT_IMAGE_TICKS)
+    if (rt_ticks_done(&sim) >= RT_IMAGE_TICKS)
         return 1;
 #endif
     return st == RT_E_DONE || st == RT_E_LINK;
@@ -82,8 +83,7 @@ static rt_status exchange(const rt_scene *sc, rt_status st)
 {
 #if RT_IMAGE_LINK
     if (image_link_exchange(sc, &sim)) {
-        if (rt_status_severity(RT_E_LINK) > rt_status_severity(sim.stats.status))
-            sim.stats.status = RT_E_LINK;
+        rt_note_status(&sim, RT_E_LINK);
         return RT_E_LINK;
     }
 #else
@@ -201,7 +201,7 @@ int app_main(void)
     port_write("rt scene ");
     port_write(sc->name);
     port_write(" ticks ");
-    put_u64(sim.state.tick, 10, 1);
+    put_u64(rt_ticks_done(&sim), 10, 1);
     port_write(" timer ");
     put_u64(count.ticks, 10, 1);
     port_write(" overruns ");
@@ -210,7 +210,7 @@ int app_main(void)
         port_write(" preempted ");
         put_u64(count.preempted, 10, 1);
         port_write(" late ");
-        put_u64(sim.stats.bg_late, 10, 1);
+        put_u64(rt_stats_of(&sim)->bg_late, 10, 1);
     }
 #if RT_IMAGE_LINK
     int link_bad = image_link_report(put_count);
@@ -218,11 +218,11 @@ int app_main(void)
     int link_bad = 0;
 #endif
     port_write(" hash ");
-    put_u64(sim.state.hash, 16, 16);
+    put_u64(rt_trace_hash(&sim), 16, 16);
     port_write(" status ");
-    port_write(rt_status_name(sim.stats.status));
+    port_write(rt_status_name(rt_stats_of(&sim)->status));
     port_write("\n");
     /* overruns are judged by the caller: zero is required only where the port's time is
        virtual and deterministic (bare metal under QEMU -icount), not on a shared host */
-    return sim.stats.status == RT_OK && !link_bad ? 0 : 1;
+    return rt_stats_of(&sim)->status == RT_OK && !link_bad ? 0 : 1;
 }

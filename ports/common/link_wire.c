@@ -5,17 +5,9 @@
 
 #include "link_hmac.h"
 
-#define LINK_X_NAME(id, key, text) text,
 #define LINK_X_KEY(id, key, text) key,
-static const char *const error_names[] = {LINK_WIRE_ERRORS(LINK_X_NAME)};
 static const char *const error_keys[] = {LINK_WIRE_ERRORS(LINK_X_KEY)};
-#undef LINK_X_NAME
 #undef LINK_X_KEY
-
-const char *link_wire_error_name(int e)
-{
-    return e >= 0 && e < LINK_E_COUNT_ ? error_names[e] : "?";
-}
 
 const char *link_wire_error_key(int e)
 {

@@ -42,7 +42,7 @@
 #define LINK_MAX_PACKET (LINK_SIZE(LINK_MAX_VALUES) + LINK_TAG_LEN)
 
 /* What a receiver found wrong, in the order the checks run, declared once:
-   X(id, key for summaries, meaning). A serial line's framing (linkframe.c) finds frame;
+   X(id, key for summaries, meaning: documentation only). A serial line's framing (linkframe.c) finds frame;
    the decoder all the others but the last two; the plant's exchange (tools/modrt/link.c)
    finds seq and tick against its requests. */
 #define LINK_WIRE_ERRORS(X)                                                      \
@@ -94,7 +94,6 @@ typedef struct link_expect {
     const link_key *key;     /* NULL or len 0: tags refused; else a tag is required */
 } link_expect;
 
-const char *link_wire_error_name(int e); /* its meaning */
 const char *link_wire_error_key(int e);  /* one word, for key: value summaries */
 uint32_t link_crc32(uint32_t crc, const uint8_t *p, size_t n);
 /* The byte order of the wire and of the replay log (tools/modrt/mrlog.c): v into / from

@@ -17,7 +17,7 @@
  * 1e9 / SYSCLK), i.e. nanoseconds of the 25 MHz board; under QEMU -icount shift=0 (one
  * instruction = 1 ns of virtual time) that is the retired-instruction count rounded down
  * to a multiple of 40, exact and repeatable run to run. Exact per-instruction counts
- * between two port_cycles calls: tools/qemu/insn_count.c with addr=<port_cycles>.
+ * between two port_cycles calls: tools/dev/qemu/insn_count.c with addr=<port_cycles>.
  * Run with -icount shift=0,sleep=off so idle time (WFI) advances virtual time to the next
  * timer deadline deterministically instead of at host speed.
  *

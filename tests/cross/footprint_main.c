@@ -2,7 +2,7 @@
  * at compile time (-DFOOT_SCENE=mdl_scene_<name>) and the models that scene uses, paints
  * the stack, runs the scene to its end calling port_cycles() before every tick and
  * foot_tick_end() after it (the markers of the QEMU instruction-count plugin,
- * tools/qemu/insn_count.c: the tick context), and prints the trace hash and the stack
+ * tools/dev/qemu/insn_count.c: the tick context), and prints the trace hash and the stack
  * high-water mark. A scene with a background set gets a background context
  * (rt_bg_attach): its step runs between ticks at the port's background level (PendSV on
  * Cortex-M, else called from here), between foot_bg_begin() and foot_bg_end() (the
@@ -10,6 +10,7 @@
 #include "harness.h"
 #include "port.h"
 #include "rt.h"
+#include "rt_sim.h"
 
 #define PAINT 0xA5C3E1F7u /* a word no real stack frame is likely to hold */
 #define PAINT_MARGIN 256  /* bytes below the current stack pointer left unpainted */
@@ -89,14 +90,14 @@ int app_main(void)
             else
                 background(0);
         }
-    } while (st != RT_E_DONE && sim.state.tick < FOOT_TICKS);
+    } while (st != RT_E_DONE && rt_ticks_done(&sim) < FOOT_TICKS);
     (void)port_cycles();
     th_put("scene ");
     th_put(sc->name);
     th_put(" ticks ");
-    th_put_int((long long)sim.state.tick);
+    th_put_int((long long)rt_ticks_done(&sim));
     th_put(" hash ");
-    th_put_hex64(sim.state.hash);
+    th_put_hex64(rt_trace_hash(&sim));
     th_put(" stack ");
     th_put_int(high_water());
     th_put("\n");

@@ -1,7 +1,7 @@
 #!/bin/sh
 # run.sh - one image under QEMU, bounded by the work of the guest rather than by the
 # machine's load: the target's run command carries the instruction-count plugin with
-# limit=@BUDGET@ (tools/qemu/insn_count.c), replaced here by BUDGET, so an image that
+# limit=@BUDGET@ (tools/dev/qemu/insn_count.c), replaced here by BUDGET, so an image that
 # runs away stops after BUDGET instructions however loaded the machine is; QEMU_TIMEOUT
 # (the `timeout` in the command) is left as a guard against QEMU itself hanging. A run
 # cut off either way says which, and a unit-test image (it prints "tests: N" first)

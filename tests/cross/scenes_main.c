@@ -7,6 +7,7 @@
 #include "harness.h"
 #include "models.h"
 #include "port.h"
+#include "rt_sim.h"
 
 #ifndef SC_PART
 #define SC_PART 0
@@ -33,14 +34,14 @@ static void run_scene(const rt_scene *sc)
         rt_record(sc, &sim, 0);
     } while (t != RT_E_DONE);
     th_put(" ticks ");
-    th_put_int((long long)sim.state.tick);
+    th_put_int((long long)rt_ticks_done(&sim));
     th_put(" status ");
     if (sim.stats.status == RT_OK) /* one word, so scripts can split the line */
         th_put("ok");
     else
         th_put("fault"), th_put_int(sim.stats.status);
     th_put(" hash ");
-    th_put_hex64(sim.state.hash);
+    th_put_hex64(rt_trace_hash(&sim));
     th_put("\n");
 }
 

@@ -3,7 +3,7 @@ a step source switching on a step boundary is seen by the step after it, not the
 before, so a scene driven by steps keeps every method's order.
 
   * beltgear (models/scenes/beltgear.scn: its current command steps at 10 ms) against
-    the independent reference tools/study/beltgear_ref.py (the same equations as one ODE,
+    the independent reference tools/dev/study/beltgear_ref.py (the same equations as one ODE,
     integrated piecewise around the jump): every method's observed order between two
     steps is at least its order less 0.2;
   * a DC motor whose load torque steps at 0.3 s (dcmotor_load.scn): up to and at the
@@ -28,7 +28,7 @@ STEPS["beuler"] = ("0.00005", "0.000025")
 
 def belt_reference():
     """{t in ms: (omega1, omega2)} every 5 ms, by RK4 at 5 us (its own error 5e-12)"""
-    p = subprocess.run([sys.executable, os.path.join(ROOT, "tools/study/beltgear_ref.py"),
+    p = subprocess.run([sys.executable, os.path.join(ROOT, "tools/dev/study/beltgear_ref.py"),
                         "5e-6"], capture_output=True, text=True, timeout=300)
     w = p.stdout.split()[2:]
     return {round(float(w[i]) * 1000): (float(w[i + 1]), float(w[i + 2]))

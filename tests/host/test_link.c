@@ -19,6 +19,7 @@
 #include "models.h"
 #include "mrlog.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 extern const rt_scene mdl_scene_pi_link, mdl_scene_pi_loop;
 
@@ -299,10 +300,10 @@ static void test_snapshot(void)
     while (rt_tick(sc, &tu_sim) != RT_E_DONE)
         rt_record(sc, &tu_sim, 0);
     rt_record(sc, &tu_sim, 0);
-    uint64_t straight = tu_sim.state.hash;
+    uint64_t straight = rt_trace_hash(&tu_sim);
     if (!tu_init(sc))
         return;
-    while (tu_sim.state.tick < 1200) {
+    while (rt_ticks_done(&tu_sim) < 1200) {
         rt_tick(sc, &tu_sim);
         rt_record(sc, &tu_sim, 0);
     }
@@ -310,15 +311,15 @@ static void test_snapshot(void)
     while (rt_tick(sc, &tu_sim) != RT_E_DONE)
         rt_record(sc, &tu_sim, 0);
     rt_record(sc, &tu_sim, 0);
-    TH_CHECK(tu_sim.state.hash == straight);
+    TH_CHECK(rt_trace_hash(&tu_sim) == straight);
     if (!tu_init(sc)) /* a fresh simulator of the same scene, then the snapshot */
         return;
     TH_CHECK(rt_restore(&tu_sim, &snap) == RT_OK);
-    TH_CHECK(tu_sim.state.tick == 1200);
+    TH_CHECK(rt_ticks_done(&tu_sim) == 1200);
     while (rt_tick(sc, &tu_sim) != RT_E_DONE)
         rt_record(sc, &tu_sim, 0);
     rt_record(sc, &tu_sim, 0);
-    TH_CHECK(tu_sim.state.hash == straight);
+    TH_CHECK(rt_trace_hash(&tu_sim) == straight);
 }
 
 /* a real-time exchange tick that cannot take the mailbox (its trylock fails: injected)

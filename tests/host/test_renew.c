@@ -1,5 +1,5 @@
 /* test_renew.c - the tick's renewal of a set's outputs (rt_tick: only the entries that may
- * differ from its step's end evaluation are called again, RTI_RENEW) against a full
+ * differ from its step's end evaluation are called again, RTI_AT_TICK_RECALL) against a full
  * evaluation: after every tick of every library scene, and of three scenes built for the
  * renewal's conditions (and sets stepping over several ticks), the outputs must be the
  * bits that rt_refresh, which evaluates
@@ -74,7 +74,7 @@ static unsigned mismatches_hook(const rt_scene *sc, unsigned *left, renew_hook h
         if (!renewed_set(sc, s))
             continue;
         for (uint16_t i = tu_sim.plan.seq_of[s]; i < tu_sim.plan.seq_of[s + 1]; i++)
-            *left += !(tu_sim.plan.seq_flags[tu_sim.plan.set_seq[i]] & RTI_SEQ_RENEW);
+            *left += !(tu_sim.plan.seq_flags[tu_sim.plan.set_seq[i]] & RTI_SEQ_RECALL);
     }
     return bad;
 }
@@ -137,7 +137,7 @@ static const rt_scene loop_scene = {.name = "loop", .dt = (real_t)0.01, .t_end =
                                     .loop_solver = &rt_broyden};
 
 /* sets stepping over several ticks in the tick (rt_tick keeps their step's end outputs
-   in state.y_next and renews from them when their state reaches the tick): set b (every
+   in state.y_end and renews from them when their state reaches the tick): set b (every
    3 ticks, stepping first) holds Osc, read by Gain of set a (every tick), and Gain3,
    which reads Gain's history, so its renewal must call Gain3; Sine (b) is read by set
    a's Gain4: its amplitude changes between b's step and the tick its state reaches,
@@ -168,7 +168,7 @@ static void renew_amp(const rt_scene *sc, unsigned k)
 }
 
 /* the renewal of a multi-tick set against its full evaluation (the tick's path when a
-   parameter of the set changed, imp_stale), run side by side: set b (every 2 ticks) holds
+   parameter of the set changed, param_changed), run side by side: set b (every 2 ticks) holds
    Osc, read by set a, and a PI sampled every 4 ticks whose output the test writes between
    ticks as the link writes an import (rt_link_apply: d and y), read by GainI (b) and
    GainH (a). The renewal must not put the PI's output from b's step's end back */
@@ -210,7 +210,7 @@ static void test_renew_multi_vs_full(void)
             write_pi(&tu_sim, (real_t)k);
             write_pi(&full_sim, (real_t)k);
         }
-        full_sim.state.imp_stale[1] = 1; /* its full evaluation */
+        full_sim.state.param_changed[1] = 1; /* its full evaluation */
         rt_tick(&mdss_scene, &tu_sim);
         rt_tick(&mdss_scene, &full_sim);
         bad += differing(&tu_sim, &full_sim, ny);
@@ -245,8 +245,8 @@ static rt_sim alone_sim;
 static void test_static_set(void)
 {
     TH_CHECK(rt_init(&alone_scene, &alone_sim) == RT_OK);
-    TH_CHECK(alone_sim.plan.set_flags[0] & RTI_SET_STATIC);
-    TH_CHECK(!(alone_sim.plan.set_flags[1] & RTI_SET_STATIC));
+    TH_CHECK(alone_sim.plan.set_flags[0] & RTI_SET_NO_STEP);
+    TH_CHECK(!(alone_sim.plan.set_flags[1] & RTI_SET_NO_STEP));
     if (!tu_init(&held_scene))
         return;
     unsigned bad = 0;
@@ -257,7 +257,7 @@ static void test_static_set(void)
         bad += differing(&tu_sim, &alone_sim, ny);
     }
     TH_CHECK(bad == 0);
-    TH_CHECK(alone_sim.stats.rhs_evals[0] == 0 && alone_sim.stats.rhs_evals[1] > 0);
+    TH_CHECK(rt_stats_of(&alone_sim)->rhs_evals[0] == 0 && rt_stats_of(&alone_sim)->rhs_evals[1] > 0);
 }
 
 static void test_renew_full(void)

@@ -55,20 +55,20 @@ static double rerun(const uint32_t *r)
         return 1e300;
     uint32_t sync = r[0] > r[1] ? r[0] : r[1];
     double e = 0;
-    while (rt_tick(&sc, &tu_sim) == RT_OK || tu_sim.state.tick == tu_sim.plan.n_ticks) {
-        if (tu_sim.state.tick % sync == 0) {
+    while (rt_tick(&sc, &tu_sim) == RT_OK || rt_ticks_done(&tu_sim) == rt_tick_count(&tu_sim)) {
+        if (rt_ticks_done(&tu_sim) % sync == 0) {
             double t = (double)rt_time(&sc, &tu_sim);
             for (uint16_t i = 0; i < 2; i++) {
                 double d = fabs((double)rt_rec_value(&sc, &tu_sim, i) - exact(i, t));
                 e = d > e || d != d ? d : e;
             }
         }
-        if (tu_sim.state.tick == tu_sim.plan.n_ticks)
+        if (rt_ticks_done(&tu_sim) == rt_tick_count(&tu_sim))
             break;
     }
     /* the tuner measures the error against its reference, so a step's conservative
        estimate above the default accuracy (severity 1) is allowed; nothing worse */
-    TH_CHECK(rt_status_severity(tu_sim.stats.status) < 2);
+    TH_CHECK(rt_status_severity(rt_stats_of(&tu_sim)->status) < 2);
     return e;
 }
 

@@ -76,7 +76,7 @@ TEST_SUITES += test-serial-qemu
 serial-bench: build/host/modrt build/host/pi_controller
 	@$(MAKE) --no-print-directory -s check-target-$(SERIAL_QEMU_T) 2>/dev/null && \
 	  $(MAKE) --no-print-directory build/$(SERIAL_QEMU_T)/pi_firmware.elf; \
-	 sh tools/bench/serial_bench.sh build/host/modrt
+	 sh tools/dev/bench/serial_bench.sh build/host/modrt
 .PHONY: serial-bench
 
 # the serial link's frame receiver and client library under the fuzzer (5 s in make test)

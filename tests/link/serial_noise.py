@@ -17,7 +17,7 @@ in each direction). --baud N paces each direction as a line of N baud, 8N1 (10 b
 byte: what reaches the other side arrives when its last byte would have); without it the
 relay forwards at once. --controller-dev PATH opens an existing terminal (the pty of a
 QEMU board) as the controller's end instead of making one. Exits after --idle seconds
-without traffic and prints what it did (tools/bench/serial_bench.sh uses it too)."""
+without traffic and prints what it did (tools/dev/bench/serial_bench.sh uses it too)."""
 import argparse
 import os
 import select

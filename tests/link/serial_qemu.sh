@@ -110,7 +110,7 @@ else
 fi
 
 # 2. the plant image in QEMU, the controller on the host
-sh tools/image.sh $t pi_link "" "-DRT_IMAGE_LINK_TIMEOUT_US=20000000" > $T/image.out 2>&1 ||
+sh tools/image.sh $t pi_link "" "-DRT_IMAGE_LINK_TIMEOUT_US=20000000" "" "" 0 > $T/image.out 2>&1 ||
     bad "make image TARGET=$t SCENE=pi_link: $(cat $T/image.out)"
 qemu build/image/$t/pi_link.elf
 timeout 300 $C "serial:$PTY:115200" 60 > $T/ctl.out 2>&1 &
@@ -130,7 +130,7 @@ echo "serial-qemu: plant image on $t: hash $h = pi_loop;$counts"
 # first tick after it arrived): whatever the timing, every answer is checked and counted
 # and each request is either answered or counted missing (the last one's answer is never
 # applied); the trace depends on the timing, so no hash is compared
-sh tools/image.sh $t pi_link "" "-DRT_IMAGE_LINK_REALTIME=1" > $T/image_rt.out 2>&1 &&
+sh tools/image.sh $t pi_link "" "-DRT_IMAGE_LINK_REALTIME=1" "" "" 0 > $T/image_rt.out 2>&1 &&
     cp build/image/$t/pi_link.elf $T/pi_link_rt.elf ||
     bad "make image TARGET=$t SCENE=pi_link (real time): $(cat $T/image_rt.out)"
 qemu $T/pi_link_rt.elf

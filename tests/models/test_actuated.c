@@ -7,6 +7,7 @@
 #include "models.h"
 #include "scenes/scenes.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 static double absd(double v) { return v < 0 ? -v : v; }
 
@@ -57,14 +58,14 @@ static void test_servo_step(void)
             return;
         double ey = 0, ed = 0, y, yd;
         const real_t *p = bl[1].p;
-        while (rt_tick(&sc, &tu_sim) == RT_OK || tu_sim.state.tick == tu_sim.plan.n_ticks) {
+        while (rt_tick(&sc, &tu_sim) == RT_OK || rt_ticks_done(&tu_sim) == rt_tick_count(&tu_sim)) {
             servo_exact((double)p[0], (double)p[1], (double)p[2], (double)rt_time(&sc, &tu_sim),
                         &y, &yd);
             ey = absd((double)tu_y(&sc, "S", MDL_SERVO2_Y) - y) > ey
                      ? absd((double)tu_y(&sc, "S", MDL_SERVO2_Y) - y) : ey;
             ed = absd((double)tu_y(&sc, "S", MDL_SERVO2_YD) - yd) > ed
                      ? absd((double)tu_y(&sc, "S", MDL_SERVO2_YD) - yd) : ed;
-            if (tu_sim.state.tick == tu_sim.plan.n_ticks)
+            if (rt_ticks_done(&tu_sim) == rt_tick_count(&tu_sim))
                 break;
         }
         th_note(v ? "servo2 zeta 0.1: largest |y - exact|" : "servo2 zeta 0.7: |y - exact|", ey);
@@ -82,7 +83,7 @@ static void test_servo_stiff(void)
     /* accuracy: the step input's first 1 ms (omega h = 6.3) is not resolved, and its
        estimate says so; what this test checks is the settled value */
     static const rt_set set[] = {{.name = "s", .method = &rt_sdirk2, .ratio = 1,
-                                  .implicit = {.accuracy = 1}}};
+                                  .cfg = {.accuracy = 1}}};
     const rt_block bl[] = {
         {.name = "U", .kind = &mdl_step_kind, .p = step_p},
         {.name = "S", .kind = &mdl_servo2_kind},
@@ -94,7 +95,7 @@ static void test_servo_stiff(void)
         return;
     tu_run_to(&sc, (real_t)0.02);
     TH_NEAR(tu_y(&sc, "S", MDL_SERVO2_Y), 3, RT_REAL_IS_FLOAT ? 1e-4 : 1e-9);
-    TH_CHECK(tu_sim.stats.status == RT_OK && tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK && rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0);
 }
 
 /* ------------------------------------------------------------------ arm_pd, arm_motor */
@@ -231,7 +232,7 @@ static void run_scene(const rt_scene *sc, const notes *n, double *pos)
     double links = 0, track = 0, hold = 0;
     for (uint8_t s = 0; s < sc->nsets; s++)
         TH_CHECK(end % sc->sets[s].ratio == 0); /* every set at the end time */
-    while (tu_sim.state.tick < end && rt_tick(sc, &tu_sim) == RT_OK) {
+    while (rt_ticks_done(&tu_sim) < end && rt_tick(sc, &tu_sim) == RT_OK) {
         real_t t = rt_time(sc, &tu_sim);
         const real_t *y = tu_sim.state.y + tu_sim.plan.y_off[th];
         double e = absd((double)(y[MDL_ARM_PD_Y_THETA] - y[MDL_ARM_PD_Y_THR]));
@@ -239,15 +240,15 @@ static void run_scene(const rt_scene *sc, const notes *n, double *pos)
         if (t >= (real_t)6.5)
             hold = absd((double)y[MDL_ARM_PD_Y_THETA]) > hold ? absd((double)y[MDL_ARM_PD_Y_THETA])
                                                               : hold;
-        if (tu_sim.state.tick % 500 == 0)
+        if (rt_ticks_done(&tu_sim) % 500 == 0)
             links = link_error() > links ? link_error() : links;
     }
     links = link_error() > links ? link_error() : links;
     th_note(n->links, links);
     th_note(n->track, track);
     th_note(n->hold, hold);
-    TH_CHECK(tu_sim.state.tick == end && tu_sim.stats.status == RT_OK);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.count[RT_CNT_NAN] == 0);
+    TH_CHECK(rt_ticks_done(&tu_sim) == end && rt_stats_of(&tu_sim)->status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_NAN] == 0);
     TH_CHECK(links < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
     TH_CHECK(tu_sim.work.mbs.res_max < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
     TH_CHECK(track < 0.02); /* about 1 deg */

@@ -4,6 +4,7 @@
 #include "models.h"
 #include "scenes/scenes.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 /* states i (motor current), phi1, w1, phi2, w2; parameters as in models/scenes/beltgear.c */
 static void direct_deriv(const rt_args *a, real_t *xd)
@@ -70,10 +71,10 @@ static void test_against_direct(void)
     TH_CHECK(wmax > 1); /* the drive did turn */
     TH_CHECK(worst < (RT_REAL_IS_FLOAT ? 1e-3 : 1e-9) * wmax);
     /* the actual loop was solved in one iteration at every evaluation after the first */
-    th_note("most iterations in one solve", tu_sim.stats.loop_iter_max);
-    th_note("solves taking 2 iterations", tu_sim.stats.loop_hist[2]);
-    TH_CHECK(tu_sim.stats.loop_iter_max == 1 && tu_sim.stats.loop_hist[1] > 0);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_NOCONV] == 0 && tu_sim.stats.status == RT_OK);
+    th_note("most iterations in one solve", rt_stats_of(&tu_sim)->loop_iter_max);
+    th_note("solves taking 2 iterations", rt_stats_of(&tu_sim)->loop_hist[2]);
+    TH_CHECK(rt_stats_of(&tu_sim)->loop_iter_max == 1 && rt_stats_of(&tu_sim)->loop_hist[1] > 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_NOCONV] == 0 && rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* one potential loop (the current loop) and one actual loop (the drive train) */

@@ -18,12 +18,12 @@ static void test_oscillator(void)
         double t = (double)rt_time(sc, &tu_sim);
         double e = absd((double)tu_y(sc, "Osc", 0) - (double)rt_cos((real_t)(RT_TWO_PI * t)));
         worst = e > worst ? e : worst;
-        if (tu_sim.state.tick == tu_sim.plan.n_ticks)
+        if (rt_ticks_done(&tu_sim) == rt_tick_count(&tu_sim))
             break;
         rt_tick(sc, &tu_sim);
     }
     th_note("worst |x - cos(2 pi t)|", worst);
-    TH_CHECK(tu_sim.state.tick == 10000);
+    TH_CHECK(rt_ticks_done(&tu_sim) == 10000);
     TH_CHECK(worst < (RT_REAL_IS_FLOAT ? 5e-3 : 2e-9));
 }
 
@@ -33,11 +33,11 @@ static void test_vanderpol_period(void)
     const rt_scene *sc = &mdl_scene_vanderpol;
     if (!tu_init(sc))
         return;
-    double prev_x = (double)tu_sim.state.x[0], prev_t = 0, ups[4];
+    double prev_x = (double)rt_block_x(&tu_sim, 0, 0), prev_t = 0, ups[4];
     int n = 0;
-    while (tu_sim.state.tick < tu_sim.plan.n_ticks) {
+    while (rt_ticks_done(&tu_sim) < rt_tick_count(&tu_sim)) {
         rt_tick(sc, &tu_sim);
-        double t = (double)rt_time(sc, &tu_sim), x = (double)tu_sim.state.x[0];
+        double t = (double)rt_time(sc, &tu_sim), x = (double)rt_block_x(&tu_sim, 0, 0);
         if (prev_x < 0 && x >= 0 && n < 4) /* upward zero crossing, linearly interpolated */
             ups[n++] = prev_t + (t - prev_t) * (-prev_x) / (x - prev_x);
         prev_x = x, prev_t = t;

@@ -8,6 +8,7 @@
 #include "rt_math.h"
 #include "scenes/scenes.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 /* three simulators of one scene: inline, context run at once, context run at the last
    tick before the deadline; and the two contexts */
@@ -110,7 +111,7 @@ static void test_bg_param_jacobian(void)
     if (!TH_CHECK(chain >= 0))
         return;
     sets[chain].method = &rt_ros2;
-    sets[chain].implicit = (rt_implicit_cfg){.jac_every = 1024, .accuracy = (real_t)1e-2};
+    sets[chain].cfg = (rt_set_cfg){.jac_every = 1024, .accuracy = (real_t)1e-2};
     sc.sets = sets;
     int ok = 1;
     for (int i = 0; i < 3; i++)
@@ -235,13 +236,13 @@ static void test_bg_deadline(void)
     TH_CHECK(rt_background(sc, sim) == RT_E_ARG); /* nothing left */
     TH_CHECK(sim->state.set_tick[s] == 2 * r);    /* done, but not yet due */
     TH_CHECK(sim->state.hist_t[s][0] == (real_t)(2 * r) * sc->dt);
-    while (sim->state.tick < 3 * r - 1)
+    while (rt_ticks_done(sim) < 3 * r - 1)
         rt_tick(sc, sim);
     TH_CHECK(sim->state.set_tick[s] == 2 * r);
     rt_tick(sc, sim);
     TH_CHECK(sim->state.set_tick[s] == 3 * r); /* published as the tick reached 3r */
     TH_CHECK(sim->state.hist_t[s][0] == (real_t)(3 * r) * sc->dt);
-    TH_CHECK(sim->stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(sim)->status == RT_OK);
 }
 
 /* a step not finished at its deadline: counted once, never waited for, published at the
@@ -255,8 +256,8 @@ static void test_bg_overrun(void)
     uint32_t r = sc->sets[s].ratio;
     for (uint32_t n = 0; n < r + 2; n++)
         rt_tick(sc, sim); /* the step released at tick 0 never ran */
-    TH_CHECK(sim->stats.count[RT_CNT_OVERRUN] == 1 && sim->stats.bg_late == 1);
-    TH_CHECK(sim->stats.status == RT_E_OVERRUN);
+    TH_CHECK(rt_stats_of(sim)->count[RT_CNT_OVERRUN] == 1 && rt_stats_of(sim)->bg_late == 1);
+    TH_CHECK(rt_stats_of(sim)->status == RT_E_OVERRUN);
     TH_CHECK(sim->state.set_tick[s] == 0 && sim->state.hist_t[s][0] == 0);
     TH_CHECK(rt_background(sc, sim) == RT_OK);
     rt_tick(sc, sim);
@@ -265,7 +266,7 @@ static void test_bg_overrun(void)
     /* the next step, released at the next tick, keeps its deadline on the schedule */
     TH_CHECK(rt_bg_pending(sim) && sim->state.bg_due == 2 * r);
     /* with r <= 4 that step (from r to 2r, released at tick r + 3) was due at once */
-    TH_CHECK(sim->stats.count[RT_CNT_OVERRUN] == (r + 4 >= 2 * r ? 2u : 1u));
+    TH_CHECK(rt_stats_of(sim)->count[RT_CNT_OVERRUN] == (r + 4 >= 2 * r ? 2u : 1u));
 }
 
 /* what init refuses: two background sets, a sampled block or a state event in one */

@@ -3,6 +3,7 @@
 #include "models.h"
 #include "scenes/scenes.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 /* impact k (0-based) of a ball dropped from h0 with restitution e:
    t_0 = sqrt(2 h0 / g), then each flight lasts 2 e^k v_0 / g with v_0 = g t_0 */
@@ -40,9 +41,9 @@ static void test_ball_impacts(void)
     th_note("worst impact time error [s]", worst);
     TH_CHECK(expect == 9 && seen == expect);
     TH_CHECK(worst <= tol);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_EVENTS] == (uint32_t)expect && tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_EVENTS] == (uint32_t)expect && rt_stats_of(&tu_sim)->status == RT_OK);
     /* the guarded Illinois iteration needs a handful of re-steps, not dozens */
-    TH_CHECK(tu_sim.stats.event_iter_max > 0 && tu_sim.stats.event_iter_max <= 8);
+    TH_CHECK(rt_stats_of(&tu_sim)->event_iter_max > 0 && rt_stats_of(&tu_sim)->event_iter_max <= 8);
 }
 
 /* a sawtooth whose root fires every 0.2 ms: five events in a 1 ms step exceed the bound
@@ -74,10 +75,10 @@ static void test_event_bound(void)
         return;
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
-    TH_CHECK(tu_sim.state.tick == 10);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_EVENT_LIMIT] > 0);
-    TH_CHECK(tu_sim.stats.status == RT_E_EVENT);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_EVENTS] <= 10 * (RT_EVENTS_PER_STEP_MAX + 1));
+    TH_CHECK(rt_ticks_done(&tu_sim) == 10);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_EVENT_LIMIT] > 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_E_EVENT);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_EVENTS] <= 10 * (RT_EVENTS_PER_STEP_MAX + 1));
     TH_CHECK(rt_isfinite(tu_sim.state.x[0]) && tu_sim.state.x[0] <= (real_t)1e-4);
 }
 
@@ -125,10 +126,10 @@ static void user_ball_run(real_t e, int h_ms, real_t t_end)
     while (rt_tick(&sc, &tu_sim) == RT_OK) {
         double z = (double)tu_sim.state.x[0];
         low = z < low ? z : low;
-        if (tu_sim.stats.status == RT_OK)
+        if (rt_stats_of(&tu_sim)->status == RT_OK)
             low_ok = z < low_ok ? z : low_ok;
         int n = (int)tu_sim.state.d[1];
-        if (n == seen || tu_sim.stats.status != RT_OK)
+        if (n == seen || rt_stats_of(&tu_sim)->status != RT_OK)
             continue;
         double err = (double)tu_sim.state.d[0] - impact_time(n - 1, 1, 9.81, e);
         err = err < 0 ? -err : err;
@@ -143,8 +144,8 @@ static void user_ball_run(real_t e, int h_ms, real_t t_end)
     TH_CHECK(low_ok >= -tol);
     TH_CHECK(low >= -0.1);                   /* near its floor, even past Zeno */
     TH_CHECK(impact_time(seen, 1, 9.81, e) > t_inf - 0.1 * (t_inf - impact_time(0, 1, 9.81, e)));
-    TH_CHECK(tu_sim.stats.status != RT_OK);  /* the Zeno point was met without a rest */
-    TH_CHECK(tu_sim.stats.count[RT_CNT_EVENT_LIMIT] > 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->status != RT_OK);  /* the Zeno point was met without a rest */
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_EVENT_LIMIT] > 0);
 }
 
 /* e = 0.8 (Zeno at 4.06 s) at 1 and 10 ms, e = 0.5 (2.26 s) at 1 ms, to 10 s */
@@ -171,8 +172,8 @@ static void test_user_ball_stopped(void)
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
     th_note("height at 1 s [m]", tu_sim.state.x[0]);
-    TH_CHECK(tu_sim.stats.status != RT_OK);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_EVENT_LIMIT] + tu_sim.stats.count[RT_CNT_INVARIANT] > 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->status != RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_EVENT_LIMIT] + rt_stats_of(&tu_sim)->count[RT_CNT_INVARIANT] > 0);
     TH_CHECK(tu_sim.state.x[0] > (real_t)-3e-3); /* 1 s below 0.55 s of 5 um per step */
 }
 
@@ -210,8 +211,8 @@ static void test_nan_root(void)
     th_note("located at [s]", tu_sim.state.d[0]);
     TH_CHECK(tu_sim.state.d[1] == 1);
     TH_CHECK((err < 0 ? -err : err) < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
-    TH_CHECK(tu_sim.stats.count[RT_CNT_NAN] > 0 && tu_sim.stats.last_block[RT_CNT_NAN] == 0);
-    TH_CHECK(tu_sim.stats.status == RT_E_NAN);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_NAN] > 0 && rt_stats_of(&tu_sim)->last_block[RT_CNT_NAN] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_E_NAN);
 }
 
 const th_test th_event_tests[] = {

@@ -72,17 +72,17 @@ static rt_scene scene;
 /* builds a one-block scene of kind k (parameters p, initial state x0), integrated by m
    with settings cfg at step h up to t_end */
 static void build(const rt_kind *k, const real_t *p, const real_t *x0, const rt_integrator *m,
-                  rt_implicit_cfg cfg, real_t h, real_t t_end)
+                  rt_set_cfg cfg, real_t h, real_t t_end)
 {
     blk = (rt_block){.name = "B", .kind = k, .p = p, .x0 = x0};
-    set = (rt_set){.name = "s", .method = m, .ratio = 1, .implicit = cfg};
+    set = (rt_set){.name = "s", .method = m, .ratio = 1, .cfg = cfg};
     scene = (rt_scene){.name = "implicit", .dt = h, .t_end = t_end, .blocks = &blk,
                        .nblocks = 1, .sets = &set, .nsets = 1};
 }
 
 /* build, then init; returns 1 when init succeeded */
 static int setup(const rt_kind *k, const real_t *p, const real_t *x0, const rt_integrator *m,
-                 rt_implicit_cfg cfg, real_t h, real_t t_end)
+                 rt_set_cfg cfg, real_t h, real_t t_end)
 {
     build(k, p, x0, m, cfg, h, t_end);
     return tu_init(&scene);
@@ -90,7 +90,7 @@ static int setup(const rt_kind *k, const real_t *p, const real_t *x0, const rt_i
 
 /* setup, then every tick to t_end; returns 1 when each tick completed */
 static int run(const rt_kind *k, const real_t *p, const real_t *x0, const rt_integrator *m,
-               rt_implicit_cfg cfg, real_t h, real_t t_end)
+               rt_set_cfg cfg, real_t h, real_t t_end)
 {
     if (!setup(k, p, x0, m, cfg, h, t_end))
         return 0;
@@ -134,14 +134,14 @@ static void test_dahlquist(void)
 {
     static const real_t one[] = {1};
     static const real_t lam6[] = {(real_t)-1e6}, lam12[] = {(real_t)-1e12};
-    rt_implicit_cfg cfg = {.substeps = 1}; /* the method's own step: ROS2 would split one
+    rt_set_cfg cfg = {.substeps = 1}; /* the method's own step: ROS2 would split one
                                               whose estimate exceeds the accuracy */
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
         double r1 = 0, r2 = 0, x100 = 0;
         if (run(&dahl, lam6, one, m, cfg, (real_t)1e-3, (real_t)1e-3))
             r1 = (double)tu_sim.state.x[0];
-        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0);
         if (run(&dahl, lam6, one, m, cfg, (real_t)1e-3, (real_t)0.1))
             x100 = (double)tu_sim.state.x[0];
         if (run(&dahl, lam12, one, m, cfg, (real_t)1e-3, (real_t)1e-3))
@@ -171,12 +171,12 @@ static void test_dahlquist(void)
 /* ------------------------------------------------------------------ order */
 
 /* |x(2) - exp(sin 2)| for method m at step h */
-static double growth_error(const rt_integrator *m, rt_implicit_cfg cfg, real_t h)
+static double growth_error(const rt_integrator *m, rt_set_cfg cfg, real_t h)
 {
     static const real_t one[] = {1};
     if (!run(&growth, 0, one, m, cfg, h, 2))
         return 1e30;
-    TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0);
     return dabs((double)tu_sim.state.x[0] - (double)rt_exp(rt_sin(rt_time(&scene, &tu_sim))));
 }
 
@@ -199,7 +199,7 @@ static void test_orders(void)
     };
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         const order_case *c = &cases[i];
-        rt_implicit_cfg cfg = {.jac_every = c->jac_every};
+        rt_set_cfg cfg = {.jac_every = c->jac_every};
         real_t h = FLT ? c->h_float : c->h;
         double e1 = growth_error(c->m, cfg, h), e2 = growth_error(c->m, cfg, h / 2);
         double p = (double)rt_log((real_t)(e1 / e2)) / (double)rt_log(2);
@@ -249,7 +249,7 @@ static void stiff_exact(double t, const real_t *x0, double *x)
 static double stiff_error(const rt_integrator *m, real_t h)
 {
     static const real_t x0[] = {3, 2, 1}; /* V^-1 x0 = (1, 1, 1): every mode excited */
-    rt_implicit_cfg cfg = {.jac_every = 1000, .substeps = 1};
+    rt_set_cfg cfg = {.jac_every = 1000, .substeps = 1};
     double ex[3], e = 0;
     if (!run(&stiff3, 0, x0, m, cfg, h, 1))
         return 1e30;
@@ -259,8 +259,8 @@ static double stiff_error(const rt_integrator *m, real_t h)
         e = d > e ? d : e;
     }
     /* linear: one Jacobian for the run, a few iterations per stage, never degraded */
-    TH_CHECK(tu_sim.stats.istats[0].jac_evals == 1 && tu_sim.stats.istats[0].degraded == 0);
-    TH_CHECK(tu_sim.stats.istats[0].newton_iter_max <= 4u * m->stages);
+    TH_CHECK(rt_stats_of(&tu_sim)->istats[0].jac_evals == 1 && rt_stats_of(&tu_sim)->istats[0].degraded == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->istats[0].newton_iter_max <= 4u * m->stages);
     return e;
 }
 
@@ -297,7 +297,7 @@ static void test_ros2_split(void)
     double ex[3], e_split = 0, e_one = 0;
     stiff_matrix();
     for (int split = 0; split < 2; split++) {
-        rt_implicit_cfg cfg = {.jac_every = 1000, .substeps = (uint8_t)(split ? 0 : 1),
+        rt_set_cfg cfg = {.jac_every = 1000, .substeps = (uint8_t)(split ? 0 : 1),
                                .accuracy = (real_t)1e-3};
         if (!TH_CHECK(run(&stiff3, 0, x0, &rt_ros2, cfg, (real_t)0.1, 1)))
             return;
@@ -307,15 +307,15 @@ static void test_ros2_split(void)
             e = dabs((double)tu_sim.state.x[i] - ex[i]) > e ? dabs((double)tu_sim.state.x[i] - ex[i]) : e;
         *(split ? &e_split : &e_one) = e;
         if (split)
-            TH_CHECK(tu_sim.stats.istats[0].substepped > 0 && tu_sim.stats.count[RT_CNT_SUBSTEP] > 0);
+            TH_CHECK(rt_stats_of(&tu_sim)->istats[0].substepped > 0 && rt_stats_of(&tu_sim)->count[RT_CNT_SUBSTEP] > 0);
         else
-            TH_CHECK(tu_sim.stats.istats[0].substepped == 0);
+            TH_CHECK(rt_stats_of(&tu_sim)->istats[0].substepped == 0);
     }
     th_note("ROS2 at h = 0.1, error without splitting", e_one);
     th_note("ROS2 at h = 0.1, error with splitting", e_split);
     TH_CHECK(e_split < e_one);
     rt_step_work wk;
-    rt_ros2.bound(&rt_ros2, &(rt_implicit_cfg){0}, 3, &wk);
+    rt_ros2.bound(&rt_ros2, &(rt_set_cfg){0}, 3, &wk);
     TH_CHECK(wk.rhs == (2 * RT_IMP_SUBSTEPS - 1) * (3 + 3) && wk.lu == 2 * RT_IMP_SUBSTEPS - 1);
 }
 
@@ -329,8 +329,8 @@ static void test_ros2_split(void)
 static void test_degraded(void)
 {
     static const real_t p[] = {1000, 3}, zero[] = {0};
-    rt_implicit_cfg bad = {.newton_max = 2, .jac_every = 60000};
-    rt_implicit_cfg good = {.newton_max = 8};
+    rt_set_cfg bad = {.newton_max = 2, .jac_every = 60000};
+    rt_set_cfg good = {.newton_max = 8};
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
         if (m == &rt_ros2)
@@ -341,13 +341,13 @@ static void test_degraded(void)
         th_put(m->name);
         th_note("retried steps of 300 with a frozen Jacobian", s->retried);
         TH_CHECK(s->retried > 0 && s->degraded == 0 && s->jac_evals > s->retried);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.count[RT_CNT_NAN] == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_NAN] == 0);
         /* the attempt (2 per stage) and the retry (4 per stage) */
         TH_CHECK(s->newton_iter_max <= 6u * m->stages);
         double x_bad = (double)tu_sim.state.x[0];
 
         TH_CHECK(run(&cubic, p, zero, m, good, (real_t)0.01, 3));
-        TH_CHECK(s->degraded == 0 && s->retried == 0 && tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+        TH_CHECK(s->degraded == 0 && s->retried == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0);
         TH_CHECK(s->jac_evals == 300 && s->newton_iter_max <= 8u * m->stages);
         TH_CHECK(s->last_residual <= (FLT ? 1e-5 : 1e-8));
         th_note("|x(3) - converged x(3)|", dabs(x_bad - (double)tu_sim.state.x[0]));
@@ -357,12 +357,12 @@ static void test_degraded(void)
        convergence from a cold start; the step keeps its best iterate, is counted as
        degraded, and is not its start state */
     TH_CHECK(run(&cubic, p, zero, &rt_sdirk2,
-                 (rt_implicit_cfg){.newton_max = 1, .substeps = 1}, (real_t)0.01, 1));
+                 (rt_set_cfg){.newton_max = 1, .substeps = 1}, (real_t)0.01, 1));
     /* (float's tolerance 1e-5 is met by two full-Newton iterations at some steps) */
-    th_note("degraded of 100 with one iteration", tu_sim.stats.istats[0].degraded);
-    TH_CHECK(FLT ? tu_sim.stats.istats[0].degraded > 0 : tu_sim.stats.istats[0].degraded == 100);
+    th_note("degraded of 100 with one iteration", rt_stats_of(&tu_sim)->istats[0].degraded);
+    TH_CHECK(FLT ? rt_stats_of(&tu_sim)->istats[0].degraded > 0 : rt_stats_of(&tu_sim)->istats[0].degraded == 100);
     TH_CHECK(rt_isfinite(tu_sim.state.x[0]));
-    TH_CHECK(tu_sim.stats.status == RT_E_DEGRADED && tu_sim.state.x[0] != 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_E_DEGRADED && tu_sim.state.x[0] != 0);
 }
 
 /* ------------------------------------------------------------------ Jacobian reuse */
@@ -375,16 +375,16 @@ static void test_jac_reuse(void)
     static const real_t p[] = {100, 1}, zero[] = {0};
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
-        TH_CHECK(run(&cubic, p, zero, m, (rt_implicit_cfg){.newton_max = 8, .substeps = 1},
+        TH_CHECK(run(&cubic, p, zero, m, (rt_set_cfg){.newton_max = 8, .substeps = 1},
                      (real_t)0.01, 3));
         double x1 = (double)tu_sim.state.x[0];
-        uint32_t j1 = tu_sim.stats.istats[0].jac_evals, it1 = tu_sim.stats.istats[0].newton_iter_max;
-        TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
+        uint32_t j1 = rt_stats_of(&tu_sim)->istats[0].jac_evals, it1 = rt_stats_of(&tu_sim)->istats[0].newton_iter_max;
+        TH_CHECK(rt_stats_of(&tu_sim)->istats[0].degraded == 0);
         TH_CHECK(run(&cubic, p, zero, m,
-                     (rt_implicit_cfg){.newton_max = 8, .jac_every = 10, .substeps = 1},
+                     (rt_set_cfg){.newton_max = 8, .jac_every = 10, .substeps = 1},
                      (real_t)0.01, 3));
         double x10 = (double)tu_sim.state.x[0];
-        uint32_t j10 = tu_sim.stats.istats[0].jac_evals, it10 = tu_sim.stats.istats[0].newton_iter_max;
+        uint32_t j10 = rt_stats_of(&tu_sim)->istats[0].jac_evals, it10 = rt_stats_of(&tu_sim)->istats[0].newton_iter_max;
         th_put("  ");
         th_put(m->name);
         th_note("jac_evals every step", j1);
@@ -392,7 +392,7 @@ static void test_jac_reuse(void)
         th_note("Newton iterations per step, max", it10 > it1 ? it10 : it1);
         th_note("|x(3) difference|", dabs(x1 - x10));
         TH_CHECK(j1 == 300 && j10 == 30);
-        TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->istats[0].degraded == 0);
         TH_CHECK(dabs(x1 - x10) < (m == &rt_ros2 ? 1e-3 : FLT ? 1e-4 : 1e-8));
     }
 }
@@ -414,7 +414,7 @@ static rt_status diag_eval(void *ctx, real_t t, real_t *xdot)
     return RT_OK;
 }
 
-static rt_iwork direct_work(const rt_implicit_cfg *cfg)
+static rt_iwork direct_work(const rt_set_cfg *cfg)
 {
     rt_iwork w;
     for (int i = 0; i < RT_MAX_STAGES; i++)
@@ -436,7 +436,7 @@ static rt_iwork direct_work(const rt_implicit_cfg *cfg)
    RT_E_NOCONV, counted as degraded. */
 static void test_singular(void)
 {
-    static const rt_implicit_cfg cfg = {0};
+    static const rt_set_cfg cfg = {0};
     real_t x[2] = {0, 1}, h = (real_t)1e-3;
     diag_rhs c = {x, 1 / h};
     rt_rhs f = {diag_eval, &c};
@@ -449,18 +449,18 @@ static void test_singular(void)
     x[0] = 1, x[1] = 1;
     w = direct_work(&cfg);
     st = rt_beuler.step(&rt_beuler, &f, 0, h, x, 2, &w);
-    TH_CHECK(st == RT_OK && tu_sim.stats.istats[0].substepped == 1);
-    TH_CHECK(tu_sim.stats.istats[0].degraded == 0);
+    TH_CHECK(st == RT_OK && rt_stats_of(&tu_sim)->istats[0].substepped == 1);
+    TH_CHECK(rt_stats_of(&tu_sim)->istats[0].degraded == 0);
     TH_NEAR(x[0], 4, FLT ? 1e-5 : 1e-12);
     TH_NEAR(x[1], 1 / ((1 + h / 2) * (1 + h / 2)), FLT ? 1e-6 : 1e-14);
 
-    static const rt_implicit_cfg nosplit = {.substeps = 1};
+    static const rt_set_cfg nosplit = {.substeps = 1};
     x[0] = 1, x[1] = 1;
     w = direct_work(&nosplit);
     st = rt_beuler.step(&rt_beuler, &f, 0, h, x, 2, &w);
-    TH_CHECK(st == RT_E_NOCONV && tu_sim.stats.istats[0].degraded == 1);
+    TH_CHECK(st == RT_E_NOCONV && rt_stats_of(&tu_sim)->istats[0].degraded == 1);
     TH_CHECK(rt_isfinite(x[0]) && rt_isfinite(x[1]));
-    TH_CHECK(rt_isfinite(tu_sim.stats.istats[0].last_residual));
+    TH_CHECK(rt_isfinite(rt_stats_of(&tu_sim)->istats[0].last_residual));
 }
 
 /* ------------------------------------------------------------------ multibody set */
@@ -514,14 +514,14 @@ static void test_multibody(void)
     static const real_t x0[] = {1, 0, 0, 0};
     static const double tol[NMETHODS] = {0.2, 2e-3, 2e-3, 1e-4, 2e-3};
     real_t ref[4];
-    build(&pend, 0, x0, &rt_rk4, (rt_implicit_cfg){0}, (real_t)1e-4, 1);
+    build(&pend, 0, x0, &rt_rk4, (rt_set_cfg){0}, (real_t)1e-4, 1);
     scene.mbs = &pend_ops;
     TH_CHECK(tu_init(&scene) && tu_run_to(&scene, 1) == RT_E_DONE);
     for (int i = 0; i < 4; i++)
         ref[i] = tu_sim.state.x[i];
     for (unsigned i = 0; i < NMETHODS; i++) {
         const rt_integrator *m = methods[i];
-        build(&pend, 0, x0, m, (rt_implicit_cfg){0}, (real_t)1e-3, 1);
+        build(&pend, 0, x0, m, (rt_set_cfg){0}, (real_t)1e-3, 1);
         scene.mbs = &pend_ops;
         TH_CHECK(tu_init(&scene) && tu_run_to(&scene, 1) == RT_E_DONE);
         double e = 0, c = (double)(tu_sim.state.x[0] * tu_sim.state.x[0] + tu_sim.state.x[1] * tu_sim.state.x[1]);
@@ -534,7 +534,7 @@ static void test_multibody(void)
         th_note("pendulum state error at 1 s", e);
         TH_CHECK(e < tol[i] + (FLT ? 1e-3 : 0));
         TH_NEAR(c, 1, FLT ? 1e-6 : 1e-14);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.istats[0].jac_evals == 1000);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0 && rt_stats_of(&tu_sim)->istats[0].jac_evals == 1000);
     }
 }
 
@@ -571,7 +571,7 @@ static void test_pendulum10(void)
         return;
     for (uint16_t i = 0; i < n; i++)
         ref[i] = tu_sim.state.x[i];
-    s.method = &rt_sdirk2, s.implicit = (rt_implicit_cfg){.jac_every = 10};
+    s.method = &rt_sdirk2, s.cfg = (rt_set_cfg){.jac_every = 10};
     if (!tu_init(&sc) || !TH_CHECK(tu_run_to(&sc, sc.t_end) == RT_E_DONE))
         return;
     double e = 0;
@@ -581,9 +581,9 @@ static void test_pendulum10(void)
     }
     th_note("pendulum10, sdirk2 vs dopri5 at 0.5 s, largest state difference", e);
     th_note("largest constraint residual [m]", chain_residual());
-    th_note("Newton iterations per step, max", tu_sim.stats.istats[0].newton_iter_max);
+    th_note("Newton iterations per step, max", rt_stats_of(&tu_sim)->istats[0].newton_iter_max);
     TH_CHECK(e < 1e-4 && chain_residual() < (FLT ? 1e-5 : 1e-12));
-    TH_CHECK(tu_sim.stats.istats[0].degraded == 0 && tu_sim.stats.istats[0].jac_evals == 50);
+    TH_CHECK(rt_stats_of(&tu_sim)->istats[0].degraded == 0 && rt_stats_of(&tu_sim)->istats[0].jac_evals == 50);
 }
 
 /* ------------------------------------------------------------------ state events */
@@ -594,9 +594,9 @@ static void test_pendulum10(void)
    find the same impacts as RK4; backward Euler is off by O(h). */
 static void test_events(void)
 {
-    rt_implicit_cfg cfg = {.jac_every = 60000};
+    rt_set_cfg cfg = {.jac_every = 60000};
     double n_ref = 0, t_ref = 0;
-    if (run(&mdl_ball_kind, 0, 0, &rt_rk4, cfg, (real_t)1e-3, (real_t)3.5))
+    if (run(&mdl_ball_kind, 0, 0, &rt_rk4, (rt_set_cfg){0}, (real_t)1e-3, (real_t)3.5))
         n_ref = (double)tu_sim.state.d[MDL_BALL_D_N], t_ref = (double)tu_sim.state.d[MDL_BALL_D_T];
     TH_CHECK(n_ref >= 5);
     for (unsigned i = 0; i < NMETHODS; i++) {
@@ -607,8 +607,8 @@ static void test_events(void)
         th_put(m->name);
         th_note("impacts", n);
         th_note("last impact time - RK4's [s]", t - t_ref);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_EVENTS] == (uint32_t)n && tu_sim.stats.istats[0].jac_evals == 1);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.count[RT_CNT_EVENT_NOLOC] == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_EVENTS] == (uint32_t)n && rt_stats_of(&tu_sim)->istats[0].jac_evals == 1);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_EVENT_NOLOC] == 0);
         if (m->order >= 2)
             TH_CHECK(n == n_ref && dabs(t - t_ref) < (FLT ? 1e-4 : 1e-12));
         else
@@ -622,19 +622,19 @@ static void test_events(void)
 static void test_replay(void)
 {
     static const real_t p[] = {1000, 3}, zero[] = {0};
-    rt_implicit_cfg cfg = {.newton_max = 3, .jac_every = 7};
+    rt_set_cfg cfg = {.newton_max = 3, .jac_every = 7};
     for (unsigned i = 0; i < NMETHODS; i++) {
         real_t x;
         rt_istats s;
         TH_CHECK(run(&cubic, p, zero, methods[i], cfg, (real_t)0.01, 2));
-        x = tu_sim.state.x[0], s = tu_sim.stats.istats[0];
+        x = tu_sim.state.x[0], s = rt_stats_of(&tu_sim)->istats[0];
         TH_CHECK(run(&cubic, p, zero, methods[i], cfg, (real_t)0.01, 2));
         TH_CHECK(rt_hash_real(0, x) == rt_hash_real(0, tu_sim.state.x[0]));
-        TH_CHECK(s.degraded == tu_sim.stats.istats[0].degraded &&
-                 s.jac_evals == tu_sim.stats.istats[0].jac_evals &&
-                 s.newton_iter_max == tu_sim.stats.istats[0].newton_iter_max &&
+        TH_CHECK(s.degraded == rt_stats_of(&tu_sim)->istats[0].degraded &&
+                 s.jac_evals == rt_stats_of(&tu_sim)->istats[0].jac_evals &&
+                 s.newton_iter_max == rt_stats_of(&tu_sim)->istats[0].newton_iter_max &&
                  rt_hash_real(0, s.last_residual) ==
-                     rt_hash_real(0, tu_sim.stats.istats[0].last_residual));
+                     rt_hash_real(0, rt_stats_of(&tu_sim)->istats[0].last_residual));
     }
 }
 
@@ -661,11 +661,11 @@ static void test_ros2_autonomous(void)
     uint32_t evals[2];
     uint8_t flags[2];
     for (int v = 0; v < 2; v++) {
-        if (!run(v ? &auto_dahl : &dahl, lam, one, &rt_ros2, (rt_implicit_cfg){.jac_every = 8},
+        if (!run(v ? &auto_dahl : &dahl, lam, one, &rt_ros2, (rt_set_cfg){.jac_every = 8},
                  (real_t)0.01, 1))
             return;
         x[v] = tu_sim.state.x[0];
-        evals[v] = tu_sim.stats.rhs_evals[0];
+        evals[v] = rt_stats_of(&tu_sim)->rhs_evals[0];
         flags[v] = tu_sim.plan.set_flags[0];
     }
     TH_CHECK(!(flags[0] & RTI_SET_AUTONOMOUS) && (flags[1] & RTI_SET_AUTONOMOUS));
@@ -673,7 +673,7 @@ static void test_ros2_autonomous(void)
     TH_CHECK(evals[0] == evals[1] + 100); /* one evaluation fewer per step */
     TH_NEAR(x[1], 0.1353352832366127, 5e-4); /* e^-2 (ROS2 at h = 0.01: 1.4e-4 off) */
     static const real_t x1[] = {1};
-    TH_CHECK(setup(&growth, 0, x1, &rt_ros2, (rt_implicit_cfg){0}, (real_t)0.01, 1) &&
+    TH_CHECK(setup(&growth, 0, x1, &rt_ros2, (rt_set_cfg){0}, (real_t)0.01, 1) &&
              !(tu_sim.plan.set_flags[0] & RTI_SET_AUTONOMOUS));
     const rt_scene *sc = &mdl_scene_pendulum10_actuated;
     if (!tu_init(sc))

@@ -3,6 +3,7 @@
  * method's error estimate against its true local error (with the implicit methods of
  * rt/integ_implicit.c, whose estimates follow the same rule). */
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 static void deriv(const rt_args *a, real_t *xdot) { xdot[0] = a->x[0] * rt_cos(a->t); }
 static void output(const rt_args *a, real_t *y) { y[0] = a->x[0]; }
@@ -87,7 +88,7 @@ typedef struct est_case {
 static void est_step(const rt_integrator *m, int quad, real_t t0, real_t x0, real_t h,
                      double *est, double *err)
 {
-    static const rt_implicit_cfg cfg = {0};
+    static const rt_set_cfg cfg = {0};
     real_t x[1] = {x0};
     est_rhs c = {x, quad};
     rt_rhs f = {est_eval, &c};
@@ -166,7 +167,7 @@ static rt_status lin_eval(void *ctx, real_t t, real_t *xdot)
    |h lambda| = 0.1, 0.5, 1 it does (Zonneveld's weights were blind at h lambda = -1) */
 static void test_rk4_linear(void)
 {
-    static const rt_implicit_cfg cfg = {0};
+    static const rt_set_cfg cfg = {0};
     static const real_t hk[] = {(real_t)0.1, (real_t)0.5, 1};
     if (RT_REAL_IS_FLOAT)
         return;

@@ -68,12 +68,21 @@ static void test_counts(void)
 static void test_settings(void)
 {
     real_t nan = (real_t)0 / (real_t)0;
-    TH_CHECK(AT(v.set[0].implicit.tol = 0) && PAST(v.set[0].implicit.tol = -1, RT_E_PARAM));
-    TH_CHECK(PAST(v.set[0].implicit.tol = nan, RT_E_PARAM));
-    TH_CHECK(AT(v.set[0].implicit.accuracy = (real_t)1e-12) &&
-             PAST(v.set[0].implicit.accuracy = -1, RT_E_PARAM));
-    TH_CHECK(AT(v.set[0].implicit.substeps = 128) && PAST(v.set[0].implicit.substeps = 129, RT_E_PARAM));
-    TH_CHECK(AT(v.set[0].implicit.substeps = 1) && PAST(v.set[0].implicit.substeps = 3, RT_E_PARAM));
+    const rt_integrator *imp = &rt_sdirk2; /* the Newton settings apply to it */
+    TH_CHECK(AT((v.set[0].method = imp, v.set[0].cfg.tol = 0)) &&
+             PAST((v.set[0].method = imp, v.set[0].cfg.tol = -1), RT_E_PARAM));
+    TH_CHECK(PAST((v.set[0].method = imp, v.set[0].cfg.tol = nan), RT_E_PARAM));
+    TH_CHECK(AT(v.set[0].cfg.accuracy = (real_t)1e-12) &&
+             PAST(v.set[0].cfg.accuracy = -1, RT_E_PARAM));
+    TH_CHECK(AT((v.set[0].method = imp, v.set[0].cfg.substeps = 128)) &&
+             PAST((v.set[0].method = imp, v.set[0].cfg.substeps = 129), RT_E_PARAM));
+    TH_CHECK(AT((v.set[0].method = imp, v.set[0].cfg.substeps = 1)) &&
+             PAST((v.set[0].method = imp, v.set[0].cfg.substeps = 3), RT_E_PARAM));
+    /* a Newton setting on a method that does not iterate is no silent no-op (as the scene
+       compiler and modrt's options) */
+    TH_CHECK(AT((v.set[0].method = imp, v.set[0].cfg.newton_max = 2)) &&
+             PAST(v.set[0].cfg.newton_max = 2, RT_E_PARAM) &&
+             PAST((v.set[0].method = &rt_transition, v.set[0].cfg.jac_every = 4), RT_E_PARAM));
     TH_CHECK(AT(v.sc.loop_iter_max = RT_LOOP_ITER_LIMIT) &&
              PAST(v.sc.loop_iter_max = RT_LOOP_ITER_LIMIT + 1, RT_E_PARAM));
     TH_CHECK(PAST(v.sc.loop_tol = nan, RT_E_PARAM) && AT(v.sc.loop_tol = (real_t)1e-300));

@@ -56,8 +56,8 @@ static void test_linear_loop(void)
     th_note("worst loop error", worst);
     TH_CHECK(worst < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
     /* every solve took at most one iteration, and some took exactly one */
-    TH_CHECK(tu_sim.stats.loop_iter_max == 1 && tu_sim.stats.loop_hist[1] > 0);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_NOCONV] == 0 && tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->loop_iter_max == 1 && rt_stats_of(&tu_sim)->loop_hist[1] > 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_NOCONV] == 0 && rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* root of w = c - a w^3, by bisection (f is increasing in w) */
@@ -87,8 +87,8 @@ static void test_nonlinear_loop(void)
         return;
     tu_run_to(&sc, (real_t)0.1);
     TH_NEAR(tu_y(&sc, "Sum", 0), cubic_root(1, 1), RT_REAL_IS_FLOAT ? 1e-5 : 1e-10);
-    th_note("iterations at most", tu_sim.stats.loop_iter_max);
-    TH_CHECK(tu_sim.stats.loop_iter_max <= RT_LOOP_ITER_MAX && tu_sim.stats.count[RT_CNT_NOCONV] == 0);
+    th_note("iterations at most", rt_stats_of(&tu_sim)->loop_iter_max);
+    TH_CHECK(rt_stats_of(&tu_sim)->loop_iter_max <= RT_LOOP_ITER_MAX && rt_stats_of(&tu_sim)->count[RT_CNT_NOCONV] == 0);
 }
 
 /* a stiff cubic from a cold start with one iteration allowed: counted, finite, ticking */
@@ -106,11 +106,11 @@ static void test_loop_bound(void)
         return;
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
-    TH_CHECK(tu_sim.state.tick == 100);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_NOCONV] > 0 && tu_sim.stats.status == RT_E_NOCONV);
-    TH_CHECK(tu_sim.stats.last_block[RT_CNT_NOCONV] >= 0);
+    TH_CHECK(rt_ticks_done(&tu_sim) == 100);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_NOCONV] > 0 && rt_stats_of(&tu_sim)->status == RT_E_NOCONV);
+    TH_CHECK(rt_stats_of(&tu_sim)->last_block[RT_CNT_NOCONV] >= 0);
     TH_CHECK(rt_isfinite(tu_y(&sc, "Sum", 0)) && rt_isfinite(tu_y(&sc, "Cube", 0)));
-    TH_CHECK(tu_sim.stats.loop_iter_max == 1 && tu_sim.stats.loop_residual > 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->loop_iter_max == 1 && rt_stats_of(&tu_sim)->loop_residual > 0);
     /* with the default bound the same loop converges */
     sc.loop_iter_max = 0;
     sc.t_end = (real_t)0.05;

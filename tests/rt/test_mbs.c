@@ -6,6 +6,7 @@
  * force inputs, and the init checks. */
 #include "models.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 static double absd(double v) { return v < 0 ? -v : v; }
 
@@ -152,7 +153,7 @@ static void test_period(void)
     double cross[8] = {0}, vmax = 0, tens = 0;
     int n = 0;
     const real_t *x = tu_sim.state.x;
-    while (tu_sim.state.tick < tu_sim.plan.n_ticks) {
+    while (rt_ticks_done(&tu_sim) < rt_tick_count(&tu_sim)) {
         double t0 = (double)rt_time(&sc, &tu_sim), x0 = (double)x[0], v0 = (double)x[3];
         rt_tick(&sc, &tu_sim);
         double h = (double)rt_time(&sc, &tu_sim) - t0;
@@ -173,7 +174,7 @@ static void test_period(void)
     /* speed at the bottom sqrt(2 g l), sampled within half a tick of it */
     TH_NEAR(vmax, 4.429446918, RT_REAL_IS_FLOAT ? 1e-4 : 1e-5);
     TH_CHECK(tens < (RT_REAL_IS_FLOAT ? 2e-3 : 1e-8));
-    TH_CHECK(tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* the redundant rod: W M^-1 W^T is singular with a rank deficit of one; the dependent
@@ -196,13 +197,13 @@ static void test_redundant(void)
     double d = 0;
     for (int i = 0; i < 6; i++)
         d = absd((double)(tu_sim.state.x[i] - ref[i])) > d ? absd((double)(tu_sim.state.x[i] - ref[i])) : d;
-    th_note("redundant rod: redundant counted", tu_sim.stats.count[RT_CNT_REDUNDANT]);
+    th_note("redundant rod: redundant counted", rt_stats_of(&tu_sim)->count[RT_CNT_REDUNDANT]);
     th_note("redundant rod: |x - x_single|", d);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] == 0 && tu_sim.stats.status == RT_OK);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_REDUNDANT] == 1 &&
-             tu_sim.stats.last_block[RT_CNT_REDUNDANT] == 0 &&
-             tu_sim.stats.first_tick[RT_CNT_REDUNDANT] == 0);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_NAN] == 0 && tu_sim.stats.count[RT_CNT_DEGRADED] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_SINGULAR] == 0 && rt_stats_of(&tu_sim)->status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_REDUNDANT] == 1 &&
+             rt_stats_of(&tu_sim)->last_block[RT_CNT_REDUNDANT] == 0 &&
+             rt_stats_of(&tu_sim)->first_tick[RT_CNT_REDUNDANT] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_NAN] == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0);
     TH_CHECK(d < (RT_REAL_IS_FLOAT ? 1e-4 : 1e-12));
 }
 
@@ -239,15 +240,15 @@ static void test_init_moved(void)
     th_put("  moved: ");
     th_put(rt_error_text(&tu_sim));
     th_put("\n");
-    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 1 &&
-             tu_sim.stats.last_block[RT_CNT_INIT_MOVED] == 0 && tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_INIT_MOVED] == 1 &&
+             rt_stats_of(&tu_sim)->last_block[RT_CNT_INIT_MOVED] == 0 && rt_stats_of(&tu_sim)->status == RT_OK);
     TH_CHECK(th_has(rt_error_text(&tu_sim), "P moved 5.00e-04 m"));
     TH_NEAR(tu_sim.state.x[0], 1, RT_REAL_IS_FLOAT ? 1e-6 : 1e-15);
     /* the same off the rod without projection: moved too (index 1 needs it) */
     sc.stab = RT_STAB_NONE;
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 1);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_INIT_MOVED] == 1);
     TH_NEAR(tu_sim.state.x[0], 1, RT_REAL_IS_FLOAT ? 1e-6 : 1e-15);
     /* 2 cm off: a set-up mistake */
     sc.stab = RT_STAB_PROJECT;
@@ -261,7 +262,7 @@ static void test_init_moved(void)
     off[0] = 1;
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 0 && rt_error_text(&tu_sim)[0] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_INIT_MOVED] == 0 && rt_error_text(&tu_sim)[0] == 0);
 }
 
 /* ------------------------------------------------------------------ drift */
@@ -352,7 +353,7 @@ static void test_drift_long(void)
     real_t h = (real_t)0.01;
     rt_scene sc = pendulum(&rt_dopri5, h, h * (real_t)TEST_MBS_LONG_STEPS, RT_STAB_PROJECT, 1);
     drift on = run_drift(&sc, TEST_MBS_LONG_STEPS);
-    TH_CHECK(tu_sim.stats.count[RT_CNT_DEGRADED] == 0 && tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_DEGRADED] == 0 && rt_stats_of(&tu_sim)->status == RT_OK);
     sc.stab = RT_STAB_NONE;
     drift off = run_drift(&sc, TEST_MBS_LONG_STEPS);
     th_note("steps", TEST_MBS_LONG_STEPS);
@@ -444,7 +445,7 @@ static void test_double_pendulum(void)
     th_note("double pendulum, one dumbbell block: worst position error [m]", e1);
     double tol = RT_REAL_IS_FLOAT ? 2e-3 : 1e-8;
     TH_CHECK(e2 < tol && e1 < tol);
-    TH_CHECK(tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* the order of each method survives the projection (double pendulum, largest error over
@@ -501,10 +502,10 @@ static void test_straight_chain(void)
         int finite = 1;
         for (int i = 0; i < 12; i++)
             finite = finite && rt_isfinite(tu_sim.state.x[i]);
-        th_note("straightened chain: singular solves", tu_sim.stats.count[RT_CNT_SINGULAR]);
-        TH_CHECK(tu_sim.state.tick == 500 && finite && tu_sim.stats.count[RT_CNT_NAN] == 0);
-        TH_CHECK(tu_sim.stats.count[RT_CNT_SINGULAR] > 0 && tu_sim.stats.status == RT_E_SINGULAR);
-        TH_CHECK(tu_sim.stats.last_block[RT_CNT_SINGULAR] >= 0);
+        th_note("straightened chain: singular solves", rt_stats_of(&tu_sim)->count[RT_CNT_SINGULAR]);
+        TH_CHECK(rt_ticks_done(&tu_sim) == 500 && finite && rt_stats_of(&tu_sim)->count[RT_CNT_NAN] == 0);
+        TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_SINGULAR] > 0 && rt_stats_of(&tu_sim)->status == RT_E_SINGULAR);
+        TH_CHECK(rt_stats_of(&tu_sim)->last_block[RT_CNT_SINGULAR] >= 0);
     }
 }
 
@@ -713,7 +714,7 @@ static void test_points_path(void)
                 return;
             TH_CHECK(tu_sim.work.mbs.points[0] == (v == 0));
             tu_run_to(&sc, 1);
-            TH_CHECK(tu_sim.stats.status == RT_OK);
+            TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
             if (v == 0) {
                 for (int i = 0; i < 12; i++)
                     x[i] = tu_sim.state.x[i];

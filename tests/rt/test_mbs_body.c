@@ -6,6 +6,7 @@
  * tilted prismatic joint (analytic position and normal reaction), and torque inputs. */
 #include "models.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 static double absd(double v) { return v < 0 ? -v : v; }
 
@@ -69,7 +70,7 @@ static void test_compound_pendulum(void)
     const real_t *x = tu_sim.state.x;
     double cross[8] = {0}, qerr = 0, yoff = 0;
     int n = 0;
-    while (tu_sim.state.tick < tu_sim.plan.n_ticks) {
+    while (rt_ticks_done(&tu_sim) < rt_tick_count(&tu_sim)) {
         double t0 = (double)rt_time(&sc, &tu_sim), x0 = (double)x[X], v0 = (double)x[V];
         rt_tick(&sc, &tu_sim);
         double h = (double)sc.dt, x1 = (double)x[X], v1 = (double)x[V];
@@ -97,7 +98,7 @@ static void test_compound_pendulum(void)
     th_note("|quaternion| - 1", qerr);
     TH_NEAR(period, 2.367841948, RT_REAL_IS_FLOAT ? 5e-4 : 2e-9);
     TH_CHECK(qerr < (RT_REAL_IS_FLOAT ? 1e-6 : 1e-14) && yoff < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-13));
-    TH_CHECK(tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* ------------------------------------------------------------------ heavy top */
@@ -159,7 +160,7 @@ static void test_heavy_top(void)
     TH_CHECK(absd((double)tu_sim.state.x[X] - (double)x0[X]) > 1e-3);
     double rel = RT_REAL_IS_FLOAT ? 1e-3 : 1e-8;
     TH_CHECK(dE < rel * absd(E0) && dL < rel * absd(L0) && dw < rel * 50);
-    TH_CHECK(qerr < (RT_REAL_IS_FLOAT ? 1e-6 : 1e-14) && tu_sim.stats.status == RT_OK);
+    TH_CHECK(qerr < (RT_REAL_IS_FLOAT ? 1e-6 : 1e-14) && rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* ------------------------------------------------------------------ torque-free body */
@@ -235,7 +236,7 @@ static void test_fixed(void)
     /* gravity's moment about the node: (0.5, 0, 0) x (0, 0, -m g) = (0, 0.5 m g, 0) */
     TH_NEAR(rt_rec_value(&sc, &tu_sim, 2), -0.5 * G, tol * 10);
     TH_CHECK(rt_rec_value(&sc, &tu_sim, 3) < tol);
-    TH_CHECK(rt_streq(rt_rec_signal(&sc, 2), "my") && tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_streq(rt_rec_signal(&sc, 2), "my") && rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* ------------------------------------------------------------------ prismatic joint */
@@ -279,7 +280,7 @@ static void test_prismatic(void)
     double fx = (double)rt_rec_value(&sc, &tu_sim, 0), fz = (double)rt_rec_value(&sc, &tu_sim, 1);
     TH_NEAR(absd(fx * sa + fz * ca), 0, tol * 10);      /* normal to the axis */
     TH_NEAR(rt_sqrt((real_t)(fx * fx + fz * fz)), G * sa, tol * 10); /* m g sin(al) */
-    TH_CHECK(tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* ------------------------------------------------------------------ initial quaternion */
@@ -300,12 +301,12 @@ static void test_quaternion(void)
     th_put(rt_error_text(&tu_sim));
     th_put("\n");
     TH_CHECK(th_has(rt_error_text(&tu_sim), "Free: quaternion of norm 2.00e+00 normalized"));
-    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 1 && tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_INIT_MOVED] == 1 && rt_stats_of(&tu_sim)->status == RT_OK);
     TH_CHECK(tu_sim.state.x[P] == 0 && tu_sim.state.x[P + 1] == 1);
     x0[P + 1] = 1; /* unit: nothing to say */
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.stats.count[RT_CNT_INIT_MOVED] == 0 && rt_error_text(&tu_sim)[0] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_INIT_MOVED] == 0 && rt_error_text(&tu_sim)[0] == 0);
     x0[P + 1] = 0;
     TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_PARAM);
     TH_CHECK(th_has(rt_error_text(&tu_sim), "Free: initial quaternion of norm 0.00e+00"));

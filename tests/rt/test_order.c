@@ -3,6 +3,7 @@
  * worked out by hand in the comments. */
 #include "models.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 static const rt_set one_set[] = {{.name = "s", .method = &rt_rk4, .ratio = 1}};
 

@@ -5,6 +5,7 @@
 #include "models.h"
 #include "scenes/scenes.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 /* a and b have the same bits (NaN included; the freestanding targets have no memcmp) */
 static int same_bits(real_t a, real_t b)
@@ -36,7 +37,7 @@ static uint64_t run_hash(int nudge)
     while (rt_tick(&short_sc, &tu_sim) == RT_OK)
         rt_record(&short_sc, &tu_sim, 0);
     rt_record(&short_sc, &tu_sim, 0);
-    return tu_sim.state.hash;
+    return rt_trace_hash(&tu_sim);
 }
 
 static void test_hash_determinism(void)
@@ -66,11 +67,11 @@ static void test_integer_time(void)
                    .nblocks = 1, .sets = set, .nsets = 1};
     if (!tu_init(&sc))
         return;
-    TH_CHECK(tu_sim.plan.n_ticks == 1000000);
+    TH_CHECK(rt_tick_count(&tu_sim) == 1000000);
     tu_sim.state.tick = 999999;
     TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE);
     TH_CHECK(rt_time(&sc, &tu_sim) == (real_t)1000000 * (real_t)1e-3);
-    TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE && tu_sim.state.tick == 1000000);
+    TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE && rt_ticks_done(&tu_sim) == 1000000);
 }
 
 static void test_set_param(void)
@@ -140,9 +141,9 @@ static void test_nan_contained(void)
         return;
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
-    TH_CHECK(tu_sim.state.tick == 100);
-    TH_CHECK(tu_sim.stats.status == RT_E_NAN && tu_sim.stats.count[RT_CNT_NAN] > 0);
-    TH_CHECK(tu_sim.stats.last_block[RT_CNT_NAN] == 1);
+    TH_CHECK(rt_ticks_done(&tu_sim) == 100);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_E_NAN && rt_stats_of(&tu_sim)->count[RT_CNT_NAN] > 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->last_block[RT_CNT_NAN] == 1);
     TH_CHECK(rt_isfinite(tu_sim.state.x[0]) && rt_isfinite(tu_sim.state.x[2]));
     TH_NEAR(tu_sim.state.x[2], 0.5, 0.02); /* held near where it went bad */
 }
@@ -168,15 +169,15 @@ static void test_invariant(void)
                    .nblocks = 1, .sets = set, .nsets = 1};
     if (!tu_init(&sc))
         return;
-    while (rt_tick(&sc, &tu_sim) == RT_OK && tu_sim.state.tick < 8)
+    while (rt_tick(&sc, &tu_sim) == RT_OK && rt_ticks_done(&tu_sim) < 8)
         ;
-    TH_CHECK(tu_sim.stats.count[RT_CNT_INVARIANT] == 0 && tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_INVARIANT] == 0 && rt_stats_of(&tu_sim)->status == RT_OK);
     while (rt_tick(&sc, &tu_sim) == RT_OK)
         ;
     /* ticks 9 .. 16 end at x = -0.125 .. -1 */
-    TH_CHECK(tu_sim.stats.count[RT_CNT_INVARIANT] == 8 && tu_sim.stats.first_tick[RT_CNT_INVARIANT] == 8);
-    TH_CHECK(tu_sim.stats.last_block[RT_CNT_INVARIANT] == 0 &&
-             tu_sim.stats.status == RT_E_INVARIANT);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_INVARIANT] == 8 && rt_stats_of(&tu_sim)->first_tick[RT_CNT_INVARIANT] == 8);
+    TH_CHECK(rt_stats_of(&tu_sim)->last_block[RT_CNT_INVARIANT] == 0 &&
+             rt_stats_of(&tu_sim)->status == RT_E_INVARIANT);
     TH_NEAR(tu_sim.state.x[0], -1, 1e-6); /* the check changes no state */
     k.inv = bad_inv; /* reads state 1 of a kind with one */
     TH_CHECK(rt_init(&sc, &tu_sim) == RT_E_SCENE);
@@ -213,7 +214,7 @@ static uint64_t short_run(const rt_scene *base, const rt_integrator *m)
     while (rt_tick(&sc, &tu_sim) != RT_E_DONE)
         rt_record(&sc, &tu_sim, 0);
     rt_record(&sc, &tu_sim, 0);
-    return tu_sim.state.hash;
+    return rt_trace_hash(&tu_sim);
 }
 
 /* a replay does not depend on what the simulator ran before: rt_init leaves nothing of
@@ -273,7 +274,7 @@ static void test_held_outputs(void)
     for (rt_status st = RT_OK; st == RT_OK;) {
         st = rt_tick(&h_sc, &tu_sim);
         const real_t *y = tu_sim.state.y + slow_y0();
-        if (tu_sim.state.tick % H_RATIO == 0) {
+        if (rt_ticks_done(&tu_sim) % H_RATIO == 0) {
             h_fresh = tu_sim;
             for (uint16_t j = 0; j < RT_MAX_Y; j++)
                 h_fresh.state.y[j] = (real_t)0 / (real_t)0;
@@ -295,7 +296,7 @@ static void test_held_outputs(void)
     TH_CHECK(fresh_ok);
     TH_CHECK(held_ok);
     TH_CHECK(src_ok);
-    TH_CHECK(tu_sim.stats.status == RT_OK);
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
 }
 
 /* the fast set never reads the slow set's live outputs between its steps: poisoning them
@@ -310,11 +311,11 @@ static uint64_t fast_trace(int poison)
         const real_t *y = tu_sim.state.y + tu_sim.plan.y_off[H_ROT];
         for (uint16_t j = 0; j < 2; j++)
             h = rt_hash_real(h, y[j]);
-        if (poison && tu_sim.state.tick % H_RATIO != 0)
+        if (poison && rt_ticks_done(&tu_sim) % H_RATIO != 0)
             for (uint16_t j = 0; j < slow_ny(); j++)
                 tu_sim.state.y[slow_y0() + j] = (real_t)0 / (real_t)0;
     }
-    TH_CHECK(tu_sim.stats.count[RT_CNT_NAN] == 0);
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_NAN] == 0);
     return h;
 }
 
@@ -386,8 +387,8 @@ static real_t lean_run(int reader, int lean, uint32_t *full, uint32_t *lean_call
         real_t x = tu_sim.state.x[0];
         y1_ok &= rt_rec_value(&sc, &tu_sim, 0) == x + (real_t)0.5 * x;
     }
-    TH_CHECK(y1_ok && tu_sim.stats.status == RT_OK);
-    *full = lp_full, *lean_calls = lp_lean, *rhs = tu_sim.stats.rhs_evals[0];
+    TH_CHECK(y1_ok && rt_stats_of(&tu_sim)->status == RT_OK);
+    *full = lp_full, *lean_calls = lp_lean, *rhs = rt_stats_of(&tu_sim)->rhs_evals[0];
     return tu_sim.state.x[0];
 }
 

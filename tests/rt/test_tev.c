@@ -5,6 +5,7 @@
  * at rt_init and by rt_set_param. */
 #include "models.h"
 #include "testutil.h"
+#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
 
 #define DT 1e-3 /* base tick [s] of every scene here */
 
@@ -69,7 +70,7 @@ static rt_scene scene(int which, const rt_integrator *m, uint32_t ratio, int bg,
     /* no substeps on the estimate (ROS2 splits a step above its accuracy): the method's
        own order is measured */
     *set = (rt_set){.name = "main", .method = m, .ratio = ratio, .background = (uint8_t)bg,
-                    .implicit = {.accuracy = 1}};
+                    .cfg = {.accuracy = 1}};
     return (rt_scene){.name = "tev", .dt = (real_t)DT, .t_end = 1, .blocks = bl, .nblocks = 2,
                       .conns = conn, .nconns = 1, .sets = set, .nsets = 1,
                       .bg = bg ? &rt_bg : 0};
@@ -85,13 +86,13 @@ static double run_error(int which, const rt_integrator *m, uint32_t ratio, int b
     if (!TH_CHECK(rt_init(&sc, &tu_sim) == RT_OK))
         return -1;
     double e = 0;
-    while (rt_tick(&sc, &tu_sim) == RT_OK || tu_sim.state.tick == tu_sim.plan.n_ticks) {
-        if (tu_sim.state.tick % ratio == 0) {
-            double t = (double)tu_sim.state.tick * DT;
+    while (rt_tick(&sc, &tu_sim) == RT_OK || rt_ticks_done(&tu_sim) == rt_tick_count(&tu_sim)) {
+        if (rt_ticks_done(&tu_sim) % ratio == 0) {
+            double t = (double)rt_ticks_done(&tu_sim) * DT;
             double d = (double)tu_sim.state.x[tu_sim.plan.x_off[1]] - exact(t, t0);
             e = d < 0 ? -d > e ? -d : e : d > e ? d : e;
         }
-        if (tu_sim.state.tick >= tu_sim.plan.n_ticks)
+        if (rt_ticks_done(&tu_sim) >= rt_tick_count(&tu_sim))
             break;
     }
     return e;
@@ -254,9 +255,9 @@ static void test_root_at_instant(void)
         double z = (double)tu_sim.state.x[1], at = 1 - z - (double)step_p[0];
         th_note(r == 1 ? "set of 1 tick: event after the instant by [s]"
                        : "set of 8 ticks: event after the instant by [s]", at);
-        TH_CHECK(tu_sim.state.x[0] == 1 && tu_sim.stats.count[RT_CNT_EVENTS] == 1);
+        TH_CHECK(tu_sim.state.x[0] == 1 && rt_stats_of(&tu_sim)->count[RT_CNT_EVENTS] == 1);
         TH_CHECK(at < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12) && at > -(RT_REAL_IS_FLOAT ? 1e-5 : 1e-12));
-        TH_CHECK(tu_sim.stats.status == RT_OK);
+        TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
     }
 }
 

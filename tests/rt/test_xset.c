@@ -42,7 +42,7 @@ static double comm_error_bg(uint32_t m, uint8_t scheme, real_t t_from, real_t t_
     double e0 = 0, e = 0;
     uint64_t from = (uint64_t)(t_from / sc.dt + (real_t)0.5);
     for (rt_status st = RT_OK; st == RT_OK;) {
-        if (tu_sim.state.tick == from && from > 0)
+        if (rt_ticks_done(&tu_sim) == from && from > 0)
             e0 = e;
         st = rt_tick(&sc, &tu_sim);
         real_t t = rt_time(&sc, &tu_sim);
@@ -181,7 +181,7 @@ static int run_reader(const reader_case *c)
     /* (its own estimates never counted: errest is the coupling's alone here) */
     sets[rot] = (rt_set){.name = "reader", .method = &rt_rk4, .ratio = c->rr,
                          .interp = RT_INTERP_EXTRAP, .background = (uint8_t)c->bg,
-                         .implicit = {.accuracy = c->acc > 0 ? c->acc : (real_t)1e30}};
+                         .cfg = {.accuracy = c->acc > 0 ? c->acc : (real_t)1e30}};
     static rt_scene sc;
     sc = (rt_scene){.name = "reader", .dt = (real_t)1e-3, .t_end = c->t_end, .blocks = bl,
                     .nblocks = c->loop ? 3 : 2, .conns = cn, .nconns = c->loop ? 2 : 1,
@@ -255,14 +255,14 @@ static void check_reader(const char *what, const reader_case *c, int want_lost)
     if (rot < 0)
         return;
     int src = 1 - rot;
-    th_note(what, (double)tu_sim.stats.xset_err[src]);
+    th_note(what, (double)rt_stats_of(&tu_sim)->xset_err[src]);
     TH_CHECK(checks > 0 && (want_lost ? lost >= 3 : lost == 0));
-    TH_NEAR((double)tu_sim.stats.xset_err[src], want, want * (RT_REAL_IS_FLOAT ? 1e-3 : 1e-9));
-    TH_CHECK(tu_sim.stats.count[RT_CNT_ERREST] == lost);
-    TH_CHECK(tu_sim.stats.errest[rot] == lost && tu_sim.stats.errest[src] == 0);
-    TH_CHECK(lost ? tu_sim.stats.status == RT_E_COUPLING &&
-                        tu_sim.stats.last_block[RT_CNT_ERREST] == rot
-                  : tu_sim.stats.status == RT_OK);
+    TH_NEAR((double)rt_stats_of(&tu_sim)->xset_err[src], want, want * (RT_REAL_IS_FLOAT ? 1e-3 : 1e-9));
+    TH_CHECK(rt_stats_of(&tu_sim)->count[RT_CNT_ERREST] == lost);
+    TH_CHECK(rt_stats_of(&tu_sim)->errest[rot] == lost && rt_stats_of(&tu_sim)->errest[src] == 0);
+    TH_CHECK(lost ? rt_stats_of(&tu_sim)->status == RT_E_COUPLING &&
+                        rt_stats_of(&tu_sim)->last_block[RT_CNT_ERREST] == rot
+                  : rt_stats_of(&tu_sim)->status == RT_OK);
     TH_CHECK(tu_sim.plan.nxpred == 1);
 }
 
@@ -315,7 +315,7 @@ static void test_coupling_lost(void)
         int rot = run_reader(&d);
         if (rot < 0)
             return;
-        TH_CHECK(tu_sim.plan.nxpred == 0 && tu_sim.stats.count[RT_CNT_ERREST] == 0);
+        TH_CHECK(tu_sim.plan.nxpred == 0 && rt_stats_of(&tu_sim)->count[RT_CNT_ERREST] == 0);
         end[d.first] = tu_sim.state.x[tu_sim.plan.x_off[rot]];
     }
     TH_CHECK(end[0] == end[1] && end[0] != 0);
@@ -337,16 +337,16 @@ static void check_accuracy(reader_case c, int want_doubtful)
         int rot = run_reader(&c);
         if (rot < 0)
             return;
-        double est = (double)tu_sim.stats.xset_est[rot];
+        double est = (double)rt_stats_of(&tu_sim)->xset_est[rot];
         th_note(mode == 0 ? "in the tick: xset_est" : mode == 1 ? "background: xset_est"
                                                             : "context: xset_est", est);
         TH_CHECK(lost == 0 && checks > 0);
         TH_CHECK(est <= 0.5 * h * worst * (1 + 1e-6) &&
                  est >= 0.5 * h * worst / (1 + 2 * (double)c.amp / (double)c.w));
-        TH_CHECK(want_doubtful ? tu_sim.stats.status == RT_E_ACCURACY &&
-                                     tu_sim.stats.errest[rot] > 0 &&
-                                     tu_sim.stats.last_block[RT_CNT_ERREST] == rot
-                               : tu_sim.stats.status == RT_OK);
+        TH_CHECK(want_doubtful ? rt_stats_of(&tu_sim)->status == RT_E_ACCURACY &&
+                                     rt_stats_of(&tu_sim)->errest[rot] > 0 &&
+                                     rt_stats_of(&tu_sim)->last_block[RT_CNT_ERREST] == rot
+                               : rt_stats_of(&tu_sim)->status == RT_OK);
     }
 }
 

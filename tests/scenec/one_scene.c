@@ -4,6 +4,7 @@
 #include <stdio.h>
 
 #include "rt.h"
+#include "rt_sim.h"
 
 extern const rt_scene SCN_ONE;
 
@@ -18,6 +19,6 @@ int main(void)
     while (rt_tick(sc, &sim) != RT_E_DONE)
         rt_record(sc, &sim, NULL);
     rt_record(sc, &sim, NULL);
-    printf("%s %016llx\n", sc->name, (unsigned long long)sim.state.hash);
+    printf("%s %016llx\n", sc->name, (unsigned long long)rt_trace_hash(&sim));
     return 0;
 }

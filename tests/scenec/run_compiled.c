@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "models.h"
+#include "rt_sim.h"
 
 extern const rt_scene_entry scn_test_scenes[];
 
@@ -19,8 +20,8 @@ static void run(const rt_scene *sc)
             rt_record(sc, &sim, NULL);
         rt_record(sc, &sim, NULL);
     }
-    printf("%s %016llx %s\n", sc->name, (unsigned long long)sim.state.hash,
-           rt_status_name(st != RT_OK ? st : sim.stats.status));
+    printf("%s %016llx %s\n", sc->name, (unsigned long long)rt_trace_hash(&sim),
+           rt_status_name(st != RT_OK ? st : rt_stats_of(&sim)->status));
 }
 
 int main(void)

@@ -32,7 +32,7 @@ static double eval(const char *expr, double a, double b)
              "    states (s = 0.5) by { y[0] = %s; der(s) = 0; }\n"
              "load system (X) of type (E); X.a = %.17g; X.b = %.17g;\n", expr, a, b);
     scn_ctx *c = compile(text);
-    double v = c->err ? -999 : (double)c->sim->state.y[0];
+    double v = c->err ? -999 : (double)rt_output(c->sim, 0, 0);
     scn_free(c);
     return v;
 }
@@ -123,7 +123,7 @@ static void test_dss_runs(void)
         rt_init(&c->image, sim);
         while (rt_tick(&c->image, sim) != RT_E_DONE)
             ;
-        TH_NEAR(sim->state.d[0], 0.1, 10 * RT_EPS); /* ten hits of 0.01 each */
+        TH_NEAR(rt_block_d(sim, 0, 0), 0.1, 10 * RT_EPS); /* ten hits of 0.01 each */
     }
     scn_free(c);
 }
@@ -143,7 +143,7 @@ static void test_times_and_sets(void)
         const rt_scene *sc = &c->image;
         TH_CHECK(sc->dt == (real_t)0.0005 && c->sc.dt == 0.5e-3);
         TH_CHECK(sc->nsets == 2 && sc->sets[0].ratio == 1 && sc->sets[1].ratio == 5);
-        TH_CHECK(sc->sets[0].implicit.newton_max == 6 && sc->sets[0].implicit.jac_every == 4);
+        TH_CHECK(sc->sets[0].cfg.newton_max == 6 && sc->sets[0].cfg.jac_every == 4);
         TH_CHECK(sc->blocks[0].set == 0 && sc->blocks[1].set == 1);
         TH_CHECK(sc->sets[0].interp == RT_INTERP_HERMITE);
         TH_CHECK(sc->sets[1].interp == RT_INTERP_EXTRAP);
@@ -235,7 +235,8 @@ static void test_rail(void)
         TH_NEAR(v[2], s * 0.8660254037844386, tol); /* Slider.x */
         TH_NEAR(v[3], s * 0.5, tol);             /* Slider.z */
         TH_NEAR(v[4], 2 * g, tol * 100);         /* Rail.fz = m g */
-        TH_CHECK(sim->stats.status == RT_OK && sim->stats.count[RT_CNT_INIT_MOVED] == 0);
+        TH_CHECK(rt_stats_of(sim)->status == RT_OK &&
+                 rt_stats_of(sim)->count[RT_CNT_INIT_MOVED] == 0);
     }
     scn_free(c);
 }

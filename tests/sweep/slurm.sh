@@ -1,7 +1,8 @@
 # slurm.sh - sourced: slurm_up starts a single-node Slurm cluster in $T/slurm (munged,
 # slurmctld, slurmd on 127.0.0.1, each under `timeout "${SLURM_LIFE:-120}"`, their PIDs appended to $pids
 # for the caller to stop); returns 0 when the node is idle, else 1 with the reason in
-# $why. Used by tests/sweep/sweep.sh and tools/bench/sweep_bench.sh.
+# $why. SLURMD_WRAP: a command slurmd runs under (the benchmark's tools/dev/bench/reaper.py).
+# Used by tests/sweep/sweep.sh and tools/dev/bench/sweep_bench.sh.
 slurm_up() {
     S=$T/slurm why=""
     for c in slurmctld slurmd munged munge sbatch; do
@@ -48,7 +49,7 @@ EOF
     [ -S "$S/munge.sock" ] || { why="munged did not start: $(tail -1 "$S/munged.out")"; return 1; }
     timeout "${SLURM_LIFE:-120}" slurmctld -D -f "$S/slurm.conf" > "$S/ctld.out" 2>&1 &
     pids="$pids $!"
-    timeout "${SLURM_LIFE:-120}" slurmd -D -f "$S/slurm.conf" -N localhost > "$S/d.out" 2>&1 &
+    ${SLURMD_WRAP:-} timeout "${SLURM_LIFE:-120}" slurmd -D -f "$S/slurm.conf" -N localhost > "$S/d.out" 2>&1 &
     pids="$pids $!"
     i=0; while ! sinfo -h -o %t 2>/dev/null | grep -q idle && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
     sinfo -h -o %t 2>/dev/null | grep -q idle && return 0
@@ -56,10 +57,11 @@ EOF
     return 1
 }
 
-# slurm_run SCRIPT: submits an array job and waits (at most 60 s) until it has left the
-# queue; sbatch --wait would poll at growing intervals of up to tens of seconds
+# slurm_run SCRIPT: submits an array job and waits until it has left the queue, at most
+# SLURM_WAIT polls (default 600, about 60 s); sbatch --wait would poll at growing
+# intervals of up to tens of seconds
 slurm_run() {
     job=$(sbatch --parsable "$1" 2> "$S/sbatch.err") || { echo "sweep: sbatch: $(cat "$S/sbatch.err")"; return 1; }
-    i=0; while [ -n "$(squeue -h -j "$job" 2>/dev/null)" ] && [ $i -lt 600 ]; do
+    i=0; while [ -n "$(squeue -h -j "$job" 2>/dev/null)" ] && [ $i -lt "${SLURM_WAIT:-600}" ]; do
         sleep 0.1; i=$((i + 1)); done
 }

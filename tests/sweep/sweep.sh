@@ -206,6 +206,99 @@ EOF
 grep -q '^status: crashed$' "$T/crash/runs/000000.txt" && grep -q '^why: the run ended by signal' "$T/crash/runs/000000.txt" && ok || \
     bad "a run killed by a signal: $(cat "$T/crash/runs/000000.txt")"
 
+# ---- the lane change's cone margin (docs/sweeps.md): the campaign cut to two draws;
+# run 1's metric against tests/vehicles/vehicles.py's footprint check over its trace ----
+[ "$($M sweep plan "$D/../../docs/sweeps/lane_change_mc.swp" --out "$T/doc" | wc -l)" -eq 400 ] && ok || \
+    bad "docs/sweeps/lane_change_mc.swp does not plan 400 runs"
+DS=$(cd "$D/../../docs/sweeps" && pwd)
+sed -e 's/^draws (400);/draws (2);/' -e "s|^scene (\"|scene (\"$DS/|" "$DS/lane_change_mc.swp" > "$T/lc2.swp"
+$M sweep run "$T/lc2.swp" --out "$T/lc" -j 2 2> "$T/err"
+line=$($M sweep plan "$T/lc2.swp" --out "$T/lc1" --index 1 --count 1 | cut -f2-)
+eval "$line --csv $T/lc1.csv" 2>> "$T/err"
+python3 - "$T/lc/runs/000001.txt" "$T/lc1.csv" "$D/../vehicles" <<'PY' && ok || bad "the lane change's margin metric ($(head -c 300 "$T/err"))"
+import csv, sys
+sys.path.insert(0, sys.argv[3])
+from vehicles import lane_margin
+try:
+    got = dict(l.split(": ", 1) for l in open(sys.argv[1]).read().splitlines())
+    rows = list(csv.DictReader(open(sys.argv[2])))
+    want = min(lane_margin(float(r["V1.x"]), float(r["V1.y"]), float(r["V1.psi"]), 20.0)
+               for r in rows)
+    m = float(got["metric.margin"])
+except (OSError, KeyError, ValueError) as e:
+    sys.exit("lane change campaign: %s" % e)
+# the draw moved the margin off the nominal car's 0.1536 m, and the metric is the check's
+if not (got["status"] == "ok" and abs(m - want) <= 1e-12 and abs(m - 0.1536) > 1e-4):
+    sys.exit("lane change run 1: metric.margin %r, footprint check %r, status %s"
+             % (m, want, got["status"]))
+PY
+
+# ---- a grid of scene files and the error against a reference table (make study) ----
+# metrics.scn's lag by Euler at 1 and 2 ticks (the set's step, in two scene files) against
+# its closed form 1 - exp(-t/T) at a few instants: Euler's y_n = 1 - (1 - h/T)^n; at 3 ms
+# the table says 5 (no solution): the 1-tick run's error is its distance to 5 there, while
+# 3 ms is no step of the 2-tick set, so that run leaves the instant out
+for k in 1 2; do
+    sed "s/^set (main) method (rk4) step (1 tick);/set (main) method (euler) step ($k tick);/" \
+        "$D/metrics.scn" > "$T/lag$k.scn"
+done
+python3 -c 'import math
+print("t,Lag.y")
+for t in (0.003, 0.1, 0.5, 1.0, 2.0): print("%r,%r" % (t, 5 if t == 0.003 else 1 - math.exp(-t / 0.5)))' > "$T/lag_ref.csv"
+printf '%s\n' 'grid scene values ("lag1.scn", "lag2.scn");' \
+    'metric (err) error against ("lag_ref.csv");' > "$T/err.swp"
+$M sweep run "$T/err.swp" --out "$T/errm" -j 2 2> "$T/err.txt"
+python3 - "$T/errm/runs" <<'PY' && ok || bad "error against a reference over a grid of scenes ($(head -c 300 "$T/err.txt"))"
+import math, sys
+for k, h in ((0, 0.001), (1, 0.002)):
+    try:
+        got = dict(l.split(": ", 1) for l in open("%s/%06d.txt" % (sys.argv[1], k)).read().splitlines())
+        v = float(got["metric.err"])
+    except (OSError, KeyError, ValueError) as e:
+        sys.exit("error metric run %d: %s" % (k, e))
+    ts = [t for t in (0.003, 0.1, 0.5, 1.0, 2.0) if abs(t / h - round(t / h)) < 1e-9]
+    want = max(abs(1 - (1 - h / 0.5) ** round(t / h) - (5 if t == 0.003 else 1 - math.exp(-t / 0.5)))
+               for t in ts)
+    if got.get("scene_file") != "lag%d.scn" % (k + 1) or not abs(v - want) <= 1e-12:
+        sys.exit("error metric run %d (%s): %r, closed form %r" % (k, got.get("scene_file"), v, want))
+PY
+printf 't,Lag.z\n0.1,1\n' > "$T/lag_bad.csv"
+sed 's/lag_ref.csv/lag_bad.csv/' "$T/err.swp" > "$T/bad_ref.swp"
+$M sweep plan "$T/bad_ref.swp" --out "$T/bad_ref" > /dev/null 2> "$T/err.txt"; rc=$?
+[ $rc -eq 2 ] && grep -q "lag_bad.csv:1: error: scene sweep_metrics records no signal: Lag.z" "$T/err.txt" && ok ||
+    bad "a reference table naming an unrecorded signal: exit $rc, $(cat "$T/err.txt")"
+
+# ---- replay runs: set up as `modrt replay` sets them up (tools/modrt/replay.c) ----
+# pi_link without its controller (--link none: the command holds 0) decays from
+# Plant.y = 1 as y' = -y/T; a log recorded with --method, --step and --set replays to the
+# live run, and the campaign's method, applied after the log's, gives the closed form of
+# that method's step: euler (1 - h/T)^n, heun (1 - h/T + (h/T)^2/2)^n, h = 2 ms, n = 250
+cp "$D/../../models/scenes/pi_link.scn" "$T/pl.scn"
+rec="--link none --t-end 0.5 --method main=euler --step main=0.002 --set Plant.y=1"
+h_live=$($M run "$T/pl.scn" $rec --record "$T/opt.mrl" | sed -n 's/^hash: //p')
+printf '%s\n' 'replay ("opt.mrl");' 'grid method (main) values (euler, heun);' \
+    'metric (y_end) final (Plant.y);' > "$T/rp.swp"
+$M sweep run "$T/rp.swp" --out "$T/rp" -j 1 2> "$T/err"
+h_rp=$(sed -n 's/^hash: //p' "$T/rp/runs/000000.txt" 2>/dev/null)
+[ -n "$h_live" ] && [ "$h_rp" = "$h_live" ] && ok ||
+    bad "a replay run of a log with --method/--step/--set: hash '$h_rp', live '$h_live' ($(head -c 300 "$T/err"))"
+python3 - "$T/rp/runs/000000.txt" "$T/rp/runs/000001.txt" <<'PY' && ok || bad "replay runs against the closed forms"
+import sys
+want = [(1 - 0.004) ** 250, (1 - 0.004 + 0.004 ** 2 / 2) ** 250]
+for path, w in zip(sys.argv[1:], want):
+    try:
+        got = float(dict(l.split(": ", 1) for l in open(path).read().splitlines())["metric.y_end"])
+    except (OSError, KeyError, ValueError) as e:
+        sys.exit("replay run: %s: %s" % (path, e))
+    if not abs(got - w) <= 1e-12 * w:
+        sys.exit("replay run %s: y_end %r, closed form %r" % (path, got, w))
+PY
+# a log whose scene changed since is refused before any task, as modrt replay refuses it
+sed 's/Plant.T = 0.5;/Plant.T = 0.6;/' "$T/pl.scn" > "$T/pl.new" && mv "$T/pl.new" "$T/pl.scn"
+$M sweep plan "$T/rp.swp" --out "$T/rp2" > /dev/null 2> "$T/err"; rc=$?
+[ $rc -eq 2 ] && grep -q "opt.mrl: recorded with scene fingerprint .*: the scene changed since" "$T/err" && ok ||
+    bad "a replay of a changed scene: exit $rc, $(cat "$T/err")"
+
 # ---- one campaign, three engines, identical CSVs ----
 $M sweep run "$D/engines.swp" --out "$T/local" -j 2 2>/dev/null
 $M sweep collect "$T/local" > "$T/local.out" 2>/dev/null

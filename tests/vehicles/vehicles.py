@@ -271,6 +271,36 @@ def lane_change(modrt, scene="lane_change_planar", x0=20.0):
     check(res < 1e-12, "%s: tow-bar residual %.3g" % (name, res))
 
 
+def cones_block(modrt):
+    """the course check iso_cones (models/lane_change.c) in docs/sweeps/lane_change_margin.scn
+    against lane_margin above at every tick, capped at its 1 m; V1 moves as in lane_change
+    (the block only reads it); the run's smallest margin is an edge's (leaving section 1,
+    a side passes the last cone pair), below the corners' alone, so the edge crossings count"""
+    scene = os.path.join(HERE, "..", "..", "docs", "sweeps", "lane_change_margin.scn")
+    rc, summ, head, rows = run(modrt, scene)
+    rc2, _, head2, rows2 = run(modrt, "lane_change")
+    col, col2 = {h: i for i, h in enumerate(head)}, {h: i for i, h in enumerate(head2)}
+    v1 = ("V1.x", "V1.y", "V1.psi")
+    if rc or rc2 or "Cones.margin" not in col or len(rows) != len(rows2) or not rows:
+        return check(False, "cones: exit %d and %d, %d and %d rows" % (rc, rc2, len(rows),
+                                                                        len(rows2)))
+    same = all([r[col[k]] for k in v1] == [q[col2[k]] for k in v1] for r, q in zip(rows, rows2))
+    check(same, "cones: V1 in lane_change_margin differs from V1 in lane_change")
+    off = max(abs(r[col["Cones.margin"]] - min(1.0, lane_margin(*[r[col[k]] for k in v1], 20.0)))
+              for r in rows)
+    low = min(r[col["Cones.margin"]] for r in rows)
+    corner = 1e9
+    for r in rows:
+        for px, py in corners(*[r[col[k]] for k in v1]):
+            for xa, xb, c, w in lanes(20.0):
+                if xa <= px <= xb:
+                    corner = min(corner, w - abs(py - c))
+    print("vehicles: iso_cones: smallest margin %.4f m (corners alone %.4f m), off the "
+          "footprint check by %.2g m" % (low, corner, off))
+    check(off <= 1e-12 and low < corner - 0.005,
+          "cones: off by %.3g m, smallest margin %.4f m, corners alone %.4f m" % (off, low, corner))
+
+
 def multirate(modrt):
     """lane_change (vehicles BS3 20 ms, steering chain ROS2 1 ms) and lane_change_single
     (all BS3 1 ms) against a reference by another method at a finer step
@@ -587,6 +617,7 @@ def main():
     lane_change(modrt)
     lane_change(modrt, "lane_change")
     lane_change(modrt, "lane_change_single")
+    cones_block(modrt)
     # the effects variants of make effects (each omits one effect of lane_change) still
     # drive the course
     for v in sorted(os.listdir(os.path.join(HERE, "variants"))):

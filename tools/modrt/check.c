@@ -45,6 +45,7 @@
 
 #include "check.h"
 #include "cli.h"
+#include "rt_sim.h"
 
 static rt_sim half;  /* the run at half the steps */
 static rt_sim quarter; /* --observe: the run at a quarter of the steps */
@@ -86,8 +87,7 @@ static void sig_tol(const rt_scene *sc, uint16_t i, const check_opts *o, double 
                     double *rtol)
 {
     const rt_set *st = &sc->sets[sc->blocks[sc->recs[i].block].set];
-    double acc = st->implicit.accuracy > 0 ? (double)st->implicit.accuracy
-                                           : (double)RT_ERR_TOL;
+    double acc = (double)rt_set_cfg_of(&st->cfg).accuracy;
     *atol = o->atol >= 0 ? o->atol : acc;
     *rtol = o->rtol >= 0 ? o->rtol : acc;
 }
@@ -231,9 +231,9 @@ static void compare(const rt_scene *sc, const rt_sim *sim)
     int differ = ev != half.stats.count[RT_CNT_EVENTS] ||
                  (C.r.observe && ev != quarter.stats.count[RT_CNT_EVENTS]);
     if (differ && !C.differ)
-        C.shift_from = sim->state.tick;
+        C.shift_from = rt_ticks_done(sim);
     if (differ || C.differ) { /* the stretch ends at the first instant they agree again */
-        double len = (double)(sim->state.tick - C.shift_from) * (double)sc->dt;
+        double len = (double)(rt_ticks_done(sim) - C.shift_from) * (double)sc->dt;
         C.r.shift_s = len > C.r.shift_s ? len : C.r.shift_s;
     }
     C.differ = differ;
@@ -271,13 +271,14 @@ static void compare(const rt_scene *sc, const rt_sim *sim)
 
 void check_tick(const rt_scene *sc, const rt_sim *sim)
 {
-    if (sim->state.tick == 0) /* the initial state: the same in both runs */
+    if (rt_ticks_done(sim) == 0) /* the initial state: the same in both runs */
         return;
-    for (int k = 0; k < 2 && half.state.tick < rt_tick_count(&half); k++)
+    for (int k = 0; k < 2 && rt_ticks_done(&half) < rt_tick_count(&half); k++)
         rt_tick(&C.sc, &half);
-    for (int k = 0; C.r.observe && k < 4 && quarter.state.tick < rt_tick_count(&quarter); k++)
+    for (int k = 0; C.r.observe && k < 4 && rt_ticks_done(&quarter) < rt_tick_count(&quarter);
+         k++)
         rt_tick(&C.sc4, &quarter);
-    if (sim->state.tick % C.r.every == 0)
+    if (rt_ticks_done(sim) % C.r.every == 0)
         compare(sc, sim);
 }
 
@@ -347,7 +348,7 @@ rt_status check_scene(const rt_scene *sc, const check_opts *o, check_setup setup
         return refuse(RT_E_ARG, "an override failed", NULL);
     if ((st = check_begin(sc, &own, o, setup, ctx)) != RT_OK)
         return st;
-    while (own.state.tick < rt_tick_count(&own)) {
+    while (rt_ticks_done(&own) < rt_tick_count(&own)) {
         rt_tick(sc, &own);
         check_tick(sc, &own);
     }

@@ -186,3 +186,25 @@ int cli_dispatch(const cli_cmd *c, int argc, char **argv)
     }
     return c->run(c->ctx, npos, pos);
 }
+
+int cli_end_time(rt_scene *sc, double t_end, const char *what)
+{
+    double n = t_end / (double)sc->dt;
+    char b[200], v[32];
+    snprintf(v, sizeof v, "%.10g", t_end);
+    if (!(n >= 0 && n <= (double)RT_MAX_TICKS)) {
+        snprintf(b, sizeof b, "%s: at most %.10g s with the scene's base tick of %.10g s "
+                 "(2^53 ticks), got", what, (double)RT_MAX_TICKS * (double)sc->dt,
+                 (double)sc->dt);
+        return cli_fail(b, v);
+    }
+    /* the same slack as rt_init: the rounding of real_t, at most a quarter tick */
+    double slack = (double)RT_TICK_SLACK * (n > 1 ? n : 1), off = n - (double)(uint64_t)(n + 0.5);
+    if ((off < 0 ? -off : off) > (slack < 0.25 ? slack : 0.25)) {
+        snprintf(b, sizeof b, "%s must be a whole number of base ticks (%.10g s), got", what,
+                 (double)sc->dt);
+        return cli_fail(b, v);
+    }
+    sc->t_end = (real_t)t_end;
+    return CLI_OK;
+}

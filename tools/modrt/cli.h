@@ -57,6 +57,10 @@ int cli_exit_code(int sev);
 /* `--set BLOCK.PARAM=VALUE` onto the initialised sim. CLI_OK, or CLI_USAGE after one
    line that says what is wrong (the runtime's reason when it gives one). */
 int cli_set_param(const rt_scene *sc, rt_sim *sim, const char *arg);
+/* The end time t_end [s] onto sc: a whole number of its base ticks (within rt_init's
+   slack, RT_TICK_SLACK) and at most RT_MAX_TICKS of them. CLI_OK, or CLI_USAGE after one
+   line "WHAT must be ..." (what: the option or the file that asked for it). */
+int cli_end_time(rt_scene *sc, double t_end, const char *what);
 /* "Block.signal", the name of recorded signal i, into buf. */
 void cli_rec_name(const rt_scene *sc, uint16_t i, char *buf, size_t n);
 /* 1 when name starts with one of the comma-separated prefixes of list (NULL: all). */

@@ -98,8 +98,8 @@ static void set(uint64_t *h, const rt_set *s)
 {
     str(h, s->name), str(h, s->method ? s->method->name : "");
     u64(h, s->ratio), u64(h, s->interp), u64(h, s->background);
-    u64(h, s->implicit.newton_max), u64(h, s->implicit.substeps), u64(h, s->implicit.jac_every);
-    real(h, s->implicit.tol), real(h, s->implicit.accuracy);
+    for (int id = 0; id < RT_CFG_N; id++) /* every setting of RT_SET_CFG_LIST */
+        real(h, rt_set_cfg_get(&s->cfg, (rt_cfg_id)id));
 }
 
 static void rec(uint64_t *h, const rt_rec *r)

@@ -287,6 +287,26 @@ static void scene_blocks(FILE *f, const rt_scene *sc)
     }
 }
 
+/* the settings that apply to a set's method with their values (RT_SET_CFG_LIST, its
+   defaults filled in), after the accuracy: "absolute" for its second value */
+static void set_settings(FILE *f, const rt_set *st)
+{
+    char a[32];
+    rt_set_cfg d = rt_set_cfg_of(&st->cfg);
+    for (int id = 0; id < RT_CFG_N; id++) {
+        const rt_set_opt *o = &rt_set_opts[id];
+        real_t v = rt_set_cfg_get(&d, (rt_cfg_id)id);
+        if (id == RT_CFG_ACCURACY || (o->scope == RT_CFG_ITER && !rt_method_iterates(st->method)))
+            continue;
+        if (o->kind == RT_CFG_PAIR) {
+            if (v > 0) /* |e_i| <= atol + accuracy |x_i| (docs/solvers.md) */
+                fprintf(f, ", absolute %s", num(a, (double)v));
+            continue;
+        }
+        fprintf(f, ", %s %s", o->word, num(a, (double)v));
+    }
+}
+
 /* one set: method, step, and the most work one of its steps can take (the implicit
    methods' retries and substeps included: docs/solvers.md, "Bounded work") */
 static void scene_set(FILE *f, const rt_scene *sc, uint8_t s)
@@ -302,9 +322,8 @@ static void scene_set(FILE *f, const rt_scene *sc, uint8_t s)
             st->name, st->method->name, num(b, (double)(sc->dt * (real_t)st->ratio)),
             (unsigned)st->ratio, num(t, (double)sc->dt), (unsigned)n, (unsigned)w.rhs,
             (unsigned)w.lu,
-            num(a, (double)(st->implicit.accuracy > 0 ? st->implicit.accuracy : RT_ERR_TOL)));
-    if (st->implicit.atol > 0) /* |e_i| <= atol + accuracy |x_i| (docs/solvers.md) */
-        fprintf(f, ", absolute %s", num(a, (double)st->implicit.atol));
+            num(a, (double)rt_set_cfg_of(&st->cfg).accuracy));
+    set_settings(f, st);
     fputc('\n', f);
     if (st->background)
         fprintf(f, "  %-10s background: each step released at its communication point, "

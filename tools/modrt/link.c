@@ -255,7 +255,7 @@ int link_open(const char *spec, const rt_scene *sc, const link_opts *o, mrl_writ
 static void send_exports(const rt_scene *sc, const rt_sim *sim)
 {
     link_packet p = {.type = LINK_TYPE_EXPORTS, .n = sc->link->nexp, .id = sc->link->id,
-                     .tick = sim->state.tick, .run = L.o.run};
+                     .tick = rt_ticks_done(sim), .run = L.o.run};
     uint8_t buf[LINK_MAX_PACKET];
     strncpy(p.name, sc->name, LINK_NAME_LEN);
     for (uint16_t i = 0; i < p.n; i++)
@@ -279,7 +279,7 @@ static void apply(const rt_scene *sc, rt_sim *sim)
 {
     rt_link_apply(sc, sim, L.cur);
     if (L.rec)
-        mrl_append(L.rec, sim->state.tick, L.cur);
+        mrl_append(L.rec, rt_ticks_done(sim), L.cur);
 }
 
 /* takes the answer from the mailbox (under mu): 1 if there was one */

@@ -20,12 +20,14 @@
 #include "link.h"
 #include "models.h"
 #include "mrlog.h"
+#include "replay.h"
 #include "scn_host.h"
 #include "study.h"
 #include "sweep.h"
 #include "runner.h"
 #include "tune.h"
 #include "version.h"
+#include "rt_sim.h"
 
 #define MAX_SETS_ARGS 32 /* --set options on one command line */
 
@@ -105,10 +107,10 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
                     int sig)
 {
     fprintf(f, "scene: %s\nticks: %llu\nsim_time: %.17g\nwall_s: %.6f\n", sc->name,
-            (unsigned long long)s->state.tick, (double)rt_time(sc, s), wall);
+            (unsigned long long)rt_ticks_done(s), (double)rt_time(sc, s), wall);
     if (sig)
         fprintf(f, "status: interrupted\ninterrupted: %s at tick %llu of %llu\n",
-                sig == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)s->state.tick,
+                sig == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)rt_ticks_done(s),
                 (unsigned long long)rt_tick_count(s));
     else
         fprintf(f, "status: %s\n", s->stats.status == RT_OK
@@ -129,18 +131,16 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
     for (uint8_t k = 0; k < sc->nsets; k++) /* the most one step took, and its bound */
         fprintf(f, "rhs_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
                 (unsigned)s->stats.istats[k].rhs_step_max,
-                (unsigned)rt_step_bound(sc, k, (uint16_t)(s->plan.set_x[k + 1] -
-                                                          s->plan.set_x[k])).rhs);
+                (unsigned)rt_step_bound(sc, k, rt_set_nx(s, k)).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) /* a whole step: events, parts, couplings */
         fprintf(f, "rhs_set_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
                 (unsigned)s->stats.istats[k].rhs_set_step_max,
                 (unsigned)rt_set_step_bound(sc, s, k).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) {
-        const rt_implicit_cfg *c = &sc->sets[k].implicit;
+        rt_set_cfg c = rt_set_cfg_of(&sc->sets[k].cfg);
         fprintf(f, "err_max.%s: %g (accuracy %g", sc->sets[k].name,
-                (double)s->stats.istats[k].err_max,
-                (double)(c->accuracy > 0 ? c->accuracy : RT_ERR_TOL));
-        fprintf(f, c->atol > 0 ? ", absolute %g)\n" : ")\n", (double)c->atol);
+                (double)s->stats.istats[k].err_max, (double)c.accuracy);
+        fprintf(f, c.atol > 0 ? ", absolute %g)\n" : ")\n", (double)c.atol);
         if (s->stats.errest[k] || s->stats.unstable[k])
             fprintf(f, "errest.%s: %u\nunstable.%s: %u\n", sc->sets[k].name,
                     (unsigned)s->stats.errest[k], sc->sets[k].name,
@@ -161,7 +161,7 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
         fprintf(f, "\nloop_residual: %g\n", (double)s->stats.loop_residual);
     }
     fmu_summary(f); /* FMU blocks: their faults with the FMU's own account */
-    fprintf(f, "hash: %016llx\n", (unsigned long long)s->state.hash);
+    fprintf(f, "hash: %016llx\n", (unsigned long long)rt_trace_hash(s));
 }
 
 /* ------------------------------------------------------------------ output files */
@@ -299,18 +299,29 @@ static int opt_link_timeout(void *ctx, const char *v)
     return CLI_OK;
 }
 
-#define STUDY_OPT(name)                                                           \
-    static int opt_##name(void *ctx, const char *v)                               \
-    {                                                                             \
-        return study_add(&((run_args *)ctx)->study, #name, v);                    \
+static int opt_method(void *ctx, const char *v)
+{
+    return study_add(&((run_args *)ctx)->study, "method", v);
+}
+
+static int opt_step(void *ctx, const char *v)
+{
+    return study_add(&((run_args *)ctx)->study, "step", v);
+}
+
+/* one handler per set setting (RT_SET_CFG_LIST), each recording its own option */
+#define STUDY_OPT(id, w_, o_, f_, k_, m_, s_, d_, h_)                        \
+    static int opt_##id(void *ctx, const char *v)                                           \
+    {                                                                                       \
+        return study_add(&((run_args *)ctx)->study, rt_set_opts[id].opt, v);                \
     }
-STUDY_OPT(method)
-STUDY_OPT(step)
-STUDY_OPT(tol)
-STUDY_OPT(accuracy)
-STUDY_OPT(substeps)
-STUDY_OPT(newton)
+RT_SET_CFG_LIST(STUDY_OPT)
 #undef STUDY_OPT
+static int (*const opt_setting[RT_CFG_N])(void *, const char *) = {
+#define STUDY_OPT_FN(id, w_, o_, f_, k_, m_, s_, d_, h_) opt_##id,
+    RT_SET_CFG_LIST(STUDY_OPT_FN)
+#undef STUDY_OPT_FN
+};
 
 static int opt_overrun(void *ctx, const char *v)
 {
@@ -389,7 +400,7 @@ static int opt_check_csv(void *ctx, const char *v)
      "signal's order of convergence; an order below the methods' replaces theirs",         \
      opt_observe}
 
-static const cli_opt run_opts[] = {
+static const cli_opt run_opts_fixed[] = {
     {"t-end", "S", "end time [s] instead of the scene's", opt_t_end},
     {"csv", "FILE", "write the recorded signals as CSV to FILE (- : stdout, summary to stderr)",
      opt_csv},
@@ -413,15 +424,8 @@ static const cli_opt run_opts[] = {
     {"record", "FILE", "write every imported vector and its tick to a replay log "
      "(modrt replay FILE)", opt_record},
     {"method", "SET=NAME", "integrate set SET by method NAME instead of the scene's; repeatable "
-     "(as are the five below)", opt_method},
+     "(as are the per-set options below)", opt_method},
     {"step", "SET=TIME", "set SET's step [s], a whole number of base ticks", opt_step},
-    {"tol", "SET=E", "Newton residual tolerance of an implicit set", opt_tol},
-    {"accuracy", "SET=E[,A]", "local error a step of SET may show before it is counted "
-     "(errest): |e| <= A + E |x| (A = E if omitted)",
-     opt_accuracy},
-    {"substeps", "SET=N", "most substeps a failing implicit step is split into (power of 2)",
-     opt_substeps},
-    {"newton", "SET=N", "Newton iterations per stage of an implicit set", opt_newton},
     {"check", NULL, "estimate the global error of every recorded signal: the scene again at "
      "half the steps (as `modrt check`)", opt_check},
     CHECK_OPTS,
@@ -429,7 +433,7 @@ static const cli_opt run_opts[] = {
 };
 
 /* `modrt check`: the options of a run that make sense beside a second run */
-static const cli_opt check_opts_tab[] = {
+static const cli_opt check_opts_tab_fixed[] = {
     {"t-end", "S", "end time [s] instead of the scene's", opt_t_end},
     {"csv", "FILE", "write the recorded signals of the run (at the scene's steps) as CSV to "
      "FILE (- : stdout, summary to stderr)", opt_csv},
@@ -437,18 +441,36 @@ static const cli_opt check_opts_tab[] = {
     {"set", "BLOCK.PARAM=VALUE", "set parameter (or initial state) P of block B to V, in "
      "both runs; repeatable", opt_set},
     {"method", "SET=NAME", "integrate set SET by method NAME instead of the scene's; "
-     "repeatable (as are the five below)", opt_method},
+     "repeatable (as are the per-set options below)", opt_method},
     {"step", "SET=TIME", "set SET's step [s], a whole number of base ticks (the check "
      "halves it)", opt_step},
-    {"tol", "SET=E", "Newton residual tolerance of an implicit set", opt_tol},
-    {"accuracy", "SET=E", "local error a step of SET may show before it is counted (errest)",
-     opt_accuracy},
-    {"substeps", "SET=N", "most substeps a failing implicit step is split into (power of 2)",
-     opt_substeps},
-    {"newton", "SET=N", "Newton iterations per stage of an implicit set", opt_newton},
     CHECK_OPTS,
     {NULL, NULL, NULL, NULL},
 };
+
+/* the options of run and check: the fixed ones, and after --step modrt's option of each
+   set setting (RT_SET_CFG_LIST: its help, "SET=N" or "SET=E", ",A" for a second value) */
+static cli_opt run_opts[sizeof run_opts_fixed / sizeof run_opts_fixed[0] + RT_CFG_N];
+static cli_opt check_opts_tab[sizeof check_opts_tab_fixed / sizeof check_opts_tab_fixed[0] +
+                              RT_CFG_N];
+static void with_settings(cli_opt *out, const cli_opt *fixed)
+{
+    for (;; fixed++) {
+        *out++ = *fixed;
+        if (!fixed->name)
+            return;
+        if (strcmp(fixed->name, "step") != 0)
+            continue;
+        for (int id = 0; id < RT_CFG_N; id++) {
+            const rt_set_opt *o = &rt_set_opts[id];
+            int pair = id + 1 < RT_CFG_N && rt_set_opts[id + 1].kind == RT_CFG_PAIR;
+            if (o->opt)
+                *out++ = (cli_opt){o->opt, o->kind == RT_CFG_REAL ? (pair ? "SET=E[,A]" : "SET=E")
+                                                                   : "SET=N",
+                                   o->help, opt_setting[id]};
+        }
+    }
+}
 
 /* the options that change the numbers, as the log lists them */
 static int record_options(const run_args *a, mrl_header *h)
@@ -484,7 +506,7 @@ static int record_header(const run_args *a, const char *scene, const rt_scene *s
 
 /* the inputs of a run: the controller link (and the log it writes), or nothing */
 static int start_inputs(const run_args *a, const char *scene, const rt_scene *sc,
-                        port_run_opts *o, mrl_writer **rec)
+                        runner_opts *o, mrl_writer **rec)
 {
     static link_key key;
     char err[512];
@@ -581,25 +603,8 @@ static int cmd_run(void *ctx, int npos, char **pos)
     if (!base)
         return CLI_USAGE;
     rt_scene sc = *base; /* the const scene, with the end time the user asked for */
-    if (a->has_t_end) {
-        double n = a->t_end / (double)sc.dt;
-        char b[160], v[32];
-        snprintf(v, sizeof v, "%.10g", a->t_end);
-        if (!(n <= (double)RT_MAX_TICKS)) {
-            snprintf(b, sizeof b, "--t-end: at most %.10g s with the scene's base tick of "
-                     "%.10g s (2^53 ticks), got", (double)RT_MAX_TICKS * (double)sc.dt,
-                     (double)sc.dt);
-            return cli_fail(b, v);
-        }
-        /* the same slack as rt_init: the rounding of real_t, at most a quarter tick */
-        double slack = (double)RT_TICK_SLACK * (n > 1 ? n : 1);
-        if (fabs(n - floor(n + 0.5)) > (slack < 0.25 ? slack : 0.25)) {
-            snprintf(b, sizeof b, "--t-end must be a whole number of base ticks (%.10g s), got",
-                     (double)sc.dt);
-            return cli_fail(b, v);
-        }
-        sc.t_end = (real_t)a->t_end;
-    }
+    if (a->has_t_end && cli_end_time(&sc, a->t_end, "--t-end") != CLI_OK)
+        return CLI_USAGE;
     if (study_apply(&a->study, &sc) != CLI_OK || check_refused(a) != CLI_OK)
         return CLI_USAGE;
     if (a->realtime && !((double)sc.dt * 1e9 < 9e18)) { /* the clock counts int64_t ns */
@@ -626,14 +631,14 @@ static int cmd_run(void *ctx, int npos, char **pos)
     FILE *rt_log = NULL;
     if (a->rt_log && !(rt_log = open_out(a->rt_log, "cannot write the --rt-log file")))
         return CLI_IO;
-    port_run_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
+    runner_opts o = {csv, a->every, a->realtime, NULL, NULL, a->overrun, rt_log,
                        a->check ? check_observe : NULL};
-    port_run_result r;
+    runner_result r;
     mrl_writer *rec;
     int rc = start_inputs(a, pos[0], &sc, &o, &rec);
     if (rc != CLI_OK)
         return rc;
-    st = port_run(&sc, &sim, &o, &r);
+    st = runner_run(&sc, &sim, &o, &r);
     /* whatever was lost, the summary is printed and the replay log finished */
     int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
     io |= close_out(rt_log, 0, "error writing the --rt-log file", a->rt_log);
@@ -683,86 +688,6 @@ static const cli_opt replay_opts[] = {
     {NULL, NULL, NULL, NULL},
 };
 
-/* the log's per-set options ("--method main=rk4") onto the scene */
-static int replay_study(const mrl_header *h, rt_scene *sc)
-{
-    static study_args st;
-    static char names[MRL_MAX_SETS][MRL_SET_LEN + 1];
-    memset(&st, 0, sizeof st);
-    for (uint16_t i = 0; i < h->nsets; i++) {
-        char *sp = strchr(strcpy(names[i], h->sets[i]), ' ');
-        if (strncmp(names[i], "--", 2) != 0)
-            continue;
-        if (!sp)
-            return cli_fail("replay: a malformed option in the log", h->sets[i]);
-        *sp = 0;
-        if (study_add(&st, names[i] + 2, sp + 1) != CLI_OK)
-            return CLI_USAGE;
-    }
-    return study_apply(&st, sc);
-}
-
-/* the log's scene is the one recorded: its link layout and, from version 2, its
-   fingerprint (every table and parameter value, fingerprint.h) */
-static int replay_same_scene(const mrl_header *h, const rt_scene *sc, const char *path)
-{
-    char what[700];
-    uint32_t id = sc->link ? sc->link->id : 0;
-    uint16_t nimp = sc->link ? sc->link->nimp : 0;
-    if (id != h->id || nimp != h->nimp) {
-        snprintf(what, sizeof what, "link layout 0x%08x with %u imports, but scene %s has "
-                 "0x%08x with %u: another scene or another version of it",
-                 (unsigned)h->id, (unsigned)h->nimp, h->scene, (unsigned)id, (unsigned)nimp);
-        return cli_fail(path, what);
-    }
-    uint64_t fp = fp_scene(sc);
-    if (h->version >= 2 && fp != h->scene_fp) {
-        snprintf(what, sizeof what, "recorded with scene fingerprint %016llx, but scene %s "
-                 "is now %016llx: the scene changed since (a table or parameter value)",
-                 (unsigned long long)h->scene_fp, h->scene, (unsigned long long)fp);
-        return cli_fail(path, what);
-    }
-    if (h->version < 2)
-        fprintf(stderr, "modrt: warning: %s: a version %u log names its scene by name and "
-                "link layout only; a changed parameter would go unnoticed\n", path,
-                (unsigned)h->version);
-    return CLI_OK;
-}
-
-/* the scene of the log, initialised as the live run was */
-static int replay_scene(const mrl_header *h, rt_scene *sc, const char *path)
-{
-    char err[600];
-    const rt_scene *base = cli_scene(h->scene);
-    if (!base)
-        return CLI_USAGE;
-    *sc = *base;
-    sc->t_end = (real_t)h->t_end;
-    if (h->real_size != sizeof(real_t))
-        return cli_fail(path, h->real_size == 4 ? "was recorded by a float build; this is a "
-                                                  "double build"
-                                                : "was recorded by a double build; this is a "
-                                                  "float build");
-    if (replay_study(h, sc) != CLI_OK)
-        return CLI_USAGE;
-    int rc = replay_same_scene(h, sc, path);
-    if (rc != CLI_OK)
-        return rc;
-    rt_status st = rt_init(sc, &sim);
-    if (st != RT_OK)
-        return cli_fail(rt_status_name(st), rt_error_text(&sim));
-    if (mrl_check_schedule(rt_tick_count(&sim), sc->link ? sc->link->period : 1, h->realtime,
-                           err, sizeof err) != 0)
-        return cli_fail("replay", err);
-    int nsets = 0;
-    for (uint16_t i = 0; i < h->nsets; i++)
-        if (strncmp(h->sets[i], "--", 2) != 0 && (++nsets, cli_set_param(sc, &sim, h->sets[i])))
-            return CLI_USAGE;
-    if (nsets > 0)
-        rt_refresh(sc, &sim);
-    return CLI_OK;
-}
-
 static int cmd_replay(void *ctx, int npos, char **pos)
 {
     static mrl_header h;
@@ -777,16 +702,16 @@ static int cmd_replay(void *ctx, int npos, char **pos)
                         pos[0]);
     if (mrl_open(pos[0], &h, err, sizeof err) != 0)
         return cli_fail("replay", err);
-    int rc = replay_scene(&h, &sc, pos[0]);
+    int rc = replay_scene(&h, pos[0], NULL, &sc, &sim);
     if (rc != CLI_OK)
         return mrl_close(), rc;
     FILE *csv = NULL;
     int to_stdout = a->csv && strcmp(a->csv, "-") == 0;
     if (a->csv && !(csv = to_stdout ? stdout : open_out(a->csv, "cannot write the CSV file")))
         return mrl_close(), CLI_IO;
-    port_run_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
-    port_run_result r;
-    rt_status st = port_run(&sc, &sim, &o, &r);
+    runner_opts o = {csv, h.every, 0, mrl_replay_exchange, NULL, 0, NULL, NULL};
+    runner_result r;
+    rt_status st = runner_run(&sc, &sim, &o, &r);
     mrl_close();
     int io = close_out(csv, to_stdout, "error writing the CSV file", a->csv);
     FILE *out = to_stdout ? stderr : stdout;
@@ -919,6 +844,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "sweep") == 0)
         sweep_short_opts(argc, argv);
+    with_settings(run_opts, run_opts_fixed);
+    with_settings(check_opts_tab, check_opts_tab_fixed);
     for (const cli_cmd *c = commands; c->name; c++)
         if (strcmp(argv[1], c->name) == 0)
             return cli_dispatch(c, argc - 2, argv + 2);

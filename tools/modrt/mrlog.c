@@ -305,7 +305,7 @@ int mrl_replay_exchange(void *ctx, const rt_scene *sc, rt_sim *sim)
     (void)ctx;
     if (!rd.have)
         rd.have = mrl_next(&tick, v) ? 1 : -1;
-    if (rd.have == 1 && tick == sim->state.tick) {
+    if (rd.have == 1 && tick == rt_ticks_done(sim)) {
         rt_link_apply(sc, sim, v);
         rd.have = 0;
     }

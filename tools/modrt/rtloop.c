@@ -21,8 +21,8 @@
 #include <time.h>
 
 #include "rtloop.h"
-#include "runner.h"
 #include "trace.h"
+#include "rt_sim.h"
 
 #define NS_PER_S 1000000000LL
 #define HIST_US 100000     /* 1 us bins up to 100 ms; beyond: the last bin (max is exact) */
@@ -218,9 +218,9 @@ static trace_row *fill_row(const rt_scene *sc, rt_sim *sim, unsigned every, rt_s
     trace_row *r = trace_claim();
     *in_ring = r != NULL;
     r = r ? r : &scratch;
-    r->tick = sim->state.tick;
+    r->tick = rt_ticks_done(sim);
     r->t = (double)rt_time(sc, sim);
-    r->record = sim->state.tick % every == 0 || !running(st);
+    r->record = rt_ticks_done(sim) % every == 0 || !running(st);
     if (r->record)
         rt_record(sc, sim, r->vals);
     return r;
@@ -246,7 +246,7 @@ static int64_t next_deadline(int64_t d, int64_t period, int64_t end, rtloop_poli
 }
 
 rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void *ctx,
-                     unsigned every, rtloop_policy policy, FILE *csv, FILE *log, FILE *warn,
+                     int (*stop)(void), unsigned every, rtloop_policy policy, FILE *csv, FILE *log, FILE *warn,
                      rtloop_stats *out)
 {
     rtloop_stats s;
@@ -259,7 +259,7 @@ rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void 
     go_realtime(warn, &s);
     bg_start(sc, sim, s.fifo);
     int64_t period = (int64_t)(period_ns + 0.5), d = now_ns() + period;
-    while (running(st) && !s.stopped && !port_stop_signal()) {
+    while (running(st) && !s.stopped && !stop()) {
         sleep_until(d);
         int64_t wake = now_ns();
         st = tick(sc, sim, ctx);

@@ -49,10 +49,11 @@ typedef struct rtloop_stats {
 typedef rt_status (*rtloop_tick_fn)(const rt_scene *sc, rt_sim *sim, void *ctx);
 
 /* Runs the scene from its current tick to the end in real time, one tick per base step.
-   csv/log may be NULL; every: record every N-th tick. Warnings (no SCHED_FIFO, no
-   mlockall) go to warn once, before the first tick. */
+   stop: polled before each tick, nonzero ends the run (a signal, runner.c); csv/log may
+   be NULL; every: record every N-th tick. Warnings (no SCHED_FIFO, no mlockall) go to
+   warn once, before the first tick. */
 rt_status rtloop_run(const rt_scene *sc, rt_sim *sim, rtloop_tick_fn tick, void *ctx,
-                     unsigned every, rtloop_policy policy, FILE *csv, FILE *log, FILE *warn,
+                     int (*stop)(void), unsigned every, rtloop_policy policy, FILE *csv, FILE *log, FILE *warn,
                      rtloop_stats *out);
 /* Prints the statistics as summary lines (key: value). */
 void rtloop_print(FILE *f, rtloop_policy policy, const rtloop_stats *s);

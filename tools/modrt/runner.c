@@ -9,6 +9,8 @@
 
 #include "port.h"
 #include "runner.h"
+#include "trace.h"
+#include "rt_sim.h"
 
 static double now_s(void)
 {
@@ -17,36 +19,13 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-void port_csv_header(FILE *f, const rt_scene *sc)
-{
-    fputs("t", f);
-    for (uint16_t i = 0; i < sc->nrecs; i++)
-        fprintf(f, ",%s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));
-    fputc('\n', f);
-}
-
-void port_csv_row(FILE *f, const rt_scene *sc, const rt_sim *sim, const real_t *vals)
-{
-    port_csv_row_at(f, sc, (double)rt_time(sc, sim), vals);
-}
-
-void port_csv_row_at(FILE *f, const rt_scene *sc, double t, const real_t *vals)
-{
-    /* 17 significant digits round-trip a double; 9 a float */
-    const char *fmt = RT_REAL_IS_FLOAT ? ",%.9g" : ",%.17g";
-    fprintf(f, RT_REAL_IS_FLOAT ? "%.9g" : "%.17g", t);
-    for (uint16_t i = 0; i < sc->nrecs; i++)
-        fprintf(f, fmt, (double)vals[i]);
-    fputc('\n', f);
-}
-
 /* records the current state into the hash and, if wanted, the CSV */
-static void record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
+static void record(const rt_scene *sc, rt_sim *sim, const runner_opts *o)
 {
     real_t vals[RT_MAX_REC];
     rt_record(sc, sim, vals);
     if (o->csv)
-        port_csv_row(o->csv, sc, sim, vals);
+        trace_csv_row(o->csv, sc, sim, vals);
 }
 
 
@@ -76,7 +55,7 @@ static void on_stop(int sig)
     }
 }
 
-int port_stop_signal(void) { return stop_signal; }
+int runner_stop_signal(void) { return stop_signal; }
 
 static void catch_stop(void)
 {
@@ -103,23 +82,22 @@ static void release_stop(void)
 static int running(rt_status st) { return st != RT_E_DONE && st != RT_E_LINK; }
 
 /* the inputs from outside at this tick; RT_E_LINK (also the run's status) ends the run */
-static rt_status exchange(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, rt_status st)
+static rt_status exchange(const rt_scene *sc, rt_sim *sim, const runner_opts *o, rt_status st)
 {
     /* the last tick too: a sampled controller samples at the end time as well */
     if (!o->exchange || !o->exchange(o->xctx, sc, sim))
         return st;
-    if (rt_status_severity(RT_E_LINK) > rt_status_severity(sim->stats.status))
-        sim->stats.status = RT_E_LINK;
+    rt_note_status(sim, RT_E_LINK);
     return RT_E_LINK;
 }
 
 /* one tick, the exchange, and the recording; the unit of work of both clocks */
-static rt_status tick_and_record(const rt_scene *sc, rt_sim *sim, const port_run_opts *o)
+static rt_status tick_and_record(const rt_scene *sc, rt_sim *sim, const runner_opts *o)
 {
     rt_status st = exchange(sc, sim, o, rt_tick(sc, sim));
     if (o->observe)
         o->observe(sc, sim);
-    if (sim->state.tick % o->every == 0 || !running(st))
+    if (rt_ticks_done(sim) % o->every == 0 || !running(st))
         record(sc, sim, o);
     return st;
 }
@@ -128,19 +106,19 @@ static rt_status tick_and_record(const rt_scene *sc, rt_sim *sim, const port_run
 /* one real-time tick: the model and the exchange (rtloop.c records the row) */
 static rt_status rt_tick_exchange(const rt_scene *sc, rt_sim *sim, void *ctx)
 {
-    return exchange(sc, sim, (const port_run_opts *)ctx, rt_tick(sc, sim));
+    return exchange(sc, sim, (const runner_opts *)ctx, rt_tick(sc, sim));
 }
 
 /* the real-time clock: rtloop.c paces the ticks; misses are counted as overruns, and
    policy stop ends the run as failed */
-static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const port_run_opts *o,
-                              port_run_result *r)
+static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const runner_opts *o,
+                              runner_result *r)
 {
     rt_status st = RT_E_DONE;
-    if (sim->state.tick < rt_tick_count(sim)) {
+    if (rt_ticks_done(sim) < rt_tick_count(sim)) {
         if (o->csv)
             fflush(o->csv); /* the header and row 0, before the writer thread takes over */
-        st = rtloop_run(sc, sim, rt_tick_exchange, (void *)o, o->every,
+        st = rtloop_run(sc, sim, rt_tick_exchange, (void *)o, runner_stop_signal, o->every,
                         (rtloop_policy)o->overrun, o->csv, o->rt_log, stderr, &r->rt);
     }
     r->overruns = r->rt.misses;
@@ -154,12 +132,12 @@ static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const port_run_op
     return st == RT_OK ? RT_E_STOPPED : st;
 }
 
-rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port_run_result *r)
+rt_status runner_run(const rt_scene *sc, rt_sim *sim, const runner_opts *o, runner_result *r)
 {
     rt_status st = RT_OK;
     memset(r, 0, sizeof *r);
     if (o->csv)
-        port_csv_header(o->csv, sc);
+        trace_csv_header(o->csv, sc);
     st = exchange(sc, sim, o, st);
     record(sc, sim, o);
     double t0 = now_s();

@@ -1,15 +1,15 @@
 /* runner.h - running a scene on the POSIX port: the simulated clock (as fast as possible,
  * deterministic) or the real-time clock (one tick per base step of wall time), with the
  * CSV trace and the run summary. */
-#ifndef PORT_RUNNER_H
-#define PORT_RUNNER_H
+#ifndef RUNNER_H
+#define RUNNER_H
 
 #include <stdio.h>
 
 #include "rt.h"
 #include "rtloop.h"
 
-typedef struct port_run_opts {
+typedef struct runner_opts {
     FILE *csv;          /* trace destination, or NULL */
     unsigned every;     /* record every N ticks (>= 1) */
     int realtime;       /* 1: pace ticks by the wall clock */
@@ -22,27 +22,21 @@ typedef struct port_run_opts {
     /* simulated clock: called after every tick (the global-error check, check.h), or
        NULL */
     void (*observe)(const rt_scene *sc, const rt_sim *sim);
-} port_run_opts;
+} runner_opts;
 
-typedef struct port_run_result {
+typedef struct runner_result {
     double wall_s;      /* wall-clock time of the tick loop [s] */
     int signal;         /* SIGINT or SIGTERM that ended the run early, 0: none */
     uint64_t overruns;  /* real-time ticks that missed their deadline */
     rtloop_stats rt;    /* real time: latency, execution time, misses */
-} port_run_result;
+} runner_result;
 
 /* Runs an initialised scene to its end; returns the last tick status (RT_E_LINK when the
    exchange ended it, also set as the run's status). SIGINT or SIGTERM during the run ends
    it after the tick under way and its CSV row (r->signal says which); another one a
    second or more later ends the program at once. */
-rt_status port_run(const rt_scene *sc, rt_sim *sim, const port_run_opts *o, port_run_result *r);
+rt_status runner_run(const rt_scene *sc, rt_sim *sim, const runner_opts *o, runner_result *r);
 /* The signal that asked the run under way to stop, 0: none (the tick loops poll it). */
-int port_stop_signal(void);
-/* Writes the CSV header: t, then Block.signal for each recorded signal. */
-void port_csv_header(FILE *f, const rt_scene *sc);
-/* Writes one CSV row of the current state (values as recorded, full precision). */
-void port_csv_row(FILE *f, const rt_scene *sc, const rt_sim *sim, const real_t *vals);
-/* The same for a row recorded at simulated time t (the real-time trace's writer). */
-void port_csv_row_at(FILE *f, const rt_scene *sc, double t, const real_t *vals);
+int runner_stop_signal(void);
 
-#endif /* PORT_RUNNER_H */
+#endif /* RUNNER_H */

@@ -131,6 +131,12 @@ static int opt_replay(void *ctx, const char *v)
     return CLI_OK;
 }
 
+static int opt_scene(void *ctx, const char *v)
+{
+    ((sweep_cli_args *)ctx)->exec.scene = v;
+    return CLI_OK;
+}
+
 static int opt_csv(void *ctx, const char *v)
 {
     ((sweep_cli_args *)ctx)->exec.csv = v;
@@ -155,6 +161,8 @@ const cli_opt sweep_cli_opts[] = {
     {"step", "SET=TIME", "exec: the step of a set; repeatable", opt_step},
     {"replay", "FILE.mrl", "exec: replay this log (its path as the campaign writes it)",
      opt_replay},
+    {"scene", "FILE.scn", "exec: run this scene file (its path as the campaign writes it)",
+     opt_scene},
     {"csv", "FILE", "exec: also write the run's recorded signals as CSV to FILE", opt_csv},
     {NULL, NULL, NULL, NULL},
 };
@@ -282,6 +290,8 @@ static int check_first(void)
             e.method[e.nmethod++] = argv[i + 1];
         else if (!strcmp(argv[i], "--step"))
             e.step[e.nstep++] = argv[i + 1];
+        else if (!strcmp(argv[i], "--scene"))
+            e.scene = argv[i + 1];
         else
             e.replay = argv[i + 1];
     }

@@ -12,7 +12,7 @@
 #include "cli.h"
 #include "rt.h"
 
-#define SWEEP_MAX_DIMS 16       /* grid dimensions: parameter, method, step and replay lists */
+#define SWEEP_MAX_DIMS 16       /* grid dimensions: parameter, method, step, replay, scene lists */
 #define SWEEP_MAX_VARS 32       /* Monte-Carlo variables */
 #define SWEEP_MAX_VALUES 1024   /* listed grid values over all dimensions */
 #define SWEEP_MAX_METRICS 32    /* metrics of one campaign */
@@ -30,15 +30,20 @@
 #define SWEEP_SLURM_TASKS 1000  /* array tasks of one Slurm job (Slurm's MaxArraySize 1001) */
 #define SWEEP_HIST_BINS 40      /* bins of a metric's histogram (collect) */
 #define SWEEP_SCATTER_MAX 100000 /* most runs plotted against a varied value (svgplot) */
+#define SWEEP_REF_VALUES 262144 /* values of the reference tables of one campaign's metrics */
+#define SWEEP_REF_COLS 64       /* signals of one reference table */
+#define SWEEP_REF_LINE 8192     /* bytes of one line of a reference table */
 
 /* what a grid dimension varies */
-typedef enum { SWEEP_DIM_PARAM, SWEEP_DIM_METHOD, SWEEP_DIM_STEP, SWEEP_DIM_REPLAY } sweep_dim_kind;
+typedef enum {
+    SWEEP_DIM_PARAM, SWEEP_DIM_METHOD, SWEEP_DIM_STEP, SWEEP_DIM_REPLAY, SWEEP_DIM_SCENE
+} sweep_dim_kind;
 /* how a Monte-Carlo variable is drawn */
 typedef enum { SWEEP_UNIFORM, SWEEP_LOGUNIFORM, SWEEP_NORMAL } sweep_dist;
 /* what a metric computes over the samples at or after its start time */
 typedef enum {
     SWEEP_M_MAX, SWEEP_M_MIN, SWEEP_M_MAXABS, SWEEP_M_FINAL, SWEEP_M_RMS, SWEEP_M_MEAN,
-    SWEEP_M_SETTLE, SWEEP_M_OVERSHOOT
+    SWEEP_M_SETTLE, SWEEP_M_OVERSHOOT, SWEEP_M_ERROR
 } sweep_metric_kind;
 
 /* One grid dimension: a list of values (num or arena strings), or a range of n values. */
@@ -68,6 +73,7 @@ typedef struct sweep_metric {
     char sig[2][SWEEP_NAME];   /* signal, and the one subtracted ("" none) */
     double p[2];               /* settle: band lo, hi; overshoot: target */
     double from;               /* samples before this time [s] are left out */
+    uint32_t ref;              /* error: its reference table's path, an offset into arena */
     int line[2], col[2];        /* where its signals are named (errors against the scene) */
 } sweep_metric;
 
@@ -145,9 +151,11 @@ typedef struct sweep_acc {
     int16_t sig[2];            /* recorded signal indices (-1 none) */
     double v, aux, y0, t_prev, y_prev, span;
     uint8_t started, nan, pending;
+    uint32_t row;              /* error: the next row of its reference table */
 } sweep_acc;
-/* Resolves every metric's signals against the scene's recorded ones; 0, or -1 after one
-   located error line naming the signals the scene records. */
+/* Resolves every metric's signals against the scene's recorded ones and reads the
+   reference tables of error metrics; 0, or -1 after one located error line (naming the
+   signals the scene records, or the table's line). */
 int sweep_metrics_bind(const sweep_campaign *c, const rt_scene *sc, sweep_acc *acc);
 /* Folds in the recorded values at simulated time t (called at tick 0 and after each tick). */
 void sweep_metrics_sample(const sweep_campaign *c, const rt_scene *sc, const rt_sim *sim,
@@ -165,6 +173,7 @@ typedef struct sweep_exec_args {
     const char *method[SWEEP_MAX_DIMS], *step[SWEEP_MAX_DIMS]; /* SET=value */
     int nmethod, nstep;
     const char *replay;        /* replay log, as written in the campaign */
+    const char *scene;         /* scene file of a grid of scenes, as written */
     const char *csv;           /* the run's trace, or NULL */
 } sweep_exec_args;
 /* `modrt sweep exec`: runs the run in a child, writes DIR/runs/K.txt (always: a crash or

@@ -265,7 +265,8 @@ static int scatter(const char *dir, const char *svgplot, int i, int j)
         const char *x = get(&rec, inf.col[j]);
         series[0] = 0;
         for (int c = 0; c < inf.ncols; c++)
-            if (!strncmp(inf.col[c], "method.", 7) || !strcmp(inf.col[c], "replay"))
+            if (!strncmp(inf.col[c], "method.", 7) || !strcmp(inf.col[c], "replay") ||
+                !strcmp(inf.col[c], "scene_file"))
                 snprintf(series + strlen(series), sizeof series - strlen(series), "%s%s",
                          series[0] ? " " : "", get(&rec, inf.col[c]));
         for (char *s = series; *s; s++)

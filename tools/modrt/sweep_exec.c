@@ -17,9 +17,11 @@
 #include <unistd.h>
 
 #include "mrlog.h"
+#include "replay.h"
 #include "runner.h"
 #include "study.h"
 #include "sweep.h"
+#include "rt_sim.h"
 
 static rt_sim sim;                       /* the run's storage */
 static sweep_acc acc[SWEEP_MAX_METRICS];  /* its metrics */
@@ -39,44 +41,14 @@ static void rel_path(const sweep_campaign *c, const char *p, char *buf, size_t n
         snprintf(buf, n, "%s/%s", c->dir, p);
 }
 
-/* the log's scene as the live run was set up (modrt replay does the same) */
 static mrl_header h; /* the replayed log's header */
 
-static int replay_setup(const sweep_campaign *c, const char *log, rt_scene *sc)
-{
-    char path[SWEEP_PATH * 2], err[600];
-    rel_path(c, log, path, sizeof path);
-    if (mrl_open(path, &h, err, sizeof err) != 0)
-        return cli_fail("replay", err);
-    const rt_scene *base = cli_scene(h.scene);
-    if (!base)
-        return CLI_USAGE;
-    *sc = *base;
-    sc->t_end = (real_t)h.t_end;
-    uint32_t id = sc->link ? sc->link->id : 0;
-    if (h.real_size != sizeof(real_t) || id != h.id)
-        return cli_fail(path, "recorded by another build or for another version of the scene");
-    return CLI_OK;
-}
-
-/* the campaign's end time onto sc: a whole number of base ticks */
-static int end_time(const sweep_campaign *c, rt_scene *sc)
-{
-    if (c->t_end < 0)
-        return CLI_OK;
-    double n = c->t_end / (double)sc->dt;
-    if (!(n <= (double)RT_MAX_TICKS) || fabs(n - sweep_floor(n + 0.5)) > 1e-9 * (n > 1 ? n : 1))
-        return cli_fail("the campaign's end time is not a whole number of the scene's base "
-                        "ticks", c->path);
-    sc->t_end = (real_t)c->t_end;
-    return CLI_OK;
-}
-
-/* the scene with every override of the run, initialised */
+/* the scene with every override of the run, initialised: a replay run's through
+   replay.c, as `modrt replay` sets it up, with the campaign's overrides after the log's */
 static int setup(const sweep_campaign *c, const sweep_exec_args *a, rt_scene *sc)
 {
     static study_args sa;
-    char path[SWEEP_PATH * 2];
+    char path[SWEEP_PATH * 2], err[600];
     memset(&sa, 0, sizeof sa);
     for (int i = 0; i < a->nmethod; i++)
         if (study_add(&sa, "method", a->method[i]) != CLI_OK)
@@ -85,30 +57,30 @@ static int setup(const sweep_campaign *c, const sweep_exec_args *a, rt_scene *sc
         if (study_add(&sa, "step", a->step[i]) != CLI_OK)
             return CLI_USAGE;
     if (a->replay) {
-        if (replay_setup(c, a->replay, sc) != CLI_OK)
-            return CLI_USAGE;
-    } else {
-        rel_path(c, c->scene, path, sizeof path);
-        size_t n = strlen(c->scene); /* a scene file (FILE.scn), else a library name */
-        int file = n > 4 && strcmp(c->scene + n - 4, ".scn") == 0;
-        const rt_scene *base = cli_scene(file ? path : c->scene);
-        if (!base)
-            return CLI_USAGE;
-        *sc = *base;
+        replay_more more = {c->t_end, &sa, a->sets, a->nsets};
+        rel_path(c, a->replay, path, sizeof path);
+        if (mrl_open(path, &h, err, sizeof err) != 0)
+            return cli_fail("replay", err);
+        return replay_scene(&h, path, &more, sc, &sim);
     }
-    if (end_time(c, sc) != CLI_OK || study_apply(&sa, sc) != CLI_OK)
+    const char *scene = a->scene ? a->scene : c->scene; /* a grid's, else the campaign's */
+    rel_path(c, scene, path, sizeof path);
+    size_t n = strlen(scene); /* a scene file (FILE.scn), else a library name */
+    int file = n > 4 && strcmp(scene + n - 4, ".scn") == 0;
+    const rt_scene *base = cli_scene(file ? path : scene);
+    if (!base)
+        return CLI_USAGE;
+    *sc = *base;
+    if ((c->t_end >= 0 && cli_end_time(sc, c->t_end, c->path) != CLI_OK) ||
+        study_apply(&sa, sc) != CLI_OK)
         return CLI_USAGE;
     rt_status st = rt_init(sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
-    /* the live run's overrides first, then the campaign's */
-    for (uint16_t i = 0; a->replay && i < h.nsets; i++)
-        if (cli_set_param(sc, &sim, h.sets[i]) != CLI_OK)
-            return CLI_USAGE;
     for (int i = 0; i < a->nsets; i++)
         if (cli_set_param(sc, &sim, a->sets[i]) != CLI_OK)
             return CLI_USAGE;
-    if (a->nsets > 0 || (a->replay && h.nsets > 0)) /* a refresh re-solves loops from the new values */
+    if (a->nsets > 0) /* a refresh re-solves loops from the new values */
         rt_refresh(sc, &sim);
     return CLI_OK;
 }
@@ -135,6 +107,8 @@ static void values(FILE *f, const sweep_exec_args *a)
     }
     if (a->replay)
         fprintf(f, "replay: %s\n", a->replay);
+    if (a->scene)
+        fprintf(f, "scene_file: %s\n", a->scene);
 }
 
 /* the result of a run that completed (whatever its status) */
@@ -151,11 +125,14 @@ static int write_result(const sweep_campaign *c, const sweep_exec_args *a, const
             (unsigned long long)a->index,
             sim.stats.status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
                                       : rt_status_name(sim.stats.status),
-            code, sc->name, (unsigned long long)sim.state.tick, wall);
-    fprintf(f, "hash: %016llx\ncampaign_hash: %016llx\n", (unsigned long long)sim.state.hash,
-            (unsigned long long)c->hash);
+            code, sc->name, (unsigned long long)rt_ticks_done(&sim), wall);
+    fprintf(f, "hash: %016llx\ncampaign_hash: %016llx\n",
+            (unsigned long long)rt_trace_hash(&sim), (unsigned long long)c->hash);
     for (int i = 0; i < RT_CNT_COUNT; i++)
         fprintf(f, "count.%s: %u\n", rt_counter_key((rt_counter)i), (unsigned)sim.stats.count[i]);
+    for (uint8_t k = 0; k < sc->nsets; k++) /* what the run cost, in right-hand sides */
+        fprintf(f, "rhs_evals.%s: %llu\n", sc->sets[k].name,
+                (unsigned long long)sim.stats.rhs_evals[k]);
     values(f, a);
     for (int i = 0; i < c->nmetrics; i++)
         fprintf(f, "metric.%s: %s\n", c->metrics[i].name,
@@ -175,11 +152,11 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
     FILE *csv = a->csv ? fopen(a->csv, "w") : NULL;
     if (a->csv && !csv)
         return cli_fail("cannot write the CSV file", a->csv);
-    port_run_opts o = {csv, 1, 0, a->replay ? mrl_replay_exchange : NULL, NULL, 0, NULL,
+    runner_opts o = {csv, 1, 0, a->replay ? mrl_replay_exchange : NULL, NULL, 0, NULL,
                        observe};
-    port_run_result r;
+    runner_result r;
     sweep_metrics_sample(c, &sc, &sim, acc, (double)rt_time(&sc, &sim)); /* tick 0 */
-    rt_status st = port_run(&sc, &sim, &o, &r);
+    rt_status st = runner_run(&sc, &sim, &o, &r);
     if (a->replay)
         mrl_close();
     if (csv && fclose(csv) != 0)

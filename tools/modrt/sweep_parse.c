@@ -218,8 +218,9 @@ static int value_list(lexer *L, sweep_campaign *c, sweep_dim *d, int strings, in
             return fail(L, "more than %d listed values (SWEEP_MAX_VALUES)", SWEEP_MAX_VALUES);
         if (strings) {
             char buf[SWEEP_PATH];
-            if (name_tok(L, buf, sizeof buf, d->kind == SWEEP_DIM_REPLAY ? "a log path"
-                                                                        : "a method name") ||
+            if (name_tok(L, buf, sizeof buf, d->kind == SWEEP_DIM_REPLAY  ? "a log path"
+                                             : d->kind == SWEEP_DIM_SCENE ? "a scene file"
+                                                                          : "a method name") ||
                 strdup_arena(L, c, buf, &c->str[c->nvalues]))
                 return -1;
         } else if (number(L, &c->num[c->nvalues], time)) {
@@ -241,10 +242,36 @@ static int new_dim(lexer *L, sweep_campaign *c, sweep_dim **d)
     return 0;
 }
 
-/* grid (B.p) values (...) | range (lo, hi, n); grid method|step (SET) values (...) */
+/* grid scene values ("a.scn", ...): a grid dimension of scene files, in place of scene */
+static int st_grid_scene(lexer *L, sweep_campaign *c)
+{
+    sweep_dim *d = NULL;
+    for (int i = 0; i < c->ndims; i++)
+        if (c->dims[i].kind == SWEEP_DIM_SCENE)
+            return fail(L, "a second grid of scenes (put every scene in one)");
+    if (next(L) || new_dim(L, c, &d))
+        return -1;
+    d->kind = SWEEP_DIM_SCENE;
+    if (!is_kw(L, "values"))
+        return fail(L, "expected values (\"FILE.scn\", ...)");
+    if (next(L) || value_list(L, c, d, 1, 0))
+        return -1;
+    for (uint32_t j = 0; j < d->n; j++) {
+        const char *s = c->arena + c->str[d->first + j];
+        size_t n = strlen(s);
+        if (n <= 4 || strcmp(s + n - 4, ".scn") != 0)
+            return fail(L, "a grid of scenes lists scene files (FILE.scn), got '%s'", s);
+    }
+    return 0;
+}
+
+/* grid (B.p) values (...) | range (lo, hi, n); grid method|step (SET) values (...);
+   grid scene values (...) */
 static int st_grid(lexer *L, sweep_campaign *c)
 {
     sweep_dim *d = NULL;
+    if (is_kw(L, "scene"))
+        return st_grid_scene(L, c);
     if (new_dim(L, c, &d))
         return -1;
     d->kind = is_kw(L, "method") ? SWEEP_DIM_METHOD : is_kw(L, "step") ? SWEEP_DIM_STEP
@@ -363,9 +390,10 @@ static int signal_expr(lexer *L, sweep_metric *m)
 }
 
 static const char *const metric_kw[] = {"max", "min", "maxabs", "final", "rms", "mean",
-                                        "settle", "overshoot", NULL};
+                                        "settle", "overshoot", "error", NULL};
 
-/* metric (NAME) KIND (SIG [- SIG]) [band (lo, hi) | to (V)] [from (T)] */
+/* metric (NAME) KIND (SIG [- SIG]) [band (lo, hi) | to (V)] [from (T)];
+   metric (NAME) error against ("REF.csv") [from (T)] */
 static int st_metric(lexer *L, sweep_campaign *c)
 {
     if (c->nmetrics >= SWEEP_MAX_METRICS)
@@ -381,12 +409,21 @@ static int st_metric(lexer *L, sweep_campaign *c)
     while (metric_kw[k] && !is_kw(L, metric_kw[k]))
         k++;
     if (!metric_kw[k])
-        return fail(L, "expected max, min, maxabs, final, rms, mean, settle or overshoot");
+        return fail(L, "expected max, min, maxabs, final, rms, mean, settle, overshoot or error");
     m->kind = (uint8_t)k;
-    if (next(L) || expect(L, '('))
+    if (next(L))
         return -1;
-    if (signal_expr(L, m) || expect(L, ')'))
+    if (k == SWEEP_M_ERROR) {
+        char path[SWEEP_PATH];
+        if (!is_kw(L, "against"))
+            return fail(L, "error needs its reference: against (\"REF.csv\")");
+        m->line[0] = L->tline, m->col[0] = L->tcol;
+        if (next(L) || paren_name(L, path, sizeof path, "a reference table (CSV)") ||
+            strdup_arena(L, c, path, &m->ref))
+            return -1;
+    } else if (expect(L, '(') || signal_expr(L, m) || expect(L, ')')) {
         return -1;
+    }
     if (k == SWEEP_M_SETTLE) {
         if (!is_kw(L, "band"))
             return fail(L, "settle needs its band: band (lo, hi)");
@@ -535,13 +572,15 @@ int sweep_parse(const char *path, sweep_campaign *c)
         if (statement(&L, c) || expect(&L, ';'))
             return -1;
     }
-    int replays = 0;
+    int replays = 0, scenes = 0;
     for (int i = 0; i < c->ndims; i++)
-        replays |= c->dims[i].kind == SWEEP_DIM_REPLAY;
-    if (!c->scene[0] && !replays)
+        replays |= c->dims[i].kind == SWEEP_DIM_REPLAY, scenes |= c->dims[i].kind == SWEEP_DIM_SCENE;
+    if (!c->scene[0] && !replays && !scenes)
         return fail(&L, "the campaign names no scene: scene (NAME or \"FILE.scn\");");
     if (c->scene[0] && replays)
         return fail(&L, "a replay log names its scene: leave out scene (...) or replay (...)");
+    if ((c->scene[0] || replays) && scenes)
+        return fail(&L, "a grid of scenes names the scenes: leave out scene (...) and replay (...)");
     if (c->nvars > 0 && !draws_set)
         return fail(&L, "variables are drawn but the campaign says not how often: draws (N);");
     if (!c->name[0]) {

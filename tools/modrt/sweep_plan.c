@@ -87,7 +87,7 @@ static int word(char *buf, size_t nbuf, size_t *used, char **argv, int *n, const
 int sweep_argv(const sweep_campaign *c, const sweep_point *p, const char *modrt,
                const char *campaign, const char *out, char *buf, size_t nbuf, char **argv)
 {
-    static const char *const opt[] = {"--set", "--method", "--step", "--replay"};
+    static const char *const opt[] = {"--set", "--method", "--step", "--replay", "--scene"};
     char k[24], v[40];
     size_t used = 0;
     int n = 0, bad = 0;
@@ -103,7 +103,7 @@ int sweep_argv(const sweep_campaign *c, const sweep_point *p, const char *modrt,
     for (int i = 0; i < c->ndims && !bad; i++) {
         const sweep_dim *d = &c->dims[i];
         bad |= word(buf, nbuf, &used, argv, &n, "%s%s", opt[d->kind], "");
-        if (d->kind == SWEEP_DIM_REPLAY)
+        if (d->kind == SWEEP_DIM_REPLAY || d->kind == SWEEP_DIM_SCENE)
             bad |= word(buf, nbuf, &used, argv, &n, "%s%s", sweep_dim_str(c, i, p->at[i]), "");
         else if (d->kind == SWEEP_DIM_METHOD)
             bad |= word(buf, nbuf, &used, argv, &n, "%s=%s", d->name,
@@ -159,7 +159,7 @@ int sweep_task_line(FILE *f, char **argv, uint64_t k)
 /* the result key of grid dimension d (the exec writes the same) */
 static void column(FILE *f, const sweep_dim *d)
 {
-    static const char *const key[] = {"set.", "method.", "step.", "replay"};
+    static const char *const key[] = {"set.", "method.", "step.", "replay", "scene_file"};
     fprintf(f, "column: %s%s\n", key[d->kind], d->name);
 }
 

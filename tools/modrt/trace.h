@@ -1,7 +1,8 @@
-/* trace.h - the trace of a real-time run: a lock-free single-producer single-consumer
- * ring of recorded rows (and each tick's timing) that the tick fills without a syscall,
- * drained to the CSV and the timing log by a writer thread. Nothing is dropped unless
- * the ring is full, and a full ring is counted. */
+/* trace.h - the CSV trace of a run (its header and rows, for both clocks), and the ring
+ * of a real-time run: a lock-free single-producer single-consumer ring of recorded rows
+ * (and each tick's timing) that the tick fills without a syscall, drained to the CSV and
+ * the timing log by a writer thread. Nothing is dropped unless the ring is full, and a
+ * full ring is counted. */
 #ifndef TRACE_H
 #define TRACE_H
 
@@ -22,6 +23,13 @@ typedef struct trace_row {
     uint8_t late;            /* the tick ended after the next deadline */
     real_t vals[RT_MAX_REC];
 } trace_row;
+
+/* Writes the CSV header: t, then Block.signal for each recorded signal. */
+void trace_csv_header(FILE *f, const rt_scene *sc);
+/* Writes one CSV row of the current state (values as recorded, full precision). */
+void trace_csv_row(FILE *f, const rt_scene *sc, const rt_sim *sim, const real_t *vals);
+/* The same for a row recorded at simulated time t (the real-time trace's writer). */
+void trace_csv_row_at(FILE *f, const rt_scene *sc, double t, const real_t *vals);
 
 /* Starts the writer thread; csv and log may be NULL. 0 on success. */
 int trace_start(const rt_scene *sc, FILE *csv, FILE *log);

@@ -30,6 +30,7 @@
 #include "check.h"
 #include "cli.h"
 #include "tune.h"
+#include "rt_sim.h"
 
 #define DEFAULT_DOUBLINGS 6 /* candidate ratios up to 64 r_min */
 #define DEFAULT_REF_DIV 4   /* the reference's base tick: a quarter of the scene's */
@@ -133,8 +134,8 @@ static rt_status run(const uint32_t *ratio, uint32_t div, run_mode mode, tune_sc
         every = ratio[s] > every ? ratio[s] : every; /* powers of two: a multiple of grid */
     for (rt_status ts = RT_OK; ts == RT_OK;) {
         ts = rt_tick(&T.work, &sim);
-        uint64_t j = sim.state.tick / grid - 1;
-        if (sim.state.tick % every != 0 || j >= T.nsamp)
+        uint64_t j = rt_ticks_done(&sim) / grid - 1;
+        if (rt_ticks_done(&sim) % every != 0 || j >= T.nsamp)
             continue;
         if (mode == RUN_REF) {
             for (uint16_t i = 0; i < T.nsig; i++)

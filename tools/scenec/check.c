@@ -522,9 +522,11 @@ int scn_check(scn_ctx *c)
         if (!c->err && timed)
             scn_check_sets(c);
         if (!c->err && timed)
-            scn_check_links(c);
+            scn_check_joint_links(c);
         if (!c->err && timed)
             scn_check_rest(c);
+        if (!c->err && timed)
+            scn_check_ctl_link(c);
     }
     scn_keep_error(c);
     if (s->nblk == 0 && scn_error_count(c) == 0) /* a file of defines: their errors alone */

@@ -523,6 +523,30 @@ static void wiring(FILE *f, const scn_scene *s)
         fputs("};\n", f);
 }
 
+/* the settings a clause gave (RT_SET_CFG_LIST; the others stay 0, their defaults) */
+static void set_cfg(FILE *f, const scn_set *st)
+{
+    static const char *const field[RT_CFG_N] = {
+#define RT_X_FIELD(id, word, opt, field, kind, max, scope, dflt, help) #field,
+        RT_SET_CFG_LIST(RT_X_FIELD)
+#undef RT_X_FIELD
+    };
+    const char *sep = ",\n     .cfg = {";
+    for (int id = 0; id < RT_CFG_N; id++) {
+        if (!st->has_cfg[id])
+            continue;
+        double v = (double)rt_set_cfg_get(&st->cfg, (rt_cfg_id)id);
+        uint8_t kind = rt_set_opts[id].kind;
+        if (kind == RT_CFG_COUNT || kind == RT_CFG_POW2)
+            fprintf(f, "%s.%s = %u", sep, field[id], (unsigned)v);
+        else
+            fprintf(f, "%s.%s = %s", sep, field[id], R(v));
+        sep = ", ";
+    }
+    if (sep[0] == ',' && sep[1] == ' ')
+        fputs("}", f);
+}
+
 static void sets(FILE *f, const scn_scene *s)
 {
     fputs("static const rt_set sets[] = {\n", f);
@@ -532,12 +556,7 @@ static void sets(FILE *f, const scn_scene *s)
                 (unsigned)st->ratio);
         if (st->interp)
             fprintf(f, ", .interp = %s", interp_id[st->interp]);
-        if (st->newton || st->jacobian || st->tol != 0 || st->substeps || st->accuracy != 0)
-            fprintf(f, ",\n     .implicit = {.newton_max = %u, .substeps = %u, .jac_every = %u,"
-                       " .tol = %s, .accuracy = %s%s%s}",
-                    (unsigned)st->newton, (unsigned)st->substeps, (unsigned)st->jacobian,
-                    R(st->tol), R(st->accuracy), st->has_atol ? ", .atol = " : "",
-                    st->has_atol ? R(st->atol) : "");
+        set_cfg(f, st);
         if (st->background)
             fputs(", .background = 1", f);
         fputs("},\n", f);

@@ -35,38 +35,35 @@ const rt_scene *scn_host_load(const char *path, const scn_fmu_ops *fmu)
     return &last->image;
 }
 
-static unsigned at_least_1(unsigned n) { return n ? n : 1; }
+uint32_t scn_ticks(double v, double dt)
+{
+    double r = v / dt;
+    if (!(r >= 0.5 && r < 4e9))
+        return 0;
+    uint32_t n = (uint32_t)(r + 0.5);
+    double err = (double)n * dt - v;
+    return (err < 0 ? -err : err) <= RT_TICK_MATCH_REL * v ? n : 0;
+}
 
-/* multibody limits beyond joints come from the set workspaces (rt_sizes_of) */
+/* every limit of RT_LIMIT_LIST as measured (rt_sizes_of), at least its row's least */
 void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
 {
+    static const struct {
+        const char *name;
+        size_t at;       /* offset of its member of rt_sizes */
+        unsigned least;
+    } row[] = {
+#define RT_X_ROW(name, field, least, what) {#name, offsetof(rt_sizes, field), least},
+        RT_LIMIT_LIST(RT_X_ROW)
+#undef RT_X_ROW
+    };
     rt_sizes z;
     rt_sizes_of(sc, sim, &z);
-    fprintf(f, "-DRT_MAX_BLOCKS=%u -DRT_MAX_X=%u -DRT_MAX_D=%u -DRT_MAX_U=%u -DRT_MAX_Y=%u "
-               "-DRT_MAX_P=%u -DRT_MAX_ROOTS=%u -DRT_MAX_SETS=%u -DRT_MAX_REC=%u "
-               "-DRT_MAX_LOOPS=%u -DRT_MAX_TORN=%u -DRT_MAX_IMPLICIT_N=%u "
-               "-DRT_MAX_TRANSITION_N=%u",
-            at_least_1(z.blocks), at_least_1(z.x), at_least_1(z.d), at_least_1(z.u),
-            at_least_1(z.y), at_least_1(z.p), at_least_1(z.roots), at_least_1(z.sets),
-            at_least_1(z.recs), at_least_1(z.loops), at_least_1(z.torn),
-            at_least_1(z.implicit_n), z.transition_n);
-    /* (RT_MAX_TRANSITION_N, RT_MAX_HELD_Y, RT_MAX_HELD_SIG, RT_MAX_XPRED and RT_MAX_TEV may be 0: their arrays are left out of the
-       scene's rt_work and rt_state) */
-    fprintf(f, " -DRT_MAX_HIST_Y=%u -DRT_MAX_HELD_Y=%u -DRT_MAX_HELD_SIG=%u -DRT_MAX_EVENT_X=%u "
-               "-DRT_MAX_SEQ=%u -DRT_MAX_LOOP_HIST=%u -DRT_MAX_BG=%u -DRT_MAX_XPRED=%u "
-               "-DRT_MAX_TEV=%u",
-            at_least_1(z.hist_y), z.held_y, z.held_sig, at_least_1(z.event_x),
-            at_least_1(z.seq),
-            at_least_1(z.loop_hist), at_least_1(z.bg), z.xpred, z.tev);
-    fprintf(f, " -DRT_MAX_JOINTS=%u -DRT_MAX_MBS_Z=%u -DRT_MAX_MBS_Q=%u -DRT_MAX_MBS_C=%u "
-               "-DRT_MAX_MBS_BZ=%u", at_least_1(sc->njoints), at_least_1(z.mbs_z),
-            at_least_1(z.mbs_q), at_least_1(z.mbs_c), at_least_1(z.mbs_bz));
-    /* the multibody tables over all sets (their defaults derive from the limits above) */
-    fprintf(f, " -DRT_MAX_MBS_ROWS=%u -DRT_MAX_MBS_TOUCH=%u -DRT_MAX_MBS_TW=%u "
-               "-DRT_MAX_MBS_QT=%u -DRT_MAX_MBS_TY=%u -DRT_MAX_MBS_PAIRS=%u "
-               "-DRT_MAX_MBS_LNZ=%u -DRT_MAX_MBS_M=%u -DRT_MAX_MBS_JROWS=%u -DRT_MAX_MBS_JZ=%u\n",
-            at_least_1(z.mbs_rows), at_least_1(z.mbs_touch), at_least_1(z.mbs_tw),
-            at_least_1(z.mbs_qt), at_least_1(z.mbs_ty), at_least_1(z.mbs_pairs),
-            at_least_1(z.mbs_lnz), at_least_1(z.mbs_m), at_least_1(z.mbs_jrows),
-            at_least_1(z.mbs_jz));
+    for (size_t i = 0; i < sizeof row / sizeof row[0]; i++) {
+        uint16_t v;
+        memcpy(&v, (const char *)&z + row[i].at, sizeof v);
+        fprintf(f, "%s-DRT_MAX_%s=%u", i ? " " : "", row[i].name,
+                v > row[i].least ? (unsigned)v : row[i].least);
+    }
+    fputc('\n', f);
 }

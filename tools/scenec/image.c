@@ -4,6 +4,7 @@
  * then checks the whole, so a scene scenec accepts initialises on every target.
  * Also scn_compile, the one entry point of a compilation. */
 #include "scn.h"
+#include "rt_sim.h" /* allocates the rt_sim it checks the scene with */
 
 #include <string.h>
 
@@ -137,12 +138,7 @@ static void sets_recs(scn_ctx *c, rt_scene *sc)
         const scn_set *x = &s->set[i];
         st[i].name = x->name.s, st[i].method = x->m, st[i].ratio = x->ratio;
         st[i].interp = x->interp;
-        st[i].implicit.newton_max = (uint8_t)x->newton;
-        st[i].implicit.jac_every = (uint16_t)x->jacobian;
-        st[i].implicit.tol = (real_t)x->tol;
-        st[i].implicit.substeps = (uint8_t)x->substeps;
-        st[i].implicit.accuracy = (real_t)x->accuracy;
-        st[i].implicit.atol = (real_t)x->atol;
+        st[i].cfg = x->cfg;
         st[i].background = x->background;
     }
     rt_rec *r = scn_alloc(c, (s->nrec + 1u) * sizeof *r);

@@ -39,7 +39,7 @@ static uint32_t period_ticks(scn_ctx *c, const scn_scene *s)
     return 0;
 }
 
-void scn_check_link(scn_ctx *c)
+void scn_check_ctl_link(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
     rt_link *l = &s->link;

@@ -4,6 +4,8 @@
  * may come in any order. */
 #include "scn.h"
 
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -573,10 +575,50 @@ static void st_link(scn_ctx *c, scn_pos at)
         s->lnk[s->nlnk++] = l;
 }
 
+/* the setting (RT_SET_CFG_LIST) whose clause the current word is, or -1 */
+static int setting_of(scn_ctx *c)
+{
+    for (int id = 0; id < RT_CFG_N; id++)
+        if (rt_set_opts[id].kind != RT_CFG_PAIR && scn_is_word(c, rt_set_opts[id].word))
+            return id;
+    return -1;
+}
+
+/* a setting's value: an explicit 0 is no default, so it is kept as NaN for the check to
+   name (rt_set_check) */
+static void put_setting(scn_ctx *c, scn_set *st, int id, double v)
+{
+    rt_set_cfg_put(&st->cfg, (rt_cfg_id)id, v == 0 ? (real_t)NAN : (real_t)v);
+    st->has_cfg[id] = 1;
+    (void)c;
+}
+
+/* newton (n), tolerance (e), accuracy (rtol [, atol]), ...: a count or a constant, and
+   the optional second value of the row after it (RT_CFG_PAIR) */
+static void setting(scn_ctx *c, scn_set *st, int id)
+{
+    const rt_set_opt *o = &rt_set_opts[id];
+    st->cfg_pos[id] = c->tok.pos;
+    scn_next(c);
+    if (o->kind == RT_CFG_COUNT || o->kind == RT_CFG_POW2) {
+        put_setting(c, st, id, paren_count(c, o->max));
+        return;
+    }
+    scn_expect_op(c, "(");
+    put_setting(c, st, id, scn_const_expr(c));
+    if (!c->err && id + 1 < RT_CFG_N && rt_set_opts[id + 1].kind == RT_CFG_PAIR &&
+        scn_is_op(c, ",")) {
+        scn_next(c), st->cfg_pos[id + 1] = c->tok.pos;
+        put_setting(c, st, id + 1, scn_const_expr(c));
+    }
+    scn_expect_op(c, ")");
+}
+
 /* one clause of a set statement */
 static void set_clause(scn_ctx *c, scn_set *st, uint8_t *seen)
 {
     scn_scene *s = &c->sc;
+    int id;
     if (scn_is_word(c, "method") && once(c, &seen[0])) {
         scn_next(c), st->method = paren_name(c, "an integration method");
     } else if (scn_is_word(c, "step") && once(c, &seen[1])) {
@@ -590,27 +632,17 @@ static void set_clause(scn_ctx *c, scn_set *st, uint8_t *seen)
         s->nmembers += name_list(c, s->members + s->nmembers,
                                  (uint16_t)(SCN_MAX_MEMBERS - s->nmembers), "a system name");
         st->m1 = s->nmembers, st->has_members = 1;
-    } else if (scn_is_word(c, "newton") && once(c, &seen[4])) {
-        scn_next(c), st->newton = paren_count(c, 255), st->has_newton = 1;
-    } else if (scn_is_word(c, "jacobian") && once(c, &seen[5])) {
-        scn_next(c), st->jacobian = paren_count(c, 65535), st->has_jacobian = 1;
-    } else if (scn_is_word(c, "tolerance") && once(c, &seen[6])) {
-        scn_next(c), st->tol = paren_const(c), st->has_tol = 1;
-    } else if (scn_is_word(c, "substeps") && once(c, &seen[7])) {
-        scn_next(c), st->substeps = paren_count(c, 128), st->has_substeps = 1;
-    } else if (scn_is_word(c, "accuracy") && once(c, &seen[8])) {
-        /* accuracy (rtol [, atol]): |e_i| <= atol + rtol |x_i|, atol = rtol if omitted */
-        scn_next(c), scn_expect_op(c, "(");
-        st->accuracy = scn_const_expr(c), st->has_accuracy = 1;
-        if (!c->err && scn_is_op(c, ","))
-            scn_next(c), st->atol = scn_const_expr(c), st->has_atol = 1;
-        scn_expect_op(c, ")");
-    } else if (scn_is_word(c, "background") && once(c, &seen[9])) {
+    } else if (scn_is_word(c, "background") && once(c, &seen[4])) {
         scn_next(c), st->background = 1; /* no argument: steps below the tick (rt/bg.c) */
+    } else if ((id = setting_of(c)) >= 0 && once(c, &seen[5 + id])) {
+        setting(c, st, id);
     } else if (!c->err) {
-        scn_fail_tok(c, "syntax error", "method, step, interpolation, members, newton, "
-                                        "jacobian, tolerance, substeps, accuracy (...), "
-                                        "background or ';'");
+        char words[160] = "method, step, interpolation, members, background";
+        for (int k = 0; k < RT_CFG_N; k++)
+            if (rt_set_opts[k].kind != RT_CFG_PAIR)
+                snprintf(words + strlen(words), sizeof words - strlen(words), ", %s",
+                         rt_set_opts[k].word);
+        scn_fail_tok(c, "syntax error", scn_fmt(c, "%s or ';'", words));
     }
 }
 
@@ -618,7 +650,7 @@ static void set_clause(scn_ctx *c, scn_set *st, uint8_t *seen)
 static void st_set(scn_ctx *c, scn_pos at)
 {
     scn_scene *s = &c->sc;
-    uint8_t seen[10] = {0};
+    uint8_t seen[5 + RT_CFG_N] = {0};
     if (s->nset >= RT_MAX_SETS) {
         scn_fail(c, at, "set", "too many sets", scn_limit(c, RT_MAX_SETS, "sets", "RT_MAX_SETS"));
         return;

@@ -13,6 +13,7 @@
 #include "fmu_scn.h"
 #include "scn.h"
 #include "scn_host.h"
+#include "rt_sim.h"
 
 #define MAX_INPUTS 256 /* scene files of one --registry call */
 
@@ -175,9 +176,10 @@ static int cmd_run(const opts *o)
         rt_record(sc, sim, NULL);
     }
     printf("scene: %s\nticks: %llu\nstatus: %s\nhash: %016llx\n", sc->name,
-           (unsigned long long)sim->state.tick, rt_status_name(st != RT_OK ? st : sim->stats.status),
-           (unsigned long long)sim->state.hash);
-    int rc = st != RT_OK || sim->stats.status != RT_OK;
+           (unsigned long long)rt_ticks_done(sim),
+           rt_status_name(st != RT_OK ? st : rt_stats_of(sim)->status),
+           (unsigned long long)rt_trace_hash(sim));
+    int rc = st != RT_OK || rt_stats_of(sim)->status != RT_OK;
     scn_free(c);
     return rc;
 }

@@ -38,7 +38,7 @@ scenes: $(SCN_GEN_SRCS)
 
 # modrt reads scene files through host.c; its include of scn_host.h finds tools/scenec
 $(O)/modrt $(O)/tests: $(SCN_LIB_OBJS)
-$(call obj,tools/modrt/modrt.c tools/modrt/cli.c): CINC += -I$(SCN_DIR)
+$(call obj,tools/modrt/modrt.c tools/modrt/cli.c tools/modrt/study.c): CINC += -I$(SCN_DIR)
 $(O)/obj/tests/scenec/%.o: CINC += -I$(SCN_DIR)
 
 ifeq ($(O),build/host)

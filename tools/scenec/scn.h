@@ -280,16 +280,13 @@ typedef struct scn_set {
     uint8_t interp;             /* rt_interp of inputs from other sets (0: hold) */
     uint8_t has_members;
     uint16_t m0, m1;            /* its members in scn_scene.members */
-    uint32_t newton, jacobian;
-    double tol, accuracy;
-    uint32_t substeps;
-    uint8_t has_newton, has_jacobian, has_tol, has_substeps, has_accuracy;
+    rt_set_cfg cfg;             /* its settings (RT_SET_CFG_LIST), as rt_set.cfg */
+    uint8_t has_cfg[RT_CFG_N];  /* a clause (or accuracy's second value) gave it */
+    scn_pos cfg_pos[RT_CFG_N];  /* where */
     uint8_t background;         /* 1: steps below the tick (rt_set.background) */
     /* resolved */
     const rt_integrator *m;
     uint32_t ratio;
-    double atol;                /* accuracy's absolute part (rt_implicit_cfg.atol) */
-    uint8_t has_atol;
 } scn_set;
 
 typedef struct scn_rec {
@@ -498,15 +495,16 @@ const rt_kind *scn_library_kind(const char *name);
 const char *scn_where(scn_ctx *c, scn_pos p);           /* "file:line:col" */
 const char *scn_block_list(scn_ctx *c, int joints);
 const char *scn_kind_desc(scn_ctx *c, const scn_block *b);
-/* sets.c: sets, links and joints, sample periods, recorded signals, parameter ranges,
-   loop and stabilization options */
+/* sets.c: sets, the links of multibody joints (link(A.n, B.m) by (J)), sample periods,
+   recorded signals, parameter ranges, loop and stabilization options */
 void scn_check_sets(scn_ctx *c);
-void scn_check_links(scn_ctx *c);
+void scn_check_joint_links(scn_ctx *c);
 void scn_check_rest(scn_ctx *c);
 /* resolves a recorded (or exported) signal reference into r->r (sets.c) */
 void scn_resolve_rec(scn_ctx *c, scn_rec *r);
-/* resolves the controller link into c->sc.link (link.c) */
-void scn_check_link(scn_ctx *c);
+/* resolves the controller link (export/import) into c->sc.link, after scn_check_rest
+   (link.c) */
+void scn_check_ctl_link(scn_ctx *c);
 /* sets.c: marks in[i] for the statements d->st0 + i of one service (SCN_ST_OUT, _DER or
    _NEXT): its own, and the lets they need, directly or through other lets */
 void scn_service(const scn_ctx *c, const scn_define *d, uint8_t kind, uint8_t *in);

@@ -19,4 +19,9 @@ const rt_scene *scn_host_load(const char *path, const struct scn_fmu_ops *fmu);
    as -D flags on one line: what `scenec --sizes` and `modrt sizes` print. */
 void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim);
 
+/* v seconds as a whole number of base ticks of dt seconds (within RT_TICK_MATCH_REL of
+   v), or 0: a set's step in the scene language and on modrt's command line, a sample
+   period */
+uint32_t scn_ticks(double v, double dt);
+
 #endif /* SCN_HOST_H */

@@ -3,21 +3,11 @@
  * sample periods of discrete systems, recorded signals, parameter ranges and the loop
  * and stabilization options; and the statements of each service of a define. */
 #include "scn.h"
+#include "scn_host.h"
 
 #include <string.h>
 
 #include "models.h"
-
-/* a whole number of base ticks for a step of v seconds, or 0 */
-static uint32_t ticks_of(double v, double dt, double rel)
-{
-    double r = v / dt;
-    if (!(r >= 0.5 && r < 4e9))
-        return 0;
-    uint32_t n = (uint32_t)(r + 0.5);
-    double err = (double)n * dt - v;
-    return (err < 0 ? -err : err) <= rel * v ? n : 0;
-}
 
 /* ------------------------------------------------------------------ sets */
 
@@ -28,6 +18,36 @@ static const char *method_list(scn_ctx *c)
     for (const rt_integrator_entry *e = rt_integrators; e->name && k < 32; e++)
         n[k++] = e->name;
     return scn_list(c, n, k, 32);
+}
+
+/* the methods a setting of scope RT_CFG_ITER applies to */
+static const char *iterating_list(scn_ctx *c)
+{
+    const char *n[32];
+    size_t k = 0;
+    for (const rt_integrator_entry *e = rt_integrators; e->name && k < 32; e++)
+        if (rt_method_iterates(e->method))
+            n[k++] = e->name;
+    return scn_list(c, n, k, 32);
+}
+
+/* the settings' clauses, by the runtime's own check (rt_set_check) */
+static void set_settings(scn_ctx *c, scn_set *st)
+{
+    rt_set tmp = {.name = st->name.s, .method = st->m, .ratio = 1, .cfg = st->cfg};
+    rt_cfg_id id;
+    const char *msg = rt_set_check(&tmp, &id);
+    if (!msg || id >= RT_CFG_N)
+        return;
+    const rt_set_opt *o = &rt_set_opts[id];
+    const char *want =
+        o->scope == RT_CFG_ITER && !rt_method_iterates(st->m)
+            ? scn_fmt(c, "a method that iterates (%s) or no %s clause", iterating_list(c), o->word)
+        : o->kind == RT_CFG_PAIR ? scn_fmt(c, "%s (relative, absolute) with both above 0", o->word)
+        : o->kind == RT_CFG_REAL ? "a value above 0"
+        : o->kind == RT_CFG_POW2 ? scn_fmt(c, "a power of two from 1 to %u", (unsigned)o->max)
+                                 : scn_fmt(c, "a whole number from 1 to %u", (unsigned)o->max);
+    scn_fail(c, st->cfg_pos[id], o->word, msg, want);
 }
 
 static void set_method(scn_ctx *c, scn_set *st)
@@ -42,22 +62,7 @@ static void set_method(scn_ctx *c, scn_set *st)
         scn_fail(c, st->method.pos, st->method.s, "unknown integration method", method_list(c));
         return;
     }
-    /* the transition method forms its matrices when it must and iterates nothing */
-    if ((!st->m->implicit || st->m->linear) &&
-        (st->has_newton || st->has_jacobian || st->has_tol || st->has_substeps))
-        scn_fail(c, st->method.pos, st->method.s,
-                 "newton, jacobian, tolerance and substeps apply to implicit methods only",
-                 "an implicit method (beuler, trap, sdirk2, sdirk3, ros2) or no such clause");
-    if (st->has_tol && !(st->tol > 0))
-        scn_fail(c, st->name.pos, st->name.s, "tolerance must be positive", "a value above 0");
-    if (st->has_accuracy && !(st->accuracy > 0))
-        scn_fail(c, st->name.pos, st->name.s, "accuracy must be positive", "a value above 0");
-    if (st->has_atol && !(st->atol > 0))
-        scn_fail(c, st->name.pos, st->name.s, "the absolute accuracy must be positive",
-                 "accuracy (relative, absolute) with both above 0");
-    if (st->has_substeps && (st->substeps & (st->substeps - 1)) != 0)
-        scn_fail(c, st->name.pos, st->name.s, "substeps must be a power of two",
-                 "1, 2, 4, ... 128 (1: a failing step is not split)");
+    set_settings(c, st);
 }
 
 static void set_ratio(scn_ctx *c, scn_set *st)
@@ -70,7 +75,7 @@ static void set_ratio(scn_ctx *c, scn_set *st)
         st->ratio = (uint32_t)st->step;
         return;
     }
-    st->ratio = ticks_of(st->step, s->dt, 1e-9);
+    st->ratio = scn_ticks(st->step, s->dt);
     if (!st->ratio)
         scn_fail(c, st->step_pos, scn_fmt(c, "%g s", st->step),
                  "step is not a whole multiple of the base tick",
@@ -264,7 +269,7 @@ static void joint_params(scn_ctx *c, scn_joint *j)
                  "values the joint type accepts (e.g. a length above 0)");
 }
 
-void scn_check_links(scn_ctx *c)
+void scn_check_joint_links(scn_ctx *c)
 {
     scn_scene *s = &c->sc;
     for (uint16_t i = 0; i < s->nlnk && !c->err; i++)
@@ -298,11 +303,11 @@ static void period(scn_ctx *c, scn_block *b)
     if (!(b->ts > 0))
         scn_fail(c, b->name.pos, b->name.s, "sample period missing",
                  "period (<time>) in its load statement or its define");
-    else if (!ticks_of(b->ts, s->dt, RT_TICK_MATCH_REL))
+    else if (!scn_ticks(b->ts, s->dt))
         scn_fail(c, at, scn_fmt(c, "%g s", b->ts), "sample period is not a whole multiple of the "
                                                  "base tick",
                  scn_fmt(c, "a multiple of %g s", s->dt));
-    else if (b->set >= 0 && ticks_of(b->ts, s->dt, RT_TICK_MATCH_REL) % s->set[b->set].ratio)
+    else if (b->set >= 0 && scn_ticks(b->ts, s->dt) % s->set[b->set].ratio)
         /* the set only runs every ratio ticks: a sample between its steps would be missed */
         scn_fail(c, at, scn_fmt(c, "%g s", b->ts), "sample period is not a whole multiple of "
                                                  "its set's step",
@@ -446,8 +451,6 @@ void scn_check_rest(scn_ctx *c)
         record(c, &s->rec[i]);
     if (!c->err)
         options(c);
-    if (!c->err)
-        scn_check_link(c);
 }
 
 /* ------------------------------------------------------------------ services */

@@ -146,7 +146,7 @@ static uint64_t faults(const rt_sim *sim)
 int cs_step(cs_slave *s, double t, double h, int *at_end)
 {
     const rt_scene *sc = s->sc;
-    *at_end = s->sim.state.tick >= rt_tick_count(&s->sim);
+    *at_end = rt_ticks_done(&s->sim) >= rt_tick_count(&s->sim);
     if (s->mode != CS_STEP)
         return why(s, CS_ERROR, "a step outside step mode (after initialization, before "
                    "termination)");
@@ -154,10 +154,10 @@ int cs_step(cs_slave *s, double t, double h, int *at_end)
     if (n < 1)
         return why(s, CS_ERROR, "communication step %.17g s is not a whole number of base "
                    "ticks (%.17g s)", h, (double)sc->dt);
-    if (at != (int64_t)s->sim.state.tick)
+    if (at != (int64_t)rt_ticks_done(&s->sim))
         return why(s, CS_ERROR, "communication point %.17g s is not the FMU's time (%.17g s)",
                    t, (double)rt_time(sc, &s->sim));
-    if (s->sim.state.tick + (uint64_t)n > rt_tick_count(&s->sim))
+    if (rt_ticks_done(&s->sim) + (uint64_t)n > rt_tick_count(&s->sim))
         return why(s, CS_ERROR, "the step ends past the scene's end time (%.17g s)",
                    (double)sc->t_end);
     uint64_t before = faults(&s->sim);
@@ -166,7 +166,7 @@ int cs_step(cs_slave *s, double t, double h, int *at_end)
         rt_tick(sc, &s->sim);
         rt_record(sc, &s->sim, NULL);
     }
-    *at_end = s->sim.state.tick >= rt_tick_count(&s->sim);
+    *at_end = rt_ticks_done(&s->sim) >= rt_tick_count(&s->sim);
     if (faults(&s->sim) == before)
         return CS_OK;
     int sev = rt_status_severity(s->sim.stats.status);

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "rt.h"
+#include "rt_sim.h" /* a slave holds its rt_sim */
 
 #define CS_MSG 256 /* characters of a reason */
 

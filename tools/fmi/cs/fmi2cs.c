@@ -292,7 +292,7 @@ EXPORT fmi2Status FMI2_NAME(fmi2GetBooleanStatus)(fmi2Component c, const fmi2Sta
     cs_inst *in = c;
     if (s != fmi2Terminated)
         return fmi2Discard;
-    *value = in->s->sim.state.tick >= rt_tick_count(&in->s->sim); /* at the end time */
+    *value = rt_ticks_done(&in->s->sim) >= rt_tick_count(&in->s->sim); /* at the end time */
     return fmi2OK;
 }
 

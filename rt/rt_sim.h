@@ -1,0 +1,227 @@
+/* rt_sim.h - the storage layout of a running scene (rt_sim: plan, state, stats, work) and
+ * of its snapshot (rt_state). The runtime's own: an application includes it only where it
+ * allocates an rt_sim or an rt_state (static storage; the sizes are rt_config.h's), and
+ * reads a run through the functions of rt.h (rt_ticks_done, rt_trace_hash, rt_output,
+ * rt_stats_of, ...), so the layout may change without it. */
+#ifndef RT_SIM_H
+#define RT_SIM_H
+
+#include "rt.h"
+
+/* Scratch of the graph searches at init (shares storage with the integrator workspace). */
+typedef struct rt_scc_work {
+    uint16_t index[RT_MAX_NODES];
+    uint16_t low[RT_MAX_NODES];
+    uint16_t stack[RT_MAX_NODES];
+    uint16_t call[RT_MAX_NODES];   /* explicit depth-first call stack */
+    uint32_t cursor[RT_MAX_NODES]; /* successor cursor per node */
+    uint8_t on[RT_MAX_NODES];      /* node is on the component stack */
+    uint16_t comp[RT_MAX_NODES];   /* component of each node */
+    uint16_t done[RT_MAX_NODES];   /* sequence position where an output became final */
+    uint16_t orig[RT_MAX_NODES];   /* component before tearing */
+    uint8_t color[RT_MAX_NODES];   /* tearing search: 0 new, 1 on the path, 2 done */
+    uint16_t last[RT_MAX_BLOCKS];  /* sequence position of a block's last call */
+} rt_scc_work;
+
+#define RT_ALL_SETS 0xFF
+
+/* The plan of a running scene: computed once by rt_init from the scene, never written
+ * during ticks (layout, routing, evaluation sequence, loops, schedule). Only rt/ reads it. */
+typedef struct rt_plan {
+    /* sets: slice of x each set integrates, and slice of r holding each set's roots */
+    uint16_t set_x[RT_MAX_SETS + 1];
+    uint16_t set_r[RT_MAX_SETS + 1];
+
+    /* layout: offsets of each block's slice in the value arrays (size nblocks + 1) */
+    uint16_t x_off[RT_MAX_BLOCKS + 1], d_off[RT_MAX_BLOCKS + 1];
+    uint16_t u_off[RT_MAX_BLOCKS + 1], y_off[RT_MAX_BLOCKS + 1];
+    uint16_t p_off[RT_MAX_BLOCKS + 1];
+    uint32_t period[RT_MAX_BLOCKS]; /* DSS sample period in base ticks, 0 otherwise */
+    uint16_t dss_first, dss_end;    /* the DSS blocks lie in [dss_first, dss_end) */
+
+    /* signal routing: each input reads y[src[i]] or def[i] */
+    uint8_t src_kind[RT_MAX_U];      /* rt_src_kind */
+    uint16_t src[RT_MAX_U];          /* global output index */
+    real_t def[RT_MAX_U];            /* default value */
+
+    /* evaluation order (rt/order.c) */
+    rt_seq_step seq[RT_MAX_SEQ];
+    uint8_t seq_flags[RT_MAX_SEQ];   /* per entry of seq, what a right-hand side does with
+                                        it (rti_rhs_call) and whether a tick's renewal
+                                        calls it (rti_eval_plan) */
+    uint16_t nseq;
+    /* per set, what a pass over that set alone walks (rti_eval_plan), so that the fast
+       set of a multirate scene does not scan the slow set's entries every stage: its
+       entries of seq in sequence order (a loop's entry stands for its calls), and its
+       blocks in block order */
+    uint16_t set_seq[RT_MAX_SEQ];    /* set s: set_seq[seq_of[s] .. seq_of[s + 1]) */
+    uint16_t seq_of[RT_MAX_SETS + 1];
+    uint16_t rhs_calls[RT_MAX_SETS]; /* entries of set s a right-hand side runs (0: none,
+                                        as in a multibody set without signal blocks) */
+    uint16_t set_blk[RT_MAX_BLOCKS]; /* set s: set_blk[blk_of[s] .. blk_of[s + 1]) */
+    uint16_t blk_of[RT_MAX_SETS + 1];
+    rt_loop loops[RT_MAX_LOOPS];
+    uint8_t nloops;
+    uint16_t loop_blocks[2 * RT_MAX_BLOCKS]; /* blocks of each loop, see rt_loop */
+
+    /* torn loop inputs (rt/loop.c): the unknowns of the actual loops */
+    uint16_t ntorn;
+    uint16_t torn_in[RT_MAX_TORN];   /* global input index of each torn input */
+    uint16_t torn_src[RT_MAX_TORN];  /* the output that drives it (loop-closing edge) */
+
+    /* multirate (rt/xset.c) */
+    uint8_t sched[RT_MAX_SETS];      /* order sets step in within a tick (slowest first) */
+    uint8_t rsched[RT_MAX_SETS];     /* order the sets' outputs are refreshed in at a tick:
+                                        sched's, but a set whose sampled outputs another
+                                        set reads (RT_SRC_HELD) before that set (rt/xset.c),
+                                        so the trace does not depend on how the scene
+                                        lists its sets */
+    uint8_t set_flags[RT_MAX_SETS];  /* rti_set_flag bits of each set (rti_eval_plan) */
+    uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
+    uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
+    uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);
+                                        sized like the history: higher outputs never are */
+    uint16_t set_xout[RT_MAX_SETS];  /* the set's highest output read by other sets, plus
+                                        one (0: none): its history push stops there */
+    int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
+#if RT_MAX_XPRED > 0
+    /* inputs a set extrapolates over its step from another set, whose prediction is
+       checked (rti_xset_predict), and the block each belongs to */
+    uint16_t xpred_in[RT_MAX_XPRED], xpred_blk[RT_MAX_XPRED];
+    uint16_t nxpred;
+#endif
+
+    uint64_t n_ticks;                /* ticks to reach t_end */
+} rt_plan;
+
+/* The state of a running scene: everything a snapshot or a replay needs to continue
+ * bit for bit, in one struct, so that saving and restoring it is one copy. */
+struct rt_state {
+    uint64_t tick;                   /* base ticks done; t = tick * dt */
+    uint64_t set_tick[RT_MAX_SETS];  /* tick each set's state belongs to */
+    real_t x[RT_MAX_X];              /* continuous state */
+    real_t d[RT_MAX_D];              /* discrete state */
+    real_t y[RT_MAX_Y];              /* outputs (DSS outputs held between hits) */
+    real_t p[RT_MAX_P];              /* parameters (may be changed before the run) */
+    real_t r[RT_MAX_ROOTS];          /* root values at the end of the last step */
+    real_t r_lvl[RT_MAX_ROOTS];      /* level each root crosses at: 0, or after a handler
+                                        that sent it back (or stopped it) the value it
+                                        was handled at, less a margin (rt/step.c) */
+    real_t torn_val[RT_MAX_TORN];    /* torn inputs' values (warm start of the next solve) */
+    real_t loop_h[RT_MAX_TORN * RT_MAX_TORN]; /* inverse Jacobians, Broyden-updated */
+    real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
+    real_t hist_y[RT_HIST][RT_MAX_HIST_Y];/* cross-set outputs at those times */
+    rt_implicit_ws imp[RT_MAX_SETS]; /* implicit methods' persistent data per set */
+    /* the background set's step in flight (rt/bg.c): released at tick bg_due - ratio,
+       published at tick bg_due; bg_result holds its result (x slice, then the outputs of
+       its blocks) until then when it ran inline (no background context attached) */
+    uint64_t bg_due;                 /* tick its result is due */
+    real_t bg_result[RT_MAX_BG];     /* inline result, published at bg_due */
+    /* per output of the background set another set reads: what the parabolic
+       extrapolation showed at the newest point, minus that point; faded out over the next
+       macro step, so the value read stays continuous (rt/xset.c) */
+    real_t bg_jump[RT_MAX_HIST_Y];
+#if RT_MAX_HELD_Y > 0
+    /* a set stepping over several ticks in the tick whose outputs another set reads: its
+       outputs at its step's end, evaluated then for its history and taken from here when
+       its state reaches the tick (RTI_SET_KEEPS_END, rt/held.c) */
+    real_t y_end[RT_MAX_HELD_Y];
+#endif
+#if RT_MAX_XPRED > 0
+    /* per input of plan.xpred_in: the value its scheme gave for the end of its set's step,
+       made at the step's start (NaN: none yet), checked at the next, and the largest |u|
+       the input has had at those checks, its scale (rti_xset_predict) */
+    real_t xpred[RT_MAX_XPRED], xscale[RT_MAX_XPRED];
+    /* per input of plan.xpred_in: the sensitivity of its set's derivatives to it, the
+       largest |df_i/du| / (1 + |x_i|) [1/s per unit of u], measured by a difference every
+       RT_XSET_GAIN_EVERY steps of the set and before a miss near its accuracy is judged
+       (NaN: due), which turns a missed prediction into an error of the set's state
+       (rti_xset_predict) */
+    real_t xgain[RT_MAX_XPRED];
+#endif
+#if RT_MAX_HELD_SIG > 0
+    /* recorded (in record order), then link-exported (in export order) multibody signals
+       of the sets held between steps: they change with the set's state only, so they are
+       computed when its outputs are; a background set's by its step, at the step's end,
+       into bg_result_sig (in the context the step runs in), taken over at its
+       publication (rt/held.c, rt/bg.c) */
+    real_t held_sig[RT_MAX_HELD_SIG];
+    real_t bg_result_sig[RT_MAX_HELD_SIG];
+#endif
+#if RT_MAX_TEV > 0
+    /* per set holding a kind with known time events: the base tick of its next instant,
+       UINT64_MAX: none before the end, 0: to be found (at the start, after a parameter
+       change); so a step walks the set's blocks only at an instant (rt/tev.c) */
+    uint64_t tev_next[RT_MAX_SETS];
+#endif
+    uint64_t hash;                   /* trace hash of the recorded values (rt_hash_real) */
+    /* the byte-wide members last, together: no padding after each (RAM of small targets) */
+    uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
+    uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
+    uint8_t param_changed[RT_MAX_SETS]; /* a parameter of the set changed (rt_set_param):
+                                        its next step forms its Jacobian anew (rt/step.c;
+                                        a background set's in the context that runs it)
+                                        and a multi-tick set's renewal evaluates its
+                                        outputs in full (rt/held.c) */
+    uint8_t bg_busy;                 /* 1: a step is released and not yet published */
+    int8_t r_side[RT_MAX_ROOTS];     /* per root, the side (+1 above r_lvl, -1 below) a
+                                        handler sent it back to (or stopped it on) and
+                                        it must not leave without a located crossing;
+                                        0: none (until it is seen on that side of 0) */
+};
+
+
+/* Scratch of the tick: meaningless between ticks. Only rt/ touches it. */
+typedef struct rt_work {
+    real_t u[RT_MAX_U];              /* gathered inputs */
+    /* integrator workspace; the graph searches of rt_init use the same storage */
+    union {
+        real_t k[RT_MAX_STAGES][RT_MAX_X];
+        rt_scc_work scc;
+    } w;
+    real_t x0[RT_MAX_X];
+#if RT_MAX_TRANSITION_N > 0
+    real_t tm[2 * RT_MAX_TRANSITION_N * RT_MAX_TRANSITION_N]; /* method transition */
+#endif
+    real_t xb[RT_MAX_EVENT_X];           /* state at the right end of an event bracket */
+    real_t xs[RT_MAX_X];             /* saved state for event location */
+    real_t rs[RT_MAX_ROOTS];         /* root values scratch */
+#if RT_MAX_HELD_Y > 0
+    real_t y_shown[RT_MAX_HELD_Y];   /* a multi-tick set's outputs at the tick it steps
+                                        from, kept while its step overwrites y (held.c) */
+#endif
+    real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
+    uint16_t loop_piv[RT_MAX_TORN];
+    rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
+#if RT_MAX_TEV > 0
+    real_t t_piece;                  /* midpoint of the step part a set with known time
+                                        events is integrating [s] (rt_args.t_piece); 0:
+                                        none, at a tick (rt/tev.c) */
+#endif
+} rt_work;
+
+/* One running scene. The caller owns it (static storage); rt_init fills every part.
+ * Sizes are the compile-time limits of rt_config.h. Who may read what:
+ *   plan   rt/ only (init writes it, ticks read it)
+ *   state  rt/; applications only to snapshot and restore it whole (rt_snapshot)
+ *   stats  rt/ writes; applications read (summaries, tests)
+ *   work   rt/ only */
+struct rt_sim {
+    rt_plan plan;
+    rt_state state;
+    rt_stats stats;
+    rt_work work;
+    char err[RT_ERR_LEN];            /* what rt_init found wrong, and where */
+    const rt_scene *sc;              /* (the pointers last, beside each other: no padding
+                                        before the 8-byte-aligned plan on 32-bit targets) */
+    /* the background context (rt_bg_attach): a second rt_sim the background set steps
+       in, so that it shares no memory with the tick; NULL: its steps run inline at
+       release (the simulated clock). Two counters hand a step over, each written by one
+       side only and never reset, so no side can see a stale pair: bg_released counts the
+       steps the tick released, bg_finished (written by the background context) the
+       released step it finished; a step is pending while they differ. */
+    struct rt_sim *bg;
+    uint32_t bg_released, bg_finished;
+};
+
+#endif /* RT_SIM_H */
