@@ -124,6 +124,11 @@ run=$(make -s "print-TARGET_RUN_$target")
 [ "${console:-semihost}" = uart ] && run=$(echo "$run" | sed 's/-serial null/-serial stdio/')
 echo "image: run it with: $run $dir/$name.elf"
 [ "$measure" = 1 ] || exit 0
+# the measuring image (make foot-elf) links library kinds and defines only
+if [ -n "$fmusrc" ]; then
+    echo "image: no per-tick measurement: the measuring image does not link FMU blocks"
+    exit 0
+fi
 
 # will it meet its tick? (tools/foot_lib.sh measures as make footprint does)
 # shellcheck disable=SC2034 # M and so are read by tools/foot_lib.sh
