@@ -208,23 +208,6 @@ static int tol_ok(real_t v)
     return v == 0 || (v > 0 && rt_isfinite(v));
 }
 
-rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim)
-{
-    const char *what = "";
-    switch (lim) {
-#define RT_X_TEXT(name, field, least, what_)                                                 \
-    case RTI_LIM_##name:                                                                    \
-        what = what_ " exceed " RTI_LIMIT(RT_MAX_##name);                                   \
-        break;
-        RT_LIMIT_LIST(RT_X_TEXT)
-#undef RT_X_TEXT
-    default:
-        break;
-    }
-    return set ? rti_fail(sim, RT_E_CAPACITY, "set ", set, ": ", what, (const char *)0)
-               : rti_fail(sim, RT_E_CAPACITY, what, (const char *)0);
-}
-
 /* one set's method, step and settings (rt_set_check: what the scene compiler and modrt's
    per-set options check, checked again for a hand-written scene) */
 static rt_status check_set(const rt_scene *sc, uint8_t s, rt_sim *sim)

@@ -67,13 +67,13 @@ const char *rt_set_check(const rt_set *st, rt_cfg_id *bad)
     if (st->ratio == 0)
         return "step must be a whole number of base ticks, at least one";
 #define RT_X_CHECK(id, word, opt, field, kind, max, scope, dflt, help)                       \
-    *bad = id;                                                                              \
-    if (bad_value((real_t)st->cfg.field, kind, max))                                        \
-        return kind == RT_CFG_COUNT  ? word " must be a whole number from 1 to " #max        \
-               : kind == RT_CFG_POW2 ? word " must be a power of two from 1 to " #max        \
-               : kind == RT_CFG_PAIR ? "the absolute " word " must be positive and finite"   \
-                                     : word " must be positive and finite";                 \
-    if (scope == RT_CFG_ITER && st->cfg.field != 0 && !rt_method_iterates(st->method))      \
+    *bad = id;                                                                               \
+    if (bad_value((real_t)st->cfg.field, kind, max))                                         \
+        return (kind) == RT_CFG_COUNT  ? word " must be a whole number from 1 to " #max      \
+               : (kind) == RT_CFG_POW2 ? word " must be a power of two from 1 to " #max      \
+               : (kind) == RT_CFG_PAIR ? "the absolute " word " must be positive and finite" \
+                                     : word " must be positive and finite";                  \
+    if ((scope) == RT_CFG_ITER && st->cfg.field != 0 && !rt_method_iterates(st->method))     \
         return word " applies to the implicit methods that iterate only";
     RT_SET_CFG_LIST(RT_X_CHECK)
 #undef RT_X_CHECK

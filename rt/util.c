@@ -1,5 +1,5 @@
-/* util.c - status and counter names, the trace hash, and the few string helpers that
- * freestanding code needs (no libc). */
+/* util.c - status and counter names, capacity faults, the trace hash, and the few string
+ * helpers that freestanding code needs (no libc). */
 #include <stdarg.h>
 
 #include "rti.h"
@@ -178,4 +178,22 @@ void rt_note_status(rt_sim *sim, rt_status status)
 uint64_t rt_hash_real(uint64_t h, real_t v)
 {
     return rti_hash(h, v);
+}
+
+/* a capacity fault: the limit's own message from the list of limits (rt_config.h) */
+rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim)
+{
+    const char *what = "";
+    switch (lim) {
+#define RT_X_TEXT(name, field, least, what_)                                                 \
+    case RTI_LIM_##name:                                                                    \
+        what = what_ " exceed " RTI_LIMIT(RT_MAX_##name);                                   \
+        break;
+        RT_LIMIT_LIST(RT_X_TEXT)
+#undef RT_X_TEXT
+    default:
+        break;
+    }
+    return set ? rti_fail(sim, RT_E_CAPACITY, "set ", set, ": ", what, (const char *)0)
+               : rti_fail(sim, RT_E_CAPACITY, what, (const char *)0);
 }

@@ -35,16 +35,6 @@ const rt_scene *scn_host_load(const char *path, const scn_fmu_ops *fmu)
     return &last->image;
 }
 
-uint32_t scn_ticks(double v, double dt)
-{
-    double r = v / dt;
-    if (!(r >= 0.5 && r < 4e9))
-        return 0;
-    uint32_t n = (uint32_t)(r + 0.5);
-    double err = (double)n * dt - v;
-    return (err < 0 ? -err : err) <= RT_TICK_MATCH_REL * v ? n : 0;
-}
-
 /* every limit of RT_LIMIT_LIST as measured (rt_sizes_of), at least its row's least */
 void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
 {

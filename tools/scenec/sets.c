@@ -9,6 +9,17 @@
 
 #include "models.h"
 
+/* a step or period in seconds as a whole number of base ticks dt (RT_TICK_MATCH_REL), or 0 */
+uint32_t scn_ticks(double v, double dt)
+{
+    double r = v / dt;
+    if (!(r >= 0.5 && r < 4e9))
+        return 0;
+    uint32_t n = (uint32_t)(r + 0.5);
+    double err = (double)n * dt - v;
+    return (err < 0 ? -err : err) <= RT_TICK_MATCH_REL * v ? n : 0;
+}
+
 /* ------------------------------------------------------------------ sets */
 
 static const char *method_list(scn_ctx *c)
