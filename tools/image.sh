@@ -65,6 +65,38 @@ if grep -q '^static const rt_link link = {' "$dir/$name.c"; then
 fi
 
 cc=$(make -s "print-TARGET_CC_$target")
+# FMU blocks (docs/fmi.md, "FMUs in images"): scenec wrote one "// fmu-build:" line each,
+# BLOCK VERSION ID SOURCES WORDS...; their sources are compiled with their functions named
+# <ID>_fmi*, FMI 3.0's calloc, malloc and free naming the static arena (fmu_arena.c), and
+# linked with the importer's calling sequence built for targets (FMU_TARGET)
+fmuobjs= fmusrc=
+fmu_lines=$(sed -n 's#^// fmu-build: ##p' "$dir/$name.c")
+if [ -n "$fmu_lines" ]; then
+    fmusrc="tools/fmi/fmu_inst.c tools/fmi/fmu_call.c tools/fmi/fmu_arena.c tools/fmi/fmu_libc.c"
+    echo "$fmu_lines" > "$dir/$name.fmu"
+    while read -r blk ver id src words; do
+        defs="-DFMI${ver}_FUNCTION_PREFIX=${id}_"
+        [ "$ver" = 3 ] && defs="$defs -Dcalloc=fmu_arena_calloc -Dmalloc=fmu_arena_malloc -Dfree=fmu_arena_free"
+        files= flags=
+        for w in $words; do
+            case "$w" in
+            -I*) flags="$flags -I$src/${w#-I}" ;;
+            -D*) flags="$flags $w" ;;
+            -l*) ;;
+            *) files="$files $src/$w" ;;
+            esac
+        done
+        k=0
+        for f in $files; do
+            k=$((k + 1)) o=$dir/$name.fmu_${blk}_$k.o
+            # shellcheck disable=SC2086 # the flag lists are meant to split
+            $(make -s "print-TARGET_CC_$target") -std=c11 -O2 -w -ffp-contract=off -fno-math-errno \
+                -ffunction-sections -fdata-sections $(make -s "print-TARGET_CFLAGS_$target") \
+                -I"$src" $flags $defs -c "$f" -o "$o" || fail "the $target build of FMU $blk's $f failed (see above)"
+            fmuobjs="$fmuobjs $o"
+        done
+    done < "$dir/$name.fmu"
+fi
 cflags="$(make -s print-CSTD) -O2 -ffunction-sections -fdata-sections $(make -s print-CINC) \
  $(make -s print-CDEFS) -DRT_KIND_DOCS=0 $(make -s "print-TARGET_CFLAGS_$target")"
 ldflags=$(make -s "print-TARGET_LDFLAGS_$target")
@@ -75,15 +107,15 @@ models=$(ls models/*.c | grep -v '^models/registry.c$')
 # everything at once used to dominate `make test-image`), then linked in the listed order
 obj=$dir/obj-$name
 rm -rf "$obj" && mkdir -p "$obj"
-export IMG_CC="$cc" IMG_FLAGS="$cflags $cdef $sizes -DRT_SCENE=$sym $extra" IMG_OBJ="$obj"
-srcs="ports/common/image_main.c $dir/$name.c $rt $models $ports $linksrc"
+export IMG_CC="$cc" IMG_FLAGS="$cflags $cdef $sizes -DRT_SCENE=$sym $extra${fmusrc:+ -DFMU_TARGET -Itools/fmi}" IMG_OBJ="$obj"
+srcs="ports/common/image_main.c $dir/$name.c $rt $models $ports $linksrc $fmusrc"
 # shellcheck disable=SC2086,SC2016 # the lists are meant to split; $1 expands in the child
 printf '%s\n' $srcs | xargs -P "${JOBS:-2}" -I{} sh -c \
     'o=$IMG_OBJ/$(echo "$1" | tr / _).o; $IMG_CC $IMG_FLAGS -c "$1" -o "$o"' sh {} ||
     fail "the $target build of $scene failed (see above)"
 objs=$(for f in $srcs; do printf '%s/%s.o ' "$obj" "$(echo "$f" | tr / _)"; done)
 # shellcheck disable=SC2086 # the flag lists are meant to split
-$cc $cflags $objs $ldflags -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
+$cc $cflags $objs $fmuobjs $ldflags -o "$dir/$name.elf" || fail "the $target build of $scene failed (see above)"
 size=$(make -s "print-TARGET_SIZE_$target")
 echo "image: $dir/$name.elf (scene $sym, target $target, $real${console:+, console $console}${linksrc:+, link on the UART})"
 $size "$dir/$name.elf" | tail -1 | awk '{printf "image: flash %d bytes, RAM %d bytes\n", $1 + $2, $2 + $3}'
@@ -92,6 +124,11 @@ run=$(make -s "print-TARGET_RUN_$target")
 [ "${console:-semihost}" = uart ] && run=$(echo "$run" | sed 's/-serial null/-serial stdio/')
 echo "image: run it with: $run $dir/$name.elf"
 [ "$measure" = 1 ] || exit 0
+# the measuring image (make foot-elf) links library kinds and defines only
+if [ -n "$fmusrc" ]; then
+    echo "image: no per-tick measurement: the measuring image does not link FMU blocks"
+    exit 0
+fi
 
 # will it meet its tick? (tools/foot_lib.sh measures as make footprint does)
 # shellcheck disable=SC2034 # M and so are read by tools/foot_lib.sh

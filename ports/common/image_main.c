@@ -148,8 +148,17 @@ int app_main(void)
     const rt_scene *sc = &RT_SCENE;
     uint32_t overruns = 0;
     static timer_count count; /* the timer interrupt keeps a pointer to it */
-    if (rt_init(sc, &sim) != RT_OK)
+    rt_status init = rt_init(sc, &sim);
+    if (init != RT_OK) { /* one line saying why: the run never starts */
+        port_write("rt scene ");
+        port_write(sc->name);
+        port_write(" init ");
+        port_write(rt_status_name(init));
+        port_write(": ");
+        port_write(rt_error_text(&sim));
+        port_write("\n");
         return 1;
+    }
     uint32_t us = RT_IMAGE_PERIOD_US ? RT_IMAGE_PERIOD_US
                                      : (uint32_t)(sc->dt * (real_t)1e6 + (real_t)0.5);
     rt_status st = RT_OK;

@@ -19,6 +19,20 @@
 #define FMI_VERSION 2
 #endif
 #define EXPORT __attribute__((visibility("default")))
+/* a source FMU linked statically: the importer defines FMI2_FUNCTION_PREFIX /
+   FMI3_FUNCTION_PREFIX (the model identifier and "_") and every function carries it */
+#define FMI_PASTE(a, b) a##b
+#define FMI_CAT(a, b) FMI_PASTE(a, b)
+#if defined(FMI2_FUNCTION_PREFIX) && !defined(FMI2_OVERRIDE_FUNCTION_PREFIX)
+#define F2(f) FMI_CAT(FMI2_FUNCTION_PREFIX, f)
+#else
+#define F2(f) f
+#endif
+#if defined(FMI3_FUNCTION_PREFIX) && !defined(FMI3_OVERRIDE_FUNCTION_PREFIX)
+#define F3(f) FMI_CAT(FMI3_FUNCTION_PREFIX, f)
+#else
+#define F3(f) f
+#endif
 
 /* the sizes as values (a model without states compares against 0 without a warning) */
 static const size_t model_nx = MODEL_NX;
@@ -132,10 +146,10 @@ static int update(inst *in, int *again, int *x_changed, int *has_next, double *n
 /* ------------------------------------------------------------------ FMI 2.0 */
 #if FMI_VERSION == 2
 
-EXPORT const char *fmi2GetTypesPlatform(void) { return "default"; }
-EXPORT const char *fmi2GetVersion(void) { return "2.0"; }
+EXPORT const char *F2(fmi2GetTypesPlatform)(void) { return "default"; }
+EXPORT const char *F2(fmi2GetVersion)(void) { return "2.0"; }
 
-EXPORT fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid,
+EXPORT fmi2Component F2(fmi2Instantiate)(fmi2String name, fmi2Type type, fmi2String guid,
                                      fmi2String resources, const fmi2CallbackFunctions *cb,
                                      fmi2Boolean visible, fmi2Boolean logging)
 {
@@ -145,23 +159,31 @@ EXPORT fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String 
         say(&tmp, 3, "wrong GUID or not Model Exchange");
         return NULL;
     }
-    inst *in = calloc(1, sizeof *in);
-    if (!in)
+    /* FMI 2.0: memory from the environment only */
+    size_t n = strlen(name ? name : "") + 1;
+    inst *in = cb && cb->allocateMemory ? cb->allocateMemory(1, sizeof *in) : NULL;
+    char *nm = in ? cb->allocateMemory(n, 1) : NULL;
+    if (!nm) {
+        if (in)
+            cb->freeMemory(in);
         return NULL;
-    in->cb = cb, in->name = strdup(name ? name : "");
+    }
+    memcpy(nm, name ? name : "", n);
+    in->cb = cb, in->name = nm;
     reset_values(in);
     return in;
 }
 
-EXPORT void fmi2FreeInstance(fmi2Component c)
+EXPORT void F2(fmi2FreeInstance)(fmi2Component c)
 {
     inst *in = c;
-    if (in)
-        free(in->name);
-    free(in);
+    if (in) {
+        in->cb->freeMemory(in->name);
+        in->cb->freeMemory(in);
+    }
 }
 
-EXPORT fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean tolDefined, fmi2Real tol,
+EXPORT fmi2Status F2(fmi2SetupExperiment)(fmi2Component c, fmi2Boolean tolDefined, fmi2Real tol,
                                       fmi2Real start, fmi2Boolean stopDefined, fmi2Real stop)
 {
     inst *in = c;
@@ -170,7 +192,7 @@ EXPORT fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean tolDefined, f
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2EnterInitializationMode(fmi2Component c)
+EXPORT fmi2Status F2(fmi2EnterInitializationMode)(fmi2Component c)
 {
     inst *in = c;
     if (in->mode != M_INSTANTIATED)
@@ -179,7 +201,7 @@ EXPORT fmi2Status fmi2EnterInitializationMode(fmi2Component c)
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2ExitInitializationMode(fmi2Component c)
+EXPORT fmi2Status F2(fmi2ExitInitializationMode)(fmi2Component c)
 {
     inst *in = c;
     if (in->mode != M_INIT)
@@ -188,13 +210,13 @@ EXPORT fmi2Status fmi2ExitInitializationMode(fmi2Component c)
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2Terminate(fmi2Component c)
+EXPORT fmi2Status F2(fmi2Terminate)(fmi2Component c)
 {
     ((inst *)c)->mode = M_TERMINATED;
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2Reset(fmi2Component c)
+EXPORT fmi2Status F2(fmi2Reset)(fmi2Component c)
 {
     inst *in = c;
     in->mode = M_INSTANTIATED;
@@ -202,19 +224,19 @@ EXPORT fmi2Status fmi2Reset(fmi2Component c)
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+EXPORT fmi2Status F2(fmi2GetReal)(fmi2Component c, const fmi2ValueReference vr[], size_t n,
                               fmi2Real v[])
 {
     return (fmi2Status)get_values(c, vr, n, v);
 }
 
-EXPORT fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+EXPORT fmi2Status F2(fmi2SetReal)(fmi2Component c, const fmi2ValueReference vr[], size_t n,
                               const fmi2Real v[])
 {
     return (fmi2Status)set_values(c, vr, n, v);
 }
 
-EXPORT fmi2Status fmi2EnterEventMode(fmi2Component c)
+EXPORT fmi2Status F2(fmi2EnterEventMode)(fmi2Component c)
 {
     inst *in = c;
     if (in->mode != M_CT)
@@ -223,7 +245,7 @@ EXPORT fmi2Status fmi2EnterEventMode(fmi2Component c)
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *e)
+EXPORT fmi2Status F2(fmi2NewDiscreteStates)(fmi2Component c, fmi2EventInfo *e)
 {
     int again, xch, has;
     double next;
@@ -234,7 +256,7 @@ EXPORT fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *e)
     return (fmi2Status)s;
 }
 
-EXPORT fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
+EXPORT fmi2Status F2(fmi2EnterContinuousTimeMode)(fmi2Component c)
 {
     inst *in = c;
     if (in->mode != M_EVENT)
@@ -243,7 +265,7 @@ EXPORT fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet,
+EXPORT fmi2Status F2(fmi2CompletedIntegratorStep)(fmi2Component c, fmi2Boolean noSet,
                                               fmi2Boolean *enter, fmi2Boolean *term)
 {
     (void)c, (void)noSet;
@@ -251,13 +273,13 @@ EXPORT fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2SetTime(fmi2Component c, fmi2Real t)
+EXPORT fmi2Status F2(fmi2SetTime)(fmi2Component c, fmi2Real t)
 {
     ((inst *)c)->d.time = t;
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t n)
+EXPORT fmi2Status F2(fmi2SetContinuousStates)(fmi2Component c, const fmi2Real x[], size_t n)
 {
     inst *in = c;
     for (size_t i = 0; i < n && i < model_nx; i++)
@@ -265,7 +287,7 @@ EXPORT fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], s
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t n)
+EXPORT fmi2Status F2(fmi2GetContinuousStates)(fmi2Component c, fmi2Real x[], size_t n)
 {
     inst *in = c;
     for (size_t i = 0; i < n && i < model_nx; i++)
@@ -273,13 +295,13 @@ EXPORT fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t 
     return fmi2OK;
 }
 
-EXPORT fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t n)
+EXPORT fmi2Status F2(fmi2GetDerivatives)(fmi2Component c, fmi2Real dx[], size_t n)
 {
     return (fmi2Status)derivatives(c, dx, n);
 }
 
 #ifndef FMU_BAD_NO_INDICATORS
-EXPORT fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t n)
+EXPORT fmi2Status F2(fmi2GetEventIndicators)(fmi2Component c, fmi2Real z[], size_t n)
 {
     double zz[MODEL_NZ + 1];
     model_indicators(&((inst *)c)->d, zz);
@@ -292,9 +314,9 @@ EXPORT fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t n
 #else
 /* ------------------------------------------------------------------ FMI 3.0 */
 
-EXPORT const char *fmi3GetVersion(void) { return "3.0"; }
+EXPORT const char *F3(fmi3GetVersion)(void) { return "3.0"; }
 
-EXPORT fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String token,
+EXPORT fmi3Instance F3(fmi3InstantiateModelExchange)(fmi3String name, fmi3String token,
                                                  fmi3String resources, fmi3Boolean visible,
                                                  fmi3Boolean logging,
                                                  fmi3InstanceEnvironment env,
@@ -306,15 +328,21 @@ EXPORT fmi3Instance fmi3InstantiateModelExchange(fmi3String name, fmi3String tok
         say(&tmp, 3, "wrong instantiationToken");
         return NULL;
     }
+    /* FMI 3.0 has no memory callbacks: calloc (an image links it to its static arena) */
+    size_t n = strlen(name ? name : "") + 1;
     inst *in = calloc(1, sizeof *in);
-    if (!in)
+    char *nm = in ? calloc(n, 1) : NULL;
+    if (!nm) {
+        free(in);
         return NULL;
-    in->env = env, in->log = log, in->name = strdup(name ? name : "");
+    }
+    memcpy(nm, name ? name : "", n);
+    in->env = env, in->log = log, in->name = nm;
     reset_values(in);
     return in;
 }
 
-EXPORT void fmi3FreeInstance(fmi3Instance c)
+EXPORT void F3(fmi3FreeInstance)(fmi3Instance c)
 {
     inst *in = c;
     if (in)
@@ -322,7 +350,7 @@ EXPORT void fmi3FreeInstance(fmi3Instance c)
     free(in);
 }
 
-EXPORT fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean tolDefined,
+EXPORT fmi3Status F3(fmi3EnterInitializationMode)(fmi3Instance c, fmi3Boolean tolDefined,
                                               fmi3Float64 tol, fmi3Float64 start,
                                               fmi3Boolean stopDefined, fmi3Float64 stop)
 {
@@ -334,7 +362,7 @@ EXPORT fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean tolDef
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3ExitInitializationMode(fmi3Instance c)
+EXPORT fmi3Status F3(fmi3ExitInitializationMode)(fmi3Instance c)
 {
     inst *in = c;
     if (in->mode != M_INIT)
@@ -343,7 +371,7 @@ EXPORT fmi3Status fmi3ExitInitializationMode(fmi3Instance c)
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3EnterEventMode(fmi3Instance c)
+EXPORT fmi3Status F3(fmi3EnterEventMode)(fmi3Instance c)
 {
     inst *in = c;
     if (in->mode != M_CT)
@@ -352,13 +380,13 @@ EXPORT fmi3Status fmi3EnterEventMode(fmi3Instance c)
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3Terminate(fmi3Instance c)
+EXPORT fmi3Status F3(fmi3Terminate)(fmi3Instance c)
 {
     ((inst *)c)->mode = M_TERMINATED;
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3Reset(fmi3Instance c)
+EXPORT fmi3Status F3(fmi3Reset)(fmi3Instance c)
 {
     inst *in = c;
     in->mode = M_INSTANTIATED;
@@ -366,21 +394,21 @@ EXPORT fmi3Status fmi3Reset(fmi3Instance c)
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+EXPORT fmi3Status F3(fmi3GetFloat64)(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                  fmi3Float64 v[], size_t nv)
 {
     (void)nv;
     return (fmi3Status)get_values(c, vr, n, v);
 }
 
-EXPORT fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+EXPORT fmi3Status F3(fmi3SetFloat64)(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                  const fmi3Float64 v[], size_t nv)
 {
     (void)nv;
     return (fmi3Status)set_values(c, vr, n, v);
 }
 
-EXPORT fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *again,
+EXPORT fmi3Status F3(fmi3UpdateDiscreteStates)(fmi3Instance c, fmi3Boolean *again,
                                            fmi3Boolean *term, fmi3Boolean *nominals,
                                            fmi3Boolean *xch, fmi3Boolean *has,
                                            fmi3Float64 *next)
@@ -392,7 +420,7 @@ EXPORT fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *again,
     return (fmi3Status)s;
 }
 
-EXPORT fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c)
+EXPORT fmi3Status F3(fmi3EnterContinuousTimeMode)(fmi3Instance c)
 {
     inst *in = c;
     if (in->mode != M_EVENT)
@@ -401,7 +429,7 @@ EXPORT fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c)
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSet,
+EXPORT fmi3Status F3(fmi3CompletedIntegratorStep)(fmi3Instance c, fmi3Boolean noSet,
                                               fmi3Boolean *enter, fmi3Boolean *term)
 {
     (void)c, (void)noSet;
@@ -409,13 +437,13 @@ EXPORT fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSet,
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 t)
+EXPORT fmi3Status F3(fmi3SetTime)(fmi3Instance c, fmi3Float64 t)
 {
     ((inst *)c)->d.time = t;
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64 x[], size_t n)
+EXPORT fmi3Status F3(fmi3SetContinuousStates)(fmi3Instance c, const fmi3Float64 x[], size_t n)
 {
     inst *in = c;
     for (size_t i = 0; i < n && i < model_nx; i++)
@@ -423,7 +451,7 @@ EXPORT fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64 x[],
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_t n)
+EXPORT fmi3Status F3(fmi3GetContinuousStates)(fmi3Instance c, fmi3Float64 x[], size_t n)
 {
     inst *in = c;
     for (size_t i = 0; i < n && i < model_nx; i++)
@@ -431,13 +459,13 @@ EXPORT fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], size_t n)
+EXPORT fmi3Status F3(fmi3GetContinuousStateDerivatives)(fmi3Instance c, fmi3Float64 dx[], size_t n)
 {
     return (fmi3Status)derivatives(c, dx, n);
 }
 
 #ifndef FMU_BAD_NO_INDICATORS
-EXPORT fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 z[], size_t n)
+EXPORT fmi3Status F3(fmi3GetEventIndicators)(fmi3Instance c, fmi3Float64 z[], size_t n)
 {
     double zz[MODEL_NZ + 1];
     model_indicators(&((inst *)c)->d, zz);
@@ -447,14 +475,14 @@ EXPORT fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 z[], size_t
 }
 #endif
 
-EXPORT fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n)
+EXPORT fmi3Status F3(fmi3GetNumberOfEventIndicators)(fmi3Instance c, size_t *n)
 {
     (void)c;
     *n = MODEL_NZ;
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n)
+EXPORT fmi3Status F3(fmi3GetNumberOfContinuousStates)(fmi3Instance c, size_t *n)
 {
     (void)c;
     *n = MODEL_NX;

@@ -92,45 +92,74 @@ if grep -q '^g  *parameter  *fixed  *Float64  *4  *m/s2  *9.81$' "$W/info.out" &
     ok "modrt info bouncing3.fmu lists g (parameter, m/s2, 9.81), 2 states, 1 indicator"
 else bad "modrt info bouncing3.fmu:"; cat "$W/info.out"; fi
 
-# scenec writes C for targets: an FMU system is refused at its load statement
-"$B/scenec" --check "$W/ball_fmu2.scn" > "$W/scenec.out" 2>&1
-if [ $? -eq 1 ] && grep -q 'error: FMU systems run on the host only near' "$W/scenec.out"; then
-    ok "scenec refuses an FMU system in one line"; else bad "scenec:"; cat "$W/scenec.out"; fi
+# scenec writes C for targets: an FMU system without sources is refused at its load
+# statement, in one line, and nothing is written (a source FMU in an image: tests/image.sh)
+"$B/scenec" -o "$W/scenec.c" "$W/ball_fmu2.scn" > "$W/scenec.out" 2>&1
+if [ $? -eq 1 ] && [ "$(wc -l < "$W/scenec.out")" = 1 ] && [ ! -e "$W/scenec.c" ] &&
+   grep -q 'error: FMU of Ball: .* ships no sources (sources/)' "$W/scenec.out"; then
+    ok "scenec refuses a binary-only FMU system for an image in one line"
+else bad "scenec:"; cat "$W/scenec.out"; fi
 
-# export: library scenes as FMI 3.0 Co-Simulation FMUs, driven by a foreign master
+# export: library scenes as FMI 3.0 and 2.0 Co-Simulation FMUs, driven by a foreign master
 # (master.c): the trace hash of one-tick steps = modrt run's; 10-tick steps and a restored
 # FMU state give the same bits; steps off the tick grid refused; the description keeps the
-# schema's rules (check_md3.py); the binary built again from the FMU's own sources (its
-# buildDescription.xml) gives the same hash
-export_fmu() { # scene, extra modrt run options
-    s=$1
-    shift
-    rm -rf "$W/x_$s" && mkdir -p "$W/x_$s"
-    if ! "$B/scenec" --fmu "$W/$s.fmu" "models/scenes/$s.scn" 2> "$W/x_$s.err"; then
-        bad "scenec --fmu $s: $(cat "$W/x_$s.err")"; return 1; fi
-    (cd "$W/x_$s" && unzip -q "../$s.fmu")
-    if python3 tests/fmi/check_md3.py "$W/x_$s" > "$W/x_$s.md"; then ok "$s.fmu: $(cat "$W/x_$s.md")"
-    else bad "$s.fmu:"; cat "$W/x_$s.md"; fi
-    dt=$(sed -n 's/.*stepSize="\([^"]*\)".*/\1/p' "$W/x_$s/modelDescription.xml")
-    te=$(sed -n 's/.*stopTime="\([^"]*\)".*/\1/p' "$W/x_$s/modelDescription.xml")
-    "$M" run "$s" "$@" > "$W/x_$s.run" 2>&1
-    "$M" run "$s" "$@" --csv "$W/x_$s.csv" > /dev/null 2>&1
-    env MASTER_DT="$dt" MASTER_END="$te" ${PI_CSV:+MASTER_PI_CSV="$PI_CSV"} "$T/master" "$W/x_$s" \
-        > "$W/x_$s.master" 2>&1
-    grep -E '^(ok|FAIL)' "$W/x_$s.master" | while read -r l; do echo "$l ($s)"; done
-    p=$(grep -c '^ok' "$W/x_$s.master") f=$(grep -c '^FAIL' "$W/x_$s.master")
+# schema's rules (check_md3.py, check_md2.py; also xmllint against the standard's schema
+# when FMI3_XSD / FMI2_XSD name its fmi3ModelDescription.xsd / fmi2ModelDescription.xsd);
+# the binary built again from the FMU's own sources (its buildDescription.xml) gives the
+# same hash
+export_fmu() { # FMI version, scene, extra modrt run options
+    v=$1 s=$2 x=$W/x$1_$2
+    shift 2
+    rm -rf "$x" && mkdir -p "$x"
+    if ! "$B/scenec" --fmu "$x.fmu" --fmi-version "$v" "models/scenes/$s.scn" 2> "$x.err"; then
+        bad "scenec --fmu --fmi-version $v $s: $(cat "$x.err")"; return 1; fi
+    unzip -q -d "$x" "$x.fmu"
+    if python3 "tests/fmi/check_md$v.py" "$x" > "$x.md"; then ok "$s.fmu (FMI $v.0): $(cat "$x.md")"
+    else bad "$s.fmu (FMI $v.0):"; cat "$x.md"; fi
+    xsd=$( [ "$v" = 2 ] && echo "${FMI2_XSD:-}" || echo "${FMI3_XSD:-}")
+    if [ -n "$xsd" ]; then
+        if xmllint --noout --schema "$xsd" "$x/modelDescription.xml" 2> "$x.xsd"; then
+            ok "$s.fmu (FMI $v.0): xmllint against $xsd"
+        else bad "$s.fmu (FMI $v.0): xmllint:"; cat "$x.xsd"; fi
+    fi
+    dt=$(sed -n 's/.*stepSize="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
+    te=$(sed -n 's/.*stopTime="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
+    "$M" run "$s" "$@" > "$x.run" 2>&1
+    env MASTER_DT="$dt" MASTER_END="$te" ${PI_CSV:+MASTER_PI_CSV="$PI_CSV"} "$T/master" "$x" \
+        > "$x.master" 2>&1
+    grep -E '^(ok|FAIL)' "$x.master" | while read -r l; do echo "$l ($s, FMI $v.0)"; done
+    p=$(grep -c '^ok' "$x.master") f=$(grep -c '^FAIL' "$x.master")
     pass=$((pass + p)) fail=$((fail + f))
-    same_hash "$s: the exported FMU under a foreign master = modrt run" "$W/x_$s.master" "$W/x_$s.run"
-    python3 tests/fmi/build_sources.py "$W/x_$s" "$W/x_$s/binaries/x86_64-linux/$s.so" &&
-        MASTER_DT=$dt MASTER_END=$te "$T/master" "$W/x_$s" > "$W/x_$s.src" 2>&1
-    same_hash "$s: the FMU's binary built from its sources = modrt run" "$W/x_$s.src" "$W/x_$s.run"
+    same_hash "$s (FMI $v.0): the exported FMU under a foreign master = modrt run" "$x.master" "$x.run"
+    so=$x/binaries/$([ "$v" = 2 ] && echo linux64 || echo x86_64-linux)/$s.so
+    python3 tests/fmi/build_sources.py "$x" "$so" &&
+        MASTER_DT=$dt MASTER_END=$te "$T/master" "$x" > "$x.src" 2>&1
+    same_hash "$s (FMI $v.0): the FMU's binary built from its sources = modrt run" "$x.src" "$x.run"
 }
-for s in pi_loop oscillator bouncing_ball; do export_fmu $s; done
 "$M" run pi_loop --csv "$W/pi_loop_ref.csv" > /dev/null 2>&1
-PI_CSV=$W/pi_loop_ref.csv export_fmu pi_link --link none
+for v in 3 2; do
+    for s in pi_loop oscillator bouncing_ball; do export_fmu $v $s; done
+    PI_CSV=$W/pi_loop_ref.csv export_fmu $v pi_link --link none
+done
+
+# FMI 2.0 source FMUs name their functions with the model identifier (FMI2_FUNCTION_PREFIX)
+# unless the importer builds a shared object (FMI2_OVERRIDE_FUNCTION_PREFIX)
+x=$W/x2_pi_loop/sources
+if ${CC:-cc} -std=c11 -c -I"$x" -I"$x/rt" -I"$x/models" "$x/fmi2cs.c" -o "$W/fmi2cs.o" &&
+   nm "$W/fmi2cs.o" | grep -q ' T pi_loop_fmi2DoStep$' && ! nm "$W/fmi2cs.o" | grep -q ' T fmi2DoStep$'
+then ok "FMI 2.0 sources compiled as a source FMU: pi_loop_fmi2DoStep, no plain fmi2DoStep"
+else bad "FMI 2.0 source FMU function names:"; nm "$W/fmi2cs.o" | grep fmi2DoStep; fi
+
+# the 2.0 checker can fail: outputs missing from InitialUnknowns (the schema allows it,
+# the specification does not)
+mkdir -p "$W/x2_broken" && cp -r "$W/x2_pi_loop/." "$W/x2_broken/"
+sed -i '/<InitialUnknowns>/,/<\/InitialUnknowns>/d' "$W/x2_broken/modelDescription.xml"
+if python3 tests/fmi/check_md2.py "$W/x2_broken" | grep -q "InitialUnknowns lack the outputs"; then
+    ok "check_md2 refuses outputs missing from InitialUnknowns"
+else bad "check_md2 accepted a broken description"; fi
 
 # the schema checker can fail: a description without its unit definitions
-mkdir -p "$W/x_broken" && cp -r "$W/x_pi_loop/." "$W/x_broken/"
+mkdir -p "$W/x_broken" && cp -r "$W/x3_pi_loop/." "$W/x_broken/"
 sed -i '/UnitDefinitions\|<Unit /d' "$W/x_broken/modelDescription.xml"
 if python3 tests/fmi/check_md3.py "$W/x_broken" | grep -q "not in UnitDefinitions"; then
     ok "check_md3 refuses a unit missing from UnitDefinitions"

@@ -8,11 +8,15 @@
 
 FMI_DIR   := tools/fmi
 FMI_SRCS  := $(addprefix $(FMI_DIR)/,fmu_md.c fmu_zip.c fmu_model.c fmu_build.c fmu_call.c \
-               fmu_inst.c fmu_info.c fmu_scn.c)
+               fmu_inst.c fmu_info.c fmu_scn.c fmu_emit.c)
 FMI_LIBS  := -lzip -lexpat -ldl
 FMI_TDIR  := $(O)/fmi
 $(call obj,$(FMI_SRCS)): CINC += -I$(FMI_DIR) -I$(SCN_DIR)
 $(call obj,tools/modrt/modrt.c tools/modrt/cli.c): CINC += -I$(FMI_DIR)
+# scenec loads FMU systems too (their C for an image, tools/fmi/fmu_emit.c)
+ifeq ($(O),build/host)
+$(SCENEC): $(call obj,$(FMI_SRCS))
+endif
 # the exporter (linked into scenec) finds the sources an exported FMU is built from here
 $(call obj,$(SCN_DIR)/scenec.c): CINC += -I$(FMI_DIR) -I$(SCN_DIR)
 $(call obj,$(FMI_DIR)/fmu_export.c): CINC += -I$(FMI_DIR) -I$(FMI_DIR)/cs -I$(SCN_DIR)

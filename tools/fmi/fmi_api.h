@@ -1,8 +1,9 @@
 /* fmi_api.h - the C interface of the Functional Mock-up Interface that modrt uses, FMI 2.0
- * and FMI 3.0 (Model Exchange, and the common functions), declared from the specification
- * (modelica/fmi-standard, v2.0.5 docs/2_1_common_api.adoc, docs/3_2_model_exchange_api.adoc;
- * v3.0 docs/2_3_common_states.adoc, docs/3_2_model_exchange_api.adoc): the types, the
- * status codes, the callback structures and one function-pointer type per function, in the
+ * and FMI 3.0 (Model Exchange, Co-Simulation and the common functions), declared from the
+ * specification (modelica/fmi-standard, v2.0.5 docs/2_1_common_api.adoc,
+ * docs/3_2_model_exchange_api.adoc, docs/4_2_co-simulation_api.adoc; v3.0
+ * docs/2_3_common_states.adoc, docs/3_2_model_exchange_api.adoc): the types, the status
+ * codes, the callback structures and one function-pointer type per function, in the
  * argument order the standard gives. Only the functions modrt calls (or an FMU built by the
  * tests defines) are here. Both the importer (tools/fmi/) and the test FMUs (tests/fmi/)
  * include it, so a mismatch between them cannot compile. */
@@ -30,6 +31,9 @@ typedef char fmi2Byte;
 
 typedef enum { fmi2OK, fmi2Warning, fmi2Discard, fmi2Error, fmi2Fatal, fmi2Pending } fmi2Status;
 typedef enum { fmi2ModelExchange, fmi2CoSimulation } fmi2Type;
+typedef enum {
+    fmi2DoStepStatus, fmi2PendingStatus, fmi2LastSuccessfulTime, fmi2Terminated
+} fmi2StatusKind;
 
 typedef struct {
     void (*logger)(fmi2ComponentEnvironment componentEnvironment, fmi2String instanceName,
@@ -81,6 +85,26 @@ typedef fmi2Status fmi2GetDerivativesTYPE(fmi2Component c, fmi2Real derivatives[
 typedef fmi2Status fmi2GetEventIndicatorsTYPE(fmi2Component c, fmi2Real eventIndicators[],
                                               size_t ni);
 typedef fmi2Status fmi2GetContinuousStatesTYPE(fmi2Component c, fmi2Real x[], size_t nx);
+/* Co-Simulation and the FMU state (what the test master of an exported FMU calls) */
+typedef fmi2Status fmi2DoStepTYPE(fmi2Component c, fmi2Real currentCommunicationPoint,
+                                  fmi2Real communicationStepSize,
+                                  fmi2Boolean noSetFMUStatePriorToCurrentPoint);
+typedef fmi2Status fmi2GetRealStatusTYPE(fmi2Component c, const fmi2StatusKind s,
+                                         fmi2Real *value);
+typedef fmi2Status fmi2GetBooleanStatusTYPE(fmi2Component c, const fmi2StatusKind s,
+                                            fmi2Boolean *value);
+typedef fmi2Status fmi2GetIntegerTYPE(fmi2Component c, const fmi2ValueReference vr[],
+                                      size_t nvr, fmi2Integer value[]);
+typedef fmi2Status fmi2GetFMUstateTYPE(fmi2Component c, fmi2FMUstate *FMUstate);
+typedef fmi2Status fmi2SetFMUstateTYPE(fmi2Component c, fmi2FMUstate FMUstate);
+typedef fmi2Status fmi2FreeFMUstateTYPE(fmi2Component c, fmi2FMUstate *FMUstate);
+typedef fmi2Status fmi2SerializedFMUstateSizeTYPE(fmi2Component c, fmi2FMUstate FMUstate,
+                                                  size_t *size);
+typedef fmi2Status fmi2SerializeFMUstateTYPE(fmi2Component c, fmi2FMUstate FMUstate,
+                                             fmi2Byte serializedState[], size_t size);
+typedef fmi2Status fmi2DeSerializeFMUstateTYPE(fmi2Component c,
+                                               const fmi2Byte serializedState[], size_t size,
+                                               fmi2FMUstate *FMUstate);
 
 /* ------------------------------------------------------------------ FMI 3.0 */
 

@@ -26,6 +26,9 @@
 #define FMU_EVENT_ITER_MAX 64         /* discrete-state updates of one event iteration */
 #define FMU_MAX_ENTRIES 65536u        /* entries of one FMU archive */
 #define FMU_MAX_UNPACKED (1ull << 30) /* bytes of one FMU unpacked */
+#ifndef FMU_ARENA_BYTES
+#define FMU_ARENA_BYTES 16384         /* an image's static memory for its FMUs' instances */
+#endif
 
 typedef struct fmu_model fmu_model;
 typedef struct fmu_inst fmu_inst;

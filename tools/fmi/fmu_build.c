@@ -157,6 +157,39 @@ static int run(const char *dir, const char *const *argv, const char *log)
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
+/* the words naming the sources, definitions and include directories (relative to
+   sources/) of the FMU's build, appended to b */
+static int source_words(const fmu_model *m, bctx *b, char *err, size_t errlen)
+{
+    int rc = 0;
+    if (m->md.version == 3) {
+        rc = from_description(m, b, err, errlen);
+    } else if (m->md.nsources == 0) {
+        rc = failf(err, errlen, "%s: no binary for this platform and no <SourceFiles> to "
+                   "build one from", m->path);
+    } else {
+        for (uint32_t i = 0; i < m->md.nsources && !b->bad; i++)
+            if (inside(m->md.sources[i]))
+                word(b, "", m->md.sources[i], NULL, NULL);
+            else
+                b->bad = 1;
+        if (b->bad)
+            rc = failf(err, errlen, "%s: a source file outside sources/: refused", m->path);
+    }
+    return rc;
+}
+
+int fmu_source_words(const fmu_model *m, FILE *f, char *err, size_t errlen)
+{
+    bctx b = {.id = m->md.me_id};
+    int rc = source_words(m, &b, err, errlen);
+    for (int i = 0; rc == 0 && i < b.n; i++)
+        fprintf(f, "%s%s", i ? " " : "", b.argv[i]);
+    for (int i = 0; i < b.nown; i++)
+        free(b.own[i]);
+    return rc;
+}
+
 int fmu_build(const fmu_model *m, const char *lib, char *err, size_t errlen)
 {
     bctx b = {.id = m->md.me_id};
@@ -167,21 +200,7 @@ int fmu_build(const fmu_model *m, const char *lib, char *err, size_t errlen)
                                         "-I."};
     for (size_t i = 0; i < sizeof flags / sizeof *flags; i++)
         b.argv[b.n++] = flags[i];
-    int rc = 0;
-    if (m->md.version == 3) {
-        rc = from_description(m, &b, err, errlen);
-    } else if (m->md.nsources == 0) {
-        rc = failf(err, errlen, "%s: no binary for this platform and no <SourceFiles> to "
-                   "build one from", m->path);
-    } else {
-        for (uint32_t i = 0; i < m->md.nsources && !b.bad; i++)
-            if (inside(m->md.sources[i]))
-                word(&b, "", m->md.sources[i], NULL, NULL);
-            else
-                b.bad = 1;
-        if (b.bad)
-            rc = failf(err, errlen, "%s: a source file outside sources/: refused", m->path);
-    }
+    int rc = source_words(m, &b, err, errlen);
     char src[4200], tmp[4400], log[4400], dir[4400];
     snprintf(src, sizeof src, "%s/sources", m->dir);
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", lib, (long)getpid());

@@ -23,28 +23,35 @@ static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status st
     va_end(ap);
 }
 
+#ifdef FMU_TARGET /* an image: static memory (fmu_arena.c), no resources directory */
+#define FMU_ALLOC fmu_arena_calloc
+#define FMU_FREE fmu_arena_free
+#else
 static void *alloc2(size_t n, size_t size) { return calloc(n, size); }
+#define FMU_ALLOC alloc2
+#define FMU_FREE free
+#endif
 
-/* resourceLocation is a URI (file:///...) in 2.0 */
+/* resourceLocation is a URI (file:///...) in 2.0; the FMU keeps the pointer to the
+   callbacks, which live in the instance */
 static int instantiate2(fmu_inst *in)
 {
     fmu_model *m = in->m;
+    in->cb2.logger = logger2, in->cb2.allocateMemory = FMU_ALLOC, in->cb2.freeMemory = FMU_FREE;
+    in->cb2.componentEnvironment = in;
+#ifdef FMU_TARGET
+    in->c = m->f2.fmi2Instantiate(in->block, fmi2ModelExchange, m->md.token, "", &in->cb2,
+                                  fmi2False, fmi2False);
+#else
     size_t n = strlen(m->dir) + 32;
     char *uri = malloc(n);
     if (!uri)
         return -1;
     snprintf(uri, n, "file://%s/resources", m->dir);
-    /* the FMU keeps the pointer to the callbacks: one per instance, never freed before it */
-    fmi2CallbackFunctions *cb = calloc(1, sizeof *cb);
-    if (!cb) {
-        free(uri);
-        return -1;
-    }
-    cb->logger = logger2, cb->allocateMemory = alloc2, cb->freeMemory = free;
-    cb->componentEnvironment = in;
-    in->c = m->f2.fmi2Instantiate(in->block, fmi2ModelExchange, m->md.token, uri, cb,
+    in->c = m->f2.fmi2Instantiate(in->block, fmi2ModelExchange, m->md.token, uri, &in->cb2,
                                   fmi2False, fmi2False);
     free(uri);
+#endif
     return in->c ? 0 : -1;
 }
 
@@ -145,6 +152,10 @@ static void logger3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String c
 static int instantiate3(fmu_inst *in)
 {
     fmu_model *m = in->m;
+#ifdef FMU_TARGET
+    in->c = m->f3.fmi3InstantiateModelExchange(in->block, m->md.token, "", fmi3False,
+                                               fmi3False, in, logger3);
+#else
     size_t n = strlen(m->dir) + 16;
     char *res = malloc(n);
     if (!res)
@@ -153,6 +164,7 @@ static int instantiate3(fmu_inst *in)
     in->c = m->f3.fmi3InstantiateModelExchange(in->block, m->md.token, res, fmi3False,
                                                fmi3False, in, logger3);
     free(res);
+#endif
     return in->c ? 0 : -1;
 }
 

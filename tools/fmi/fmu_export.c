@@ -1,6 +1,7 @@
-/* fmu_export.c - `scenec --fmu OUT.fmu FILE.scn`: a scene as an FMI 3.0 Co-Simulation FMU
- * (docs/fmi.md, "Export"). The FMU holds its sources (the runtime, the model library, the
- * scene as scenec writes it, the FMI functions of tools/fmi/cs/fmi3cs.c, and
+/* fmu_export.c - `scenec --fmu OUT.fmu [--fmi-version 2] FILE.scn`: a scene as an FMI 3.0
+ * or 2.0 Co-Simulation FMU (docs/fmi.md, "Export"). The FMU holds its sources (the runtime,
+ * the model library, the scene as scenec writes it, fmu_cs_id.h naming it, the slave of
+ * tools/fmi/cs/cs_slave.c with the FMI functions of fmi3cs.c or fmi2cs.c, and
  * buildDescription.xml naming them) and a binary for this host built from exactly those
  * sources, and a modelDescription.xml whose variables follow fmu_cs_vars.h, the numbering
  * the FMU's code serves. Written under a temporary name, renamed when whole. */
@@ -28,6 +29,7 @@
 typedef struct ex {
     scn_ctx *c;
     const rt_scene *sc;
+    int version;            /* FMI 2 or 3 */
     char dir[4096];         /* the FMU's tree before zipping */
     char *err;
     size_t errlen;
@@ -107,24 +109,33 @@ static int sources(ex *e)
         return fail(e, "cannot create %s: %s", p, strerror(errno));
     if (copy_dir(e, "rt") || copy_dir(e, "models"))
         return -1;
-    static const char *const own[][2] = {{"tools/fmi/cs/fmi3cs.c", "fmi3cs.c"},
-                                         {"tools/fmi/cs/fmu_cs_vars.h", "fmu_cs_vars.h"},
-                                         {"tools/fmi/fmi_api.h", "fmi_api.h"}};
-    for (int i = 0; i < 3; i++) {
+    const char *fmi = e->version == 2 ? "fmi2cs.c" : "fmi3cs.c";
+    const char *own[] = {fmi, "cs_slave.c", "cs_slave.h", "fmu_cs_vars.h", "../fmi_api.h"};
+    for (int i = 0; i < 5; i++) {
         char from[4200];
-        snprintf(from, sizeof from, "%s/%s", MODRT_SRC_DIR, own[i][0]);
-        snprintf(p, sizeof p, "%s/sources/%s", e->dir, own[i][1]);
+        snprintf(from, sizeof from, "%s/tools/fmi/cs/%s", MODRT_SRC_DIR, own[i]);
+        const char *name = strrchr(own[i], '/') ? strrchr(own[i], '/') + 1 : own[i];
+        snprintf(p, sizeof p, "%s/sources/%s", e->dir, name);
         if (copy(e, from, p))
             return -1;
     }
-    e->srcs[e->nsrcs++] = "fmi3cs.c";
+    e->srcs[e->nsrcs++] = fmi, e->srcs[e->nsrcs++] = "cs_slave.c";
     snprintf(p, sizeof p, "%s/sources/scene.c", e->dir);
     FILE *f = fopen(p, "w");
     if (!f || scn_emit(e->c, f) != 0 || fclose(f) != 0)
         return fail(e, "cannot write %s", p);
     e->srcs[e->nsrcs++] = "scene.c";
     snprintf(e->token, sizeof e->token, "{modrt-%s-%016llx}", e->sc->name, hash_file(p));
-    return 0;
+    /* which scene the FMI functions serve, under which token and names */
+    snprintf(p, sizeof p, "%s/sources/fmu_cs_id.h", e->dir);
+    f = fopen(p, "w");
+    if (!f)
+        return fail(e, "cannot write %s", p);
+    fprintf(f, "/* fmu_cs_id.h - written by scenec --fmu: the scene this FMU serves */\n"
+               "#define FMU_CS_SCENE %s%s\n#define FMU_CS_TOKEN \"%s\"\n"
+               "#define FMI2_FUNCTION_PREFIX %s_\n",
+            SCN_SYMBOL_PREFIX, e->sc->name, e->token, e->sc->name);
+    return fclose(f) == 0 ? 0 : fail(e, "cannot write %s", p);
 }
 
 static int build_description(ex *e)
@@ -140,26 +151,22 @@ static int build_description(ex *e)
                "-fno-math-errno\">\n", e->sc->name);
     for (int i = 0; i < e->nsrcs; i++)
         fprintf(f, "      <SourceFile name=\"%s\"/>\n", e->srcs[i]);
-    fprintf(f, "      <PreprocessorDefinition name=\"FMU_CS_SCENE\" value=\"%s%s\"/>\n"
-               "      <PreprocessorDefinition name=\"FMU_CS_TOKEN\" value=\"&quot;%s&quot;\"/>\n"
-               "      <IncludeDirectory name=\".\"/>\n      <IncludeDirectory name=\"rt\"/>\n"
-               "      <IncludeDirectory name=\"models\"/>\n    </SourceFileSet>\n"
-               "    <Library name=\"m\"/>\n  </BuildConfiguration>\n</fmiBuildDescription>\n",
-            SCN_SYMBOL_PREFIX, e->sc->name, e->token);
+    fputs("      <IncludeDirectory name=\".\"/>\n      <IncludeDirectory name=\"rt\"/>\n"
+          "      <IncludeDirectory name=\"models\"/>\n    </SourceFileSet>\n"
+          "    <Library name=\"m\"/>\n  </BuildConfiguration>\n</fmiBuildDescription>\n", f);
     return fclose(f) == 0 ? 0 : fail(e, "cannot write %s", p);
 }
 
 /* the binary for this host from the sources just written */
 static int compile(ex *e)
 {
-    char out[4300], def1[200], def2[200];
-    snprintf(out, sizeof out, "%s/binaries/x86_64-linux", e->dir);
+    char out[4300];
+    const char *plat = e->version == 2 ? "linux64" : "x86_64-linux";
+    snprintf(out, sizeof out, "%s/binaries/%s", e->dir, plat);
     char *mk = scn_fmt(e->c, "%s/binaries", e->dir);
     if (mkdir(mk, 0755) != 0 || mkdir(out, 0755) != 0)
         return fail(e, "cannot create %s", out);
-    snprintf(out, sizeof out, "%s/binaries/x86_64-linux/%s.so", e->dir, e->sc->name);
-    snprintf(def1, sizeof def1, "-DFMU_CS_SCENE=%s%s", SCN_SYMBOL_PREFIX, e->sc->name);
-    snprintf(def2, sizeof def2, "-DFMU_CS_TOKEN=\"%s\"", e->token);
+    snprintf(out, sizeof out, "%s/binaries/%s/%s.so", e->dir, plat, e->sc->name);
     const char *cc = getenv("CC") && *getenv("CC") ? getenv("CC") : "cc";
     const char *argv[300];
     int n = 0;
@@ -169,7 +176,8 @@ static int compile(ex *e)
                            "-Imodels"};
     for (size_t i = 0; i < sizeof flags / sizeof *flags; i++)
         argv[n++] = flags[i];
-    argv[n++] = def1, argv[n++] = def2;
+    if (e->version == 2) /* a shared object: the functions' plain names */
+        argv[n++] = "-DFMI2_OVERRIDE_FUNCTION_PREFIX";
     for (int i = 0; i < e->nsrcs; i++)
         argv[n++] = e->srcs[i];
     argv[n++] = "-o", argv[n++] = out, argv[n++] = "-lm", argv[n] = NULL;
@@ -268,16 +276,58 @@ static xvar describe(scn_ctx *c, const rt_scene *sc, uint32_t vr)
     return x;
 }
 
-static int model_description(ex *e)
+/* every unit of the variables once, into units[]; their number */
+static int units_of(ex *e, const char **units, int max)
 {
-    scn_ctx *c = e->c;
+    int nu = 0;
+    for (uint32_t vr = 0; vr < fmu_cs_count(e->sc); vr++) {
+        xvar x = describe(e->c, e->sc, vr);
+        int seen = !x.unit;
+        for (int i = 0; !seen && i < nu; i++)
+            seen = !strcmp(units[i], x.unit);
+        if (!seen && nu < max)
+            units[nu++] = x.unit;
+    }
+    return nu;
+}
+
+static void unit_definitions(ex *e, FILE *f)
+{
+    const char *units[1024];
+    int nu = units_of(e, units, 1024);
+    fputs("  <UnitDefinitions>\n", f);
+    for (int i = 0; i < nu; i++) {
+        fputs("    <Unit name=\"", f);
+        xml_text(f, units[i]);
+        fputs("\"/>\n", f);
+    }
+    fputs("  </UnitDefinitions>\n", f);
+}
+
+static void default_experiment(ex *e, FILE *f)
+{
+    char b1[32], b2[32];
+    fprintf(f, "  <DefaultExperiment startTime=\"0\" stopTime=\"%s\" stepSize=\"%s\"/>\n",
+            real(b1, (double)e->sc->t_end), real(b2, (double)e->sc->dt));
+}
+
+/* the attributes a variable's type element carries: start and unit */
+static void start_unit(FILE *f, const xvar *x)
+{
+    char b[32];
+    if (x->has_start)
+        fprintf(f, " start=\"%s\"", real(b, x->start));
+    if (x->unit) {
+        fputs(" unit=\"", f);
+        xml_text(f, x->unit);
+        fputc('"', f);
+    }
+}
+
+static void md3(ex *e, FILE *f)
+{
     const rt_scene *sc = e->sc;
-    uint32_t n = fmu_cs_count(sc);
-    char p[4300], b1[32], b2[32];
-    snprintf(p, sizeof p, "%s/modelDescription.xml", e->dir);
-    FILE *f = fopen(p, "w");
-    if (!f)
-        return fail(e, "cannot write %s", p);
+    char b1[32];
     fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiModelDescription "
                "fmiVersion=\"3.0\" modelName=\"%s\" instantiationToken=\"%s\" description=\"",
             sc->name, e->token);
@@ -287,39 +337,16 @@ static int model_description(ex *e)
                "canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\" "
                "hasEventMode=\"false\" providesIntermediateUpdate=\"false\" "
                "mightReturnEarlyFromDoStep=\"false\"/>\n", sc->name, real(b1, (double)sc->dt));
-    /* every unit once */
-    const char *units[1024];
-    int nu = 0;
-    for (uint32_t vr = 0; vr < n; vr++) {
-        xvar x = describe(c, sc, vr);
-        int seen = !x.unit;
-        for (int i = 0; !seen && i < nu; i++)
-            seen = !strcmp(units[i], x.unit);
-        if (!seen && nu < 1024)
-            units[nu++] = x.unit;
-    }
-    fputs("  <UnitDefinitions>\n", f);
-    for (int i = 0; i < nu; i++) {
-        fputs("    <Unit name=\"", f);
-        xml_text(f, units[i]);
-        fputs("\"/>\n", f);
-    }
-    fprintf(f, "  </UnitDefinitions>\n  <DefaultExperiment startTime=\"0\" stopTime=\"%s\" "
-               "stepSize=\"%s\"/>\n  <ModelVariables>\n", real(b1, (double)sc->t_end),
-            real(b2, (double)sc->dt));
-    for (uint32_t vr = 0; vr < n; vr++) {
-        xvar x = describe(c, sc, vr);
+    unit_definitions(e, f);
+    default_experiment(e, f);
+    fputs("  <ModelVariables>\n", f);
+    for (uint32_t vr = 0; vr < fmu_cs_count(sc); vr++) {
+        xvar x = describe(e->c, sc, vr);
         fputs("    <Float64 name=\"", f);
         xml_text(f, x.name);
         fprintf(f, "\" valueReference=\"%u\" causality=\"%s\" variability=\"%s\"", (unsigned)vr,
                 x.causality, x.variability);
-        if (x.has_start)
-            fprintf(f, " start=\"%s\"", real(b1, x.start));
-        if (x.unit) {
-            fputs(" unit=\"", f);
-            xml_text(f, x.unit);
-            fputc('"', f);
-        }
+        start_unit(f, &x);
         fputs("/>\n", f);
     }
     fputs("  </ModelVariables>\n  <ModelStructure>\n", f);
@@ -328,6 +355,64 @@ static int model_description(ex *e)
     for (uint32_t vr = 1; vr <= sc->nrecs + fmu_cs_nexp(sc); vr++)
         fprintf(f, "    <InitialUnknown valueReference=\"%u\"/>\n", (unsigned)vr);
     fputs("  </ModelStructure>\n</fmiModelDescription>\n", f);
+}
+
+/* FMI 2.0: variables are ScalarVariable elements in value-reference order, so variable
+   vr is ModelStructure's index vr + 1; the outputs (calculated) are also the initial
+   unknowns; the sources are listed in <SourceFiles> and, with their include directories,
+   in sources/buildDescription.xml (which FMI 2.0.4 lets take precedence) */
+static void md2(ex *e, FILE *f)
+{
+    const rt_scene *sc = e->sc;
+    uint32_t nout = sc->nrecs + fmu_cs_nexp(sc);
+    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiModelDescription "
+               "fmiVersion=\"2.0\" modelName=\"%s\" guid=\"%s\" description=\"", sc->name, e->token);
+    xml_text(f, sc->doc ? sc->doc : "");
+    fprintf(f, "\" generationTool=\"modrt scenec --fmu\" variableNamingConvention=\"flat\" "
+               "numberOfEventIndicators=\"0\">\n  <CoSimulation modelIdentifier=\"%s\" "
+               "canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"false\" "
+               "maxOutputDerivativeOrder=\"0\" canGetAndSetFMUstate=\"true\" "
+               "canSerializeFMUstate=\"true\" canNotUseMemoryManagementFunctions=\"false\" "
+               "providesDirectionalDerivative=\"false\">\n    <SourceFiles>\n", sc->name);
+    for (int i = 0; i < e->nsrcs; i++)
+        fprintf(f, "      <File name=\"%s\"/>\n", e->srcs[i]);
+    fputs("    </SourceFiles>\n  </CoSimulation>\n", f);
+    unit_definitions(e, f);
+    fputs("  <LogCategories>\n    <Category name=\"logStatusWarning\" description=\"a step the "
+          "runtime doubts\"/>\n    <Category name=\"logStatusError\" description=\"a call "
+          "refused or a step failed\"/>\n  </LogCategories>\n", f);
+    default_experiment(e, f);
+    fputs("  <ModelVariables>\n", f);
+    for (uint32_t vr = 0; vr < fmu_cs_count(sc); vr++) {
+        xvar x = describe(e->c, sc, vr);
+        fputs("    <ScalarVariable name=\"", f);
+        xml_text(f, x.name);
+        fprintf(f, "\" valueReference=\"%u\" causality=\"%s\" variability=\"%s\">\n      <Real",
+                (unsigned)vr, x.causality, x.variability);
+        start_unit(f, &x);
+        fputs("/>\n    </ScalarVariable>\n", f);
+    }
+    fputs("  </ModelVariables>\n  <ModelStructure>\n", f);
+    for (int list = 0; list < 2 && nout > 0; list++) {
+        fprintf(f, "    <%s>\n", list ? "InitialUnknowns" : "Outputs");
+        for (uint32_t vr = 1; vr <= nout; vr++)
+            fprintf(f, "      <Unknown index=\"%u\"/>\n", (unsigned)vr + 1);
+        fprintf(f, "    </%s>\n", list ? "InitialUnknowns" : "Outputs");
+    }
+    fputs("  </ModelStructure>\n</fmiModelDescription>\n", f);
+}
+
+static int model_description(ex *e)
+{
+    char p[4300];
+    snprintf(p, sizeof p, "%s/modelDescription.xml", e->dir);
+    FILE *f = fopen(p, "w");
+    if (!f)
+        return fail(e, "cannot write %s", p);
+    if (e->version == 2)
+        md2(e, f);
+    else
+        md3(e, f);
     return fclose(f) == 0 ? 0 : fail(e, "cannot write %s", p);
 }
 
@@ -390,9 +475,11 @@ static int rm_one(const char *p, const struct stat *sb, int flag, struct FTW *ft
     return remove(p);
 }
 
-int fmu_export(scn_ctx *c, const char *out, char *err, size_t errlen)
+int fmu_export(scn_ctx *c, const char *out, int version, char *err, size_t errlen)
 {
-    ex e = {.c = c, .sc = &c->image, .err = err, .errlen = errlen};
+    ex e = {.c = c, .sc = &c->image, .version = version, .err = err, .errlen = errlen};
+    if (version != 2 && version != 3)
+        return fail(&e, "FMI version %d: 2 or 3", version);
     const char *t = getenv("TMPDIR");
     snprintf(e.dir, sizeof e.dir, "%s/modrt-fmu-XXXXXX", t && *t ? t : "/tmp");
     if (!mkdtemp(e.dir))

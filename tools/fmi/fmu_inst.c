@@ -15,7 +15,8 @@
  * counts with the block (nan) and never integrates; the first fault's call, status, time
  * and logged message are kept for the summary. After Error or Fatal the instance is dead:
  * no further call reaches it (FMI allows none but freeing, and not even that after Fatal). */
-#define _POSIX_C_SOURCE 200809L
+#define _POSIX_C_SOURCE 200809L /* (built for the host, and with FMU_TARGET for an image:
+                                   the scene's C then defines the instances, fmu_emit.c) */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -24,8 +25,12 @@
 
 #include "fmu_int.h"
 
+#ifndef FMU_TARGET
 fmu_inst *fmu_instances[FMU_MAX_INSTANCES];
 int fmu_ninstances;
+#else /* an image has no fmu_md.c (no expat) */
+#define fmu_md_variability_name(v) ((v) == FMU_V_FIXED ? "fixed" : "constant")
+#endif
 
 /* a root value exactly 0 belongs to FMI's z <= 0 side: the runtime counts a crossing only
    from a strictly signed value, so 0 is shown just below it */
@@ -230,7 +235,7 @@ static int set_params(fmu_inst *in, const real_t *p, double t)
 
 /* ------------------------------------------------------------------ the kind's services */
 
-static void output(const rt_args *a, real_t *y)
+void fmu_output(const rt_args *a, real_t *y)
 {
     fmu_inst *in = (fmu_inst *)a->spec;
     const fmu_model *m = in->m;
@@ -246,7 +251,7 @@ static void output(const rt_args *a, real_t *y)
         y[i] = (real_t)in->buf[i];
 }
 
-static void deriv(const rt_args *a, real_t *xdot)
+void fmu_deriv(const rt_args *a, real_t *xdot)
 {
     fmu_inst *in = (fmu_inst *)a->spec;
     const fmu_model *m = in->m;
@@ -265,7 +270,7 @@ static void deriv(const rt_args *a, real_t *xdot)
 }
 
 /* the event indicators, then the time-event root t - t_next */
-static void roots(const rt_args *a, real_t *r)
+void fmu_roots(const rt_args *a, real_t *r)
 {
     fmu_inst *in = (fmu_inst *)a->spec;
     const fmu_model *m = in->m;
@@ -282,7 +287,7 @@ static void roots(const rt_args *a, real_t *r)
 }
 
 /* FMI's event mode at the located time; roots crossing together share one */
-static void event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
+void fmu_event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
 {
     fmu_inst *in = (fmu_inst *)a->spec;
     const fmu_model *m = in->m;
@@ -346,13 +351,17 @@ static int start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given
 }
 
 /* the runtime's init: a run starts from a fresh instance with these parameters */
-static rt_status kind_check(const real_t *p, const void *spec)
+rt_status fmu_check(const real_t *p, const void *spec)
 {
     fmu_inst *in = (fmu_inst *)spec;
     const fmu_model *m = in->m;
     int same = in->fresh && in->mode == FMU_M_CT;
     for (uint32_t i = 0; same && i < m->np; i++)
         same = in->p[i] == (double)p[i];
+#ifdef FMU_TARGET /* an image: the first rt_init instantiates, with the scene's values */
+    if (!in->c)
+        return m->ops->instantiate(in) || start(in, p, NULL, NULL) ? RT_E_PARAM : RT_OK;
+#endif
     if (same || !in->c) /* (not yet instantiated: the scene compiler's own check) */
         return RT_OK;
     if (in->mode == FMU_M_DEAD)
@@ -363,6 +372,7 @@ static rt_status kind_check(const real_t *p, const void *spec)
     return start(in, p, NULL, NULL) ? RT_E_PARAM : RT_OK;
 }
 
+#ifndef FMU_TARGET /* the host's: instances made and started by the scene's loader */
 int fmu_inst_start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given,
                    char *err, size_t errlen)
 {
@@ -451,10 +461,10 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
     k->p_names = m->p_names, k->p_default = m->p_def, k->x_default = m->x_def;
     k->feed = m->feed_class, k->feed_table = m->feed_class == RT_FEED_TABLE ? m->feed : NULL;
     k->root_dir = in->root_dir;
-    k->check = kind_check;
-    k->output = m->ny ? output : NULL;
-    k->deriv = k->type == RT_KIND_NSS ? deriv : NULL;
-    k->roots = roots, k->event = event;
+    k->check = fmu_check;
+    k->output = m->ny ? fmu_output : NULL;
+    k->deriv = k->type == RT_KIND_NSS ? fmu_deriv : NULL;
+    k->roots = fmu_roots, k->event = fmu_event;
     k->spec = in;
     k->doc = m->md.model_name;
     k->units = m->units;
@@ -470,3 +480,4 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
 }
 
 const rt_kind *fmu_inst_kind(const fmu_inst *in) { return &in->kind; }
+#endif /* FMU_TARGET */

@@ -93,6 +93,7 @@ struct fmu_inst {
     fmu_model *m;
     char *block;                /* the block's name: the instance name */
     void *c;                    /* fmi2Component or fmi3Instance */
+    fmi2CallbackFunctions cb2;  /* FMI 2.0: the callbacks the FMU keeps a pointer to */
     rt_kind kind;               /* this block's kind; spec points here */
     int8_t *root_dir;
     uint8_t mode;               /* fmu_mode */
@@ -117,6 +118,28 @@ struct fmu_inst {
     char fault[FMU_ERR_LEN];    /* the first fault: call, status, logged message */
     char log[FMU_ERR_LEN];      /* the message the FMU logged last */
 };
+
+/* fmu_inst.c: the services of an FMU block's kind (rt_kind.spec is its fmu_inst) */
+void fmu_output(const rt_args *a, real_t *y);
+void fmu_deriv(const rt_args *a, real_t *xdot);
+void fmu_roots(const rt_args *a, real_t *r);
+void fmu_event(const rt_args *a, uint16_t which, real_t *x, real_t *d);
+rt_status fmu_check(const real_t *p, const void *spec);
+
+/* fmu_arena.c: the memory an FMU in an image gets (FMI 2.0 allocateMemory, FMI 3.0's
+   calloc compiled as fmu_arena_calloc): FMU_ARENA_BYTES, used only while instantiating */
+void *fmu_arena_calloc(size_t n, size_t size);
+void *fmu_arena_malloc(size_t size);
+void fmu_arena_free(void *p);
+size_t fmu_arena_used(void);    /* bytes handed out so far */
+
+/* fmu_build.c: the sources, definitions and include directories of a source FMU's build
+   (relative to its sources/), written to f as words; 0, or -1 with a message in err */
+int fmu_source_words(const fmu_model *m, FILE *f, char *err, size_t errlen);
+
+/* fmu_emit.c: the C of FMU block `in` for a per-scene image (its model, instance and kind
+   as static tables, fmu_<block>_kind); 0, or -1 with a message in err */
+int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen);
 
 /* fmu_model.c: the scene-language name of an FMI name (every character outside
    [A-Za-z0-9_] becomes '_'; a leading digit gets a '_'); malloc'd */

@@ -388,6 +388,26 @@ static int used_define(const scn_scene *s, uint16_t d)
     return 0;
 }
 
+/* FMU blocks: each its own kind, model and instance, written by the FMU loader
+   (tools/fmi/fmu_emit.c); an FMU without sources stops the compilation */
+static void fmu_kinds(FILE *f, scn_ctx *c)
+{
+    const scn_scene *s = &c->sc;
+    int any = 0;
+    for (uint16_t b = 0; b < s->nblk && !c->err; b++) {
+        const scn_block *bl = &s->blk[b];
+        char err[SCN_MSG_LEN];
+        if (!bl->fmu)
+            continue;
+        if (!any++)
+            fputs("\n/* the FMU blocks: the FMI calls of the host's loader, bound statically "
+                  "(docs/fmi.md) */\n#include \"fmu_int.h\"\n", f);
+        if (c->fmu->emit(f, bl->kind, err, sizeof err) != 0)
+            scn_fail(c, bl->type.pos, bl->type.s, scn_fmt(c, "FMU of %s: %s", bl->name.s, err),
+                     "a source FMU (sources/) for a per-scene image");
+    }
+}
+
 static void header(FILE *f, scn_ctx *c)
 {
     const scn_scene *s = &c->sc;
@@ -408,12 +428,13 @@ static void header(FILE *f, scn_ctx *c)
         int first = 1;
         for (uint16_t e = 0; e < b; e++)
             first &= s->blk[e].kind != s->blk[b].kind;
-        if (first && s->blk[b].def < 0)
+        if (first && s->blk[b].def < 0 && !s->blk[b].fmu)
             fprintf(f, "extern const rt_kind mdl_%s_kind;\n", s->blk[b].type.s);
     }
     for (uint16_t d = 0; d < s->ndef; d++)
         if (used_define(s, d))
             define_kind(f, c, s->def[d]);
+    fmu_kinds(f, c);
 }
 
 static void block_values(FILE *f, const scn_block *b)
@@ -441,7 +462,10 @@ static void blocks(FILE *f, const scn_scene *s)
         const scn_block *b = &s->blk[i];
         const char *n = b->name.s;
         fprintf(f, "    [B_%s] = {.name = \"%s\", .kind = &", n, n);
-        fprintf(f, b->def >= 0 ? "d_%s_kind" : "mdl_%s_kind", b->type.s);
+        if (b->fmu)
+            fprintf(f, "fmu_%s_kind", n);
+        else
+            fprintf(f, b->def >= 0 ? "d_%s_kind" : "mdl_%s_kind", b->type.s);
         if (b->p_given)
             fprintf(f, ", .p = b_%s_p", n);
         if (b->x_given)
@@ -680,6 +704,8 @@ int scn_emit(scn_ctx *c, FILE *f)
     if (c->err)
         return -1;
     header(f, c);
+    if (c->err)
+        return -1;
     blocks(f, &c->sc);
     wiring(f, &c->sc);
     sets(f, &c->sc);

@@ -1,6 +1,7 @@
 /* scenec.c - the scene compiler's command line: compiles a scene file to C const tables,
  * checks it, runs it in host memory (the interpreter `modrt run FILE.scn` uses), writes
- * it as an FMI 3.0 Co-Simulation FMU, or writes the registry of several scenes. Errors go to stderr as one line
+ * it as an FMI 3.0 or 2.0 Co-Simulation FMU, or writes the registry of several scenes.
+ * Errors go to stderr as one line
  * "FILE:LINE:COL: error: WHAT near 'TEXT'; expected WHAT", exit status 1; usage errors
  * exit with 2. Output files are written whole or not at all. */
 #define _POSIX_C_SOURCE 200809L
@@ -9,6 +10,7 @@
 #include <string.h>
 
 #include "fmu_export.h"
+#include "fmu_scn.h"
 #include "scn.h"
 #include "scn_host.h"
 #include "rt_sim.h"
@@ -19,6 +21,7 @@ typedef struct opts {
     const char *out, *deps, *symbol;
     const char *inc[8];
     int ninc;
+    int fmi_version;            /* --fmu: 3, or 2 with --fmi-version 2 */
     int mode;                   /* 'c' compile, 'k' check, 'r' run, 'g' registry */
     const char *in[MAX_INPUTS];
     int nin;
@@ -31,8 +34,10 @@ static int usage(void)
           "       scenec --run [-I DIR]... FILE.scn                   run in host memory\n"
           "       scenec --sizes [-I DIR]... FILE.scn                 the exact limits of a\n"
           "                                                           per-scene build (-D flags)\n"
-          "       scenec --fmu OUT.fmu [-I DIR]... FILE.scn           an FMI 3.0 Co-Simulation\n"
-          "                                                           FMU (docs/fmi.md)\n"
+          "       scenec --fmu OUT.fmu [--fmi-version 2|3] [-I DIR]... FILE.scn\n"
+          "                                                           an FMI 3.0 (default) or\n"
+          "                                                           2.0 Co-Simulation FMU\n"
+          "                                                           (docs/fmi.md)\n"
           "       scenec --registry [--symbol NAME] -o OUT.c FILE.scn...\n",
           stderr);
     return 2;
@@ -40,7 +45,7 @@ static int usage(void)
 
 static int parse_args(int argc, char **argv, opts *o)
 {
-    o->mode = 'c', o->symbol = "mdl_scenes";
+    o->mode = 'c', o->symbol = "mdl_scenes", o->fmi_version = 3;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int more = i + 1 < argc;
@@ -50,6 +55,9 @@ static int parse_args(int argc, char **argv, opts *o)
             o->mode = 's';
         else if (!strcmp(a, "--fmu") && more)
             o->mode = 'f', o->out = argv[++i];
+        else if (!strcmp(a, "--fmi-version") && more &&
+                 (!strcmp(argv[i + 1], "2") || !strcmp(argv[i + 1], "3")))
+            o->fmi_version = argv[++i][0] - '0';
         else if (!strcmp(a, "-o") && more)
             o->out = argv[++i];
         else if (!strcmp(a, "-M") && more)
@@ -77,6 +85,9 @@ static scn_ctx *compile(const opts *o, const char *path)
     }
     for (int i = 0; i < o->ninc; i++)
         c->incdirs[c->nincdirs++] = o->inc[i];
+    /* FMU systems: loaded on the host; their C for an image needs their sources. An
+       exported FMU or a registry holds library kinds and defines only */
+    c->fmu = o->mode == 'f' || o->mode == 'g' ? NULL : &fmu_scn_ops;
     if (scn_compile(c, path, NULL, 0) == 0)
         return c;
     fprintf(stderr, "%s\n", c->msg);
@@ -135,10 +146,16 @@ static int cmd_compile(const opts *o)
         rc = scn_emit(c, stdout) != 0;
     } else if (o->mode == 'c') {
         FILE *f = open_out(o->out, tmp, sizeof tmp);
-        rc = !f || commit(f, scn_emit(c, f) == 0, tmp, o->out);
+        int ok = f && scn_emit(c, f) == 0;
+        if (f && !ok && c->err) /* what stopped the C (an FMU without sources): not written */
+            fprintf(stderr, "%s\n", c->msg), fclose(f), remove(tmp), rc = 1;
+        else
+            rc = !f || commit(f, ok, tmp, o->out);
         if (!rc && o->deps)
             rc = write_deps(c, o->deps, o->out);
     }
+    if (rc && c->err && !o->out)
+        fprintf(stderr, "%s\n", c->msg);
     scn_free(c);
     return rc;
 }
@@ -167,14 +184,14 @@ static int cmd_run(const opts *o)
     return rc;
 }
 
-/* the scene as an FMI 3.0 Co-Simulation FMU (tools/fmi/fmu_export.c) */
+/* the scene as an FMI 3.0 or 2.0 Co-Simulation FMU (tools/fmi/fmu_export.c) */
 static int cmd_fmu(const opts *o)
 {
     char err[SCN_MSG_LEN];
     scn_ctx *c = compile(o, o->in[0]);
     if (!c)
         return 1;
-    int rc = fmu_export(c, o->out, err, sizeof err);
+    int rc = fmu_export(c, o->out, o->fmi_version, err, sizeof err);
     if (rc)
         fprintf(stderr, "scenec: %s: %s\n", o->out, err);
     scn_free(c);

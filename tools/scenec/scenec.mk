@@ -44,7 +44,7 @@ $(O)/obj/tests/scenec/%.o: CINC += -I$(SCN_DIR)
 ifeq ($(O),build/host)
 $(SCENEC): $(call obj,$(SCN_DIR)/scenec.c tools/fmi/fmu_export.c) $(SCN_LIB_OBJS) $(RT_OBJS) \
            $(SCN_MODEL_OBJS)
-	$(CC) $(LDSAN) $^ -lzip -o $@
+	$(CC) $(LDSAN) $^ $(FMI_LIBS) -o $@
 else
 # other builds (REAL=float, SAN=1, FAULT=1) use the double compiler of build/host
 $(SCENEC): scenec-always

@@ -371,7 +371,7 @@ typedef struct scn_lexer {
 typedef struct scn_chunk scn_chunk;
 
 /* FMU systems (`load system (P) of type (fmu) from file ("p.fmu");`, docs/fmi.md): the
-   host's loader (tools/fmi/fmu_scn.c), named by the tools that read FMUs (modrt) */
+   host's loader (tools/fmi/fmu_scn.c), named by the tools that read FMUs (modrt, scenec) */
 typedef struct scn_fmu_ops {
     /* the kind of FMU block `block` read from the file at path: its own kind, its services
        driving an instance of its own. NULL with a one-line message in err */
@@ -380,6 +380,9 @@ typedef struct scn_fmu_ops {
        initial state x0[i]; writes the states it starts from into x0. 0, or -1 with err */
     int (*start)(const rt_kind *k, const real_t *p, real_t *x0, const uint8_t *given,
                  char *err, size_t n);
+    /* writes the C of the started FMU block of kind k for an image (fmu_<block>_kind);
+       0, or -1 with err (an FMU without sources) */
+    int (*emit)(FILE *f, const rt_kind *k, char *err, size_t n);
 } scn_fmu_ops;
 
 typedef struct scn_ctx {

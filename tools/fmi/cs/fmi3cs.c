@@ -1,86 +1,50 @@
-/* fmi3cs.c - a scene as an FMI 3.0 Co-Simulation FMU (docs/fmi.md, "Export"): the FMI
+/* fmi3cs.c - a scene as an FMI 3.0 Co-Simulation FMU (docs/fmi.md, "Export"): the FMI 3.0
  * functions over one compiled scene (FMU_CS_SCENE, its generated C linked beside the
- * runtime) and one rt_sim per instance. fmi3DoStep runs whole base ticks, recording each
- * as `modrt run` does (so the scene's trace hash is the same); a communication point or
- * step that is not on the tick grid is refused with fmi3Error and a logged reason. The
- * FMU state is the runtime's snapshot (rt_snapshot / rt_restore) with the held inputs.
- * Variables: fmu_cs_vars.h. Functions of interfaces the FMU does not have return
- * fmi3Error with a logged reason, as the standard asks of an FMU that exports them all. */
-#include <math.h>
-#include <stdarg.h>
+ * runtime; fmu_cs_id.h names it) and one co-simulation slave per instance (cs_slave.c,
+ * which steps, serves the values and saves the state; this file binds it to FMI 3.0 and
+ * logs its reasons). Functions of interfaces the FMU does not have return fmi3Error with a
+ * logged reason, as the standard asks of an FMU that exports them all. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cs_slave.h"
 #include "fmi_api.h"
-#include "fmu_cs_vars.h"
-#include "rt.h"
-#include "rt_sim.h"
+#include "fmu_cs_id.h"
 
 #define EXPORT __attribute__((visibility("default")))
-#define CS_MAGIC "modrt-cs-state-1" /* serialized FMU states begin with it */
-#define CS_MSG 256                  /* characters of a logged message */
 
 extern const rt_scene FMU_CS_SCENE;
 
-typedef enum { CS_INSTANTIATED, CS_INIT, CS_STEP, CS_TERMINATED } cs_mode;
-
 typedef struct cs_inst {
-    rt_sim sim;
-    const rt_scene *sc;
+    cs_slave *s;
     fmi3InstanceEnvironment env;
     fmi3LogMessageCallback log;
-    cs_mode mode;
-    uint32_t nvars;
-    real_t *u;              /* the imports, as last set (applied at each step) */
 } cs_inst;
 
-/* a saved FMU state: the runtime's state and the held inputs */
-typedef struct cs_state {
-    char magic[16];
-    uint32_t nimp;
-    rt_state st;
-    real_t u[];
-} cs_state;
-
-__attribute__((format(printf, 3, 4)))
-static void say(cs_inst *in, fmi3Status s, const char *fmt, ...)
+static void say(const cs_inst *in, fmi3Status st, const char *msg)
 {
-    char msg[CS_MSG];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
     if (in && in->log)
-        in->log(in->env, s, s >= fmi3Error ? "logStatusError" : "logStatusWarning", msg);
+        in->log(in->env, st, st >= fmi3Error ? "logStatusError" : "logStatusWarning", msg);
 }
 
-static fmi3Status refuse(cs_inst *in, const char *what)
+/* a slave's status, its reason logged */
+static fmi3Status done(const cs_inst *in, int st)
 {
-    say(in, fmi3Error, "%s: not supported by a modrt Co-Simulation FMU", what);
+    if (st != CS_OK)
+        say(in, (fmi3Status)st, in->s->msg);
+    return (fmi3Status)st;
+}
+
+static fmi3Status refuse(const cs_inst *in, const char *what)
+{
+    char msg[CS_MSG];
+    snprintf(msg, sizeof msg, "%s: not supported by a modrt Co-Simulation FMU", what);
+    say(in, fmi3Error, msg);
     return fmi3Error;
 }
 
-static size_t state_size(const cs_inst *in)
-{
-    return sizeof(cs_state) + fmu_cs_nimp(in->sc) * sizeof(real_t);
-}
-
 /* ------------------------------------------------------------------ life */
-
-static int setup(cs_inst *in)
-{
-    const rt_scene *sc = in->sc;
-    rt_status st = rt_init(sc, &in->sim);
-    if (st != RT_OK) {
-        say(in, fmi3Error, "the runtime rejects the scene: %s", rt_error_text(&in->sim));
-        return -1;
-    }
-    for (uint32_t i = 0; i < fmu_cs_nimp(sc); i++)
-        in->u[i] = sc->link->def[i];
-    in->mode = CS_INSTANTIATED;
-    return 0;
-}
 
 EXPORT const char *fmi3GetVersion(void) { return "3.0"; }
 
@@ -102,9 +66,11 @@ EXPORT fmi3Instance fmi3InstantiateCoSimulation(
     (void)earlyReturnAllowed, (void)requiredIntermediateVariables;
     (void)nRequiredIntermediateVariables, (void)intermediateUpdate;
     cs_inst tmp = {.env = instanceEnvironment, .log = logMessage};
+    char msg[CS_MSG];
     if (!instantiationToken || strcmp(instantiationToken, FMU_CS_TOKEN) != 0) {
-        say(&tmp, fmi3Error, "instantiationToken %s is not this FMU's",
-            instantiationToken ? instantiationToken : "(null)");
+        snprintf(msg, sizeof msg, "instantiationToken %s is not this FMU's",
+                 instantiationToken ? instantiationToken : "(null)");
+        say(&tmp, fmi3Error, msg);
         return NULL;
     }
     if (eventModeUsed) {
@@ -112,14 +78,15 @@ EXPORT fmi3Instance fmi3InstantiateCoSimulation(
         return NULL;
     }
     cs_inst *in = calloc(1, sizeof *in);
-    const rt_scene *sc = &FMU_CS_SCENE;
-    if (!in)
+    cs_slave *s = calloc(1, cs_size(&FMU_CS_SCENE));
+    if (!in || !s) {
+        say(&tmp, fmi3Error, "out of memory");
+        free(in), free(s);
         return NULL;
-    in->sc = sc, in->env = instanceEnvironment, in->log = logMessage;
-    in->nvars = fmu_cs_count(sc);
-    in->u = calloc(fmu_cs_nimp(sc) + 1, sizeof *in->u);
-    if (!in->u || setup(in) != 0) {
-        free(in->u), free(in);
+    }
+    *in = tmp, in->s = s;
+    if (done(in, cs_setup(s, &FMU_CS_SCENE)) != fmi3OK) {
+        free(in), free(s);
         return NULL;
     }
     return in;
@@ -128,9 +95,8 @@ EXPORT fmi3Instance fmi3InstantiateCoSimulation(
 EXPORT void fmi3FreeInstance(fmi3Instance instance)
 {
     cs_inst *in = instance;
-    if (!in)
-        return;
-    free(in->u), free(in);
+    if (in)
+        free(in->s), free(in);
 }
 
 EXPORT fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean toleranceDefined,
@@ -139,124 +105,54 @@ EXPORT fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean
 {
     cs_inst *in = instance;
     (void)toleranceDefined, (void)tolerance;
-    if (in->mode != CS_INSTANTIATED)
-        return refuse(in, "fmi3EnterInitializationMode outside the instantiated state");
-    if (startTime != 0) {
-        say(in, fmi3Error, "startTime %g: the scene starts at 0", startTime);
-        return fmi3Error;
-    }
-    if (stopTimeDefined && stopTime > (double)in->sc->t_end * (1 + 1e-12)) {
-        say(in, fmi3Error, "stopTime %g is past the scene's end time", stopTime);
-        return fmi3Error;
-    }
-    in->mode = CS_INIT;
-    return fmi3OK;
+    return done(in, cs_enter_init(in->s, startTime, stopTimeDefined, stopTime));
 }
 
 EXPORT fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 {
     cs_inst *in = instance;
-    if (in->mode != CS_INIT)
-        return refuse(in, "fmi3ExitInitializationMode outside initialization mode");
-    rt_link_apply(in->sc, &in->sim, in->u);
-    rt_refresh(in->sc, &in->sim);
-    rt_record(in->sc, &in->sim, NULL); /* the trace's row at t = 0, as modrt run's */
-    in->mode = CS_STEP;
-    return fmi3OK;
+    return done(in, cs_exit_init(in->s));
 }
 
 EXPORT fmi3Status fmi3Terminate(fmi3Instance instance)
 {
-    ((cs_inst *)instance)->mode = CS_TERMINATED;
+    ((cs_inst *)instance)->s->mode = CS_TERMINATED;
     return fmi3OK;
 }
 
 EXPORT fmi3Status fmi3Reset(fmi3Instance instance)
 {
-    return setup(instance) == 0 ? fmi3OK : fmi3Error;
+    cs_inst *in = instance;
+    return done(in, cs_setup(in->s, in->s->sc));
 }
 
 /* ------------------------------------------------------------------ values */
 
-static fmi3Status get_one(cs_inst *in, fmi3ValueReference vr, fmi3Float64 *v)
-{
-    const rt_scene *sc = in->sc;
-    if (vr >= in->nvars) {
-        say(in, fmi3Error, "value reference %u does not exist", (unsigned)vr);
-        return fmi3Error;
-    }
-    fmu_cs_var x = fmu_cs_at(sc, vr);
-    switch (x.kind) {
-    case FMU_CS_TIME: *v = (double)rt_time(sc, &in->sim); break;
-    case FMU_CS_REC: *v = (double)rt_rec_value(sc, &in->sim, x.a); break;
-    case FMU_CS_EXP: *v = (double)rt_link_export(sc, &in->sim, x.a); break;
-    case FMU_CS_IMP: *v = (double)in->u[x.a]; break;
-    default:
-        *v = (double)in->sim.state.p[in->sim.plan.p_off[x.a] + x.b];
-    }
-    return fmi3OK;
-}
-
-static fmi3Status set_one(cs_inst *in, fmi3ValueReference vr, fmi3Float64 v)
-{
-    const rt_scene *sc = in->sc;
-    fmu_cs_var x = vr < in->nvars ? fmu_cs_at(sc, vr) : (fmu_cs_var){FMU_CS_TIME, 0, 0};
-    if (x.kind == FMU_CS_IMP) {
-        in->u[x.a] = (real_t)v;
-        return fmi3OK;
-    }
-    if (x.kind != FMU_CS_PAR) {
-        say(in, fmi3Error, "value reference %u is not an input or a parameter", (unsigned)vr);
-        return fmi3Error;
-    }
-    const rt_block *b = &sc->blocks[x.a];
-    rt_status st = rt_set_param(sc, &in->sim, b->name, b->kind->p_names[x.b], (real_t)v);
-    if (st != RT_OK) {
-        say(in, fmi3Error, "parameter refused: %s (value %g)", rt_status_name(st), v);
-        return fmi3Error;
-    }
-    return fmi3OK;
-}
-
 EXPORT fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference vr[],
                                  size_t nvr, fmi3Float64 values[], size_t nValues)
 {
-    fmi3Status s = nvr == nValues ? fmi3OK : fmi3Error;
-    for (size_t i = 0; i < nvr && s == fmi3OK; i++)
-        s = get_one(instance, vr[i], &values[i]);
-    return s;
+    cs_inst *in = instance;
+    if (nvr != nValues)
+        return refuse(in, "fmi3GetFloat64 with nValues other than nValueReferences");
+    int st = CS_OK;
+    for (size_t i = 0; i < nvr && st == CS_OK; i++)
+        st = cs_get(in->s, vr[i], &values[i]);
+    return done(in, st);
 }
 
 EXPORT fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference vr[],
                                  size_t nvr, const fmi3Float64 values[], size_t nValues)
 {
     cs_inst *in = instance;
-    fmi3Status s = nvr == nValues ? fmi3OK : fmi3Error;
-    if (in->mode == CS_TERMINATED)
-        return refuse(in, "fmi3SetFloat64 after fmi3Terminate");
-    for (size_t i = 0; i < nvr && s == fmi3OK; i++)
-        s = set_one(in, vr[i], values[i]);
-    return s;
+    if (nvr != nValues)
+        return refuse(in, "fmi3SetFloat64 with nValues other than nValueReferences");
+    int st = CS_OK;
+    for (size_t i = 0; i < nvr && st == CS_OK; i++)
+        st = cs_set(in->s, vr[i], values[i]);
+    return done(in, st);
 }
 
 /* ------------------------------------------------------------------ stepping */
-
-/* t as a whole number of base ticks, or -1 */
-static int64_t ticks_of(const rt_scene *sc, double t)
-{
-    double n = floor(t / (double)sc->dt + 0.5);
-    double err = fabs(n * (double)sc->dt - t);
-    return n >= 0 && err <= 1e-9 * (fabs(t) > (double)sc->dt ? fabs(t) : (double)sc->dt)
-         ? (int64_t)n : -1;
-}
-
-static uint64_t faults(const rt_sim *sim)
-{
-    uint64_t n = 0;
-    for (int c = 0; c < RT_CNT_COUNT; c++)
-        n += c == RT_CNT_EVENTS ? 0 : sim->stats.count[c];
-    return n;
-}
 
 EXPORT fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
                              fmi3Float64 communicationStepSize,
@@ -265,42 +161,13 @@ EXPORT fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunica
                              fmi3Boolean *earlyReturn, fmi3Float64 *lastSuccessfulTime)
 {
     cs_inst *in = instance;
-    const rt_scene *sc = in->sc;
     (void)noSetFMUStatePriorToCurrentPoint;
-    *eventHandlingNeeded = 0, *terminateSimulation = 0, *earlyReturn = 0;
-    *lastSuccessfulTime = (double)rt_time(sc, &in->sim);
-    if (in->mode != CS_STEP)
-        return refuse(in, "fmi3DoStep outside step mode");
-    int64_t n = ticks_of(sc, communicationStepSize), at = ticks_of(sc, currentCommunicationPoint);
-    if (n < 1) {
-        say(in, fmi3Error, "communication step %.17g s is not a whole number of base ticks "
-            "(%.17g s)", communicationStepSize, (double)sc->dt);
-        return fmi3Error;
-    }
-    if (at != (int64_t)rt_ticks_done(&in->sim)) {
-        say(in, fmi3Error, "communication point %.17g s is not the FMU's time (%.17g s)",
-            currentCommunicationPoint, (double)rt_time(sc, &in->sim));
-        return fmi3Error;
-    }
-    if (rt_ticks_done(&in->sim) + (uint64_t)n > rt_tick_count(&in->sim)) {
-        say(in, fmi3Error, "the step ends past the scene's end time (%.17g s)",
-            (double)sc->t_end);
-        *terminateSimulation = 1;
-        return fmi3Error;
-    }
-    uint64_t before = faults(&in->sim);
-    rt_link_apply(sc, &in->sim, in->u);
-    for (int64_t k = 0; k < n; k++) {
-        rt_tick(sc, &in->sim);
-        rt_record(sc, &in->sim, NULL);
-    }
-    *lastSuccessfulTime = (double)rt_time(sc, &in->sim);
-    if (faults(&in->sim) == before)
-        return fmi3OK;
-    int sev = rt_status_severity(in->sim.stats.status);
-    say(in, sev >= 2 ? fmi3Error : fmi3Warning, "the runtime counted a fault: %s (t = %.17g s)",
-        rt_status_name(in->sim.stats.status), *lastSuccessfulTime);
-    return sev >= 2 ? fmi3Error : fmi3Warning;
+    int at_end = 0;
+    int st = cs_step(in->s, currentCommunicationPoint, communicationStepSize, &at_end);
+    *eventHandlingNeeded = 0, *earlyReturn = 0;
+    *terminateSimulation = st == CS_ERROR && at_end;
+    *lastSuccessfulTime = (double)rt_time(in->s->sc, &in->s->sim);
+    return done(in, st);
 }
 
 /* ------------------------------------------------------------------ FMU state */
@@ -308,13 +175,10 @@ EXPORT fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunica
 EXPORT fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
 {
     cs_inst *in = instance;
-    cs_state *s = *FMUState ? *FMUState : calloc(1, state_size(in));
+    void *s = *FMUState ? *FMUState : calloc(1, cs_state_size(in->s));
     if (!s)
-        return fmi3Error;
-    memcpy(s->magic, CS_MAGIC, sizeof s->magic);
-    s->nimp = fmu_cs_nimp(in->sc);
-    rt_snapshot(&in->sim, &s->st);
-    memcpy(s->u, in->u, s->nimp * sizeof *s->u);
+        return refuse(in, "fmi3GetFMUState: out of memory");
+    cs_state_save(in->s, s);
     *FMUState = s;
     return fmi3OK;
 }
@@ -322,13 +186,7 @@ EXPORT fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
 EXPORT fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
 {
     cs_inst *in = instance;
-    cs_state *s = FMUState;
-    if (!s || memcmp(s->magic, CS_MAGIC, sizeof s->magic) != 0 || s->nimp != fmu_cs_nimp(in->sc))
-        return refuse(in, "fmi3SetFMUState with a state of another FMU");
-    if (rt_restore(&in->sim, &s->st) != RT_OK)
-        return refuse(in, "fmi3SetFMUState: the runtime refuses the state");
-    memcpy(in->u, s->u, s->nimp * sizeof *s->u);
-    return fmi3OK;
+    return done(in, cs_state_load(in->s, FMUState, cs_state_size(in->s)));
 }
 
 EXPORT fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
@@ -343,15 +201,16 @@ EXPORT fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState
                                              size_t *size)
 {
     (void)FMUState;
-    *size = state_size(instance);
+    *size = cs_state_size(((cs_inst *)instance)->s);
     return fmi3OK;
 }
 
 EXPORT fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState,
                                         fmi3Byte serializedState[], size_t size)
 {
-    if (size != state_size(instance))
-        return refuse(instance, "fmi3SerializeFMUState with a buffer of the wrong size");
+    cs_inst *in = instance;
+    if (size != cs_state_size(in->s))
+        return refuse(in, "fmi3SerializeFMUState with a buffer of the wrong size");
     memcpy(serializedState, FMUState, size);
     return fmi3OK;
 }
@@ -360,12 +219,11 @@ EXPORT fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte 
                                           size_t size, fmi3FMUState *FMUState)
 {
     cs_inst *in = instance;
-    const cs_state *src = (const cs_state *)(const void *)serializedState;
-    if (size != state_size(in) || memcmp(src->magic, CS_MAGIC, sizeof src->magic) != 0)
-        return refuse(in, "fmi3DeserializeFMUState: not a state of this FMU");
-    cs_state *s = malloc(size);
-    if (!s)
+    if (done(in, cs_state_check(in->s, serializedState, size)) != fmi3OK)
         return fmi3Error;
+    void *s = malloc(size);
+    if (!s)
+        return refuse(in, "fmi3DeserializeFMUState: out of memory");
     memcpy(s, serializedState, size);
     *FMUState = s;
     return fmi3OK;

@@ -1,7 +1,7 @@
-/* fmu_cs_vars.h - the variables of a scene exported as an FMI 3.0 Co-Simulation FMU
+/* fmu_cs_vars.h - the variables of a scene exported as an FMI 3.0 or 2.0 Co-Simulation FMU
  * (docs/fmi.md, "Export"), in value-reference order. One enumeration for both sides: the
- * exporter writes modelDescription.xml from it (tools/scenec/export.c) and the FMU's own
- * code (fmi3cs.c) serves the values by it, so the two cannot number them differently.
+ * exporter writes modelDescription.xml from it (tools/fmi/fmu_export.c) and the FMU's own
+ * code (cs_slave.c) serves the values by it, so the two cannot number them differently.
  *
  *   vr 0                       time (independent)
  *   1 .. nrecs                 the recorded signals, in record order (outputs)
