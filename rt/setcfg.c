@@ -23,12 +23,19 @@ real_t rt_set_cfg_get(const rt_set_cfg *c, rt_cfg_id id)
     }
 }
 
+/* a count as its field holds it: NaN (an explicit 0) or a value outside 0..max, which its
+   field could not hold, is stored as 0, the default; the parsers refuse such counts first */
+static real_t count_of(real_t v, uint32_t max)
+{
+    return v >= 0 && v <= (real_t)max ? v : 0;
+}
+
 void rt_set_cfg_put(rt_set_cfg *c, rt_cfg_id id, real_t v)
 {
     switch (id) {
 #define RT_X_PUT(id, word, opt, field, kind, max, scope, dflt, help)                         \
     case id:                                                                                \
-        c->field = v;                                                                       \
+        c->field = (kind) == RT_CFG_REAL || (kind) == RT_CFG_PAIR ? v : count_of(v, max);   \
         break;
         RT_SET_CFG_LIST(RT_X_PUT)
 #undef RT_X_PUT
