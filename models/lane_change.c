@@ -102,10 +102,8 @@ static void drv_cc_output(const rt_args *a, real_t *y)
 static rt_status drv_check(const real_t *p, const void *spec)
 {
     (void)spec;
-    return rt_isfinite(p[D_X0]) && rt_isfinite(p[D_OFF]) && p[D_TP] > 0 &&
-                   p[D_LDMIN] > 0 && p[D_L] > 0 && p[D_DMAX] > 0 && p[D_B] > 0 &&
-                   rt_isfinite(p[D_TP]) && rt_isfinite(p[D_LDMIN]) && rt_isfinite(p[D_L]) &&
-                   rt_isfinite(p[D_DMAX]) && rt_isfinite(p[D_B])
+    return rt_all_finite(p, D_NP) && p[D_TP] > 0 && p[D_LDMIN] > 0 && p[D_L] > 0 &&
+                   p[D_DMAX] > 0 && p[D_B] > 0
                ? RT_OK
                : RT_E_PARAM;
 }
@@ -197,9 +195,7 @@ static void cone_output(const rt_args *a, real_t *y)
 static rt_status cone_check(const real_t *p, const void *spec)
 {
     (void)spec;
-    return rt_isfinite(p[C_X0]) && rt_isfinite(p[C_OFF]) && rt_isfinite(p[C_AHEAD]) &&
-                   p[C_LEN] > 0 && p[C_WID] > 0 && p[C_CAP] > 0 && rt_isfinite(p[C_LEN]) &&
-                   rt_isfinite(p[C_WID]) && rt_isfinite(p[C_CAP])
+    return rt_all_finite(p, C_NP) && p[C_LEN] > 0 && p[C_WID] > 0 && p[C_CAP] > 0
                ? RT_OK
                : RT_E_PARAM;
 }

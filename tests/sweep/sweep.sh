@@ -302,7 +302,13 @@ $M sweep plan "$T/rp.swp" --out "$T/rp2" > /dev/null 2> "$T/err"; rc=$?
 # does (its end marker names the tick), not on to the scene's end time (1e9 ticks here)
 cp "$D/../../models/scenes/pi_loop.scn" "$T/pi.scn"
 $M run "$T/pi.scn" --t-end 1e6 --record "$T/int.mrl" > "$T/live.txt" 2>&1 &
-pid=$!; sleep 1; kill -TERM $pid; wait $pid
+pid=$!
+# stopped once the log holds records (not after a fixed time: a loaded machine may not
+# have started the run), at most 60 s
+for _ in $(seq 600); do
+    [ "$(wc -c 2>/dev/null < "$T/int.mrl" || echo 0)" -gt 4096 ] && break; sleep 0.1
+done
+kill -TERM $pid; wait $pid
 printf '%s\n' 'replay ("int.mrl");' 'metric (y_end) final (Plant.y);' > "$T/int.swp"
 timeout 120 $M sweep run "$T/int.swp" --out "$T/int" -j 1 2> "$T/err"
 h_int=$(sed -n 's/^hash: //p' "$T/live.txt") n_int=$(sed -n 's/^ticks: //p' "$T/live.txt")
