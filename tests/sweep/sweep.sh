@@ -303,12 +303,12 @@ $M sweep plan "$T/rp.swp" --out "$T/rp2" > /dev/null 2> "$T/err"; rc=$?
 cp "$D/../../models/scenes/pi_loop.scn" "$T/pi.scn"
 $M run "$T/pi.scn" --t-end 1e6 --record "$T/int.mrl" > "$T/live.txt" 2>&1 &
 pid=$!
-# stopped once the log holds records (not after a fixed time: a loaded machine may not
-# have started the run), at most 60 s
+# stopped a second after the run has opened its log (not after a fixed time from the
+# start: a loaded machine may not have started the run), waiting at most 60 s for it
 for _ in $(seq 600); do
-    [ "$(wc -c 2>/dev/null < "$T/int.mrl" || echo 0)" -gt 4096 ] && break; sleep 0.1
+    [ -e "$T/int.mrl" ] && break; sleep 0.1
 done
-kill -TERM $pid; wait $pid
+sleep 1; kill -TERM $pid; wait $pid
 printf '%s\n' 'replay ("int.mrl");' 'metric (y_end) final (Plant.y);' > "$T/int.swp"
 timeout 120 $M sweep run "$T/int.swp" --out "$T/int" -j 1 2> "$T/err"
 h_int=$(sed -n 's/^hash: //p' "$T/live.txt") n_int=$(sed -n 's/^ticks: //p' "$T/live.txt")
