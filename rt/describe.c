@@ -203,6 +203,14 @@ void rt_sizes_of(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
     z->tev = 0;
     for (uint8_t s = 0; s < sc->nsets; s++)
         z->tev = (uint16_t)(z->tev + ((sim->plan.set_flags[s] & RTI_SET_TEV) != 0));
+    uint32_t ks = 0; /* the kinds' internal states as they report them now */
+    for (uint16_t b = 0; b < nb; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        uint32_t n = 0;
+        if (k->save && k->save(k->spec, (uint8_t *)0, 0, &n) == RT_OK)
+            ks += 4 + n;
+    }
+    z->kstate = (uint16_t)(ks < 65535u ? ks : 65535u);
     z->loop_hist = 0;
     if (sim->plan.ntorn > 0)
         z->loop_hist = (uint16_t)((sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX) + 1);

@@ -30,6 +30,7 @@
     X(RT_E_LOOP, 3, "algebraic loop that cannot be solved")                      \
     X(RT_E_PARAM, 3, "parameter out of range")                                   \
     X(RT_E_INCONSISTENT, 3, "initial state inconsistent: conflicting constraints, or off them by more than RT_INIT_TOL") \
+    X(RT_E_SNAPSHOT, 3, "a block's internal state cannot be saved or restored (rt_snapshot, rt_restore)") \
     X(RT_E_NAN, 2, "non-finite value")                                           \
     X(RT_E_NOCONV, 2, "algebraic loop iteration did not converge")               \
     X(RT_E_DEGRADED, 2, "step accepted with its residual above tolerance (degraded)") \
@@ -238,6 +239,15 @@ typedef struct rt_kind {
        instants must lie on the base tick grid (rt_init refuses the scene otherwise,
        rt/tev.c). NULL: none (the kind has no switch in time) */
     real_t (*next_event)(const rt_args *a);
+    /* Internal state the kind keeps outside x, d and p (an FMU's memory: its counters, its
+       discrete states, its pending time event), carried by snapshots (rt/snapshot.c).
+       save writes it into buf (at most cap bytes) and its size into *n; with buf NULL it
+       only reports the size it needs now (rt_sizes_of). Returns RT_OK, RT_E_CAPACITY
+       (more than cap) or RT_E_SNAPSHOT (the kind cannot save it). restore reads back the n
+       bytes a save wrote; RT_OK or RT_E_SNAPSHOT. Called between ticks only. NULL, both:
+       the kind keeps no such state (every library kind) */
+    rt_status (*save)(const void *spec, uint8_t *buf, uint32_t cap, uint32_t *n);
+    rt_status (*restore)(const void *spec, const uint8_t *buf, uint32_t n);
 } rt_kind;
 
 /* A reference text of a kind: kept on hosts, dropped from embedded images. */
@@ -742,11 +752,19 @@ int rt_bg_set(const rt_sim *sim);
 
 /* Snapshots (rt/snapshot.c): the state part of rt_sim is everything a run needs to continue; one copy
  * out and one copy in (the plan must be the same scene's: restore after rt_init of it).
+ * Blocks whose kind keeps internal state (rt_kind.save: an FMU's) add it, in block order,
+ * to rt_state.kstate (RT_MAX_KSTATE bytes). rt_snapshot returns RT_OK, RT_E_CAPACITY when
+ * those states exceed RT_MAX_KSTATE, or RT_E_SNAPSHOT when a kind cannot save its state
+ * (an FMU without canGetAndSetFMUState / canSerializeFMUState); such a snapshot is marked
+ * incomplete and rt_restore refuses it. rt_restore returns RT_E_SNAPSHOT, nothing changed,
+ * for a snapshot whose kinds' states do not fit this scene's blocks (incomplete, another
+ * scene's), and RT_E_SNAPSHOT after a kind failed to take its state back (the FMU counts
+ * it as a fault: the run is not to be trusted).
  * With a background context attached the step in flight lives in the context: rt_restore
  * then takes only a snapshot without one (bg_busy 0, e.g. right after a publication)
  * while none runs, and re-attaches the context from the restored state; else RT_E_ARG,
  * nothing changed. */
-void rt_snapshot(const rt_sim *sim, rt_state *out);
+rt_status rt_snapshot(const rt_sim *sim, rt_state *out);
 rt_status rt_restore(rt_sim *sim, const rt_state *in);
 
 /* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */

@@ -130,6 +130,14 @@ typedef double real_t;
 #define RT_MAX_HELD_Y RT_MAX_Y
 #endif
 
+#ifndef RT_MAX_KSTATE
+/* bytes of a snapshot (rt_state.kstate) for the internal state of blocks whose kind keeps
+   one outside x, d and p (rt_kind.save: an FMU's serialized FMU state), 4 bytes of size
+   per such block included (rt/snapshot.c). A per-scene build passes what its kinds report
+   after rt_init (0 without such kinds); rt_snapshot returns RT_E_CAPACITY beyond it */
+#define RT_MAX_KSTATE 16384
+#endif
+
 /* ---- state events (rt/step.c) ---- */
 #ifndef RT_MAX_EVENT_X
 /* states of the largest set with root functions: event location keeps the state at the
@@ -439,6 +447,7 @@ typedef double real_t;
     L(BG, bg, 1, "states and outputs of a background set")                                  \
     L(XPRED, xpred, 0, "inputs extrapolated from another set")                              \
     L(TEV, tev, 0, "sets with known time events")                                           \
+    L(KSTATE, kstate, 0, "bytes of the blocks' internal state in a snapshot")               \
     L(JOINTS, joints, 1, "joints")                                                          \
     L(MBS_Z, mbs_z, 1, "generalized velocities of a multibody set")                         \
     L(MBS_Q, mbs_q, 1, "generalized coordinates of a multibody set")                        \

@@ -164,6 +164,12 @@ struct rt_state {
                                         and a multi-tick set's renewal evaluates its
                                         outputs in full (rt/held.c) */
     uint8_t bg_busy;                 /* 1: a step is released and not yet published */
+#if RT_MAX_KSTATE > 0
+    /* the internal state of the blocks whose kind keeps one (rt_kind.save), written by
+       rt_snapshot only: per such block in block order its size (4 bytes, little-endian;
+       RTI_KSTATE_BAD: the save failed) and its bytes (rt/snapshot.c) */
+    uint8_t kstate[RT_MAX_KSTATE];
+#endif
     int8_t r_side[RT_MAX_ROOTS];     /* per root, the side (+1 above r_lvl, -1 below) a
                                         handler sent it back to (or stopped it on) and
                                         it must not leave without a located crossing;

@@ -414,6 +414,80 @@ static void test_rhs_lean_calls(void)
     TH_CHECK(lean == rhs && full == 2 * 50);
 }
 
+/* ---- snapshots of a kind with internal state (rt_kind.save / restore, rt/snapshot.c): its
+   output counts the calls it had, in memory outside x, d and p, as an FMU's event counter.
+   Four bytes, little-endian; `mode` 1 reports more than any snapshot holds, 2 cannot save */
+typedef struct { uint32_t calls; int mode; } count_mem;
+static count_mem cmem;
+static const char *const count_names[] = {"n"};
+static void count_out(const rt_args *a, real_t *y)
+{
+    count_mem *m = (count_mem *)(uintptr_t)a->spec;
+    y[0] = (real_t)++m->calls;
+}
+static rt_status count_save(const void *spec, uint8_t *buf, uint32_t cap, uint32_t *n)
+{
+    const count_mem *m = spec;
+    if (m->mode == 2)
+        return RT_E_SNAPSHOT;
+    *n = m->mode == 1 ? (uint32_t)RT_MAX_KSTATE : 4;
+    if (*n > cap)
+        return buf ? RT_E_CAPACITY : RT_OK;
+    for (int i = 0; buf && i < 4; i++)
+        buf[i] = (uint8_t)(m->calls >> (8 * i));
+    return RT_OK;
+}
+static rt_status count_restore(const void *spec, const uint8_t *buf, uint32_t n)
+{
+    count_mem *m = (count_mem *)(uintptr_t)spec;
+    if (n != 4)
+        return RT_E_SNAPSHOT;
+    m->calls = (uint32_t)buf[0] | (uint32_t)buf[1] << 8 | (uint32_t)buf[2] << 16 |
+               (uint32_t)buf[3] << 24;
+    return RT_OK;
+}
+static const rt_kind count_kind = {
+    .name = "count", .type = RT_KIND_OUTPUT, .ny = 1, .y_names = count_names,
+    .feed = RT_FEED_NONE, .output = count_out, .spec = &cmem, .save = count_save,
+    .restore = count_restore,
+};
+
+/* snapshot at tick 10, 10 ticks on, restore: the next ticks show the counts they showed
+   after the snapshot (11, 12, ...: one output call a tick), not the counter's later ones;
+   a state too large for RT_MAX_KSTATE or one the kind cannot save is a status, and such
+   a snapshot is refused by rt_restore with the run unchanged */
+static void test_snapshot_kind_state(void)
+{
+    static const rt_block bl[] = {{.name = "C", .kind = &count_kind}};
+    static const rt_set set[] = {{.name = "s", .method = &rt_rk4, .ratio = 1}};
+    static rt_state snap;
+    rt_scene sc = {.name = "count", .dt = (real_t)0.01, .t_end = 1, .blocks = bl, .nblocks = 1,
+                   .sets = set, .nsets = 1};
+    cmem.calls = 0, cmem.mode = 0;
+    if (!tu_init(&sc))
+        return;
+    while (rt_ticks_done(&tu_sim) < 10)
+        rt_tick(&sc, &tu_sim);
+    uint32_t at = cmem.calls;
+    TH_CHECK(rt_snapshot(&tu_sim, &snap) == (RT_MAX_KSTATE >= 8 ? RT_OK : RT_E_CAPACITY));
+    for (int i = 0; i < 10; i++)
+        rt_tick(&sc, &tu_sim);
+    TH_CHECK(cmem.calls == at + 10);
+    if (RT_MAX_KSTATE >= 8) {
+        TH_CHECK(rt_restore(&tu_sim, &snap) == RT_OK && rt_ticks_done(&tu_sim) == 10);
+        rt_tick(&sc, &tu_sim);
+        TH_CHECK(rt_output(&tu_sim, 0, 0) == (real_t)(at + 1) && cmem.calls == at + 1);
+    }
+    for (int mode = 1; mode <= 2; mode++) {
+        cmem.mode = mode;
+        uint64_t tick = rt_ticks_done(&tu_sim);
+        TH_CHECK(rt_snapshot(&tu_sim, &snap) == (mode == 1 ? RT_E_CAPACITY : RT_E_SNAPSHOT));
+        rt_tick(&sc, &tu_sim);
+        TH_CHECK(rt_restore(&tu_sim, &snap) == RT_E_SNAPSHOT && rt_ticks_done(&tu_sim) == tick + 1);
+    }
+    cmem.mode = 0;
+}
+
 const th_test th_sim_tests[] = {
     {"sim_reinit_replay", test_reinit_replay},
     {"sim_hash_determinism", test_hash_determinism},
@@ -426,5 +500,6 @@ const th_test th_sim_tests[] = {
     {"sim_held_outputs", test_held_outputs},
     {"sim_fast_reads_history", test_fast_reads_history},
     {"sim_rhs_lean_calls", test_rhs_lean_calls},
+    {"sim_snapshot_kind_state", test_snapshot_kind_state},
     {0, 0},
 };
