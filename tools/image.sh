@@ -72,7 +72,7 @@ cc=$(make -s "print-TARGET_CC_$target")
 fmuobjs= fmusrc=
 fmu_lines=$(sed -n 's#^// fmu-build: ##p' "$dir/$name.c")
 if [ -n "$fmu_lines" ]; then
-    fmusrc="tools/fmi/fmu_inst.c tools/fmi/fmu_call.c tools/fmi/fmu_arena.c tools/fmi/fmu_libc.c"
+    fmusrc="tools/fmi/fmu_inst.c tools/fmi/fmu_state.c tools/fmi/fmu_call.c tools/fmi/fmu_arena.c tools/fmi/fmu_libc.c"
     echo "$fmu_lines" > "$dir/$name.fmu"
     while read -r blk ver id src words; do
         defs="-DFMI${ver}_FUNCTION_PREFIX=${id}_"

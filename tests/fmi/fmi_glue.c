@@ -143,8 +143,84 @@ static int update(inst *in, int *again, int *x_changed, int *has_next, double *n
     return 0;
 }
 
+/* the FMU state (GetFMUstate ... DeSerializeFMUstate): the model's values and the mode,
+   copied; serialized as those bytes (the state of this build, read back by it alone) */
+typedef struct saved {
+    model_data d;
+    mode mode;
+} saved;
+
+static void save_to(const inst *in, saved *s) { s->d = in->d, s->mode = in->mode; }
+static void load_from(inst *in, const saved *s) { in->d = s->d, in->mode = s->mode; }
+
 /* ------------------------------------------------------------------ FMI 2.0 */
 #if FMI_VERSION == 2
+
+/* a state of its own: from the environment's memory, the one given reused */
+static fmi2Status state_alloc2(inst *in, fmi2FMUstate *s)
+{
+    if (!*s)
+        *s = in->cb->allocateMemory(1, sizeof(saved));
+    if (!*s) {
+        say(in, 3, "out of memory for an FMU state");
+        return fmi2Error;
+    }
+    return fmi2OK;
+}
+
+EXPORT fmi2Status F2(fmi2GetFMUstate)(fmi2Component c, fmi2FMUstate *s)
+{
+    if (state_alloc2(c, s) != fmi2OK)
+        return fmi2Error;
+    save_to(c, *s);
+    return fmi2OK;
+}
+
+EXPORT fmi2Status F2(fmi2SetFMUstate)(fmi2Component c, fmi2FMUstate s)
+{
+    if (!s)
+        return (fmi2Status)wrong_mode(c, "SetFMUstate without a state");
+    load_from(c, s);
+    return fmi2OK;
+}
+
+EXPORT fmi2Status F2(fmi2FreeFMUstate)(fmi2Component c, fmi2FMUstate *s)
+{
+    if (s && *s)
+        ((inst *)c)->cb->freeMemory(*s), *s = NULL;
+    return fmi2OK;
+}
+
+EXPORT fmi2Status F2(fmi2SerializedFMUstateSize)(fmi2Component c, fmi2FMUstate s, size_t *n)
+{
+    (void)c, (void)s;
+    *n = sizeof(saved);
+    return fmi2OK;
+}
+
+EXPORT fmi2Status F2(fmi2SerializeFMUstate)(fmi2Component c, fmi2FMUstate s, fmi2Byte b[],
+                                          size_t n)
+{
+    if (n != sizeof(saved)) {
+        say(c, 3, "SerializeFMUstate: wrong size");
+        return fmi2Error;
+    }
+    memcpy(b, s, n);
+    return fmi2OK;
+}
+
+EXPORT fmi2Status F2(fmi2DeSerializeFMUstate)(fmi2Component c, const fmi2Byte b[], size_t n,
+                                            fmi2FMUstate *s)
+{
+    if (n != sizeof(saved)) {
+        say(c, 3, "DeSerializeFMUstate: wrong size");
+        return fmi2Error;
+    }
+    if (state_alloc2(c, s) != fmi2OK)
+        return fmi2Error;
+    memcpy(*s, b, n);
+    return fmi2OK;
+}
 
 EXPORT const char *F2(fmi2GetTypesPlatform)(void) { return "default"; }
 EXPORT const char *F2(fmi2GetVersion)(void) { return "2.0"; }
@@ -474,6 +550,73 @@ EXPORT fmi3Status F3(fmi3GetEventIndicators)(fmi3Instance c, fmi3Float64 z[], si
     return fmi3OK;
 }
 #endif
+
+/* a state of its own: calloc (an image's arena), the one given reused */
+static fmi3Status state_alloc3(inst *in, fmi3FMUState *s)
+{
+    if (!*s)
+        *s = calloc(1, sizeof(saved));
+    if (!*s) {
+        say(in, 3, "out of memory for an FMU state");
+        return fmi3Error;
+    }
+    return fmi3OK;
+}
+
+EXPORT fmi3Status F3(fmi3GetFMUState)(fmi3Instance c, fmi3FMUState *s)
+{
+    if (state_alloc3(c, s) != fmi3OK)
+        return fmi3Error;
+    save_to(c, *s);
+    return fmi3OK;
+}
+
+EXPORT fmi3Status F3(fmi3SetFMUState)(fmi3Instance c, fmi3FMUState s)
+{
+    if (!s)
+        return (fmi3Status)wrong_mode(c, "SetFMUState without a state");
+    load_from(c, s);
+    return fmi3OK;
+}
+
+EXPORT fmi3Status F3(fmi3FreeFMUState)(fmi3Instance c, fmi3FMUState *s)
+{
+    (void)c;
+    if (s && *s)
+        free(*s), *s = NULL;
+    return fmi3OK;
+}
+
+EXPORT fmi3Status F3(fmi3SerializedFMUStateSize)(fmi3Instance c, fmi3FMUState s, size_t *n)
+{
+    (void)c, (void)s;
+    *n = sizeof(saved);
+    return fmi3OK;
+}
+
+EXPORT fmi3Status F3(fmi3SerializeFMUState)(fmi3Instance c, fmi3FMUState s, fmi3Byte b[],
+                                          size_t n)
+{
+    if (n != sizeof(saved)) {
+        say(c, 3, "SerializeFMUState: wrong size");
+        return fmi3Error;
+    }
+    memcpy(b, s, n);
+    return fmi3OK;
+}
+
+EXPORT fmi3Status F3(fmi3DeserializeFMUState)(fmi3Instance c, const fmi3Byte b[], size_t n,
+                                            fmi3FMUState *s)
+{
+    if (n != sizeof(saved)) {
+        say(c, 3, "DeserializeFMUState: wrong size");
+        return fmi3Error;
+    }
+    if (state_alloc3(c, s) != fmi3OK)
+        return fmi3Error;
+    memcpy(*s, b, n);
+    return fmi3OK;
+}
 
 EXPORT fmi3Status F3(fmi3GetNumberOfEventIndicators)(fmi3Instance c, size_t *n)
 {

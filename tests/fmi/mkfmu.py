@@ -64,7 +64,8 @@ def md2(d, token, ident):
            '<fmiModelDescription fmiVersion="2.0" modelName="%s" guid=%s '
            'numberOfEventIndicators="%d" generationTool="modrt tests/fmi/mkfmu.py" '
            'description=%s>' % (d["name"], quoteattr(token), d["nz"], quoteattr(d["doc"])),
-           '  <ModelExchange modelIdentifier="%s" completedIntegratorStepNotNeeded="true"/>' % ident]
+           '  <ModelExchange modelIdentifier="%s" completedIntegratorStepNotNeeded="true" '
+           'canGetAndSetFMUstate="true" canSerializeFMUstate="true"/>' % ident]
     out.append(units_xml(d).rstrip("\n")) if units_xml(d) else None
     out.append("  <ModelVariables>")
     for v in d["vars"]:
@@ -98,7 +99,8 @@ def md3(d, token, ident):
            '<fmiModelDescription fmiVersion="3.0" modelName="%s" instantiationToken=%s '
            'generationTool="modrt tests/fmi/mkfmu.py" description=%s>' % (
                d["name"], quoteattr(token), quoteattr(d["doc"])),
-           '  <ModelExchange modelIdentifier="%s"/>' % ident]
+           '  <ModelExchange modelIdentifier="%s" canGetAndSetFMUState="true" '
+           'canSerializeFMUState="true"/>' % ident]
     out.append(units_xml(d).rstrip("\n")) if units_xml(d) else None
     out.append("  <ModelVariables>")
     out.append('    <Float64 name="time" valueReference="%d" causality="independent" '
@@ -158,6 +160,8 @@ def main():
     ap.add_argument("--break-source", action="store_true", help="a source file cut short")
     ap.add_argument("--source-name", help="the name buildDescription.xml gives the glue")
     ap.add_argument("--truncate", type=int, help="keep only this many bytes of the archive")
+    ap.add_argument("--no-state", action="store_true",
+                    help="the description does not say it can get, set and serialize its state")
     a = ap.parse_args()
     d = json.load(open(os.path.join(HERE, "models", a.model + ".json")))
     token = d["token"]
@@ -184,10 +188,13 @@ def main():
                 os.path.join(HERE, "..", "..", "tools", "fmi", "fmi_api.h")]
         cfiles = ["fmi_glue.c", a.model + ".c"]
         if a.source_only and a.version == 2:
-            xml = xml.replace('completedIntegratorStepNotNeeded="true"/>',
-                              'completedIntegratorStepNotNeeded="true">\n    <SourceFiles>\n%s'
+            xml = xml.replace('canSerializeFMUstate="true"/>',
+                              'canSerializeFMUstate="true">\n    <SourceFiles>\n%s'
                               '    </SourceFiles>\n  </ModelExchange>' %
                               "".join('      <File name="%s"/>\n' % f for f in cfiles))
+        if a.no_state:
+            xml = xml.replace(' canGetAndSetFMUstate="true" canSerializeFMUstate="true"', '')
+            xml = xml.replace(' canGetAndSetFMUState="true" canSerializeFMUState="true"', '')
         if a.int_input:
             vr = max(v["vr"] for v in d["vars"]) + 10
             var = ('    <ScalarVariable name="%s" valueReference="%d" causality="input">\n'

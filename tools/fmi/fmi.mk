@@ -8,7 +8,7 @@
 
 FMI_DIR   := tools/fmi
 FMI_SRCS  := $(addprefix $(FMI_DIR)/,fmu_md.c fmu_zip.c fmu_model.c fmu_build.c fmu_call.c \
-               fmu_inst.c fmu_info.c fmu_scn.c fmu_emit.c)
+               fmu_inst.c fmu_state.c fmu_info.c fmu_scn.c fmu_emit.c)
 FMI_LIBS  := -lzip -lexpat -ldl
 FMI_TDIR  := $(O)/fmi
 $(call obj,$(FMI_SRCS)): CINC += -I$(FMI_DIR) -I$(SCN_DIR)
@@ -55,7 +55,7 @@ build/fuzz/fmi-md-fuzz: $(FMI_FUZZ_SRCS) $(FMI_DIR)/fmu_md.h tests/scenec/fuzz_m
 fuzz-fmi: build/fuzz/fmi-md-fuzz fmi-fmus
 	sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz $(FUZZ_TIME) $(FMI_TDIR)
 
-test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz $(FMI_TDIR)/master
+test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz $(FMI_TDIR)/master $(FMI_TDIR)/snap
 	sh tests/fmi/run.sh $(O) $(FMI_TDIR)
 	sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz 10 $(FMI_TDIR)
 
@@ -65,3 +65,10 @@ test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz $(FMI_TDIR)/master
 $(FMI_TDIR)/master: tests/fmi/master.c $(FMI_DIR)/fmu_md.c $(FMI_DIR)/fmu_md.h $(FMI_DIR)/fmi_api.h
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CSTD) -O2 -I$(FMI_DIR) tests/fmi/master.c $(FMI_DIR)/fmu_md.c -lexpat -ldl -lm -o $@
+
+# snapshots of runs with FMU blocks (tests/fmi/snap.c): the scene compiler's host library,
+# the FMU loader and the runtime, as modrt links them
+$(FMI_TDIR)/snap: $(call obj,tests/fmi/snap.c $(FMI_SRCS)) $(SCN_LIB_OBJS) $(RT_OBJS) $(SCN_MODEL_OBJS)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(LDSAN) $^ $(FMI_LIBS) -lm -o $@
+$(call obj,tests/fmi/snap.c): CINC += -I$(FMI_DIR) -I$(SCN_DIR)

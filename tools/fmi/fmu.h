@@ -9,6 +9,8 @@
  *   fmu_build.c  a source FMU's binary for the host, built from its sources/
  *   fmu_inst.c   one block: the FMU instance, its initialization and the rt_kind services
  *                (output, deriv, roots, event, check) that drive it
+ *   fmu_state.c  one block's internal state in a snapshot of the run (rt_kind.save,
+ *                rt_kind.restore): the FMU's serialized FMU state
  *   fmu_info.c   `modrt info FILE.fmu` and the run summary's FMU lines
  *
  * The runtime (rt/) sees only an rt_kind; whatever an FMU does wrong at run time is a NaN

@@ -70,14 +70,19 @@ static void variables(FILE *f, const char *pre, const fmu_md *md)
 static void functions(FILE *f, const fmu_md *md, int decl)
 {
 #define FMU_X_NAME(n) #n,
-    static const char *const f2[] = {FMU_FMI2_LIST(FMU_X_NAME) NULL};
-    static const char *const f3[] = {FMU_FMI3_LIST(FMU_X_NAME) NULL};
+    static const char *const f2[] = {FMU_FMI2_LIST(FMU_X_NAME) NULL,
+                                     FMU_FMI2_STATE_LIST(FMU_X_NAME) NULL};
+    static const char *const f3[] = {FMU_FMI3_LIST(FMU_X_NAME) NULL,
+                                     FMU_FMI3_STATE_LIST(FMU_X_NAME) NULL};
 #undef FMU_X_NAME
-    for (const char *const *n = md->version == 2 ? f2 : f3; *n; n++)
-        if (decl)
-            fprintf(f, "extern %sTYPE %s_%s;\n", *n, md->me_id, *n);
-        else
-            fprintf(f, "        .%s = %s_%s,\n", *n, md->me_id, *n);
+    /* the calls, then (an FMU that can save its state) the FMU state's */
+    const char *const *n = md->version == 2 ? f2 : f3;
+    for (int part = 0; part < 1 + md->can_state; part++, n++)
+        for (; *n; n++)
+            if (decl)
+                fprintf(f, "extern %sTYPE %s_%s;\n", *n, md->me_id, *n);
+            else
+                fprintf(f, "        .%s = %s_%s,\n", *n, md->me_id, *n);
 }
 
 int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
@@ -119,8 +124,9 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
     fprintf(f, ",\n    .md = {.version = %d, .fmi_version = ", md->version);
     cstr(f, md->fmi_version), fputs(", .model_name = ", f), cstr(f, md->model_name);
     fputs(", .token = ", f), cstr(f, md->token), fputs(", .me_id = ", f), cstr(f, md->me_id);
-    fprintf(f, ",\n           .v = %s_v, .nv = %u, .n_indicators = %u},\n    .f%d = {\n", pre,
-            (unsigned)md->nv, (unsigned)md->n_indicators, md->version);
+    fprintf(f, ",\n           .v = %s_v, .nv = %u, .n_indicators = %u, .can_state = %u},\n"
+               "    .f%d = {\n", pre, (unsigned)md->nv, (unsigned)md->n_indicators,
+            (unsigned)md->can_state, md->version);
     functions(f, md, 0);
     fprintf(f, "    },\n    .ops = &fmu_ops%d, .nu = %u, .ny = %u, .np = %u, .nx = %u, .nz = %u,\n",
             md->version, (unsigned)m->nu, (unsigned)m->ny, (unsigned)m->np, (unsigned)m->nx,
@@ -163,7 +169,8 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
     fprintf(f, "    .u_names = %s_un, .y_names = %s_yn, .x_names = %s_xn, .p_names = %s_pn,\n"
                "    .p_default = %s_pdef, .x_default = %s_xdef, .feed = %d, .feed_table = %s,\n"
                "    .root_dir = %s_rd, .check = fmu_check, .output = %s, .deriv = %s,\n"
-               "    .roots = fmu_roots, .event = fmu_event, .spec = &%s_i, .units = ",
+               "    .roots = fmu_roots, .event = fmu_event, .save = fmu_save, .restore = fmu_restore,\n"
+               "    .spec = &%s_i, .units = ",
             pre, pre, pre, pre, pre, pre, (int)k->feed,
             k->feed_table ? ft : "NULL", pre,
             k->output ? "fmu_output" : "NULL", k->deriv ? "fmu_deriv" : "NULL", pre);

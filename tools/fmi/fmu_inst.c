@@ -76,6 +76,8 @@ static int check(fmu_inst *in, int s, const char *what, double t)
 
 #define CALL(in, t, name, expr) ((in)->log[0] = 0, check((in), (expr), (name), (t)))
 
+int fmu_status(fmu_inst *in, int s, const char *what, double t) { return check(in, s, what, t); }
+
 static int all_finite(const double *v, size_t n)
 {
     for (size_t i = 0; i < n; i++)
@@ -465,6 +467,7 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
     k->output = m->ny ? fmu_output : NULL;
     k->deriv = k->type == RT_KIND_NSS ? fmu_deriv : NULL;
     k->roots = fmu_roots, k->event = fmu_event;
+    k->save = fmu_save, k->restore = fmu_restore; /* (RT_E_SNAPSHOT unless it can) */
     k->spec = in;
     k->doc = m->md.model_name;
     k->units = m->units;

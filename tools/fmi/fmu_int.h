@@ -25,12 +25,23 @@
     X(fmi3GetEventIndicators) X(fmi3GetContinuousStates)                           \
     X(fmi3GetNumberOfEventIndicators) X(fmi3GetNumberOfContinuousStates)
 
+/* the FMU state's functions, bound only when the description says it has them
+   (fmu_md.can_state): what a snapshot of a run calls (fmu_state.c) */
+#define FMU_FMI2_STATE_LIST(X)                                                    \
+    X(fmi2GetFMUstate) X(fmi2SetFMUstate) X(fmi2FreeFMUstate)                     \
+    X(fmi2SerializedFMUstateSize) X(fmi2SerializeFMUstate) X(fmi2DeSerializeFMUstate)
+#define FMU_FMI3_STATE_LIST(X)                                                    \
+    X(fmi3GetFMUState) X(fmi3SetFMUState) X(fmi3FreeFMUState)                     \
+    X(fmi3SerializedFMUStateSize) X(fmi3SerializeFMUState) X(fmi3DeserializeFMUState)
+
 typedef struct fmu_fns2 {
 #define FMU_X_PTR(n) n##TYPE *n;
     FMU_FMI2_LIST(FMU_X_PTR)
+    FMU_FMI2_STATE_LIST(FMU_X_PTR)
 } fmu_fns2;
 typedef struct fmu_fns3 {
     FMU_FMI3_LIST(FMU_X_PTR)
+    FMU_FMI3_STATE_LIST(FMU_X_PTR)
 #undef FMU_X_PTR
 } fmu_fns3;
 
@@ -117,6 +128,8 @@ struct fmu_inst {
     double fault_t;
     char fault[FMU_ERR_LEN];    /* the first fault: call, status, logged message */
     char log[FMU_ERR_LEN];      /* the message the FMU logged last */
+    void *fstate;               /* the FMU state a snapshot goes through (fmu_state.c):
+                                   made by the first, reused by every later one */
 };
 
 /* fmu_inst.c: the services of an FMU block's kind (rt_kind.spec is its fmu_inst) */
@@ -125,6 +138,14 @@ void fmu_deriv(const rt_args *a, real_t *xdot);
 void fmu_roots(const rt_args *a, real_t *r);
 void fmu_event(const rt_args *a, uint16_t which, real_t *x, real_t *d);
 rt_status fmu_check(const real_t *p, const void *spec);
+/* the status of an FMI call the instance made: 0 to go on, -1 after the fault is counted
+   (Discard, Error, Fatal: the instance is dead after Error and Fatal) */
+int fmu_status(fmu_inst *in, int s, const char *what, double t);
+
+/* fmu_state.c: the block's internal state in a snapshot (rt_kind.save, rt_kind.restore):
+   the importer's view of the instance and the FMU's serialized FMU state */
+rt_status fmu_save(const void *spec, uint8_t *buf, uint32_t cap, uint32_t *n);
+rt_status fmu_restore(const void *spec, const uint8_t *buf, uint32_t n);
 
 /* fmu_arena.c: the memory an FMU in an image gets (FMI 2.0 allocateMemory, FMI 3.0's
    calloc compiled as fmu_arena_calloc): FMU_ARENA_BYTES, used only while instantiating */

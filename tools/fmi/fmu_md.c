@@ -215,6 +215,9 @@ static void interface(ctx *c, const char *name, const char **at)
                                                  "needsCompletedIntegratorStep");
     md->once_per_process = (uint8_t)bool_attr(c, attr(at, "canBeInstantiatedOnlyOncePerProcess"),
                                               "canBeInstantiatedOnlyOncePerProcess");
+    const char *gs = md->version == 2 ? "canGetAndSetFMUstate" : "canGetAndSetFMUState";
+    const char *se = md->version == 2 ? "canSerializeFMUstate" : "canSerializeFMUState";
+    md->can_state = (uint8_t)(bool_attr(c, attr(at, gs), gs) && bool_attr(c, attr(at, se), se));
 }
 
 /* the attributes common to a 2.0 ScalarVariable and a 3.0 typed variable */

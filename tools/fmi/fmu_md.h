@@ -58,6 +58,8 @@ typedef struct fmu_md {
     uint32_t nsources;
     uint8_t needs_step_done;        /* the FMU asks for CompletedIntegratorStep calls */
     uint8_t once_per_process;       /* canBeInstantiatedOnlyOncePerProcess */
+    uint8_t can_state;              /* canGetAndSetFMUstate and canSerializeFMUstate (2.0),
+                                       canGetAndSetFMUState and canSerializeFMUState (3.0) */
     uint32_t n_indicators;          /* 2.0: numberOfEventIndicators; 3.0: EventIndicator
                                        elements */
     fmu_var *v;

@@ -92,6 +92,8 @@ static int bind(fmu_model *m, char *err, size_t errlen)
 #define FMU_X_ROW3(n) {#n, (void **)&m->f3.n},
     row r2[] = {FMU_FMI2_LIST(FMU_X_ROW2) {NULL, NULL}};
     row r3[] = {FMU_FMI3_LIST(FMU_X_ROW3) {NULL, NULL}};
+    row s2[] = {FMU_FMI2_STATE_LIST(FMU_X_ROW2) {NULL, NULL}};
+    row s3[] = {FMU_FMI3_STATE_LIST(FMU_X_ROW3) {NULL, NULL}};
 #undef FMU_X_ROW2
 #undef FMU_X_ROW3
     for (row *r = m->md.version == 2 ? r2 : r3; r->name; r++) {
@@ -99,6 +101,13 @@ static int bind(fmu_model *m, char *err, size_t errlen)
         if (!*r->slot)
             return failf(err, errlen, "%s: %s lacks %s (FMI %s Model Exchange calls it)",
                          m->path, m->lib + strlen(m->dir) + 1, r->name, m->md.fmi_version);
+    }
+    for (row *r = m->md.version == 2 ? s2 : s3; m->md.can_state && r->name; r++) {
+        *r->slot = dlsym(m->so, r->name);
+        if (!*r->slot)
+            return failf(err, errlen, "%s: %s lacks %s (its modelDescription.xml says it can "
+                         "get, set and serialize its FMU state)", m->path,
+                         m->lib + strlen(m->dir) + 1, r->name);
     }
     const char *v = m->md.version == 2 ? m->f2.fmi2GetVersion() : m->f3.fmi3GetVersion();
     int ok = v && (m->md.version == 2 ? !strcmp(v, "2.0") : v[0] == '3' && v[1] == '.');
