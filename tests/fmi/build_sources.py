@@ -2,9 +2,9 @@
 """build_sources.py - builds a source FMU's binary as an importer would, from nothing but
 its sources/buildDescription.xml (FMI 3.0, also in FMI 2.0.4 FMUs): every SourceFile,
 PreprocessorDefinition, IncludeDirectory and Library of its first BuildConfiguration,
-compiled with $CC (else cc) in sources/ into OUT.so. For an FMI 2.0 FMU it defines
-FMI2_OVERRIDE_FUNCTION_PREFIX, as the standard tells an importer building a shared object
-to (the functions keep their plain names). Usage: build_sources.py FMU_DIR OUT.so"""
+compiled with $CC (else cc) in sources/ into OUT.so. It defines
+FMI2_OVERRIDE_FUNCTION_PREFIX or FMI3_OVERRIDE_FUNCTION_PREFIX, as the standard tells an
+importer building a shared object to (the functions keep their plain names). Usage: build_sources.py FMU_DIR OUT.so"""
 import os
 import subprocess
 import sys
@@ -17,8 +17,7 @@ def main():
     bc = ET.parse(os.path.join(src, "buildDescription.xml")).getroot().find("BuildConfiguration")
     cmd = [os.environ.get("CC") or "cc", "-shared", "-fPIC", "-O2", "-w"]
     md = ET.parse(os.path.join(d, "modelDescription.xml")).getroot()
-    if md.get("fmiVersion") == "2.0":
-        cmd.append("-DFMI2_OVERRIDE_FUNCTION_PREFIX")
+    cmd.append("-DFMI%s_OVERRIDE_FUNCTION_PREFIX" % md.get("fmiVersion")[0])
     for s in bc.iter("SourceFileSet"):
         cmd += (s.get("compilerOptions") or "").split()
         cmd += ["-std=c11"] if s.get("language") == "C11" else []

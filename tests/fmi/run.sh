@@ -183,13 +183,21 @@ for v in 3 2; do
     pass=$((pass + $(grep -c '^ok' "$W/lane$v.log"))) fail=$((fail + $(grep -c '^FAIL' "$W/lane$v.log")))
 done
 
-# FMI 2.0 source FMUs name their functions with the model identifier (FMI2_FUNCTION_PREFIX)
-# unless the importer builds a shared object (FMI2_OVERRIDE_FUNCTION_PREFIX)
-x=$W/x2_pi_loop/sources
-if ${CC:-cc} -std=c11 -c -I"$x" -I"$x/rt" -I"$x/models" "$x/fmi2cs.c" -o "$W/fmi2cs.o" &&
-   nm "$W/fmi2cs.o" | grep -q ' T pi_loop_fmi2DoStep$' && ! nm "$W/fmi2cs.o" | grep -q ' T fmi2DoStep$'
-then ok "FMI 2.0 sources compiled as a source FMU: pi_loop_fmi2DoStep, no plain fmi2DoStep"
-else bad "FMI 2.0 source FMU function names:"; nm "$W/fmi2cs.o" | grep fmi2DoStep; fi
+# source FMUs name their functions with the model identifier (FMI2_FUNCTION_PREFIX,
+# FMI3_FUNCTION_PREFIX) unless the importer builds a shared object
+# (FMI*_OVERRIDE_FUNCTION_PREFIX); two of them (pi_loop and oscillator) link into one object
+for v in 2 3; do
+    for s in pi_loop oscillator; do
+        x=$W/x${v}_$s/sources
+        ${CC:-cc} -std=c11 -c -I"$x" -I"$x/rt" -I"$x/models" "$x/fmi${v}cs.c" -o "$W/fmi${v}cs_$s.o"
+    done
+    if nm "$W/fmi${v}cs_pi_loop.o" | grep -q " T pi_loop_fmi${v}DoStep$" &&
+       ! nm "$W/fmi${v}cs_pi_loop.o" | grep -q " T fmi${v}DoStep$" &&
+       ${CC:-cc} -r -nostdlib "$W/fmi${v}cs_pi_loop.o" "$W/fmi${v}cs_oscillator.o" -o "$W/fmi${v}cs_both.o" &&
+       nm "$W/fmi${v}cs_both.o" | grep -q " T oscillator_fmi${v}DoStep$"
+    then ok "FMI $v.0 sources compiled as source FMUs: pi_loop_fmi${v}DoStep, no plain fmi${v}DoStep; pi_loop's and oscillator's link into one object"
+    else bad "FMI $v.0 source FMU function names:"; nm "$W/fmi${v}cs_pi_loop.o" | grep DoStep; fi
+done
 
 # the 2.0 checker can fail: outputs missing from InitialUnknowns (the schema allows it,
 # the specification does not)

@@ -133,8 +133,8 @@ static int sources(ex *e)
         return fail(e, "cannot write %s", p);
     fprintf(f, "/* fmu_cs_id.h - written by scenec --fmu: the scene this FMU serves */\n"
                "#define FMU_CS_SCENE %s%s\n#define FMU_CS_TOKEN \"%s\"\n"
-               "#define FMI2_FUNCTION_PREFIX %s_\n",
-            SCN_SYMBOL_PREFIX, e->sc->name, e->token, e->sc->name);
+               "#define FMI%d_FUNCTION_PREFIX %s_\n",
+            SCN_SYMBOL_PREFIX, e->sc->name, e->token, e->version, e->sc->name);
     return fclose(f) == 0 ? 0 : fail(e, "cannot write %s", p);
 }
 
@@ -176,8 +176,8 @@ static int compile(ex *e)
                            "-Imodels"};
     for (size_t i = 0; i < sizeof flags / sizeof *flags; i++)
         argv[n++] = flags[i];
-    if (e->version == 2) /* a shared object: the functions' plain names */
-        argv[n++] = "-DFMI2_OVERRIDE_FUNCTION_PREFIX";
+    /* a shared object: the functions' plain names */
+    argv[n++] = e->version == 2 ? "-DFMI2_OVERRIDE_FUNCTION_PREFIX" : "-DFMI3_OVERRIDE_FUNCTION_PREFIX";
     for (int i = 0; i < e->nsrcs; i++)
         argv[n++] = e->srcs[i];
     argv[n++] = "-o", argv[n++] = out, argv[n++] = "-lm", argv[n] = NULL;

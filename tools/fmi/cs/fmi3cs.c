@@ -3,7 +3,11 @@
  * runtime; fmu_cs_id.h names it) and one co-simulation slave per instance (cs_slave.c,
  * which steps, serves the values and saves the state; this file binds it to FMI 3.0 and
  * logs its reasons). Functions of interfaces the FMU does not have return fmi3Error with a
- * logged reason, as the standard asks of an FMU that exports them all. */
+ * logged reason, as the standard asks of an FMU that exports them all. Names, as the
+ * standard's fmi3Functions.h has them: FMI3_FUNCTION_PREFIX (fmu_cs_id.h: the model
+ * identifier and "_") prefixes every function, so several source FMUs link into one
+ * program; with FMI3_OVERRIDE_FUNCTION_PREFIX defined (the shared object) the prefix is
+ * FMI3_ACTUAL_FUNCTION_PREFIX if defined, else none (plain fmi3DoStep ...). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +17,16 @@
 #include "fmu_cs_id.h"
 
 #define EXPORT __attribute__((visibility("default")))
+#if !defined(FMI3_OVERRIDE_FUNCTION_PREFIX) && defined(FMI3_FUNCTION_PREFIX)
+#define FMI3_ACTUAL_FUNCTION_PREFIX FMI3_FUNCTION_PREFIX
+#endif
+#define FMI3_PASTE(a, b) a##b
+#define FMI3_CAT(a, b) FMI3_PASTE(a, b)
+#ifdef FMI3_ACTUAL_FUNCTION_PREFIX
+#define FMI3_NAME(f) FMI3_CAT(FMI3_ACTUAL_FUNCTION_PREFIX, f)
+#else
+#define FMI3_NAME(f) f
+#endif
 
 extern const rt_scene FMU_CS_SCENE;
 
@@ -46,16 +60,16 @@ static fmi3Status refuse(const cs_inst *in, const char *what)
 
 /* ------------------------------------------------------------------ life */
 
-EXPORT const char *fmi3GetVersion(void) { return "3.0"; }
+EXPORT const char *FMI3_NAME(fmi3GetVersion)(void) { return "3.0"; }
 
-EXPORT fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn,
+EXPORT fmi3Status FMI3_NAME(fmi3SetDebugLogging)(fmi3Instance instance, fmi3Boolean loggingOn,
                                       size_t nCategories, const fmi3String categories[])
 {
     (void)instance, (void)loggingOn, (void)nCategories, (void)categories;
     return fmi3OK;
 }
 
-EXPORT fmi3Instance fmi3InstantiateCoSimulation(
+EXPORT fmi3Instance FMI3_NAME(fmi3InstantiateCoSimulation)(
     fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
     fmi3Boolean visible, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
     fmi3Boolean earlyReturnAllowed, const fmi3ValueReference requiredIntermediateVariables[],
@@ -92,14 +106,14 @@ EXPORT fmi3Instance fmi3InstantiateCoSimulation(
     return in;
 }
 
-EXPORT void fmi3FreeInstance(fmi3Instance instance)
+EXPORT void FMI3_NAME(fmi3FreeInstance)(fmi3Instance instance)
 {
     cs_inst *in = instance;
     if (in)
         free(in->s), free(in);
 }
 
-EXPORT fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean toleranceDefined,
+EXPORT fmi3Status FMI3_NAME(fmi3EnterInitializationMode)(fmi3Instance instance, fmi3Boolean toleranceDefined,
                                               fmi3Float64 tolerance, fmi3Float64 startTime,
                                               fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
 {
@@ -108,19 +122,19 @@ EXPORT fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean
     return done(in, cs_enter_init(in->s, startTime, stopTimeDefined, stopTime));
 }
 
-EXPORT fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
+EXPORT fmi3Status FMI3_NAME(fmi3ExitInitializationMode)(fmi3Instance instance)
 {
     cs_inst *in = instance;
     return done(in, cs_exit_init(in->s));
 }
 
-EXPORT fmi3Status fmi3Terminate(fmi3Instance instance)
+EXPORT fmi3Status FMI3_NAME(fmi3Terminate)(fmi3Instance instance)
 {
     ((cs_inst *)instance)->s->mode = CS_TERMINATED;
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3Reset(fmi3Instance instance)
+EXPORT fmi3Status FMI3_NAME(fmi3Reset)(fmi3Instance instance)
 {
     cs_inst *in = instance;
     return done(in, cs_setup(in->s, in->s->sc));
@@ -128,7 +142,7 @@ EXPORT fmi3Status fmi3Reset(fmi3Instance instance)
 
 /* ------------------------------------------------------------------ values */
 
-EXPORT fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference vr[],
+EXPORT fmi3Status FMI3_NAME(fmi3GetFloat64)(fmi3Instance instance, const fmi3ValueReference vr[],
                                  size_t nvr, fmi3Float64 values[], size_t nValues)
 {
     cs_inst *in = instance;
@@ -140,7 +154,7 @@ EXPORT fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference
     return done(in, st);
 }
 
-EXPORT fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference vr[],
+EXPORT fmi3Status FMI3_NAME(fmi3SetFloat64)(fmi3Instance instance, const fmi3ValueReference vr[],
                                  size_t nvr, const fmi3Float64 values[], size_t nValues)
 {
     cs_inst *in = instance;
@@ -154,7 +168,7 @@ EXPORT fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference
 
 /* ------------------------------------------------------------------ stepping */
 
-EXPORT fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
+EXPORT fmi3Status FMI3_NAME(fmi3DoStep)(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
                              fmi3Float64 communicationStepSize,
                              fmi3Boolean noSetFMUStatePriorToCurrentPoint,
                              fmi3Boolean *eventHandlingNeeded, fmi3Boolean *terminateSimulation,
@@ -172,7 +186,7 @@ EXPORT fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunica
 
 /* ------------------------------------------------------------------ FMU state */
 
-EXPORT fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
+EXPORT fmi3Status FMI3_NAME(fmi3GetFMUState)(fmi3Instance instance, fmi3FMUState *FMUState)
 {
     cs_inst *in = instance;
     void *s = *FMUState ? *FMUState : calloc(1, cs_state_size(in->s));
@@ -183,13 +197,13 @@ EXPORT fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
+EXPORT fmi3Status FMI3_NAME(fmi3SetFMUState)(fmi3Instance instance, fmi3FMUState FMUState)
 {
     cs_inst *in = instance;
     return done(in, cs_state_load(in->s, FMUState, cs_state_size(in->s)));
 }
 
-EXPORT fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
+EXPORT fmi3Status FMI3_NAME(fmi3FreeFMUState)(fmi3Instance instance, fmi3FMUState *FMUState)
 {
     (void)instance;
     free(*FMUState);
@@ -197,7 +211,7 @@ EXPORT fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState FMUState,
+EXPORT fmi3Status FMI3_NAME(fmi3SerializedFMUStateSize)(fmi3Instance instance, fmi3FMUState FMUState,
                                              size_t *size)
 {
     (void)FMUState;
@@ -205,7 +219,7 @@ EXPORT fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState,
+EXPORT fmi3Status FMI3_NAME(fmi3SerializeFMUState)(fmi3Instance instance, fmi3FMUState FMUState,
                                         fmi3Byte serializedState[], size_t size)
 {
     cs_inst *in = instance;
@@ -215,7 +229,7 @@ EXPORT fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUS
     return fmi3OK;
 }
 
-EXPORT fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte serializedState[],
+EXPORT fmi3Status FMI3_NAME(fmi3DeserializeFMUState)(fmi3Instance instance, const fmi3Byte serializedState[],
                                           size_t size, fmi3FMUState *FMUState)
 {
     cs_inst *in = instance;
@@ -233,7 +247,7 @@ EXPORT fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte 
 
 #pragma GCC diagnostic ignored "-Wunused-parameter"
 
-EXPORT fmi3Instance fmi3InstantiateModelExchange(fmi3String n, fmi3String t, fmi3String r,
+EXPORT fmi3Instance FMI3_NAME(fmi3InstantiateModelExchange)(fmi3String n, fmi3String t, fmi3String r,
                                                  fmi3Boolean v, fmi3Boolean l,
                                                  fmi3InstanceEnvironment e,
                                                  fmi3LogMessageCallback log)
@@ -243,7 +257,7 @@ EXPORT fmi3Instance fmi3InstantiateModelExchange(fmi3String n, fmi3String t, fmi
     return NULL;
 }
 
-EXPORT fmi3Instance fmi3InstantiateScheduledExecution(fmi3String n, fmi3String t, fmi3String r,
+EXPORT fmi3Instance FMI3_NAME(fmi3InstantiateScheduledExecution)(fmi3String n, fmi3String t, fmi3String r,
                                                       fmi3Boolean v, fmi3Boolean l,
                                                       fmi3InstanceEnvironment e,
                                                       fmi3LogMessageCallback log,
@@ -258,11 +272,12 @@ EXPORT fmi3Instance fmi3InstantiateScheduledExecution(fmi3String n, fmi3String t
 
 #define VREFS const fmi3ValueReference vr[], size_t nvr
 #define GETSET(T, name)                                                                   \
-    EXPORT fmi3Status fmi3Get##name(fmi3Instance i, VREFS, T v[], size_t n)               \
+    EXPORT fmi3Status FMI3_NAME(fmi3Get##name)(fmi3Instance i, VREFS, T v[], size_t n)    \
     {                                                                                     \
         return refuse(i, "fmi3Get" #name ": the FMU has Float64 variables only");         \
     }                                                                                     \
-    EXPORT fmi3Status fmi3Set##name(fmi3Instance i, VREFS, const T v[], size_t n)         \
+    EXPORT fmi3Status FMI3_NAME(fmi3Set##name)(fmi3Instance i, VREFS, const T v[],        \
+                                               size_t n)                                  \
     {                                                                                     \
         return refuse(i, "fmi3Set" #name ": the FMU has Float64 variables only");         \
     }
@@ -279,133 +294,133 @@ GETSET(fmi3Boolean, Boolean)
 GETSET(fmi3String, String)
 #undef GETSET
 
-EXPORT fmi3Status fmi3GetBinary(fmi3Instance i, VREFS, size_t s[], fmi3Binary v[], size_t n)
+EXPORT fmi3Status FMI3_NAME(fmi3GetBinary)(fmi3Instance i, VREFS, size_t s[], fmi3Binary v[], size_t n)
 {
     return refuse(i, "fmi3GetBinary");
 }
-EXPORT fmi3Status fmi3SetBinary(fmi3Instance i, VREFS, const size_t s[], const fmi3Binary v[],
+EXPORT fmi3Status FMI3_NAME(fmi3SetBinary)(fmi3Instance i, VREFS, const size_t s[], const fmi3Binary v[],
                                 size_t n)
 {
     return refuse(i, "fmi3SetBinary");
 }
-EXPORT fmi3Status fmi3GetClock(fmi3Instance i, VREFS, fmi3Clock v[]) { return refuse(i, "fmi3GetClock"); }
-EXPORT fmi3Status fmi3SetClock(fmi3Instance i, VREFS, const fmi3Clock v[])
+EXPORT fmi3Status FMI3_NAME(fmi3GetClock)(fmi3Instance i, VREFS, fmi3Clock v[]) { return refuse(i, "fmi3GetClock"); }
+EXPORT fmi3Status FMI3_NAME(fmi3SetClock)(fmi3Instance i, VREFS, const fmi3Clock v[])
 {
     return refuse(i, "fmi3SetClock");
 }
-EXPORT fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance i, fmi3ValueReference vr,
+EXPORT fmi3Status FMI3_NAME(fmi3GetNumberOfVariableDependencies)(fmi3Instance i, fmi3ValueReference vr,
                                                       size_t *n)
 {
     return refuse(i, "fmi3GetNumberOfVariableDependencies");
 }
-EXPORT fmi3Status fmi3GetVariableDependencies(fmi3Instance i, fmi3ValueReference d, size_t e[],
+EXPORT fmi3Status FMI3_NAME(fmi3GetVariableDependencies)(fmi3Instance i, fmi3ValueReference d, size_t e[],
                                               fmi3ValueReference ind[], size_t ei[],
                                               fmi3DependencyKind k[], size_t n)
 {
     return refuse(i, "fmi3GetVariableDependencies");
 }
-EXPORT fmi3Status fmi3GetDirectionalDerivative(fmi3Instance i, const fmi3ValueReference u[],
+EXPORT fmi3Status FMI3_NAME(fmi3GetDirectionalDerivative)(fmi3Instance i, const fmi3ValueReference u[],
                                                size_t nu, const fmi3ValueReference k[], size_t nk,
                                                const fmi3Float64 s[], size_t ns, fmi3Float64 o[],
                                                size_t no)
 {
     return refuse(i, "fmi3GetDirectionalDerivative");
 }
-EXPORT fmi3Status fmi3GetAdjointDerivative(fmi3Instance i, const fmi3ValueReference u[], size_t nu,
+EXPORT fmi3Status FMI3_NAME(fmi3GetAdjointDerivative)(fmi3Instance i, const fmi3ValueReference u[], size_t nu,
                                            const fmi3ValueReference k[], size_t nk,
                                            const fmi3Float64 s[], size_t ns, fmi3Float64 o[],
                                            size_t no)
 {
     return refuse(i, "fmi3GetAdjointDerivative");
 }
-EXPORT fmi3Status fmi3EnterConfigurationMode(fmi3Instance i) { return refuse(i, "fmi3EnterConfigurationMode"); }
-EXPORT fmi3Status fmi3ExitConfigurationMode(fmi3Instance i) { return refuse(i, "fmi3ExitConfigurationMode"); }
-EXPORT fmi3Status fmi3GetIntervalDecimal(fmi3Instance i, VREFS, fmi3Float64 iv[],
+EXPORT fmi3Status FMI3_NAME(fmi3EnterConfigurationMode)(fmi3Instance i) { return refuse(i, "fmi3EnterConfigurationMode"); }
+EXPORT fmi3Status FMI3_NAME(fmi3ExitConfigurationMode)(fmi3Instance i) { return refuse(i, "fmi3ExitConfigurationMode"); }
+EXPORT fmi3Status FMI3_NAME(fmi3GetIntervalDecimal)(fmi3Instance i, VREFS, fmi3Float64 iv[],
                                          fmi3IntervalQualifier q[])
 {
     return refuse(i, "fmi3GetIntervalDecimal");
 }
-EXPORT fmi3Status fmi3GetIntervalFraction(fmi3Instance i, VREFS, fmi3UInt64 c[], fmi3UInt64 r[],
+EXPORT fmi3Status FMI3_NAME(fmi3GetIntervalFraction)(fmi3Instance i, VREFS, fmi3UInt64 c[], fmi3UInt64 r[],
                                           fmi3IntervalQualifier q[])
 {
     return refuse(i, "fmi3GetIntervalFraction");
 }
-EXPORT fmi3Status fmi3GetShiftDecimal(fmi3Instance i, VREFS, fmi3Float64 s[])
+EXPORT fmi3Status FMI3_NAME(fmi3GetShiftDecimal)(fmi3Instance i, VREFS, fmi3Float64 s[])
 {
     return refuse(i, "fmi3GetShiftDecimal");
 }
-EXPORT fmi3Status fmi3GetShiftFraction(fmi3Instance i, VREFS, fmi3UInt64 c[], fmi3UInt64 r[])
+EXPORT fmi3Status FMI3_NAME(fmi3GetShiftFraction)(fmi3Instance i, VREFS, fmi3UInt64 c[], fmi3UInt64 r[])
 {
     return refuse(i, "fmi3GetShiftFraction");
 }
-EXPORT fmi3Status fmi3SetIntervalDecimal(fmi3Instance i, VREFS, const fmi3Float64 iv[])
+EXPORT fmi3Status FMI3_NAME(fmi3SetIntervalDecimal)(fmi3Instance i, VREFS, const fmi3Float64 iv[])
 {
     return refuse(i, "fmi3SetIntervalDecimal");
 }
-EXPORT fmi3Status fmi3SetIntervalFraction(fmi3Instance i, VREFS, const fmi3UInt64 c[],
+EXPORT fmi3Status FMI3_NAME(fmi3SetIntervalFraction)(fmi3Instance i, VREFS, const fmi3UInt64 c[],
                                           const fmi3UInt64 r[])
 {
     return refuse(i, "fmi3SetIntervalFraction");
 }
-EXPORT fmi3Status fmi3SetShiftDecimal(fmi3Instance i, VREFS, const fmi3Float64 s[])
+EXPORT fmi3Status FMI3_NAME(fmi3SetShiftDecimal)(fmi3Instance i, VREFS, const fmi3Float64 s[])
 {
     return refuse(i, "fmi3SetShiftDecimal");
 }
-EXPORT fmi3Status fmi3SetShiftFraction(fmi3Instance i, VREFS, const fmi3UInt64 c[],
+EXPORT fmi3Status FMI3_NAME(fmi3SetShiftFraction)(fmi3Instance i, VREFS, const fmi3UInt64 c[],
                                        const fmi3UInt64 r[])
 {
     return refuse(i, "fmi3SetShiftFraction");
 }
-EXPORT fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance i) { return refuse(i, "fmi3EvaluateDiscreteStates"); }
-EXPORT fmi3Status fmi3UpdateDiscreteStates(fmi3Instance i, fmi3Boolean *a, fmi3Boolean *t,
+EXPORT fmi3Status FMI3_NAME(fmi3EvaluateDiscreteStates)(fmi3Instance i) { return refuse(i, "fmi3EvaluateDiscreteStates"); }
+EXPORT fmi3Status FMI3_NAME(fmi3UpdateDiscreteStates)(fmi3Instance i, fmi3Boolean *a, fmi3Boolean *t,
                                            fmi3Boolean *nc, fmi3Boolean *vc, fmi3Boolean *nd,
                                            fmi3Float64 *n)
 {
     return refuse(i, "fmi3UpdateDiscreteStates (no event mode)");
 }
-EXPORT fmi3Status fmi3EnterEventMode(fmi3Instance i) { return refuse(i, "fmi3EnterEventMode (no event mode)"); }
-EXPORT fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance i) { return refuse(i, "fmi3EnterContinuousTimeMode"); }
-EXPORT fmi3Status fmi3CompletedIntegratorStep(fmi3Instance i, fmi3Boolean ns, fmi3Boolean *e,
+EXPORT fmi3Status FMI3_NAME(fmi3EnterEventMode)(fmi3Instance i) { return refuse(i, "fmi3EnterEventMode (no event mode)"); }
+EXPORT fmi3Status FMI3_NAME(fmi3EnterContinuousTimeMode)(fmi3Instance i) { return refuse(i, "fmi3EnterContinuousTimeMode"); }
+EXPORT fmi3Status FMI3_NAME(fmi3CompletedIntegratorStep)(fmi3Instance i, fmi3Boolean ns, fmi3Boolean *e,
                                               fmi3Boolean *t)
 {
     return refuse(i, "fmi3CompletedIntegratorStep");
 }
-EXPORT fmi3Status fmi3SetTime(fmi3Instance i, fmi3Float64 t) { return refuse(i, "fmi3SetTime"); }
-EXPORT fmi3Status fmi3SetContinuousStates(fmi3Instance i, const fmi3Float64 x[], size_t n)
+EXPORT fmi3Status FMI3_NAME(fmi3SetTime)(fmi3Instance i, fmi3Float64 t) { return refuse(i, "fmi3SetTime"); }
+EXPORT fmi3Status FMI3_NAME(fmi3SetContinuousStates)(fmi3Instance i, const fmi3Float64 x[], size_t n)
 {
     return refuse(i, "fmi3SetContinuousStates");
 }
-EXPORT fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance i, fmi3Float64 d[], size_t n)
+EXPORT fmi3Status FMI3_NAME(fmi3GetContinuousStateDerivatives)(fmi3Instance i, fmi3Float64 d[], size_t n)
 {
     return refuse(i, "fmi3GetContinuousStateDerivatives");
 }
-EXPORT fmi3Status fmi3GetEventIndicators(fmi3Instance i, fmi3Float64 z[], size_t n)
+EXPORT fmi3Status FMI3_NAME(fmi3GetEventIndicators)(fmi3Instance i, fmi3Float64 z[], size_t n)
 {
     return refuse(i, "fmi3GetEventIndicators");
 }
-EXPORT fmi3Status fmi3GetContinuousStates(fmi3Instance i, fmi3Float64 x[], size_t n)
+EXPORT fmi3Status FMI3_NAME(fmi3GetContinuousStates)(fmi3Instance i, fmi3Float64 x[], size_t n)
 {
     return refuse(i, "fmi3GetContinuousStates");
 }
-EXPORT fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance i, fmi3Float64 x[], size_t n)
+EXPORT fmi3Status FMI3_NAME(fmi3GetNominalsOfContinuousStates)(fmi3Instance i, fmi3Float64 x[], size_t n)
 {
     return refuse(i, "fmi3GetNominalsOfContinuousStates");
 }
-EXPORT fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance i, size_t *n)
+EXPORT fmi3Status FMI3_NAME(fmi3GetNumberOfEventIndicators)(fmi3Instance i, size_t *n)
 {
     return refuse(i, "fmi3GetNumberOfEventIndicators");
 }
-EXPORT fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance i, size_t *n)
+EXPORT fmi3Status FMI3_NAME(fmi3GetNumberOfContinuousStates)(fmi3Instance i, size_t *n)
 {
     return refuse(i, "fmi3GetNumberOfContinuousStates");
 }
-EXPORT fmi3Status fmi3EnterStepMode(fmi3Instance i) { return refuse(i, "fmi3EnterStepMode (no event mode)"); }
-EXPORT fmi3Status fmi3GetOutputDerivatives(fmi3Instance i, VREFS, const fmi3Int32 o[],
+EXPORT fmi3Status FMI3_NAME(fmi3EnterStepMode)(fmi3Instance i) { return refuse(i, "fmi3EnterStepMode (no event mode)"); }
+EXPORT fmi3Status FMI3_NAME(fmi3GetOutputDerivatives)(fmi3Instance i, VREFS, const fmi3Int32 o[],
                                            fmi3Float64 v[], size_t n)
 {
     return refuse(i, "fmi3GetOutputDerivatives");
 }
-EXPORT fmi3Status fmi3ActivateModelPartition(fmi3Instance i, fmi3ValueReference c,
+EXPORT fmi3Status FMI3_NAME(fmi3ActivateModelPartition)(fmi3Instance i, fmi3ValueReference c,
                                              fmi3Float64 t)
 {
     return refuse(i, "fmi3ActivateModelPartition");
