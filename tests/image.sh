@@ -95,7 +95,8 @@ else bad "make image at $clk MHz (half of what pi_loop's slowest tick needs) doe
 # functions prefixed and its memory from the static arena; under QEMU, bounded by an
 # instruction budget (tools/qemu/insn_count.c; the run takes 3.2e7), it prints the hash of
 # the same equations written in the scene language (tests/fmi/scenes/ball_scn.scn), which
-# make test-fmi checks against the closed form. An arena too small fails rt_init in one line.
+# make test-fmi checks against the closed form, with the FMU arena scenec --sizes measured.
+# An arena too small fails rt_init in one line.
 W=build/image/fmu-test
 rm -rf "$W" && mkdir -p "$W"
 export MODRT_FMU_CACHE="$PWD/$W/cache"
@@ -115,6 +116,12 @@ for v in 2 3; do
         else bad "m4f FMI $v.0 source FMU: image hash '$h', define '$want': $got"; fi
         if arm-none-eabi-nm build/image/m4f/fmu_ball$v.elf | grep -qE ' T (calloc|malloc)$'; then
             bad "the FMI $v.0 FMU image links a heap"; else ok; fi
+        # the arena scenec --sizes measured on this (LP64) host, which the image above ran
+        # with: the glue's instance (model_data 72, mode 4 + 4, name 8; 2.0 the callbacks'
+        # pointer 8, 3.0 environment and logger 16), "Ball" and its 0 (5, up to 8), and the
+        # first snapshot's FMU state (model_data 72, mode 4 + 4): 2.0 184, 3.0 192
+        if grep -q "^image: FMU arena $((v == 2 ? 184 : 192)) bytes" "$W/build$v.out"; then ok
+        else bad "FMI $v.0 image: not the arena the FMU needs: $(grep arena "$W/build$v.out")"; fi
     else bad "m4f image of the FMI $v.0 source FMU did not build:"; cat "$W/build$v.out"; fi
 done
 if make -s image TARGET=m4f SCENE="$W/fmu_ball2.scn" IMAGE_CFLAGS=-DFMU_ARENA_BYTES=64 >/dev/null 2>&1 &&

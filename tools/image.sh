@@ -50,6 +50,8 @@ build/host/scenec -o "$dir/$name.c" "$scene" || fail "scenec could not compile $
 sym=$(sed -n 's/^const rt_scene \(mdl_scene_[A-Za-z0-9_]*\) = {$/\1/p' "$dir/$name.c" | head -1)
 [ -n "$sym" ] || fail "no scene table in $dir/$name.c"
 sizes=$(build/host/scenec --sizes "$scene") || fail "scenec --sizes $scene failed (see above)"
+# an FMU arena given in IMAGE_CFLAGS replaces the one scenec measured (docs/fmi.md)
+case " $extra " in *" -DFMU_ARENA_BYTES="*) sizes=$(echo "$sizes" | sed 's/ -DFMU_ARENA_BYTES=[0-9]*//') ;; esac
 # a background set steps at the port's level below the timer, in a second rt_sim
 grep -q '\.bg = &rt_bg' "$dir/$name.c" && sizes="$sizes -DRT_IMAGE_BG=1"
 # a controller link runs over the port's link UART (docs/link.md, "The plant on a board")
@@ -119,6 +121,8 @@ $cc $cflags $objs $fmuobjs $ldflags -o "$dir/$name.elf" || fail "the $target bui
 size=$(make -s "print-TARGET_SIZE_$target")
 echo "image: $dir/$name.elf (scene $sym, target $target, $real${console:+, console $console}${linksrc:+, link on the UART})"
 $size "$dir/$name.elf" | tail -1 | awk '{printf "image: flash %d bytes, RAM %d bytes\n", $1 + $2, $2 + $3}'
+arena=$(echo " $sizes $extra" | sed -n 's/.* -DFMU_ARENA_BYTES=\([0-9]*\).*/\1/p')
+[ -z "$fmusrc" ] || echo "image: FMU arena ${arena:-16384 (the default: scenec could not measure it)} bytes (FMU_ARENA_BYTES)"
 # how to run it: the target's QEMU command; a UART console prints on the serial port
 run=$(make -s "print-TARGET_RUN_$target")
 [ "${console:-semihost}" = uart ] && run=$(echo "$run" | sed 's/-serial null/-serial stdio/')

@@ -20,7 +20,7 @@ endif
 # the exporter (linked into scenec) finds the sources an exported FMU is built from here
 $(call obj,$(SCN_DIR)/scenec.c): CINC += -I$(FMI_DIR) -I$(SCN_DIR)
 $(call obj,$(FMI_DIR)/fmu_export.c): CINC += -I$(FMI_DIR) -I$(FMI_DIR)/cs -I$(SCN_DIR)
-$(call obj,$(FMI_DIR)/fmu_export.c): CDEFS += -DMODRT_SRC_DIR='"$(CURDIR)"'
+$(call obj,$(FMI_DIR)/fmu_export.c $(FMI_DIR)/fmu_build.c): CDEFS += -DMODRT_SRC_DIR='"$(CURDIR)"'
 
 # ---- the test FMUs: one C file per model, built for each FMI version ----
 FMI_MODELS := $(basename $(notdir $(wildcard tests/fmi/models/*.c)))

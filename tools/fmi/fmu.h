@@ -28,6 +28,8 @@
 #define FMU_EVENT_ITER_MAX 64         /* discrete-state updates of one event iteration */
 #define FMU_MAX_ENTRIES 65536u        /* entries of one FMU archive */
 #define FMU_MAX_UNPACKED (1ull << 30) /* bytes of one FMU unpacked */
+#define FMU_ARENA_ALIGN 8u            /* of every block the arena hands out: the strictest
+                                         alignment of the targets' scalars */
 #ifndef FMU_ARENA_BYTES
 #define FMU_ARENA_BYTES 16384         /* an image's static memory for its FMUs' instances */
 #endif
@@ -54,6 +56,14 @@ const rt_kind *fmu_inst_kind(const fmu_inst *in);
    0, or -1 with a one-line message in err. */
 int fmu_inst_start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given,
                    char *err, size_t errlen);
+
+/* The bytes of FMU_ARENA_BYTES an image of this process's FMU blocks needs: what their
+   instantiation, initialization and one FMU state (the first snapshot's) took here, as
+   the arena hands it out (FMI 2.0: through allocateMemory; 3.0 source FMUs: their calloc,
+   counted by fmu_count.c); 0 without FMU blocks; -1 when an FMU's is not known (a 3.0
+   binary, not built here from its sources). Measured on this host: an upper bound on a
+   target whose pointers and longs are narrower (the 32-bit ones). */
+long fmu_arena_need(void);
 
 /* The FMU lines of a run summary: per FMU block its faults, the first with its time, the
    call, its status and the message the FMU logged. Nothing without FMU blocks. */

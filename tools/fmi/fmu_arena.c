@@ -10,8 +10,6 @@
 
 #include "fmu_int.h"
 
-#define FMU_ARENA_ALIGN 8u /* the strictest alignment of the targets' scalars */
-
 static _Alignas(FMU_ARENA_ALIGN) unsigned char arena[FMU_ARENA_BYTES];
 static size_t used;
 

@@ -20,6 +20,12 @@
 #include "fmu_int.h"
 
 #define FMU_BUILD_MAX_ARGS 1024 /* words of one compiler command */
+#ifndef MODRT_SRC_DIR
+#define MODRT_SRC_DIR "." /* where tools/fmi/fmu_count.c is (the build passes its tree) */
+#endif
+#define FMU_STR_(x) #x
+#define FMU_STR(x) FMU_STR_(x)
+#define FMU_COUNT_ALIGN_DEF "-DFMU_COUNT_ALIGN=" FMU_STR(FMU_ARENA_ALIGN)
 
 typedef struct bctx {
     const char *id;         /* the model identifier whose configuration is read */
@@ -201,6 +207,13 @@ int fmu_build(const fmu_model *m, const char *lib, char *err, size_t errlen)
     for (size_t i = 0; i < sizeof flags / sizeof *flags; i++)
         b.argv[b.n++] = flags[i];
     int rc = source_words(m, &b, err, errlen);
+    /* FMI 3.0: its calloc, malloc and free counted as an image's arena would hand them out
+       (fmu_count.c, fmu_arena_need) */
+    static const char *const count[] = {"-Dcalloc=fmu_count_calloc", "-Dmalloc=fmu_count_malloc",
+                                        "-Dfree=fmu_count_free", FMU_COUNT_ALIGN_DEF,
+                                        MODRT_SRC_DIR "/tools/fmi/fmu_count.c"};
+    for (size_t i = 0; rc == 0 && m->md.version == 3 && i < sizeof count / sizeof *count; i++)
+        b.argv[b.n++] = count[i];
     char src[4200], tmp[4400], log[4400], dir[4400];
     snprintf(src, sizeof src, "%s/sources", m->dir);
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", lib, (long)getpid());

@@ -27,7 +27,16 @@ static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status st
 #define FMU_ALLOC fmu_arena_calloc
 #define FMU_FREE fmu_arena_free
 #else
-static void *alloc2(size_t n, size_t size) { return calloc(n, size); }
+/* what the arena of an image would hand out for the FMI 2.0 FMUs' memory (fmu_arena_need) */
+size_t fmu_alloc2_used;
+static void *alloc2(size_t n, size_t size)
+{
+    void *p = calloc(n, size);
+    if (p)
+        fmu_alloc2_used = ((fmu_alloc2_used + FMU_ARENA_ALIGN - 1) &
+                           ~(size_t)(FMU_ARENA_ALIGN - 1)) + n * size;
+    return p;
+}
 #define FMU_ALLOC alloc2
 #define FMU_FREE free
 #endif

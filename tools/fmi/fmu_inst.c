@@ -17,6 +17,9 @@
  * no further call reaches it (FMI allows none but freeing, and not even that after Fatal). */
 #define _POSIX_C_SOURCE 200809L /* (built for the host, and with FMU_TARGET for an image:
                                    the scene's C then defines the instances, fmu_emit.c) */
+#ifndef FMU_TARGET
+#include <dlfcn.h>
+#endif
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -483,4 +486,24 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
 }
 
 const rt_kind *fmu_inst_kind(const fmu_inst *in) { return &in->kind; }
+
+long fmu_arena_need(void)
+{
+    size_t need = 0, a = FMU_ARENA_ALIGN;
+    int any2 = 0;
+    for (int i = 0; i < fmu_ninstances; i++) {
+        fmu_model *m = fmu_instances[i]->m;
+        any2 |= m->ops == &fmu_ops2;
+        int first = 1; /* each FMI 3.0 binary once: its count covers all its instances */
+        for (int j = 0; j < i; j++)
+            first &= fmu_instances[j]->m != m;
+        if (m->ops == &fmu_ops2 || !first)
+            continue;
+        size_t (*used)(void) = (size_t (*)(void))dlsym(m->so, "fmu_count_used");
+        if (!used)
+            return -1;
+        need += (used() + a - 1) / a * a;
+    }
+    return (long)(need + (any2 ? (fmu_alloc2_used + a - 1) / a * a : 0));
+}
 #endif /* FMU_TARGET */

@@ -154,6 +154,9 @@ void *fmu_arena_malloc(size_t size);
 void fmu_arena_free(void *p);
 size_t fmu_arena_used(void);    /* bytes handed out so far */
 
+/* fmu_call.c: the bytes the FMI 2.0 FMUs of this process took, as the arena hands them out */
+extern size_t fmu_alloc2_used;
+
 /* fmu_build.c: the sources, definitions and include directories of a source FMU's build
    (relative to its sources/), written to f as words; 0, or -1 with a message in err */
 int fmu_source_words(const fmu_model *m, FILE *f, char *err, size_t errlen);

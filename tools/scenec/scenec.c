@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fmu.h"
 #include "fmu_export.h"
 #include "fmu_scn.h"
 #include "scn.h"
@@ -206,9 +207,24 @@ static int cmd_sizes(const opts *o)
         return 1;
     rt_sim *sim = scn_alloc(c, sizeof *sim);
     rt_status st = rt_init(&c->image, sim);
-    if (st == RT_OK)
-        scn_host_sizes(stdout, &c->image, sim);
-    else
+    if (st == RT_OK) { /* the limits, then an image's FMU arena (docs/fmi.md) */
+        char *line = NULL;
+        size_t n = 0;
+        FILE *f = open_memstream(&line, &n);
+        if (f)
+            scn_host_sizes(f, &c->image, sim), fclose(f);
+        long arena = fmu_arena_need();
+        if (line && n && line[n - 1] == '\n')
+            line[--n] = 0;
+        printf("%s", line ? line : "");
+        if (arena > 0)
+            printf(" -DFMU_ARENA_BYTES=%ld", arena);
+        putchar('\n');
+        free(line);
+        if (arena < 0)
+            fprintf(stderr, "%s: note: the FMU arena's size is not known (an FMI 3.0 FMU "
+                    "not built here from its sources)\n", o->in[0]);
+    } else
         fprintf(stderr, "%s: error: %s: %s\n", o->in[0], rt_status_name(st), rt_error_text(sim));
     scn_free(c);
     return st != RT_OK;
