@@ -377,6 +377,9 @@ effects: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 FOOT_TICKS ?= 1000
 FOOT_GEN = $(if $(SCN),build/foot/gen/$(S).c,build/gen/scenes/$(S).c)
 FOOT_SIZES = $(if $(SCN),$(shell build/host/scenec --sizes $(SCN)),$(shell build/host/modrt sizes $(S)))
+# FOOT_FMU: a scene's FMU blocks, as tools/image.sh passes them (the importer's sources with
+# -DFMU_TARGET, the FMU objects it compiled for the target)
+FOOT_FMU ?=
 # a scene with a background set runs it in PendSV (tests/cross/footprint_main.c)
 FOOT_BG = $(shell build/host/modrt info $(or $(SCN),$(S)) | grep -q '^ *background:' && echo -DFOOT_BG=1)
 foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
@@ -386,7 +389,7 @@ foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
 	  $(FOOT_SIZES) $(FOOT_BG) \
 	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) $(FOOT_GEN) \
-	  $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
+	  $(FOOT_FMU) $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
 	@mkdir -p $(dir $@)
 	$(INSN_COUNT_CC) $(INSN_COUNT_CFLAGS) -o $@ $<

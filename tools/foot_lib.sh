@@ -28,7 +28,7 @@ foot_measure() {
     fm_sfx=
     [ "$fm_real" = float ] && fm_sfx=-float
     make -s foot-elf T="$fm_t" S="$fm_s" REAL="$fm_real" ${fm_scn:+SCN="$fm_scn"} \
-        ${FOOT_TICKS:+FOOT_TICKS="$FOOT_TICKS"}
+        ${FOOT_TICKS:+FOOT_TICKS="$FOOT_TICKS"} ${FOOT_FMU:+FOOT_FMU="$FOOT_FMU"}
     fm_elf=build/foot/$fm_t$fm_sfx/$fm_s.elf
     fm_size=$(make -s "print-TARGET_SIZE_$fm_t")
     fm_nm=$(make -s "print-TARGET_NM_$fm_t")

@@ -71,9 +71,13 @@ cc=$(make -s "print-TARGET_CC_$target")
 # BLOCK VERSION ID SOURCES WORDS...; their sources are compiled with their functions named
 # <ID>_fmi*, FMI 3.0's calloc, malloc and free naming the static arena (fmu_arena.c), and
 # linked with the importer's calling sequence built for targets (FMU_TARGET)
-fmuobjs= fmusrc=
+fmuobjs= fmusrc= fmulibc=
 fmu_lines=$(sed -n 's#^// fmu-build: ##p' "$dir/$name.c")
 if [ -n "$fmu_lines" ]; then
+    # a toolchain without a C library (the RISC-V ones) gets the few headers FMU code may
+    # use, declaring what the image gives it (tools/fmi/libc/)
+    echo '#include <stdio.h>' | $cc $(make -s "print-TARGET_CFLAGS_$target") -E -x c - >/dev/null 2>&1 ||
+        fmulibc="-isystem tools/fmi/libc"
     fmusrc="tools/fmi/fmu_inst.c tools/fmi/fmu_state.c tools/fmi/fmu_call.c tools/fmi/fmu_arena.c tools/fmi/fmu_libc.c"
     echo "$fmu_lines" > "$dir/$name.fmu"
     while read -r blk ver id src words; do
@@ -94,7 +98,7 @@ if [ -n "$fmu_lines" ]; then
             # shellcheck disable=SC2086 # the flag lists are meant to split
             $(make -s "print-TARGET_CC_$target") -std=c11 -O2 -w -ffp-contract=off -fno-math-errno \
                 -ffunction-sections -fdata-sections $(make -s "print-TARGET_CFLAGS_$target") \
-                -I"$src" $flags $defs -c "$f" -o "$o" || fail "the $target build of FMU $blk's $f failed (see above)"
+                -I"$src" $flags $defs $fmulibc -c "$f" -o "$o" || fail "the $target build of FMU $blk's $f failed (see above)"
             fmuobjs="$fmuobjs $o"
         done
     done < "$dir/$name.fmu"
@@ -109,7 +113,7 @@ models=$(ls models/*.c | grep -v '^models/registry.c$')
 # everything at once used to dominate `make test-image`), then linked in the listed order
 obj=$dir/obj-$name
 rm -rf "$obj" && mkdir -p "$obj"
-export IMG_CC="$cc" IMG_FLAGS="$cflags $cdef $sizes -DRT_SCENE=$sym $extra${fmusrc:+ -DFMU_TARGET -Itools/fmi}" IMG_OBJ="$obj"
+export IMG_CC="$cc" IMG_FLAGS="$cflags $cdef $sizes -DRT_SCENE=$sym $extra${fmusrc:+ -DFMU_TARGET -Itools/fmi $fmulibc}" IMG_OBJ="$obj"
 srcs="ports/common/image_main.c $dir/$name.c $rt $models $ports $linksrc $fmusrc"
 # shellcheck disable=SC2086,SC2016 # the lists are meant to split; $1 expands in the child
 printf '%s\n' $srcs | xargs -P "${JOBS:-2}" -I{} sh -c \
@@ -128,11 +132,9 @@ run=$(make -s "print-TARGET_RUN_$target")
 [ "${console:-semihost}" = uart ] && run=$(echo "$run" | sed 's/-serial null/-serial stdio/')
 echo "image: run it with: $run $dir/$name.elf"
 [ "$measure" = 1 ] || exit 0
-# the measuring image (make foot-elf) links library kinds and defines only
-if [ -n "$fmusrc" ]; then
-    echo "image: no per-tick measurement: the measuring image does not link FMU blocks"
-    exit 0
-fi
+# the measuring image (make foot-elf) links the FMU blocks as this image does
+# shellcheck disable=SC2034 # read by foot_measure
+[ -z "$fmusrc" ] || FOOT_FMU="-DFMU_TARGET -Itools/fmi $fmulibc $fmusrc $fmuobjs"
 
 # will it meet its tick? (tools/foot_lib.sh measures as make footprint does)
 # shellcheck disable=SC2034 # M and so are read by tools/foot_lib.sh
