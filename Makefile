@@ -93,6 +93,8 @@ help:
 	@echo "make bench        benchmarks: figures into build/bench/ (make docs: into docs/)"
 	@echo "make speedup      the multirate speedup at equal accuracy from instruction counts"
 	@echo "                  (part of bench; a few minutes; SPEEDUP_JOBS=2)"
+	@echo "make mujoco-scale MuJoCo 2.2.2 beside modrt on the scaling chains and trees at equal"
+	@echo "                  accuracy (part of bench; installs libmujoco-dev; about an hour)"
 	@echo "make docs         refresh the committed figures and references under docs/"
 	@echo "make cross-test   every cross target under QEMU (cross-test-<t>: one; targets:"
 	@echo "                  $(CROSS_TARGETS))"
@@ -125,6 +127,8 @@ deps:
 	@sh tools/install-deps.sh --auto all
 deps-host:
 	@sh tools/install-deps.sh --auto host
+deps-bench:
+	@sh tools/install-deps.sh --auto bench
 
 # rt/ and models/ build freestanding; ports, tests and tools build hosted
 $(O)/obj/rt/%.o: rt/%.c
@@ -433,6 +437,14 @@ overhead: $(O)/overhead_bench $(O)/tight_bench
 	@sh tools/dev/bench/splice.sh scale build/bench/overhead.md build/bench/scale.md
 	@cat build/bench/scale.md
 .PHONY: overhead
+# MuJoCo 2.2.2 (Debian's libmujoco-dev, a bench-only dependency) beside modrt on the scaling
+# chains and trees at equal accuracy, both swept over method and step (docs/overhead.md,
+# "Beside MuJoCo"), spliced into build/bench/overhead.md after overhead's tables
+mujoco-scale: deps-bench overhead
+	python3 tools/dev/bench/mujoco_scale.py > build/bench/mujoco.md
+	@sh tools/dev/bench/splice.sh mujoco build/bench/overhead.md build/bench/mujoco.md
+	@cat build/bench/mujoco.md
+.PHONY: mujoco-scale deps-bench
 # the multirate speedup at equal accuracy (issue 14, goal 4; docs/multirate.md, "The
 # benchmark"): single-rate and multirate sweeps of pendulum10_actuated and lane_change,
 # errors from the host binary, costs from callgrind's instruction counts; spliced into a
@@ -453,7 +465,7 @@ speedup: $(O)/modrt $(O)/svgplot
 # `make docs` runs them and copies the figures over the committed ones in docs/
 BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg overhead.md
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
-bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
+bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead mujoco-scale speedup serial-bench
 	@mkdir -p build/bench
 	@cp docs/mbs.md build/bench/
 	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md

@@ -14,6 +14,9 @@
 # Usage: sh tools/dev/bench/scale.sh [STEPS [N...]]
 #        SCALE_DATA=FILE sh tools/dev/bench/scale.sh   the table of measured lines
 #                                                  "shape N modrt tight" in FILE
+#        SCALE_BUILD_ONLY=1 sh tools/dev/bench/scale.sh [STEPS [N...]]
+#                                                  only build build/scale/scale-SHAPE-N
+#                                                  (tools/dev/bench/mujoco_scale.py runs them)
 set -eu
 STEPS=${1:-20}
 if [ $# -gt 0 ]; then shift; fi
@@ -55,6 +58,7 @@ for shape in chain tree; do
         gcc $CF $BIG $d tools/dev/bench/scale_bench.c tools/dev/bench/pendulum_tight.c $B/obj/*.o -lm \
             -o $B/scale-$shape-$n
         $B/scale-$shape-$n sizes > $B/sizes-$shape-$n.txt
+        [ -z "${SCALE_BUILD_ONLY:-}" ] || continue
         r=$(count $B/scale-$shape-$n modrt modrt_ticks)
         t=-
         [ $shape = chain ] && t=$(count $B/scale-$shape-$n tight tight_steps)
@@ -62,6 +66,7 @@ for shape in chain tree; do
         echo "scaling $shape N = $n: modrt $r, tight $t instructions per step" >&2
     done
 done
+[ -z "${SCALE_BUILD_ONLY:-}" ] || exit 0
 awk '
 function fit(sh, col,    i, sx, sy, sxx, sxy, k, x, y) {
     k = 0; sx = sy = sxx = sxy = 0
