@@ -90,6 +90,10 @@ static void set_method(const char *name, const char *h)
         if (strcmp(name, methods[i].name) == 0)
             sets[0].method = methods[i].method;
     scene.dt = (real_t)atof(h);
+    /* the error estimate's check off in effect (accuracy 1: a user after 1e-3 m asks no
+       more): the sweep of mujoco_scale.py measures the error against its reference; every
+       other fault (the projection's residual, non-finite states) still stops a run */
+    sets[0].cfg.accuracy = 1;
     if (!sets[0].method || !(scene.dt > 0)) {
         fprintf(stderr, "scale_bench: bad method %s or step %s\n", name, h);
         exit(2);
@@ -158,7 +162,11 @@ int main(int argc, char **argv)
             for (uint16_t j = 0; j < 3; j++)
                 xs[3 * b + j] = (double)rt_output(&sim, b, j);
         print_positions(xs, 3);
-        return sim.stats.status == RT_OK ? 0 : 1;
+        if (sim.stats.status == RT_OK)
+            return 0;
+        fprintf(stderr, "scale_bench: %s at %g s: %s\n", rt_status_name(sim.stats.status),
+                (double)rt_time(&scene, &sim), rt_error_text(&sim));
+        return 1;
     }
     if ((argc != 3 && argc != 5 && !ref) ||
         (strcmp(argv[1], "modrt") != 0 && strcmp(argv[1], "tight") != 0 && !ref)) {
