@@ -23,18 +23,22 @@ so.
 Usage: mujoco_scale.py [--sweep N...] [--count N...] [--t T]   (after
        SCALE_BUILD_ONLY=1 sh tools/dev/bench/scale.sh: the modrt binaries)"""
 import argparse
+import json
 import math
 import os
 import subprocess
 import sys
+import time
 
 B = "build/scale"
 M = "build/mujoco"
+COUNTS = M + "/counts.json"
 BOUNDS = (1e-3, 1e-6)
 REF_H = 1e-4
 GRID = sorted({int(round(10 * 2 ** (i / 4))) for i in range(0, 57)})  # 10 .. 200000
 MODRT = ("euler", "heun", "bs3", "rk4", "dopri5")
 MUJOCO = ("euler", "rk4")
+CHECK_INSN = 5e10  # the reference's check by the other formulation is skipped beyond
 RUN_INSN = 2e10  # instructions of one run to T beyond which a sweep stops going finer
                  # (some 10 s on an idle host; the sweep's extent is the same on every run)
 COUNT_STEPS = {10: 20, 30: 10, 100: 4, 300: 2, 1000: 1}
@@ -55,6 +59,16 @@ def err(p, ref):
 
 
 def count(cmd, fn, steps):
+    """instructions per step of cmd, counted by callgrind (kept in COUNTS: a count does not
+    change while the binaries do not, and one MuJoCo step of 1000 bodies takes minutes)"""
+    key = " ".join(cmd)
+    counts = {}
+    if os.path.exists(COUNTS):
+        with open(COUNTS) as fh:
+            counts = json.load(fh)
+    if key in counts and counts[key][1] >= max(os.path.getmtime(c) for c in cmd[:2]
+                                                      if os.path.isfile(c)):
+        return counts[key][0]
     f = "%s/cg.%d" % (M, os.getpid())
     subprocess.run(["valgrind", "--tool=callgrind", "--instr-atstart=no",
                     "--toggle-collect=" + fn, "--callgrind-out-file=" + f] + cmd,
@@ -62,6 +76,14 @@ def count(cmd, fn, steps):
     with open(f) as fh:
         n = int(next(line for line in fh if line.startswith("summary:")).split()[1])
     os.remove(f)
+    counts = {}
+    if os.path.exists(COUNTS):  # another run may have added to it meanwhile
+        with open(COUNTS) as fh:
+            counts = json.load(fh)
+    counts[key] = (n / steps, time.time())
+    with open("%s.%d" % (COUNTS, os.getpid()), "w") as fh:
+        json.dump(counts, fh)
+    os.replace("%s.%d" % (COUNTS, os.getpid()), COUNTS)
     return n / steps
 
 
@@ -84,15 +106,19 @@ def sides(shape, n):
                                           repr(t)]}
 
 
-def reference(shape, n, t):
+def reference(shape, n, t, insn):
+    """the reference positions at t, and the other formulation's command at REF_H (None
+    where that run would pass CHECK_INSN instructions)"""
     s = sides(shape, n)
     if shape == "chain":
         ref = positions(["%s/scale-%s-%d" % (B, shape, n), "ref", repr(REF_H), repr(t)])
         other = s["mujoco"]("rk4", REF_H, t)
+        cost = insn["mujoco", "rk4"] * t / REF_H
     else:
         ref = positions(s["mujoco"]("rk4", REF_H, t))
         other = s["modrt"]("dopri5", REF_H, t)
-    return ref, other
+        cost = insn["modrt", "dopri5"] * t / REF_H
+    return ref, other if cost <= CHECK_INSN else None
 
 
 def sweep(cmd, ref, t, insn):
@@ -123,9 +149,10 @@ def main():
     ap.add_argument("--t", type=float, default=1.0)
     a = ap.parse_args()
     os.makedirs(M, exist_ok=True)
-    subprocess.run(["gcc", "-std=c11", "-O2", "-Wall", "-Wextra", "-Werror",
-                    "tools/dev/bench/mujoco_bench.c", "-lmujoco", "-lm", "-o",
-                    M + "/mujoco_bench"], check=True)
+    src, exe = "tools/dev/bench/mujoco_bench.c", M + "/mujoco_bench"
+    if not os.path.exists(exe) or os.path.getmtime(exe) < os.path.getmtime(src):
+        subprocess.run(["gcc", "-std=c11", "-O2", "-Wall", "-Wextra", "-Werror",
+                        src, "-lmujoco", "-lm", "-o", exe], check=True)
     rows = []
     for shape in a.shapes:
         chosen = {}  # (side, bound) -> (method, n) of the largest swept size
@@ -152,8 +179,8 @@ def main():
             agree = "-"
             best = {}
             if n in a.sweep:
-                ref, other = reference(shape, n, a.t)
-                agree = "%.1e" % err(positions(other), ref)
+                ref, other = reference(shape, n, a.t, insn)
+                agree = "%.1e" % err(positions(other), ref) if other else "not run"
                 log("%s %d: reference and the other formulation at h = %g differ by %s m"
                     % (shape, n, REF_H, agree))
                 for side, ms in meths.items():
@@ -200,4 +227,5 @@ def main():
     print()
 
 
-main()
+if __name__ == "__main__":
+    main()
