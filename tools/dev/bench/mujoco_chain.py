@@ -22,7 +22,10 @@ loss, passive forces, actuation, control clamping, warm start and sensors disabl
 of them has work in this model; disabling them skips their stages). The integrator and
 the step are set by the bench (mujoco_bench.c) at run time.
 
-Usage: mujoco_chain.py chain|tree N OUT.xml   (and OUT-partK.xml beside it, the subtrees
+With "planar", one hinge per link (about y): the same motion from this start, but a
+model that cannot leave the x-z plane (docs/overhead.md says what it would save).
+
+Usage: mujoco_chain.py chain|tree N OUT.xml [planar]   (and OUT-partK.xml beside it, the subtrees
        from body K on: MuJoCo's XML parser refuses a nesting deeper than about 100)"""
 import os
 import sys
@@ -43,9 +46,11 @@ DEPTH = 50  # bodies nested in one file: MuJoCo's XML parser refuses about 100; 
 
 
 def main():
-    if len(sys.argv) != 4 or sys.argv[1] not in ("chain", "tree"):
-        sys.exit("usage: mujoco_chain.py chain|tree N OUT.xml")
+    if len(sys.argv) not in (4, 5) or sys.argv[1] not in ("chain", "tree") or \
+            sys.argv[4:] not in ([], ["planar"]):
+        sys.exit("usage: mujoco_chain.py chain|tree N OUT.xml [planar]")
     shape, n, path = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+    planar = len(sys.argv) == 5
     if n < 1 or (shape == "tree" and n % 2):
         sys.exit("mujoco_chain.py: N must be positive (even for a tree)")
     children = {k: [] for k in range(-1, n)}
@@ -69,7 +74,8 @@ def main():
         out.append('%s<body name="%s" pos="%g %g %g">'
                    % ((ind, "last" if k == n - 1 else "B%d" % (k + 1)) + pos))
         out.append('%s  <joint type="hinge" axis="0 1 0"/>' % ind)
-        out.append('%s  <joint type="hinge" axis="%s"/>' % (ind, second))
+        if not planar:
+            out.append('%s  <joint type="hinge" axis="%s"/>' % (ind, second))
         out.append('%s  <inertial pos="%g %g %g" mass="1" diaginertia="1e-12 1e-12 1e-12"/>'
                    % ((ind,) + d))
         for c in children[k]:
