@@ -24,7 +24,7 @@
 #include <time.h>
 
 #include "scenes/scenes.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 #define NB 10            /* bodies of pendulum10 */
 #define T_CHECK 2.0      /* time of the error measurement [s] */
@@ -136,7 +136,7 @@ static double run(const rt_integrator *m, long n, int project, double *secs, uns
     while (rt_tick(&sc, &sim) == RT_OK)
         ;
     *secs = now_s() - t0;
-    *status = (unsigned)sim.stats.status;
+    *status = (unsigned)rt_stats_of(&sim)->status;
     double worst = 0;
     for (int b = 0; b < NB; b++) {
         uint16_t bb = (uint16_t)b;
