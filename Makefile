@@ -460,7 +460,8 @@ RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
 bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
 	@mkdir -p build/bench
 	@cp docs/mbs.md build/bench/
-	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md
+	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md \
+	    --commit $$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 	$(O)/svgplot --xy --logx --logy -t "pendulum10: position error at 2 s against host CPU time" \
 	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
 	    -o build/bench/mbs_bench.svg build/bench/mbs.csv
