@@ -75,7 +75,7 @@ def check(root, rel):
 
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else "."
-    bad = 0
+    bad = nfiles = 0
     for top in SCANNED:
         for d, dirs, files in os.walk(os.path.join(root, top)):
             dirs.sort()
@@ -85,12 +85,12 @@ def main():
                 rel = os.path.relpath(os.path.join(d, f), root).replace(os.sep, "/")
                 if rel.startswith(WHITE_BOX):
                     continue
+                nfiles += 1
                 for line, what in check(root, rel):
                     print("%s:%d: %s" % (rel, line, what))
                     bad += 1
-    if bad:
-        print("api_only: %d finding(s): applications and API tests read the runtime through "
-              "rt/rt.h (tests/static/api_only.py)" % bad)
+    print("api_only: %d files outside rt/ and the white-box tests, %d finding(s)%s"
+          % (nfiles, bad, ": they read the runtime through rt/rt.h alone" if bad else ""))
     return 1 if bad else 0
 
 
