@@ -11,7 +11,6 @@
 #include "runner.h"
 #include "trace.h"
 
-
 static double now_s(void)
 {
     struct timespec t;
