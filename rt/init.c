@@ -61,6 +61,8 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
     sim->plan.set_x[sc->nsets] = (uint16_t)nx;
     sim->plan.set_r[sc->nsets] = (uint16_t)nr;
     for (uint8_t s = 0; s < sc->nsets; s++)
+        sim->plan.set_h[s] = rt_set_step(sc, s);
+    for (uint8_t s = 0; s < sc->nsets; s++)
         if (sc->sets[s].method->implicit &&
             sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_IMPLICIT_N)
             return rti_capacity(sim, sc->sets[s].name, RTI_LIM_IMPLICIT_N);

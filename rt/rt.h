@@ -479,6 +479,9 @@ typedef struct rt_set {
    "tolerance must be positive and finite") with *bad the setting at fault (RT_CFG_N: the
    method or the step). */
 const char *rt_set_check(const rt_set *st, rt_cfg_id *bad);
+/* Set s's step [s]: the base tick times its ratio, the one place the product is formed
+   (rt_init keeps it in the plan for the tick; tools that print a scene call it). */
+real_t rt_set_step(const struct rt_scene *sc, uint8_t s);
 
 /* What a recorded signal reads. RT_SIG_MBS: a multibody quantity computed by the scene's
    MBS services (energy, constraint residuals, joint reactions; index from rt_mbs.h). */

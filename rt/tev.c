@@ -102,7 +102,7 @@ void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uin
         return;
     }
 #endif
-    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sc->dt * (real_t)ratio);
+    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sim->plan.set_h[s]);
 }
 
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
