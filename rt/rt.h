@@ -806,7 +806,7 @@ rt_torn rt_torn_at(const rt_scene *scene, const rt_sim *sim, uint16_t k);
 /* The exact sizes of this scene: what its per-scene build's limits must hold, one member
    per row of RT_LIMIT_LIST (rt_config.h: what each counts). */
 typedef struct rt_sizes {
-#define RT_X_SIZE(name, field, least, what) uint16_t field;
+#define RT_X_SIZE(name, field, least, dflt, what) uint16_t field;
     RT_LIMIT_LIST(RT_X_SIZE)
 #undef RT_X_SIZE
 } rt_sizes;

@@ -71,7 +71,7 @@ const char *rti_real_text(char *buf, real_t v);
 #define RTI_LIMIT(name) #name " (" RTI_STR(name) " in rt_config.h)"
 /* the limits of RT_LIMIT_LIST by name (RTI_LIM_BLOCKS, ...) */
 typedef enum {
-#define RT_X_LIM(name, field, least, what) RTI_LIM_##name,
+#define RT_X_LIM(name, field, least, dflt, what) RTI_LIM_##name,
     RT_LIMIT_LIST(RT_X_LIM)
 #undef RT_X_LIM
     RTI_LIM_COUNT

@@ -185,7 +185,7 @@ rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim)
 {
     const char *what = "";
     switch (lim) {
-#define RT_X_TEXT(name, field, least, what_)                                                 \
+#define RT_X_TEXT(name, field, least, dflt, what_)                                                 \
     case RTI_LIM_##name:                                                                    \
         what = what_ " exceed " RTI_LIMIT(RT_MAX_##name);                                   \
         break;

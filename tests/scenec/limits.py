@@ -2,7 +2,8 @@
 """limits.py - every compile-time limit a scene file can reach, at the limit and one past
 it (docs/reliability.md): at the limit the scene runs; one past, `modrt run` exits 2 with
 one line naming the place, the number and the macro. Also the numeric ranges of the end
-time and the CLI. The limits are read from rt/rt_config.h, so the test follows them.
+time and the CLI. The limits are read from rt/rt_config.h and the defaults its list writes
+into rt/rt_limits.h, so the test follows them.
 Usage: limits.py MODRT"""
 import os
 import re
@@ -10,7 +11,7 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CFG = open(os.path.join(ROOT, "rt", "rt_config.h")).read()
+CFG = "".join(open(os.path.join(ROOT, "rt", h)).read() for h in ("rt_config.h", "rt_limits.h"))
 LIM = {m.group(1): int(m.group(2)) for m in re.finditer(r"#define (RT_\w+) (\d+)\b", CFG)}
 TMP = os.path.join(ROOT, "build", "limits")
 os.makedirs(TMP, exist_ok=True)
