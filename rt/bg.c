@@ -62,7 +62,7 @@ static rt_status init(const rt_scene *sc, rt_sim *sim)
         if (st != RT_OK)
             return st;
         if (result_size(sc, sim, s) > RT_MAX_BG)
-            return rti_capacity(sim, sc->sets[s].name, RTI_LIM_BG);
+            return rti_capacity(sim, "set ", sc->sets[s].name, RT_LIM_BG);
         sim->plan.bg_set = s;
     }
     return RT_OK;

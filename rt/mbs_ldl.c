@@ -129,9 +129,7 @@ static rt_status pair_slots(const rt_scene *sc, rt_sim *sim, uint8_t set, uint32
             continue;
         uint16_t t0 = w->to[b], t1 = w->to[b + 1];
         if (*np + (uint32_t)(t1 - t0) * (t1 - t0 + 1) / 2 > RT_MAX_MBS_PAIRS)
-            return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                            ": its constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_PAIRS),
-                            (const char *)0);
+            return rti_capacity(sim, "block ", sc->blocks[b].name, RT_LIM_MBS_PAIRS);
         w->po[b] = (uint16_t)*np;
         for (uint16_t i = t0; i < t1; i++)
             for (uint16_t k = i; k < t1; k++)
@@ -147,9 +145,7 @@ rt_status rti_mbs_ldl_init(const rt_scene *sc, rt_sim *sim, uint8_t set, uint32_
     rt_mbs_work *w = &sim->work.mbs;
     uint16_t n = w->nc[set], base = w->rb[set];
     if ((uint32_t)base + n > RT_MAX_MBS_ROWS)
-        return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[set].name,
-                        ": constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_ROWS),
-                        (const char *)0);
+        return rti_capacity(sim, "set ", sc->sets[set].name, RT_LIM_MBS_ROWS);
     w->rb[set + 1] = (uint16_t)(base + n);
     touches_graph(sc, w, set, &g);
     order(&g, n, w->perm + base);
@@ -159,9 +155,7 @@ rt_status rti_mbs_ldl_init(const rt_scene *sc, rt_sim *sim, uint8_t set, uint32_
         for (uint16_t j = 0; j < i; j++)
             if (has(&g, w->perm[base + i], w->perm[base + j])) {
                 if (e >= RT_MAX_MBS_LNZ)
-                    return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[set].name,
-                                    ": the factors of its constraints exceed ",
-                                    RTI_LIMIT(RT_MAX_MBS_LNZ), (const char *)0);
+                    return rti_capacity(sim, "set ", sc->sets[set].name, RT_LIM_MBS_LNZ);
                 w->lj[e++] = j;
             }
         w->lp[base + i + 1] = (uint16_t)e;

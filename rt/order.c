@@ -145,7 +145,7 @@ static rt_status record_loops(const rt_scene *sc, rt_sim *sim, rti_next_fn next,
         if (!is_cycle(next, g, comp, n, id, &first) || (!ports && holds_actual(sim, comp, n, id)))
             continue;
         if (sim->plan.nloops >= RT_MAX_LOOPS)
-            return rti_capacity(sim, 0, RTI_LIM_LOOPS);
+            return rti_capacity(sim, 0, 0, RT_LIM_LOOPS);
         rt_loop *l = &sim->plan.loops[sim->plan.nloops++];
         l->actual = (uint8_t)ports;
         l->first = *used;
@@ -186,7 +186,7 @@ static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, 
 static rt_status emit(rt_sim *sim, uint8_t kind, uint16_t index)
 {
     if (sim->plan.nseq >= RT_MAX_SEQ)
-        return rti_capacity(sim, 0, RTI_LIM_SEQ);
+        return rti_capacity(sim, 0, 0, RT_LIM_SEQ);
     sim->plan.seq[sim->plan.nseq].kind = kind;
     sim->plan.seq[sim->plan.nseq++].index = index;
     return RT_OK;
@@ -253,7 +253,7 @@ static rt_status build_sequence(const rt_scene *sc, rt_sim *sim, uint16_t ny, ui
 static rt_status tear_input(rt_sim *sim, uint16_t gi, rt_loop *lp)
 {
     if (sim->plan.ntorn >= RT_MAX_TORN)
-        return rti_capacity(sim, 0, RTI_LIM_TORN);
+        return rti_capacity(sim, 0, 0, RT_LIM_TORN);
     sim->plan.torn_in[sim->plan.ntorn] = gi;
     sim->plan.torn_src[sim->plan.ntorn] = sim->plan.src[gi];
     sim->state.torn_val[sim->plan.ntorn] = 0;

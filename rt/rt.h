@@ -811,6 +811,17 @@ typedef struct rt_sizes {
 #undef RT_X_SIZE
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
+/* The capacity limits by name, one per row of RT_LIMIT_LIST (RT_LIM_BLOCKS, ...). */
+typedef enum {
+#define RT_X_LIM(name, field, least, dflt, what) RT_LIM_##name,
+    RT_LIMIT_LIST(RT_X_LIM)
+#undef RT_X_LIM
+    RT_LIM_COUNT
+} rt_limit;
+/* Limit lim of this build in words from its row, "<what it counts> exceed RT_MAX_<NAME>
+   (<value> in rt_config.h)", into buf (cap bytes, truncated; RT_ERR_LEN holds any):
+   the text of every capacity fault of rt_init and of the scene compiler's. Returns buf. */
+const char *rt_limit_text(char *buf, size_t cap, rt_limit lim);
 
 /* Trace hash: per value h = (h ^ bits) * RT_HASH_MUL, then h ^= h >> 32, over the IEEE bit
  * pattern of each value as an integer (rti_hash, rt/rti.h). */
