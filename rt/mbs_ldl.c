@@ -37,6 +37,8 @@
 /* the graph of A's pattern while it is eliminated: adjacency bitsets by set row */
 typedef struct graph {
     uint32_t adj[RT_MAX_MBS_C][ADJ_WORDS];
+    uint16_t deg[RT_MAX_MBS_C]; /* neighbours not eliminated, kept as rows go and fill
+                                   comes, so that choosing a row costs n, not n^2 */
     uint8_t gone[RT_MAX_MBS_C]; /* eliminated */
 } graph;
 
@@ -65,36 +67,42 @@ static void touches_graph(const rt_scene *sc, const rt_mbs_work *w, uint8_t set,
                 for (uint16_t k = w->to[b]; k < w->to[b + 1]; k++)
                     if (w->trow[i] != w->trow[k])
                         link2(g, w->trow[i], w->trow[k]);
+    for (uint16_t r = 0; r < w->nc[set]; r++) {
+        g->deg[r] = 0;
+        for (uint16_t s = 0; s < w->nc[set]; s++)
+            g->deg[r] = (uint16_t)(g->deg[r] + has(g, r, s));
+    }
 }
 
 /* the remaining row with the fewest remaining neighbours (the lowest on ties) */
 static uint16_t min_degree(const graph *g, uint16_t n)
 {
     uint16_t best = 0, best_deg = UINT16_MAX;
-    for (uint16_t r = 0; r < n; r++) {
-        if (g->gone[r])
-            continue;
-        uint16_t deg = 0;
-        for (uint16_t s = 0; s < n; s++)
-            deg = (uint16_t)(deg + (!g->gone[s] && has(g, r, s)));
-        if (deg < best_deg)
-            best = r, best_deg = deg;
-    }
+    for (uint16_t r = 0; r < n; r++)
+        if (!g->gone[r] && g->deg[r] < best_deg)
+            best = r, best_deg = g->deg[r];
     return best;
 }
 
 /* minimum-degree order; eliminating a row joins its remaining neighbours (the fill), so
-   afterwards the graph holds the pattern of L + L^T */
+   afterwards the graph holds the pattern of L + L^T. Work: n per row to find it and its
+   neighbours, and the square of its neighbours for the fill (a chain: n^2 in all) */
 static void order(graph *g, uint16_t n, uint16_t *perm)
 {
+    uint16_t nb[RT_MAX_MBS_C];
     for (uint16_t k = 0; k < n; k++) {
-        uint16_t v = min_degree(g, n);
+        uint16_t v = min_degree(g, n), m = 0;
         perm[k] = v;
         g->gone[v] = 1;
-        for (uint16_t r = 0; r < n; r++)
-            for (uint16_t s = (uint16_t)(r + 1); s < n; s++)
-                if (!g->gone[r] && !g->gone[s] && has(g, v, r) && has(g, v, s))
-                    link2(g, r, s);
+        for (uint16_t r = 0; r < n; r++) /* its remaining neighbours, ascending */
+            if (!g->gone[r] && has(g, v, r))
+                nb[m++] = r, g->deg[r]--;
+        for (uint16_t i = 0; i < m; i++)
+            for (uint16_t j = (uint16_t)(i + 1); j < m; j++)
+                if (!has(g, nb[i], nb[j])) {
+                    link2(g, nb[i], nb[j]);
+                    g->deg[nb[i]]++, g->deg[nb[j]]++;
+                }
     }
 }
 
