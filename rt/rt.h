@@ -479,6 +479,9 @@ typedef struct rt_set {
    "tolerance must be positive and finite") with *bad the setting at fault (RT_CFG_N: the
    method or the step). */
 const char *rt_set_check(const rt_set *st, rt_cfg_id *bad);
+/* Set s's step [s]: the base tick times its ratio, the one place the product is formed
+   (rt_init keeps it in the plan for the tick; tools that print a scene call it). */
+real_t rt_set_step(const struct rt_scene *sc, uint8_t s);
 
 /* What a recorded signal reads. RT_SIG_MBS: a multibody quantity computed by the scene's
    MBS services (energy, constraint residuals, joint reactions; index from rt_mbs.h). */
@@ -697,6 +700,11 @@ rt_status rt_tick(const rt_scene *scene, rt_sim *sim);
 /* A fault the application met outside the tick (a lost link): the run's status becomes
  * status if that is more severe (rt_status_severity), as a counted fault makes it. */
 void rt_note_status(rt_sim *sim, rt_status status);
+/* n faults of counter c the application met outside the tick (deadlines its clock
+ * missed): counted, the first of them at tick first_tick when the counter was 0, and the
+ * run's status as rt_note_status makes it; nothing when n is 0. */
+void rt_note_count(rt_sim *sim, rt_counter c, uint32_t n, uint64_t first_tick,
+                   rt_status status);
 /* Time of the current state [s]. */
 real_t rt_time(const rt_scene *scene, const rt_sim *sim);
 /* Re-evaluates the outputs and root values of every set whose state belongs to the current
@@ -774,10 +782,11 @@ rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 /* Base ticks to the end time. */
 uint64_t rt_tick_count(const rt_sim *sim);
 /* What a run shows now (as the last tick or refresh left it): output j of block b, its
-   continuous state i and discrete state i. */
+   continuous state i, discrete state i and parameter i (as rt_set_param left it). */
 real_t rt_output(const rt_sim *sim, uint16_t block, uint16_t j);
 real_t rt_block_x(const rt_sim *sim, uint16_t block, uint16_t i);
 real_t rt_block_d(const rt_sim *sim, uint16_t block, uint16_t i);
+real_t rt_block_p(const rt_sim *sim, uint16_t block, uint16_t i);
 /* Base ticks done (t = rt_ticks_done * dt), and the trace hash of every value rt_record
    folded in so far (RT_HASH_INIT before the first). */
 uint64_t rt_ticks_done(const rt_sim *sim);
@@ -803,11 +812,22 @@ rt_torn rt_torn_at(const rt_scene *scene, const rt_sim *sim, uint16_t k);
 /* The exact sizes of this scene: what its per-scene build's limits must hold, one member
    per row of RT_LIMIT_LIST (rt_config.h: what each counts). */
 typedef struct rt_sizes {
-#define RT_X_SIZE(name, field, least, what) uint16_t field;
+#define RT_X_SIZE(name, field, least, dflt, what) uint16_t field;
     RT_LIMIT_LIST(RT_X_SIZE)
 #undef RT_X_SIZE
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
+/* The capacity limits by name, one per row of RT_LIMIT_LIST (RT_LIM_BLOCKS, ...). */
+typedef enum {
+#define RT_X_LIM(name, field, least, dflt, what) RT_LIM_##name,
+    RT_LIMIT_LIST(RT_X_LIM)
+#undef RT_X_LIM
+    RT_LIM_COUNT
+} rt_limit;
+/* Limit lim of this build in words from its row, "<what it counts> exceed RT_MAX_<NAME>
+   (<value> in rt_config.h)", into buf (cap bytes, truncated; RT_ERR_LEN holds any):
+   the text of every capacity fault of rt_init and of the scene compiler's. Returns buf. */
+const char *rt_limit_text(char *buf, size_t cap, rt_limit lim);
 
 /* Trace hash: per value h = (h ^ bits) * RT_HASH_MUL, then h ^= h >> 32, over the IEEE bit
  * pattern of each value as an integer (rti_hash, rt/rti.h). */

@@ -40,14 +40,17 @@ count() { # binary side function -> instructions per step
 T=$(mktemp)
 trap 'rm -f $T' EXIT
 [ -z "${SCALE_DATA:-}" ] || { cp "$SCALE_DATA" "$T"; NS=; }
-# the runtime and the point model, once, with BIG (again when a source or this script is
-# newer)
+# the runtime and the point model, once, with BIG (again when a source, a header or this
+# script is newer)
 mkdir -p $B/obj
+# shellcheck disable=SC2012 # plain file names: the newest header of the runtime
+hdr=$(ls -t rt/*.h models/*.h | head -n 1)
 [ -z "$NS" ] || for f in rt/*.c models/mbs_point.c; do
     [ "$f" = rt/registry.c ] && continue
     o=$B/obj/$(echo $f | tr / _ | sed 's/\.c$/.o/')
     # shellcheck disable=SC2086 # the flag lists are meant to split
-    [ -n "$(find "$o" -newer "$f" -newer "$0" 2>/dev/null)" ] || gcc $CF $BIG -c $f -o "$o"
+    [ -n "$(find "$o" -newer "$f" -newer "$0" -newer "$hdr" 2>/dev/null)" ] ||
+        gcc $CF $BIG -c $f -o "$o"
 done
 for shape in chain tree; do
     tree=0
