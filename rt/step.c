@@ -289,7 +289,7 @@ static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t t
    unless it was held when it fired: a contact whose handler let it through fires again
    at once (its handler turns it back, or the per-step bound counts it), never silently */
 static void settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
-                   const rootset *rs, const int8_t *fired, const real_t *r)
+                   real_t t_max, const rootset *rs, const int8_t *fired, const real_t *r)
 {
     uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]), m = 0;
     uint16_t j = sim->plan.blk_of[s];
@@ -301,8 +301,11 @@ static void settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t
     }
     if (!far)
         return;
-    real_t *rp = sim->work.rs;
-    probe(sc, sim, s, te, h * RT_EVENT_PROBE, rp);
+    real_t *rp = sim->work.rs, tau = h * RT_EVENT_PROBE;
+    /* never past the end of the part, nor past a time event known at run time (an FMU
+       is never evaluated beyond its nextEventTime, rt/tev.c); t_max is +inf otherwise */
+    tau = te + tau > t_max ? t_max - te : tau;
+    probe(sc, sim, s, te, tau, rp);
     for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
         for (uint16_t i = 0; i < k->nr; i++, m++) {
@@ -361,11 +364,26 @@ static int nan_root_block(const rt_scene *sc, const rt_sim *sim, uint8_t s, cons
     return -1;
 }
 
+/* the latest time the probe after an event at te may reach in a part ending at t_end:
+   t_end, or the set's next time event known at run time if earlier, in a set that has
+   them (rt/tev.c); else no limit */
+static real_t probe_limit(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t_end)
+{
+    if (!(sim->plan.set_flags[s] & RTI_SET_TEV_DYN))
+        return (real_t)RT_TEV_NEVER;
+    real_t td = rti_tev_dyn_next(sc, sim, s);
+    return td < t_end ? td : t_end;
+}
+
 /* sub-steps from t0 to t + h, locating and firing events on the way. A root that ends a
    span NaN (its state finite) is counted (nan, with its block): where it went NaN from a
    finite value is located like a crossing, so a crossing of any root before that point
-   is found and handled; the NaN root itself has no handler to run */
-static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+   is found and handled; the NaN root itself has no handler to run. may_stop: in a set
+   with time events known at run time, an event that moves the next of them inside the
+   rest of the step ends the step at the event (rt/tev.c goes on from there with a part
+   to that instant). Returns the time reached: t + h, or the event's */
+static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h,
+                               int may_stop)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]);
@@ -405,12 +423,16 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         t0 = te;
         rti_outputs(sc, sim, (rti_at){t0, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0, r);
-        settle(sc, sim, s, t0, h, &rs, fired, r);
+        settle(sc, sim, s, t0, h, probe_limit(sc, sim, s, t0 + span), &rs, fired, r);
         if (!(span > 0))
-            return; /* an event at the step's end: r holds the roots after its handlers */
+            return t + h; /* an event at the step's end: r holds the roots after them */
+        if (may_stop && (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) &&
+            rti_tev_dyn_next(sc, sim, s) < t0 + span)
+            return t0; /* r holds the roots after its handlers */
     }
     for (uint16_t i = 0; i < nr; i++)
         r[i] = sim->work.rs[i];
+    return t + h;
 }
 
 /* the first block of the set holding a non-finite state, or -1 (the set's states are
@@ -436,12 +458,12 @@ void rti_step_witness(rt_sim *sim, uint8_t s, uint64_t r0)
         sim->stats.istats[s].rhs_set_step_max = (uint32_t)d;
 }
 
-void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+real_t rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, int may_stop)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
-    real_t after = -1; /* unknown */
+    real_t after = -1, reached = t + h; /* unknown */
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
-        step_with_events(sc, sim, s, t, h);
+        reached = step_with_events(sc, sim, s, t, h, may_stop);
     } else {
         after = integrate(sc, sim, s, t, h); /* keeps the state before it in work.xs */
     }
@@ -455,4 +477,5 @@ void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h
         rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);
     }
     rti_invariants(sc, sim, s); /* what the kinds declare of their states */
+    return reached;
 }
