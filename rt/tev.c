@@ -362,7 +362,8 @@ static rt_status check_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
 }
 
 /* the flags of set s's kinds: RTI_SET_TEV (time events, known ahead or at run time),
-   RTI_SET_TEV_DYN (at run time), RTI_SET_STEP_END (a step-end service) */
+   RTI_SET_TEV_DYN (at run time), RTI_SET_STEP_END (a step-end service),
+   RTI_SET_EVERY_SIGN (roots whose every sign change is a crossing, rt/step.c) */
 static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     uint16_t f = 0;
@@ -370,7 +371,8 @@ static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
         const rt_kind *kd = sc->blocks[sim->plan.set_blk[k]].kind;
         f = (uint16_t)(f | (kd->next_event ? RTI_SET_TEV : 0) |
                        (kd->next_event && kd->time_event ? RTI_SET_TEV_DYN : 0) |
-                       (kd->step_end ? RTI_SET_STEP_END : 0));
+                       (kd->step_end ? RTI_SET_STEP_END : 0) |
+                       (kd->nr && kd->roots_every_sign ? RTI_SET_EVERY_SIGN : 0));
     }
     return f;
 }
@@ -380,6 +382,7 @@ rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
     unsigned n = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
         uint16_t f = tev_flags(sc, sim, s);
+        sim->plan.set_flags[s] |= (uint16_t)(f & RTI_SET_EVERY_SIGN);
         if (f & (RTI_SET_TEV_DYN | RTI_SET_STEP_END)) /* steps for its services' sake */
             sim->plan.set_flags[s] = (uint16_t)((sim->plan.set_flags[s] | f) & ~RTI_SET_NO_STEP);
         if (!(f & RTI_SET_TEV))

@@ -513,6 +513,7 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
     k->roots = m->nz ? fmu_roots : NULL, k->event = m->nz ? fmu_event : NULL;
     k->next_event = fmu_next_event, k->time_event = fmu_time_event;
     k->step_end = m->md.needs_step_done ? fmu_step_end : NULL;
+    k->roots_every_sign = 1; /* FMI: every change of an indicator's domain is an event */
     k->spec = in;
     k->doc = m->md.model_name;
     k->units = m->units;
