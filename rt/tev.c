@@ -222,7 +222,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
         if (tb > t) {
             /* a whole step without parts: its length as a step without parts has it; a
                part ending at a run-time instant: never past it */
-            real_t h = n == 1 && tb == t_end ? sc->dt * (real_t)ratio : tb - t;
+            real_t h = n == 1 && tb == t_end ? sim->plan.set_h[s] : tb - t;
             if (td <= tb)
                 h = span_to(t, tb, h);
 #if RT_MAX_TEV > 0
@@ -264,7 +264,7 @@ void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uin
         return;
     }
 #endif
-    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sc->dt * (real_t)ratio, 0);
+    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sim->plan.set_h[s], 0);
 }
 
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
@@ -388,7 +388,7 @@ rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
         if (!(f & RTI_SET_TEV))
             continue;
         if (++n > RT_MAX_TEV)
-            return rti_capacity(sim, 0, RTI_LIM_TEV);
+            return rti_capacity(sim, 0, 0, RT_LIM_TEV);
         sim->plan.set_flags[s] |= RTI_SET_TEV;
         rt_status st = check_set(sc, sim, s);
         if (st != RT_OK)
