@@ -35,6 +35,7 @@
     X(RT_E_DEGRADED, 2, "step accepted with its residual above tolerance (degraded)") \
     X(RT_E_SINGULAR, 2, "singular or near-singular matrix")                      \
     X(RT_E_EVENT, 2, "too many state events in one step")                        \
+    X(RT_E_TEV, 2, "more time events in one step than RT_TEV_PARTS_MAX parts")  \
     X(RT_E_NOLOC, 2, "state event not located within its bound")                 \
     X(RT_E_INVARIANT, 2, "an invariant broken: a kind's declared invariant, or a guard root crossed without a located event") \
     X(RT_E_UNSTABLE, 2, "numerically unstable: the state grows without bound")   \
@@ -59,6 +60,7 @@ typedef enum {
 #define RT_COUNTER_LIST(X)                                                       \
     X(RT_CNT_NAN, "nan", "non-finite output, derivative or state")               \
     X(RT_CNT_EVENT_LIMIT, "event_limit", "events beyond RT_EVENTS_PER_STEP_MAX") \
+    X(RT_CNT_TEV_LIMIT, "tev_limit", "time events known at run time beyond RT_TEV_PARTS_MAX parts of one step, handled at the step's end") \
     X(RT_CNT_EVENT_NOLOC, "event_noloc", "root not located within the bound")    \
     X(RT_CNT_NOCONV, "noconv", "iteration not converged within its bound")       \
     X(RT_CNT_SINGULAR, "singular", "singular matrix met")                        \
@@ -238,6 +240,29 @@ typedef struct rt_kind {
        instants must lie on the base tick grid (rt_init refuses the scene otherwise,
        rt/tev.c). NULL: none (the kind has no switch in time) */
     real_t (*next_event)(const rt_args *a);
+
+    /* Services of a kind that is a state machine of its own (an FMU, tools/fmi/); NULL or
+       0 in the library's kinds. */
+    /* Time events known only at run time: with this slot, next_event returns the block's
+       pending instant as its own state holds it now (an FMU's nextEventTime, set by its
+       last event; it may read nothing of a), RT_TEV_NEVER if none. Such instants may lie
+       off the base tick grid and are not walked at rt_init: every step of the block's set
+       ends a part exactly at the next one (rt/tev.c), and this handler runs there with the
+       state at the instant; it may change x and d in place. More instants in one step than
+       RT_TEV_PARTS_MAX parts are counted (tev_limit, RT_E_TEV) and handled at the step's
+       end, never merged silently. */
+    void (*time_event)(const rt_args *a, real_t *x, real_t *d);
+    /* Called once at the end of each completed integration of the block's set (each step,
+       or each part of a step split at time events, rt/tev.c), with the state there, before
+       the time events due there; may run an event of its own there and change x and d in
+       place: returns 1 if it did (the runtime then evaluates the set's outputs and roots
+       again and counts an event), else 0. NULL: none */
+    int (*step_end)(const rt_args *a, real_t *x, real_t *d);
+    /* 1: every sign change of a root is a crossing, as FMI's event indicators need (a
+       change of domain z > 0 / z <= 0): a root an event leaves on its z <= 0 side that
+       then returns to z > 0 crosses there too (rt/step.c); 0: a root a handler sent back
+       is held on its side until it leaves that side again (the library's) */
+    uint8_t roots_every_sign;
 } rt_kind;
 
 /* A reference text of a kind: kept on hosts, dropped from embedded images. */

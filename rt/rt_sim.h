@@ -77,7 +77,7 @@ typedef struct rt_plan {
                                         set reads (RT_SRC_HELD) before that set (rt/xset.c),
                                         so the trace does not depend on how the scene
                                         lists its sets */
-    uint8_t set_flags[RT_MAX_SETS];  /* rti_set_flag bits of each set (rti_eval_plan) */
+    uint16_t set_flags[RT_MAX_SETS]; /* rti_set_flag bits of each set (rti_eval_plan) */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
     uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);

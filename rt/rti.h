@@ -169,7 +169,10 @@ enum {
     RTI_SET_HOLDS_SIG = 16, /* holds recorded/exported multibody signals (held_sig) held.c */
     RTI_SET_XPRED = 32,     /* extrapolates another set: its predictions checked   eval.c */
     RTI_SET_KEEPS_END = 64, /* multi-tick, read by others: step end kept in y_end  held.c */
-    RTI_SET_TEV = 128       /* holds a kind with known time events                 tev.c */
+    RTI_SET_TEV = 128,      /* holds a kind with known time events                 tev.c */
+    RTI_SET_TEV_DYN = 256,  /* holds one whose instants are known at run time only tev.c */
+    RTI_SET_STEP_END = 512, /* holds a kind with a step-end service (step_end)     tev.c */
+    RTI_SET_EVERY_SIGN = 1024 /* holds a kind with roots_every_sign                tev.c */
 };
 /* The first block of set s that keeps it from being linear in its state, or -1. */
 int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t s);
@@ -311,12 +314,17 @@ rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b);
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio);
 /* a parameter of set s changed: its next instant is found anew */
 void rti_tev_moved(rt_sim *sim, uint8_t s);
-/* is base tick `tick` a known time event of set s */
+/* is base tick `tick` a known time event of set s (of its kinds without time_event) */
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
+/* the earliest pending time event known at run time (rt_kind.time_event) of set s [s],
+   RT_TEV_NEVER if none */
+real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s);
 
 /* ---- set steps and events (step.c) ---- */
-/* Advances set s from t by its step h, handling state events; never stops half-way. */
-void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
+/* Advances set s from t by its step h, handling state events; never stops half-way, but
+   (may_stop) at an event that moved a time event known at run time inside the step
+   (rt/tev.c). Returns the time reached: t + h, or that event's. */
+real_t rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, int may_stop);
 /* records the right-hand sides set s's whole step took since its count was r0
    (rt_istats.rhs_set_step_max, the witness of rt_set_step_bound) */
 void rti_step_witness(rt_sim *sim, uint8_t s, uint64_t r0);

@@ -94,25 +94,25 @@ else bad "make image at $clk MHz (half of what pi_loop's slowest tick needs) doe
 # FMU as FMI 2.0 and 3.0 source FMUs (no binary), compiled into an m4f image with its
 # functions prefixed and its memory from the static arena; under QEMU, bounded by an
 # instruction budget (tools/qemu/insn_count.c; the run takes 3.2e7), it prints the hash of
-# the same equations written in the scene language (tests/fmi/scenes/ball_scn.scn), which
-# make test-fmi checks against the closed form. An arena too small fails rt_init in one line.
+# modrt's run of the same source FMU on the host, whose trace make test-fmi checks against
+# the closed form. An arena too small fails rt_init in one line.
 W=build/image/fmu-test
 rm -rf "$W" && mkdir -p "$W"
 export MODRT_FMU_CACHE="$PWD/$W/cache"
-want=$($M run tests/fmi/scenes/ball_scn.scn | sed -n 's/^hash: //p')
 budget=100000000
 for v in 2 3; do
     python3 tests/fmi/mkfmu.py --cc "${CC:-cc}" --version $v --model bouncing --source-only \
         --out "$W/src_bouncing$v.fmu" --cflags "-std=c11 -O2 -fPIC -shared -Itools/fmi -Itests/fmi"
     sed "s#@V@#$v#g; s#@FMUS@/bouncing$v.fmu#$PWD/$W/src_bouncing$v.fmu#" tests/fmi/scenes/ball_fmu.scn \
         > "$W/fmu_ball$v.scn"
+    want=$($M run "$W/fmu_ball$v.scn" | sed -n 's/^hash: //p')
     if make -s image TARGET=m4f SCENE="$W/fmu_ball$v.scn" > "$W/build$v.out" 2>&1; then
         # shellcheck disable=SC2046 # the run command is meant to split into words
         got=$(timeout 300 $(make -s print-TARGET_RUN_m4f | sed "s/^timeout [0-9]* //; s#-kernel\$#-plugin \
               build/host/libinsn_count.so,limit=$budget -kernel#") build/image/m4f/fmu_ball$v.elf 2>&1)
         h=$(echo "$got" | sed -n 's/^rt scene .* hash \([0-9a-f]*\) status ok$/\1/p')
-        if [ -n "$want" ] && [ "$h" = "$want" ]; then ok; echo "image: m4f FMI $v.0 source FMU: hash $h = host scene-language define"
-        else bad "m4f FMI $v.0 source FMU: image hash '$h', define '$want': $got"; fi
+        if [ -n "$want" ] && [ "$h" = "$want" ]; then ok; echo "image: m4f FMI $v.0 source FMU: hash $h = the host's run of it"
+        else bad "m4f FMI $v.0 source FMU: image hash '$h', host '$want': $got"; fi
         if arm-none-eabi-nm build/image/m4f/fmu_ball$v.elf | grep -qE ' T (calloc|malloc)$'; then
             bad "the FMI $v.0 FMU image links a heap"; else ok; fi
     else bad "m4f image of the FMI $v.0 source FMU did not build:"; cat "$W/build$v.out"; fi
