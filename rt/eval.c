@@ -360,3 +360,21 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
         sc->mbs->accel(sc, sim, set, t, xdot);
     return RT_OK;
 }
+
+/* set s's earliest pending instant known only at run time (rt_kind.time_event: an FMU's
+   nextEventTime), read from its kinds' own state; here, below rt/step.c and rt/tev.c,
+   since both ask it (the parts of a step, an event that moves an instant) */
+real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    real_t tn = RT_TEV_NEVER;
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (!sc->blocks[b].kind->time_event)
+            continue;
+        rt_args a;
+        rti_args(sc, sim, b, 0, 0, &a);
+        real_t te = sc->blocks[b].kind->next_event(&a);
+        tn = te < tn ? te : tn; /* (a NaN is no instant) */
+    }
+    return tn;
+}

@@ -251,6 +251,10 @@ typedef struct rti_rhs_ctx {
     real_t h;
 } rti_rhs_ctx;
 
+/* the earliest pending time event known at run time (rt_kind.time_event) of set s [s],
+   RT_TEV_NEVER if none (eval.c) */
+real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s);
+
 /* ---- multirate (xset.c) ---- */
 /* Marks inputs fed by another set, chooses their schemes, orders the schedule. */
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
@@ -316,9 +320,6 @@ void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uin
 void rti_tev_moved(rt_sim *sim, uint8_t s);
 /* is base tick `tick` a known time event of set s (of its kinds without time_event) */
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
-/* the earliest pending time event known at run time (rt_kind.time_event) of set s [s],
-   RT_TEV_NEVER if none */
-real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s);
 
 /* ---- set steps and events (step.c) ---- */
 /* Advances set s from t by its step h, handling state events; never stops half-way, but

@@ -106,19 +106,6 @@ static void part(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k, uint64_
 
 /* ------------------------------------------------------------------ instants known at run time */
 
-real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s)
-{
-    real_t tn = RT_TEV_NEVER;
-    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
-        uint16_t b = sim->plan.set_blk[k];
-        if (!sc->blocks[b].kind->time_event)
-            continue;
-        real_t te = block_next(sc, sim, b, 0);
-        tn = te < tn ? te : tn; /* (a NaN is no instant) */
-    }
-    return tn;
-}
-
 /* the state of set s, kept in work.xb before a service that may change it */
 static void keep_x(rt_sim *sim, uint8_t s)
 {
