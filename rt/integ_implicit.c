@@ -8,7 +8,9 @@
  * differences at the step's first right-hand-side evaluation (state x0): x_j moves in place
  * by sqrt(eps) max(|x_j|, 1) (the rhs reads the state from x) and is restored bit for bit;
  * n more evaluations per refresh. J is refreshed every jac_every steps, and at the step
- * after one that was degraded, split or met a singular M. M is refactored from the stored
+ * after one that was degraded, split or met a singular M; ROS2 spreads a refresh over the
+ * steps before it (spread_columns) and takes its first J before the first tick
+ * (ros2_prime), so that no tick pays for a whole refresh. M is refactored from the stored
  * J, without new evaluations, when h gamma differs from the factored value (event
  * re-steps). All of it lives in the set's rt_implicit_ws, so a replay reproduces it bit for
  * bit.
@@ -99,6 +101,7 @@ typedef struct imp_step {
     real_t tol;         /* residual tolerance (scaled norm) */
     uint8_t nmax;       /* Newton iterations per stage */
     uint8_t refresh;    /* the Jacobian is due at the step's first evaluation */
+    uint16_t col0, col1; /* columns of the next Jacobian due at that evaluation (spread) */
     uint8_t singular;   /* a factorization of this step was singular */
     uint8_t full;       /* retrying: a Jacobian at every Newton iterate */
     real_t err;         /* local error estimate of the result (largest over substeps) */
@@ -122,11 +125,13 @@ static void rhs(imp_step *c, real_t t, real_t *xdot)
         c->rhs_st = st;
 }
 
-rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, const real_t *fb,
-                          real_t inc, real_t *fd, real_t *jac)
+/* columns j0 .. j1 - 1 of the forward-difference Jacobian (rti_fd_jacobian) */
+static rt_status fd_columns(const rt_rhs *f, real_t t, real_t *x, uint16_t n,
+                            const real_t *fb, real_t inc, real_t *fd, real_t *jac, uint16_t j0,
+                            uint16_t j1)
 {
     rt_status st = RT_OK;
-    for (uint16_t j = 0; j < n; j++) {
+    for (uint16_t j = j0; j < j1; j++) {
         real_t xj = x[j], ax = rt_fabs(xj);
         x[j] = xj + inc * (ax > 1 ? ax : 1);
         real_t d = x[j] - xj;
@@ -139,11 +144,18 @@ rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, cons
     return st;
 }
 
-/* the iteration's Jacobian at (tb, x) around fb = f(tb, x): increments sqrt(eps) */
-static void fd_jacobian(imp_step *c, real_t tb, const real_t *fb)
+rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, const real_t *fb,
+                          real_t inc, real_t *fd, real_t *jac)
 {
-    rt_status st = rti_fd_jacobian(c->f, tb, c->x, c->n, fb, rt_sqrt(RT_EPS),
-                                   c->w->k[IMP_BUF_D], c->w->imp->jac);
+    return fd_columns(f, t, x, n, fb, inc, fd, jac, 0, n);
+}
+
+/* columns j0 .. j1 - 1 of the iteration's Jacobian at (tb, x) around fb = f(tb, x):
+   increments sqrt(eps) */
+static void fd_jacobian(imp_step *c, real_t tb, const real_t *fb, uint16_t j0, uint16_t j1)
+{
+    rt_status st = fd_columns(c->f, tb, c->x, c->n, fb, rt_sqrt(RT_EPS), c->w->k[IMP_BUF_D],
+                              c->w->imp->jac, j0, j1);
     if (c->rhs_st == RT_OK)
         c->rhs_st = st;
 }
@@ -164,31 +176,67 @@ static void factor(imp_step *c)
         c->singular = 1;
 }
 
-/* starts a step: settings, and a refactorization when only h gamma changed */
+/* Spread refresh (ROS2 with jac_every = K >= 2): the next Jacobian's n columns are
+   taken c = ceil(n / (K - 1)) per step at the steps' own first evaluations, in the last
+   ceil(n / c) steps of the cycle (the freshest), into J in place; the step at age K only
+   factors M from them. No tick then pays for a whole refresh: the most a regular step
+   adds is c evaluations or one factorization. J is then assembled from states up to
+   K - 1 steps apart, and between refreshes M is a refactorization of a partly renewed J:
+   a W-method keeps its order for any matrix (ros2_tab_). */
+static void spread_columns(imp_step *c, uint32_t age, uint32_t k)
+{
+    if (c->n == 0)
+        return;
+    uint32_t per = (c->n + k - 2) / (k - 1), steps = (c->n + per - 1) / per;
+    if (age + steps < k) /* not yet in the cycle's last `steps` steps */
+        return;
+    uint32_t j0 = (age + steps - k) * per, j1 = j0 + per < c->n ? j0 + per : c->n;
+    c->col0 = (uint16_t)j0, c->col1 = (uint16_t)j1;
+}
+
+/* starts a step: settings, a refresh due at the first evaluation (or, spread, its columns
+   due and at the cycle's end the factorization), and a refactorization when only h gamma
+   changed */
 static void begin(imp_step *c, const rt_rhs *f, real_t *x, uint16_t n, const rt_iwork *w,
-                  real_t hg)
+                  real_t hg, int spread)
 {
     rt_set_cfg cfg = rti_set_cfg_of(w->cfg);
+    rt_implicit_ws *ws = w->imp;
     *c = (imp_step){.f = f, .x = x, .n = n, .w = w, .hg = hg, .r0 = -1};
     c->tol = cfg.tol;
     c->nmax = cfg.newton_max;
     c->sa = rti_err_floor(w->cfg);
-    c->refresh = !w->imp->valid || w->imp->age >= cfg.jac_every;
-    if (!c->refresh && w->imp->h_factored != hg)
+    c->refresh = !ws->valid || ws->age >= cfg.jac_every;
+    spread = spread && cfg.jac_every >= 2 && ws->valid;
+    if (spread && c->refresh) { /* the columns are in J: factor it, no evaluations */
+        c->refresh = 0;
+        ws->age = 0;
+        w->stats->jac_evals++;
+        factor(c);
+    }
+    else if (spread)
+        spread_columns(c, ws->age, cfg.jac_every);
+    if (!c->refresh && ws->h_factored != hg)
         factor(c);
     for (uint16_t i = 0; i < n; i++)
         w->x0[i] = x[i];
 }
 
-/* at the step's first evaluation fb = f(tb, x0): refresh J and factor M if due */
+/* at the step's first evaluation fb = f(tb, x0): refresh J and factor M if due, or take
+   the columns of a spread refresh due at this step */
 static void at_base(imp_step *c, real_t tb, const real_t *fb)
 {
-    if (!c->refresh)
+    if (!c->refresh) {
+        if (c->col1 > c->col0)
+            fd_jacobian(c, tb, fb, c->col0, c->col1);
+        c->col0 = c->col1;
         return;
-    fd_jacobian(c, tb, fb);
+    }
+    fd_jacobian(c, tb, fb, 0, c->n);
     c->w->stats->jac_evals++;
     c->w->imp->age = 0;
     c->refresh = 0;
+    c->col0 = c->col1 = 0;
     factor(c);
 }
 
@@ -258,7 +306,7 @@ static real_t newton(imp_step *c, real_t tc, const real_t *v, int first)
                 c->f0[i] = d[i];
         }
         else if (c->full) { /* a retry: the Jacobian at every iterate (full Newton) */
-            fd_jacobian(c, tc, d);
+            fd_jacobian(c, tc, d, 0, c->n);
             c->w->stats->jac_evals++;
             factor(c);
         }
@@ -421,7 +469,7 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     imp_step c;
     if (!(h != 0)) /* an empty step leaves x alone (k = (Y - v) / (h gamma) needs h) */
         return RT_OK;
-    begin(&c, f, x, n, w, h * tab->gamma);
+    begin(&c, f, x, n, w, h * tab->gamma, 0);
     for (uint16_t j = 0; j < n; j++)
         ws->xs[j] = x[j];
     real_t best = R(1) / R(0), res = dirk_attempt(&c, tab, t, h);
@@ -520,7 +568,7 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     rt_implicit_ws *ws = w->imp;
     real_t acc = rti_accuracy(w->cfg);
     imp_step c;
-    begin(&c, f, x, n, w, h * tab->gamma);
+    begin(&c, f, x, n, w, h * tab->gamma, 1);
     for (uint16_t j = 0; j < n; j++)
         ws->xs[j] = x[j];
     real_t e = ros2_attempt(&c, tab, t, h), best = e;
@@ -546,6 +594,24 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
             x[j] = ws->best[j];
     c.err = best;
     return finish(&c, 0); /* no iteration: residual 0, never degraded */
+}
+
+/* Before the first tick: the first Jacobian of a spread refresh, at (t, x) with the
+   step's h gamma, so that the first step does not pay for it whole either. A failing
+   right-hand side leaves it to the first step, which reports it. */
+static void ros2_prime(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h, real_t *x,
+                       uint16_t n, const rt_iwork *w)
+{
+    const ros2_tab *tab = m->tab;
+    imp_step c;
+    if (rti_set_cfg_of(w->cfg).jac_every < 2 || !(h != 0))
+        return; /* a Jacobian at every step: nothing to spread */
+    w->imp->valid = 0;
+    begin(&c, f, x, n, w, h * tab->gamma, 0);
+    rhs(&c, t, w->k[0]);
+    at_base(&c, t, w->k[0]);
+    if (c.rhs_st != RT_OK || c.singular)
+        w->imp->valid = 0;
 }
 
 /* ------------------------------------------------------------------ work bounds */
@@ -637,4 +703,5 @@ const rt_integrator rt_sdirk2 = {.name = "sdirk2", .order = 2, .stages = 2, .imp
 const rt_integrator rt_sdirk3 = {.name = "sdirk3", .order = 3, .stages = 3, .implicit = 1,
                                  .step = dirk_step, .bound = dirk_bound, .tab = &sd3_tab};
 const rt_integrator rt_ros2 = {.name = "ros2", .order = 2, .stages = 2, .implicit = 1,
-                               .step = ros2_step, .bound = ros2_bound, .tab = &ros2_tab_};
+                               .step = ros2_step, .bound = ros2_bound, .tab = &ros2_tab_,
+                               .prime = ros2_prime};

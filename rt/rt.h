@@ -399,6 +399,10 @@ typedef struct rt_integrator {
        model does (the fixed bound of docs/solvers.md, "Bounded work") */
     void (*bound)(const struct rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                   struct rt_step_work *w);
+    /* before the first tick, at (t, x) for steps of h: what the method keeps from step to
+       step made ready (ROS2's first Jacobian of a spread refresh), or NULL */
+    void (*prime)(const struct rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
+                  real_t *x, uint16_t n, const rt_iwork *w);
 } rt_integrator;
 
 /* The library of integrators: a registry of {name, method} rows ending in {NULL, NULL}. */
