@@ -9,7 +9,7 @@
  * by sqrt(eps) max(|x_j|, 1) (the rhs reads the state from x) and is restored bit for bit;
  * n more evaluations per refresh. J is refreshed every jac_every steps, and at the step
  * after one that was degraded, split or met a singular M; ROS2 spreads a refresh over the
- * steps before it (spread_columns) and takes its first J before the first tick
+ * steps before it (spread_parts) and takes its first J before the first tick
  * (ros2_prime), so that no tick pays for a whole refresh. M is refactored from the stored
  * J, without new evaluations, when h gamma differs from the factored value (event
  * re-steps). All of it lives in the set's rt_implicit_ws, so a replay reproduces it bit for
@@ -101,7 +101,7 @@ typedef struct imp_step {
     real_t tol;         /* residual tolerance (scaled norm) */
     uint8_t nmax;       /* Newton iterations per stage */
     uint8_t refresh;    /* the Jacobian is due at the step's first evaluation */
-    uint16_t col0, col1; /* columns of the next Jacobian due at that evaluation (spread) */
+    uint16_t part0, part1; /* parts of a spread refresh due at that evaluation */
     uint8_t singular;   /* a factorization of this step was singular */
     uint8_t full;       /* retrying: a Jacobian at every Newton iterate */
     real_t err;         /* local error estimate of the result (largest over substeps) */
@@ -176,26 +176,87 @@ static void factor(imp_step *c)
         c->singular = 1;
 }
 
-/* Spread refresh (ROS2 with jac_every = K >= 2): the next Jacobian's n columns are
-   taken c = ceil(n / (K - 1)) per step at the steps' own first evaluations, in the last
-   ceil(n / c) steps of the cycle (the freshest), into J in place; the step at age K only
-   factors M from them. No tick then pays for a whole refresh: the most a regular step
-   adds is c evaluations or one factorization. J is then assembled from states up to
-   K - 1 steps apart, and between refreshes M is a refactorization of a partly renewed J:
-   a W-method keeps its order for any matrix (ros2_tab_). */
-static void spread_columns(imp_step *c, uint32_t age, uint32_t k)
+/* Spread refresh (ROS2 with jac_every = K >= 2). The next iteration matrix is built in
+   jac over the steps before it is due, in 2n + 1 parts: the n columns of J (forward
+   differences at each step's own first evaluation), M = I - hg J formed in place with its
+   pivot floor, and its n elimination stages (rti_lu_stages, pivots in piv_next); the step
+   at age K copies the factors into lu. Each step takes per = ceil((2n + 1) / (K - 1))
+   parts, in the last ceil((2n + 1) / per) steps of the cycle (the freshest). No tick then pays for a whole
+   refresh: a regular step adds at most `per` evaluations or elimination stages, or the
+   copy. J is assembled from states up to K - 1 steps apart: a W-method keeps its order
+   for any matrix (ros2_tab_). jac then holds no J to refactor from: when h gamma
+   changes, M is rebuilt from lu (refactor_lu). */
+static void spread_parts(imp_step *c, uint32_t age, uint32_t k)
 {
-    if (c->n == 0)
+    uint32_t parts = 2u * c->n + 1, per = (parts + k - 2) / (k - 1), steps = (parts + per - 1) / per;
+    if (c->n == 0 || age + steps < k) /* not yet in the cycle's last `steps` steps */
         return;
-    uint32_t per = (c->n + k - 2) / (k - 1), steps = (c->n + per - 1) / per;
-    if (age + steps < k) /* not yet in the cycle's last `steps` steps */
-        return;
-    uint32_t j0 = (age + steps - k) * per, j1 = j0 + per < c->n ? j0 + per : c->n;
-    c->col0 = (uint16_t)j0, c->col1 = (uint16_t)j1;
+    uint32_t p0 = (age + steps - k) * per, p1 = p0 + per < parts ? p0 + per : parts;
+    c->part0 = (uint16_t)p0, c->part1 = (uint16_t)p1;
 }
 
-/* starts a step: settings, a refresh due at the first evaluation (or, spread, its columns
-   due and at the cycle's end the factorization), and a refactorization when only h gamma
+/* parts part0 .. part1 - 1 of a spread refresh, at the step's first evaluation
+   fb = f(tb, x0): columns of J, M = I - hg J, elimination stages */
+static void spread_do(imp_step *c, real_t tb, const real_t *fb)
+{
+    rt_implicit_ws *ws = c->w->imp;
+    uint16_t n = c->n, p0 = c->part0, p1 = c->part1;
+    c->part0 = c->part1;
+    if (p0 < n)
+        fd_jacobian(c, tb, fb, p0, p1 < n ? p1 : n);
+    if (p0 <= n && n < p1) { /* M = I - hg J in place, its pivot floor */
+        for (uint16_t i = 0; i < n; i++)
+            for (uint16_t j = 0; j < n; j++)
+                ws->jac[i * n + j] = (i == j ? 1 : 0) - c->hg * ws->jac[i * n + j];
+        ws->h_next = c->hg;
+        ws->floor_next = rti_lu_floor(ws->jac, n, IMP_PIVOT_TOL);
+        ws->singular_next = 0;
+    }
+    if (p1 <= n + 1)
+        return;
+    uint16_t k0 = (uint16_t)(p0 > n + 1 ? p0 - n - 1 : 0), k1 = (uint16_t)(p1 - n - 1);
+    if (rti_lu_stages(ws->jac, n, ws->piv_next, ws->floor_next, k0, k1) != RT_OK)
+        ws->singular_next = 1;
+}
+
+/* the step at the cycle's end: the factors built in jac become M (a singular one, as in
+   factor, forces a whole fresh Jacobian at the next step) */
+static void spread_install(imp_step *c)
+{
+    rt_implicit_ws *ws = c->w->imp;
+    uint16_t n = c->n;
+    for (uint32_t i = 0; i < (uint32_t)n * n; i++)
+        ws->lu[i] = ws->jac[i];
+    for (uint16_t i = 0; i < n; i++)
+        ws->piv[i] = ws->piv_next[i];
+    ws->h_factored = ws->h_next;
+    ws->valid = !ws->singular_next;
+    c->singular = ws->singular_next;
+    ws->age = 0;
+    c->w->stats->jac_evals++;
+}
+
+/* M for a new h gamma when jac holds no J (a spread refresh builds its factors there):
+   from the factors of M0 = I - hg0 J, M = (1 - r) I + r M0 with r = hg / hg0, no
+   evaluation (event re-steps, time-event parts) */
+static void refactor_lu(imp_step *c)
+{
+    rt_implicit_ws *ws = c->w->imp;
+    uint16_t n = c->n;
+    real_t r = c->hg / ws->h_factored;
+    rti_lu_unfactor(ws->lu, n, ws->piv);
+    for (uint16_t i = 0; i < n; i++)
+        for (uint16_t j = 0; j < n; j++)
+            ws->lu[i * n + j] = r * ws->lu[i * n + j] + (i == j ? 1 - r : 0);
+    rt_status st = rti_lu(ws->lu, n, ws->piv, IMP_PIVOT_TOL);
+    ws->h_factored = c->hg;
+    ws->valid = st == RT_OK;
+    if (st != RT_OK)
+        c->singular = 1;
+}
+
+/* starts a step: settings, a refresh due at the first evaluation (or, spread, its parts
+   due and at the cycle's end the factors built), and a refactorization when only h gamma
    changed */
 static void begin(imp_step *c, const rt_rhs *f, real_t *x, uint16_t n, const rt_iwork *w,
                   real_t hg, int spread)
@@ -208,35 +269,36 @@ static void begin(imp_step *c, const rt_rhs *f, real_t *x, uint16_t n, const rt_
     c->sa = rti_err_floor(w->cfg);
     c->refresh = !ws->valid || ws->age >= cfg.jac_every;
     spread = spread && cfg.jac_every >= 2 && ws->valid;
-    if (spread && c->refresh) { /* the columns are in J: factor it, no evaluations */
+    if (spread && c->refresh) {
         c->refresh = 0;
-        ws->age = 0;
-        w->stats->jac_evals++;
-        factor(c);
+        spread_install(c);
     }
     else if (spread)
-        spread_columns(c, ws->age, cfg.jac_every);
-    if (!c->refresh && ws->h_factored != hg)
-        factor(c);
+        spread_parts(c, ws->age, cfg.jac_every);
+    if (!c->refresh && ws->valid && ws->h_factored != hg) {
+        if (spread)
+            refactor_lu(c);
+        else
+            factor(c);
+    }
     for (uint16_t i = 0; i < n; i++)
         w->x0[i] = x[i];
 }
 
-/* at the step's first evaluation fb = f(tb, x0): refresh J and factor M if due, or take
-   the columns of a spread refresh due at this step */
+/* at the step's first evaluation fb = f(tb, x0): refresh J and factor M if due, or do
+   the parts of a spread refresh due at this step */
 static void at_base(imp_step *c, real_t tb, const real_t *fb)
 {
     if (!c->refresh) {
-        if (c->col1 > c->col0)
-            fd_jacobian(c, tb, fb, c->col0, c->col1);
-        c->col0 = c->col1;
+        if (c->part1 > c->part0)
+            spread_do(c, tb, fb);
         return;
     }
     fd_jacobian(c, tb, fb, 0, c->n);
     c->w->stats->jac_evals++;
     c->w->imp->age = 0;
     c->refresh = 0;
-    c->col0 = c->col1 = 0;
+    c->part0 = c->part1 = 0;
     factor(c);
 }
 
