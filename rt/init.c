@@ -362,6 +362,6 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     if ((st = rt_refresh(sc, sim)) != RT_OK)
         return st;
     for (uint8_t s = 0; s < sc->nsets; s++)
-        rti_prime_set(sc, sim, s, 0, sc->dt * (real_t)sc->sets[s].ratio);
+        rti_prime_set(sc, sim, s, 0, sim->plan.set_h[s]);
     return RT_OK;
 }
