@@ -62,8 +62,12 @@ POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/
                tools/modrt/link_udp.c tools/modrt/fingerprint.c ports/common/link_hmac.c \
                tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c tools/modrt/replay.c \
                $(wildcard tools/modrt/sweep*.c)
-TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
-HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c) \
+# the tests of the API (tests/rt, tests/models, tests/host: rt.h alone) and the white-box
+# tests of the runtime's parts (tests/whitebox: rt_sim.h, rti.h); tests/static/api_only.py
+TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c \
+               $(wildcard tests/rt/*.c tests/models/*.c tests/whitebox/*.c)
+HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c \
+                  $(wildcard tests/host/test_*.c tests/whitebox/host/test_*.c) \
                   ports/common/linkclient.c
 
 obj = $(patsubst %.c,$(O)/obj/%.o,$(1))
@@ -178,7 +182,7 @@ TEST_SUITES = check-freestanding test-unit test-san test-float test-faults test-
                test-fuzz test-fmi $(addprefix cross-test-,$(CROSS_TARGETS))
 # one line each for `make help`
 TEST_HELP_check-freestanding := rt/ and models/ link without libc or libm
-TEST_HELP_test-unit := the unit tests on the host (tests/rt, tests/models, tests/host)
+TEST_HELP_test-unit := the unit tests on the host (tests/rt, models, host, whitebox)
 TEST_HELP_test-san := the unit tests under ASan and UBSan, out-of-range casts (casts.sh)
 TEST_HELP_test-float := the unit tests of the REAL=float build
 TEST_HELP_test-faults := fault injection (tests/faults/, FAULT=1, sanitized)
@@ -235,7 +239,7 @@ test-fuzz:
 include ports/targets.mk
 CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS) -DRT_KIND_DOCS=0 -MMD -MP
 CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tests/registry.c \
-                   $(wildcard tests/rt/*.c tests/models/*.c)
+                   $(wildcard tests/rt/*.c tests/models/*.c tests/whitebox/*.c)
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := ports/common/image_main.c
 # the background set preempted for real (cross-test-<t> of these targets): pendulum10_actuated
@@ -456,7 +460,8 @@ RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
 bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
 	@mkdir -p build/bench
 	@cp docs/mbs.md build/bench/
-	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md
+	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md \
+	    --commit $$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 	$(O)/svgplot --xy --logx --logy -t "pendulum10: position error at 2 s against host CPU time" \
 	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
 	    -o build/bench/mbs_bench.svg build/bench/mbs.csv

@@ -224,6 +224,11 @@ real_t rt_block_d(const rt_sim *sim, uint16_t block, uint16_t i)
     return sim->state.d[sim->plan.d_off[block] + i];
 }
 
+real_t rt_block_p(const rt_sim *sim, uint16_t block, uint16_t i)
+{
+    return sim->state.p[sim->plan.p_off[block] + i];
+}
+
 uint64_t rt_ticks_done(const rt_sim *sim)
 {
     return sim->state.tick;

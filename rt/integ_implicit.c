@@ -742,7 +742,7 @@ static const real_t sd3_a[] = {
 static const real_t sd3_c[] = {R(SD3_G), R(SD3_A21 + SD3_G), 1};
 /* its companion is second order, on the first two stages: bhat2 = (1/2 - c1) / (c2 - c1),
    bhat1 = 1 - bhat2 (a first-order x0 + h k3 made the estimate C / h^2 times the error,
-   4e3 to 4e4 at h = 0.05 on a smooth problem: tests/rt/test_integ.c) */
+   4e3 to 4e4 at h = 0.05 on a smooth problem: tests/whitebox/test_integ.c) */
 #define SD3_BH2 ((0.5 - SD3_G) / SD3_A21)
 static const real_t sd3_bhat[] = {R(1 - SD3_BH2), R(SD3_BH2), 0};
 static const dirk_tab sd3_tab = {3, sd3_a, sd3_c, R(SD3_G), 1, sd3_bhat};

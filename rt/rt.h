@@ -709,6 +709,11 @@ rt_status rt_tick(const rt_scene *scene, rt_sim *sim);
 /* A fault the application met outside the tick (a lost link): the run's status becomes
  * status if that is more severe (rt_status_severity), as a counted fault makes it. */
 void rt_note_status(rt_sim *sim, rt_status status);
+/* n faults of counter c the application met outside the tick (deadlines its clock
+ * missed): counted, the first of them at tick first_tick when the counter was 0, and the
+ * run's status as rt_note_status makes it; nothing when n is 0. */
+void rt_note_count(rt_sim *sim, rt_counter c, uint32_t n, uint64_t first_tick,
+                   rt_status status);
 /* Time of the current state [s]. */
 real_t rt_time(const rt_scene *scene, const rt_sim *sim);
 /* Re-evaluates the outputs and root values of every set whose state belongs to the current
@@ -786,10 +791,11 @@ rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 /* Base ticks to the end time. */
 uint64_t rt_tick_count(const rt_sim *sim);
 /* What a run shows now (as the last tick or refresh left it): output j of block b, its
-   continuous state i and discrete state i. */
+   continuous state i, discrete state i and parameter i (as rt_set_param left it). */
 real_t rt_output(const rt_sim *sim, uint16_t block, uint16_t j);
 real_t rt_block_x(const rt_sim *sim, uint16_t block, uint16_t i);
 real_t rt_block_d(const rt_sim *sim, uint16_t block, uint16_t i);
+real_t rt_block_p(const rt_sim *sim, uint16_t block, uint16_t i);
 /* Base ticks done (t = rt_ticks_done * dt), and the trace hash of every value rt_record
    folded in so far (RT_HASH_INIT before the first). */
 uint64_t rt_ticks_done(const rt_sim *sim);

@@ -1,6 +1,6 @@
 /* snapshot.c - snapshots of a run: the state part of rt_sim copied out, and copied back
  * in with what the plan and a background context derive from it made valid again
- * (rt_snapshot, rt_restore: an FMU's state save and restore, tests/host/test_link.c). */
+ * (rt_snapshot, rt_restore: an FMU's state save and restore, tests/whitebox/host/test_link.c). */
 #include "rti.h"
 
 void rt_snapshot(const rt_sim *sim, rt_state *out)

@@ -175,6 +175,17 @@ void rt_note_status(rt_sim *sim, rt_status status)
         sim->stats.status = status;
 }
 
+void rt_note_count(rt_sim *sim, rt_counter c, uint32_t n, uint64_t first_tick,
+                   rt_status status)
+{
+    if (n == 0)
+        return;
+    if (sim->stats.count[c] == 0)
+        sim->stats.first_tick[c] = (uint32_t)first_tick;
+    sim->stats.count[c] += n;
+    rt_note_status(sim, status);
+}
+
 uint64_t rt_hash_real(uint64_t h, real_t v)
 {
     return rti_hash(h, v);

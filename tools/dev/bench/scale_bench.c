@@ -15,6 +15,7 @@
 #include "pendulum_tight.h"
 #include "rt.h"
 #include "rt_mbs.h"
+#include "rt_sim.h" /* allocates the run */
 
 #ifndef SCALE_N
 #define SCALE_N 10
@@ -112,7 +113,7 @@ int main(int argc, char **argv)
     long n = atol(argv[2]);
     if (strcmp(argv[1], "modrt") == 0) {
         modrt_ticks(&sim, n);
-        return sim.stats.status == RT_OK ? 0 : 1;
+        return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
     }
     if (SCALE_TREE || TIGHT_NB != SCALE_N) {
         fprintf(stderr, "scale_bench: the tight program is the chain's of TIGHT_NB points\n");

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "pendulum_tight.h"
+#include "rt_sim.h" /* allocates the run */
 #include "scenes/scenes.h"
 
 #define CHECK_T 2.0     /* simulated time of the check [s]: the chain is chaotic, rounding
@@ -101,9 +102,9 @@ static int check(void)
                 double d = fabs((double)rt_output(&sim, b, j) - m.q[3 * b + j]);
                 worst = d > worst || d != d ? d : worst;
             }
-        double est = (double)sim.stats.istats[0].err_max;
+        double est = (double)rt_stats_of(&sim)->istats[0].err_max;
         double de = fabs(m.err_max - est) / est;
-        int ok = worst <= CHECK_TOL && de <= EST_TOL && sim.stats.status == RT_OK &&
+        int ok = worst <= CHECK_TOL && de <= EST_TOL && rt_stats_of(&sim)->status == RT_OK &&
                  m.res_max <= 1e-9;
         bad += !ok;
         printf("trajectory pendulum10 %s tight: largest position difference at %g s %.2e m "
@@ -130,7 +131,7 @@ int main(int argc, char **argv)
     long n = lround(secs / (double)sc.dt);
     if (strcmp(argv[2], "modrt") == 0) {
         modrt_ticks(&sc, &sim, n);
-        return sim.stats.status == RT_OK ? 0 : 1;
+        return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
     }
     if (strcmp(argv[2], "tight") != 0 && strcmp(argv[2], "tight-noest") != 0) {
         fprintf(stderr, "tight_bench: unknown side %s\n", argv[2]);
