@@ -359,5 +359,9 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     /* the known time events up to the end time (rt/tev.c) */
     if ((st = tick_count(sc, sim)) != RT_OK || (st = rti_tev_init(sc, sim)) != RT_OK)
         return st;
-    return rt_refresh(sc, sim);
+    if ((st = rt_refresh(sc, sim)) != RT_OK)
+        return st;
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        rti_prime_set(sc, sim, s, 0, sim->plan.set_h[s]);
+    return RT_OK;
 }

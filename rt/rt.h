@@ -297,7 +297,8 @@ typedef struct rt_rhs {
 } rt_rhs;
 
 /* What an implicit method keeps from step to step for one set: the factored iteration
- * matrix is reused until its age reaches the set's refresh interval or h changes. The
+ * matrix is reused until its age reaches the set's refresh interval or h changes (ROS2
+ * builds the next one in jac over the steps before: rt/integ_implicit.c). The
  * transition method keeps h phi1(hJ) in lu, h phi2(hJ) in jac and the last step's change
  * of f in best (rt/integ_transition.c). */
 typedef struct rt_implicit_ws {
@@ -306,10 +307,14 @@ typedef struct rt_implicit_ws {
     real_t xs[RT_MAX_IMPLICIT_N];   /* the step's start, kept across its retries */
     real_t best[RT_MAX_IMPLICIT_N]; /* the retries' result with the smallest residual */
     real_t h_factored;        /* step (times method constant) lu belongs to */
+    real_t h_next, floor_next;/* a spread refresh (ROS2): h gamma and pivot floor of the
+                                 matrix being factored in jac */
     uint32_t age;             /* steps since the Jacobian was refreshed */
     /* the narrow members last, so that no padding sits between wide ones */
     uint16_t piv[RT_MAX_IMPLICIT_N];                  /* row pivots of lu */
+    uint16_t piv_next[RT_MAX_IMPLICIT_N];             /* a spread refresh: those of jac */
     uint8_t valid;            /* lu holds a usable factorization */
+    uint8_t singular_next;    /* a spread refresh met a singular pivot */
 } rt_implicit_ws;
 
 /* Statistics an implicit method reports per set (high-water marks for sizing). */
@@ -424,6 +429,10 @@ typedef struct rt_integrator {
        model does (the fixed bound of docs/solvers.md, "Bounded work") */
     void (*bound)(const struct rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                   struct rt_step_work *w);
+    /* before the first tick, at (t, x) for steps of h: what the method keeps from step to
+       step made ready (ROS2's first Jacobian of a spread refresh), or NULL */
+    void (*prime)(const struct rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
+                  real_t *x, uint16_t n, const rt_iwork *w);
 } rt_integrator;
 
 /* The library of integrators: a registry of {name, method} rows ending in {NULL, NULL}. */

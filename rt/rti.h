@@ -326,6 +326,9 @@ int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
    (may_stop) at an event that moved a time event known at run time inside the step
    (rt/tev.c). Returns the time reached: t + h, or that event's. */
 real_t rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, int may_stop);
+/* before the first tick: set s's method makes ready what it keeps between steps of h
+   from time t (rt_integrator.prime; ROS2's first Jacobian of a spread refresh) */
+void rti_prime_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
 /* records the right-hand sides set s's whole step took since its count was r0
    (rt_istats.rhs_set_step_max, the witness of rt_set_step_bound) */
 void rti_step_witness(rt_sim *sim, uint8_t s, uint64_t r0);

@@ -55,24 +55,43 @@ static void watch_growth(rt_sim *sim, uint8_t s, real_t before, real_t after)
    tolerance is counted as degraded.
    Returns the final state's norm (NaN or inf if a value is not finite), or -1 if the
    projection moved it after the norm was taken */
+/* the integrator's workspace of set s */
+static void iwork_of(const rt_scene *sc, rt_sim *sim, uint8_t s, rt_iwork *w)
+{
+    for (int i = 0; i < RT_MAX_STAGES; i++)
+        w->k[i] = sim->work.w.k[i];
+    w->x0 = sim->work.x0;
+#if RT_MAX_TRANSITION_N > 0
+    w->tm = sim->work.tm;
+#else
+    w->tm = 0; /* no set of this build's scene takes the transition method (rt/eval.c) */
+#endif
+    w->imp = &sim->state.imp[s];
+    w->stats = &sim->stats.istats[s];
+    w->cfg = &sc->sets[s].cfg;
+    w->autonomous = (sim->plan.set_flags[s] & RTI_SET_AUTONOMOUS) != 0;
+}
+
+void rti_prime_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+{
+    const rt_integrator *m = sc->sets[s].method;
+    if (!m->prime || (sim->plan.set_flags[s] & RTI_SET_NO_STEP))
+        return;
+    rti_rhs_ctx ctx = {sc, sim, s, h};
+    rt_rhs f = {rti_rhs, &ctx};
+    rt_iwork w;
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    iwork_of(sc, sim, s, &w);
+    m->prime(m, &f, t, h, sim->state.x + x0, n, &w);
+}
+
 static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
     rti_rhs_ctx ctx = {sc, sim, s, h};
     rt_rhs f = {rti_rhs, &ctx};
     rt_iwork w;
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
-    for (int i = 0; i < RT_MAX_STAGES; i++)
-        w.k[i] = sim->work.w.k[i];
-    w.x0 = sim->work.x0;
-#if RT_MAX_TRANSITION_N > 0
-    w.tm = sim->work.tm;
-#else
-    w.tm = 0; /* no set of this build's scene takes the transition method (rt/eval.c) */
-#endif
-    w.imp = &sim->state.imp[s];
-    w.stats = &sim->stats.istats[s];
-    w.cfg = &sc->sets[s].cfg;
-    w.autonomous = (sim->plan.set_flags[s] & RTI_SET_AUTONOMOUS) != 0;
+    iwork_of(sc, sim, s, &w);
     if (sim->state.param_changed[s]) /* a parameter changed since the last step */
         sim->state.imp[s].valid = 0, sim->state.param_changed[s] = 0;
     uint32_t split = w.stats->substepped;

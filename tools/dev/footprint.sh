@@ -97,7 +97,8 @@ Background context of the scenes with a background set: per step of that set, th
 instructions between \`foot_bg_begin()\` and \`foot_bg_end()\` (the step and its outputs,
 run in PendSV on Cortex-M), and the tick context's slowest tick over its median (from the
 table above): with the slow set's step out of the tick, what remains is the fast sets'
-own variation (ROS2's Jacobian refresh every 64 steps) and the release and publication.
+own variation (ROS2's Jacobian refresh every 64 steps, spread over the steps before it: one
+column or one elimination stage a step) and the release and publication.
 
 | scene | target | real | tick context max/median | background steps | insn/step min | median | max |
 |---|---|---|---:|---:|---:|---:|---:|
