@@ -20,6 +20,7 @@
 
 #include "pendulum_tight.h"
 #include "scenes/scenes.h"
+#include "rt_sim.h" /* the simulator in static storage */
 
 #define CHECK_T 2.0     /* simulated time of the check [s]: the chain is chaotic, rounding
                            differences grow from 1e-16 to 1e-14 m over it */
