@@ -59,8 +59,11 @@ static void test_scene_code_equal(void)
         run(&spec, &a);
         run(&generic, &b);
         th_note(e->name, (double)rhs_done);
-        /* only a block's first assembly (its M factored) is the generic path's */
-        TH_CHECK(rhs_calls > 0 && rhs_done + 8 >= rhs_calls);
+        /* a set the generator leaves out answers 0 (lane_change's vehicle); in
+           pendulum10 only the first assembly (M factored) is the generic path's */
+        TH_CHECK(rhs_done > 0);
+        if (e->scene == &mdl_scene_pendulum10)
+            TH_CHECK(rhs_done + 8 >= rhs_calls);
         TH_CHECK(!inner->project || (proj_calls > 0 && proj_done == proj_calls));
         TH_CHECK(rt_trace_hash(&a) == rt_trace_hash(&b));
         TH_CHECK(memcmp(a.state.x, b.state.x, sizeof a.state.x) == 0);

@@ -16,23 +16,110 @@
 
 #include "rti_mbs.h"
 
-/* what the generator writes for set s: 1 when it can, else 0 */
+/* a set whose multibody part the generator writes out: point masses only, joints with
+   eval_points, at least one constraint row */
 static int mbs_points_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     if (!sc->mbs || w->nz[s] == 0 || !w->points[s] || w->nc[s] == 0)
         return 0;
-    if (sim->plan.rhs_calls[s] != 0 || (sim->plan.set_flags[s] & RTI_SET_DERIV))
-        return 0; /* outputs or derivatives of other blocks in the right-hand side */
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
         const rt_joint *j = &sc->joints[w->sjnt[k]];
         if (!j->kind->eval_points || j->kind->nc > RT_MBS_JOINT_NC_MAX)
             return 0;
     }
-    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
-        if (sc->blocks[w->sblk[k]].kind->next_event)
-            return 0;
     return 1;
+}
+
+/* a set whose right-hand side the generator writes out: its outputs and derivatives, and
+   a multibody part only if mbs_points_set */
+static int rhs_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    if (sim->plan.set_flags[s] & RTI_SET_NO_STEP)
+        return 0;
+    return !(sc->mbs && sim->work.mbs.nz[s] > 0) || mbs_points_set(sc, sim, s);
+}
+
+/* the written-out rti_gather of block b: each input from its source */
+static void gather(FILE *f, const rt_sim *sim, uint16_t b)
+{
+    for (unsigned i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++)
+        switch (sim->plan.src_kind[i]) {
+        case RT_SRC_Y:
+        case RT_SRC_HELD:
+            fprintf(f, "    u[%u] = y[%u];\n", i, sim->plan.src[i]);
+            break;
+        case RT_SRC_TORN:
+            fprintf(f, "    u[%u] = sim->state.torn_val[%u];\n", i, sim->plan.src[i]);
+            break;
+        case RT_SRC_XSET:
+            fprintf(f, "    u[%u] = rti_xset_value(sim, %u, %u, %u, t);\n", i, sim->plan.src[i],
+                    sim->plan.src_set[i], sim->plan.interp[i]);
+            break;
+        default:
+            fprintf(f, "    u[%u] = sim->plan.def[%u];\n", i, i);
+            break;
+        }
+}
+
+/* rt_args of block b (rti_args) with its offsets as constants, and its piece if it has
+   known time events */
+static void block_args(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b,
+                       const char *h)
+{
+    fprintf(f, "    args(sim, %u, %u, %u, %u, %u, t, %s, &ar);\n", b, sim->plan.x_off[b],
+            sim->plan.d_off[b], sim->plan.u_off[b], sim->plan.p_off[b], h);
+    if (sc->blocks[b].kind->next_event)
+        fputs("    ar.t_piece = rti_piece(sc, sim, t);\n", f);
+}
+
+/* rti_rhs's set_outputs: the set's entries of the sequence a right-hand side calls */
+static void outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    if (sim->plan.rhs_calls[s] == 0)
+        return;
+    fputs("    /* the outputs the set reads live, in sequence order (set_outputs) */\n", f);
+    for (uint16_t i = sim->plan.seq_of[s]; i < sim->plan.seq_of[s + 1]; i++) {
+        uint16_t q = sim->plan.set_seq[i], b = sim->plan.seq[q].index;
+        uint8_t fl = sim->plan.seq_flags[q] & RTI_SEQ_RHS;
+        const rt_kind *k;
+        if (sim->plan.seq[q].kind == RT_SEQ_LOOP) {
+            fprintf(f, "    sc->loop_solver->solve(sc, sim, %u, t, RTI_IN_RHS);\n", b);
+            continue;
+        }
+        k = sc->blocks[b].kind;
+        if (fl == RTI_RHS_SKIP || k->type == RT_KIND_DSS) /* held in a step: call_output */
+            continue;
+        fprintf(f, "    /* %s */\n", sc->blocks[b].name);
+        if (k->feed != RT_FEED_NONE)
+            gather(f, sim, b);
+        block_args(f, sc, sim, b, "0");
+        fprintf(f, "    blocks[%u].kind->%s(&ar, y + %u);\n", b,
+                fl == RTI_RHS_LEAN ? "output_lean" : "output", sim->plan.y_off[b]);
+        if (k->ny > 0)
+            fprintf(f, "#if RT_FAULT_INJECT\n    if (rti_fault_due(RTI_FAULT_NAN) && "
+                       "rti_fault_plan.block == %u)\n        y[%u] = (real_t)0 / (real_t)0;\n"
+                       "#endif\n", b, sim->plan.y_off[b]);
+    }
+}
+
+/* rti_rhs's derivatives of the set's blocks with states of their own */
+static void derivs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    if (!(sim->plan.set_flags[s] & RTI_SET_DERIV))
+        return;
+    fputs("    /* the blocks' derivatives */\n", f);
+    for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
+        uint16_t b = sim->plan.set_blk[i];
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nx == 0 || !k->deriv)
+            continue;
+        fprintf(f, "    /* %s */\n", sc->blocks[b].name);
+        gather(f, sim, b);
+        block_args(f, sc, sim, b, "h");
+        fprintf(f, "    blocks[%u].kind->deriv(&ar, xdot + %u);\n", b,
+                sim->plan.x_off[b] - sim->plan.set_x[s]);
+    }
 }
 
 /* lv's slot as the build's limits place it */
@@ -54,8 +141,8 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
         uint16_t b = w->sblk[k];
         unsigned zo = w->zo[b], mo = w->mo[b];
         if (sc->blocks[b].kind->nu > 0)
-            fprintf(f, "    rti_gather(sim, %u, t);\n", b);
-        fprintf(f, "    args(sim, %u, %u, %u, %u, %u, t, &ar);\n", b, sim->plan.x_off[b],
+            gather(f, sim, b);
+        fprintf(f, "    args(sim, %u, %u, %u, %u, %u, t, 0, &ar);\n", b, sim->plan.x_off[b],
                 sim->plan.d_off[b], sim->plan.u_off[b], sim->plan.p_off[b]);
         fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
         fprintf(f, "    a[%u] /= M[%u], a[%u] /= M[%u], a[%u] /= M[%u];\n", zo, mo, zo + 1,
@@ -284,7 +371,7 @@ static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t
     }
 }
 
-/* the locals of a written-out function and its guard: every point's M factored */
+/* the locals of a written-out multibody part and its guard: every point's M factored */
 static void locals(FILE *f, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -293,28 +380,37 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
           "    real_t *g = w->g, *gd = w->gd, *gam = w->gam, *xw = sim->state.x;\n"
           "    const real_t *M = w->M, *x = xw, *C;\n"
           "    real_t acc, d0, d1, d2, vi;\n"
-          "    rt_joint_eval e;\n    rt_args ar;\n"
-          "    (void)L, (void)gam, (void)xw, (void)ar, (void)sc, (void)t;\n", f);
+          "    rt_joint_eval e;\n"
+          "    (void)L, (void)gam, (void)xw, (void)sc, (void)t;\n", f);
     fputs("    if (", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
         fprintf(f, "%s!w->m_valid[%u]", k > w->sb[s] ? " || " : "", w->sblk[k]);
     fputs(")\n        return 0; /* the first assembly factors M: the generic path */\n", f);
 }
 
-/* the right-hand side of a set of points (rti_rhs: rti_mbs_accel alone) */
+/* the right-hand side of a set (rti_rhs): outputs, derivatives, rti_mbs_accel */
 static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    fprintf(f, "\n/* set %s: rti_rhs, rti_mbs_accel of its %u points and %u constraint "
-               "rows */\n", sc->sets[s].name, (unsigned)(w->sb[s + 1] - w->sb[s]),
-            (unsigned)w->nc[s]);
-    fprintf(f, "static int rhs_%u(const rt_scene *sc, rt_sim *sim, real_t t, real_t *xdot)\n{\n",
-            s);
-    locals(f, sim, s);
-    assemble(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
-    schur(f, sim, s);
-    factor(f, sim, s);
-    lambda_accel(f, sc, sim, s);
+    int mbs = sc->mbs && w->nz[s] > 0;
+    fprintf(f, "\n/* set %s: rti_rhs", sc->sets[s].name);
+    if (mbs)
+        fprintf(f, ", rti_mbs_accel of its %u points and %u constraint rows",
+                (unsigned)(w->sb[s + 1] - w->sb[s]), (unsigned)w->nc[s]);
+    fprintf(f, " */\nstatic int rhs_%u(const rt_scene *sc, rt_sim *sim, real_t t, real_t h, "
+               "real_t *xdot)\n{\n", s);
+    fputs("    real_t *u = sim->work.u, *y = sim->state.y;\n    rt_args ar;\n"
+          "    (void)sc, (void)u, (void)y, (void)ar, (void)h, (void)xdot;\n", f);
+    if (mbs)
+        locals(f, sim, s);
+    outputs(f, sc, sim, s);
+    derivs(f, sc, sim, s);
+    if (mbs) {
+        assemble(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
+        schur(f, sim, s);
+        factor(f, sim, s);
+        lambda_accel(f, sc, sim, s);
+    }
     fputs("    return 1;\n}\n", f);
 }
 
@@ -325,6 +421,8 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
     const rt_mbs_work *w = &sim->work.mbs;
     fprintf(f, "\n/* set %s: rti_mbs_project (eq. 10) */\n", sc->sets[s].name);
     fprintf(f, "static int project_%u(const rt_scene *sc, rt_sim *sim, real_t t)\n{\n", s);
+    fputs("    real_t *u = sim->work.u, *y = sim->state.y;\n    rt_args ar;\n"
+          "    (void)u, (void)y, (void)ar;\n", f);
     locals(f, sim, s);
     fputs("    /* positions (10a) */\n", f);
     assemble(f, sc, sim, s, RTI_MBS_JAC);
@@ -363,10 +461,9 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
 static const char helpers[] =
     "\n/* ---- specialized code (tools/scenec/spec.c): rt/'s work for this scene, written out */\n"
     "#include \"rti_mbs.h\"\n\n"
-    "static const real_t zero[3] = {0, 0, 0};\n\n"
     "static inline void args(rt_sim *sim, uint16_t b, unsigned xo, unsigned dof, unsigned uo,\n"
-    "                        unsigned po, real_t t, rt_args *ar)\n{\n"
-    "    ar->t = t, ar->h = 0;\n"
+    "                        unsigned po, real_t t, real_t h, rt_args *ar)\n{\n"
+    "    ar->t = t, ar->h = h;\n"
     "    ar->x = sim->state.x + xo, ar->d = sim->state.d + dof;\n"
     "    ar->u = sim->work.u + uo, ar->p = sim->state.p + po;\n"
     "    ar->spec = blocks[b].kind->spec, ar->t_piece = t;\n}\n\n"
@@ -382,33 +479,39 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
 {
     const rt_scene *sc = &c->image;
     const rt_sim *sim = c->sim;
-    int any = 0;
-    for (uint8_t s = 0; sim && s < sc->nsets; s++)
-        any |= mbs_points_set(sc, sim, s);
+    int any = 0, proj = 0, pts = 0;
+    for (uint8_t s = 0; sim && s < sc->nsets; s++) {
+        any |= rhs_set(sc, sim, s);
+        pts |= mbs_points_set(sc, sim, s);
+        proj |= sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s);
+    }
     if (!any)
         return 0;
     fputs(helpers, f);
-    for (uint8_t s = 0; s < sc->nsets; s++)
-        if (mbs_points_set(sc, sim, s)) {
+    if (pts)
+        fputs("\n/* the velocity of an anchor, and the origin */\n"
+              "static const real_t zero[3] = {0, 0, 0};\n", f);
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        if (rhs_set(sc, sim, s))
             rhs_points(f, sc, sim, s);
-            if (sc->stab == RT_STAB_PROJECT)
-                project_points(f, sc, sim, s);
-        }
+        if (sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s))
+            project_points(f, sc, sim, s);
+    }
     fputs("\nstatic int rhs(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_t h,\n"
-          "               real_t *xdot)\n{\n    (void)h;\n    switch (set) {\n", f);
+          "               real_t *xdot)\n{\n    switch (set) {\n", f);
     for (uint8_t s = 0; s < sc->nsets; s++)
-        if (mbs_points_set(sc, sim, s))
-            fprintf(f, "    case %u: return rhs_%u(sc, sim, t, xdot);\n", s, s);
+        if (rhs_set(sc, sim, s))
+            fprintf(f, "    case %u: return rhs_%u(sc, sim, t, h, xdot);\n", s, s);
     fputs("    default: return 0;\n    }\n}\n", f);
-    if (sc->stab == RT_STAB_PROJECT) {
+    if (proj) {
         fputs("\nstatic int project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)\n"
               "{\n    switch (set) {\n", f);
         for (uint8_t s = 0; s < sc->nsets; s++)
-            if (mbs_points_set(sc, sim, s))
+            if (sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s))
                 fprintf(f, "    case %u: return project_%u(sc, sim, t);\n", s, s);
         fputs("    default: return 0;\n    }\n}\n", f);
     }
     fprintf(f, "\nstatic const rt_scene_code scene_code = {.rhs = rhs%s};\n",
-            sc->stab == RT_STAB_PROJECT ? ", .project = project" : "");
+            proj ? ", .project = project" : "");
     return 1;
 }
