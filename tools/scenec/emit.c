@@ -697,7 +697,7 @@ static void scene(FILE *f, const scn_ctx *c, int code)
             break;
         }
     if (code)
-        fputs("    .code = &scene_code,\n", f);
+        fputs("#if RT_SCENE_CODE\n    .code = &scene_code,\n#endif\n", f);
     fputs("};\n", f);
 }
 

@@ -487,6 +487,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
     }
     if (!any)
         return 0;
+    fputs("\n#if RT_SCENE_CODE /* 0: the table-driven path (rt/rt_config.h) */", f);
     fputs(helpers, f);
     if (pts)
         fputs("\n/* the velocity of an anchor, and the origin */\n"
@@ -511,7 +512,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
                 fprintf(f, "    case %u: return project_%u(sc, sim, t);\n", s, s);
         fputs("    default: return 0;\n    }\n}\n", f);
     }
-    fprintf(f, "\nstatic const rt_scene_code scene_code = {.rhs = rhs%s};\n",
+    fprintf(f, "\nstatic const rt_scene_code scene_code = {.rhs = rhs%s};\n#endif\n",
             proj ? ", .project = project" : "");
     return 1;
 }
