@@ -153,7 +153,7 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
         uint16_t ji = w->sjnt[k];
         const rt_joint *j = &sc->joints[ji];
-        int one = j->b2 < 0, same = j->b2 == j->b1;
+        int one = j->b2 < 0, same = j->b2 == j->b1, sphdiff = j->kind == &rt_joint_sphdiff;
         fputs("    {\n", f);
         fprintf(f, "        const real_t *r1 = x + %u, *v1 = r1 + 3;\n", sim->plan.x_off[j->b1]);
         if (one && j->at) /* the anchor, at rest */
@@ -164,13 +164,20 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
             fprintf(f, "        const real_t *r2 = x + %u, *v2 = r2 + 3;\n",
                     sim->plan.x_off[j->b2]);
         if (what == RTI_MBS_G && j->kind->g_points) {
-            fprintf(f, "        (void)v1, (void)v2;\n"
-                       "        joints[%u].kind->g_points(joints[%u].p, r1, r2, g + %u);\n"
-                       "    }\n", ji, ji, w->jrow[ji]);
+            fputs("        (void)v1, (void)v2;\n", f);
+            if (sphdiff)
+                fprintf(f, "        rti_sphdiff_g(joints[%u].p, r1, r2, g + %u);\n    }\n", ji,
+                        w->jrow[ji]);
+            else
+                fprintf(f, "        joints[%u].kind->g_points(joints[%u].p, r1, r2, g + %u);\n"
+                           "    }\n", ji, ji, w->jrow[ji]);
             continue;
         }
-        fprintf(f, "        joints[%u].kind->eval_points(joints[%u].p, r1, v1, r2, v2, &e);\n",
-                ji, ji);
+        if (sphdiff) /* the kind's own equations, inline (rt/rti_joints.h) */
+            fprintf(f, "        rti_sphdiff_points(joints[%u].p, r1, v1, r2, v2, &e);\n", ji);
+        else
+            fprintf(f, "        joints[%u].kind->eval_points(joints[%u].p, r1, v1, r2, v2, &e);\n",
+                    ji, ji);
         for (unsigned i = 0; i < j->kind->nc; i++) {
             unsigned r = w->jrow[ji] + i, w1 = w->jw[ji][0] + 3 * i;
             unsigned w2 = (one ? w->jw[ji][0] : w->jw[ji][1]) + 3 * i;
@@ -490,7 +497,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
     fputs("\n#if RT_SCENE_CODE /* 0: the table-driven path (rt/rt_config.h) */", f);
     fputs(helpers, f);
     if (pts)
-        fputs("\n/* the velocity of an anchor, and the origin */\n"
+        fputs("#include \"rti_joints.h\"\n\n/* the velocity of an anchor, and the origin */\n"
               "static const real_t zero[3] = {0, 0, 0};\n", f);
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (rhs_set(sc, sim, s))

@@ -15,6 +15,7 @@
 #include "pendulum_tight.h"
 #include "rt.h"
 #include "rt_mbs.h"
+#include "rt_sim.h" /* the simulator in static storage */
 
 #ifndef SCALE_N
 #define SCALE_N 10
