@@ -479,6 +479,9 @@ typedef struct rt_set {
    "tolerance must be positive and finite") with *bad the setting at fault (RT_CFG_N: the
    method or the step). */
 const char *rt_set_check(const rt_set *st, rt_cfg_id *bad);
+/* Set s's step [s]: the base tick times its ratio, the one place the product is formed
+   (rt_init keeps it in the plan for the tick; tools that print a scene call it). */
+real_t rt_set_step(const struct rt_scene *sc, uint8_t s);
 
 /* What a recorded signal reads. RT_SIG_MBS: a multibody quantity computed by the scene's
    MBS services (energy, constraint residuals, joint reactions; index from rt_mbs.h). */
@@ -820,11 +823,22 @@ rt_torn rt_torn_at(const rt_scene *scene, const rt_sim *sim, uint16_t k);
 /* The exact sizes of this scene: what its per-scene build's limits must hold, one member
    per row of RT_LIMIT_LIST (rt_config.h: what each counts). */
 typedef struct rt_sizes {
-#define RT_X_SIZE(name, field, least, what) uint16_t field;
+#define RT_X_SIZE(name, field, least, dflt, what) uint16_t field;
     RT_LIMIT_LIST(RT_X_SIZE)
 #undef RT_X_SIZE
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
+/* The capacity limits by name, one per row of RT_LIMIT_LIST (RT_LIM_BLOCKS, ...). */
+typedef enum {
+#define RT_X_LIM(name, field, least, dflt, what) RT_LIM_##name,
+    RT_LIMIT_LIST(RT_X_LIM)
+#undef RT_X_LIM
+    RT_LIM_COUNT
+} rt_limit;
+/* Limit lim of this build in words from its row, "<what it counts> exceed RT_MAX_<NAME>
+   (<value> in rt_config.h)", into buf (cap bytes, truncated; RT_ERR_LEN holds any):
+   the text of every capacity fault of rt_init and of the scene compiler's. Returns buf. */
+const char *rt_limit_text(char *buf, size_t cap, rt_limit lim);
 
 /* Trace hash: per value h = (h ^ bits) * RT_HASH_MUL, then h ^= h >> 32, over the IEEE bit
  * pattern of each value as an integer (rti_hash, rt/rti.h). */

@@ -31,6 +31,7 @@ typedef struct rt_plan {
     /* sets: slice of x each set integrates, and slice of r holding each set's roots */
     uint16_t set_x[RT_MAX_SETS + 1];
     uint16_t set_r[RT_MAX_SETS + 1];
+    real_t set_h[RT_MAX_SETS];       /* each set's step [s] (rt_set_step) */
 
     /* layout: offsets of each block's slice in the value arrays (size nblocks + 1) */
     uint16_t x_off[RT_MAX_BLOCKS + 1], d_off[RT_MAX_BLOCKS + 1];

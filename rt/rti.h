@@ -64,21 +64,15 @@ void rti_note(rt_sim *sim, ...);
 /* v as "d.dde+xx" into buf (RTI_REAL_TEXT bytes); returns buf (or a constant "nan"). */
 #define RTI_REAL_TEXT 16
 const char *rti_real_text(char *buf, real_t v);
-/* "RT_MAX_X (256 in rt_config.h)": a limit with its value, for rti_fail's messages; a
-   per-scene build (make image) sizes the limits from the scene */
+/* "RT_LOOP_ITER_LIMIT (32 in rt_config.h)": a constant with its value, for rti_fail's
+   messages about the limits that are not capacities (those say rti_capacity) */
 #define RTI_STR2(x) #x
 #define RTI_STR(x) RTI_STR2(x)
 #define RTI_LIMIT(name) #name " (" RTI_STR(name) " in rt_config.h)"
-/* the limits of RT_LIMIT_LIST by name (RTI_LIM_BLOCKS, ...) */
-typedef enum {
-#define RT_X_LIM(name, field, least, what) RTI_LIM_##name,
-    RT_LIMIT_LIST(RT_X_LIM)
-#undef RT_X_LIM
-    RTI_LIM_COUNT
-} rti_limit;
-/* RT_E_CAPACITY with the limit's own message, "[set NAME: ]<what it counts> exceed
-   RT_MAX_<NAME> (<value> in rt_config.h)" (set: 0 for none) */
-rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim);
+/* RT_E_CAPACITY with the limit's own text (rt_limit_text) and where it was exceeded:
+   "[<place><name>: ]<what it counts> exceed RT_MAX_<NAME> (<value> in rt_config.h)",
+   place "set ", "block " or "joint " and the item's name, or both 0 for the scene */
+rt_status rti_capacity(rt_sim *sim, const char *place, const char *name, rt_limit lim);
 /* Sets n bytes at p to zero (freestanding memset). */
 void rti_zero(void *p, size_t n);
 /* The trace hash of one more value (rt_hash_real): one multiply and one xor-shift, on the

@@ -102,7 +102,7 @@ void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uin
         return;
     }
 #endif
-    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sc->dt * (real_t)ratio);
+    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sim->plan.set_h[s]);
 }
 
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
@@ -215,7 +215,7 @@ rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
         if (!has_events(sc, sim, s))
             continue;
         if (++n > RT_MAX_TEV)
-            return rti_capacity(sim, 0, RTI_LIM_TEV);
+            return rti_capacity(sim, 0, 0, RT_LIM_TEV);
         sim->plan.set_flags[s] |= RTI_SET_TEV;
         rt_status st = check_set(sc, sim, s);
         if (st != RT_OK)
