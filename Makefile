@@ -62,8 +62,12 @@ POSIX_SRCS  := ports/posix/port.c tools/modrt/runner.c tools/modrt/tune.c tools/
                tools/modrt/link_udp.c tools/modrt/fingerprint.c ports/common/link_hmac.c \
                tools/modrt/link_serial.c tools/modrt/serial.c ports/common/linkframe.c tools/modrt/replay.c \
                $(wildcard tools/modrt/sweep*.c)
-TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c $(wildcard tests/rt/*.c tests/models/*.c)
-HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c $(wildcard tests/host/test_*.c) \
+# the tests of the API (tests/rt, tests/models, tests/host: rt.h alone) and the white-box
+# tests of the runtime's parts (tests/whitebox: rt_sim.h, rti.h); tests/static/api_only.py
+TEST_SRCS   := tests/harness.c tests/testutil.c tests/registry.c \
+               $(wildcard tests/rt/*.c tests/models/*.c tests/whitebox/*.c)
+HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c \
+                  $(wildcard tests/host/test_*.c tests/whitebox/host/test_*.c) \
                   ports/common/linkclient.c
 
 obj = $(patsubst %.c,$(O)/obj/%.o,$(1))
@@ -93,6 +97,8 @@ help:
 	@echo "make bench        benchmarks: figures into build/bench/ (make docs: into docs/)"
 	@echo "make speedup      the multirate speedup at equal accuracy from instruction counts"
 	@echo "                  (part of bench; a few minutes; SPEEDUP_JOBS=2)"
+	@echo "make mujoco-scale MuJoCo 2.2.2 beside modrt on the scaling chains and trees at equal"
+	@echo "                  accuracy (part of bench; installs libmujoco-dev; about an hour)"
 	@echo "make docs         refresh the committed figures and references under docs/"
 	@echo "make cross-test   every cross target under QEMU (cross-test-<t>: one; targets:"
 	@echo "                  $(CROSS_TARGETS))"
@@ -125,6 +131,8 @@ deps:
 	@sh tools/install-deps.sh --auto all
 deps-host:
 	@sh tools/install-deps.sh --auto host
+deps-bench:
+	@sh tools/install-deps.sh --auto bench
 
 # rt/ and models/ build freestanding; ports, tests and tools build hosted
 $(O)/obj/rt/%.o: rt/%.c
@@ -178,7 +186,7 @@ TEST_SUITES = check-freestanding test-unit test-san test-float test-faults test-
                test-fuzz test-fmi $(addprefix cross-test-,$(CROSS_TARGETS))
 # one line each for `make help`
 TEST_HELP_check-freestanding := rt/ and models/ link without libc or libm
-TEST_HELP_test-unit := the unit tests on the host (tests/rt, tests/models, tests/host)
+TEST_HELP_test-unit := the unit tests on the host (tests/rt, models, host, whitebox)
 TEST_HELP_test-san := the unit tests under ASan and UBSan, out-of-range casts (casts.sh)
 TEST_HELP_test-float := the unit tests of the REAL=float build
 TEST_HELP_test-faults := fault injection (tests/faults/, FAULT=1, sanitized)
@@ -235,7 +243,7 @@ test-fuzz:
 include ports/targets.mk
 CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS) -DRT_KIND_DOCS=0 -MMD -MP
 CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tests/registry.c \
-                   $(wildcard tests/rt/*.c tests/models/*.c)
+                   $(wildcard tests/rt/*.c tests/models/*.c tests/whitebox/*.c)
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := ports/common/image_main.c
 # the background set preempted for real (cross-test-<t> of these targets): pendulum10_actuated
@@ -373,7 +381,8 @@ effects: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 	mv build/footprint.md docs/footprint.md
 	@echo "effects: wrote the section of docs/footprint.md"
 # one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes); a scene
-# outside the library: SCN=<file.scn> too, S its scene name (scenec compiles and sizes it)
+# outside the library: SCN=<file.scn> too, S its scene name (scenec compiles and sizes it);
+# FOOT_CFLAGS=-DRT_SCENE_CODE=0: the table-driven path instead of the scene's written-out code
 FOOT_TICKS ?= 1000
 FOOT_GEN = $(if $(SCN),build/foot/gen/$(S).c,build/gen/scenes/$(S).c)
 FOOT_SIZES = $(if $(SCN),$(shell build/host/scenec --sizes $(SCN)),$(shell build/host/modrt sizes $(S)))
@@ -387,7 +396,7 @@ foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@mkdir -p build/foot/$(T)$(XSUF) build/foot/gen
 	@$(if $(SCN),build/host/scenec -o $(FOOT_GEN) $(SCN))
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
-	  $(FOOT_SIZES) $(FOOT_BG) \
+	  $(FOOT_SIZES) $(FOOT_BG) $(FOOT_CFLAGS) \
 	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) $(FOOT_GEN) \
 	  $(FOOT_FMU) $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)
@@ -436,6 +445,14 @@ overhead: $(O)/overhead_bench $(O)/tight_bench
 	@sh tools/dev/bench/splice.sh scale build/bench/overhead.md build/bench/scale.md
 	@cat build/bench/scale.md
 .PHONY: overhead
+# MuJoCo 2.2.2 (Debian's libmujoco-dev, a bench-only dependency) beside modrt on the scaling
+# chains and trees at equal accuracy, both swept over method and step (docs/overhead.md,
+# "Beside MuJoCo"), spliced into build/bench/overhead.md after overhead's tables
+mujoco-scale: deps-bench overhead
+	python3 tools/dev/bench/mujoco_scale.py > build/bench/mujoco.md
+	@sh tools/dev/bench/splice.sh mujoco build/bench/overhead.md build/bench/mujoco.md
+	@cat build/bench/mujoco.md
+.PHONY: mujoco-scale deps-bench
 # the multirate speedup at equal accuracy (issue 14, goal 4; docs/multirate.md, "The
 # benchmark"): single-rate and multirate sweeps of pendulum10_actuated and lane_change,
 # errors from the host binary, costs from callgrind's instruction counts; spliced into a
@@ -456,10 +473,11 @@ speedup: $(O)/modrt $(O)/svgplot
 # `make docs` runs them and copies the figures over the committed ones in docs/
 BENCH_DOCS := mbs.md mbs_bench.svg multirate.md multirate_bench.svg overhead.md
 RT_BENCH_S ?= 60 # seconds of each real-time run of the bench
-bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead speedup serial-bench
+bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead mujoco-scale speedup serial-bench
 	@mkdir -p build/bench
 	@cp docs/mbs.md build/bench/
-	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md
+	$(O)/mbs_bench --csv build/bench/mbs.csv --doc build/bench/mbs.md \
+	    --commit $$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 	$(O)/svgplot --xy --logx --logy -t "pendulum10: position error at 2 s against host CPU time" \
 	    -x "host CPU s per simulated s" -y "largest position error at 2 s [m]" \
 	    -o build/bench/mbs_bench.svg build/bench/mbs.csv

@@ -62,7 +62,7 @@ static rt_status init(const rt_scene *sc, rt_sim *sim)
         if (st != RT_OK)
             return st;
         if (result_size(sc, sim, s) > RT_MAX_BG)
-            return rti_capacity(sim, sc->sets[s].name, RTI_LIM_BG);
+            return rti_capacity(sim, "set ", sc->sets[s].name, RT_LIM_BG);
         sim->plan.bg_set = s;
     }
     return RT_OK;
@@ -228,8 +228,7 @@ static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
     uint64_t r0 = ctx->stats.rhs_evals[s];
     /* its sensitivity to the inputs it extrapolates, when due (here, not in the tick) */
     if (ctx->plan.set_flags[s] & RTI_SET_XPRED)
-        rti_xset_gain(sc, ctx, s, (real_t)ctx->state.set_tick[s] * sc->dt,
-                      sc->dt * (real_t)ratio);
+        rti_xset_gain(sc, ctx, s, (real_t)ctx->state.set_tick[s] * sc->dt, ctx->plan.set_h[s]);
     rti_tev_step(sc, ctx, s, ctx->state.set_tick[s], ratio); /* parts at time events */
     rti_step_witness(ctx, s, r0);
     real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
@@ -249,7 +248,7 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
        (the context's copy is the same, rather than the other way round) */
     if (sim->plan.set_flags[s] & RTI_SET_XPRED)
         rti_xset_predict(sc, sim, s, (real_t)sim->state.set_tick[s] * sc->dt,
-                         sc->dt * (real_t)sc->sets[s].ratio);
+                         sim->plan.set_h[s]);
     if (!sim->bg) {
         move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_result, 0);
         run_step(sc, sim, s);

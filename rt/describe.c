@@ -37,7 +37,8 @@ static uint32_t checked_inputs(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 
 /* the method's bound times the method steps one step of the set can take: the step
    itself and, with roots, every located event's re-steps and the rest of the step after
-   it (rt/step.c), with one probe per handled event; each part at a known time event
+   it (rt/step.c), with one probe per handled event (and one integration more where a
+   root's every sign change counts, up to its return); each part at a known time event
    again (rt/tev.c); and the coupling monitor's two right-hand sides per sensitivity,
    measured at most twice a step per checked input (rt/xset.c) */
 rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
@@ -47,6 +48,9 @@ rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     uint32_t parts = (sim->plan.set_flags[s] & RTI_SET_TEV) ? RT_TEV_PARTS_MAX : 1;
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
         steps += RT_EVENTS_PER_STEP_MAX * (RT_EVENT_ITER_MAX + 1u);
+        /* a root that returns within the probe ends the next integration there */
+        if (sim->plan.set_flags[s] & RTI_SET_EVERY_SIGN)
+            steps += RT_EVENTS_PER_STEP_MAX;
         probes = RT_EVENTS_PER_STEP_MAX + 1u;
     }
     w.rhs = parts * (steps * w.rhs + probes) + 4u * checked_inputs(sc, sim, s);
@@ -230,6 +234,11 @@ real_t rt_block_x(const rt_sim *sim, uint16_t block, uint16_t i)
 real_t rt_block_d(const rt_sim *sim, uint16_t block, uint16_t i)
 {
     return sim->state.d[sim->plan.d_off[block] + i];
+}
+
+real_t rt_block_p(const rt_sim *sim, uint16_t block, uint16_t i)
+{
+    return sim->state.p[sim->plan.p_off[block] + i];
 }
 
 uint64_t rt_ticks_done(const rt_sim *sim)

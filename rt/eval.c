@@ -339,6 +339,8 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     uint16_t base = sim->plan.set_x[set];
 
     sim->stats.rhs_evals[set]++;
+    if (sc->code && sc->code->rhs && sc->code->rhs(sc, sim, set, t, c->h, xdot))
+        return RT_OK; /* written out for this scene (rt_scene_code) */
     if (sim->plan.rhs_calls[set] > 0) /* else no output of the set is read live */
         set_outputs(sc, sim, (rti_at){t, set, RTI_IN_RHS});
     /* a multibody set's blocks have none (rti_mbs_accel gives their derivatives) */
@@ -359,4 +361,22 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     if (sc->mbs && sim->work.mbs.nz[set] > 0)
         sc->mbs->accel(sc, sim, set, t, xdot);
     return RT_OK;
+}
+
+/* set s's earliest pending instant known only at run time (rt_kind.time_event: an FMU's
+   nextEventTime), read from its kinds' own state; here, below rt/step.c and rt/tev.c,
+   since both ask it (the parts of a step, an event that moves an instant) */
+real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    real_t tn = RT_TEV_NEVER;
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (!sc->blocks[b].kind->time_event)
+            continue;
+        rt_args a;
+        rti_args(sc, sim, b, 0, 0, &a);
+        real_t te = sc->blocks[b].kind->next_event(&a);
+        tn = te < tn ? te : tn; /* (a NaN is no instant) */
+    }
+    return tn;
 }

@@ -53,17 +53,18 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
             nx += sc->blocks[b].kind->nx;
             nr += sc->blocks[b].kind->nr;
             if (nx > RT_MAX_X || nr > RT_MAX_ROOTS)
-                return rti_fail(sim, RT_E_CAPACITY, "states or roots exceed ",
-                                RTI_LIMIT(RT_MAX_X), " or ", RTI_LIMIT(RT_MAX_ROOTS),
-                                (const char *)0);
+                return rti_capacity(sim, "block ", sc->blocks[b].name,
+                                    nx > RT_MAX_X ? RT_LIM_X : RT_LIM_ROOTS);
         }
     }
     sim->plan.set_x[sc->nsets] = (uint16_t)nx;
     sim->plan.set_r[sc->nsets] = (uint16_t)nr;
     for (uint8_t s = 0; s < sc->nsets; s++)
+        sim->plan.set_h[s] = rt_set_step(sc, s);
+    for (uint8_t s = 0; s < sc->nsets; s++)
         if (sc->sets[s].method->implicit &&
             sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_IMPLICIT_N)
-            return rti_capacity(sim, sc->sets[s].name, RTI_LIM_IMPLICIT_N);
+            return rti_capacity(sim, "set ", sc->sets[s].name, RT_LIM_IMPLICIT_N);
 
     sim->plan.x_off[sc->nblocks] = (uint16_t)nx;
     for (uint16_t b = 0; b <= sc->nblocks; b++) {
@@ -75,11 +76,13 @@ static rt_status layout(const rt_scene *sc, rt_sim *sim)
             break;
         const rt_kind *k = sc->blocks[b].kind;
         nd += k->nd, nu += k->nu, ny += k->ny, np += k->np;
-        if (nd > RT_MAX_D || nu > RT_MAX_U || ny > RT_MAX_Y || np > RT_MAX_P)
-            return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                            " exceeds ", RTI_LIMIT(RT_MAX_D), ", ", RTI_LIMIT(RT_MAX_U), ", ",
-                            RTI_LIMIT(RT_MAX_Y), " or ", RTI_LIMIT(RT_MAX_P),
-                            (const char *)0);
+        rt_limit over = nd > RT_MAX_D   ? RT_LIM_D
+                        : nu > RT_MAX_U ? RT_LIM_U
+                        : ny > RT_MAX_Y ? RT_LIM_Y
+                        : np > RT_MAX_P ? RT_LIM_P
+                                        : RT_LIM_COUNT;
+        if (over != RT_LIM_COUNT)
+            return rti_capacity(sim, "block ", sc->blocks[b].name, over);
     }
     return RT_OK;
 }
@@ -188,17 +191,16 @@ static rt_status check_history(const rt_scene *sc, rt_sim *sim)
     /* (the outputs read by another set were checked against RT_MAX_HIST_Y as they were
        found, rti_xset_init) */
     if (rti_held_top(sc, sim) > RT_MAX_HELD_Y)
-        return rti_capacity(sim, 0, RTI_LIM_HELD_Y);
+        return rti_capacity(sim, 0, 0, RT_LIM_HELD_Y);
     if (rti_held_sigs(sc) > RT_MAX_HELD_SIG)
-        return rti_capacity(sim, 0, RTI_LIM_HELD_SIG);
+        return rti_capacity(sim, 0, 0, RT_LIM_HELD_SIG);
     uint32_t iters = sc->loop_iter_max ? sc->loop_iter_max : RT_LOOP_ITER_MAX;
     if (sim->plan.ntorn > 0 && iters > RT_MAX_LOOP_HIST - 1)
-        return rti_fail(sim, RT_E_CAPACITY, "the loops' iteration bound exceeds ",
-                        RTI_LIMIT(RT_MAX_LOOP_HIST), " - 1", (const char *)0);
+        return rti_capacity(sim, 0, 0, RT_LIM_LOOP_HIST); /* a bin per count, 0 too */
     for (uint8_t s = 0; s < sc->nsets; s++)
         if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] &&
             sim->plan.set_x[s + 1] - sim->plan.set_x[s] > RT_MAX_EVENT_X)
-            return rti_capacity(sim, sc->sets[s].name, RTI_LIM_EVENT_X);
+            return rti_capacity(sim, "set ", sc->sets[s].name, RT_LIM_EVENT_X);
     return RT_OK;
 }
 
@@ -224,10 +226,11 @@ static rt_status check_set(const rt_scene *sc, uint8_t s, rt_sim *sim)
 static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
 {
     if (sc->nblocks > RT_MAX_BLOCKS)
-        return rti_capacity(sim, 0, RTI_LIM_BLOCKS);
-    if (sc->nsets == 0 || sc->nsets > RT_MAX_SETS)
-        return rti_fail(sim, RT_E_CAPACITY, "a scene needs 1 to ", RTI_LIMIT(RT_MAX_SETS),
-                        " sets", (const char *)0);
+        return rti_capacity(sim, 0, 0, RT_LIM_BLOCKS);
+    if (sc->nsets > RT_MAX_SETS)
+        return rti_capacity(sim, 0, 0, RT_LIM_SETS);
+    if (sc->nsets == 0)
+        return rti_fail(sim, RT_E_CAPACITY, "a scene needs at least one set", (const char *)0);
     if (!(sc->dt > 0) || !(sc->t_end >= 0) || !rt_isfinite(sc->t_end))
         return rti_fail(sim, RT_E_SCENE, "base tick must be > 0 and end time >= 0",
                         (const char *)0);
@@ -301,7 +304,7 @@ static rt_status check_methods(const rt_scene *sc, rt_sim *sim)
                             ") is not a linear kind (rt_kind.linear), is a multibody "
                             "module or has a torn input", (const char *)0);
         if (st->method->linear && rt_set_nx(sim, s) > RT_MAX_TRANSITION_N)
-            return rti_capacity(sim, st->name, RTI_LIM_TRANSITION_N);
+            return rti_capacity(sim, "set ", st->name, RT_LIM_TRANSITION_N);
     }
     return RT_OK;
 }
@@ -356,5 +359,9 @@ rt_status rt_init(const rt_scene *sc, rt_sim *sim)
     /* the known time events up to the end time (rt/tev.c) */
     if ((st = tick_count(sc, sim)) != RT_OK || (st = rti_tev_init(sc, sim)) != RT_OK)
         return st;
-    return rt_refresh(sc, sim);
+    if ((st = rt_refresh(sc, sim)) != RT_OK)
+        return st;
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        rti_prime_set(sc, sim, s, 0, sim->plan.set_h[s]);
+    return RT_OK;
 }

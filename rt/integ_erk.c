@@ -189,7 +189,7 @@ static const real_t rk4_c[] = {0, R(0.5), R(0.5), 1};
    The factor is the smallest simple one at which the estimate exceeds rk4's own local
    error on y' = lambda y for every |h lambda| <= 1 (it needs 0.21): 1/4 of the
    direction above, bhat = (13/96, 41/96, 41/96, 25/96, -1/4), 21 times less pessimistic
-   than Zonneveld's weights (tests/rt/test_integ.c) */
+   than Zonneveld's weights (tests/whitebox/test_integ.c) */
 static const real_t rk4_ae[] = {R(3.0 / 16.0), 0, R(9.0 / 16.0), 0};
 static const real_t rk4_e[] = {R(1.0 / 32.0), R(-3.0 / 32.0), R(-3.0 / 32.0), R(-3.0 / 32.0),
                                R(1.0 / 4.0)};

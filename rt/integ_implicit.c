@@ -8,7 +8,9 @@
  * differences at the step's first right-hand-side evaluation (state x0): x_j moves in place
  * by sqrt(eps) max(|x_j|, 1) (the rhs reads the state from x) and is restored bit for bit;
  * n more evaluations per refresh. J is refreshed every jac_every steps, and at the step
- * after one that was degraded, split or met a singular M. M is refactored from the stored
+ * after one that was degraded, split or met a singular M; ROS2 spreads a refresh over the
+ * steps before it (spread_parts) and takes its first J before the first tick
+ * (ros2_prime), so that no tick pays for a whole refresh. M is refactored from the stored
  * J, without new evaluations, when h gamma differs from the factored value (event
  * re-steps). All of it lives in the set's rt_implicit_ws, so a replay reproduces it bit for
  * bit.
@@ -99,6 +101,7 @@ typedef struct imp_step {
     real_t tol;         /* residual tolerance (scaled norm) */
     uint8_t nmax;       /* Newton iterations per stage */
     uint8_t refresh;    /* the Jacobian is due at the step's first evaluation */
+    uint16_t part0, part1; /* parts of a spread refresh due at that evaluation */
     uint8_t singular;   /* a factorization of this step was singular */
     uint8_t full;       /* retrying: a Jacobian at every Newton iterate */
     real_t err;         /* local error estimate of the result (largest over substeps) */
@@ -122,11 +125,13 @@ static void rhs(imp_step *c, real_t t, real_t *xdot)
         c->rhs_st = st;
 }
 
-rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, const real_t *fb,
-                          real_t inc, real_t *fd, real_t *jac)
+/* columns j0 .. j1 - 1 of the forward-difference Jacobian (rti_fd_jacobian) */
+static rt_status fd_columns(const rt_rhs *f, real_t t, real_t *x, uint16_t n,
+                            const real_t *fb, real_t inc, real_t *fd, real_t *jac, uint16_t j0,
+                            uint16_t j1)
 {
     rt_status st = RT_OK;
-    for (uint16_t j = 0; j < n; j++) {
+    for (uint16_t j = j0; j < j1; j++) {
         real_t xj = x[j], ax = rt_fabs(xj);
         x[j] = xj + inc * (ax > 1 ? ax : 1);
         real_t d = x[j] - xj;
@@ -139,11 +144,18 @@ rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, cons
     return st;
 }
 
-/* the iteration's Jacobian at (tb, x) around fb = f(tb, x): increments sqrt(eps) */
-static void fd_jacobian(imp_step *c, real_t tb, const real_t *fb)
+rt_status rti_fd_jacobian(const rt_rhs *f, real_t t, real_t *x, uint16_t n, const real_t *fb,
+                          real_t inc, real_t *fd, real_t *jac)
 {
-    rt_status st = rti_fd_jacobian(c->f, tb, c->x, c->n, fb, rt_sqrt(RT_EPS),
-                                   c->w->k[IMP_BUF_D], c->w->imp->jac);
+    return fd_columns(f, t, x, n, fb, inc, fd, jac, 0, n);
+}
+
+/* columns j0 .. j1 - 1 of the iteration's Jacobian at (tb, x) around fb = f(tb, x):
+   increments sqrt(eps) */
+static void fd_jacobian(imp_step *c, real_t tb, const real_t *fb, uint16_t j0, uint16_t j1)
+{
+    rt_status st = fd_columns(c->f, tb, c->x, c->n, fb, rt_sqrt(RT_EPS), c->w->k[IMP_BUF_D],
+                              c->w->imp->jac, j0, j1);
     if (c->rhs_st == RT_OK)
         c->rhs_st = st;
 }
@@ -164,31 +176,129 @@ static void factor(imp_step *c)
         c->singular = 1;
 }
 
-/* starts a step: settings, and a refactorization when only h gamma changed */
+/* Spread refresh (ROS2 with jac_every = K >= 2). The next iteration matrix is built in
+   jac over the steps before it is due, in 2n + 1 parts: the n columns of J (forward
+   differences at each step's own first evaluation), M = I - hg J formed in place with its
+   pivot floor, and its n elimination stages (rti_lu_stages, pivots in piv_next); the step
+   at age K copies the factors into lu. Each step takes per = ceil((2n + 1) / (K - 1))
+   parts, in the last ceil((2n + 1) / per) steps of the cycle (the freshest). No tick then pays for a whole
+   refresh: a regular step adds at most `per` evaluations or elimination stages, or the
+   copy. J is assembled from states up to K - 1 steps apart: a W-method keeps its order
+   for any matrix (ros2_tab_). jac then holds no J to refactor from: when h gamma
+   changes, M is rebuilt from lu (refactor_lu). */
+static void spread_parts(imp_step *c, uint32_t age, uint32_t k)
+{
+    uint32_t parts = 2u * c->n + 1, per = (parts + k - 2) / (k - 1), steps = (parts + per - 1) / per;
+    if (c->n == 0 || age + steps < k) /* not yet in the cycle's last `steps` steps */
+        return;
+    uint32_t p0 = (age + steps - k) * per, p1 = p0 + per < parts ? p0 + per : parts;
+    c->part0 = (uint16_t)p0, c->part1 = (uint16_t)p1;
+}
+
+/* parts part0 .. part1 - 1 of a spread refresh, at the step's first evaluation
+   fb = f(tb, x0): columns of J, M = I - hg J, elimination stages */
+static void spread_do(imp_step *c, real_t tb, const real_t *fb)
+{
+    rt_implicit_ws *ws = c->w->imp;
+    uint16_t n = c->n, p0 = c->part0, p1 = c->part1;
+    c->part0 = c->part1;
+    if (p0 < n)
+        fd_jacobian(c, tb, fb, p0, p1 < n ? p1 : n);
+    if (p0 <= n && n < p1) { /* M = I - hg J in place, its pivot floor */
+        for (uint16_t i = 0; i < n; i++)
+            for (uint16_t j = 0; j < n; j++)
+                ws->jac[i * n + j] = (i == j ? 1 : 0) - c->hg * ws->jac[i * n + j];
+        ws->h_next = c->hg;
+        ws->floor_next = rti_lu_floor(ws->jac, n, IMP_PIVOT_TOL);
+        ws->singular_next = 0;
+    }
+    if (p1 <= n + 1)
+        return;
+    uint16_t k0 = (uint16_t)(p0 > n + 1 ? p0 - n - 1 : 0), k1 = (uint16_t)(p1 - n - 1);
+    if (rti_lu_stages(ws->jac, n, ws->piv_next, ws->floor_next, k0, k1) != RT_OK)
+        ws->singular_next = 1;
+}
+
+/* the step at the cycle's end: the factors built in jac become M (a singular one, as in
+   factor, forces a whole fresh Jacobian at the next step) */
+static void spread_install(imp_step *c)
+{
+    rt_implicit_ws *ws = c->w->imp;
+    uint16_t n = c->n;
+    for (uint32_t i = 0; i < (uint32_t)n * n; i++)
+        ws->lu[i] = ws->jac[i];
+    for (uint16_t i = 0; i < n; i++)
+        ws->piv[i] = ws->piv_next[i];
+    ws->h_factored = ws->h_next;
+    ws->valid = !ws->singular_next;
+    c->singular = ws->singular_next;
+    ws->age = 0;
+    c->w->stats->jac_evals++;
+}
+
+/* M for a new h gamma when jac holds no J (a spread refresh builds its factors there):
+   from the factors of M0 = I - hg0 J, M = (1 - r) I + r M0 with r = hg / hg0, no
+   evaluation (event re-steps, time-event parts) */
+static void refactor_lu(imp_step *c)
+{
+    rt_implicit_ws *ws = c->w->imp;
+    uint16_t n = c->n;
+    real_t r = c->hg / ws->h_factored;
+    rti_lu_unfactor(ws->lu, n, ws->piv);
+    for (uint16_t i = 0; i < n; i++)
+        for (uint16_t j = 0; j < n; j++)
+            ws->lu[i * n + j] = r * ws->lu[i * n + j] + (i == j ? 1 - r : 0);
+    rt_status st = rti_lu(ws->lu, n, ws->piv, IMP_PIVOT_TOL);
+    ws->h_factored = c->hg;
+    ws->valid = st == RT_OK;
+    if (st != RT_OK)
+        c->singular = 1;
+}
+
+/* starts a step: settings, a refresh due at the first evaluation (or, spread, its parts
+   due and at the cycle's end the factors built), and a refactorization when only h gamma
+   changed */
 static void begin(imp_step *c, const rt_rhs *f, real_t *x, uint16_t n, const rt_iwork *w,
-                  real_t hg)
+                  real_t hg, int spread)
 {
     rt_set_cfg cfg = rti_set_cfg_of(w->cfg);
+    rt_implicit_ws *ws = w->imp;
     *c = (imp_step){.f = f, .x = x, .n = n, .w = w, .hg = hg, .r0 = -1};
     c->tol = cfg.tol;
     c->nmax = cfg.newton_max;
     c->sa = rti_err_floor(w->cfg);
-    c->refresh = !w->imp->valid || w->imp->age >= cfg.jac_every;
-    if (!c->refresh && w->imp->h_factored != hg)
-        factor(c);
+    c->refresh = !ws->valid || ws->age >= cfg.jac_every;
+    spread = spread && cfg.jac_every >= 2 && ws->valid;
+    if (spread && c->refresh) {
+        c->refresh = 0;
+        spread_install(c);
+    }
+    else if (spread)
+        spread_parts(c, ws->age, cfg.jac_every);
+    if (!c->refresh && ws->valid && ws->h_factored != hg) {
+        if (spread)
+            refactor_lu(c);
+        else
+            factor(c);
+    }
     for (uint16_t i = 0; i < n; i++)
         w->x0[i] = x[i];
 }
 
-/* at the step's first evaluation fb = f(tb, x0): refresh J and factor M if due */
+/* at the step's first evaluation fb = f(tb, x0): refresh J and factor M if due, or do
+   the parts of a spread refresh due at this step */
 static void at_base(imp_step *c, real_t tb, const real_t *fb)
 {
-    if (!c->refresh)
+    if (!c->refresh) {
+        if (c->part1 > c->part0)
+            spread_do(c, tb, fb);
         return;
-    fd_jacobian(c, tb, fb);
+    }
+    fd_jacobian(c, tb, fb, 0, c->n);
     c->w->stats->jac_evals++;
     c->w->imp->age = 0;
     c->refresh = 0;
+    c->part0 = c->part1 = 0;
     factor(c);
 }
 
@@ -258,7 +368,7 @@ static real_t newton(imp_step *c, real_t tc, const real_t *v, int first)
                 c->f0[i] = d[i];
         }
         else if (c->full) { /* a retry: the Jacobian at every iterate (full Newton) */
-            fd_jacobian(c, tc, d);
+            fd_jacobian(c, tc, d, 0, c->n);
             c->w->stats->jac_evals++;
             factor(c);
         }
@@ -421,7 +531,7 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     imp_step c;
     if (!(h != 0)) /* an empty step leaves x alone (k = (Y - v) / (h gamma) needs h) */
         return RT_OK;
-    begin(&c, f, x, n, w, h * tab->gamma);
+    begin(&c, f, x, n, w, h * tab->gamma, 0);
     for (uint16_t j = 0; j < n; j++)
         ws->xs[j] = x[j];
     real_t best = R(1) / R(0), res = dirk_attempt(&c, tab, t, h);
@@ -520,7 +630,7 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     rt_implicit_ws *ws = w->imp;
     real_t acc = rti_accuracy(w->cfg);
     imp_step c;
-    begin(&c, f, x, n, w, h * tab->gamma);
+    begin(&c, f, x, n, w, h * tab->gamma, 1);
     for (uint16_t j = 0; j < n; j++)
         ws->xs[j] = x[j];
     real_t e = ros2_attempt(&c, tab, t, h), best = e;
@@ -546,6 +656,24 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
             x[j] = ws->best[j];
     c.err = best;
     return finish(&c, 0); /* no iteration: residual 0, never degraded */
+}
+
+/* Before the first tick: the first Jacobian of a spread refresh, at (t, x) with the
+   step's h gamma, so that the first step does not pay for it whole either. A failing
+   right-hand side leaves it to the first step, which reports it. */
+static void ros2_prime(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h, real_t *x,
+                       uint16_t n, const rt_iwork *w)
+{
+    const ros2_tab *tab = m->tab;
+    imp_step c;
+    if (rti_set_cfg_of(w->cfg).jac_every < 2 || !(h != 0))
+        return; /* a Jacobian at every step: nothing to spread */
+    w->imp->valid = 0;
+    begin(&c, f, x, n, w, h * tab->gamma, 0);
+    rhs(&c, t, w->k[0]);
+    at_base(&c, t, w->k[0]);
+    if (c.rhs_st != RT_OK || c.singular)
+        w->imp->valid = 0;
 }
 
 /* ------------------------------------------------------------------ work bounds */
@@ -614,7 +742,7 @@ static const real_t sd3_a[] = {
 static const real_t sd3_c[] = {R(SD3_G), R(SD3_A21 + SD3_G), 1};
 /* its companion is second order, on the first two stages: bhat2 = (1/2 - c1) / (c2 - c1),
    bhat1 = 1 - bhat2 (a first-order x0 + h k3 made the estimate C / h^2 times the error,
-   4e3 to 4e4 at h = 0.05 on a smooth problem: tests/rt/test_integ.c) */
+   4e3 to 4e4 at h = 0.05 on a smooth problem: tests/whitebox/test_integ.c) */
 #define SD3_BH2 ((0.5 - SD3_G) / SD3_A21)
 static const real_t sd3_bhat[] = {R(1 - SD3_BH2), R(SD3_BH2), 0};
 static const dirk_tab sd3_tab = {3, sd3_a, sd3_c, R(SD3_G), 1, sd3_bhat};
@@ -637,4 +765,5 @@ const rt_integrator rt_sdirk2 = {.name = "sdirk2", .order = 2, .stages = 2, .imp
 const rt_integrator rt_sdirk3 = {.name = "sdirk3", .order = 3, .stages = 3, .implicit = 1,
                                  .step = dirk_step, .bound = dirk_bound, .tab = &sd3_tab};
 const rt_integrator rt_ros2 = {.name = "ros2", .order = 2, .stages = 2, .implicit = 1,
-                               .step = ros2_step, .bound = ros2_bound, .tab = &ros2_tab_};
+                               .step = ros2_step, .bound = ros2_bound, .tab = &ros2_tab_,
+                               .prime = ros2_prime};

@@ -38,12 +38,11 @@ static void swap_rows(real_t *a, uint16_t n, uint16_t i, uint16_t j)
     }
 }
 
-rt_status rti_lu(real_t *a, uint16_t n, uint16_t *piv, real_t tol)
+rt_status rti_lu_stages(real_t *a, uint16_t n, uint16_t *piv, real_t floor_, uint16_t k0,
+                        uint16_t k1)
 {
     rt_status st = RT_OK;
-    real_t scale = rti_norm_inf(a, (uint16_t)(n * n));
-    real_t floor_ = tol * (scale > 0 ? scale : 1);
-    for (uint16_t k = 0; k < n; k++) {
+    for (uint16_t k = k0; k < k1 && k < n; k++) {
         uint16_t p = pivot_row(a, n, k);
         piv[k] = p;
         if (p != k)
@@ -64,6 +63,34 @@ rt_status rti_lu(real_t *a, uint16_t n, uint16_t *piv, real_t tol)
         }
     }
     return st;
+}
+
+real_t rti_lu_floor(const real_t *a, uint16_t n, real_t tol)
+{
+    real_t scale = rti_norm_inf(a, (uint16_t)(n * n));
+    return tol * (scale > 0 ? scale : 1);
+}
+
+rt_status rti_lu(real_t *a, uint16_t n, uint16_t *piv, real_t tol)
+{
+    return rti_lu_stages(a, n, piv, rti_lu_floor(a, n, tol), 0, n);
+}
+
+void rti_lu_unfactor(real_t *a, uint16_t n, const uint16_t *piv)
+{
+    /* (L U)_ij = sum_{k <= min(i, j)} L_ik U_kj, L_ii = 1: from the last row and column
+       back, an entry overwrites only what no later one reads */
+    for (uint16_t i = n; i-- > 0;)
+        for (uint16_t j = n; j-- > 0;) {
+            uint16_t m = i <= j ? i : (uint16_t)(j + 1);
+            real_t s = i <= j ? a[i * n + j] : 0;
+            for (uint16_t k = 0; k < m; k++)
+                s += a[i * n + k] * a[k * n + j];
+            a[i * n + j] = s;
+        }
+    for (uint16_t k = n; k-- > 0;) /* P^T: the factorization's row swaps, last first */
+        if (piv[k] != k)
+            swap_rows(a, n, piv[k], k);
 }
 
 /* Each row's sum runs in a local, in the same order as b[i] -= ... would: the same bits,

@@ -12,6 +12,14 @@
    returns RT_E_SINGULAR (the factors are completed with that pivot set to the threshold,
    so a solve stays finite and deterministic), else RT_OK. */
 rt_status rti_lu(real_t *a, uint16_t n, uint16_t *piv, real_t tol);
+/* rti_lu in parts: the pivot floor of a (tol times its largest entry), then elimination
+   stages k0 .. k1 - 1 (rti_lu is rti_lu_stages(a, n, piv, rti_lu_floor(a, n, tol), 0, n));
+   a factorization spread over several calls (rt/integ_implicit.c) */
+real_t rti_lu_floor(const real_t *a, uint16_t n, real_t tol);
+rt_status rti_lu_stages(real_t *a, uint16_t n, uint16_t *piv, real_t floor_, uint16_t k0,
+                        uint16_t k1);
+/* The matrix P^T L U back from its factors in place (the inverse of rti_lu, to rounding) */
+void rti_lu_unfactor(real_t *a, uint16_t n, const uint16_t *piv);
 
 /* Solves A x = b in place (b becomes x) with the factors of rti_lu. */
 void rti_lu_solve(const real_t *lu, uint16_t n, const uint16_t *piv, real_t *b);

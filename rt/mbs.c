@@ -29,10 +29,10 @@ static rt_status check_spec(const rt_scene *sc, rt_sim *sim, uint16_t b)
         return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name,
                         ": its MBS description is inconsistent (nx != nq + nz, or a hook "
                         "is missing)", (const char *)0);
-    if (sp->nz > RT_MAX_MBS_BZ || (!(sp->flags & RT_MBS_NODE_POINT) && sp->nz > RT_MAX_MBS_JZ))
-        return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                        ": velocities exceed ", RTI_LIMIT(RT_MAX_MBS_BZ), " or ",
-                        RTI_LIMIT(RT_MAX_MBS_JZ), (const char *)0);
+    if (sp->nz > RT_MAX_MBS_BZ)
+        return rti_capacity(sim, "block ", sc->blocks[b].name, RT_LIM_MBS_BZ);
+    if (!(sp->flags & RT_MBS_NODE_POINT) && sp->nz > RT_MAX_MBS_JZ)
+        return rti_capacity(sim, "block ", sc->blocks[b].name, RT_LIM_MBS_JZ);
     return RT_OK;
 }
 
@@ -87,13 +87,14 @@ static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
         uint32_t nz = (uint32_t)w->nz[s] + sp->nz, nq = (uint32_t)w->nq[s] + sp->nq;
         uint32_t nc = (uint32_t)w->nc[s] + sp->nc;
         mo += (sp->flags & RT_MBS_M_DIAG) ? sp->nz : (uint32_t)sp->nz * (sp->nz + 1u);
-        if (nz > RT_MAX_MBS_Z || nq > RT_MAX_MBS_Q || nc > RT_MAX_MBS_C || mo > RT_MAX_MBS_M ||
-            nqt[s] > RT_MAX_MBS_QT)
-            return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[s].name,
-                            ": MBS blocks exceed ", RTI_LIMIT(RT_MAX_MBS_Z), ", ",
-                            RTI_LIMIT(RT_MAX_MBS_Q), ", ", RTI_LIMIT(RT_MAX_MBS_C), ", ",
-                            RTI_LIMIT(RT_MAX_MBS_M), " or ", RTI_LIMIT(RT_MAX_MBS_QT),
-                            (const char *)0);
+        rt_limit over = nz > RT_MAX_MBS_Z       ? RT_LIM_MBS_Z
+                        : nq > RT_MAX_MBS_Q     ? RT_LIM_MBS_Q
+                        : nc > RT_MAX_MBS_C     ? RT_LIM_MBS_C
+                        : mo > RT_MAX_MBS_M     ? RT_LIM_MBS_M
+                        : nqt[s] > RT_MAX_MBS_QT ? RT_LIM_MBS_QT
+                                                 : RT_LIM_COUNT;
+        if (over != RT_LIM_COUNT)
+            return rti_capacity(sim, "set ", sc->sets[s].name, over);
         w->nz[s] = (uint16_t)nz, w->nq[s] = (uint16_t)nq, w->nc[s] = (uint16_t)nc;
     }
     return RT_OK;
@@ -105,7 +106,7 @@ static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
     rt_mbs_work *w = &sim->work.mbs;
     uint32_t lo = 0;
     if (sc->njoints > RT_MAX_JOINTS)
-        return rti_fail(sim, RT_E_CAPACITY, "joints exceed ", RTI_LIMIT(RT_MAX_JOINTS), (const char *)0);
+        return rti_capacity(sim, 0, 0, RT_LIM_JOINTS);
     if (sc->njoints > 0 && !sc->joints)
         return rti_fail(sim, RT_E_SCENE, "njoints > 0 but no joint table", (const char *)0);
     for (uint16_t j = 0; j < sc->njoints; j++) {
@@ -114,10 +115,10 @@ static rt_status joint_tables(const rt_scene *sc, rt_sim *sim)
         if (st != RT_OK)
             return st;
         uint8_t s = sc->blocks[jt->b1].set;
-        if (w->nc[s] + jt->kind->nc > RT_MAX_MBS_C || lo + jt->kind->nc > RT_MAX_MBS_JROWS)
-            return rti_fail(sim, RT_E_CAPACITY, "joint ", jt->name,
-                            ": the constraints of its set exceed ", RTI_LIMIT(RT_MAX_MBS_C),
-                            " or ", RTI_LIMIT(RT_MAX_MBS_JROWS), (const char *)0);
+        if (w->nc[s] + jt->kind->nc > RT_MAX_MBS_C)
+            return rti_capacity(sim, "joint ", jt->name, RT_LIM_MBS_C);
+        if (lo + jt->kind->nc > RT_MAX_MBS_JROWS)
+            return rti_capacity(sim, "joint ", jt->name, RT_LIM_MBS_JROWS);
         w->jrow[j] = w->nc[s];
         w->nc[s] = (uint16_t)(w->nc[s] + jt->kind->nc);
         w->jlo[j] = (uint16_t)lo;
@@ -163,11 +164,12 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
         tw += (n - w->to[b]) * spec_of(sc, b)->nz;
         if (!(spec_of(sc, b)->flags & RT_MBS_M_DIAG))
             ty += (n - w->to[b]) * spec_of(sc, b)->nz;
-        if (n > RT_MAX_MBS_TOUCH || tw > RT_MAX_MBS_TW || ty > RT_MAX_MBS_TY)
-            return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                            ": constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_TOUCH), ", ",
-                            RTI_LIMIT(RT_MAX_MBS_TW), " or ", RTI_LIMIT(RT_MAX_MBS_TY),
-                            (const char *)0);
+        rt_limit over = n > RT_MAX_MBS_TOUCH ? RT_LIM_MBS_TOUCH
+                        : tw > RT_MAX_MBS_TW ? RT_LIM_MBS_TW
+                        : ty > RT_MAX_MBS_TY ? RT_LIM_MBS_TY
+                                             : RT_LIM_COUNT;
+        if (over != RT_LIM_COUNT)
+            return rti_capacity(sim, "block ", sc->blocks[b].name, over);
     }
     w->to[sc->nblocks] = (uint16_t)n;
     return RT_OK;

@@ -37,6 +37,8 @@
 /* the graph of A's pattern while it is eliminated: adjacency bitsets by set row */
 typedef struct graph {
     uint32_t adj[RT_MAX_MBS_C][ADJ_WORDS];
+    uint16_t deg[RT_MAX_MBS_C]; /* neighbours not eliminated, kept as rows go and fill
+                                   comes, so that choosing a row costs n, not n^2 */
     uint8_t gone[RT_MAX_MBS_C]; /* eliminated */
 } graph;
 
@@ -65,36 +67,42 @@ static void touches_graph(const rt_scene *sc, const rt_mbs_work *w, uint8_t set,
                 for (uint16_t k = w->to[b]; k < w->to[b + 1]; k++)
                     if (w->trow[i] != w->trow[k])
                         link2(g, w->trow[i], w->trow[k]);
+    for (uint16_t r = 0; r < w->nc[set]; r++) {
+        g->deg[r] = 0;
+        for (uint16_t s = 0; s < w->nc[set]; s++)
+            g->deg[r] = (uint16_t)(g->deg[r] + has(g, r, s));
+    }
 }
 
 /* the remaining row with the fewest remaining neighbours (the lowest on ties) */
 static uint16_t min_degree(const graph *g, uint16_t n)
 {
     uint16_t best = 0, best_deg = UINT16_MAX;
-    for (uint16_t r = 0; r < n; r++) {
-        if (g->gone[r])
-            continue;
-        uint16_t deg = 0;
-        for (uint16_t s = 0; s < n; s++)
-            deg = (uint16_t)(deg + (!g->gone[s] && has(g, r, s)));
-        if (deg < best_deg)
-            best = r, best_deg = deg;
-    }
+    for (uint16_t r = 0; r < n; r++)
+        if (!g->gone[r] && g->deg[r] < best_deg)
+            best = r, best_deg = g->deg[r];
     return best;
 }
 
 /* minimum-degree order; eliminating a row joins its remaining neighbours (the fill), so
-   afterwards the graph holds the pattern of L + L^T */
+   afterwards the graph holds the pattern of L + L^T. Work: n per row to find it and its
+   neighbours, and the square of its neighbours for the fill (a chain: n^2 in all) */
 static void order(graph *g, uint16_t n, uint16_t *perm)
 {
+    uint16_t nb[RT_MAX_MBS_C];
     for (uint16_t k = 0; k < n; k++) {
-        uint16_t v = min_degree(g, n);
+        uint16_t v = min_degree(g, n), m = 0;
         perm[k] = v;
         g->gone[v] = 1;
-        for (uint16_t r = 0; r < n; r++)
-            for (uint16_t s = (uint16_t)(r + 1); s < n; s++)
-                if (!g->gone[r] && !g->gone[s] && has(g, v, r) && has(g, v, s))
-                    link2(g, r, s);
+        for (uint16_t r = 0; r < n; r++) /* its remaining neighbours, ascending */
+            if (!g->gone[r] && has(g, v, r))
+                nb[m++] = r, g->deg[r]--;
+        for (uint16_t i = 0; i < m; i++)
+            for (uint16_t j = (uint16_t)(i + 1); j < m; j++)
+                if (!has(g, nb[i], nb[j])) {
+                    link2(g, nb[i], nb[j]);
+                    g->deg[nb[i]]++, g->deg[nb[j]]++;
+                }
     }
 }
 
@@ -129,9 +137,7 @@ static rt_status pair_slots(const rt_scene *sc, rt_sim *sim, uint8_t set, uint32
             continue;
         uint16_t t0 = w->to[b], t1 = w->to[b + 1];
         if (*np + (uint32_t)(t1 - t0) * (t1 - t0 + 1) / 2 > RT_MAX_MBS_PAIRS)
-            return rti_fail(sim, RT_E_CAPACITY, "block ", sc->blocks[b].name,
-                            ": its constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_PAIRS),
-                            (const char *)0);
+            return rti_capacity(sim, "block ", sc->blocks[b].name, RT_LIM_MBS_PAIRS);
         w->po[b] = (uint16_t)*np;
         for (uint16_t i = t0; i < t1; i++)
             for (uint16_t k = i; k < t1; k++)
@@ -147,9 +153,7 @@ rt_status rti_mbs_ldl_init(const rt_scene *sc, rt_sim *sim, uint8_t set, uint32_
     rt_mbs_work *w = &sim->work.mbs;
     uint16_t n = w->nc[set], base = w->rb[set];
     if ((uint32_t)base + n > RT_MAX_MBS_ROWS)
-        return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[set].name,
-                        ": constraint rows exceed ", RTI_LIMIT(RT_MAX_MBS_ROWS),
-                        (const char *)0);
+        return rti_capacity(sim, "set ", sc->sets[set].name, RT_LIM_MBS_ROWS);
     w->rb[set + 1] = (uint16_t)(base + n);
     touches_graph(sc, w, set, &g);
     order(&g, n, w->perm + base);
@@ -159,9 +163,7 @@ rt_status rti_mbs_ldl_init(const rt_scene *sc, rt_sim *sim, uint8_t set, uint32_
         for (uint16_t j = 0; j < i; j++)
             if (has(&g, w->perm[base + i], w->perm[base + j])) {
                 if (e >= RT_MAX_MBS_LNZ)
-                    return rti_fail(sim, RT_E_CAPACITY, "set ", sc->sets[set].name,
-                                    ": the factors of its constraints exceed ",
-                                    RTI_LIMIT(RT_MAX_MBS_LNZ), (const char *)0);
+                    return rti_capacity(sim, "set ", sc->sets[set].name, RT_LIM_MBS_LNZ);
                 w->lj[e++] = j;
             }
         w->lp[base + i + 1] = (uint16_t)e;

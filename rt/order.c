@@ -15,13 +15,19 @@
  * the loop solver iterates on. */
 #include "rti.h"
 
-/* block owning global output v */
+/* block owning global output v: the first b whose outputs end after v (the last block
+   if none), by bisection over the non-decreasing y_off */
 static uint16_t block_of_y(const rt_sim *sim, uint16_t nb, uint16_t v)
 {
-    uint16_t b = 0;
-    while (b + 1 < nb && sim->plan.y_off[b + 1] <= v)
-        b++;
-    return b;
+    uint16_t lo = 0, hi = nb ? (uint16_t)(nb - 1) : 0; /* the answer lies in [lo, hi] */
+    while (lo < hi) {
+        uint16_t mid = (uint16_t)(lo + (hi - lo) / 2);
+        if (sim->plan.y_off[mid + 1] > v)
+            hi = mid;
+        else
+            lo = (uint16_t)(mid + 1);
+    }
+    return lo;
 }
 
 typedef struct graph_ctx {
@@ -88,22 +94,28 @@ static int block_next(const void *ctx, uint16_t v, uint32_t *cursor)
     return -1;
 }
 
-/* a component is a loop if it has several nodes or a node that reaches itself */
-static int is_cycle(rti_next_fn next, const graph_ctx *g, const uint16_t *comp, uint16_t n,
-                    uint16_t id, uint16_t *first)
+/* a component is a loop if it has several nodes or a node that reaches itself; count and
+   first: its nodes and its lowest node (component_sizes) */
+static int is_cycle(rti_next_fn next, const graph_ctx *g, uint16_t count, uint16_t first)
 {
-    uint16_t count = 0;
-    *first = 0;
-    for (uint16_t v = 0; v < n; v++)
-        if (comp[v] == id && count++ == 0)
-            *first = v;
     if (count > 1)
         return 1;
     uint32_t cur = 0;
-    for (int s; (s = next(g, *first, &cur)) >= 0;)
-        if (s == *first)
+    for (int s; (s = next(g, first, &cur)) >= 0;)
+        if (s == first)
             return 1;
     return 0;
+}
+
+/* in one pass over the n nodes, each component's node count (into the search's index
+   array, free once rti_scc has returned) and lowest node (into its low array) */
+static void component_sizes(rt_scc_work *w, uint16_t n, uint16_t ncomp)
+{
+    for (uint16_t id = 0; id < ncomp; id++)
+        w->index[id] = 0, w->low[id] = 0;
+    for (uint16_t v = 0; v < n; v++)
+        if (w->index[w->comp[v]]++ == 0)
+            w->low[w->comp[v]] = v;
 }
 
 /* appends block b to loop being built, skipping repeats */
@@ -140,12 +152,14 @@ static rt_status record_loops(const rt_scene *sc, rt_sim *sim, rti_next_fn next,
                               uint16_t *used)
 {
     uint16_t *comp = sim->work.w.scc.comp;
+    component_sizes(&sim->work.w.scc, n, ncomp);
     for (uint16_t id = 0; id < ncomp; id++) {
-        uint16_t first = 0;
-        if (!is_cycle(next, g, comp, n, id, &first) || (!ports && holds_actual(sim, comp, n, id)))
+        uint16_t first = sim->work.w.scc.low[id];
+        if (!is_cycle(next, g, sim->work.w.scc.index[id], first) ||
+            (!ports && holds_actual(sim, comp, n, id)))
             continue;
         if (sim->plan.nloops >= RT_MAX_LOOPS)
-            return rti_capacity(sim, 0, RTI_LIM_LOOPS);
+            return rti_capacity(sim, 0, 0, RT_LIM_LOOPS);
         rt_loop *l = &sim->plan.loops[sim->plan.nloops++];
         l->actual = (uint8_t)ports;
         l->first = *used;
@@ -186,7 +200,7 @@ static uint16_t inputs_ready(const rt_scene *sc, const rt_sim *sim, uint16_t b, 
 static rt_status emit(rt_sim *sim, uint8_t kind, uint16_t index)
 {
     if (sim->plan.nseq >= RT_MAX_SEQ)
-        return rti_capacity(sim, 0, RTI_LIM_SEQ);
+        return rti_capacity(sim, 0, 0, RT_LIM_SEQ);
     sim->plan.seq[sim->plan.nseq].kind = kind;
     sim->plan.seq[sim->plan.nseq++].index = index;
     return RT_OK;
@@ -235,6 +249,20 @@ static rt_status build_sequence(const rt_scene *sc, rt_sim *sim, uint16_t ny, ui
     for (uint16_t b = 0; b < sc->nblocks; b++)
         w->last[b] = 0;
     sim->plan.nseq = 0;
+    /* the ports of each original component, ascending, by counting sort: component c's
+       are stack[index[c] .. low[c]) (the search's arrays, free once rti_scc has returned) */
+    uint16_t start = 0;
+    for (uint16_t c = 0; c < nc_orig; c++)
+        w->low[c] = 0;
+    for (uint16_t v = 0; v < ny; v++)
+        w->low[w->orig[v]]++;
+    for (uint16_t c = 0; c < nc_orig; c++) {
+        uint16_t count = w->low[c];
+        w->index[c] = w->low[c] = start;
+        start = (uint16_t)(start + count);
+    }
+    for (uint16_t v = 0; v < ny; v++)
+        w->stack[w->low[w->orig[v]]++] = v;
     /* components are numbered sinks first: walk them from the highest id down */
     for (uint16_t oid = nc_orig; oid-- > 0 && st == RT_OK;) {
         int l = is_loop[oid] - 1; /* the actual loop of this component, or -1 */
@@ -242,9 +270,8 @@ static rt_status build_sequence(const rt_scene *sc, rt_sim *sim, uint16_t ny, ui
             st = place_loop(sc, sim, ny, oid, nc_torn, l);
             continue;
         }
-        for (uint16_t v = 0; v < ny && st == RT_OK; v++)
-            if (w->orig[v] == oid)
-                st = place_port(sc, sim, v, 0);
+        for (uint16_t i = w->index[oid]; i < w->low[oid] && st == RT_OK; i++)
+            st = place_port(sc, sim, w->stack[i], 0);
     }
     return st;
 }
@@ -253,7 +280,7 @@ static rt_status build_sequence(const rt_scene *sc, rt_sim *sim, uint16_t ny, ui
 static rt_status tear_input(rt_sim *sim, uint16_t gi, rt_loop *lp)
 {
     if (sim->plan.ntorn >= RT_MAX_TORN)
-        return rti_capacity(sim, 0, RTI_LIM_TORN);
+        return rti_capacity(sim, 0, 0, RT_LIM_TORN);
     sim->plan.torn_in[sim->plan.ntorn] = gi;
     sim->plan.torn_src[sim->plan.ntorn] = sim->plan.src[gi];
     sim->state.torn_val[sim->plan.ntorn] = 0;

@@ -36,6 +36,7 @@
     X(RT_E_DEGRADED, 2, "step accepted with its residual above tolerance (degraded)") \
     X(RT_E_SINGULAR, 2, "singular or near-singular matrix")                      \
     X(RT_E_EVENT, 2, "too many state events in one step")                        \
+    X(RT_E_TEV, 2, "more time events in one step than RT_TEV_PARTS_MAX parts")  \
     X(RT_E_NOLOC, 2, "state event not located within its bound")                 \
     X(RT_E_INVARIANT, 2, "an invariant broken: a kind's declared invariant, or a guard root crossed without a located event") \
     X(RT_E_UNSTABLE, 2, "numerically unstable: the state grows without bound")   \
@@ -60,6 +61,7 @@ typedef enum {
 #define RT_COUNTER_LIST(X)                                                       \
     X(RT_CNT_NAN, "nan", "non-finite output, derivative or state")               \
     X(RT_CNT_EVENT_LIMIT, "event_limit", "events beyond RT_EVENTS_PER_STEP_MAX") \
+    X(RT_CNT_TEV_LIMIT, "tev_limit", "time events known at run time beyond RT_TEV_PARTS_MAX parts of one step, handled at the step's end") \
     X(RT_CNT_EVENT_NOLOC, "event_noloc", "root not located within the bound")    \
     X(RT_CNT_NOCONV, "noconv", "iteration not converged within its bound")       \
     X(RT_CNT_SINGULAR, "singular", "singular matrix met")                        \
@@ -239,6 +241,30 @@ typedef struct rt_kind {
        instants must lie on the base tick grid (rt_init refuses the scene otherwise,
        rt/tev.c). NULL: none (the kind has no switch in time) */
     real_t (*next_event)(const rt_args *a);
+
+    /* Services of a kind that is a state machine of its own (an FMU, tools/fmi/); NULL or
+       0 in the library's kinds. */
+    /* Time events known only at run time: with this slot, next_event returns the block's
+       pending instant as its own state holds it now (an FMU's nextEventTime, set by its
+       last event; it may read nothing of a), RT_TEV_NEVER if none. Such instants may lie
+       off the base tick grid and are not walked at rt_init: every step of the block's set
+       ends a part exactly at the next one (rt/tev.c), and this handler runs there with the
+       state at the instant; it may change x and d in place. More instants in one step than
+       RT_TEV_PARTS_MAX parts are counted (tev_limit, RT_E_TEV) and handled at the step's
+       end, never merged silently. */
+    void (*time_event)(const rt_args *a, real_t *x, real_t *d);
+    /* Called once at the end of each completed integration of the block's set (each step,
+       or each part of a step split at time events, rt/tev.c), with the state there, before
+       the time events due there; may run an event of its own there and change x and d in
+       place: returns 1 if it did (the runtime then evaluates the set's outputs and roots
+       again and counts an event), else 0. NULL: none */
+    int (*step_end)(const rt_args *a, real_t *x, real_t *d);
+    /* 1: every sign change of a root is a crossing, as FMI's event indicators need (a
+       change of domain z > 0 / z <= 0): a root an event leaves on its z <= 0 side that
+       then returns to z > 0 crosses there too (rt/step.c); 0: a root a handler sent back
+       is held on its side until it leaves that side again (the library's) */
+    uint8_t roots_every_sign;
+
     /* Internal state the kind keeps outside x, d and p (an FMU's memory: its counters, its
        discrete states, its pending time event), carried by snapshots (rt/snapshot.c).
        save writes it into buf (at most cap bytes) and its size into *n; with buf NULL it
@@ -282,7 +308,8 @@ typedef struct rt_rhs {
 } rt_rhs;
 
 /* What an implicit method keeps from step to step for one set: the factored iteration
- * matrix is reused until its age reaches the set's refresh interval or h changes. The
+ * matrix is reused until its age reaches the set's refresh interval or h changes (ROS2
+ * builds the next one in jac over the steps before: rt/integ_implicit.c). The
  * transition method keeps h phi1(hJ) in lu, h phi2(hJ) in jac and the last step's change
  * of f in best (rt/integ_transition.c). */
 typedef struct rt_implicit_ws {
@@ -291,10 +318,14 @@ typedef struct rt_implicit_ws {
     real_t xs[RT_MAX_IMPLICIT_N];   /* the step's start, kept across its retries */
     real_t best[RT_MAX_IMPLICIT_N]; /* the retries' result with the smallest residual */
     real_t h_factored;        /* step (times method constant) lu belongs to */
+    real_t h_next, floor_next;/* a spread refresh (ROS2): h gamma and pivot floor of the
+                                 matrix being factored in jac */
     uint32_t age;             /* steps since the Jacobian was refreshed */
     /* the narrow members last, so that no padding sits between wide ones */
     uint16_t piv[RT_MAX_IMPLICIT_N];                  /* row pivots of lu */
+    uint16_t piv_next[RT_MAX_IMPLICIT_N];             /* a spread refresh: those of jac */
     uint8_t valid;            /* lu holds a usable factorization */
+    uint8_t singular_next;    /* a spread refresh met a singular pivot */
 } rt_implicit_ws;
 
 /* Statistics an implicit method reports per set (high-water marks for sizing). */
@@ -409,6 +440,10 @@ typedef struct rt_integrator {
        model does (the fixed bound of docs/solvers.md, "Bounded work") */
     void (*bound)(const struct rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                   struct rt_step_work *w);
+    /* before the first tick, at (t, x) for steps of h: what the method keeps from step to
+       step made ready (ROS2's first Jacobian of a spread refresh), or NULL */
+    void (*prime)(const struct rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
+                  real_t *x, uint16_t n, const rt_iwork *w);
 } rt_integrator;
 
 /* The library of integrators: a registry of {name, method} rows ending in {NULL, NULL}. */
@@ -489,6 +524,9 @@ typedef struct rt_set {
    "tolerance must be positive and finite") with *bad the setting at fault (RT_CFG_N: the
    method or the step). */
 const char *rt_set_check(const rt_set *st, rt_cfg_id *bad);
+/* Set s's step [s]: the base tick times its ratio, the one place the product is formed
+   (rt_init keeps it in the plan for the tick; tools that print a scene call it). */
+real_t rt_set_step(const struct rt_scene *sc, uint8_t s);
 
 /* What a recorded signal reads. RT_SIG_MBS: a multibody quantity computed by the scene's
    MBS services (energy, constraint residuals, joint reactions; index from rt_mbs.h). */
@@ -567,7 +605,24 @@ typedef struct rt_scene {
     /* the background set's services (rt_bg, rt/bg.c): non-NULL exactly when a set is
        declared background, so a scene without one links none of that code */
     const struct rt_bg_ops *bg;
+    /* code scenec wrote for this scene (rt_scene_code); NULL: the table-driven path */
+    const struct rt_scene_code *code;
 } rt_scene;
+
+/* Code written for one scene by scenec (tools/scenec/spec.c, docs/overhead.md): what the
+ * table-driven path does for it, with the scene's evaluation sequence and multibody
+ * pattern written out, the same operations in the same order (the same bits). A NULL
+ * entry, or an entry that returns 0, leaves the work to the generic path. */
+typedef struct rt_scene_code {
+    /* the right-hand side of set `set` at t (after rt/eval.c's rti_rhs counted it) into
+       xdot; 0: not written for this set or not for the state it finds (a mass matrix
+       not yet factored), the generic path runs */
+    int (*rhs)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
+               real_t h, real_t *xdot);
+    /* the projection of set `set`'s multibody state at t (rt/mbs_project.c,
+       RT_STAB_PROJECT); 0: not written for it, the generic path runs */
+    int (*project)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+} rt_scene_code;
 
 /* The background set's services (rt/bg.c), named by a scene that has one (rt_scene.bg). */
 typedef struct rt_bg_ops {
@@ -707,6 +762,11 @@ rt_status rt_tick(const rt_scene *scene, rt_sim *sim);
 /* A fault the application met outside the tick (a lost link): the run's status becomes
  * status if that is more severe (rt_status_severity), as a counted fault makes it. */
 void rt_note_status(rt_sim *sim, rt_status status);
+/* n faults of counter c the application met outside the tick (deadlines its clock
+ * missed): counted, the first of them at tick first_tick when the counter was 0, and the
+ * run's status as rt_note_status makes it; nothing when n is 0. */
+void rt_note_count(rt_sim *sim, rt_counter c, uint32_t n, uint64_t first_tick,
+                   rt_status status);
 /* Time of the current state [s]. */
 real_t rt_time(const rt_scene *scene, const rt_sim *sim);
 /* Re-evaluates the outputs and root values of every set whose state belongs to the current
@@ -792,10 +852,11 @@ rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 /* Base ticks to the end time. */
 uint64_t rt_tick_count(const rt_sim *sim);
 /* What a run shows now (as the last tick or refresh left it): output j of block b, its
-   continuous state i and discrete state i. */
+   continuous state i, discrete state i and parameter i (as rt_set_param left it). */
 real_t rt_output(const rt_sim *sim, uint16_t block, uint16_t j);
 real_t rt_block_x(const rt_sim *sim, uint16_t block, uint16_t i);
 real_t rt_block_d(const rt_sim *sim, uint16_t block, uint16_t i);
+real_t rt_block_p(const rt_sim *sim, uint16_t block, uint16_t i);
 /* Base ticks done (t = rt_ticks_done * dt), and the trace hash of every value rt_record
    folded in so far (RT_HASH_INIT before the first). */
 uint64_t rt_ticks_done(const rt_sim *sim);
@@ -821,11 +882,22 @@ rt_torn rt_torn_at(const rt_scene *scene, const rt_sim *sim, uint16_t k);
 /* The exact sizes of this scene: what its per-scene build's limits must hold, one member
    per row of RT_LIMIT_LIST (rt_config.h: what each counts). */
 typedef struct rt_sizes {
-#define RT_X_SIZE(name, field, least, what) uint16_t field;
+#define RT_X_SIZE(name, field, least, dflt, what) uint16_t field;
     RT_LIMIT_LIST(RT_X_SIZE)
 #undef RT_X_SIZE
 } rt_sizes;
 void rt_sizes_of(const rt_scene *scene, const rt_sim *sim, rt_sizes *out);
+/* The capacity limits by name, one per row of RT_LIMIT_LIST (RT_LIM_BLOCKS, ...). */
+typedef enum {
+#define RT_X_LIM(name, field, least, dflt, what) RT_LIM_##name,
+    RT_LIMIT_LIST(RT_X_LIM)
+#undef RT_X_LIM
+    RT_LIM_COUNT
+} rt_limit;
+/* Limit lim of this build in words from its row, "<what it counts> exceed RT_MAX_<NAME>
+   (<value> in rt_config.h)", into buf (cap bytes, truncated; RT_ERR_LEN holds any):
+   the text of every capacity fault of rt_init and of the scene compiler's. Returns buf. */
+const char *rt_limit_text(char *buf, size_t cap, rt_limit lim);
 
 /* Trace hash: per value h = (h ^ bits) * RT_HASH_MUL, then h ^= h >> 32, over the IEEE bit
  * pattern of each value as an integer (rti_hash, rt/rti.h). */

@@ -18,38 +18,6 @@ typedef double real_t;
 #define RT_REAL_IS_FLOAT 0
 #endif
 
-/* ---- scene size limits (totals over all blocks of one scene) ---- */
-#ifndef RT_MAX_BLOCKS
-#define RT_MAX_BLOCKS 64 /* block instances */
-#endif
-#ifndef RT_MAX_X
-#define RT_MAX_X 256 /* continuous states */
-#endif
-#ifndef RT_MAX_D
-#define RT_MAX_D 64 /* discrete states */
-#endif
-#ifndef RT_MAX_U
-#define RT_MAX_U 256 /* block inputs */
-#endif
-#ifndef RT_MAX_Y
-#define RT_MAX_Y 256 /* block outputs */
-#endif
-#ifndef RT_MAX_P
-#define RT_MAX_P 512 /* parameters */
-#endif
-#ifndef RT_MAX_ROOTS
-#define RT_MAX_ROOTS 16 /* state-event root functions */
-#endif
-#ifndef RT_MAX_SETS
-#define RT_MAX_SETS 4 /* integration sets */
-#endif
-#ifndef RT_MAX_REC
-#define RT_MAX_REC 64 /* recorded signals */
-#endif
-#ifndef RT_MAX_LOOPS
-#define RT_MAX_LOOPS 8 /* potential + actual algebraic loops reported */
-#endif
-
 /* ------------------------------------------------------------------ tolerances */
 
 /* a DSS sample period (and any time the scene compiler turns into ticks) is a whole
@@ -72,18 +40,19 @@ typedef double real_t;
 #define RT_KIND_DOCS 1
 #endif
 
+/* 1: a scene compiled by scenec carries the code written out for it (rt_scene_code,
+   tools/scenec/spec.c); 0: its rt_scene.code is NULL and it runs the table-driven path
+   (the same bits; make image IMAGE_CFLAGS=-DRT_SCENE_CODE=0 measures that one) */
+#ifndef RT_SCENE_CODE
+#define RT_SCENE_CODE 1
+#endif
+
 #ifndef RT_ERR_LEN
 #define RT_ERR_LEN 128 /* characters of an init error description */
 #endif
 
 /* nodes of the graphs searched at init (output ports, blocks) */
 #define RT_MAX_NODES (RT_MAX_Y > RT_MAX_BLOCKS ? RT_MAX_Y : RT_MAX_BLOCKS)
-
-/* evaluation sequence: at most one call per output port plus one per block (a per-scene
-   build passes its scene's exact length) */
-#ifndef RT_MAX_SEQ
-#define RT_MAX_SEQ (RT_MAX_Y + RT_MAX_BLOCKS)
-#endif
 
 /* ---- integrators ---- */
 #ifndef RT_MAX_STAGES
@@ -93,127 +62,8 @@ typedef double real_t;
 
 /* ---- multirate (rt/xset.c) ---- */
 #define RT_HIST 3 /* communication points kept per cross-set signal (Hermite needs 3) */
-#ifndef RT_MAX_HIST_Y
-/* outputs the cross-set history is indexed by: the highest output index another set
-   reads, plus one (a scene of one set needs 1) */
-#define RT_MAX_HIST_Y RT_MAX_Y
-#endif
-
-#ifndef RT_MAX_XPRED
-/* inputs a set extrapolates over its step from another set (rt/xset.c, rti_xset_predict):
-   for each, what its scheme predicted for the end of the reader's step, checked against
-   the source's value there, and the input's scale. A per-scene build may set 0 (a scene
-   with no such input; rt_init refuses one that has some) */
-#define RT_MAX_XPRED RT_MAX_U
-#endif
-
-#ifndef RT_MAX_TEV
-/* sets holding a kind with known time events (rt/tev.c): where any, each set keeps the
-   tick of its next instant (rt_state.tev_next) and a step part its midpoint
-   (rt_work.t_piece). A per-scene build may set 0 (a scene with none; rt_init refuses one
-   that has some) */
-#define RT_MAX_TEV RT_MAX_SETS
-#endif
-
-#ifndef RT_MAX_HELD_SIG
-/* recorded and link-exported multibody signals (energy, residual, reaction) of sets
-   stepping over several ticks or in the background, held between their steps like
-   outputs (rt/sim.c). A per-scene build may set 0: the scene then carries no such array */
-#define RT_MAX_HELD_SIG RT_MAX_REC
-#endif
-
-#ifndef RT_MAX_HELD_Y
-/* outputs kept aside while a set stepping over several ticks steps, and its step's end
-   outputs kept for its renewal when its state reaches the tick (rt/sim.c): the highest
-   output index of such a set, plus one. A per-scene build may set 0 (no such set): the
-   scene then carries neither array */
-#define RT_MAX_HELD_Y RT_MAX_Y
-#endif
-
-#ifndef RT_MAX_KSTATE
-/* bytes of a snapshot (rt_state.kstate) for the internal state of blocks whose kind keeps
-   one outside x, d and p (rt_kind.save: an FMU's serialized FMU state), 4 bytes of size
-   per such block included (rt/snapshot.c). A per-scene build passes what its kinds report
-   after rt_init (0 without such kinds); rt_snapshot returns RT_E_CAPACITY beyond it */
-#define RT_MAX_KSTATE 16384
-#endif
-
-/* ---- state events (rt/step.c) ---- */
-#ifndef RT_MAX_EVENT_X
-/* states of the largest set with root functions: event location keeps the state at the
-   right end of its bracket (a scene without roots needs 1) */
-#define RT_MAX_EVENT_X RT_MAX_X
-#endif
-
-/* ---- background sets (rt/bg.c) ---- */
-#ifndef RT_MAX_BG
-/* states plus outputs of the background set (rt/bg.c): the result of its step waits
-   there for its deadline */
-#define RT_MAX_BG 512
-#endif
 
 /* ---- multibody (rt/mbs.c) ---- */
-#ifndef RT_MAX_MBS_Z
-#define RT_MAX_MBS_Z 64 /* generalized velocities of the MBS blocks of one set */
-#endif
-#ifndef RT_MAX_MBS_Q
-#define RT_MAX_MBS_Q 80 /* generalized coordinates of the MBS blocks of one set */
-#endif
-#ifndef RT_MAX_MBS_C
-#define RT_MAX_MBS_C 40 /* constraints (internal + joints) of one set */
-#endif
-#ifndef RT_MAX_JOINTS
-#define RT_MAX_JOINTS 32 /* joints of a scene */
-#endif
-#ifndef RT_MAX_MBS_BZ
-#define RT_MAX_MBS_BZ 16 /* generalized velocities of one MBS block (node Jacobians, M) */
-#endif
-/* exact per-scene sizes of the multibody tables (totals over every set; `modrt sizes`
-   prints them): the defaults hold any scene within the per-set limits above */
-#ifndef RT_MAX_MBS_ROWS
-#define RT_MAX_MBS_ROWS (RT_MAX_MBS_C * RT_MAX_SETS) /* constraint rows of all sets */
-#endif
-#ifndef RT_MAX_MBS_TOUCH
-/* (block, row) pairs that can be non-zero in W: each row touches one or two blocks */
-#define RT_MAX_MBS_TOUCH (2 * RT_MAX_MBS_ROWS)
-#endif
-#ifndef RT_MAX_MBS_TW
-/* entries of W and of Y = M^-1 W^T kept: the velocities of the block of every touch */
-#define RT_MAX_MBS_TW (RT_MAX_MBS_C * RT_MAX_MBS_Z)
-#endif
-#ifndef RT_MAX_MBS_QT
-/* coordinates of one set's MBS blocks whose K depends on q or that have a kinb (the
-   projection's predicted coordinates) */
-#define RT_MAX_MBS_QT RT_MAX_MBS_Q
-#endif
-#ifndef RT_MAX_MBS_TY
-/* entries of Y = M^-1 W^T kept: as RT_MAX_MBS_TW over the blocks with a dense M (a
-   diagonal M divides where Y is needed) */
-#define RT_MAX_MBS_TY RT_MAX_MBS_TW
-#endif
-#ifndef RT_MAX_MBS_PAIRS
-/* entries of A = W M^-1 W^T that blocks contribute: t (t + 1) / 2 for a block touching
-   t rows, summed over the blocks */
-#define RT_MAX_MBS_PAIRS (RT_MAX_MBS_C * (RT_MAX_MBS_C + 1) / 2)
-#endif
-#ifndef RT_MAX_MBS_LNZ
-/* off-diagonal non-zeros of the sparse LDL^T factors of A (fill included), all sets */
-#define RT_MAX_MBS_LNZ (RT_MAX_MBS_C > 1 ? RT_MAX_MBS_C * (RT_MAX_MBS_C - 1) / 2 : 1)
-#endif
-#ifndef RT_MAX_MBS_M
-/* entries of the mass matrices of all MBS blocks: nz for a diagonal M, nz (nz + 1)
-   otherwise (its LU factors and row pivots) */
-#define RT_MAX_MBS_M (RT_MAX_MBS_Z * (RT_MAX_MBS_BZ + 1))
-#endif
-#ifndef RT_MAX_MBS_JZ
-/* velocities of the largest MBS block whose nodes have Jacobians to map (any kind but
-   those flagged RT_MBS_NODE_POINT) */
-#define RT_MAX_MBS_JZ RT_MAX_MBS_BZ
-#endif
-#ifndef RT_MAX_MBS_JROWS
-/* constraint rows of all joints (their multipliers are kept for recorded reactions) */
-#define RT_MAX_MBS_JROWS (RT_MAX_JOINTS * 6)
-#endif
 #ifndef RT_MBS_PIVOT_TOL
 /* pivot threshold of the factorizations of M and W M^-1 W^T, relative to the largest
    entry: a well-posed chain of ten links has relative pivots near 1e-2, a redundant or
@@ -335,14 +185,6 @@ typedef double real_t;
    steps on a relaxation jump); counted as degraded (integ_implicit.c) */
 #define RT_IMP_STALL 100
 #endif
-#ifndef RT_MAX_IMPLICIT_N
-#define RT_MAX_IMPLICIT_N 64 /* states of a set integrated by an implicit method */
-#endif
-#ifndef RT_MAX_TRANSITION_N
-/* states of a set stepped by its transition matrix (method transition, a linear set):
-   its two n x n scratch matrices in rt_work */
-#define RT_MAX_TRANSITION_N 8
-#endif
 #ifndef RT_TRANSITION_THETA
 /* the transition method's phi functions: h J is halved until its 1-norm is at most this,
    a Taylor polynomial of degree RT_TRANSITION_TAYLOR is summed there (truncation
@@ -363,19 +205,11 @@ typedef double real_t;
    (singular), which bounds the refresh's work */
 #define RT_TRANSITION_HALVINGS 40
 #endif
-#ifndef RT_MAX_TORN
-#define RT_MAX_TORN 16 /* torn inputs over all actual loops */
-#endif
 #ifndef RT_LOOP_ITER_MAX
 #define RT_LOOP_ITER_MAX 8 /* default Broyden iterations per loop evaluation */
 #endif
 #ifndef RT_LOOP_ITER_LIMIT
 #define RT_LOOP_ITER_LIMIT 32 /* the most a scene may ask for */
-#endif
-#ifndef RT_MAX_LOOP_HIST
-/* entries of the histogram of loop solves by iterations taken: the scene's iteration
-   bound plus one (a scene without actual loops needs 1) */
-#define RT_MAX_LOOP_HIST (RT_LOOP_ITER_LIMIT + 1)
 #endif
 
 /* ---- state events ---- */
@@ -414,58 +248,113 @@ typedef double real_t;
 
 /* ------------------------------------------------------------------ the list of limits */
 
-/* Every capacity limit a per-scene build sizes from its scene, one row each, in the order
- * `scenec --sizes` and `modrt sizes` print them: L(NAME, field, least, what) (L, as a row is named X). The limit is
- * RT_MAX_NAME, its default the #ifndef block of that name above (the preprocessor cannot
- * write a #define, so the default stays there; a row without one fails to compile);
- * field: the member of rt_sizes that measures it in a scene (rt_sizes_of); least: the
- * smallest value a per-scene build passes (0: the arrays it sizes may be left out); what:
- * the things it counts, as its capacity message names them (rti_capacity). Not in the
+/* Every capacity limit, one row each, in the order `scenec --sizes` and `modrt sizes` print
+ * them: L(NAME, field, least, default, what). The limit is RT_MAX_NAME; field: the member
+ * of rt_sizes that measures it in a scene (rt_sizes_of); least: the smallest value a
+ * per-scene build passes (0: the arrays it sizes may be left out); default: its value
+ * unless the build passes -DRT_MAX_NAME=...; what: the things it counts, as its capacity
+ * message names them (rt_limit_text). The preprocessor cannot write a #define, so the
+ * defaults' #ifndef blocks are written from this list into rt_limits.h by
+ * tests/static/limits.py --write (make test-static fails when they differ). Not in the
  * list: RT_MAX_STAGES (a property of the methods), RT_MAX_TICKS (of the tick counter) and
  * RT_MAX_NODES (derived). */
 #define RT_LIMIT_LIST(L)                                                                    \
-    L(BLOCKS, blocks, 1, "blocks")                                                          \
-    L(X, x, 1, "continuous states")                                                         \
-    L(D, d, 1, "discrete states")                                                           \
-    L(U, u, 1, "block inputs")                                                              \
-    L(Y, y, 1, "block outputs")                                                             \
-    L(P, p, 1, "parameters")                                                                \
-    L(ROOTS, roots, 1, "state-event root functions")                                        \
-    L(SETS, sets, 1, "integration sets")                                                    \
-    L(REC, recs, 1, "recorded signals")                                                     \
-    L(LOOPS, loops, 1, "algebraic loops")                                                   \
-    L(TORN, torn, 1, "torn loop inputs")                                                    \
-    L(IMPLICIT_N, implicit_n, 1, "states of a set with an implicit method")                 \
-    L(TRANSITION_N, transition_n, 0, "states of a set with the transition method")          \
-    L(HIST_Y, hist_y, 1, "outputs read by another set")                                     \
-    L(HELD_Y, held_y, 0, "outputs of sets stepping over several ticks")                     \
-    L(HELD_SIG, held_sig, 0, "recorded and exported multibody signals of sets stepping "   \
-                             "over several ticks")                                          \
-    L(EVENT_X, event_x, 1, "states of a set with roots")                                    \
-    L(SEQ, seq, 1, "entries of the evaluation sequence")                                    \
-    L(LOOP_HIST, loop_hist, 1, "entries of the loops' iteration histogram")                 \
-    L(BG, bg, 1, "states and outputs of a background set")                                  \
-    L(XPRED, xpred, 0, "inputs extrapolated from another set")                              \
-    L(TEV, tev, 0, "sets with known time events")                                           \
-    L(KSTATE, kstate, 0, "bytes of the blocks' internal state in a snapshot")               \
-    L(JOINTS, joints, 1, "joints")                                                          \
-    L(MBS_Z, mbs_z, 1, "generalized velocities of a multibody set")                         \
-    L(MBS_Q, mbs_q, 1, "generalized coordinates of a multibody set")                        \
-    L(MBS_C, mbs_c, 1, "constraints of a multibody set")                                    \
-    L(MBS_BZ, mbs_bz, 1, "generalized velocities of a multibody block")                     \
-    L(MBS_ROWS, mbs_rows, 1, "constraint rows of all sets")                                 \
-    L(MBS_TOUCH, mbs_touch, 1, "(block, constraint row) pairs that can be non-zero in W")                       \
-    L(MBS_TW, mbs_tw, 1, "entries of W kept")                       \
-    L(MBS_QT, mbs_qt, 1, "coordinates with a q-dependent K or a kinb")                      \
-    L(MBS_TY, mbs_ty, 1, "entries of M^-1 W^T kept")                                        \
-    L(MBS_PAIRS, mbs_pairs, 1, "entries of W M^-1 W^T that blocks contribute")          \
-    L(MBS_LNZ, mbs_lnz, 1, "off-diagonal non-zeros of the LDL^T factors")                    \
-    L(MBS_M, mbs_m, 1, "entries of the mass matrices' factors")                             \
-    L(MBS_JROWS, mbs_jrows, 1, "rows of the joints' constraints")                           \
-    L(MBS_JZ, mbs_jz, 1, "velocities of a block whose nodes have Jacobians")
+    /* totals over all blocks of one scene */                                               \
+    L(BLOCKS, blocks, 1, 64, "blocks")                                                      \
+    L(X, x, 1, 256, "continuous states")                                                    \
+    L(D, d, 1, 64, "discrete states")                                                       \
+    L(U, u, 1, 256, "block inputs")                                                         \
+    L(Y, y, 1, 256, "block outputs")                                                        \
+    L(P, p, 1, 512, "parameters")                                                           \
+    L(ROOTS, roots, 1, 16, "state-event root functions")                                    \
+    L(SETS, sets, 1, 4, "integration sets")                                                 \
+    L(REC, recs, 1, 64, "recorded signals")                                                 \
+    /* potential + actual algebraic loops reported */                                       \
+    L(LOOPS, loops, 1, 8, "algebraic loops")                                                \
+    /* torn inputs over all actual loops */                                                 \
+    L(TORN, torn, 1, 16, "torn loop inputs")                                                \
+    L(IMPLICIT_N, implicit_n, 1, 64, "states of a set with an implicit method")             \
+    /* states of a set stepped by its transition matrix (method transition, a linear set): \
+       its two n x n scratch matrices in rt_work */                                         \
+    L(TRANSITION_N, transition_n, 0, 8, "states of a set with the transition method")       \
+    /* outputs the cross-set history is indexed by: the highest output index another set   \
+       reads, plus one (a scene of one set needs 1) */                                      \
+    L(HIST_Y, hist_y, 1, RT_MAX_Y, "outputs read by another set")                           \
+    /* outputs kept aside while a set stepping over several ticks steps, and its step's    \
+       end outputs kept for its renewal when its state reaches the tick (rt/held.c): the   \
+       highest output index of such a set, plus one. 0: no such set, neither array */       \
+    L(HELD_Y, held_y, 0, RT_MAX_Y, "outputs of sets stepping over several ticks")           \
+    /* recorded and link-exported multibody signals (energy, residual, reaction) of sets   \
+       stepping over several ticks or in the background, held between their steps like    \
+       outputs (rt/held.c). 0: the scene carries no such array */                           \
+    L(HELD_SIG, held_sig, 0, RT_MAX_REC, "recorded and exported multibody signals of sets " \
+                                         "stepping over several ticks")                     \
+    /* states of the largest set with root functions: event location keeps the state at   \
+       the right end of its bracket (rt/step.c; a scene without roots needs 1) */           \
+    L(EVENT_X, event_x, 1, RT_MAX_X, "states of a set with roots")                          \
+    /* evaluation sequence: at most one call per output port plus one per block */          \
+    L(SEQ, seq, 1, (RT_MAX_Y + RT_MAX_BLOCKS), "entries of the evaluation sequence")        \
+    /* entries of the histogram of loop solves by iterations taken: the scene's iteration  \
+       bound plus one (a scene without actual loops needs 1) */                             \
+    L(LOOP_HIST, loop_hist, 1, (RT_LOOP_ITER_LIMIT + 1), "entries of the loops' iteration " \
+                                                         "histogram")                       \
+    /* states plus outputs of the background set (rt/bg.c): the result of its step waits  \
+       there for its deadline */                                                            \
+    L(BG, bg, 1, 512, "states and outputs of a background set")                             \
+    /* inputs a set extrapolates over its step from another set (rt/xpred.c): for each,    \
+       what its scheme predicted for the end of the reader's step, checked against the     \
+       source's value there, and the input's scale. 0: a scene with no such input */       \
+    L(XPRED, xpred, 0, RT_MAX_U, "inputs extrapolated from another set")                    \
+    /* sets holding a kind with known time events (rt/tev.c): where any, each set keeps    \
+       the tick of its next instant (rt_state.tev_next) and a step part its midpoint       \
+       (rt_work.t_piece). 0: a scene with none */                                           \
+    L(TEV, tev, 0, RT_MAX_SETS, "sets with known time events")                              \
+    /* bytes of a snapshot (rt_state.kstate) for the internal state of blocks whose kind   \
+       keeps one outside x, d and p (rt_kind.save: an FMU's serialized FMU state), 4 bytes \
+       of size per such block included (rt/snapshot.c); rt_snapshot returns RT_E_CAPACITY \
+       beyond it. A per-scene build passes what its kinds report after rt_init */          \
+    L(KSTATE, kstate, 0, 16384, "bytes of the blocks' internal state in a snapshot")       \
+    /* multibody (rt/mbs.c): per set, per block, and the exact per-scene sizes of the      \
+       multibody tables (totals over every set), whose defaults hold any scene within the  \
+       per-set limits */                                                                    \
+    L(JOINTS, joints, 1, 32, "joints")                                                      \
+    L(MBS_Z, mbs_z, 1, 64, "generalized velocities of a multibody set")                     \
+    L(MBS_Q, mbs_q, 1, 80, "generalized coordinates of a multibody set")                    \
+    /* constraints (internal + joints) of one set */                                        \
+    L(MBS_C, mbs_c, 1, 40, "constraints of a multibody set")                                \
+    /* generalized velocities of one MBS block (node Jacobians, M) */                       \
+    L(MBS_BZ, mbs_bz, 1, 16, "generalized velocities of a multibody block")                 \
+    L(MBS_ROWS, mbs_rows, 1, (RT_MAX_MBS_C * RT_MAX_SETS), "constraint rows of all sets")   \
+    /* each row touches one or two blocks */                                                \
+    L(MBS_TOUCH, mbs_touch, 1, (2 * RT_MAX_MBS_ROWS),                                       \
+      "(block, constraint row) pairs that can be non-zero in W")                            \
+    /* entries of W and of Y = M^-1 W^T kept: the velocities of the block of every touch */ \
+    L(MBS_TW, mbs_tw, 1, (RT_MAX_MBS_C * RT_MAX_MBS_Z), "entries of W kept")                \
+    /* coordinates of one set's MBS blocks whose K depends on q or that have a kinb (the   \
+       projection's predicted coordinates) */                                               \
+    L(MBS_QT, mbs_qt, 1, RT_MAX_MBS_Q, "coordinates with a q-dependent K or a kinb")        \
+    /* as RT_MAX_MBS_TW over the blocks with a dense M (a diagonal M divides where Y is    \
+       needed) */                                                                           \
+    L(MBS_TY, mbs_ty, 1, RT_MAX_MBS_TW, "entries of M^-1 W^T kept")                         \
+    /* t (t + 1) / 2 for a block touching t rows, summed over the blocks */                 \
+    L(MBS_PAIRS, mbs_pairs, 1, (RT_MAX_MBS_C * (RT_MAX_MBS_C + 1) / 2),                     \
+      "entries of W M^-1 W^T that blocks contribute")                                       \
+    /* the sparse factors of A = W M^-1 W^T, fill included, all sets */                     \
+    L(MBS_LNZ, mbs_lnz, 1, (RT_MAX_MBS_C > 1 ? RT_MAX_MBS_C * (RT_MAX_MBS_C - 1) / 2 : 1), \
+      "off-diagonal non-zeros of the LDL^T factors")                                        \
+    /* nz for a diagonal M, nz (nz + 1) otherwise (its LU factors and row pivots) */        \
+    L(MBS_M, mbs_m, 1, (RT_MAX_MBS_Z * (RT_MAX_MBS_BZ + 1)),                                \
+      "entries of the mass matrices' factors")                                              \
+    /* their multipliers are kept for recorded reactions */                                 \
+    L(MBS_JROWS, mbs_jrows, 1, (RT_MAX_JOINTS * 6), "rows of the joints' constraints")      \
+    /* any kind but those flagged RT_MBS_NODE_POINT */                                      \
+    L(MBS_JZ, mbs_jz, 1, RT_MAX_MBS_BZ, "velocities of a block whose nodes have Jacobians")
 
-/* every row has a value: RT_MAX_NAME of a row without its #ifndef block is undeclared */
-#define RT_X_HAS_VALUE(name, field, least, what) typedef char rt_limit_##name[RT_MAX_##name >= 0 ? 1 : -1];
+#include "rt_limits.h"
+
+/* rt_limits.h is the list's: RT_MAX_NAME of a row it lacks is undeclared here */
+#define RT_X_HAS_VALUE(name, field, least, dflt, what)                                      \
+    typedef char rt_limit_##name[RT_MAX_##name >= 0 ? 1 : -1];
 RT_LIMIT_LIST(RT_X_HAS_VALUE)
 #undef RT_X_HAS_VALUE
 

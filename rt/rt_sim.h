@@ -31,6 +31,7 @@ typedef struct rt_plan {
     /* sets: slice of x each set integrates, and slice of r holding each set's roots */
     uint16_t set_x[RT_MAX_SETS + 1];
     uint16_t set_r[RT_MAX_SETS + 1];
+    real_t set_h[RT_MAX_SETS];       /* each set's step [s] (rt_set_step) */
 
     /* layout: offsets of each block's slice in the value arrays (size nblocks + 1) */
     uint16_t x_off[RT_MAX_BLOCKS + 1], d_off[RT_MAX_BLOCKS + 1];
@@ -76,7 +77,7 @@ typedef struct rt_plan {
                                         set reads (RT_SRC_HELD) before that set (rt/xset.c),
                                         so the trace does not depend on how the scene
                                         lists its sets */
-    uint8_t set_flags[RT_MAX_SETS];  /* rti_set_flag bits of each set (rti_eval_plan) */
+    uint16_t set_flags[RT_MAX_SETS]; /* rti_set_flag bits of each set (rti_eval_plan) */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
     uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);

@@ -64,21 +64,15 @@ void rti_note(rt_sim *sim, ...);
 /* v as "d.dde+xx" into buf (RTI_REAL_TEXT bytes); returns buf (or a constant "nan"). */
 #define RTI_REAL_TEXT 16
 const char *rti_real_text(char *buf, real_t v);
-/* "RT_MAX_X (256 in rt_config.h)": a limit with its value, for rti_fail's messages; a
-   per-scene build (make image) sizes the limits from the scene */
+/* "RT_LOOP_ITER_LIMIT (32 in rt_config.h)": a constant with its value, for rti_fail's
+   messages about the limits that are not capacities (those say rti_capacity) */
 #define RTI_STR2(x) #x
 #define RTI_STR(x) RTI_STR2(x)
 #define RTI_LIMIT(name) #name " (" RTI_STR(name) " in rt_config.h)"
-/* the limits of RT_LIMIT_LIST by name (RTI_LIM_BLOCKS, ...) */
-typedef enum {
-#define RT_X_LIM(name, field, least, what) RTI_LIM_##name,
-    RT_LIMIT_LIST(RT_X_LIM)
-#undef RT_X_LIM
-    RTI_LIM_COUNT
-} rti_limit;
-/* RT_E_CAPACITY with the limit's own message, "[set NAME: ]<what it counts> exceed
-   RT_MAX_<NAME> (<value> in rt_config.h)" (set: 0 for none) */
-rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim);
+/* RT_E_CAPACITY with the limit's own text (rt_limit_text) and where it was exceeded:
+   "[<place><name>: ]<what it counts> exceed RT_MAX_<NAME> (<value> in rt_config.h)",
+   place "set ", "block " or "joint " and the item's name, or both 0 for the scene */
+rt_status rti_capacity(rt_sim *sim, const char *place, const char *name, rt_limit lim);
 /* Sets n bytes at p to zero (freestanding memset). */
 void rti_zero(void *p, size_t n);
 /* The trace hash of one more value (rt_hash_real): one multiply and one xor-shift, on the
@@ -175,7 +169,10 @@ enum {
     RTI_SET_HOLDS_SIG = 16, /* holds recorded/exported multibody signals (held_sig) held.c */
     RTI_SET_XPRED = 32,     /* extrapolates another set: its predictions checked   eval.c */
     RTI_SET_KEEPS_END = 64, /* multi-tick, read by others: step end kept in y_end  held.c */
-    RTI_SET_TEV = 128       /* holds a kind with known time events                 tev.c */
+    RTI_SET_TEV = 128,      /* holds a kind with known time events                 tev.c */
+    RTI_SET_TEV_DYN = 256,  /* holds one whose instants are known at run time only tev.c */
+    RTI_SET_STEP_END = 512, /* holds a kind with a step-end service (step_end)     tev.c */
+    RTI_SET_EVERY_SIGN = 1024 /* holds a kind with roots_every_sign                tev.c */
 };
 /* The first block of set s that keeps it from being linear in its state, or -1. */
 int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t s);
@@ -254,6 +251,10 @@ typedef struct rti_rhs_ctx {
     real_t h;
 } rti_rhs_ctx;
 
+/* the earliest pending time event known at run time (rt_kind.time_event) of set s [s],
+   RT_TEV_NEVER if none (eval.c) */
+real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s);
+
 /* ---- multirate (xset.c) ---- */
 /* Marks inputs fed by another set, chooses their schemes, orders the schedule. */
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
@@ -317,12 +318,17 @@ rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b);
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio);
 /* a parameter of set s changed: its next instant is found anew */
 void rti_tev_moved(rt_sim *sim, uint8_t s);
-/* is base tick `tick` a known time event of set s */
+/* is base tick `tick` a known time event of set s (of its kinds without time_event) */
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
 
 /* ---- set steps and events (step.c) ---- */
-/* Advances set s from t by its step h, handling state events; never stops half-way. */
-void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
+/* Advances set s from t by its step h, handling state events; never stops half-way, but
+   (may_stop) at an event that moved a time event known at run time inside the step
+   (rt/tev.c). Returns the time reached: t + h, or that event's. */
+real_t rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, int may_stop);
+/* before the first tick: set s's method makes ready what it keeps between steps of h
+   from time t (rt_integrator.prime; ROS2's first Jacobian of a spread refresh) */
+void rti_prime_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
 /* records the right-hand sides set s's whole step took since its count was r0
    (rt_istats.rhs_set_step_max, the witness of rt_set_step_bound) */
 void rti_step_witness(rt_sim *sim, uint8_t s, uint64_t r0);

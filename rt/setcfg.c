@@ -1,6 +1,6 @@
 /* setcfg.c - a set's settings by name (RT_SET_CFG_LIST): their table for the tools, reading
- * and writing one by id, the defaults, and the one check of a set's method, step and
- * settings that the scene compiler, modrt's per-set options and rt_init share. */
+ * and writing one by id, the defaults, the one check of a set's method, step and settings
+ * that the scene compiler, modrt's per-set options and rt_init share, and the set's step. */
 #include "rti.h"
 
 const rt_set_opt rt_set_opts[RT_CFG_N] = {
@@ -86,4 +86,9 @@ const char *rt_set_check(const rt_set *st, rt_cfg_id *bad)
 #undef RT_X_CHECK
     *bad = RT_CFG_N;
     return 0;
+}
+
+real_t rt_set_step(const rt_scene *sc, uint8_t s)
+{
+    return sc->dt * (real_t)sc->sets[s].ratio;
 }

@@ -86,7 +86,7 @@ static uint32_t step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
     rti_held_before_step(sim, s, ratio);
     uint64_t r0 = sim->stats.rhs_evals[s];
     if (sim->plan.set_flags[s] & RTI_SET_XPRED)
-        rti_xset_predict(sc, sim, s, t, sc->dt * (real_t)ratio);
+        rti_xset_predict(sc, sim, s, t, sim->plan.set_h[s]);
     if (!(sim->plan.set_flags[s] & RTI_SET_NO_STEP)) /* ending parts at time events */
         rti_tev_step(sc, sim, s, sim->state.tick, ratio);
     else /* nothing to integrate; a parameter change is taken */

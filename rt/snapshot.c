@@ -2,7 +2,7 @@
  * state of the blocks whose kind keeps one (rt_kind.save: an FMU's) appended in block
  * order, and copied back in with what the plan and a background context derive from it
  * made valid again (rt_snapshot, rt_restore: an FMU's state save and restore,
- * tests/host/test_link.c, tests/rt/test_snapshot.c, tests/fmi/snap.c). */
+ * tests/whitebox/host/test_link.c, tests/whitebox/rt/test_sim.c, tests/fmi/snap.c). */
 #include "rti.h"
 
 /* a block's size word when its save failed: no restore takes such a snapshot */

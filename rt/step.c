@@ -55,24 +55,43 @@ static void watch_growth(rt_sim *sim, uint8_t s, real_t before, real_t after)
    tolerance is counted as degraded.
    Returns the final state's norm (NaN or inf if a value is not finite), or -1 if the
    projection moved it after the norm was taken */
+/* the integrator's workspace of set s */
+static void iwork_of(const rt_scene *sc, rt_sim *sim, uint8_t s, rt_iwork *w)
+{
+    for (int i = 0; i < RT_MAX_STAGES; i++)
+        w->k[i] = sim->work.w.k[i];
+    w->x0 = sim->work.x0;
+#if RT_MAX_TRANSITION_N > 0
+    w->tm = sim->work.tm;
+#else
+    w->tm = 0; /* no set of this build's scene takes the transition method (rt/eval.c) */
+#endif
+    w->imp = &sim->state.imp[s];
+    w->stats = &sim->stats.istats[s];
+    w->cfg = &sc->sets[s].cfg;
+    w->autonomous = (sim->plan.set_flags[s] & RTI_SET_AUTONOMOUS) != 0;
+}
+
+void rti_prime_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+{
+    const rt_integrator *m = sc->sets[s].method;
+    if (!m->prime || (sim->plan.set_flags[s] & RTI_SET_NO_STEP))
+        return;
+    rti_rhs_ctx ctx = {sc, sim, s, h};
+    rt_rhs f = {rti_rhs, &ctx};
+    rt_iwork w;
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    iwork_of(sc, sim, s, &w);
+    m->prime(m, &f, t, h, sim->state.x + x0, n, &w);
+}
+
 static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
     rti_rhs_ctx ctx = {sc, sim, s, h};
     rt_rhs f = {rti_rhs, &ctx};
     rt_iwork w;
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
-    for (int i = 0; i < RT_MAX_STAGES; i++)
-        w.k[i] = sim->work.w.k[i];
-    w.x0 = sim->work.x0;
-#if RT_MAX_TRANSITION_N > 0
-    w.tm = sim->work.tm;
-#else
-    w.tm = 0; /* no set of this build's scene takes the transition method (rt/eval.c) */
-#endif
-    w.imp = &sim->state.imp[s];
-    w.stats = &sim->stats.istats[s];
-    w.cfg = &sc->sets[s].cfg;
-    w.autonomous = (sim->plan.set_flags[s] & RTI_SET_AUTONOMOUS) != 0;
+    iwork_of(sc, sim, s, &w);
     if (sim->state.param_changed[s]) /* a parameter changed since the last step */
         sim->state.imp[s].valid = 0, sim->state.param_changed[s] = 0;
     uint32_t split = w.stats->substepped;
@@ -119,21 +138,33 @@ static rootset roots_of(rt_sim *sim, uint8_t s)
     return (rootset){sim->state.r_lvl + r0, sim->state.r_side + r0, 0};
 }
 
+/* does a held root of a kind that asks for every sign change (rt_kind.roots_every_sign)
+   return from ra to rb to the side of zero it was held from (an FMU's ball lifting off
+   after its impact): a crossing too, besides leaving its level */
+static int returned(const rt_kind *k, real_t ra, real_t rb, int side)
+{
+    return k->roots_every_sign && side != 0 && (real_t)side * ra <= 0 && (real_t)side * rb > 0;
+}
+
 /* does root i cross from ra to rb in its declared direction? A root a handler sent back
    to (or stopped on) a side of its level crosses when it leaves the level to the other */
 static int crossed(const rt_kind *k, uint16_t i, real_t ra, real_t rb, real_t lvl, int side)
 {
     if (side != 0)
-        return (real_t)side * (ra - lvl) >= 0 && (real_t)side * (rb - lvl) < 0;
+        return ((real_t)side * (ra - lvl) >= 0 && (real_t)side * (rb - lvl) < 0) ||
+               returned(k, ra, rb, side);
     int dir = k->root_dir ? k->root_dir[i] : 0;
     int down = ra > 0 && rb <= 0, up = ra < 0 && rb >= 0;
     return dir < 0 ? down : dir > 0 ? up : (down || up);
 }
 
-/* the side root i was on before a crossing from ra: +1 above its level, -1 below */
-static int8_t side_before(const rt_kind *k, uint16_t i, real_t ra, real_t lvl, int side)
+/* the side root i was on before a crossing from ra to rb: +1 above its level, -1 below */
+static int8_t side_before(const rt_kind *k, uint16_t i, real_t ra, real_t rb, real_t lvl,
+                          int side)
 {
     int dir = k->root_dir ? k->root_dir[i] : 0;
+    if (returned(k, ra, rb, side))
+        return (int8_t)-side;
     return (int8_t)(side != 0 ? side : dir != 0 ? -dir : ra - lvl > 0 ? 1 : -1);
 }
 
@@ -249,7 +280,7 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const ro
             fired[m] = 0;
             if (!crossed(k, i, r_start[m], sim->work.rs[m], rs->lvl[m], rs->side[m]))
                 continue;
-            fired[m] = side_before(k, i, r_start[m], rs->lvl[m], rs->side[m]);
+            fired[m] = side_before(k, i, r_start[m], sim->work.rs[m], rs->lvl[m], rs->side[m]);
             rt_args a;
             rti_gather(sim, b, te);
             rti_args(sc, sim, b, te, 0, &a);
@@ -287,29 +318,45 @@ static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t t
    again is its next crossing. Stopped there (a directional root, or a guard), the same.
    Moving on (a handler that only counts a pass), it waits to be seen on its side again,
    unless it was held when it fired: a contact whose handler let it through fires again
-   at once (its handler turns it back, or the per-step bound counts it), never silently */
-static void settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
-                   const rootset *rs, const int8_t *fired, const real_t *r)
+   at once (its handler turns it back, or the per-step bound counts it), never silently.
+   A root of a kind that asks for every sign change (rt_kind.roots_every_sign, FMI's event
+   indicators) is held the same way, and its return to the side of zero it was held from
+   is a crossing too (returned): fired by that, it is free. Returns the probe's length if
+   such a root was sent back and the probe finds it back on its side, so that the next
+   integration ends there and its return is located, else 0 */
+static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
+                     real_t t_max, const rootset *rs, const int8_t *fired, const real_t *r)
 {
-    uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]), m = 0;
-    uint16_t j = sim->plan.blk_of[s];
+    uint16_t m = 0, j = sim->plan.blk_of[s];
+    uint8_t done[RT_MAX_ROOTS];
     int far = 0;
-    for (uint16_t i = 0; i < nr; i++) {
-        if (fired[i] != 0 && (real_t)fired[i] * r[i] > 0)
-            rs->lvl[i] = 0, rs->side[i] = 0; /* put back on its side by the handler */
-        far |= fired[i] != 0 && !((real_t)fired[i] * r[i] > 0);
+    for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
+        const rt_kind *k = sc->blocks[b].kind;
+        for (uint16_t i = 0; i < k->nr; i++, m++) {
+            int back = k->roots_every_sign && rs->side[m] != 0 && fired[m] == -rs->side[m];
+            done[m] = fired[m] == 0 || (real_t)fired[m] * r[m] > 0 || back;
+            if (fired[m] != 0 && done[m])
+                rs->lvl[m] = 0, rs->side[m] = 0; /* put back on its side, or returned */
+            far |= !done[m];
+        }
     }
+    m = 0, j = sim->plan.blk_of[s];
     if (!far)
-        return;
-    real_t *rp = sim->work.rs;
-    probe(sc, sim, s, te, h * RT_EVENT_PROBE, rp);
+        return 0;
+    real_t *rp = sim->work.rs, tau = h * RT_EVENT_PROBE, cap = 0;
+    /* never past a time event known at run time (an FMU is never evaluated beyond its
+       nextEventTime, rt/tev.c); t_max is RT_TEV_NEVER otherwise */
+    tau = te + tau > t_max ? t_max - te : tau;
+    probe(sc, sim, s, te, tau, rp);
     for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
         for (uint16_t i = 0; i < k->nr; i++, m++) {
             int8_t sd = fired[m];
-            if (sd == 0 || (real_t)sd * r[m] > 0)
+            if (done[m])
                 continue;
             real_t d = rp[m] - r[m], v = (real_t)sd * d;
+            if (k->roots_every_sign && v > 0 && (real_t)sd * rp[m] > 0)
+                cap = tau;
             int held = (k->root_dir && k->root_dir[i] != 0) ||
                        (k->root_guard && k->root_guard[i]);
             if (v > 0)
@@ -320,6 +367,7 @@ static void settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t
                 rs->side[m] = 0, rs->lvl[m] = 0;
         }
     }
+    return cap;
 }
 
 /* a guard root (rt_kind.root_guard, a floor, or a root a handler sent back to its side)
@@ -361,23 +409,40 @@ static int nan_root_block(const rt_scene *sc, const rt_sim *sim, uint8_t s, cons
     return -1;
 }
 
+/* the latest time the probe after an event may reach: the set's next time event known at
+   run time (rt/tev.c), if it has them; else no limit */
+static real_t probe_limit(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    if (!(sim->plan.set_flags[s] & RTI_SET_TEV_DYN))
+        return (real_t)RT_TEV_NEVER;
+    return rti_tev_dyn_next(sc, sim, s);
+}
+
 /* sub-steps from t0 to t + h, locating and firing events on the way. A root that ends a
    span NaN (its state finite) is counted (nan, with its block): where it went NaN from a
    finite value is located like a crossing, so a crossing of any root before that point
-   is found and handled; the NaN root itself has no handler to run */
-static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+   is found and handled; the NaN root itself has no handler to run. may_stop: in a set
+   with time events known at run time, an event that moves the next of them inside the
+   rest of the step ends the step at the event (rt/tev.c goes on from there with a part
+   to that instant). Returns the time reached: t + h, or the event's */
+static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h,
+                               int may_stop)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]);
     real_t *r = sim->state.r + sim->plan.set_r[s];
     int8_t fired[RT_MAX_ROOTS];
     rootset rs = roots_of(sim, s);
-    real_t t0 = t, span = h;
+    /* span: the rest of the step from t0; sub: this integration's part of it (less only
+       after an event whose root returns within the probe, settle) */
+    real_t t0 = t, span = h, cap = 0;
     int nan_seen = 0;
     for (int ev = 0;; ev++) {
-        integrate(sc, sim, s, t0, span); /* keeps the span's start in work.xs */
-        rti_outputs(sc, sim, (rti_at){t0 + span, s, RTI_IN_STEP});
-        rti_roots(sc, sim, s, t0 + span, sim->work.rs);
+        real_t sub = cap > 0 && cap < span ? cap : span;
+        cap = 0;
+        integrate(sc, sim, s, t0, sub); /* keeps the span's start in work.xs */
+        rti_outputs(sc, sim, (rti_at){t0 + sub, s, RTI_IN_STEP});
+        rti_roots(sc, sim, s, t0 + sub, sim->work.rs);
         int nb = nan_root_block(sc, sim, s, sim->work.rs);
         rs.lost = nb >= 0 && rt_all_finite(sim->state.x + x0, n);
         if (rs.lost && !nan_seen)
@@ -387,7 +452,14 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         if (c < 0) {
             check_guards(sc, sim, s, &rs, r, sim->work.rs);
             release(nr, &rs, sim->work.rs);
-            break;
+            if (!(sub < span))
+                break;
+            for (uint16_t i = 0; i < nr; i++) /* the rest of the step from there */
+                r[i] = sim->work.rs[i];
+            span = (t0 + span) - (t0 + sub);
+            t0 = t0 + sub;
+            ev--; /* no event */
+            continue;
         }
         bracket k = {0, 1, r[c], sim->work.rs[c], c};
         for (uint16_t i = 0; i < n; i++)
@@ -397,20 +469,25 @@ static void step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t 
         if (ev >= RT_EVENTS_PER_STEP_MAX)
             rti_count(sim, RT_CNT_EVENT_LIMIT, blk, RT_E_EVENT);
         else
-            locate(sc, sim, s, t0, span, &k, &rs, r);
-        real_t te = t0 + k.b * span;
+            locate(sc, sim, s, t0, sub, &k, &rs, r);
+        real_t te = t0 + k.b * sub;
         fire(sc, sim, s, te, &rs, r, fired);
         /* the rest of the step starts from the handled state */
         span = (t0 + span) - te;
         t0 = te;
         rti_outputs(sc, sim, (rti_at){t0, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0, r);
-        settle(sc, sim, s, t0, h, &rs, fired, r);
+        cap = settle(sc, sim, s, t0, h, probe_limit(sc, sim, s), &rs, fired, r);
+        cap = ev + 1 < RT_EVENTS_PER_STEP_MAX ? cap : 0; /* past the bound: to the end */
         if (!(span > 0))
-            return; /* an event at the step's end: r holds the roots after its handlers */
+            return t + h; /* an event at the step's end: r holds the roots after them */
+        if (may_stop && (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) &&
+            rti_tev_dyn_next(sc, sim, s) < t0 + span)
+            return t0; /* r holds the roots after its handlers */
     }
     for (uint16_t i = 0; i < nr; i++)
         r[i] = sim->work.rs[i];
+    return t + h;
 }
 
 /* the first block of the set holding a non-finite state, or -1 (the set's states are
@@ -436,12 +513,12 @@ void rti_step_witness(rt_sim *sim, uint8_t s, uint64_t r0)
         sim->stats.istats[s].rhs_set_step_max = (uint32_t)d;
 }
 
-void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+real_t rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, int may_stop)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
-    real_t after = -1; /* unknown */
+    real_t after = -1, reached = t + h; /* unknown */
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
-        step_with_events(sc, sim, s, t, h);
+        reached = step_with_events(sc, sim, s, t, h, may_stop);
     } else {
         after = integrate(sc, sim, s, t, h); /* keeps the state before it in work.xs */
     }
@@ -455,4 +532,5 @@ void rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h
         rti_count(sim, RT_CNT_NAN, bad, RT_E_NAN);
     }
     rti_invariants(sc, sim, s); /* what the kinds declare of their states */
+    return reached;
 }

@@ -1,6 +1,8 @@
-/* tev.c - known time events: the instants at which a kind switches in time (a step, a
- * pulse edge; an FMU's time events), declared by rt_kind.next_event, as part of the fixed
- * schedule.
+/* tev.c - time events and the ends of a set's step parts: the instants at which a kind
+ * switches in time (a step, a pulse edge), declared by rt_kind.next_event, as part of the
+ * fixed schedule; the instants known only at run time of a kind with rt_kind.time_event
+ * (an FMU's nextEventTime); and the services a kind asks for at the end of each completed
+ * integration (rt_kind.step_end, FMI's CompletedIntegratorStep).
  *
  * A set holding such a kind ends a step at each of its instants. Every evaluation of a
  * step part (its stages, its end, the event location inside it) carries the part's
@@ -14,7 +16,17 @@
  * the base tick grid (the rule of the end time, RT_TICK_SLACK), else the scene is refused
  * with the block and the instant. (A switch inside a step instead would be read one
  * step early by every method whose stages reach t + h, rk4, dopri5, sdirk3, ..., which
- * then converges at first order whatever its own.) */
+ * then converges at first order whatever its own.)
+ *
+ * An instant known only at run time (the kind's next_event reads its own state, set by
+ * its last event) cannot be walked at init and may lie anywhere: each step of its set is
+ * integrated part by part, each part ending exactly at the earliest of the step's end, the
+ * next instant of the set's other kinds (a tick) and the next run-time instant, so no
+ * stage of a part evaluates a kind past its instant; at a part's end the kinds' step_end
+ * run, then the time_event of every instant due there. An event inside a part that moves
+ * an instant into the rest of the part ends the part there (rt/step.c). The parts stay at
+ * most RT_TEV_PARTS_MAX: an instant the last part passes is handled at the step's end and
+ * counted (tev_limit, RT_E_TEV), never merged silently. */
 #include "rti.h"
 
 #define NEVER UINT64_MAX
@@ -35,13 +47,19 @@ typedef struct instant {
     real_t t, off;
 } instant;
 
+/* does kind k switch at instants it knows before the run (walked at init, on the grid) */
+static int known_ahead(const rt_kind *k)
+{
+    return k->next_event && !k->time_event;
+}
+
 /* set s's first instant strictly after time t [s]: the earliest over its blocks */
 static instant set_next(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
     instant in = {NEVER, 0, RT_TEV_NEVER, 0};
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
-        if (!sc->blocks[b].kind->next_event)
+        if (!known_ahead(sc->blocks[b].kind))
             continue;
         real_t te = block_next(sc, sim, b, t);
         if (te < in.t) /* (a NaN is no instant) */
@@ -82,12 +100,143 @@ static void part(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k, uint64_
 {
     real_t t = (real_t)k * sc->dt, h = sc->dt * (real_t)(ke - k);
     sim->work.t_piece = t + (real_t)0.5 * h;
-    rti_step_set(sc, sim, s, t, h);
+    rti_step_set(sc, sim, s, t, h, 0);
 }
 #endif
 
+/* ------------------------------------------------------------------ instants known at run time */
+
+/* the state of set s, kept in work.xb before a service that may change it */
+static void keep_x(rt_sim *sim, uint8_t s)
+{
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    for (uint16_t i = 0; i < n; i++)
+        sim->work.xb[i] = sim->state.x[x0 + i];
+}
+
+/* block b's step_end (end 1) or time_event (end 0) at t, with its inputs there; a state
+   it leaves not finite is counted (nan, the block) and the state before it kept, as a
+   step's is (rt/step.c) */
+static void serve(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t t, int end,
+                  int *changed)
+{
+    const rt_kind *k = sc->blocks[b].kind;
+    real_t *x = sim->state.x + sim->plan.x_off[b], *d = sim->state.d + sim->plan.d_off[b];
+    rt_args a;
+    keep_x(sim, s);
+    rti_gather(sim, b, t);
+    rti_args(sc, sim, b, t, 0, &a);
+    a.t_piece = rti_piece(sc, sim, t);
+    int ran = 1;
+    if (end)
+        ran = k->step_end(&a, x, d);
+    else
+        k->time_event(&a, x, d);
+    if (!ran)
+        return;
+    rti_count(sim, RT_CNT_EVENTS, b, RT_OK);
+    if (!rt_all_finite(x, k->nx)) {
+        uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+        for (uint16_t i = 0; i < n; i++)
+            sim->state.x[x0 + i] = sim->work.xb[i];
+        rti_count(sim, RT_CNT_NAN, b, RT_E_NAN);
+    }
+    rti_outputs(sc, sim, (rti_at){t, s, RTI_IN_STEP}); /* what the next service reads */
+    *changed = 1;
+}
+
+/* at the end t of a part of set s: each kind's step_end, then the time event of each
+   block whose run-time instant is due (at or before t: before it only past the bound of
+   parts, counted); then the set's roots from the state after them */
+static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
+{
+    uint16_t flags = sim->plan.set_flags[s];
+    int changed = 0;
+    rti_outputs(sc, sim, (rti_at){t, s, RTI_IN_STEP}); /* the inputs the services read */
+    for (uint16_t k = sim->plan.blk_of[s]; (flags & RTI_SET_STEP_END) && k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (sc->blocks[b].kind->step_end)
+            serve(sc, sim, s, b, t, 1, &changed);
+    }
+    for (uint16_t k = sim->plan.blk_of[s]; (flags & RTI_SET_TEV_DYN) && k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (!sc->blocks[b].kind->time_event)
+            continue;
+        real_t te = block_next(sc, sim, b, t);
+        if (!(te <= t))
+            continue;
+        if (te < t) /* passed by the last part the bound allows */
+            rti_count(sim, RT_CNT_TEV_LIMIT, b, RT_E_TEV);
+        serve(sc, sim, s, b, t, 0, &changed);
+    }
+    if (changed && sim->plan.set_r[s + 1] > sim->plan.set_r[s])
+        rti_roots(sc, sim, s, t, sim->state.r + sim->plan.set_r[s]);
+}
+
+/* h, or the largest length with t + h <= te in this arithmetic if it reaches past te */
+static real_t span_to(real_t t, real_t te, real_t h)
+{
+    if (!(t + h <= te))
+        h = te - t;
+    while (h > 0 && t + h > te)
+        h -= h * RT_EPS;
+    return h;
+}
+
+/* set s's step from tick over ratio ticks, part by part to each instant (known ahead: a
+   tick; at run time: anywhere), with the services at each part's end */
+static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
+{
+    uint64_t end = tick + ratio, k = tick;
+    real_t t = (real_t)tick * sc->dt, t_end = (real_t)end * sc->dt;
+    for (int n = 1;; n++) {
+        uint64_t kb = end;
+#if RT_MAX_TEV > 0
+        if (sim->plan.set_flags[s] & RTI_SET_TEV) {
+            uint64_t ks = next_tick(sc, sim, s, k);
+            kb = ks < end ? ks : end;
+        }
+#endif
+        real_t tb = kb == end ? t_end : (real_t)kb * sc->dt;
+        real_t td = (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) ? rti_tev_dyn_next(sc, sim, s)
+                                                                : (real_t)RT_TEV_NEVER;
+        int last = n >= RT_TEV_PARTS_MAX;
+        if (td < tb)
+            tb = td, kb = NEVER;
+        if (last)
+            tb = t_end, kb = end; /* an instant before it is handled (late) at its end */
+        real_t reached = t;
+        if (tb > t) {
+            /* a whole step without parts: its length as a step without parts has it; a
+               part ending at a run-time instant: never past it */
+            real_t h = n == 1 && tb == t_end ? sim->plan.set_h[s] : tb - t;
+            if (td <= tb)
+                h = span_to(t, tb, h);
+#if RT_MAX_TEV > 0
+            sim->work.t_piece = (real_t)0.5 * (t + tb);
+#endif
+            reached = rti_step_set(sc, sim, s, t, h, !last);
+            if (reached >= t + h)
+                reached = tb; /* the part's end, exactly */
+        }
+        part_end(sc, sim, s, reached);
+        if (reached == tb && kb != NEVER)
+            k = kb;
+        t = reached;
+        if (t >= t_end)
+            break;
+    }
+#if RT_MAX_TEV > 0
+    sim->work.t_piece = 0;
+#endif
+}
+
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
 {
+    if (sim->plan.set_flags[s] & (RTI_SET_TEV_DYN | RTI_SET_STEP_END)) {
+        dyn_step(sc, sim, s, tick, ratio);
+        return;
+    }
 #if RT_MAX_TEV > 0
     uint64_t end = tick + ratio, k = tick, ke;
     if (sim->plan.set_flags[s] & RTI_SET_TEV) {
@@ -102,7 +251,7 @@ void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uin
         return;
     }
 #endif
-    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sc->dt * (real_t)ratio);
+    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sim->plan.set_h[s], 0);
 }
 
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
@@ -199,23 +348,34 @@ static rt_status check_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
     return RT_OK;
 }
 
-/* does set s hold a kind with known time events */
-static int has_events(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+/* the flags of set s's kinds: RTI_SET_TEV (time events, known ahead or at run time),
+   RTI_SET_TEV_DYN (at run time), RTI_SET_STEP_END (a step-end service),
+   RTI_SET_EVERY_SIGN (roots whose every sign change is a crossing, rt/step.c) */
+static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
-    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++)
-        if (sc->blocks[sim->plan.set_blk[k]].kind->next_event)
-            return 1;
-    return 0;
+    uint16_t f = 0;
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        const rt_kind *kd = sc->blocks[sim->plan.set_blk[k]].kind;
+        f = (uint16_t)(f | (kd->next_event ? RTI_SET_TEV : 0) |
+                       (kd->next_event && kd->time_event ? RTI_SET_TEV_DYN : 0) |
+                       (kd->step_end ? RTI_SET_STEP_END : 0) |
+                       (kd->nr && kd->roots_every_sign ? RTI_SET_EVERY_SIGN : 0));
+    }
+    return f;
 }
 
 rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
 {
     unsigned n = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
-        if (!has_events(sc, sim, s))
+        uint16_t f = tev_flags(sc, sim, s);
+        sim->plan.set_flags[s] |= (uint16_t)(f & RTI_SET_EVERY_SIGN);
+        if (f & (RTI_SET_TEV_DYN | RTI_SET_STEP_END)) /* steps for its services' sake */
+            sim->plan.set_flags[s] = (uint16_t)((sim->plan.set_flags[s] | f) & ~RTI_SET_NO_STEP);
+        if (!(f & RTI_SET_TEV))
             continue;
         if (++n > RT_MAX_TEV)
-            return rti_capacity(sim, 0, RTI_LIM_TEV);
+            return rti_capacity(sim, 0, 0, RT_LIM_TEV);
         sim->plan.set_flags[s] |= RTI_SET_TEV;
         rt_status st = check_set(sc, sim, s);
         if (st != RT_OK)

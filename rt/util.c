@@ -175,25 +175,70 @@ void rt_note_status(rt_sim *sim, rt_status status)
         sim->stats.status = status;
 }
 
+void rt_note_count(rt_sim *sim, rt_counter c, uint32_t n, uint64_t first_tick,
+                   rt_status status)
+{
+    if (n == 0)
+        return;
+    if (sim->stats.count[c] == 0)
+        sim->stats.first_tick[c] = (uint32_t)first_tick;
+    sim->stats.count[c] += n;
+    rt_note_status(sim, status);
+}
+
 uint64_t rt_hash_real(uint64_t h, real_t v)
 {
     return rti_hash(h, v);
 }
 
-/* a capacity fault: the limit's own message from the list of limits (rt_config.h) */
-rt_status rti_capacity(rt_sim *sim, const char *set, rti_limit lim)
+/* ------------------------------------------------------------------ capacity limits */
+
+/* each row of RT_LIMIT_LIST: what it counts, its macro, its value in this build */
+static const struct {
+    const char *what, *macro;
+    uint32_t value;
+} limits[RT_LIM_COUNT] = {
+#define RT_X_ROW(name, field, least, dflt, what)                                             \
+    {what, "RT_MAX_" #name, (uint32_t)(RT_MAX_##name)},
+    RT_LIMIT_LIST(RT_X_ROW)
+#undef RT_X_ROW
+};
+
+/* s appended at buf[*n], within cap bytes and terminated */
+static void put(char *buf, size_t cap, size_t *n, const char *s)
 {
-    const char *what = "";
-    switch (lim) {
-#define RT_X_TEXT(name, field, least, what_)                                                 \
-    case RTI_LIM_##name:                                                                    \
-        what = what_ " exceed " RTI_LIMIT(RT_MAX_##name);                                   \
-        break;
-        RT_LIMIT_LIST(RT_X_TEXT)
-#undef RT_X_TEXT
-    default:
-        break;
-    }
-    return set ? rti_fail(sim, RT_E_CAPACITY, "set ", set, ": ", what, (const char *)0)
-               : rti_fail(sim, RT_E_CAPACITY, what, (const char *)0);
+    while (*s && *n + 1 < cap)
+        buf[(*n)++] = *s++;
+    buf[*n] = 0;
+}
+
+const char *rt_limit_text(char *buf, size_t cap, rt_limit lim)
+{
+    char num[11], *p = num + sizeof num - 1; /* the value in decimal, from its end */
+    size_t n = 0;
+    if (cap == 0)
+        return buf;
+    buf[0] = 0;
+    if ((unsigned)lim >= RT_LIM_COUNT)
+        return buf;
+    uint32_t v = limits[lim].value;
+    *p = 0;
+    do
+        *--p = (char)('0' + v % 10);
+    while ((v /= 10) != 0);
+    put(buf, cap, &n, limits[lim].what);
+    put(buf, cap, &n, " exceed ");
+    put(buf, cap, &n, limits[lim].macro);
+    put(buf, cap, &n, " (");
+    put(buf, cap, &n, p);
+    put(buf, cap, &n, " in rt_config.h)");
+    return buf;
+}
+
+rt_status rti_capacity(rt_sim *sim, const char *place, const char *name, rt_limit lim)
+{
+    char text[RT_ERR_LEN];
+    rt_limit_text(text, sizeof text, lim);
+    return place && name ? rti_fail(sim, RT_E_CAPACITY, place, name, ": ", text, (const char *)0)
+                         : rti_fail(sim, RT_E_CAPACITY, text, (const char *)0);
 }

@@ -41,7 +41,7 @@ uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim)
 static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
 {
     if (rti_xset_npred(sc, sim) > RT_MAX_XPRED)
-        return rti_capacity(sim, 0, RTI_LIM_XPRED);
+        return rti_capacity(sim, 0, 0, RT_LIM_XPRED);
 #if RT_MAX_XPRED > 0
     sim->plan.nxpred = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++)
@@ -167,7 +167,7 @@ rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim)
             continue;
         }
         if (sim->plan.src[gi] >= RT_MAX_HIST_Y)
-            return rti_capacity(sim, 0, RTI_LIM_HIST_Y);
+            return rti_capacity(sim, 0, 0, RT_LIM_HIST_Y);
         sim->plan.src_kind[gi] = RT_SRC_XSET;
         sim->plan.src_set[gi] = sf;
         sim->plan.interp[gi] = scheme ? scheme : RT_INTERP_HOLD;

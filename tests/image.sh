@@ -95,13 +95,11 @@ else bad "make image at $clk MHz (half of what pi_loop's slowest tick needs) doe
 # and their memory from the static arena: 2.0 on m4f and rv32, 3.0 on m3 (no FPU: the
 # doubles in the C library's soft float, ports/common/softfloat.c). Under QEMU, bounded by
 # an instruction budget (tools/qemu/insn_count.c; a run takes 3.2e7 on m4f), each prints
-# the hash of the same equations written in the scene language
-# (tests/fmi/scenes/ball_scn.scn), which make test-fmi checks against the closed form, with
-# the FMU arena scenec --sizes measured. An arena too small fails rt_init in one line.
+# the hash of modrt's run of the same source FMU on the host, whose trace make test-fmi
+# checks against the closed form, with the FMU arena scenec --sizes measured. An arena too small fails rt_init in one line.
 W=build/image/fmu-test
 rm -rf "$W" && mkdir -p "$W"
 export MODRT_FMU_CACHE="$PWD/$W/cache"
-want=$($M run tests/fmi/scenes/ball_scn.scn | sed -n 's/^hash: //p')
 budget=100000000
 for v in 2 3; do
     python3 tests/fmi/mkfmu.py --cc "${CC:-cc}" --version $v --model bouncing --source-only \
@@ -114,20 +112,22 @@ for tv in m4f:2 m3:3 rv32:2; do
     # (m4f also measured: its instructions per tick over 200 ticks, and the measuring
     # image's hash against the host's run of the FMU scene)
     m=$([ "$t" = m4f ] && echo "TICKS=200" || echo "MEASURE=0")
+    want=$($M run "$W/fmu_ball$v.scn" | sed -n 's/^hash: //p')
     if make -s image $m TARGET=$t SCENE="$W/fmu_ball$v.scn" > "$W/build$t$v.out" 2>&1; then
         # shellcheck disable=SC2046 # the run command is meant to split into words
         got=$(timeout 300 $(make -s "print-TARGET_RUN_$t" | sed "s/^timeout [0-9]* //; s#-kernel\$#-plugin \
               build/host/libinsn_count.so,limit=$budget -kernel#") "$elf" 2>&1)
         h=$(echo "$got" | sed -n 's/^rt scene .* hash \([0-9a-f]*\) status ok$/\1/p')
-        if [ -n "$want" ] && [ "$h" = "$want" ]; then ok; echo "image: $t FMI $v.0 source FMU: hash $h = host scene-language define"
-        else bad "$t FMI $v.0 source FMU: image hash '$h', define '$want': $got"; fi
+        if [ -n "$want" ] && [ "$h" = "$want" ]; then ok; echo "image: $t FMI $v.0 source FMU: hash $h = the host's run of it"
+        else bad "$t FMI $v.0 source FMU: image hash '$h', host '$want': $got"; fi
         if $(make -s "print-TARGET_NM_$t") "$elf" | grep -qE ' T (calloc|malloc)$'; then
             bad "the $t FMI $v.0 FMU image links a heap"; else ok; fi
         # the arena scenec --sizes measured on this (LP64) host, which the image above ran
-        # with: the glue's instance (model_data 72, mode 4 + 4, name 8; 2.0 the callbacks'
-        # pointer 8, 3.0 environment and logger 16), "Ball" and its 0 (5, up to 8), and the
-        # first snapshot's FMU state (model_data 72, mode 4 + 4): 2.0 184, 3.0 192
-        if grep -q "^image: FMU arena $((v == 2 ? 184 : 192)) bytes" "$W/build$t$v.out"; then ok
+        # with: the glue's instance (model_data 72, mode 4, has_next 4, next 8, name 8; 2.0
+        # the callbacks' pointer 8, 3.0 environment and logger 16), "Ball" and its 0 (5, up
+        # to 8), and the first snapshot's FMU state (model_data 72, mode 4, has_next 4, next
+        # 8): 2.0 200, 3.0 208
+        if grep -q "^image: FMU arena $((v == 2 ? 200 : 208)) bytes" "$W/build$t$v.out"; then ok
         else bad "$t FMI $v.0 image: not the arena the FMU needs: $(grep arena "$W/build$t$v.out")"; fi
     else bad "$t image of the FMI $v.0 source FMU did not build:"; cat "$W/build$t$v.out"; fi
     [ "$t" = m4f ] || continue

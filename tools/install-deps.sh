@@ -2,16 +2,18 @@
 # install-deps.sh - installs, from Debian's packages, everything the make targets use: the
 # host compiler, expat and libzip (FMUs), the cross compilers, QEMU, clang's libFuzzer,
 # valgrind, python3, cppcheck and clang-tidy; GNU parallel, Slurm and MUNGE for the
-# campaign engines (make test-sweep). Skips
-# what is already there. Needs root (or sudo) for apt-get.
+# campaign engines (make test-sweep); MuJoCo for the benchmarks only (group bench: make test
+# never needs it). Skips what is already there. Needs root (or sudo) for apt-get.
 #
-#   sh tools/install-deps.sh            install what is missing (all groups)
+#   sh tools/install-deps.sh            install what is missing (every group, bench too)
 #   sh tools/install-deps.sh --auto G   what the Makefile calls before a target that needs
-#                                       group G (host | sweep | all): installs when it can (root,
-#                                       or sudo without a password), otherwise prints one
-#                                       line naming the command to run and fails
+#                                       group G (host | sweep | all | bench; all is what
+#                                       make test needs, bench what make bench adds):
+#                                       installs when it can (root, or sudo without a
+#                                       password), otherwise prints one line naming the
+#                                       command to run and fails
 set -eu
-auto=0 group=all
+auto=0 group=every
 if [ "${1:-}" = "--auto" ]; then auto=1; group=${2:-all}; fi
 need=""
 have() { command -v "$1" >/dev/null 2>&1; }
@@ -24,13 +26,13 @@ have python3                 || need="$need python3"
 [ -f /usr/include/expat.h ]  || need="$need libexpat1-dev"
 [ -f /usr/include/zip.h ]    || need="$need libzip-dev"
 have zip                     || need="$need zip"
-if [ "$group" = all ] || [ "$group" = sweep ]; then
+if [ "$group" = every ] || [ "$group" = all ] || [ "$group" = sweep ]; then
     # the engines `modrt sweep` hands its task lines to (tests/sweep/sweep.sh runs both)
     have parallel                || need="$need parallel"
     have slurmctld               || need="$need slurm-wlm"
     have munged                  || need="$need munge"
 fi
-if [ "$group" = all ]; then
+if [ "$group" = every ] || [ "$group" = all ]; then
     have arm-none-eabi-gcc       || need="$need gcc-arm-none-eabi"
     [ -d /usr/lib/arm-none-eabi/newlib ] || need="$need libnewlib-arm-none-eabi"
     have riscv64-unknown-elf-gcc || need="$need gcc-riscv64-unknown-elf"
@@ -47,6 +49,11 @@ if [ "$group" = all ]; then
     # the static checks of make test-static
     have cppcheck                || need="$need cppcheck"
     have clang-tidy              || need="$need clang-tidy"
+fi
+if [ "$group" = every ] || [ "$group" = bench ]; then
+    # MuJoCo beside modrt (tools/dev/bench/mujoco_scale.py), counted by callgrind
+    [ -f /usr/include/mujoco/mujoco.h ] || need="$need libmujoco-dev"
+    have valgrind                || need="$need valgrind"
 fi
 if [ -z "$need" ]; then
     [ "$auto" -eq 1 ] || echo "install-deps: everything is installed"

@@ -20,7 +20,7 @@
  * the timer does. */
 #include "port.h"
 #include "rt.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run and its background context */
 
 #ifndef RT_SCENE
 #define RT_SCENE mdl_scene_pi_loop

@@ -1,6 +1,6 @@
 /* link_hmac.c - SHA-256 written from FIPS 180-4 (sections 4.1.2, 4.2.2, 5.1.1, 5.3.3, 6.2)
  * and HMAC from RFC 2104; checked against the standards' test vectors in
- * tests/host/test_link.c (FIPS 180-4 examples "abc" and the 448-bit message, RFC 4231). */
+ * tests/whitebox/host/test_link.c (FIPS 180-4 examples "abc" and the 448-bit message, RFC 4231). */
 #include "link_hmac.h"
 
 /* the first 32 bits of the fractional parts of the cube roots of the first 64 primes

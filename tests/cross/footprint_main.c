@@ -10,7 +10,7 @@
 #include "harness.h"
 #include "port.h"
 #include "rt.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 #define PAINT 0xA5C3E1F7u /* a word no real stack frame is likely to hold */
 #define PAINT_MARGIN 256  /* bytes below the current stack pointer left unpainted */
@@ -101,5 +101,5 @@ int app_main(void)
     th_put(" stack ");
     th_put_int(high_water());
     th_put("\n");
-    return sim.stats.status == RT_OK ? 0 : 1;
+    return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
 }

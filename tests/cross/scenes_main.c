@@ -7,7 +7,7 @@
 #include "harness.h"
 #include "models.h"
 #include "port.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 #ifndef SC_PART
 #define SC_PART 0
@@ -36,10 +36,10 @@ static void run_scene(const rt_scene *sc)
     th_put(" ticks ");
     th_put_int((long long)rt_ticks_done(&sim));
     th_put(" status ");
-    if (sim.stats.status == RT_OK) /* one word, so scripts can split the line */
+    if (rt_stats_of(&sim)->status == RT_OK) /* one word, so scripts can split the line */
         th_put("ok");
     else
-        th_put("fault"), th_put_int(sim.stats.status);
+        th_put("fault"), th_put_int(rt_stats_of(&sim)->status);
     th_put(" hash ");
     th_put_hex64(rt_trace_hash(&sim));
     th_put("\n");

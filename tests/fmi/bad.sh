@@ -80,6 +80,11 @@ for v in 2 3; do
     mk past$v $v stair --define FMU_BAD_NEXT_PAST && sed -i 's/record (X.h);/record (X.y);/' "$D/past$v.scn" &&
         counted past$v "nextEventTime 1 is not after the current time 1"
 done
+for v in 2 3; do # terminateSimulation from CompletedIntegratorStep: the FMU's termination
+    mk term$v $v stepper --define FMU_BAD_STEP_TERMINATE=1 &&
+        sed -i 's/record (X.h);/record (X.x);/' "$D/term$v.scn" &&
+        counted term$v "asked to terminate the simulation at t = 1 (in CompletedIntegratorStep)"
+done
 mk nz3 3 bouncing --md-nz 2 && refused nz3 "declares 2 states and 2 event indicators, the binary 2 and 1"
 
 # nothing escaped the cache

@@ -4,8 +4,14 @@ computed here from the equations, never from the code under test:
 
   ball  h'' = -g from h = 1, v = 0; at each impact v := -e v (ball_h2: from 2 m, e = 0.5). Impact k at t_k, bounce
         speed e^k v1 (v1 = sqrt(2 g)), flights of 2 e^k v1 / g: h and v at every row.
+  liftoff  the ball whose gravity is a relation set in event mode (contact := h <= 0): the
+        ball's closed form, contact = 0 on every row, if each lift-off is reported.
   stair y(t) = floor(t / period) at every row, for a period on the tick grid (0.5 s) and
-        one between ticks (0.3 s); a row on a switching instant shows the value after it.
+        one between ticks (0.3 s); a row on a switching instant shows the value after it;
+        late = 0 on every row (the FMU never set past its time event in continuous time).
+  stepper  x' = 1 with CompletedIntegratorStep: n = the steps of its set completed by t
+        (1/8 s and 1/2 s), te = the first step end with x >= at (0.375 s, 1.5 s) exactly,
+        x = t - te after it (at the set's last step end: a slow set's outputs are held).
   osc   x'' + c x' + k x = b u, u constant, from rest: the underdamped step response;
         the feed-through y = gain P.y + offset (exactly the double arithmetic), y2 = u2.
 
@@ -57,7 +63,7 @@ def check_ball(path, tol, e=0.7, h0=1.0):
 
 def near_impact(t, g=9.81, e=0.7, h0=1.0):
     tk, v = math.sqrt(2 * h0 / g), math.sqrt(2 * g * h0) * e
-    while tk < t + 1:
+    while tk < t + 1 and v > 1e-12:  # (the impacts accumulate before t + 1 s)
         if abs(t - tk) < 2e-3:
             return True
         tk += 2 * v / g
@@ -69,9 +75,37 @@ def check_stair(path, tol):
     head, data = rows(path)
     worst = 0.0
     for r in data:
-        for p, y in zip([0.5, 0.3], r[1:]):
+        for p, y in zip([0.5, 0.3], r[1:3]):
             # a row on a switching instant shows the value after the event
             worst = max(worst, abs(y - math.floor(r[0] / p + 1e-12)))
+        # the FMU's own count of continuous-time evaluations past its next time event
+        worst = max([worst] + r[3:5])
+    return worst
+
+
+def check_liftoff(path, tol):
+    """the bouncing ball's closed form, and contact = 0 on every row (it is true only from
+    an impact to the lift-off right after it, far shorter than a tick)"""
+    if any(r[3] != 0 for r in rows(path)[1]):
+        return float("inf")
+    return check_ball(path, tol)
+
+
+def check_stepper(path, tol):
+    """F: steps of 1/8 s, event asked at the first step end with x >= 0.3; Sl: steps of
+    1/2 s (its outputs held between them), x >= 1.2. n and te exactly, x to tol."""
+    head, data = rows(path)
+    worst = 0.0
+    for r in data:
+        t = r[0]
+        for (h, at), (x, n, te) in zip([(0.125, 0.3), (0.5, 1.2)], [r[1:4], r[4:7]]):
+            k = math.floor(t / h + 1e-9)      # steps completed by t
+            ts = k * h                        # the set's state is at its last step end
+            t_ev = math.ceil(at / h - 1e-9) * h  # the first step end with x >= at
+            te_x = t_ev if ts >= t_ev else 0.0
+            if n != k or te != te_x:
+                return float("inf")
+            worst = max(worst, abs(x - (ts - te_x)))
     return worst
 
 
@@ -95,6 +129,7 @@ def main():
     kind, path = sys.argv[1], sys.argv[2]
     tol = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-6
     worst = {"ball": check_ball, "stair": check_stair, "osc": check_osc,
+             "stepper": check_stepper, "liftoff": check_liftoff,
              "ball_h2": lambda p, t: check_ball(p, t, e=0.5, h0=2.0)}[kind](path, tol)
     ok = worst <= tol
     print("%s %s: largest deviation from the closed form %.3g (tolerance %.3g): %s"

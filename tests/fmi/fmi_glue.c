@@ -5,7 +5,11 @@
  * (tests/fmi/bad.sh): FMU_BAD_ERROR_AT=t (derivatives return Error from time t),
  * FMU_BAD_NAN_AT=t (NaN derivatives from t), FMU_BAD_LOOP (no event iteration after the start ends),
  * FMU_BAD_NO_INDICATORS (the event-indicator function is missing), FMU_BAD_NEXT_PAST (after
- * the first event, nextEventTime is the current time). */
+ * the first event, nextEventTime is the current time). A model with a variable MODEL_LATE
+ * (model_gen.h) counts there every SetTime in continuous-time mode to a time past the
+ * nextEventTime its last event announced: the importer evaluating it across a time
+ * event, which FMI forbids. FMU_BAD_STEP_TERMINATE=t: CompletedIntegratorStep asks to
+ * terminate the simulation from time t. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -43,6 +47,8 @@ typedef enum { M_INSTANTIATED, M_INIT, M_EVENT, M_CT, M_TERMINATED } mode;
 typedef struct inst {
     model_data d;
     mode mode;
+    int has_next;               /* the last event's nextEventTime, for MODEL_LATE */
+    double next;
     char *name;
 #if FMI_VERSION == 2
     const fmi2CallbackFunctions *cb;
@@ -126,6 +132,16 @@ static int derivatives(inst *in, double *dx, size_t n)
     return 0;
 }
 
+/* the time of continuous-time mode set (SetTime) */
+static void set_time(inst *in, double t)
+{
+#ifdef MODEL_LATE
+    if (in->mode == M_CT && in->has_next && t > in->next)
+        in->d.v[MODEL_LATE] += 1;
+#endif
+    in->d.time = t;
+}
+
 static int update(inst *in, int *again, int *x_changed, int *has_next, double *next)
 {
     *again = 0, *x_changed = 0, *has_next = 0, *next = 0;
@@ -133,6 +149,7 @@ static int update(inst *in, int *again, int *x_changed, int *has_next, double *n
         return wrong_mode(in, "UpdateDiscreteStates");
     *x_changed = 0, *has_next = 0, *next = 0;
     *again = model_event(&in->d, x_changed, has_next, next);
+    in->has_next = *has_next, in->next = *next;
 #ifdef FMU_BAD_LOOP
     *again = in->d.time > 0; /* every event after the start */
 #endif
@@ -148,10 +165,33 @@ static int update(inst *in, int *again, int *x_changed, int *has_next, double *n
 typedef struct saved {
     model_data d;
     mode mode;
+    int has_next;
+    double next;
 } saved;
 
-static void save_to(const inst *in, saved *s) { s->d = in->d, s->mode = in->mode; }
-static void load_from(inst *in, const saved *s) { in->d = s->d, in->mode = s->mode; }
+static void save_to(const inst *in, saved *s)
+{
+    s->d = in->d, s->mode = in->mode, s->has_next = in->has_next, s->next = in->next;
+}
+static void load_from(inst *in, const saved *s)
+{
+    in->d = s->d, in->mode = s->mode, in->has_next = s->has_next, in->next = s->next;
+}
+
+/* CompletedIntegratorStep: the model's hook if it has one */
+static int completed(inst *in, int *enter, int *term)
+{
+    *enter = 0, *term = 0;
+    if (in->mode != M_CT)
+        return wrong_mode(in, "CompletedIntegratorStep");
+#ifdef MODEL_NEEDS_STEP
+    *enter = model_completed_step(&in->d);
+#endif
+#ifdef FMU_BAD_STEP_TERMINATE
+    *term = in->d.time >= FMU_BAD_STEP_TERMINATE;
+#endif
+    return 0;
+}
 
 /* ------------------------------------------------------------------ FMI 2.0 */
 #if FMI_VERSION == 2
@@ -344,14 +384,15 @@ EXPORT fmi2Status F2(fmi2EnterContinuousTimeMode)(fmi2Component c)
 EXPORT fmi2Status F2(fmi2CompletedIntegratorStep)(fmi2Component c, fmi2Boolean noSet,
                                               fmi2Boolean *enter, fmi2Boolean *term)
 {
-    (void)c, (void)noSet;
-    *enter = 0, *term = 0;
-    return fmi2OK;
+    int e, t, s = completed(c, &e, &t);
+    (void)noSet;
+    *enter = e, *term = t;
+    return (fmi2Status)s;
 }
 
 EXPORT fmi2Status F2(fmi2SetTime)(fmi2Component c, fmi2Real t)
 {
-    ((inst *)c)->d.time = t;
+    set_time(c, t);
     return fmi2OK;
 }
 
@@ -508,14 +549,15 @@ EXPORT fmi3Status F3(fmi3EnterContinuousTimeMode)(fmi3Instance c)
 EXPORT fmi3Status F3(fmi3CompletedIntegratorStep)(fmi3Instance c, fmi3Boolean noSet,
                                               fmi3Boolean *enter, fmi3Boolean *term)
 {
-    (void)c, (void)noSet;
-    *enter = 0, *term = 0;
-    return fmi3OK;
+    int e, t, s = completed(c, &e, &t);
+    (void)noSet;
+    *enter = e, *term = t;
+    return (fmi3Status)s;
 }
 
 EXPORT fmi3Status F3(fmi3SetTime)(fmi3Instance c, fmi3Float64 t)
 {
-    ((inst *)c)->d.time = t;
+    set_time(c, t);
     return fmi3OK;
 }
 

@@ -24,5 +24,10 @@ void model_indicators(const model_data *m, double *z);
    returns 1 when another is needed; sets *x_changed when it re-initialized a state, and
    *has_next with *next when a time event is pending */
 int model_event(model_data *m, int *x_changed, int *has_next, double *next);
+#ifdef MODEL_NEEDS_STEP
+/* a model that needs CompletedIntegratorStep (its description says so): called at each;
+   returns 1 to ask for an event mode there */
+int model_completed_step(model_data *m);
+#endif
 
 #endif /* FMI_MODEL_H */

@@ -7,6 +7,7 @@ whole. Options damage the result for the bad-FMU corpus (tests/fmi/bad.sh)."""
 import argparse
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -39,6 +40,11 @@ def gen_header(d, token):
         "static const unsigned model_der[%d] = {%s};" % (len(ders) + 1,
                                                          ", ".join(str(v["vr"]) for v in ders) or "0"),
     ]
+    if d.get("needs_step"):  # the model's model_completed_step (fmi_model.h)
+        lines.append("#define MODEL_NEEDS_STEP 1")
+    late = [v["vr"] for v in d["vars"] if v.get("late")]
+    if late:  # the glue counts there evaluations past nextEventTime (fmi_glue.c)
+        lines.append("#define MODEL_LATE %d" % late[0])
     return "\n".join(lines) + "\n"
 
 
@@ -64,8 +70,9 @@ def md2(d, token, ident):
            '<fmiModelDescription fmiVersion="2.0" modelName="%s" guid=%s '
            'numberOfEventIndicators="%d" generationTool="modrt tests/fmi/mkfmu.py" '
            'description=%s>' % (d["name"], quoteattr(token), d["nz"], quoteattr(d["doc"])),
-           '  <ModelExchange modelIdentifier="%s" completedIntegratorStepNotNeeded="true" '
-           'canGetAndSetFMUstate="true" canSerializeFMUstate="true"/>' % ident]
+           '  <ModelExchange modelIdentifier="%s" completedIntegratorStepNotNeeded="%s" '
+           'canGetAndSetFMUstate="true" canSerializeFMUstate="true"/>' % (
+               ident, "false" if d.get("needs_step") else "true")]
     out.append(units_xml(d).rstrip("\n")) if units_xml(d) else None
     out.append("  <ModelVariables>")
     for v in d["vars"]:
@@ -99,8 +106,9 @@ def md3(d, token, ident):
            '<fmiModelDescription fmiVersion="3.0" modelName="%s" instantiationToken=%s '
            'generationTool="modrt tests/fmi/mkfmu.py" description=%s>' % (
                d["name"], quoteattr(token), quoteattr(d["doc"])),
-           '  <ModelExchange modelIdentifier="%s" canGetAndSetFMUState="true" '
-           'canSerializeFMUState="true"/>' % ident]
+           '  <ModelExchange modelIdentifier="%s"%s canGetAndSetFMUState="true" '
+           'canSerializeFMUState="true"/>' % (
+               ident, ' needsCompletedIntegratorStep="true"' if d.get("needs_step") else "")]
     out.append(units_xml(d).rstrip("\n")) if units_xml(d) else None
     out.append("  <ModelVariables>")
     out.append('    <Float64 name="time" valueReference="%d" causality="independent" '
@@ -188,10 +196,9 @@ def main():
                 os.path.join(HERE, "..", "..", "tools", "fmi", "fmi_api.h")]
         cfiles = ["fmi_glue.c", a.model + ".c"]
         if a.source_only and a.version == 2:
-            xml = xml.replace('canSerializeFMUstate="true"/>',
-                              'canSerializeFMUstate="true">\n    <SourceFiles>\n%s'
-                              '    </SourceFiles>\n  </ModelExchange>' %
-                              "".join('      <File name="%s"/>\n' % f for f in cfiles))
+            xml = re.sub(r'(canSerializeFMUstate="true")/>',
+                         r'\1>\n    <SourceFiles>\n%s    </SourceFiles>\n  </ModelExchange>' %
+                         "".join('      <File name="%s"/>\n' % f for f in cfiles), xml)
         if a.no_state:
             xml = xml.replace(' canGetAndSetFMUstate="true" canSerializeFMUstate="true"', '')
             xml = xml.replace(' canGetAndSetFMUState="true" canSerializeFMUState="true"', '')

@@ -97,10 +97,65 @@ static void test_parameters(void)
     TH_CHECK(th_has(rt_error_text(&tu_sim), "B")); /* the message names the block */
 }
 
+/* s1 + s2 + s3 into out (cap RT_ERR_LEN) */
+static const char *join(char *out, const char *s1, const char *s2, const char *s3)
+{
+    size_t n = 0;
+    for (const char *const *s = (const char *const[]){s1, s2, s3, 0}; *s; s++)
+        for (const char *c = *s; *c && n + 1 < RT_ERR_LEN; c++)
+            out[n++] = *c;
+    out[n] = 0;
+    return out;
+}
+
+/* v in decimal, digits kept from the front */
+static const char *decimal(char *out, uint32_t v)
+{
+    uint32_t div = 1;
+    size_t n = 0;
+    while (v / div >= 10)
+        div *= 10;
+    for (; div > 0; div /= 10)
+        out[n++] = (char)('0' + v / div % 10);
+    out[n] = 0;
+    return out;
+}
+
+/* a capacity fault says which limit (its macro and value, what it counts) and where: the
+   block at which the roots outgrew RT_MAX_ROOTS, not "states or roots" */
+static void test_messages(void)
+{
+    char want[RT_ERR_LEN], num[12], tail[RT_ERR_LEN], text[RT_ERR_LEN];
+    join(tail, " (", decimal(num, RT_MAX_BLOCKS), " in rt_config.h)");
+    TH_CHECK(rt_streq(rt_limit_text(text, sizeof text, RT_LIM_BLOCKS),
+                      join(want, "blocks exceed RT_MAX_BLOCKS", tail, "")));
+    TH_CHECK(PAST(v.sc.nblocks = RT_MAX_BLOCKS + 1, RT_E_CAPACITY) &&
+             rt_streq(rt_error_text(&tu_sim), want));
+    /* truncated to its buffer, terminated */
+    TH_CHECK(rt_streq(rt_limit_text(text, 7, RT_LIM_BLOCKS), "blocks") &&
+             rt_limit_text(text, sizeof text, RT_LIM_COUNT)[0] == 0);
+    for (int k = 0; k < RT_LIM_COUNT; k++) /* every row: its words, its macro */
+        TH_CHECK(th_has(rt_limit_text(text, sizeof text, (rt_limit)k), " exceed RT_MAX_") &&
+                 text[0] != ' ' && th_has(text, " in rt_config.h)"));
+#if RT_MAX_ROOTS < RT_MAX_BLOCKS
+    base();
+    for (int i = 0; i <= RT_MAX_ROOTS; i++)
+        v.blk[i] = (rt_block){.name = i < RT_MAX_ROOTS ? "O" : "Last", .kind = &mdl_ball_kind,
+                              .p = v.p};
+    v.sc.nblocks = RT_MAX_ROOTS + 1;
+    join(tail, " (", decimal(num, RT_MAX_ROOTS), " in rt_config.h)");
+    TH_CHECK(init() == RT_E_CAPACITY &&
+             rt_streq(rt_error_text(&tu_sim),
+                      join(want, "block Last: state-event root functions exceed RT_MAX_ROOTS",
+                           tail, "")));
+#endif
+}
+
 const th_test th_limits_tests[] = {
     {"limits_times", test_times},
     {"limits_counts", test_counts},
     {"limits_settings", test_settings},
     {"limits_parameters", test_parameters},
+    {"limits_messages", test_messages},
     {0, 0},
 };

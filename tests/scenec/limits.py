@@ -2,7 +2,8 @@
 """limits.py - every compile-time limit a scene file can reach, at the limit and one past
 it (docs/reliability.md): at the limit the scene runs; one past, `modrt run` exits 2 with
 one line naming the place, the number and the macro. Also the numeric ranges of the end
-time and the CLI. The limits are read from rt/rt_config.h, so the test follows them.
+time and the CLI. The limits are read from rt/rt_config.h and the defaults its list writes
+into rt/rt_limits.h, so the test follows them.
 Usage: limits.py MODRT"""
 import os
 import re
@@ -10,7 +11,7 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CFG = open(os.path.join(ROOT, "rt", "rt_config.h")).read()
+CFG = "".join(open(os.path.join(ROOT, "rt", h)).read() for h in ("rt_config.h", "rt_limits.h"))
 LIM = {m.group(1): int(m.group(2)) for m in re.finditer(r"#define (RT_\w+) (\d+)\b", CFG)}
 TMP = os.path.join(ROOT, "build", "limits")
 os.makedirs(TMP, exist_ok=True)
@@ -84,11 +85,43 @@ def scene_joints(n):
     return text
 
 
-CASES = [  # (what, macro, scene of n, the limit's number as reported)
+CASES = [  # (what, macro, scene of n): the scene compiler refuses n + 1
     ("systems", "RT_MAX_BLOCKS", scene_systems),
     ("sets", "RT_MAX_SETS", scene_sets),
-    ("signals", "RT_MAX_REC", scene_recs),
+    ("recorded signals", "RT_MAX_REC", scene_recs),
     ("joints", "RT_MAX_JOINTS", scene_joints),
+]
+
+
+def limit_text(macro, n):
+    """what a capacity message says of the limit: its macro and value, from RT_LIMIT_LIST's
+    row (the words it counts are the row's own)"""
+    return "%s (%d in rt_config.h)" % (macro, n)
+
+
+def scene_implicit(n):
+    """n states in one set of an implicit method: oscillators of two"""
+    return HEAD + systems((n + 1) // 2) + "set (main) method (sdirk2) step (1 tick);\n"
+
+
+def scene_spherical(n):
+    """n spherical joints (3 rows each) on one point mass, all in its set"""
+    text = HEAD + "load system (B) of type (mbs_point) from file (\"mbs_point\");\n"
+    names = ["J%d" % i for i in range(n)]
+    text += "load joint (%s) of type (spherical);\n" % ", ".join(names)
+    text += "".join("link(B.c, ground) by (%s);\n" % j for j in names)
+    return text + "stabilization (project);\n"
+
+
+RUNTIME_CASES = [  # (scene past a limit rt_init checks, the text it must give)
+    (scene_implicit(LIM["RT_MAX_IMPLICIT_N"] + 1),
+     "set main: states of a set with an implicit method exceed " +
+     limit_text("RT_MAX_IMPLICIT_N", LIM["RT_MAX_IMPLICIT_N"])),
+    # the joint whose rows no longer fit its set, by the one limit it passes (RT_MAX_MBS_C,
+    # not also RT_MAX_MBS_JROWS, which holds them)
+    (scene_spherical(LIM["RT_MAX_MBS_C"] // 3 + 1),
+     "joint J%d: constraints of a multibody set exceed %s" % (
+         LIM["RT_MAX_MBS_C"] // 3, limit_text("RT_MAX_MBS_C", LIM["RT_MAX_MBS_C"]))),
 ]
 
 
@@ -99,10 +132,17 @@ def limit_cases(modrt):
         check(rc in (0, 1, 3), "%s at the limit %d: exit %d: %s" % (what, n, rc, out[-300:]))
         rc, out = run(modrt, make(n + 1))
         lines = out.strip().splitlines()
-        check(rc == 2 and len(lines) == 1 and ("at most %d" % n) in out and macro in out,
+        check(rc == 2 and len(lines) == 1 and ("too many %s" % what) in out and
+              limit_text(macro, n) in out,
               "%s one past the limit %d: exit %d: %s" % (what, n, rc, out[-300:]))
-        print("limits: %-8s %s = %d: at the limit runs, one past: %s" % (what, macro, n,
+        print("limits: %-16s %s = %d: at the limit runs, one past: %s" % (what, macro, n,
                                                                           lines[-1] if lines else ""))
+    for text, want in RUNTIME_CASES:
+        rc, out = run(modrt, text)
+        lines = out.strip().splitlines()
+        check(rc == 2 and len(lines) == 1 and want in out,
+              "rt_init past a limit: exit %d: %s\nwanted: %s" % (rc, out[-300:], want))
+        print("limits: rt_init one past: %s" % (lines[-1] if lines else ""))
 
 
 def end_time_cases(modrt):

@@ -4,7 +4,7 @@
 #include <stdio.h>
 
 #include "rt.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 extern const rt_scene SCN_ONE;
 

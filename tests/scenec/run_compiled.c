@@ -5,7 +5,7 @@
 #include <stdio.h>
 
 #include "models.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 extern const rt_scene_entry scn_test_scenes[];
 

@@ -315,6 +315,12 @@ h_int=$(sed -n 's/^hash: //p' "$T/live.txt") n_int=$(sed -n 's/^ticks: //p' "$T/
 [ -n "$h_int" ] && [ "$(sed -n 's/^hash: //p' "$T/int/runs/000000.txt" 2>/dev/null)" = "$h_int" ] &&
     [ "$(sed -n 's/^ticks: //p' "$T/int/runs/000000.txt")" = "$n_int" ] && ok ||
     bad "a replay run of an interrupted log: live $n_int ticks $h_int; run $(grep -E '^(ticks|hash)' "$T/int/runs/000000.txt" 2>/dev/null | tr '\n' ' ')"
+# and ends as the live run ended and as modrt replay ends it: interrupted, exit 5
+$M replay "$T/int.mrl" > "$T/replay.txt" 2>&1; rc=$?
+grep -q '^status: interrupted$' "$T/live.txt" && grep -q '^status: interrupted$' "$T/replay.txt" &&
+    [ $rc -eq 5 ] && grep -q '^status: interrupted$' "$T/int/runs/000000.txt" &&
+    grep -q '^exit: 5$' "$T/int/runs/000000.txt" && ok ||
+    bad "a replay run of an interrupted log: modrt replay exit $rc, $(grep '^status' "$T/replay.txt"); campaign $(grep -E '^(status|exit)' "$T/int/runs/000000.txt" 2>/dev/null | tr '\n' ' ')"
 
 # ---- one campaign, three engines, identical CSVs ----
 $M sweep run "$D/engines.swp" --out "$T/local" -j 2 2>/dev/null

@@ -337,6 +337,14 @@ def multirate(modrt):
     print("vehicles: reference (dopri5 0.25 ms) against dopri5 0.5 ms: %.2g m, %.2g rad, "
           "host %s s" % (e_ref, ew_ref, runs["ref"][1].get("wall_s")))
     check(runs["ref"][0] == 0 and rc2 == 0, "reference runs failed")
+    # bounded ticks: lane_change's steering set (ROS2, autonomous: two evaluations a step;
+    # 8 states, a Jacobian every 64 steps) spreads the refresh, one column a step
+    # (rt/integ_implicit.c): no step takes more than 2 + ceil(8 / 63) = 3 evaluations,
+    # where the whole refresh in one step took 2 + 8
+    most = runs["lane_change"][1].get("rhs_step_max.steering", "").split(" ")[0]
+    print("vehicles: lane_change: most evaluations in one step of the steering set: %s" % most)
+    check(most == "3", "lane_change: a steering step took %s evaluations (bound 3: the "
+          "Jacobian refresh spread one column a step)" % most)
     for name in ("lane_change", "lane_change_single"):
         rc, summ, _, rows = runs[name]
         e, ew = diff(rows)

@@ -31,7 +31,8 @@ Every effect is its own block kind or service, so an omitted one is neither link
 evaluated: the models column lists the kinds in the image. Cortex-M7 ($t, double):
 flash, RAM and instructions per tick over the whole scene (8000 ticks of 1 ms; the tick
 context only: the vehicles' background steps run in PendSV, outside it; the max is the
-busiest tick: in \`lane_change\` the steering set's Jacobian refresh, in
+busiest tick: in \`lane_change\` a part of the steering set's spread Jacobian refresh
+at the vehicles' publication, in
 \`lane_change_planar\` a tick in which its 5 ms step lands; the slowest tick in
 microseconds at $(mhz "$t") MHz and one instruction per cycle), counted as above, the trace hash checked
 against the host's. Host: instructions per simulated second, \`valgrind --tool=callgrind

@@ -106,6 +106,16 @@ static int get_z2(fmu_inst *in, double *z, size_t n)
     return in->m->f2.fmi2GetEventIndicators(in->c, z, n);
 }
 
+static int completed2(fmu_inst *in, int *enter_event, int *terminate)
+{
+    fmi2Boolean e = fmi2False, t = fmi2False;
+    /* noSetFMUStatePriorToCurrentPoint: not where a snapshot may be restored (fmu_state.c) */
+    fmi2Boolean no_back = in->m->md.can_state ? fmi2False : fmi2True;
+    int s = in->m->f2.fmi2CompletedIntegratorStep(in->c, no_back, &e, &t);
+    *enter_event = e != fmi2False, *terminate = t != fmi2False;
+    return s;
+}
+
 /* fmi2GetReal into get, else fmi2SetReal from set, in blocks of 64 value references
    (fmi2ValueReference is unsigned int, the interface's are uint32_t) */
 static int real2(fmu_inst *in, const uint32_t *vr, size_t n, double *get, const double *set)
@@ -142,7 +152,7 @@ const fmu_ops fmu_ops2 = {
     .prefix = "fmi2", .instantiate = instantiate2, .enter_init = enter_init2,
     .exit_init = exit_init2, .update = update2, .enter_ct = enter_ct2,
     .enter_event = enter_event2, .set_time = set_time2, .set_x = set_x2, .get_x = get_x2,
-    .get_dx = get_dx2, .get_z = get_z2, .get = get2, .set = set2, .reset = reset2,
+    .get_dx = get_dx2, .get_z = get_z2, .completed = completed2, .get = get2, .set = set2, .reset = reset2,
     .terminate = terminate2, .free = free2,
 };
 
@@ -218,6 +228,14 @@ static int get_z3(fmu_inst *in, double *z, size_t n)
     return in->m->f3.fmi3GetEventIndicators(in->c, z, n);
 }
 
+static int completed3(fmu_inst *in, int *enter_event, int *terminate)
+{
+    fmi3Boolean e = fmi3False, t = fmi3False;
+    int s = in->m->f3.fmi3CompletedIntegratorStep(in->c, !in->m->md.can_state, &e, &t);
+    *enter_event = e != fmi3False, *terminate = t != fmi3False;
+    return s;
+}
+
 static int get3(fmu_inst *in, const uint32_t *vr, size_t n, double *v)
 {
     return in->m->f3.fmi3GetFloat64(in->c, vr, n, v, n);
@@ -236,6 +254,6 @@ const fmu_ops fmu_ops3 = {
     .prefix = "fmi3", .instantiate = instantiate3, .enter_init = enter_init3,
     .exit_init = exit_init3, .update = update3, .enter_ct = enter_ct3,
     .enter_event = enter_event3, .set_time = set_time3, .set_x = set_x3, .get_x = get_x3,
-    .get_dx = get_dx3, .get_z = get_z3, .get = get3, .set = set3, .reset = reset3,
+    .get_dx = get_dx3, .get_z = get_z3, .completed = completed3, .get = get3, .set = set3, .reset = reset3,
     .terminate = terminate3, .free = free3,
 };

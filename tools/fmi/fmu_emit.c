@@ -169,12 +169,16 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
     fprintf(f, "    .u_names = %s_un, .y_names = %s_yn, .x_names = %s_xn, .p_names = %s_pn,\n"
                "    .p_default = %s_pdef, .x_default = %s_xdef, .feed = %d, .feed_table = %s,\n"
                "    .root_dir = %s_rd, .check = fmu_check, .output = %s, .deriv = %s,\n"
-               "    .roots = fmu_roots, .event = fmu_event, .save = fmu_save, .restore = fmu_restore,\n"
+               "    .roots = %s, .event = %s, .save = fmu_save, .restore = fmu_restore,\n"
                "    .spec = &%s_i, .units = ",
             pre, pre, pre, pre, pre, pre, (int)k->feed,
             k->feed_table ? ft : "NULL", pre,
-            k->output ? "fmu_output" : "NULL", k->deriv ? "fmu_deriv" : "NULL", pre);
+            k->output ? "fmu_output" : "NULL", k->deriv ? "fmu_deriv" : "NULL",
+            k->roots ? "fmu_roots" : "NULL", k->event ? "fmu_event" : "NULL", pre);
     cstr(f, k->units);
-    fputs(", .doc = ", f), cstr(f, k->doc), fputs("};\n", f);
+    fputs(", .doc = ", f), cstr(f, k->doc);
+    fprintf(f, ",\n    .next_event = fmu_next_event, .time_event = fmu_time_event, "
+               ".step_end = %s, .roots_every_sign = %u};\n",
+            k->step_end ? "fmu_step_end" : "NULL", (unsigned)k->roots_every_sign);
     return 0;
 }

@@ -1,7 +1,7 @@
 /* fmu_info.c - what modrt prints about FMUs: `modrt info FILE.fmu` (the model, how it maps
  * onto a block kind, every variable with causality, variability, type, unit and start) and
  * the FMU lines of a run summary (faults, the first one with its call, status, time and
- * the FMU's logged message; event iterations). */
+ * the FMU's logged message; event iterations, CompletedIntegratorStep calls). */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,8 +13,11 @@ void fmu_summary(FILE *f)
 {
     for (int i = 0; i < fmu_ninstances; i++) {
         const fmu_inst *in = fmu_instances[i];
-        fprintf(f, "fmu.%s: %lu faults, %lu warnings, %lu events, event_iter_max %u\n",
+        fprintf(f, "fmu.%s: %lu faults, %lu warnings, %lu events, event_iter_max %u",
                 in->block, in->faults, in->warnings, in->events, (unsigned)in->iter_max);
+        if (in->kind.step_end)
+            fprintf(f, ", %lu completed integrator steps", in->steps_done);
+        fputc('\n', f);
         if (in->faults)
             fprintf(f, "fmu.%s.first_fault: t = %.17g: %s\n", in->block, in->fault_t, in->fault);
     }
@@ -97,8 +100,8 @@ int fmu_info(FILE *f, const char *path)
             (unsigned)nc[FMU_C_INPUT], (unsigned)nc[FMU_C_OUTPUT], (unsigned)nc[FMU_C_PARAMETER],
             (unsigned)md.nder, (unsigned)md.n_indicators);
     if (md.needs_step_done)
-        fprintf(f, "note: the FMU asks for CompletedIntegratorStep after every step; modrt "
-                   "does not call it (docs/fmi.md)\n");
+        fprintf(f, "note: the FMU asks for CompletedIntegratorStep: modrt calls it at the "
+                   "end of every step of its set (docs/fmi.md)\n");
     variables(f, &md);
     fmu_md_free(&md);
     return 0;

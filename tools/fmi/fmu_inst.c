@@ -6,9 +6,12 @@
  * event indicators. The event indicators are the kind's roots, located by the runtime
  * (rt/step.c); the handler it runs just past a crossing is FMI's event mode: enter it,
  * update the discrete states until the FMU needs no more (at most FMU_EVENT_ITER_MAX
- * times), take the states it re-initialized, go back to continuous time. A time event
- * (nextEventTime) is one more root, t - t_next, rising, so the runtime ends the step there
- * as it does at a state event and the FMU's event mode runs at t_next.
+ * times), take the states it re-initialized, go back to continuous time. The time event
+ * (nextEventTime) is the kind's run-time instant (rt_kind.next_event with time_event):
+ * the runtime ends a part of the step exactly there, so the FMU is never evaluated in
+ * continuous time past it, and runs the same event mode at t_next (rt/tev.c). An FMU that
+ * needs CompletedIntegratorStep gets it at the end of each part of its set's steps
+ * (rt_kind.step_end); asked for an event there, it runs one there.
  *
  * A call that returns Discard, Error or Fatal, a NaN, an event iteration that does not end
  * or an FMU that asks to terminate is a fault: the service writes NaN, which the runtime
@@ -274,35 +277,27 @@ void fmu_deriv(const rt_args *a, real_t *xdot)
         xdot[i] = (real_t)in->buf[i];
 }
 
-/* the event indicators, then the time-event root t - t_next */
+/* the event indicators */
 void fmu_roots(const rt_args *a, real_t *r)
 {
     fmu_inst *in = (fmu_inst *)a->spec;
     const fmu_model *m = in->m;
     if (m->nz && (sync(in, a) || CALL(in, (double)a->t, "GetEventIndicators",
                                       m->ops->get_z(in, in->buf, m->nz)))) {
-        nan_fill(r, m->nz + 1);
+        nan_fill(r, m->nz);
         return;
     }
     for (uint32_t i = 0; i < m->nz; i++) {
         real_t z = (real_t)in->buf[i];
         r[i] = z == 0 ? -FMU_ZERO_SIDE : z;
     }
-    r[m->nz] = in->has_next && in->mode == FMU_M_CT ? a->t - (real_t)in->t_next : (real_t)-1;
 }
 
-/* FMI's event mode at the located time; roots crossing together share one */
-void fmu_event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
+/* FMI's event mode at a->t with the states x (re-initialized ones written back) */
+static void event_mode(fmu_inst *in, const rt_args *a, real_t *x)
 {
-    fmu_inst *in = (fmu_inst *)a->spec;
     const fmu_model *m = in->m;
     double t = (double)a->t;
-    (void)which, (void)d;
-    int same = in->ev_valid && in->ev_t == t;
-    for (uint32_t i = 0; same && i < m->nx; i++)
-        same = in->ev_x[i] == (double)x[i];
-    if (same)
-        return;
     rt_args b = *a;
     b.x = x;
     if (sync(in, &b) || CALL(in, t, "EnterEventMode", m->ops->enter_event(in))) {
@@ -317,6 +312,58 @@ void fmu_event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
     in->ev_valid = 1, in->ev_t = t;
     for (uint32_t i = 0; i < m->nx; i++)
         in->ev_x[i] = (double)x[i];
+}
+
+/* a state event at the located time; roots crossing together share one event mode */
+void fmu_event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
+{
+    fmu_inst *in = (fmu_inst *)a->spec;
+    const fmu_model *m = in->m;
+    (void)which, (void)d;
+    int same = in->ev_valid && in->ev_t == (double)a->t;
+    for (uint32_t i = 0; same && i < m->nx; i++)
+        same = in->ev_x[i] == (double)x[i];
+    if (!same)
+        event_mode(in, a, x);
+}
+
+/* the pending time event: nextEventTime as the last event mode left it */
+real_t fmu_next_event(const rt_args *a)
+{
+    const fmu_inst *in = (const fmu_inst *)a->spec;
+    return in->has_next && in->mode == FMU_M_CT ? (real_t)in->t_next : RT_TEV_NEVER;
+}
+
+/* the time event, at t_next exactly (rt/tev.c ends a part there) */
+void fmu_time_event(const rt_args *a, real_t *x, real_t *d)
+{
+    (void)d;
+    event_mode((fmu_inst *)a->spec, a, x);
+}
+
+/* CompletedIntegratorStep at the end of a part of the set's step: an event mode there if
+   the FMU asks for one (returns 1); terminateSimulation is a fault as in event mode */
+int fmu_step_end(const rt_args *a, real_t *x, real_t *d)
+{
+    fmu_inst *in = (fmu_inst *)a->spec;
+    double t = (double)a->t;
+    int enter = 0, term = 0;
+    rt_args b = *a;
+    (void)d;
+    b.x = x;
+    if (sync(in, &b) || CALL(in, t, "CompletedIntegratorStep", in->m->ops->completed(in, &enter, &term)))
+        return 0; /* dead: its outputs are NaN from now on, counted by the runtime */
+    in->steps_done++;
+    if (term) {
+        fault(in, t, "the FMU asked to terminate the simulation at t = %.17g (in "
+              "CompletedIntegratorStep)%s%s", t, in->log[0] ? ": " : "", in->log);
+        in->mode = FMU_M_DEAD;
+        return 0;
+    }
+    if (!enter)
+        return 0;
+    event_mode(in, a, x);
+    return 1;
 }
 
 /* ------------------------------------------------------------------ start */
@@ -456,12 +503,11 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
         snprintf(err, errlen, "out of memory");
         return NULL;
     }
-    in->root_dir[m->nz] = 1; /* the time event: t - t_next rises through 0 */
     rt_kind *k = &in->kind;
     k->name = m->md.model_name;
     k->type = m->nx || m->nz ? RT_KIND_NSS : RT_KIND_OUTPUT;
     k->nu = (uint16_t)m->nu, k->ny = (uint16_t)m->ny, k->nx = (uint16_t)m->nx;
-    k->np = (uint16_t)m->np, k->nr = (uint16_t)(m->nz + 1);
+    k->np = (uint16_t)m->np, k->nr = (uint16_t)m->nz;
     k->u_names = m->u_names, k->y_names = m->y_names, k->x_names = m->x_names;
     k->p_names = m->p_names, k->p_default = m->p_def, k->x_default = m->x_def;
     k->feed = m->feed_class, k->feed_table = m->feed_class == RT_FEED_TABLE ? m->feed : NULL;
@@ -469,7 +515,10 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
     k->check = fmu_check;
     k->output = m->ny ? fmu_output : NULL;
     k->deriv = k->type == RT_KIND_NSS ? fmu_deriv : NULL;
-    k->roots = fmu_roots, k->event = fmu_event;
+    k->roots = m->nz ? fmu_roots : NULL, k->event = m->nz ? fmu_event : NULL;
+    k->next_event = fmu_next_event, k->time_event = fmu_time_event;
+    k->step_end = m->md.needs_step_done ? fmu_step_end : NULL;
+    k->roots_every_sign = 1; /* FMI: every change of an indicator's domain is an event */
     k->save = fmu_save, k->restore = fmu_restore; /* (RT_E_SNAPSHOT unless it can) */
     k->spec = in;
     k->doc = m->md.model_name;

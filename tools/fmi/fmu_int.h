@@ -15,7 +15,7 @@
     X(fmi2Terminate) X(fmi2Reset) X(fmi2GetReal) X(fmi2SetReal) X(fmi2EnterEventMode) \
     X(fmi2NewDiscreteStates) X(fmi2EnterContinuousTimeMode) X(fmi2SetTime)          \
     X(fmi2SetContinuousStates) X(fmi2GetDerivatives) X(fmi2GetEventIndicators)      \
-    X(fmi2GetContinuousStates)
+    X(fmi2GetContinuousStates) X(fmi2CompletedIntegratorStep)
 #define FMU_FMI3_LIST(X)                                                          \
     X(fmi3GetVersion) X(fmi3InstantiateModelExchange) X(fmi3FreeInstance)          \
     X(fmi3EnterInitializationMode) X(fmi3ExitInitializationMode) X(fmi3EnterEventMode) \
@@ -23,7 +23,8 @@
     X(fmi3UpdateDiscreteStates) X(fmi3EnterContinuousTimeMode) X(fmi3SetTime)      \
     X(fmi3SetContinuousStates) X(fmi3GetContinuousStateDerivatives)                \
     X(fmi3GetEventIndicators) X(fmi3GetContinuousStates)                           \
-    X(fmi3GetNumberOfEventIndicators) X(fmi3GetNumberOfContinuousStates)
+    X(fmi3GetNumberOfEventIndicators) X(fmi3GetNumberOfContinuousStates)            \
+    X(fmi3CompletedIntegratorStep)
 
 /* the FMU state's functions, bound only when the description says it has them
    (fmu_md.can_state): what a snapshot of a run calls (fmu_state.c) */
@@ -69,6 +70,9 @@ typedef struct fmu_ops {
     int (*get_x)(fmu_inst *in, double *x, size_t n);
     int (*get_dx)(fmu_inst *in, double *dx, size_t n);
     int (*get_z)(fmu_inst *in, double *z, size_t n);
+    /* CompletedIntegratorStep (noSetFMUStatePriorToCurrentPoint true unless the FMU can
+       save its state: a snapshot may be restored): its two flags */
+    int (*completed)(fmu_inst *in, int *enter_event, int *terminate);
     int (*get)(fmu_inst *in, const uint32_t *vr, size_t n, double *v);
     int (*set)(fmu_inst *in, const uint32_t *vr, size_t n, const double *v);
     int (*reset)(fmu_inst *in);
@@ -124,6 +128,7 @@ struct fmu_inst {
     uint8_t *x_given;
     /* what went wrong */
     unsigned long faults, warnings, events;
+    unsigned long steps_done;   /* CompletedIntegratorStep calls */
     uint32_t iter_max;          /* most discrete-state updates of one event iteration */
     double fault_t;
     char fault[FMU_ERR_LEN];    /* the first fault: call, status, logged message */
@@ -137,6 +142,9 @@ void fmu_output(const rt_args *a, real_t *y);
 void fmu_deriv(const rt_args *a, real_t *xdot);
 void fmu_roots(const rt_args *a, real_t *r);
 void fmu_event(const rt_args *a, uint16_t which, real_t *x, real_t *d);
+real_t fmu_next_event(const rt_args *a);
+void fmu_time_event(const rt_args *a, real_t *x, real_t *d);
+int fmu_step_end(const rt_args *a, real_t *x, real_t *d);
 rt_status fmu_check(const real_t *p, const void *spec);
 /* the status of an FMI call the instance made: 0 to go on, -1 after the fault is counted
    (Discard, Error, Fatal: the instance is dead after Error and Fatal) */

@@ -45,7 +45,7 @@
 
 #include "check.h"
 #include "cli.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the runs it compares with */
 
 static rt_sim half;  /* the run at half the steps */
 static rt_sim quarter; /* --observe: the run at a quarter of the steps */
@@ -227,9 +227,9 @@ static void compare(const rt_scene *sc, const rt_sim *sim)
     uint8_t p = C.r.order < 8 ? C.r.order : 8;
     double factor = p ? 1 / (1 - 1 / two[p]) : 1; /* nothing integrated: exact difference */
     double t = (double)rt_time(sc, sim);
-    uint32_t ev = sim->stats.count[RT_CNT_EVENTS];
-    int differ = ev != half.stats.count[RT_CNT_EVENTS] ||
-                 (C.r.observe && ev != quarter.stats.count[RT_CNT_EVENTS]);
+    uint32_t ev = rt_stats_of(sim)->count[RT_CNT_EVENTS];
+    int differ = ev != rt_stats_of(&half)->count[RT_CNT_EVENTS] ||
+                 (C.r.observe && ev != rt_stats_of(&quarter)->count[RT_CNT_EVENTS]);
     if (differ && !C.differ)
         C.shift_from = rt_ticks_done(sim);
     if (differ || C.differ) { /* the stretch ends at the first instant they agree again */
@@ -303,15 +303,15 @@ static void observed(check_sig *g)
 
 void check_end(const rt_scene *sc, const rt_sim *sim, check_result *r)
 {
-    C.r.events = sim->stats.count[RT_CNT_EVENTS];
-    C.r.events_half = half.stats.count[RT_CNT_EVENTS];
-    C.r.status_half = half.stats.status;
-    C.r.substeps = sim->stats.count[RT_CNT_SUBSTEP];
-    C.r.substeps_half = half.stats.count[RT_CNT_SUBSTEP];
+    C.r.events = rt_stats_of(sim)->count[RT_CNT_EVENTS];
+    C.r.events_half = rt_stats_of(&half)->count[RT_CNT_EVENTS];
+    C.r.status_half = rt_stats_of(&half)->status;
+    C.r.substeps = rt_stats_of(sim)->count[RT_CNT_SUBSTEP];
+    C.r.substeps_half = rt_stats_of(&half)->count[RT_CNT_SUBSTEP];
     if (C.r.observe) {
-        C.r.status_quarter = quarter.stats.status;
-        C.r.events_quarter = quarter.stats.count[RT_CNT_EVENTS];
-        C.r.substeps_quarter = quarter.stats.count[RT_CNT_SUBSTEP];
+        C.r.status_quarter = rt_stats_of(&quarter)->status;
+        C.r.events_quarter = rt_stats_of(&quarter)->count[RT_CNT_EVENTS];
+        C.r.substeps_quarter = rt_stats_of(&quarter)->count[RT_CNT_SUBSTEP];
     }
     int sev = 0;
     for (uint16_t i = 0; i < sc->nrecs; i++) {

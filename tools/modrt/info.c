@@ -319,7 +319,7 @@ static void scene_set(FILE *f, const rt_scene *sc, uint8_t s)
     rt_step_work w = rt_step_bound(sc, s, n);
     fprintf(f, "  %-10s %-8s step %s s (%u ticks of %s s); %u states; worst step %u "
                "right-hand sides, %u factorizations; accuracy %s",
-            st->name, st->method->name, num(b, (double)(sc->dt * (real_t)st->ratio)),
+            st->name, st->method->name, num(b, (double)rt_set_step(sc, s)),
             (unsigned)st->ratio, num(t, (double)sc->dt), (unsigned)n, (unsigned)w.rhs,
             (unsigned)w.lu,
             num(a, (double)rt_set_cfg_of(&st->cfg).accuracy));
@@ -523,7 +523,7 @@ static void json_sets_wiring(FILE *f, const rt_scene *sc)
         fputs(", \"method\": ", f);
         jstr(f, sc->sets[s].method->name);
         fprintf(f, ", \"step\": %s, \"ratio\": %u, \"background\": %s}",
-                num(b, (double)(sc->dt * (real_t)sc->sets[s].ratio)), (unsigned)sc->sets[s].ratio,
+                num(b, (double)rt_set_step(sc, s)), (unsigned)sc->sets[s].ratio,
                 sc->sets[s].background ? "true" : "false");
     }
     fputs("], \"connections\": [", f);

@@ -27,7 +27,7 @@
 #include "runner.h"
 #include "tune.h"
 #include "version.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 #define MAX_SETS_ARGS 32 /* --set options on one command line */
 
@@ -106,6 +106,7 @@ static int cmd_info(void *ctx, int npos, char **pos)
 static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, double wall,
                     int sig)
 {
+    const rt_stats *z = rt_stats_of(s);
     fprintf(f, "scene: %s\nticks: %llu\nsim_time: %.17g\nwall_s: %.6f\n", sc->name,
             (unsigned long long)rt_ticks_done(s), (double)rt_time(sc, s), wall);
     if (sig)
@@ -113,52 +114,52 @@ static void summary(FILE *f, const rt_scene *sc, const rt_sim *s, rt_status st, 
                 sig == SIGINT ? "SIGINT" : "SIGTERM", (unsigned long long)rt_ticks_done(s),
                 (unsigned long long)rt_tick_count(s));
     else
-        fprintf(f, "status: %s\n", s->stats.status == RT_OK
+        fprintf(f, "status: %s\n", z->status == RT_OK
                                        ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
-                                       : rt_status_name(s->stats.status));
+                                       : rt_status_name(z->status));
     for (int c = 0; c < RT_CNT_COUNT; c++) {
-        fprintf(f, "%s: %u", rt_counter_key((rt_counter)c), (unsigned)s->stats.count[c]);
-        if (s->stats.last_block[c] >= 0 && c != RT_CNT_EVENTS)
-            fprintf(f, " (last %s)", sc->blocks[s->stats.last_block[c]].name);
-        if (s->stats.count[c] > 0 && c != RT_CNT_EVENTS)
-            fprintf(f, " (first at tick %u)", (unsigned)s->stats.first_tick[c]);
+        fprintf(f, "%s: %u", rt_counter_key((rt_counter)c), (unsigned)z->count[c]);
+        if (z->last_block[c] >= 0 && c != RT_CNT_EVENTS)
+            fprintf(f, " (last %s)", sc->blocks[z->last_block[c]].name);
+        if (z->count[c] > 0 && c != RT_CNT_EVENTS)
+            fprintf(f, " (first at tick %u)", (unsigned)z->first_tick[c]);
         fputc('\n', f);
     }
-    fprintf(f, "event_iter_max: %u\n", (unsigned)s->stats.event_iter_max);
+    fprintf(f, "event_iter_max: %u\n", (unsigned)z->event_iter_max);
     for (uint8_t k = 0; k < sc->nsets; k++)
         fprintf(f, "rhs_evals.%s: %llu\n", sc->sets[k].name,
-                (unsigned long long)s->stats.rhs_evals[k]);
+                (unsigned long long)z->rhs_evals[k]);
     for (uint8_t k = 0; k < sc->nsets; k++) /* the most one step took, and its bound */
         fprintf(f, "rhs_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
-                (unsigned)s->stats.istats[k].rhs_step_max,
+                (unsigned)z->istats[k].rhs_step_max,
                 (unsigned)rt_step_bound(sc, k, rt_set_nx(s, k)).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) /* a whole step: events, parts, couplings */
         fprintf(f, "rhs_set_step_max.%s: %u (bound %u)\n", sc->sets[k].name,
-                (unsigned)s->stats.istats[k].rhs_set_step_max,
+                (unsigned)z->istats[k].rhs_set_step_max,
                 (unsigned)rt_set_step_bound(sc, s, k).rhs);
     for (uint8_t k = 0; k < sc->nsets; k++) {
         rt_set_cfg c = rt_set_cfg_of(&sc->sets[k].cfg);
         fprintf(f, "err_max.%s: %g (accuracy %g", sc->sets[k].name,
-                (double)s->stats.istats[k].err_max, (double)c.accuracy);
+                (double)z->istats[k].err_max, (double)c.accuracy);
         fprintf(f, c.atol > 0 ? ", absolute %g)\n" : ")\n", (double)c.atol);
-        if (s->stats.errest[k] || s->stats.unstable[k])
+        if (z->errest[k] || z->unstable[k])
             fprintf(f, "errest.%s: %u\nunstable.%s: %u\n", sc->sets[k].name,
-                    (unsigned)s->stats.errest[k], sc->sets[k].name,
-                    (unsigned)s->stats.unstable[k]);
+                    (unsigned)z->errest[k], sc->sets[k].name,
+                    (unsigned)z->unstable[k]);
     }
     for (uint8_t k = 0; k < sc->nsets; k++)
         if (rt_set_is_source(s, k))
-            fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_err[k]);
+            fprintf(f, "xset_err.%s: %g\n", sc->sets[k].name, (double)z->xset_err[k]);
 #if RT_MAX_XPRED > 0
     for (uint8_t k = 0; k < sc->nsets; k++) /* a reader's coupling error (rt/xset.c) */
-        if (s->stats.xset_est[k] > 0)
-            fprintf(f, "xset_est.%s: %g\n", sc->sets[k].name, (double)s->stats.xset_est[k]);
+        if (z->xset_est[k] > 0)
+            fprintf(f, "xset_est.%s: %g\n", sc->sets[k].name, (double)z->xset_est[k]);
 #endif
     if (rt_torn_count(s) > 0) {
-        fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)s->stats.loop_iter_max);
-        for (uint32_t i = 0; i <= s->stats.loop_iter_max; i++)
-            fprintf(f, " %u", (unsigned)s->stats.loop_hist[i]);
-        fprintf(f, "\nloop_residual: %g\n", (double)s->stats.loop_residual);
+        fprintf(f, "loop_iter_max: %u\nloop_iter_hist:", (unsigned)z->loop_iter_max);
+        for (uint32_t i = 0; i <= z->loop_iter_max; i++)
+            fprintf(f, " %u", (unsigned)z->loop_hist[i]);
+        fprintf(f, "\nloop_residual: %g\n", (double)z->loop_residual);
     }
     fmu_summary(f); /* FMU blocks: their faults with the FMU's own account */
     fprintf(f, "hash: %016llx\n", (unsigned long long)rt_trace_hash(s));
@@ -543,9 +544,8 @@ static int stop_link(const run_args *a, rt_sim *s, link_counts *c)
     if (!live_link(a))
         return 0;
     link_close(c);
-    if (link_faulty(c) &&
-        rt_status_severity(RT_E_LINK_FAULT) > rt_status_severity(s->stats.status))
-        s->stats.status = RT_E_LINK_FAULT;
+    if (link_faulty(c))
+        rt_note_status(s, RT_E_LINK_FAULT);
     return 1;
 }
 
@@ -556,7 +556,7 @@ static mrl_end run_end(const rt_sim *s, rt_status st, const runner_result *r)
         return r->signal == SIGINT ? MRL_END_SIGINT : MRL_END_SIGTERM;
     if (st == RT_E_LINK)
         return MRL_END_LINK;
-    return s->state.tick < rt_tick_count(s) ? MRL_END_STOPPED : MRL_END_DONE;
+    return rt_ticks_done(s) < rt_tick_count(s) ? MRL_END_STOPPED : MRL_END_DONE;
 }
 
 /* finishes the log (its end marker written: how the run ended, the tick it reached);
@@ -564,7 +564,7 @@ static mrl_end run_end(const rt_sim *s, rt_status st, const runner_result *r)
 static int stop_record(mrl_writer *rec, const rt_sim *s, rt_status st, const runner_result *r)
 {
     char err[512];
-    if (rec && mrl_finish(rec, run_end(s, st, r), s->state.tick, err, sizeof err) != 0)
+    if (rec && mrl_finish(rec, run_end(s, st, r), rt_ticks_done(s), err, sizeof err) != 0)
         return cli_fail("--record", err), CLI_IO;
     return CLI_OK;
 }
@@ -662,7 +662,7 @@ static int cmd_run(void *ctx, int npos, char **pos)
     if (linked)
         link_print(out, &lc);
     io |= stop_record(rec, &sim, st, &r);
-    int sev = rt_status_severity(sim.stats.status);
+    int sev = rt_status_severity(rt_stats_of(&sim)->status);
     if (a->check && !r.signal) { /* an interrupted run has no whole run to check */
         static check_result cr;
         check_end(&sc, &sim, &cr);
@@ -699,18 +699,6 @@ static const cli_opt replay_opts[] = {
     {NULL, NULL, NULL, NULL},
 };
 
-/* a replay that reached the tick where the recorded run was stopped ends as it did: the
-   signal that interrupted it (its summary and exit status), or --overrun stop's status */
-static int replay_end(const mrl_header *h, rt_sim *s)
-{
-    if (h->version < 3 || s->state.tick != h->last_tick)
-        return 0;
-    if (h->ended == MRL_END_STOPPED &&
-        rt_status_severity(RT_E_STOPPED) > rt_status_severity(s->stats.status))
-        s->stats.status = RT_E_STOPPED;
-    return h->ended == MRL_END_SIGINT ? SIGINT : h->ended == MRL_END_SIGTERM ? SIGTERM : 0;
-}
-
 static int cmd_replay(void *ctx, int npos, char **pos)
 {
     static mrl_header h;
@@ -745,10 +733,10 @@ static int cmd_replay(void *ctx, int npos, char **pos)
     summary(out, &sc, &sim, st, r.wall_s, sig);
     if (!r.signal && h.version >= 3 && h.ended != MRL_END_DONE)
         fprintf(out, "replayed: to tick %llu of %llu, where the recorded run ended (%s)\n",
-                (unsigned long long)sim.state.tick, (unsigned long long)rt_tick_count(&sim),
+                (unsigned long long)rt_ticks_done(&sim), (unsigned long long)rt_tick_count(&sim),
                 mrl_end_name((mrl_end)h.ended));
     io |= close_out(out, 1, "error writing the summary to", to_stdout ? "stderr" : "stdout");
-    return run_exit(sig, io, rt_status_severity(sim.stats.status));
+    return run_exit(sig, io, rt_status_severity(rt_stats_of(&sim)->status));
 }
 
 /* the compile-time limits that fit this scene exactly, as -D flags for a per-scene build

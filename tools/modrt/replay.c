@@ -1,5 +1,6 @@
 /* replay.c - the scene of a replay log set up as its live run was (replay.h): one path
  * for `modrt replay` and a campaign's replay runs, so both refuse the same logs. */
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -104,4 +105,13 @@ const uint64_t *replay_stop_tick(const mrl_header *h)
 {
     int early = h->version >= 3 && h->ended != MRL_END_DONE && h->ended != MRL_END_LINK;
     return early ? &h->last_tick : NULL;
+}
+
+int replay_end(const mrl_header *h, rt_sim *sim)
+{
+    if (h->version < 3 || rt_ticks_done(sim) != h->last_tick)
+        return 0;
+    if (h->ended == MRL_END_STOPPED)
+        rt_note_status(sim, RT_E_STOPPED);
+    return h->ended == MRL_END_SIGINT ? SIGINT : h->ended == MRL_END_SIGTERM ? SIGTERM : 0;
 }

@@ -29,4 +29,10 @@ int replay_scene(const mrl_header *h, const char *path, const replay_more *more,
    stop policy ends the replay at its exchange instead) */
 const uint64_t *replay_stop_tick(const mrl_header *h);
 
+/* how a replay that reached that tick ends, as the recorded run ended: the signal that
+   interrupted it (SIGINT, SIGTERM: the run's summary says "interrupted", its exit status
+   is 5), or 0 and, after `--overrun stop`, RT_E_STOPPED noted as the run's status; 0 for a
+   replay that stopped elsewhere. `modrt replay` and a campaign's replay runs both end so. */
+int replay_end(const mrl_header *h, rt_sim *sim);
+
 #endif /* MODRT_REPLAY_H */

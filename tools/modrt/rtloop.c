@@ -22,7 +22,7 @@
 
 #include "rtloop.h"
 #include "trace.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the background context */
 
 #define NS_PER_S 1000000000LL
 #define HIST_US 100000     /* 1 us bins up to 100 ms; beyond: the last bin (max is exact) */

@@ -10,7 +10,6 @@
 #include "port.h"
 #include "runner.h"
 #include "trace.h"
-#include "rt_sim.h"
 
 static double now_s(void)
 {
@@ -122,20 +121,16 @@ static rt_status run_realtime(const rt_scene *sc, rt_sim *sim, const runner_opts
                         (rtloop_policy)o->overrun, o->csv, o->rt_log, stderr, &r->rt);
     }
     r->overruns = r->rt.misses;
-    if (r->rt.misses && sim->stats.count[RT_CNT_OVERRUN] == 0)
-        sim->stats.first_tick[RT_CNT_OVERRUN] = (uint32_t)r->rt.first_miss;
-    sim->stats.count[RT_CNT_OVERRUN] += (uint32_t)r->rt.misses;
-    if (r->rt.misses && rt_status_severity(RT_E_OVERRUN) > rt_status_severity(sim->stats.status))
-        sim->stats.status = RT_E_OVERRUN;
-    if (r->rt.stopped && rt_status_severity(RT_E_STOPPED) > rt_status_severity(sim->stats.status))
-        sim->stats.status = RT_E_STOPPED;
+    rt_note_count(sim, RT_CNT_OVERRUN, (uint32_t)r->rt.misses, r->rt.first_miss, RT_E_OVERRUN);
+    if (r->rt.stopped)
+        rt_note_status(sim, RT_E_STOPPED);
     return st == RT_OK ? RT_E_STOPPED : st;
 }
 
 /* the tick a replay of an interrupted run stops at, reached */
 static int stop_reached(const runner_opts *o, const rt_sim *sim)
 {
-    return o->stop_tick && sim->state.tick >= *o->stop_tick;
+    return o->stop_tick && rt_ticks_done(sim) >= *o->stop_tick;
 }
 
 rt_status runner_run(const rt_scene *sc, rt_sim *sim, const runner_opts *o, runner_result *r)

@@ -21,7 +21,7 @@
 #include "runner.h"
 #include "study.h"
 #include "sweep.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 static rt_sim sim;                       /* the run's storage */
 static sweep_acc acc[SWEEP_MAX_METRICS];  /* its metrics */
@@ -113,7 +113,7 @@ static void values(FILE *f, const sweep_exec_args *a)
 
 /* the result of a run that completed (whatever its status) */
 static int write_result(const sweep_campaign *c, const sweep_exec_args *a, const rt_scene *sc,
-                        rt_status st, double wall, int code)
+                        rt_status st, double wall, int sig, int code)
 {
     char path[SWEEP_PATH + 40], tmp[SWEEP_PATH + 64], v[40];
     sweep_result_path(path, sizeof path, a->out, a->index);
@@ -123,16 +123,17 @@ static int write_result(const sweep_campaign *c, const sweep_exec_args *a, const
         return cli_fail("cannot write the run's result", tmp);
     fprintf(f, "index: %llu\nstatus: %s\nexit: %d\nscene: %s\nticks: %llu\nwall_s: %.6f\n",
             (unsigned long long)a->index,
-            sim.stats.status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
-                                      : rt_status_name(sim.stats.status),
+            sig                                  ? "interrupted"
+            : rt_stats_of(&sim)->status == RT_OK ? (st == RT_E_DONE ? "ok" : rt_status_name(st))
+                                                 : rt_status_name(rt_stats_of(&sim)->status),
             code, sc->name, (unsigned long long)rt_ticks_done(&sim), wall);
     fprintf(f, "hash: %016llx\ncampaign_hash: %016llx\n",
             (unsigned long long)rt_trace_hash(&sim), (unsigned long long)c->hash);
     for (int i = 0; i < RT_CNT_COUNT; i++)
-        fprintf(f, "count.%s: %u\n", rt_counter_key((rt_counter)i), (unsigned)sim.stats.count[i]);
+        fprintf(f, "count.%s: %u\n", rt_counter_key((rt_counter)i), (unsigned)rt_stats_of(&sim)->count[i]);
     for (uint8_t k = 0; k < sc->nsets; k++) /* what the run cost, in right-hand sides */
         fprintf(f, "rhs_evals.%s: %llu\n", sc->sets[k].name,
-                (unsigned long long)sim.stats.rhs_evals[k]);
+                (unsigned long long)rt_stats_of(&sim)->rhs_evals[k]);
     values(f, a);
     for (int i = 0; i < c->nmetrics; i++)
         fprintf(f, "metric.%s: %s\n", c->metrics[i].name,
@@ -157,12 +158,13 @@ static int run_child(const sweep_campaign *c, const sweep_exec_args *a)
     runner_result r;
     sweep_metrics_sample(c, &sc, &sim, acc, (double)rt_time(&sc, &sim)); /* tick 0 */
     rt_status st = runner_run(&sc, &sim, &o, &r);
+    int sig = r.signal ? r.signal : a->replay ? replay_end(&h, &sim) : 0; /* as modrt replay */
     if (a->replay)
         mrl_close();
     if (csv && fclose(csv) != 0)
         return cli_fail("error writing the CSV file", a->csv);
-    int code = cli_exit_code(rt_status_severity(sim.stats.status));
-    return write_result(c, a, &sc, st, r.wall_s, code) != CLI_OK ? CLI_USAGE : code;
+    int code = sig ? CLI_INTERRUPTED : cli_exit_code(rt_status_severity(rt_stats_of(&sim)->status));
+    return write_result(c, a, &sc, st, r.wall_s, sig, code) != CLI_OK ? CLI_USAGE : code;
 }
 
 /* B.p (at line:col of the campaign) set to v on the initialised scene, or one located

@@ -30,7 +30,7 @@
 #include "check.h"
 #include "cli.h"
 #include "tune.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the trial runs */
 
 #define DEFAULT_DOUBLINGS 6 /* candidate ratios up to 64 r_min */
 #define DEFAULT_REF_DIV 4   /* the reference's base tick: a quarter of the scene's */
@@ -45,7 +45,7 @@ static rt_sim sim; /* the runtime's storage, owned here */
 static struct {
     const rt_scene *sc;          /* the scene tuned */
     tune_opts o;                 /* options with defaults filled in */
-    rt_scene work;               /* the scene with the schedule under test */
+    rt_scene trial;              /* the scene with the schedule under test */
     rt_set sets[RT_MAX_SETS];
     uint16_t sig[RT_MAX_REC];    /* recorded signals compared */
     uint16_t nsig;
@@ -67,17 +67,17 @@ static double cpu_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* the work scene: sc with ratio[] on the base tick divided by div */
+/* the trial scene: sc with ratio[] on the base tick divided by div */
 static void configure(const uint32_t *ratio, uint32_t div)
 {
     const rt_scene *sc = T.sc;
-    T.work = *sc;
-    T.work.dt = sc->dt / (real_t)div;
+    T.trial = *sc;
+    T.trial.dt = sc->dt / (real_t)div;
     for (uint8_t s = 0; s < sc->nsets; s++) {
         T.sets[s] = sc->sets[s];
         T.sets[s].ratio = ratio[s];
     }
-    T.work.sets = T.sets;
+    T.trial.sets = T.sets;
 }
 
 /* largest |y - y_ref| at comparison instant j (INF_ERR for a non-finite value) */
@@ -85,7 +85,7 @@ static double compare(uint32_t j)
 {
     double e = 0;
     for (uint16_t i = 0; i < T.nsig; i++) {
-        double d = (double)rt_rec_value(&T.work, &sim, T.sig[i]) - (double)T.ref[j][i];
+        double d = (double)rt_rec_value(&T.trial, &sim, T.sig[i]) - (double)T.ref[j][i];
         d = d < 0 ? -d : d;
         if (!(d <= INF_ERR))
             return INF_ERR;
@@ -98,6 +98,7 @@ static double compare(uint32_t j)
 static void account(tune_sched *m, double t0)
 {
     const rt_scene *sc = T.sc;
+    const rt_stats *z = rt_stats_of(&sim);
     static const rt_counter faults[] = {RT_CNT_NAN, RT_CNT_EVENT_LIMIT, RT_CNT_EVENT_NOLOC,
                                         RT_CNT_NOCONV, RT_CNT_SINGULAR, RT_CNT_DEGRADED,
                                         RT_CNT_UNSTABLE};
@@ -105,15 +106,15 @@ static void account(tune_sched *m, double t0)
     m->cost = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
         m->ratio[s] = T.sets[s].ratio;
-        m->evals[s] = (double)sim.stats.rhs_evals[s] / (double)sc->t_end; /* counted by rt/ */
+        m->evals[s] = (double)z->rhs_evals[s] / (double)sc->t_end; /* counted by rt/ */
         m->cost += m->evals[s] * T.w[s];
-        m->xset_err[s] = (double)sim.stats.xset_err[s];
+        m->xset_err[s] = (double)z->xset_err[s];
     }
     /* a step's error estimate above its accuracy (severity 1) is not a fault here: the
        tuner measures the error itself, against its reference */
-    m->clean = rt_status_severity(sim.stats.status) < 2;
+    m->clean = rt_status_severity(z->status) < 2;
     for (unsigned i = 0; i < sizeof faults / sizeof faults[0]; i++)
-        m->clean = m->clean && sim.stats.count[faults[i]] == 0;
+        m->clean = m->clean && z->count[faults[i]] == 0;
 }
 
 typedef enum { RUN_REF, RUN_FULL, RUN_CUT } run_mode;
@@ -126,25 +127,25 @@ static rt_status run(const uint32_t *ratio, uint32_t div, run_mode mode, tune_sc
     configure(ratio, div);
     *m = (tune_sched){.complete = 1, .gerr = -1};
     double t0 = cpu_s();
-    rt_status st = rt_init(&T.work, &sim);
+    rt_status st = rt_init(&T.trial, &sim);
     if (st != RT_OK)
         return st;
     uint64_t grid = (uint64_t)T.grid * div, every = grid;
     for (uint8_t s = 0; s < T.sc->nsets && mode != RUN_REF; s++)
         every = ratio[s] > every ? ratio[s] : every; /* powers of two: a multiple of grid */
     for (rt_status ts = RT_OK; ts == RT_OK;) {
-        ts = rt_tick(&T.work, &sim);
+        ts = rt_tick(&T.trial, &sim);
         uint64_t j = rt_ticks_done(&sim) / grid - 1;
         if (rt_ticks_done(&sim) % every != 0 || j >= T.nsamp)
             continue;
         if (mode == RUN_REF) {
             for (uint16_t i = 0; i < T.nsig; i++)
-                T.ref[j][i] = rt_rec_value(&T.work, &sim, T.sig[i]);
+                T.ref[j][i] = rt_rec_value(&T.trial, &sim, T.sig[i]);
             continue;
         }
         double e = compare((uint32_t)j);
         if (e > m->err || (e == m->err && m->t_err == 0))
-            m->err = e, m->t_err = (double)rt_time(&T.work, &sim);
+            m->err = e, m->t_err = (double)rt_time(&T.trial, &sim);
         if (mode == RUN_CUT && e > T.o.tol) {
             m->complete = 0;
             break;
@@ -293,13 +294,13 @@ static void log_try(FILE *log, const tune_sched *m, double lb, int ok)
           : m->gerr >= 0 ? " (the estimate is not within)\n" : "\n", log);
 }
 
-/* the schedule in T.work checked by its own half-step run against tol (absolute, on the
+/* the schedule in T.trial checked by its own half-step run against tol (absolute, on the
    compared signals): m->gerr, m->gok */
 static rt_status global_check(tune_sched *m)
 {
     static check_result cr;
     check_opts o = {T.o.tol, 0, T.o.only, NULL, 0};
-    rt_status st = check_scene(&T.work, &o, NULL, NULL, &cr);
+    rt_status st = check_scene(&T.trial, &o, NULL, NULL, &cr);
     if (st != RT_OK)
         return st;
     m->gerr = 0, m->t_gerr = 0;

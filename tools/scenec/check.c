@@ -412,7 +412,7 @@ static void assign_block(scn_ctx *c, uint16_t ai, scn_block *b)
     /* an input default (rt_default) */
     if (s->ndflt >= RT_MAX_U) {
         scn_fail(c, a->lhs.port.pos, a->lhs.port.s, "too many input defaults",
-                 scn_limit(c, RT_MAX_U, "defaults", "RT_MAX_U"));
+                 scn_limit(c, RT_LIM_U));
         return;
     }
     s->dflt[s->ndflt++] = (scn_default){(uint16_t)(b - s->blk), (uint16_t)i, a->v};

@@ -43,7 +43,7 @@ void scn_host_sizes(FILE *f, const rt_scene *sc, const rt_sim *sim)
         size_t at;       /* offset of its member of rt_sizes */
         unsigned least;
     } row[] = {
-#define RT_X_ROW(name, field, least, what) {#name, offsetof(rt_sizes, field), least},
+#define RT_X_ROW(name, field, least, dflt, what) {#name, offsetof(rt_sizes, field), least},
         RT_LIMIT_LIST(RT_X_ROW)
 #undef RT_X_ROW
     };

@@ -69,10 +69,11 @@ char *scn_fmt(scn_ctx *c, const char *fmt, ...)
     return d;
 }
 
-char *scn_limit(scn_ctx *c, unsigned long n, const char *what, const char *macro)
+char *scn_limit(scn_ctx *c, rt_limit lim)
 {
-    return scn_fmt(c, "at most %lu %s (%s in rt/rt_config.h: the host CLI's limit; a "
-                      "per-scene build, make image, sizes it from the scene)", n, what, macro);
+    char text[RT_ERR_LEN];
+    return scn_fmt(c, "fewer: %s, the host CLI's limit (a per-scene build, make image, sizes "
+                      "it from the scene)", rt_limit_text(text, sizeof text, lim));
 }
 
 char *scn_list(scn_ctx *c, const char *const *names, size_t n, size_t max)

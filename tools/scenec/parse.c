@@ -466,8 +466,7 @@ static void st_load(scn_ctx *c, scn_pos at)
             return;
         if ((joint ? s->njnt >= RT_MAX_JOINTS : s->nblk >= RT_MAX_BLOCKS)) {
             scn_fail(c, names[i].pos, names[i].s, joint ? "too many joints" : "too many systems",
-                     joint ? scn_limit(c, RT_MAX_JOINTS, "joints", "RT_MAX_JOINTS")
-                           : scn_limit(c, RT_MAX_BLOCKS, "systems", "RT_MAX_BLOCKS"));
+                     scn_limit(c, joint ? RT_LIM_JOINTS : RT_LIM_BLOCKS));
             return;
         }
         if (joint) {
@@ -499,7 +498,7 @@ static void st_connect(scn_ctx *c, scn_pos at)
     scn_expect_op(c, ";");
     if (!c->err && s->nconn >= RT_MAX_U)
         scn_fail(c, at, "connect", "too many connections",
-                 scn_limit(c, RT_MAX_U, "connections", "RT_MAX_U"));
+                 scn_limit(c, RT_LIM_U));
     if (!c->err)
         s->conn[s->nconn++] = cn;
 }
@@ -570,7 +569,7 @@ static void st_link(scn_ctx *c, scn_pos at)
     l.joint = paren_name(c, "a joint name");
     scn_expect_op(c, ";");
     if (!c->err && s->nlnk >= RT_MAX_JOINTS)
-        scn_fail(c, at, "link", "too many links", scn_limit(c, RT_MAX_JOINTS, "links", "RT_MAX_JOINTS"));
+        scn_fail(c, at, "link", "too many links", scn_limit(c, RT_LIM_JOINTS));
     if (!c->err)
         s->lnk[s->nlnk++] = l;
 }
@@ -652,7 +651,7 @@ static void st_set(scn_ctx *c, scn_pos at)
     scn_scene *s = &c->sc;
     uint8_t seen[5 + RT_CFG_N] = {0};
     if (s->nset >= RT_MAX_SETS) {
-        scn_fail(c, at, "set", "too many sets", scn_limit(c, RT_MAX_SETS, "sets", "RT_MAX_SETS"));
+        scn_fail(c, at, "set", "too many sets", scn_limit(c, RT_LIM_SETS));
         return;
     }
     scn_set *st = &s->set[s->nset];
@@ -693,7 +692,7 @@ static void st_record(scn_ctx *c, scn_pos at)
         scn_rec r = signal_ref(c, 1);
         if (!c->err && s->nrec >= SCN_MAX_RECS)
             scn_fail(c, r.sig.block.pos, r.sig.block.s, "too many recorded signals",
-                     scn_limit(c, RT_MAX_REC, "signals", "RT_MAX_REC"));
+                     scn_limit(c, RT_LIM_REC));
         if (!c->err)
             s->rec[s->nrec++] = r;
     } while (!c->err && scn_accept_op(c, ","));

@@ -14,7 +14,7 @@
 #include "fmu_scn.h"
 #include "scn.h"
 #include "scn_host.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* sizes the rt_sim it runs a scene in */
 
 #define MAX_INPUTS 256 /* scene files of one --registry call */
 

@@ -432,6 +432,8 @@ void scn_free(scn_ctx *c);
 int scn_compile(scn_ctx *c, const char *path, const char *text, size_t len);
 /* Writes the scene as C (const tables, define services) to f; returns 0 or -1. */
 int scn_emit(scn_ctx *c, FILE *f);
+/* spec.c: the scene's specialized code (rt_scene_code); 1 if it wrote any */
+int scn_emit_code(FILE *f, const scn_ctx *c);
 /* The C symbol of the compiled scene: "mdl_scene_<name>". */
 #define SCN_SYMBOL_PREFIX "mdl_scene_"
 
@@ -440,8 +442,9 @@ int scn_emit(scn_ctx *c, FILE *f);
 void *scn_alloc(scn_ctx *c, size_t n);                  /* zeroed arena memory */
 char *scn_strndup(scn_ctx *c, const char *s, size_t n);
 char *scn_fmt(scn_ctx *c, const char *fmt, ...);        /* arena-formatted text */
-/* "at most N WHAT (MACRO in rt/rt_config.h: ...)": the text of a limit error */
-char *scn_limit(scn_ctx *c, unsigned long n, const char *what, const char *macro);
+/* "fewer: <rt_limit_text>, the host CLI's limit (...)": what a scene past limit lim
+   of the host build is told, after "too many <items>" */
+char *scn_limit(scn_ctx *c, rt_limit lim);
 /* Records the first error: "<file>:<line>:<col>: error: <what> near '<near>'; expected
    <expected>". Later calls are ignored, so a caller may simply return afterwards. */
 void scn_fail(scn_ctx *c, scn_pos pos, const char *near, const char *what,

@@ -1,9 +1,10 @@
 /* stair.c - test FMU: a counter stepped by time events (tests/fmi/): y = k; the first
  * update after initialization schedules t = period; each time event at t >= next adds one
- * to k and schedules the next, so y(t) = floor(t / period). */
+ * to k and schedules the next, so y(t) = floor(t / period). The output late counts the
+ * times the importer set in continuous time past the announced event (fmi_glue.c). */
 #include "fmi_model.h"
 
-enum { Y, PERIOD, K, NEXT };
+enum { Y, PERIOD, K, NEXT, LATE };
 
 void model_derivatives(model_data *m) { (void)m; }
 

@@ -7,13 +7,15 @@
  * classic Runge-Kutta method at 1e-5 s in double; its own error is estimated by halving
  * that step and printed. Host program (libc, libm, POSIX clock).
  *
- * Usage: mbs_bench [--csv FILE] [--md FILE] [--doc FILE] [--reps N] [--quick]
+ * Usage: mbs_bench [--csv FILE] [--md FILE] [--doc FILE] [--reps N] [--commit ID] [--quick]
  *   --csv  work-precision table "series,x,y" (x: host CPU s per simulated s, y: error [m])
  *          for `svgplot --xy --logx --logy`
  *   --md   the table as Markdown
  *   --doc  replaces the text between the lines "<!-- bench:begin -->" and
  *          "<!-- bench:end -->" of FILE (docs/mbs.md) with that Markdown
  *   --reps repetitions per run, the fastest counts (default 3)
+ *   --commit the source's commit, named in the Markdown with the date (CPU times are
+ *          figures of one machine and day)
  *   --quick fewer, coarser runs (a smoke test) */
 #define _POSIX_C_SOURCE 200809L
 #include "bench_doc.h"
@@ -24,7 +26,7 @@
 #include <time.h>
 
 #include "scenes/scenes.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 #define NB 10            /* bodies of pendulum10 */
 #define T_CHECK 2.0      /* time of the error measurement [s] */
@@ -136,7 +138,7 @@ static double run(const rt_integrator *m, long n, int project, double *secs, uns
     while (rt_tick(&sc, &sim) == RT_OK)
         ;
     *secs = now_s() - t0;
-    *status = (unsigned)sim.stats.status;
+    *status = (unsigned)rt_stats_of(&sim)->status;
     double worst = 0;
     for (int b = 0; b < NB; b++) {
         uint16_t bb = (uint16_t)b;
@@ -235,7 +237,7 @@ static FILE *text_stream(char *buf, size_t n)
 
 int main(int argc, char **argv)
 {
-    const char *csv = 0, *md = 0, *doc = 0;
+    const char *csv = 0, *md = 0, *doc = 0, *commit = "unknown";
     int reps = 3, quick = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--csv") && i + 1 < argc)
@@ -246,11 +248,13 @@ int main(int argc, char **argv)
             doc = argv[++i];
         else if (!strcmp(argv[i], "--reps") && i + 1 < argc)
             reps = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--commit") && i + 1 < argc)
+            commit = argv[++i];
         else if (!strcmp(argv[i], "--quick"))
             quick = 1;
         else {
             fprintf(stderr, "usage: mbs_bench [--csv FILE] [--md FILE] [--doc FILE] [--reps N] "
-                            "[--quick]\n");
+                            "[--commit ID] [--quick]\n");
             return 2;
         }
     }
@@ -280,12 +284,17 @@ int main(int argc, char **argv)
     print_cheapest(stdout, rows, n, 0);
     if (md || doc) {
         static char text[MAX_DOC];
-        char cpu[128];
+        char cpu[128], day[32];
         bench_cpu_name(cpu, sizeof cpu);
+        time_t now = time(NULL);
+        strftime(day, sizeof day, "%Y-%m-%d", gmtime(&now));
         FILE *f = text_stream(text, sizeof text);
-        fprintf(f, "Host: %s; best of %d timed rounds per row. Reference: the chain in "
-                   "minimal coordinates, RK4 at %.1e s (halving its step changes it by "
-                   "%.1e m).\n\n", cpu, reps, T_CHECK / REF_STEPS, dref);
+        fprintf(f, "Figures of commit `%s`, measured %s on %s. The errors and the "
+                   "right-hand sides are exact, the same on every machine; the host CPU time "
+                   "is the best of %d timed rounds per row, a figure of that machine and day. "
+                   "Reference: the chain in minimal coordinates, RK4 at %.1e s (halving its "
+                   "step changes it by %.1e m).\n\n", commit, day, cpu, reps,
+                T_CHECK / REF_STEPS, dref);
         print_table(f, rows, n, 1);
         fprintf(f, "\nCheapest step of each method within 1e-6 m at 2 s:\n\n");
         print_cheapest(f, rows, n, 1);

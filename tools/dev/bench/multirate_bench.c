@@ -41,7 +41,7 @@
 #include <time.h>
 
 #include "scenes/scenes.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 #define NB 10              /* bodies of the chain */
 #define TOL 1e-4           /* accuracy every configuration must reach [m] */
@@ -144,9 +144,9 @@ static double run(const config *c, double *p, int *clean)
     if (p)
         positions(p);
     if (clean) {
-        *clean = sim.stats.status == RT_OK;
+        *clean = rt_stats_of(&sim)->status == RT_OK;
         for (int k = 0; k < RT_CNT_COUNT; k++)
-            *clean = *clean && (k == RT_CNT_EVENTS || sim.stats.count[k] == 0);
+            *clean = *clean && (k == RT_CNT_EVENTS || rt_stats_of(&sim)->count[k] == 0);
     }
     return secs;
 }
@@ -404,7 +404,7 @@ static void check_scenes(FILE *f)
         double secs = cpu_s() - t0;
         positions(p);
         fprintf(f, "scene %s as declared: error %.2e m, %.4g s host CPU, status %s\n",
-                sc[i]->name, max_diff(p, ref_pos), secs, rt_status_name(sim.stats.status));
+                sc[i]->name, max_diff(p, ref_pos), secs, rt_status_name(rt_stats_of(&sim)->status));
     }
 }
 
@@ -435,7 +435,7 @@ static void check_transition(FILE *f, int md)
         }
         fprintf(f, "%sbs3 + ros2 every 1 ms, %s: error at 10 s %.2e m, over the run %.2e m, "
                    "status %s\n", md ? "- " : "transition: ", t[i].how, r.err, r.err_run,
-                rt_status_name(sim.stats.status));
+                rt_status_name(rt_stats_of(&sim)->status));
     }
 }
 

@@ -32,7 +32,7 @@
 #include "actuated_mr_mono.h"
 #include "pendulum_mono.h"
 #include "scenes/scenes.h"
-#include "rt_sim.h"
+#include "rt_sim.h" /* allocates the run */
 
 #define CHECK_T 2.0     /* simulated time of the trajectory check [s] */
 #define CHECK_TOL 1e-11 /* largest position difference accepted [m]: rounding grows in the
@@ -178,7 +178,7 @@ static int act_check(void)
                    "difference %.2e m, servo torque %.2e N m\n",
                    name, at[i], d, dy);
         }
-        int ok = worst <= ACT_TOL && m.over == 0 && sim.stats.status == RT_OK;
+        int ok = worst <= ACT_TOL && m.over == 0 && rt_stats_of(&sim)->status == RT_OK;
         bad += !ok;
         printf("trajectory pendulum10_actuated_single ros2 %s: largest %.2e m (tolerance "
                "%.0e), %ld Jacobians, largest estimate %.3g, %ld steps above the accuracy "
@@ -245,20 +245,20 @@ static int mr_check(void)
         }
         int sv = rt_block_index(&sc, "Servo"), ch = sc.blocks[0].set;
         uint8_t ss = sc.blocks[sv].set;
-        long jac = (long)sim.stats.istats[ss].jac_evals;
+        long jac = (long)rt_stats_of(&sim)->istats[ss].jac_evals;
         double tol = solver == MONO_TIGHT ? TIGHT_TOL : ACT_TOL;
-        int ok = worst <= tol && m.over == 0 && sim.stats.status == RT_OK &&
+        int ok = worst <= tol && m.over == 0 && rt_stats_of(&sim)->status == RT_OK &&
                  m.jac_evals == jac;
         bad += !ok;
         printf("trajectory pendulum10_actuated bs3+ros2 %s: largest %.2e m (tolerance %.0e), "
                "Jacobians %ld (modrt %ld), largest estimate servo %.6g (modrt %.6g), %ld "
                "steps above the accuracy %s\n", name, worst, tol, m.jac_evals, jac,
-               m.err_servo, (double)sim.stats.istats[ss].err_max, m.over, ok ? "ok" : "FAILED");
+               m.err_servo, (double)rt_stats_of(&sim)->istats[ss].err_max, m.over, ok ? "ok" : "FAILED");
         if (est)
             printf("  chain estimate %.6g (modrt %.6g), history monitors chain %.6g (modrt "
                    "%.6g), servo %.6g (modrt %.6g)\n", m.err_chain,
-                   (double)sim.stats.istats[ch].err_max, m.xerr_chain,
-                   (double)sim.stats.xset_err[ch], m.xerr_servo, (double)sim.stats.xset_err[ss]);
+                   (double)rt_stats_of(&sim)->istats[ch].err_max, m.xerr_chain,
+                   (double)rt_stats_of(&sim)->xset_err[ch], m.xerr_servo, (double)rt_stats_of(&sim)->xset_err[ss]);
     }
     return bad;
 }
@@ -311,7 +311,7 @@ int main(int argc, char **argv)
         long n = lround(secs / (double)sc.dt);
         if (strcmp(argv[2], "modrt") == 0) {
             modrt_ticks(&sc, &sim, n);
-            return sim.stats.status == RT_OK ? 0 : 1;
+            return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
         }
         static amono m;
         act_start(&m, strcmp(argv[2], "thomas") == 0 ? MONO_THOMAS : MONO_DENSE, &sc);
@@ -323,7 +323,7 @@ int main(int argc, char **argv)
         long n = lround(secs / (double)sc.dt);
         if (strcmp(argv[2], "modrt") == 0) {
             modrt_ticks(&sc, &sim, n);
-            return sim.stats.status == RT_OK ? 0 : 1;
+            return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
         }
         static amr m;
         mr_start(&m, strcmp(argv[2], "thomas") == 0                            ? MONO_THOMAS
@@ -339,7 +339,7 @@ int main(int argc, char **argv)
     long n = lround(secs / (double)sc.dt);
     if (strcmp(argv[2], "modrt") == 0) {
         modrt_ticks(&sc, &sim, n);
-        return sim.stats.status == RT_OK ? 0 : 1;
+        return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
     }
     static mono m;
     int solver = strcmp(argv[2], "thomas") == 0 ? MONO_THOMAS : MONO_DENSE;

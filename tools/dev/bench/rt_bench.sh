@@ -10,6 +10,9 @@ S=${2:-60}
 O=build/bench
 mkdir -p $O
 {
+    # when and what was measured (docs/link.md's line): wall-clock figures hold for that
+    # machine and day
+    echo "Figures of commit \`$(git rev-parse --short HEAD 2>/dev/null || echo unknown)\`, measured $(date -u +%Y-%m-%d) on $(nproc) cores of $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1)"
     echo "== pi_loop, 1 kHz, $S s, real-time clock, no controller"
     $M run pi_loop --realtime --t-end "$S" --rt-log $O/rt_lat.csv |
         grep -E '^(ticks|status|overrun|rt_sched|latency_us|exec_us|deadline_misses|skipped|trace_dropped):'

@@ -14,6 +14,9 @@
 # Usage: sh tools/dev/bench/scale.sh [STEPS [N...]]
 #        SCALE_DATA=FILE sh tools/dev/bench/scale.sh   the table of measured lines
 #                                                  "shape N modrt tight" in FILE
+#        SCALE_BUILD_ONLY=1 sh tools/dev/bench/scale.sh [STEPS [N...]]
+#                                                  only build build/scale/scale-SHAPE-N
+#                                                  (tools/dev/bench/mujoco_scale.py runs them)
 set -eu
 STEPS=${1:-20}
 if [ $# -gt 0 ]; then shift; fi
@@ -37,14 +40,17 @@ count() { # binary side function -> instructions per step
 T=$(mktemp)
 trap 'rm -f $T' EXIT
 [ -z "${SCALE_DATA:-}" ] || { cp "$SCALE_DATA" "$T"; NS=; }
-# the runtime and the point model, once, with BIG (again when a source or this script is
-# newer)
+# the runtime and the point model, once, with BIG (again when a source, a header or this
+# script is newer)
 mkdir -p $B/obj
+# shellcheck disable=SC2012 # plain file names: the newest header of the runtime
+hdr=$(ls -t rt/*.h models/*.h | head -n 1)
 [ -z "$NS" ] || for f in rt/*.c models/mbs_point.c; do
     [ "$f" = rt/registry.c ] && continue
     o=$B/obj/$(echo $f | tr / _ | sed 's/\.c$/.o/')
     # shellcheck disable=SC2086 # the flag lists are meant to split
-    [ -n "$(find "$o" -newer "$f" -newer "$0" 2>/dev/null)" ] || gcc $CF $BIG -c $f -o "$o"
+    [ -n "$(find "$o" -newer "$f" -newer "$0" -newer "$hdr" 2>/dev/null)" ] ||
+        gcc $CF $BIG -c $f -o "$o"
 done
 for shape in chain tree; do
     tree=0
@@ -55,6 +61,7 @@ for shape in chain tree; do
         gcc $CF $BIG $d tools/dev/bench/scale_bench.c tools/dev/bench/pendulum_tight.c $B/obj/*.o -lm \
             -o $B/scale-$shape-$n
         $B/scale-$shape-$n sizes > $B/sizes-$shape-$n.txt
+        [ -z "${SCALE_BUILD_ONLY:-}" ] || continue
         r=$(count $B/scale-$shape-$n modrt modrt_ticks)
         t=-
         [ $shape = chain ] && t=$(count $B/scale-$shape-$n tight tight_steps)
@@ -62,6 +69,7 @@ for shape in chain tree; do
         echo "scaling $shape N = $n: modrt $r, tight $t instructions per step" >&2
     done
 done
+[ -z "${SCALE_BUILD_ONLY:-}" ] || exit 0
 awk '
 function fit(sh, col,    i, sx, sy, sxx, sxy, k, x, y) {
     k = 0; sx = sy = sxx = sxy = 0

@@ -6,15 +6,26 @@
  * builds this file with generous limits to print the scene's exact sizes, then with them.
  *
  * Usage: scale_bench sizes            the scene's -DRT_MAX_... flags (as scenec --sizes)
- *        scale_bench modrt STEPS      STEPS ticks of modrt (modrt_ticks is counted)
- *        scale_bench tight STEPS      the chain's tight program (tight_steps), same start */
+ *        scale_bench modrt STEPS [METHOD H]
+ *                                     STEPS ticks of modrt (modrt_ticks is counted), by
+ *                                     dopri5 at 5 ms or METHOD (euler | heun | bs3 | rk4 |
+ *                                     dopri5) at step H
+ *        scale_bench tight STEPS      the chain's tight program (tight_steps), same start
+ *        scale_bench run METHOD H T   modrt by METHOD at step H up to T seconds: prints
+ *                                     every body's position "x y z", one line each
+ *        scale_bench ref H T          the same from the chain's tight program, dopri5 at
+ *                                     step H (the reference of mujoco_scale.py) */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <valgrind/callgrind.h>
+
 #include "pendulum_tight.h"
 #include "rt.h"
 #include "rt_mbs.h"
+#include "rt_sim.h" /* allocates the run */
 
 #ifndef SCALE_N
 #define SCALE_N 10
@@ -30,7 +41,7 @@ static real_t x0[SCALE_N][6];
 static rt_block blocks[SCALE_N];
 static rt_joint joints[SCALE_N];
 static const real_t one[] = {1};
-static const rt_set sets[] = {{.name = "mbs", .method = &rt_dopri5, .ratio = 1}};
+static rt_set sets[] = {{.name = "mbs", .method = &rt_dopri5, .ratio = 1}};
 static rt_scene scene = {.name = "scale", .doc = "a chain or tree of mass points",
                          .dt = (real_t)0.005, .t_end = 1e6, .sets = sets, .nsets = 1,
                          .mbs = &rt_mbs, .stab = RT_STAB_PROJECT};
@@ -63,6 +74,37 @@ static void build(void)
         fprintf(stderr, "scale_bench: init: %s\n", rt_error_text(&sim));
         exit(1);
     }
+}
+
+static const struct {
+    const char *name;
+    const rt_integrator *method;
+} methods[] = {{"euler", &rt_euler}, {"heun", &rt_heun}, {"bs3", &rt_bs3}, {"rk4", &rt_rk4},
+               {"dopri5", &rt_dopri5}};
+
+/* the scene's method and step from the command line, before build() */
+static void set_method(const char *name, const char *h)
+{
+    sets[0].method = NULL;
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
+        if (strcmp(name, methods[i].name) == 0)
+            sets[0].method = methods[i].method;
+    scene.dt = (real_t)atof(h);
+    scene.t_end = scene.dt * (real_t)(1 << 20); /* a whole number of ticks, past any run */
+    /* the error estimate's check off in effect (accuracy 1: a user after 1e-3 m asks no
+       more): the sweep of mujoco_scale.py measures the error against its reference; every
+       other fault (the projection's residual, non-finite states) still stops a run */
+    sets[0].cfg.accuracy = 1;
+    if (!sets[0].method || !(scene.dt > 0)) {
+        fprintf(stderr, "scale_bench: bad method %s or step %s\n", name, h);
+        exit(2);
+    }
+}
+
+static void print_positions(const double *q, int stride)
+{
+    for (int k = 0; k < SCALE_N; k++)
+        printf("%.17g %.17g %.17g\n", q[stride * k], q[stride * k + 1], q[stride * k + 2]);
 }
 
 static unsigned one_at_least(unsigned v)
@@ -100,31 +142,57 @@ __attribute__((noinline)) void modrt_ticks(rt_sim *s, long n)
 
 int main(int argc, char **argv)
 {
+    int run = argc == 5 && strcmp(argv[1], "run") == 0;
+    int ref = argc == 4 && strcmp(argv[1], "ref") == 0;
+    if (run || (argc == 5 && strcmp(argv[1], "modrt") == 0))
+        set_method(argv[2 + !run], argv[3 + !run]);
+    if (ref)
+        set_method("dopri5", argv[2]);
     build();
     if (argc == 2 && strcmp(argv[1], "sizes") == 0) {
         sizes();
         return 0;
     }
-    if (argc != 3 || (strcmp(argv[1], "modrt") != 0 && strcmp(argv[1], "tight") != 0)) {
-        fprintf(stderr, "usage: scale_bench sizes | modrt STEPS | tight STEPS\n");
+    static double xs[6 * SCALE_N];
+    for (uint16_t b = 0; b < SCALE_N; b++)
+        for (uint16_t j = 0; j < 6; j++)
+            xs[6 * b + j] = (double)rt_output(&sim, b, j);
+    if (run) {
+        modrt_ticks(&sim, lround(atof(argv[4]) / (double)scene.dt));
+        for (uint16_t b = 0; b < SCALE_N; b++)
+            for (uint16_t j = 0; j < 3; j++)
+                xs[3 * b + j] = (double)rt_output(&sim, b, j);
+        print_positions(xs, 3);
+        if (rt_stats_of(&sim)->status == RT_OK)
+            return 0;
+        fprintf(stderr, "scale_bench: %s at %g s: %s\n",
+                rt_status_name(rt_stats_of(&sim)->status), (double)rt_time(&scene, &sim),
+                rt_error_text(&sim));
+        return 1;
+    }
+    if ((argc != 3 && argc != 5 && !ref) ||
+        (strcmp(argv[1], "modrt") != 0 && strcmp(argv[1], "tight") != 0 && !ref)) {
+        fprintf(stderr, "usage: scale_bench sizes | modrt STEPS [METHOD H] | tight STEPS | "
+                        "run METHOD H T | ref H T\n");
         return 2;
     }
-    long n = atol(argv[2]);
     if (strcmp(argv[1], "modrt") == 0) {
-        modrt_ticks(&sim, n);
-        return sim.stats.status == RT_OK ? 0 : 1;
+        CALLGRIND_START_INSTRUMENTATION; /* callgrind --instr-atstart=no: rt_init uncounted */
+        modrt_ticks(&sim, atol(argv[2]));
+        return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
     }
     if (SCALE_TREE || TIGHT_NB != SCALE_N) {
         fprintf(stderr, "scale_bench: the tight program is the chain's of TIGHT_NB points\n");
         return 2;
     }
-    static double xs[6 * SCALE_N];
     static tight m;
-    for (uint16_t b = 0; b < SCALE_N; b++)
-        for (uint16_t j = 0; j < 6; j++)
-            xs[6 * b + j] = (double)rt_output(&sim, b, j);
-    m.method = TIGHT_DOPRI5, m.estimate = 1, m.h = (double)scene.dt;
+    m.method = TIGHT_DOPRI5, m.estimate = !ref, m.h = (double)scene.dt;
     tight_init(&m, xs);
-    tight_steps(&m, n);
+    if (ref) {
+        tight_steps(&m, lround(atof(argv[3]) / m.h));
+        print_positions(m.q, 3);
+        return 0;
+    }
+    tight_steps(&m, atol(argv[2]));
     return 0;
 }

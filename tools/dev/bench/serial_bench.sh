@@ -58,6 +58,9 @@ run() { # OUT SPEC: pi_link in lock-step over SPEC
 }
 
 {
+    # when and what was measured (docs/link.md's line): wall-clock figures hold for that
+    # machine and day
+    echo "Figures of commit \`$(git rev-parse --short HEAD 2>/dev/null || echo unknown)\`, measured $(date -u +%Y-%m-%d) on $(nproc) cores of $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1)"
     echo "== pi_link in lock-step, 301 exchanges; round trip [us] from modrt's summary"
     echo "| link | p50 | p99 | max | applied | hash |"
     echo "|---|---:|---:|---:|---:|---|"

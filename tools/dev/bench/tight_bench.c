@@ -11,15 +11,19 @@
  *                                       CHECK_TOL and the largest error estimate equal
  *                                       modrt's to EST_TOL (exit 1 otherwise)
  *        tight_bench count SIDE METHOD SECONDS
- *                                       SIDE modrt | tight | tight-noest (without the
- *                                       error estimate); METHOD bs3 | rk4 | dopri5 */
+ *                                       SIDE modrt | modrt-tables (the table-driven
+ *                                       path: without the scene's written-out code) |
+ *                                       tight | tight-noest (without the error
+ *                                       estimate); METHOD bs3 | rk4 | dopri5 */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "pendulum_tight.h"
+#include "rt_sim.h" /* allocates the run */
 #include "scenes/scenes.h"
+#include "rt_sim.h" /* the simulator in static storage */
 
 #define CHECK_T 2.0     /* simulated time of the check [s]: the chain is chaotic, rounding
                            differences grow from 1e-16 to 1e-14 m over it */
@@ -50,10 +54,13 @@ static int method_index(const char *name)
 }
 
 /* pendulum10 with method i over t_end seconds (the scene's own step); no recorded
-   signals: the tight program records nothing */
-static void modrt_init(rt_scene *sc, rt_set *set, int i, double t_end)
+   signals: the tight program records nothing. tables: without the scene's written-out
+   code (rt_scene_code), the table-driven path */
+static void modrt_init(rt_scene *sc, rt_set *set, int i, double t_end, int tables)
 {
     *sc = mdl_scene_pendulum10;
+    if (tables)
+        sc->code = 0;
     *set = sc->sets[0];
     set->method = methods[i].rt;
     sc->sets = set;
@@ -90,7 +97,7 @@ static int check(void)
         rt_scene sc;
         rt_set set;
         tight m;
-        modrt_init(&sc, &set, i, CHECK_T);
+        modrt_init(&sc, &set, i, CHECK_T, 0);
         tight_start(&m, i, 1, &sc);
         long n = lround(CHECK_T / (double)sc.dt);
         modrt_ticks(&sc, &sim, n);
@@ -101,9 +108,9 @@ static int check(void)
                 double d = fabs((double)rt_output(&sim, b, j) - m.q[3 * b + j]);
                 worst = d > worst || d != d ? d : worst;
             }
-        double est = (double)sim.stats.istats[0].err_max;
+        double est = (double)rt_stats_of(&sim)->istats[0].err_max;
         double de = fabs(m.err_max - est) / est;
-        int ok = worst <= CHECK_TOL && de <= EST_TOL && sim.stats.status == RT_OK &&
+        int ok = worst <= CHECK_TOL && de <= EST_TOL && rt_stats_of(&sim)->status == RT_OK &&
                  m.res_max <= 1e-9;
         bad += !ok;
         printf("trajectory pendulum10 %s tight: largest position difference at %g s %.2e m "
@@ -126,11 +133,12 @@ int main(int argc, char **argv)
     double secs = atof(argv[4]);
     rt_scene sc;
     rt_set set;
-    modrt_init(&sc, &set, i, secs);
+    int tables = strcmp(argv[2], "modrt-tables") == 0;
+    modrt_init(&sc, &set, i, secs, tables);
     long n = lround(secs / (double)sc.dt);
-    if (strcmp(argv[2], "modrt") == 0) {
+    if (strcmp(argv[2], "modrt") == 0 || tables) {
         modrt_ticks(&sc, &sim, n);
-        return sim.stats.status == RT_OK ? 0 : 1;
+        return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
     }
     if (strcmp(argv[2], "tight") != 0 && strcmp(argv[2], "tight-noest") != 0) {
         fprintf(stderr, "tight_bench: unknown side %s\n", argv[2]);

@@ -12,7 +12,7 @@ bounds), and for each variant
     well the estimate tracks it,
   - the error against an independent reference (pendulum10: the chain in minimal
     coordinates, tools/dev/study/pendulum_ref.py and the long-double values of
-    tests/rt/test_mbs_scene.c; the others: two fine single-rate runs of different
+    tests/whitebox/test_mbs_scene.c; the others: two fine single-rate runs of different
     methods, whose difference is the reference's own error and bounds the plotted range),
     computed by `modrt sweep`: one campaign per example and number type over the
     variants' scene files, its metric `error against` the reference as a table, at the
@@ -576,21 +576,21 @@ def beltgear_refs(full):
 
 def pendulum_refs(full):
     """pendulum10's reference at t = 2 s: the long-double values stored in
-    tests/rt/test_mbs_scene.c; in full mode also recomputed by pendulum_ref.py at two
+    tests/whitebox/test_mbs_scene.c; in full mode also recomputed by pendulum_ref.py at two
     steps: the largest difference of the three is the reference's own error"""
-    text = open("tests/rt/test_mbs_scene.c").read()
+    text = open("tests/whitebox/test_mbs_scene.c").read()
     block = re.search(r"ref_2s\[10\]\[2\] = \{(.*?)\};", text, re.S).group(1)
     vals = [float(v) for v in re.findall(r"-?\d+\.\d+(?:e-?\d+)?", block)]
     rows = {tkey(2.0): vals}
     if not full:
         return rows, None, "the chain in minimal coordinates (RK4 in long double at 5e-6 s, " \
-            "tests/rt/test_mbs_scene.c)"
+            "tests/whitebox/test_mbs_scene.c)"
     r = sh([sys.executable, "tools/dev/study/pendulum_ref.py", "2e-4", "1e-4"])
     lines = [ln.split() for ln in r.stdout.splitlines() if ln.startswith("h ")]
     runs = [[float(v) for v in ln[2:]] for ln in lines]
     diff = max(abs(a - b) for run in runs for a, b in zip(run, vals))
     note = ("the chain in minimal coordinates (ten link angles, Lagrange's equations): the "
-            "long-double values of tests/rt/test_mbs_scene.c (RK4 at 5e-6 s); recomputed "
+            "long-double values of tests/whitebox/test_mbs_scene.c (RK4 at 5e-6 s); recomputed "
             "independently by tools/dev/study/pendulum_ref.py (RK4 in binary64 at 2e-4 s and "
             "1e-4 s), which differs from them by at most %.1e m" % diff)
     return rows, diff, note

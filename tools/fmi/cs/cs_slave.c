@@ -98,7 +98,7 @@ int cs_get(cs_slave *s, uint32_t vr, double *v)
     case FMU_CS_REC: *v = (double)rt_rec_value(sc, &s->sim, x.a); break;
     case FMU_CS_EXP: *v = (double)rt_link_export(sc, &s->sim, x.a); break;
     case FMU_CS_IMP: *v = (double)s->u[x.a]; break;
-    default: *v = (double)s->sim.state.p[s->sim.plan.p_off[x.a] + x.b];
+    default: *v = (double)rt_block_p(&s->sim, x.a, x.b);
     }
     return CS_OK;
 }
@@ -139,7 +139,7 @@ static uint64_t faults(const rt_sim *sim)
 {
     uint64_t n = 0;
     for (int c = 0; c < RT_CNT_COUNT; c++)
-        n += c == RT_CNT_EVENTS ? 0 : sim->stats.count[c];
+        n += c == RT_CNT_EVENTS ? 0 : rt_stats_of(sim)->count[c];
     return n;
 }
 
@@ -169,9 +169,10 @@ int cs_step(cs_slave *s, double t, double h, int *at_end)
     *at_end = rt_ticks_done(&s->sim) >= rt_tick_count(&s->sim);
     if (faults(&s->sim) == before)
         return CS_OK;
-    int sev = rt_status_severity(s->sim.stats.status);
+    rt_status status = rt_stats_of(&s->sim)->status;
+    int sev = rt_status_severity(status);
     return why(s, sev >= 2 ? CS_ERROR : CS_WARNING, "the runtime counted a fault: %s "
-               "(t = %.17g s)", rt_status_name(s->sim.stats.status),
+               "(t = %.17g s)", rt_status_name(status),
                (double)rt_time(sc, &s->sim));
 }
 

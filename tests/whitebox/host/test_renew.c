@@ -5,7 +5,7 @@
  * bits that rt_refresh, which evaluates
  * every entry of every set whose state is at the tick, gives (an actual loop's outputs
  * within its tolerance: its solver re-solves from a new warm start). */
-#include "../../models/models.h"
+#include "models.h"
 #include "rti.h"
 #include "testutil.h"
 

@@ -2,7 +2,7 @@
  * context right after the release, or as late as its deadline allows gives the same trace
  * bit for bit; a step not finished at its deadline is counted and published late; the
  * scene checks. Portable (runs on the cross targets too); the tests with threads, the
- * POSIX timer and the fine reference are in tests/host/test_bg.c. */
+ * POSIX timer and the fine reference are in tests/whitebox/host/test_bg.c. */
 #include "harness.h"
 #include "rt.h"
 #include "rt_math.h"

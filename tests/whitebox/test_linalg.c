@@ -39,8 +39,35 @@ static void test_lu_singular(void)
     TH_CHECK(rti_lu(z, 2, piv, (real_t)1e-12) == RT_E_SINGULAR);
 }
 
+/* the factors in parts (rti_lu_floor, rti_lu_stages) are rti_lu's bit for bit, and
+   rti_lu_unfactor gives the matrix back (4 x 4, pivoting on three of the stages) */
+static void test_lu_parts(void)
+{
+    const real_t a[16] = {0, 2, 1, 3, 1, 1, 1, -1, 4, -3, 2, 0, 2, 5, -1, 1};
+    real_t lu[16], lp[16];
+    uint16_t piv[4], pp[4];
+    for (int i = 0; i < 16; i++)
+        lu[i] = lp[i] = a[i];
+    TH_CHECK(rti_lu(lu, 4, piv, (real_t)1e-12) == RT_OK);
+    real_t fl = rti_lu_floor(lp, 4, (real_t)1e-12);
+    TH_CHECK(rti_lu_stages(lp, 4, pp, fl, 0, 1) == RT_OK);
+    TH_CHECK(rti_lu_stages(lp, 4, pp, fl, 1, 3) == RT_OK);
+    TH_CHECK(rti_lu_stages(lp, 4, pp, fl, 3, 4) == RT_OK);
+    int same = 1, swaps = 0;
+    for (int i = 0; i < 16; i++)
+        same &= lu[i] == lp[i];
+    for (int i = 0; i < 4; i++)
+        same &= piv[i] == pp[i], swaps += piv[i] != i;
+    TH_CHECK(same && swaps >= 2);
+    rti_lu_unfactor(lu, 4, piv);
+    double tol = RT_REAL_IS_FLOAT ? 1e-5 : 1e-14;
+    for (int i = 0; i < 16; i++)
+        TH_NEAR(lu[i], a[i], tol);
+}
+
 const th_test th_linalg_tests[] = {
     {"linalg_lu_solve", test_lu_solve},
     {"linalg_lu_singular", test_lu_singular},
+    {"linalg_lu_parts", test_lu_parts},
     {0, 0},
 };
