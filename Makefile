@@ -242,6 +242,11 @@ test-fuzz:
 # ---- cross targets (ports/targets.mk: compilers, flags, QEMU commands) ----
 include ports/targets.mk
 CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS) -DRT_KIND_DOCS=0 -MMD -MP
+# the cross-test images (unit tests, scenes, rt.elf) hold no FMU: the blocks' internal
+# state in a snapshot needs only the unit tests' few bytes there, and the host default
+# (16 KB per rt_state) would not fit the unit-test images' copies of rt_sim in 4 MB of RAM.
+# Per-scene images (foot-elf, make image) take the scene's own sizes instead.
+CROSS_TEST_DEFS := -DRT_MAX_KSTATE=256
 CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tests/registry.c \
                    $(wildcard tests/rt/*.c tests/models/*.c tests/whitebox/*.c)
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
@@ -286,7 +291,7 @@ $(O)/scenes: $(call obj,tests/cross/scenes_main.c tests/harness.c ports/posix/ap
 define CROSS_RULES
 build/$(1)$(XSUF)/obj/%.o: %.c
 	@mkdir -p $$(dir $$@)
-	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) -c $$< -o $$@
+	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) $$(CROSS_TEST_DEFS) -c $$< -o $$@
 build/$(1)$(XSUF)/obj/%.o: %.S
 	@mkdir -p $$(dir $$@)
 	$(Q)$$(TARGET_CC_$(1)) $$(TARGET_CFLAGS_$(1)) -c $$< -o $$@
@@ -296,7 +301,7 @@ build/$(1)$(XSUF)/tests.elf: $$(call cobj,$(1),$$(CROSS_TEST_SRCS) $$(RT_SRCS) $
 # part K of N of the unit tests (tests/cross/tests_main.c), and of the scenes
 build/$(1)$(XSUF)/obj/tests/cross/tests_main-%.o: tests/cross/tests_main.c
 	@mkdir -p $$(dir $$@)
-	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) \
+	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) $$(CROSS_TEST_DEFS) \
 	  -DTH_PART=$$(word 1,$$(subst of, ,$$*)) -DTH_PARTS=$$(word 2,$$(subst of, ,$$*)) -c $$< -o $$@
 build/$(1)$(XSUF)/tests-%.elf: build/$(1)$(XSUF)/obj/tests/cross/tests_main-%.o \
                       $$(call cobj,$(1),$$(filter-out tests/cross/tests_main.c,$$(CROSS_TEST_SRCS)) \
@@ -304,7 +309,7 @@ build/$(1)$(XSUF)/tests-%.elf: build/$(1)$(XSUF)/obj/tests/cross/tests_main-%.o 
 	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
 build/$(1)$(XSUF)/obj/tests/cross/scenes_main-%.o: tests/cross/scenes_main.c
 	@mkdir -p $$(dir $$@)
-	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) \
+	$(Q)$$(TARGET_CC_$(1)) $$(CROSS_CFLAGS) $$(TARGET_CFLAGS_$(1)) $$(CROSS_TEST_DEFS) \
 	  -DSC_PART=$$(word 1,$$(subst of, ,$$*)) -DSC_PARTS=$$(word 2,$$(subst of, ,$$*)) -c $$< -o $$@
 build/$(1)$(XSUF)/scenes-%.elf: build/$(1)$(XSUF)/obj/tests/cross/scenes_main-%.o \
                        $$(call cobj,$(1),tests/harness.c $$(RT_SRCS) $$(MODEL_SRCS) \
@@ -317,7 +322,7 @@ build/$(1)$(XSUF)/softfloat.elf: $$(call cobj,$(1),$$(CROSS_SOFTFLOAT_SRCS) $$(T
 	$(Q)$$(TARGET_CC_$(1)) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
 build/$(1)$(XSUF)/rt_bg.elf: ports/common/image_main.c $$(call cobj,$(1),$$(RT_SRCS) $$(MODEL_SRCS) \
                       $$(TARGET_PORT_SRCS_$(1)))
-	$(Q)$$(TARGET_CC_$(1)) $$(filter-out -MMD -MP,$$(CROSS_CFLAGS)) $$(TARGET_CFLAGS_$(1)) \
+	$(Q)$$(TARGET_CC_$(1)) $$(filter-out -MMD -MP,$$(CROSS_CFLAGS)) $$(TARGET_CFLAGS_$(1)) $$(CROSS_TEST_DEFS) \
 	  $$(CROSS_BG_DEFS) $$^ $$(TARGET_LDFLAGS_$(1)) -o $$@
 # every run bounded by its instruction budget (tests/cross/run.sh); QEMU_TIMEOUT guards
 # against QEMU itself hanging
