@@ -78,7 +78,11 @@ if [ -n "$fmu_lines" ]; then
     # use, declaring what the image gives it (tools/fmi/libc/)
     echo '#include <stdio.h>' | $cc $(make -s "print-TARGET_CFLAGS_$target") -E -x c - >/dev/null 2>&1 ||
         fmulibc="-isystem tools/fmi/libc"
-    fmusrc="tools/fmi/fmu_inst.c tools/fmi/fmu_state.c tools/fmi/fmu_call.c tools/fmi/fmu_arena.c tools/fmi/fmu_libc.c"
+    # fmu_libc.c stands in for the C library of ports that link none (-nostdlib); a port
+    # that links its own (the POSIX one on aarch64) has these functions already
+    libc_c=tools/fmi/fmu_libc.c
+    case " $(make -s "print-TARGET_LDFLAGS_$target") " in *" -nostdlib "*) ;; *) libc_c= ;; esac
+    fmusrc="tools/fmi/fmu_inst.c tools/fmi/fmu_state.c tools/fmi/fmu_call.c tools/fmi/fmu_arena.c $libc_c"
     echo "$fmu_lines" > "$dir/$name.fmu"
     while read -r blk ver id src words; do
         defs="-DFMI${ver}_FUNCTION_PREFIX=${id}_"
