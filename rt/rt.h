@@ -828,7 +828,10 @@ rt_status rt_restore(rt_sim *sim, const rt_state *in);
 /* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */
 int rt_block_index(const rt_scene *scene, const char *name);
 int rt_param_index(const rt_kind *kind, const char *name);
-/* Sets parameter `name` of block `block` before or between ticks; RT_E_ARG if unknown. */
+/* Sets parameter `name` of block `block` before or between ticks; RT_E_ARG if unknown. A
+   set stepping over several ticks, whose state is ahead of the tick, takes it from its
+   next step on, where its state is (a kind that takes values at instants, rt_kind.instant:
+   at that instant). */
 rt_status rt_set_param(const rt_scene *scene, rt_sim *sim, const char *block,
                        const char *name, real_t value);
 

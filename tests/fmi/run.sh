@@ -64,6 +64,17 @@ for v in 2 3; do
     closed probe_param probe_param_fmu $v 1e-12
 done
 
+# a fixed parameter written during the run (the stair's period after the row at 1.25 s):
+# a fault of the block at its next evaluation (the tick 1.375 s: the stair has no state to
+# integrate), the instance not started again
+for v in 2 3; do
+    "$T/setp" "$W/stair_fmu$v.scn" 1.25 "$W/fixed$v.csv" S.period=1 > "$W/fixed$v.out" 2>&1
+    if grep -q '^status: non-finite' "$W/fixed$v.out" &&
+       grep -q '^fmu.S.first_fault: t = 1.375: parameter period is fixed: it cannot change after the start' "$W/fixed$v.out"
+    then ok "stair (FMI $v.0): a fixed parameter written at 1.25 s is a fault at 1.375 s"
+    else bad "stair (FMI $v.0): a fixed parameter written during the run:"; cat "$W/fixed$v.out"; fi
+done
+
 # more time events in one step than RT_TEV_PARTS_MAX parts (S3 every 0.03 s on steps of
 # 1/8 s): counted (tev_limit), the run failed, never merged silently
 for v in 2 3; do

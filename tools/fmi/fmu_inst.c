@@ -178,14 +178,14 @@ static int set_in_event(fmu_inst *in, double t, const uint32_t *vr, size_t n, co
 
 static int start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given);
 
-/* a parameter of p that may not change now (not tunable, after the start of a fresh
-   instance at t = 0): a fault */
+/* a parameter of p that differs from the FMU's and is not tunable: a fault (before the
+   run, fmu_check started the instance again with it) */
 static int params_fixed(fmu_inst *in, const real_t *p, double t)
 {
     const fmu_model *m = in->m;
     for (uint32_t i = 0; i < m->np; i++) {
         const fmu_var *v = &m->md.v[m->ip[i]];
-        if (in->p[i] == (double)p[i] || v->variability == FMU_V_TUNABLE || (in->fresh && t == 0))
+        if (in->p[i] == (double)p[i] || v->variability == FMU_V_TUNABLE)
             continue;
         fault(in, t, "parameter %s is %s: it cannot change after the start (t = %.17g)",
               v->name, fmu_md_variability_name(v->variability), t);
@@ -193,22 +193,6 @@ static int params_fixed(fmu_inst *in, const real_t *p, double t)
         return -1;
     }
     return 0;
-}
-
-/* parameters changed at t = 0 (before the first step: modrt run --set) of an instance
-   that had no event yet: it is initialized again with them all (a fixed one too) */
-static int params_restart(fmu_inst *in, const real_t *p, double t)
-{
-    const fmu_model *m = in->m;
-    int changed = 0;
-    for (uint32_t i = 0; i < m->np; i++)
-        changed |= in->p[i] != (double)p[i];
-    if (!changed || !in->fresh || t != 0)
-        return 0;
-    if (CALL(in, t, "Reset", m->ops->reset(in)))
-        return -1;
-    in->mode = FMU_M_NONE;
-    return start(in, p, NULL, NULL);
 }
 
 /* the first values of the inputs: all of them, the discrete ones in event mode */
@@ -278,7 +262,8 @@ static int sync(fmu_inst *in, const rt_args *a)
         if (m->u_disc[i] || in->u[i] == (double)a->u[i])
             continue;
         in->u[i] = (double)a->u[i];
-        if (CALL(in, t, o == &fmu_ops2 ? "SetReal" : "SetFloat64", o->set(in, &m->vu[i], 1, &in->u[i])))
+        if (CALL(in, t, o == &fmu_ops2 ? "SetReal" : "SetFloat64",
+                 o->set(in, &m->vu[i], 1, &in->u[i])))
             return -1;
     }
     return 0;
@@ -453,12 +438,7 @@ int fmu_instant(const rt_args *a, real_t *x, real_t *d)
     (void)d;
     if (in->mode != FMU_M_CT || !pending(in, a))
         return 0;
-    if (in->m->np && params_restart(in, a->p, (double)a->t)) {
-        nan_fill(x, in->m->nx);
-        return 1;
-    }
-    if (pending(in, a)) /* (the discrete inputs, after a restart) */
-        event_mode(in, a, x);
+    event_mode(in, a, x);
     return 1;
 }
 
@@ -498,20 +478,11 @@ static int start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given
     return 0;
 }
 
-/* do the parameters p differ from the FMU's only in tunable ones */
-static int tunable_only(const fmu_inst *in, const real_t *p)
-{
-    const fmu_model *m = in->m;
-    for (uint32_t i = 0; i < m->np; i++)
-        if (in->p[i] != (double)p[i] && m->md.v[m->ip[i]].variability != FMU_V_TUNABLE)
-            return 0;
-    return 1;
-}
-
-/* the runtime's init (a run starts from a fresh instance with these parameters) and
-   rt_set_param: during a run a tunable parameter is taken at the next instant, in event
-   mode (fmu_instant), and the instance goes on; a new run (rt_init after one, whose first
-   evaluation is at t = 0) then starts it afresh (restart_if_new) */
+/* the runtime's init: a run starts from a fresh instance with these parameters. Also
+   rt_set_param's check: a parameter written during a run is the instance's next instant's
+   business (tunable: taken in event mode there; else a fault, params_fixed), and the
+   instance goes on; a new run after one (rt_init, whose first evaluation is at t = 0)
+   restarts it there (restart_if_new) */
 rt_status fmu_check(const real_t *p, const void *spec)
 {
     fmu_inst *in = (fmu_inst *)spec;
@@ -519,7 +490,7 @@ rt_status fmu_check(const real_t *p, const void *spec)
     int same = in->fresh && in->mode == FMU_M_CT;
     for (uint32_t i = 0; same && i < m->np; i++)
         same = in->p[i] == (double)p[i];
-    if (!same && in->c && running(in) && tunable_only(in, p))
+    if (!same && in->c && running(in))
         return RT_OK;
 #ifdef FMU_TARGET /* an image: the first rt_init instantiates, with the scene's values */
     if (!in->c)
