@@ -768,6 +768,7 @@ def results_md(ex, ref_note, splits):
                 label, tol, v, c["desc"] if c else "none", err_text(c["err"]) if c else "",
                 fmt(c["cost"]) if c else "", fmt(c["cost_run"]) if c else ""))
         lines.append(line(ex, crit, tol, s, m))
+    lines += shipped_lines(ex)
     o.append("")
     o += ["    " + ln for ln in lines]
     o.append("")
