@@ -152,11 +152,18 @@ def check_probe_hold(path, tol):
     nothing newer: d = 80 ms. At a change the FMU counts n, records tu = the time (in event
     mode: its event iteration); x' = ud integrates the staircase exactly, x = sum of the
     steps d * d k for k < n plus d n (t - d n); nev = n (the continuous input uc, which
-    reads the source too, needs no event); wrong = 0 (no new ud in continuous time)."""
-    data, cols = probe_rows(path, ("Pa", "Pb", "Pc"))
+    reads the source too, needs no event); wrong = 0 (no new ud in continuous time). Pg
+    reads a step of its own set (80 ms) from 0 to 2 at 0.13 s: taken there, x = 2 (t - 0.13)."""
+    data, cols = probe_rows(path, ("Pa", "Pb", "Pc", "Pg"))
     worst = 0.0
     for r in data:
-        for c, (h, d) in zip(cols, [(0.01, 0.04), (0.03, 0.04), (0.08, 0.08)]):
+        # Pg: a step of its own set (80 ms) from 0 to 2 at 0.13 s, inside a step
+        c, ts = cols[3], held_time(r[0], 0.08)
+        on = ts >= 0.13
+        worst = max(worst, abs(r[c["x"]] - (2 * (ts - 0.13) if on else 0)),
+                    abs(r[c["tu"]] - (0.13 if on else 0)),
+                    1.0 if r[c["n"]] != on or r[c["nev"]] != on or r[c["wrong"]] != 0 else 0.0)
+        for c, (h, d) in zip(cols[:3], [(0.01, 0.04), (0.03, 0.04), (0.08, 0.08)]):
             ts = held_time(r[0], h)
             n = math.floor(ts / d + 1e-9)
             x = d * d * n * (n - 1) / 2 + d * n * (ts - d * n)
