@@ -45,8 +45,9 @@ test-link: deps-host build/host/modrt build/host/pi_controller
 TEST_SUITES += test-link test-link-fuzz
 .PHONY: link-fuzz link-fuzz-seeds test-link test-link-fuzz
 
-# the scene fingerprint of the replay log reads the programs of interpreted defines
-$(call obj,tools/modrt/fingerprint.c): CINC += -I$(SCN_DIR)
+# the scene fingerprint of the replay log reads the programs of interpreted defines and
+# the FMU file of an FMU block (tools/fmi/fmu.h)
+$(call obj,tools/modrt/fingerprint.c): CINC += -I$(SCN_DIR) -Itools/fmi
 
 # the link over a serial line on ptys: lock-step, real time, line noise (tests/link/serial.sh)
 test-serial: deps-host build/host/modrt build/host/pi_controller

@@ -57,6 +57,7 @@ fuzz-fmi: build/fuzz/fmi-md-fuzz fmi-fmus
 
 test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz $(FMI_TDIR)/master $(FMI_TDIR)/snap $(FMI_TDIR)/setp
 	sh tests/fmi/run.sh $(O) $(FMI_TDIR)
+	sh tests/fmi/link.sh $(O) $(FMI_TDIR)
 	sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz 10 $(FMI_TDIR)
 
 .PHONY: fmi-fmus fuzz-fmi test-fmi

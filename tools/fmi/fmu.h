@@ -51,6 +51,10 @@ const fmu_md *fmu_model_md(const fmu_model *m);
    instance of it named `block`). NULL with a message in err. */
 fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen);
 const rt_kind *fmu_inst_kind(const fmu_inst *in);
+/* What identifies the code an FMU block's kind runs: the hash of its FMU file's bytes (the
+   name of its cache directory), for the replay log's scene fingerprint; NULL for a kind
+   that is not an FMU's. */
+const char *fmu_kind_file_id(const rt_kind *k);
 /* Instantiates and initializes the FMU with parameters p and, where given[i], initial
    state x0[i] (its variable's start value); writes the states it starts from into x0.
    0, or -1 with a one-line message in err. */

@@ -619,6 +619,14 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
 
 const rt_kind *fmu_inst_kind(const fmu_inst *in) { return &in->kind; }
 
+const char *fmu_kind_file_id(const rt_kind *k)
+{
+    if (!k || k->check != fmu_check || !k->spec)
+        return NULL;
+    const char *dir = ((const fmu_inst *)k->spec)->m->dir, *slash = strrchr(dir, '/');
+    return slash ? slash + 1 : dir;
+}
+
 long fmu_arena_need(void)
 {
     size_t need = 0, a = FMU_ARENA_ALIGN;

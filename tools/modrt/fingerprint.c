@@ -3,9 +3,11 @@
  * defined), pointers followed to what they point at, names with their terminating NUL.
  * What a kind computes is identified by its name, its dimensions and default values, and
  * for the kinds a scene file defines (interpreted by tools/scenec/vm.c) or an `lss` block
- * by their programs or matrices too: the code of compiled kinds is the build's. */
+ * by their programs or matrices too, for an FMU block by the hash of its FMU file: the
+ * code of compiled kinds is the build's. */
 #include "fingerprint.h"
 
+#include "fmu.h"
 #include "scn.h"
 
 #define FP_START 0xcbf29ce484222325ull
@@ -58,10 +60,14 @@ static void prog(uint64_t *h, const scn_prog *p)
             real(h, p->k[p->ins[i].a]);
 }
 
-/* what a kind computes, beyond its name: a scene file's define (its programs) or the
-   matrices of an LSS block */
+/* what a kind computes, beyond its name: a scene file's define (its programs), the
+   matrices of an LSS block, or the FMU file an FMU block runs (its name stays when the
+   file is replaced by another build of the model) */
 static void kind_spec(uint64_t *h, const rt_kind *k)
 {
+    const char *fmu = fmu_kind_file_id(k);
+    if (fmu)
+        str(h, fmu);
     if (k->output == scn_vm_output || k->deriv == scn_vm_deriv || k->update == scn_vm_update) {
         const scn_vm_spec *v = k->spec;
         prog(h, &v->out), prog(h, &v->der), prog(h, &v->upd), prog(h, &v->roots);

@@ -46,7 +46,8 @@ static int replay_same_scene(const mrl_header *h, const rt_scene *sc, const char
     uint64_t fp = fp_scene(sc);
     if (h->version >= 2 && fp != h->scene_fp) {
         snprintf(what, sizeof what, "recorded with scene fingerprint %016llx, but scene %s "
-                 "is now %016llx: the scene changed since (a table or parameter value)",
+                 "is now %016llx: the scene changed since (a table, a parameter value or "
+                 "an FMU file)",
                  (unsigned long long)h->scene_fp, h->scene, (unsigned long long)fp);
         return cli_fail(path, what);
     }
