@@ -128,6 +128,18 @@ for v in 2 3; do
         "$M" run "$W/src_$s$v.scn" > "$W/src_$s$v.out" 2>&1
         same_hash "$s: FMI $v.0 source FMU built here = binary FMU" "$W/src_$s$v.out" "$W/${s}_fmu$v.out"
     done
+    # the oscillator and the feed-through, both in osc_fmu.scn
+    for m in oscillator feedthrough; do
+        python3 tests/fmi/mkfmu.py --cc "${CC:-cc}" --version $v --model $m --source-only \
+            --out "$W/src_$m$v.fmu" --cflags "-std=c11 -O2 -fPIC -shared -Itools/fmi -Itests/fmi"
+    done
+    d=$(cd "$W" && pwd)
+    sed "s#@V@#$v#g; s#@FMUS@/oscillator$v.fmu#$d/src_oscillator$v.fmu#;
+         s#@FMUS@/feedthrough$v.fmu#$d/src_feedthrough$v.fmu#" tests/fmi/scenes/osc_fmu.scn > "$W/src_osc$v.scn"
+    if grep -q '@FMUS@' "$W/src_osc$v.scn"; then bad "src_osc$v.scn still names a binary FMU"; fi
+    "$M" run "$W/src_osc$v.scn" > "$W/src_osc$v.out" 2>&1
+    same_hash "osc: FMI $v.0 source FMUs (oscillator, feed-through) built here = binary FMUs" \
+        "$W/src_osc$v.out" "$W/osc_fmu$v.out"
 done
 
 # the same equations as defines of the scene language: the same bits (the ball's FMU is
