@@ -105,6 +105,64 @@ for v in 2 3; do
     done
 done
 
+# scenes holding an FMU block exported (docs/fmi.md, "FMU blocks in an exported FMU"): the
+# source FMUs above compiled into the exported FMU, driven by the foreign master: the trace
+# hash of modrt run of the scene, its rows against the closed form (the ball to 1e-9 m, the
+# stair's counter, which lives in the inner FMU's memory, exactly), a state saved and
+# restored (the inner FMU's with it) stepping to the same bits; the binary rebuilt from the
+# exported sources alone, the same hash. An inner FMU that cannot save its state makes the
+# exported one say so; a binary-only FMU is refused in one line naming the block
+export_inner() { # outer FMI version, scene file (in $W), check.py kind, tolerance, summary of modrt run
+    v=$1 s=$2 x=$W/xi$1_$2
+    rm -rf "$x" && mkdir -p "$x"
+    if ! "$B/scenec" --fmu "$x.fmu" --fmi-version "$v" "$W/$s.scn" 2> "$x.err"; then
+        bad "scenec --fmu --fmi-version $v $s: $(cat "$x.err")"; return 1; fi
+    unzip -q -d "$x" "$x.fmu"
+    if python3 "tests/fmi/check_md$v.py" "$x" > "$x.md"; then ok "$s.fmu (FMI $v.0 with an FMU block): $(cat "$x.md")"
+    else bad "$s.fmu (FMI $v.0):"; cat "$x.md"; fi
+    dt=$(sed -n 's/.*stepSize="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
+    te=$(sed -n 's/.*stopTime="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
+    MASTER_CSV="$x.csv" MASTER_DT=$dt MASTER_END=$te "$T/master" "$x" > "$x.master" 2>&1
+    p=$(grep -c '^ok' "$x.master") f=$(grep -c '^FAIL' "$x.master")
+    pass=$((pass + p)) fail=$((fail + f))
+    grep -E '^(ok|FAIL)' "$x.master" | sed "s/\$/ ($s exported, FMI $v.0)/"
+    same_hash "$s exported as FMI $v.0 with its FMU block, under the master = modrt run" "$x.master" "$5"
+    if python3 tests/fmi/check.py "$3" "$x.csv" "$4" > "$x.chk"; then ok "$s exported (FMI $v.0), the master's rows: $(cat "$x.chk")"
+    else bad "$s exported (FMI $v.0), the master's rows:"; cat "$x.chk"; fi
+    id=$(sed -n 's/.*<CoSimulation modelIdentifier="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
+    so=$x/binaries/$([ "$v" = 2 ] && echo linux64 || echo x86_64-linux)/$id.so
+    rm -f "$so"
+    python3 tests/fmi/build_sources.py "$x" "$so" &&
+        MASTER_DT=$dt MASTER_END=$te "$T/master" "$x" > "$x.src" 2>&1
+    same_hash "$s exported (FMI $v.0): its binary rebuilt from its sources = modrt run" "$x.src" "$5"
+}
+for v in 2 3; do
+    export_inner $v src_ball$v ball 1e-9 "$W/src_ball$v.out"
+    export_inner $v src_stair$v stair 0 "$W/src_stair$v.out"
+    if grep -q "canGetAndSetFMUState=\"true\"\|canGetAndSetFMUstate=\"true\"" "$W/xi${v}_src_stair$v/modelDescription.xml" &&
+       grep -q 'canBeInstantiatedOnlyOncePerProcess="true"' "$W/xi${v}_src_stair$v/modelDescription.xml"
+    then ok "stair exported (FMI $v.0): canGetAndSetFMUState true, once per process"
+    else bad "stair exported (FMI $v.0): capability flags"; fi
+done
+# an FMI 2.0 FMU block in an FMI 3.0 FMU
+export_inner 3 src_ball2 ball 1e-9 "$W/src_ball2.out"
+# the inner FMU cannot save its state: neither can the exported one, and it says so
+python3 tests/fmi/mkfmu.py --cc "${CC:-cc}" --version 3 --model stair --source-only --no-state \
+    --out "$W/src_nostate3.fmu" --cflags "-std=c11 -O2 -fPIC -shared -Itools/fmi -Itests/fmi"
+sed "s#@V@#3#g; s#@FMUS@/stair3.fmu#$(cd "$W" && pwd)/src_nostate3.fmu#" \
+    tests/fmi/scenes/stair_fmu.scn > "$W/src_nostate3.scn"
+"$M" run "$W/src_nostate3.scn" > "$W/src_nostate3.out" 2>&1
+export_inner 3 src_nostate3 stair 0 "$W/src_nostate3.out"
+if grep -q 'canGetAndSetFMUState="false" canSerializeFMUState="false"' "$W/xi3_src_nostate3/modelDescription.xml"
+then ok "an FMU block without canGetAndSetFMUState: the exported FMU's flags false"
+else bad "the exported FMU of an FMU block without canGetAndSetFMUState claims it"; fi
+# a binary-only FMU block: refused in one line naming it, nothing written
+"$B/scenec" --fmu "$W/xbin.fmu" "$W/ball_fmu3.scn" > "$W/xbin.out" 2>&1
+if [ $? -eq 1 ] && [ "$(wc -l < "$W/xbin.out")" = 1 ] && [ ! -e "$W/xbin.fmu" ] &&
+   grep -q 'error: FMU of Ball: .* ships no sources (sources/): an image or an exported FMU' "$W/xbin.out"
+then ok "scenec --fmu refuses a binary-only FMU block in one line"
+else bad "scenec --fmu of a binary-only FMU block:"; cat "$W/xbin.out"; fi
+
 # the same equations as defines of the scene language: the same bits (the ball's FMU is
 # also stopped at each lift-off, which a define's root is not: docs/fmi.md)
 for s in osc; do
