@@ -105,6 +105,24 @@ for v in 2 3; do
     done
 done
 
+# modrt sizes: the limits of a per-scene build and the FMU arena its image needs, the line
+# scenec --sizes prints (one function: fmu_scn_sizes). The arena, from the glue's
+# structures on this LP64 host (tests/image.sh): the instance (model_data 72, mode 4,
+# has_next 4, next 8, name 8; 2.0 the callbacks' pointer 8, 3.0 environment and logger 16),
+# "Ball" and its 0 (5, to 8), the first snapshot's FMU state (72 + 4 + 4 + 8): 2.0 200, 3.0 208
+for v in 2 3; do
+    want=$((v == 2 ? 200 : 208))
+    "$M" sizes "$W/src_ball$v.scn" > "$W/sizes$v.out" 2>&1
+    "$B/scenec" --sizes "$W/src_ball$v.scn" > "$W/sizes$v.sc" 2>&1
+    if grep -q "^-DRT_MAX_BLOCKS=1 .* -DFMU_ARENA_BYTES=$want\$" "$W/sizes$v.out" &&
+       cmp -s "$W/sizes$v.out" "$W/sizes$v.sc"; then
+        ok "modrt sizes of the FMI $v.0 ball: -DFMU_ARENA_BYTES=$want, the line scenec --sizes prints"
+    else bad "modrt sizes of the FMI $v.0 ball:"; cat "$W/sizes$v.out" "$W/sizes$v.sc"; fi
+done
+"$M" sizes pi_loop > "$W/sizes_pi.out" 2>&1
+if grep -q '^-DRT_MAX_BLOCKS=' "$W/sizes_pi.out" && ! grep -q FMU_ARENA "$W/sizes_pi.out"
+then ok "modrt sizes of a scene without FMU blocks: no FMU arena"; else bad "modrt sizes pi_loop:"; cat "$W/sizes_pi.out"; fi
+
 # scenes holding an FMU block exported (docs/fmi.md, "FMU blocks in an exported FMU"): the
 # source FMUs above compiled into the exported FMU, driven by the foreign master: the trace
 # hash of modrt run of the scene, its rows against the closed form (the ball to 1e-9 m, the
@@ -118,6 +136,11 @@ export_inner() { # outer FMI version, scene file (in $W), check.py kind, toleran
     if ! "$B/scenec" --fmu "$x.fmu" --fmi-version "$v" "$W/$s.scn" 2> "$x.err"; then
         bad "scenec --fmu --fmi-version $v $s: $(cat "$x.err")"; return 1; fi
     unzip -q -d "$x" "$x.fmu"
+    # its static arena: what scenec --sizes measures for an image of the scene
+    a=$("$B/scenec" --sizes "$W/$s.scn" | sed -n 's/.* -DFMU_ARENA_BYTES=\([0-9]*\)$/\1/p')
+    if [ -n "$a" ] && grep -q "^#define FMU_ARENA_BYTES $a\$" "$x/sources/fmu_blocks_arena.c"
+    then ok "$s.fmu (FMI $v.0): its FMU arena $a bytes, as scenec --sizes measures"
+    else bad "$s.fmu (FMI $v.0): arena '$a': $(grep ARENA "$x/sources/fmu_blocks_arena.c")"; fi
     if python3 "tests/fmi/check_md$v.py" "$x" > "$x.md"; then ok "$s.fmu (FMI $v.0 with an FMU block): $(cat "$x.md")"
     else bad "$s.fmu (FMI $v.0):"; cat "$x.md"; fi
     dt=$(sed -n 's/.*stepSize="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
