@@ -28,6 +28,10 @@
 #define MODRT_SRC_DIR "."
 #endif
 
+#define EX_MAX_SRCS 400    /* source files of an exported FMU */
+#define EX_MAX_INCS 64     /* include directories of its FMU blocks' sources */
+#define EX_MAX_FMUS 16     /* distinct FMUs (model identifiers) of its FMU blocks */
+
 typedef struct ex {
     scn_ctx *c;
     const rt_scene *sc;
@@ -36,9 +40,9 @@ typedef struct ex {
     char *err;
     size_t errlen;
     char token[96];
-    const char *srcs[256];  /* the files of sources/ */
+    const char *srcs[EX_MAX_SRCS]; /* the files of sources/ */
     int nsrcs;
-    const char *incs[64];   /* include directories of the FMU blocks' sources */
+    const char *incs[EX_MAX_INCS]; /* include directories of the FMU blocks' sources */
     int nincs;
     int nfmu;               /* FMU blocks (their sources compiled in, "inner" below) */
     int can_state;          /* every FMU block can save its state */
@@ -87,7 +91,9 @@ static int copy_dir(ex *e, const char *sub)
         snprintf(from, sizeof from, "%s/%s/%s", MODRT_SRC_DIR, sub, de->d_name);
         snprintf(to, sizeof to, "%s/sources/%s/%s", e->dir, sub, de->d_name);
         rc = copy(e, from, to);
-        if (c && rc == 0 && e->nsrcs < 250)
+        if (c && rc == 0 && e->nsrcs >= EX_MAX_SRCS - 16)
+            rc = fail(e, "more than %d source files in %s", EX_MAX_SRCS - 16, sub);
+        else if (c && rc == 0)
             e->srcs[e->nsrcs++] = scn_fmt(e->c, "%s/%s", sub, de->d_name);
     }
     closedir(d);
@@ -195,8 +201,8 @@ static int inner_unit(ex *e, int ver, const char *id, int k, const char *file, c
     fprintf(f, "#include \"fmu_%s/%s\"\n", id, file);
     if (fclose(f) != 0)
         return fail(e, "cannot write %s", p);
-    if (e->nsrcs >= 250)
-        return fail(e, "more than 250 source files");
+    if (e->nsrcs >= EX_MAX_SRCS)
+        return fail(e, "more than %d source files", EX_MAX_SRCS);
     e->srcs[e->nsrcs++] = unit;
     return 0;
 }
@@ -215,8 +221,8 @@ static int inner_block(ex *e, char *line, char ids[][128], char dirs[][4096], in
             return strcmp(dirs[i], src) == 0 ? 0 /* the same FMU in another block */
                  : fail(e, "FMU block %s: another FMU of the scene has its model identifier %s "
                         "(the functions of both would have one name)", blk, id);
-    if (*nids >= 16)
-        return fail(e, "FMU block %s: more than 16 distinct FMUs", blk);
+    if (*nids >= EX_MAX_FMUS)
+        return fail(e, "FMU block %s: more than %d distinct FMUs", blk, EX_MAX_FMUS);
     snprintf(ids[*nids], 128, "%s", id), snprintf(dirs[*nids], 4096, "%s", src), ++*nids;
     char to[4300];
     snprintf(to, sizeof to, "%s/sources/fmu_%s", e->dir, id);
@@ -231,12 +237,13 @@ static int inner_block(ex *e, char *line, char ids[][128], char dirs[][4096], in
             nd += (size_t)snprintf(defs + nd, sizeof defs - (nd < sizeof defs ? nd : sizeof defs),
                                    "#define %.*s %s\n", eq ? (int)(eq - w - 2) : (int)strlen(w + 2),
                                    w + 2, eq ? eq + 1 : "1");
-        } else if (!strncmp(w, "-I", 2) && e->nincs < 60)
+        } else if (!strncmp(w, "-I", 2) && e->nincs < EX_MAX_INCS)
             e->incs[e->nincs++] = scn_fmt(e->c, "fmu_%s/%s", id, w + 2);
     if (nd >= sizeof defs)
         return fail(e, "FMU block %s: too many definitions", blk);
-    if (e->nincs < 60)
-        e->incs[e->nincs++] = scn_fmt(e->c, "fmu_%s", id);
+    if (e->nincs >= EX_MAX_INCS)
+        return fail(e, "FMU block %s: more than %d include directories", blk, EX_MAX_INCS - 1);
+    e->incs[e->nincs++] = scn_fmt(e->c, "fmu_%s", id);
     save = NULL;
     int k = 0;
     for (w = strtok_r(files, " \n", &save); w; w = strtok_r(NULL, " \n", &save))
@@ -261,7 +268,7 @@ static int inner(ex *e, const char *scene_c)
     FILE *f = fopen(scene_c, "r");
     if (!f)
         return fail(e, "cannot read %s", scene_c);
-    static char line[16384], ids[16][128], dirs[16][4096];
+    static char line[16384], ids[EX_MAX_FMUS][128], dirs[EX_MAX_FMUS][4096];
     int nids = 0, rc = importer(e);
     while (rc == 0 && fgets(line, sizeof line, f))
         if (!strncmp(line, "// fmu-build: ", 14))
@@ -347,7 +354,7 @@ static int compile(ex *e)
         return fail(e, "cannot create %s", out);
     snprintf(out, sizeof out, "%s/binaries/%s/%s.so", e->dir, plat, e->sc->name);
     const char *cc = getenv("CC") && *getenv("CC") ? getenv("CC") : "cc";
-    const char *argv[300];
+    const char *argv[EX_MAX_SRCS + EX_MAX_INCS + 32];
     int n = 0;
     argv[n++] = cc;
     const char *flags[] = {"-std=c11", "-O2", "-fPIC", "-shared", "-ffp-contract=off",
