@@ -413,7 +413,7 @@ image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 	    "$(CLOCK_MHZ)" "$(TICKS)" "$(MEASURE)"
 TEST_SUITES += test-image
 # the CMSIS port's hand-built images beside `make image`'s (their build dirs are apart)
-test-image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
+test-image: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO) build/host/fmi/snap
 	+@mkdir -p build/cmsis; sh tests/cmsis/check.sh > build/cmsis/check.log 2>&1 & p=$$!; \
 	 sh tests/image.sh; r=$$?; wait $$p; c=$$?; cat build/cmsis/check.log; \
 	 [ $$r -eq 0 ] && [ $$c -eq 0 ]

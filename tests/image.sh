@@ -149,5 +149,32 @@ if make -s image MEASURE=0 TARGET=m4f SCENE="$W/fmu_ball3.scn" IMAGE_CFLAGS=-DFM
        build/image/m4f/fmu_ball3.elf 2>&1 | grep -q '^rt scene ball_fmu3 init parameter out of range: block Ball'
 then ok; else bad "an FMU image with a 64-byte arena does not fail its rt_init in one line"; fi
 
+# snapshots in an image (tests/fmi/snap_image.c as the application, docs/fmi.md
+# "Snapshots"): a run snapshotted (rt_snapshot, the FMU's own state in it), run on across
+# the FMU's events, restored and run on again. The stair (3.0: its counter lives in the
+# FMU's memory; two blocks of one FMU) at tick 10 of 1/8 s, to 3 s; the ball (2.0: its
+# state through allocateMemory) at 0.6 s, to 1.5 s. On m4f the straight, the run-on and
+# the restored hash must all be the host's straight run of the same scene
+# (tests/fmi/snap.c, whose restored rows make test-fmi checks against the closed forms)
+for c in stair:3:10:24 bouncing:2:600:1500; do
+    md=${c%%:*} r=${c#*:} v=${r%%:*} r=${r#*:} n1=${r%%:*} n2=${r#*:}
+    s=$([ "$md" = stair ] && echo stair || echo ball)
+    [ -e "$W/src_$md$v.fmu" ] || python3 tests/fmi/mkfmu.py --cc "${CC:-cc}" --version $v \
+        --model $md --source-only --out "$W/src_$md$v.fmu" --cflags "-std=c11 -O2 -fPIC -shared -Itools/fmi -Itests/fmi"
+    sed "s#@V@#$v#g; s#@FMUS@/$md$v.fmu#$PWD/$W/src_$md$v.fmu#" "tests/fmi/scenes/${s}_fmu.scn" > "$W/snap_$s$v.scn"
+    dt=$([ "$md" = stair ] && echo 0.125 || echo 0.001)
+    want=$(build/host/fmi/snap "$W/snap_$s$v.scn" "$(awk "BEGIN { print $n1 * $dt }")" "$(awk "BEGIN { print $n2 * $dt }")" \
+           "$W/snap_$s$v.csv" | sed -n 's/^straight: //p')
+    if IMAGE_MAIN=tests/fmi/snap_image.c make -s image MEASURE=0 TARGET=m4f SCENE="$W/snap_$s$v.scn" \
+           IMAGE_CFLAGS="-DSNAP_N1=$n1 -DSNAP_N2=$n2" > "$W/snap$s$v.out" 2>&1; then
+        # shellcheck disable=SC2046 # the run command is meant to split into words
+        got=$(timeout 300 $(make -s print-TARGET_RUN_m4f | sed "s/^timeout [0-9]* //; s#-kernel\$#-plugin \
+              build/host/libinsn_count.so,limit=$budget -kernel#") "build/image/m4f/snap_$s$v.elf" 2>&1)
+        if [ -n "$want" ] && echo "$got" | grep -q "^snap scene ${s}_fmu$v snapshot ok restore ok straight $want on $want restored $want status ok\$"
+        then ok; echo "image: m4f FMI $v.0 $s snapshotted at tick $n1, restored after tick $n2: hash $want = the host's"
+        else bad "m4f FMI $v.0 $s snapshot: host $want, image: $got"; fi
+    else bad "m4f snapshot image of the FMI $v.0 $s did not build:"; cat "$W/snap$s$v.out"; fi
+done
+
 echo "image: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -10,8 +10,11 @@
 # instruction-count plugin for TICKS ticks (default: the whole scene, at most
 # IMAGE_TICKS_MAX), and the slowest tick at CLOCK_MHZ (default: the target's stated clock
 # of make footprint) is compared with the scene's base tick. MEASURE=0: the image only.
+# IMAGE_MAIN (environment) names another application than ports/common/image_main.c (a
+# test's, e.g. tests/fmi/snap_image.c).
 set -u
 target=$1 scene=$2 console=$3 extra=$4 clock=${5:-} ticks=${6:-} measure=${7:-1}
+main=${IMAGE_MAIN:-ports/common/image_main.c}
 IMAGE_TICKS_MAX=10000
 targets=$(make -s print-CROSS_TARGETS)
 fail() { echo "make image: $*" >&2; exit 2; }
@@ -84,7 +87,11 @@ if [ -n "$fmu_lines" ]; then
     case " $(make -s "print-TARGET_LDFLAGS_$target") " in *" -nostdlib "*) ;; *) libc_c= ;; esac
     fmusrc="tools/fmi/fmu_inst.c tools/fmi/fmu_state.c tools/fmi/fmu_call.c tools/fmi/fmu_arena.c $libc_c"
     echo "$fmu_lines" > "$dir/$name.fmu"
+    seen=
     while read -r blk ver id src words; do
+        # several blocks of one FMU share its functions: compiled once
+        case " $seen " in *" $id "*) continue ;; esac
+        seen="$seen $id"
         defs="-DFMI${ver}_FUNCTION_PREFIX=${id}_"
         [ "$ver" = 3 ] && defs="$defs -Dcalloc=fmu_arena_calloc -Dmalloc=fmu_arena_malloc -Dfree=fmu_arena_free"
         files= flags=
@@ -118,7 +125,7 @@ models=$(ls models/*.c | grep -v '^models/registry.c$')
 obj=$dir/obj-$name
 rm -rf "$obj" && mkdir -p "$obj"
 export IMG_CC="$cc" IMG_FLAGS="$cflags $cdef $sizes -DRT_SCENE=$sym $extra${fmusrc:+ -DFMU_TARGET -Itools/fmi $fmulibc}" IMG_OBJ="$obj"
-srcs="ports/common/image_main.c $dir/$name.c $rt $models $ports $linksrc $fmusrc"
+srcs="$main $dir/$name.c $rt $models $ports $linksrc $fmusrc"
 # shellcheck disable=SC2086,SC2016 # the lists are meant to split; $1 expands in the child
 printf '%s\n' $srcs | xargs -P "${JOBS:-2}" -I{} sh -c \
     'o=$IMG_OBJ/$(echo "$1" | tr / _).o; $IMG_CC $IMG_FLAGS -c "$1" -o "$o"' sh {} ||

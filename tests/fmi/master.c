@@ -8,13 +8,18 @@
  *   2. runs a second instance in steps of 10 ticks: the outputs must be the same bits as
  *      the first run's at those points;
  *   3. saves the FMU state at a tenth of the run (fmi3GetFMUState, also serialized and
- *      read back), steps on, goes back to the saved state and steps again: the same bits;
+ *      read back), steps on, goes back to the saved state and steps again: the same bits
+ *      on every row
+ *      (an FMU whose description says it cannot save its state must refuse, logged);
  *   4. asks for a step of 1.5 ticks and for one from a wrong communication point: both
  *      fmi3Error / fmi2Error with a logged reason, nothing changed;
  *   5. resets the instance mid-run, initializes it again and steps: the first run's bits;
+ *   one instance lives at a time (each freed before the next is made); an FMU that says
+ *   canBeInstantiatedOnlyOncePerProcess must refuse a second one while the first lives;
  *   (2.0) 6. the status functions after the last step (fmi2LastSuccessfulTime the stop
  *      time, fmi2Terminated true), an Integer request refused, every block it allocated
  *      for the FMU freed once the instances are.
+ * MASTER_CSV names a file for the first run's rows (t and the recorded outputs).
  * Usage: master FMU_DIR; prints "ok: ..." / "FAIL: ..." lines and "hash: H". */
 #define _POSIX_C_SOURCE 200809L
 #include <dlfcn.h>
@@ -79,6 +84,8 @@ static size_t nout, nrec; /* outputs; the first nrec are the recorded signals */
 static double dt, t_end;
 static char last_log[512];
 static int failures;
+static int once; /* canBeInstantiatedOnlyOncePerProcess (fmu_md reads Model Exchange's only) */
+static int can_state; /* canGetAndSetFMUState (3.0) / canGetAndSetFMUstate (2.0) */
 
 static void logger(fmi3InstanceEnvironment env, fmi3Status s, fmi3String cat, fmi3String msg)
 {
@@ -262,6 +269,9 @@ static int load(const char *dir)
     size_t n = x ? fread(buf, 1, sizeof buf, x) : 0;
     if (x)
         fclose(x);
+    once = n && strstr(buf, "canBeInstantiatedOnlyOncePerProcess=\"true\"") != NULL;
+    can_state = n && (strstr(buf, "canGetAndSetFMUState=\"true\"") ||
+                      strstr(buf, "canGetAndSetFMUstate=\"true\""));
     if (!n || fmu_md_parse(buf, n, &md, err, sizeof err) != 0 || !md.cs_id) {
         printf("FAIL: modelDescription.xml: %s\n", n ? err : "unreadable");
         return -1;
@@ -361,6 +371,28 @@ static void status2(void *c)
           "fmi2GetInteger of a Real refused with a logged reason, of nothing served");
 }
 
+/* the first run's recorded outputs at every communication point, as modrt run --csv
+   writes a trace (t, then the recorded signals by name): for run.sh's closed forms */
+static void write_csv(const char *path, const double *rows, long n)
+{
+    FILE *o = fopen(path, "w");
+    if (!o) {
+        check(0, "MASTER_CSV writable");
+        return;
+    }
+    fputs("t", o);
+    for (size_t i = 0, j = 0; i < md.nv && j < nrec; i++)
+        if (md.v[i].causality == FMU_C_OUTPUT && strncmp(md.v[i].name, "export.", 7) != 0)
+            fprintf(o, ",%s", md.v[i].name), j++;
+    for (long k = 0; k <= n; k++) {
+        fprintf(o, "\n%.17g", k * dt);
+        for (size_t i = 0; i < nrec; i++)
+            fprintf(o, ",%.17g", rows[(size_t)k * nout + i]);
+    }
+    fputs("\n", o);
+    fclose(o);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2 || load(argv[1]) != 0)
@@ -380,8 +412,19 @@ int main(int argc, char **argv)
             break;
     }
     printf("hash: %016llx\n", (unsigned long long)h);
+    if (getenv("MASTER_CSV"))
+        write_csv(getenv("MASTER_CSV"), first, n);
     if (md.version == 2)
         status2(a);
+    if (once) { /* a second instance while the first lives: refused, saying why */
+        last_log[0] = 0;
+        void *two = md.version == 2
+                  ? (void *)f2.inst("second", fmi2CoSimulation, md.token, "", &callbacks2, 0, 0)
+                  : (void *)f.inst("second", md.token, "", 0, 0, 0, 0, NULL, 0, NULL, logger, NULL);
+        check(!two && strstr(last_log, "canBeInstantiatedOnlyOncePerProcess"),
+              "canBeInstantiatedOnlyOncePerProcess: a second instance refused, logged");
+    }
+    finish(a); /* one instance at a time: an FMU may be instantiable only once per process */
 
     /* 2: steps of 10 ticks land on the same bits */
     void *b = start(argv[1]);
@@ -400,18 +443,27 @@ int main(int argc, char **argv)
     void *s = NULL, *s2 = NULL, *ser = NULL;
     for (long k = 0; k < k0; k++)
         step(b, k * dt, dt);
+    last_log[0] = 0;
     int ok = save(b, &s) == 0 && reserialize(b, s, &s2, &ser) == 0;
+    if (!can_state) /* the flag false: the FMU must say it cannot, not save half a state */
+        check(!ok && last_log[0], "canGetAndSetFMUState false: the FMU state refused, logged");
     for (long k = k0; k < k0 + m; k++)
         step(b, k * dt, dt);
     outputs(b, v);
     ok = ok && restore(b, s2) == 0;
-    for (long k = k0; k < k0 + m; k++)
-        ok = ok && step(b, k * dt, dt) == 0;
-    outputs(b, w);
-    check(ok && !memcmp(v, w, nout * sizeof *v) &&
-          !memcmp(v, first + (size_t)(k0 + m) * nout, nout * sizeof *v),
-          "a saved and serialized FMU state, restored, steps to the same bits");
-    drop(b, &s), drop(b, &s2);
+    for (long k = k0; can_state && ok && k < k0 + m; k++) { /* every row, not the last only */
+        ok = step(b, k * dt, dt) == 0;
+        outputs(b, w);
+        ok = ok && !memcmp(w, first + (size_t)(k + 1) * nout, nout * sizeof *w);
+    }
+    if (can_state)
+        check(ok && !memcmp(v, w, nout * sizeof *v) &&
+              !memcmp(v, first + (size_t)(k0 + m) * nout, nout * sizeof *v),
+              "a saved and serialized FMU state, restored, steps to the same bits on every row");
+    if (s)
+        drop(b, &s);
+    if (s2)
+        drop(b, &s2);
 
     /* 4: steps the FMU must refuse */
     outputs(b, v);
@@ -434,7 +486,7 @@ int main(int argc, char **argv)
     outputs(b, v);
     check(ok5 && !memcmp(v, first + (size_t)k0 * nout, nout * sizeof *v),
           "Reset and initialized again, it steps to the first run's bits");
-    finish(a), finish(b);
+    finish(b);
     free(first), free(ser);
     if (getenv("MASTER_PI_CSV"))
         failures += closed_loop(argv[1], getenv("MASTER_PI_CSV"), n);

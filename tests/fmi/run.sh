@@ -142,6 +142,87 @@ for v in 2 3; do
         "$W/src_osc$v.out" "$W/osc_fmu$v.out"
 done
 
+# modrt sizes: the limits of a per-scene build and the FMU arena its image needs, the line
+# scenec --sizes prints (one function: fmu_scn_sizes). The arena, from the glue's
+# structures on this LP64 host (tests/image.sh): the instance (model_data 72, mode 4,
+# has_next 4, next 8, name 8; 2.0 the callbacks' pointer 8, 3.0 environment and logger 16),
+# "Ball" and its 0 (5, to 8), the first snapshot's FMU state (72 + 4 + 4 + 8): 2.0 200, 3.0 208
+for v in 2 3; do
+    want=$((v == 2 ? 200 : 208))
+    "$M" sizes "$W/src_ball$v.scn" > "$W/sizes$v.out" 2>&1
+    "$B/scenec" --sizes "$W/src_ball$v.scn" > "$W/sizes$v.sc" 2>&1
+    if grep -q "^-DRT_MAX_BLOCKS=1 .* -DFMU_ARENA_BYTES=$want\$" "$W/sizes$v.out" &&
+       cmp -s "$W/sizes$v.out" "$W/sizes$v.sc"; then
+        ok "modrt sizes of the FMI $v.0 ball: -DFMU_ARENA_BYTES=$want, the line scenec --sizes prints"
+    else bad "modrt sizes of the FMI $v.0 ball:"; cat "$W/sizes$v.out" "$W/sizes$v.sc"; fi
+done
+"$M" sizes pi_loop > "$W/sizes_pi.out" 2>&1
+if grep -q '^-DRT_MAX_BLOCKS=' "$W/sizes_pi.out" && ! grep -q FMU_ARENA "$W/sizes_pi.out"
+then ok "modrt sizes of a scene without FMU blocks: no FMU arena"; else bad "modrt sizes pi_loop:"; cat "$W/sizes_pi.out"; fi
+
+# scenes holding an FMU block exported (docs/fmi.md, "FMU blocks in an exported FMU"): the
+# source FMUs above compiled into the exported FMU, driven by the foreign master: the trace
+# hash of modrt run of the scene, its rows against the closed form (the ball to 1e-9 m, the
+# stair's counter, which lives in the inner FMU's memory, exactly), a state saved and
+# restored (the inner FMU's with it) stepping to the same bits; the binary rebuilt from the
+# exported sources alone, the same hash. An inner FMU that cannot save its state makes the
+# exported one say so; a binary-only FMU is refused in one line naming the block
+export_inner() { # outer FMI version, scene file (in $W), check.py kind, tolerance, summary of modrt run
+    v=$1 s=$2 x=$W/xi$1_$2
+    rm -rf "$x" && mkdir -p "$x"
+    if ! "$B/scenec" --fmu "$x.fmu" --fmi-version "$v" "$W/$s.scn" 2> "$x.err"; then
+        bad "scenec --fmu --fmi-version $v $s: $(cat "$x.err")"; return 1; fi
+    unzip -q -d "$x" "$x.fmu"
+    # its static arena: what scenec --sizes measures for an image of the scene
+    a=$("$B/scenec" --sizes "$W/$s.scn" | sed -n 's/.* -DFMU_ARENA_BYTES=\([0-9]*\)$/\1/p')
+    if [ -n "$a" ] && grep -q "^#define FMU_ARENA_BYTES $a\$" "$x/sources/fmu_blocks_arena.c"
+    then ok "$s.fmu (FMI $v.0): its FMU arena $a bytes, as scenec --sizes measures"
+    else bad "$s.fmu (FMI $v.0): arena '$a': $(grep ARENA "$x/sources/fmu_blocks_arena.c")"; fi
+    if python3 "tests/fmi/check_md$v.py" "$x" > "$x.md"; then ok "$s.fmu (FMI $v.0 with an FMU block): $(cat "$x.md")"
+    else bad "$s.fmu (FMI $v.0):"; cat "$x.md"; fi
+    dt=$(sed -n 's/.*stepSize="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
+    te=$(sed -n 's/.*stopTime="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
+    MASTER_CSV="$x.csv" MASTER_DT=$dt MASTER_END=$te "$T/master" "$x" > "$x.master" 2>&1
+    p=$(grep -c '^ok' "$x.master") f=$(grep -c '^FAIL' "$x.master")
+    pass=$((pass + p)) fail=$((fail + f))
+    grep -E '^(ok|FAIL)' "$x.master" | sed "s/\$/ ($s exported, FMI $v.0)/"
+    same_hash "$s exported as FMI $v.0 with its FMU block, under the master = modrt run" "$x.master" "$5"
+    if python3 tests/fmi/check.py "$3" "$x.csv" "$4" > "$x.chk"; then ok "$s exported (FMI $v.0), the master's rows: $(cat "$x.chk")"
+    else bad "$s exported (FMI $v.0), the master's rows:"; cat "$x.chk"; fi
+    id=$(sed -n 's/.*<CoSimulation modelIdentifier="\([^"]*\)".*/\1/p' "$x/modelDescription.xml")
+    so=$x/binaries/$([ "$v" = 2 ] && echo linux64 || echo x86_64-linux)/$id.so
+    rm -f "$so"
+    python3 tests/fmi/build_sources.py "$x" "$so" &&
+        MASTER_DT=$dt MASTER_END=$te "$T/master" "$x" > "$x.src" 2>&1
+    same_hash "$s exported (FMI $v.0): its binary rebuilt from its sources = modrt run" "$x.src" "$5"
+}
+for v in 2 3; do
+    export_inner $v src_ball$v ball 1e-9 "$W/src_ball$v.out"
+    export_inner $v src_stair$v stair 0 "$W/src_stair$v.out"
+    if grep -q "canGetAndSetFMUState=\"true\"\|canGetAndSetFMUstate=\"true\"" "$W/xi${v}_src_stair$v/modelDescription.xml" &&
+       grep -q 'canBeInstantiatedOnlyOncePerProcess="true"' "$W/xi${v}_src_stair$v/modelDescription.xml"
+    then ok "stair exported (FMI $v.0): canGetAndSetFMUState true, once per process"
+    else bad "stair exported (FMI $v.0): capability flags"; fi
+done
+# an FMI 2.0 FMU block in an FMI 3.0 FMU
+export_inner 3 src_ball2 ball 1e-9 "$W/src_ball2.out"
+# the inner FMU cannot save its state: neither can the exported one, and it says so
+python3 tests/fmi/mkfmu.py --cc "${CC:-cc}" --version 3 --model stair --source-only --no-state \
+    --out "$W/src_nostate3.fmu" --cflags "-std=c11 -O2 -fPIC -shared -Itools/fmi -Itests/fmi"
+sed "s#@V@#3#g; s#@FMUS@/stair3.fmu#$(cd "$W" && pwd)/src_nostate3.fmu#" \
+    tests/fmi/scenes/stair_fmu.scn > "$W/src_nostate3.scn"
+"$M" run "$W/src_nostate3.scn" > "$W/src_nostate3.out" 2>&1
+export_inner 3 src_nostate3 stair 0 "$W/src_nostate3.out"
+if grep -q 'canGetAndSetFMUState="false" canSerializeFMUState="false"' "$W/xi3_src_nostate3/modelDescription.xml"
+then ok "an FMU block without canGetAndSetFMUState: the exported FMU's flags false"
+else bad "the exported FMU of an FMU block without canGetAndSetFMUState claims it"; fi
+# a binary-only FMU block: refused in one line naming it, nothing written
+"$B/scenec" --fmu "$W/xbin.fmu" "$W/ball_fmu3.scn" > "$W/xbin.out" 2>&1
+if [ $? -eq 1 ] && [ "$(wc -l < "$W/xbin.out")" = 1 ] && [ ! -e "$W/xbin.fmu" ] &&
+   grep -q 'error: FMU of Ball: .* ships no sources (sources/): an image or an exported FMU' "$W/xbin.out"
+then ok "scenec --fmu refuses a binary-only FMU block in one line"
+else bad "scenec --fmu of a binary-only FMU block:"; cat "$W/xbin.out"; fi
+
 # the same equations as defines of the scene language: the same bits (the ball's FMU is
 # also stopped at each lift-off, which a define's root is not: docs/fmi.md)
 for s in osc; do

@@ -94,8 +94,9 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
     snprintf(src, sizeof src, "%s/sources", m->dir);
     struct stat st;
     if (stat(src, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        snprintf(err, errlen, "%s ships no sources (sources/): an image compiles an FMU from "
-                 "its sources, a binary for the host cannot go into it", m->path);
+        snprintf(err, errlen, "%s ships no sources (sources/): an image or an exported FMU "
+                 "compiles an FMU from its sources, a binary for the host cannot go into it",
+                 m->path);
         return -1;
     }
     snprintf(pre, sizeof pre, "fmu_%s", in->block);

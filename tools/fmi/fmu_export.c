@@ -21,10 +21,16 @@
 #include <zip.h>
 
 #include "fmu_cs_vars.h"
+#include "fmu_int.h" /* the scene's FMU blocks: their models' descriptions */
+#include "fmu_scn.h"
 
 #ifndef MODRT_SRC_DIR
 #define MODRT_SRC_DIR "."
 #endif
+
+#define EX_MAX_SRCS 400    /* source files of an exported FMU */
+#define EX_MAX_INCS 64     /* include directories of its FMU blocks' sources */
+#define EX_MAX_FMUS 16     /* distinct FMUs (model identifiers) of its FMU blocks */
 
 typedef struct ex {
     scn_ctx *c;
@@ -34,8 +40,12 @@ typedef struct ex {
     char *err;
     size_t errlen;
     char token[96];
-    const char *srcs[256];  /* the files of sources/ */
+    const char *srcs[EX_MAX_SRCS]; /* the files of sources/ */
     int nsrcs;
+    const char *incs[EX_MAX_INCS]; /* include directories of the FMU blocks' sources */
+    int nincs;
+    int nfmu;               /* FMU blocks (their sources compiled in, "inner" below) */
+    int can_state;          /* every FMU block can save its state */
 } ex;
 
 static int fail(ex *e, const char *fmt, ...)
@@ -81,7 +91,9 @@ static int copy_dir(ex *e, const char *sub)
         snprintf(from, sizeof from, "%s/%s/%s", MODRT_SRC_DIR, sub, de->d_name);
         snprintf(to, sizeof to, "%s/sources/%s/%s", e->dir, sub, de->d_name);
         rc = copy(e, from, to);
-        if (c && rc == 0 && e->nsrcs < 250)
+        if (c && rc == 0 && e->nsrcs >= EX_MAX_SRCS - 16)
+            rc = fail(e, "more than %d source files in %s", EX_MAX_SRCS - 16, sub);
+        else if (c && rc == 0)
             e->srcs[e->nsrcs++] = scn_fmt(e->c, "%s/%s", sub, de->d_name);
     }
     closedir(d);
@@ -99,6 +111,170 @@ static unsigned long long hash_file(const char *path)
     if (f)
         fclose(f);
     return h;
+}
+
+/* ------------------------------------------------------------------ FMU blocks */
+
+/* a directory tree (regular files and directories) copied */
+static int copy_tree(ex *e, const char *from, const char *to)
+{
+    DIR *d = opendir(from);
+    struct dirent *de;
+    if (!d)
+        return fail(e, "cannot read %s", from);
+    int rc = mkdir(to, 0755) == 0 ? 0 : fail(e, "cannot create %s: %s", to, strerror(errno));
+    while (rc == 0 && (de = readdir(d))) {
+        if (!strcmp(de->d_name, ".") || !strcmp(de->d_name, ".."))
+            continue;
+        char *f = scn_fmt(e->c, "%s/%s", from, de->d_name), *t = scn_fmt(e->c, "%s/%s", to, de->d_name);
+        struct stat st;
+        if (lstat(f, &st) != 0)
+            rc = fail(e, "cannot stat %s", f);
+        else if (S_ISDIR(st.st_mode))
+            rc = copy_tree(e, f, t);
+        else if (S_ISREG(st.st_mode))
+            rc = copy(e, f, t);
+    }
+    closedir(d);
+    return rc;
+}
+
+/* the importer's calling sequence (fmu_inst.c, fmu_state.c, fmu_call.c, fmu_arena.c)
+   under sources/fmi/, each compiled through a unit at the root that builds it as an image
+   does (FMU_TARGET: the FMU's functions bound statically, its memory the static arena of
+   FMU_ARENA_BYTES bytes scenec measured), whatever the importer defines */
+static int importer(ex *e)
+{
+    static const char *const c[] = {"fmu_inst.c", "fmu_state.c", "fmu_call.c", "fmu_arena.c"};
+    static const char *const h[] = {"fmu_int.h", "fmu.h", "fmu_md.h"};
+    char from[4200], to[4300];
+    snprintf(to, sizeof to, "%s/sources/fmi", e->dir);
+    if (mkdir(to, 0755) != 0)
+        return fail(e, "cannot create %s: %s", to, strerror(errno));
+    long arena = fmu_scn_sizes(NULL, NULL, NULL, e->sc, e->c->sim); /* as scenec --sizes */
+    for (int i = 0; i < 7; i++) {
+        const char *n = i < 4 ? c[i] : h[i - 4];
+        snprintf(from, sizeof from, "%s/tools/fmi/%s", MODRT_SRC_DIR, n);
+        snprintf(to, sizeof to, "%s/sources/%s%s", e->dir, i < 4 ? "fmi/" : "", n);
+        if (copy(e, from, to))
+            return -1;
+        if (i >= 4)
+            continue;
+        const char *unit = scn_fmt(e->c, "fmu_blocks_%s", n + 4);
+        snprintf(to, sizeof to, "%s/sources/%s", e->dir, unit);
+        FILE *f = fopen(to, "w");
+        if (!f)
+            return fail(e, "cannot write %s", to);
+        fprintf(f, "/* %s - written by scenec --fmu: fmi/%s for the FMU blocks, built as an "
+                   "image builds it */\n#define FMU_TARGET 1\n", unit, n);
+        if (arena > 0)
+            fprintf(f, "#define FMU_ARENA_BYTES %ld\n", arena);
+        fprintf(f, "#include \"fmi/%s\"\n", n);
+        if (fclose(f) != 0)
+            return fail(e, "cannot write %s", to);
+        e->srcs[e->nsrcs++] = unit;
+    }
+    return 0;
+}
+
+/* one source file of an FMU block's FMU, compiled through a unit of its own that fixes
+   what its FMI functions are named (<ID>_fmi3GetFloat64 ...: FMI*_FUNCTION_PREFIX, never
+   the plain names the exported FMU's own functions have, whatever the importer of the
+   exported FMU defines), its definitions and (FMI 3.0) its calloc, malloc and free: the
+   static arena */
+static int inner_unit(ex *e, int ver, const char *id, int k, const char *file, const char *defs)
+{
+    const char *unit = scn_fmt(e->c, "fmu_%s_%d.c", id, k);
+    char p[4300];
+    snprintf(p, sizeof p, "%s/sources/%s", e->dir, unit);
+    FILE *f = fopen(p, "w");
+    if (!f)
+        return fail(e, "cannot write %s", p);
+    fprintf(f, "/* %s - written by scenec --fmu: %s of the FMU %s, its functions named "
+               "%s_fmi%d... */\n#undef FMI2_OVERRIDE_FUNCTION_PREFIX\n"
+               "#undef FMI3_OVERRIDE_FUNCTION_PREFIX\n#undef FMI3_ACTUAL_FUNCTION_PREFIX\n"
+               "#define FMI%d_FUNCTION_PREFIX %s_\n", unit, file, id, id, ver, ver, id);
+    if (ver == 3)
+        fputs("#define calloc fmu_arena_calloc\n#define malloc fmu_arena_malloc\n"
+              "#define free fmu_arena_free\n", f);
+    fputs(defs, f);
+    fprintf(f, "#include \"fmu_%s/%s\"\n", id, file);
+    if (fclose(f) != 0)
+        return fail(e, "cannot write %s", p);
+    if (e->nsrcs >= EX_MAX_SRCS)
+        return fail(e, "more than %d source files", EX_MAX_SRCS);
+    e->srcs[e->nsrcs++] = unit;
+    return 0;
+}
+
+/* one "// fmu-build: BLOCK VERSION ID SOURCES WORDS..." line of scene.c (fmu_emit.c):
+   the FMU's sources copied to sources/fmu_ID/ once per model identifier, each file
+   compiled through its unit (inner_unit) */
+static int inner_block(ex *e, char *line, char ids[][128], char dirs[][4096], int *nids)
+{
+    char blk[128], id[128], src[4096];
+    int ver, at = 0;
+    if (sscanf(line, "// fmu-build: %127s %d %127s %4095s %n", blk, &ver, id, src, &at) != 4 || !at)
+        return fail(e, "scene.c: an fmu-build line scenec cannot read: %s", line);
+    for (int i = 0; i < *nids; i++)
+        if (!strcmp(ids[i], id))
+            return strcmp(dirs[i], src) == 0 ? 0 /* the same FMU in another block */
+                 : fail(e, "FMU block %s: another FMU of the scene has its model identifier %s "
+                        "(the functions of both would have one name)", blk, id);
+    if (*nids >= EX_MAX_FMUS)
+        return fail(e, "FMU block %s: more than %d distinct FMUs", blk, EX_MAX_FMUS);
+    snprintf(ids[*nids], 128, "%s", id), snprintf(dirs[*nids], 4096, "%s", src), ++*nids;
+    char to[4300];
+    snprintf(to, sizeof to, "%s/sources/fmu_%s", e->dir, id);
+    if (copy_tree(e, src, to))
+        return -1;
+    char defs[2048] = "", *w, *save = NULL, files[16384];
+    size_t nd = 0;
+    snprintf(files, sizeof files, "%s", line + at); /* (strtok_r cuts the line) */
+    for (w = strtok_r(line + at, " \n", &save); w; w = strtok_r(NULL, " \n", &save))
+        if (!strncmp(w, "-D", 2)) {
+            char *eq = strchr(w, '=');
+            nd += (size_t)snprintf(defs + nd, sizeof defs - (nd < sizeof defs ? nd : sizeof defs),
+                                   "#define %.*s %s\n", eq ? (int)(eq - w - 2) : (int)strlen(w + 2),
+                                   w + 2, eq ? eq + 1 : "1");
+        } else if (!strncmp(w, "-I", 2) && e->nincs < EX_MAX_INCS)
+            e->incs[e->nincs++] = scn_fmt(e->c, "fmu_%s/%s", id, w + 2);
+    if (nd >= sizeof defs)
+        return fail(e, "FMU block %s: too many definitions", blk);
+    if (e->nincs >= EX_MAX_INCS)
+        return fail(e, "FMU block %s: more than %d include directories", blk, EX_MAX_INCS - 1);
+    e->incs[e->nincs++] = scn_fmt(e->c, "fmu_%s", id);
+    save = NULL;
+    int k = 0;
+    for (w = strtok_r(files, " \n", &save); w; w = strtok_r(NULL, " \n", &save))
+        if (w[0] != '-' && inner_unit(e, ver, id, ++k, w, defs))
+            return -1;
+    return 0;
+}
+
+/* the scene's FMU blocks (docs/fmi.md, "FMU blocks in an exported FMU"): fmu_emit.c wrote
+   them into scene.c with their build lines, which are read back here as tools/image.sh
+   reads them; whether every one can save its state decides the FMU's capability flags */
+static int inner(ex *e, const char *scene_c)
+{
+    e->can_state = 1;
+    for (uint16_t i = 0; i < e->c->sc.nblk; i++)
+        if (e->c->sc.blk[i].fmu) {
+            const fmu_inst *in = e->c->sc.blk[i].kind->spec;
+            e->nfmu++, e->can_state &= in->m->md.can_state;
+        }
+    if (!e->nfmu)
+        return 0;
+    FILE *f = fopen(scene_c, "r");
+    if (!f)
+        return fail(e, "cannot read %s", scene_c);
+    static char line[16384], ids[EX_MAX_FMUS][128], dirs[EX_MAX_FMUS][4096];
+    int nids = 0, rc = importer(e);
+    while (rc == 0 && fgets(line, sizeof line, f))
+        if (!strncmp(line, "// fmu-build: ", 14))
+            rc = inner_block(e, line, ids, dirs, &nids);
+    fclose(f);
+    return rc;
 }
 
 static int sources(ex *e)
@@ -122,9 +298,14 @@ static int sources(ex *e)
     e->srcs[e->nsrcs++] = fmi, e->srcs[e->nsrcs++] = "cs_slave.c";
     snprintf(p, sizeof p, "%s/sources/scene.c", e->dir);
     FILE *f = fopen(p, "w");
-    if (!f || scn_emit(e->c, f) != 0 || fclose(f) != 0)
-        return fail(e, "cannot write %s", p);
+    int emitted = f && scn_emit(e->c, f) == 0;
+    if (f)
+        emitted = fclose(f) == 0 && emitted;
+    if (!emitted) /* what stopped the C (an FMU block without sources), else the file */
+        return e->c->err ? fail(e, "%s", e->c->msg) : fail(e, "cannot write %s", p);
     e->srcs[e->nsrcs++] = "scene.c";
+    if (inner(e, p) != 0)
+        return -1;
     snprintf(e->token, sizeof e->token, "{modrt-%s-%016llx}", e->sc->name, hash_file(p));
     /* which scene the FMI functions serve, under which token and names */
     snprintf(p, sizeof p, "%s/sources/fmu_cs_id.h", e->dir);
@@ -135,6 +316,8 @@ static int sources(ex *e)
                "#define FMU_CS_SCENE %s%s\n#define FMU_CS_TOKEN \"%s\"\n"
                "#define FMI%d_FUNCTION_PREFIX %s_\n",
             SCN_SYMBOL_PREFIX, e->sc->name, e->token, e->version, e->sc->name);
+    if (e->nfmu) /* its FMU blocks are static instances (cs_claim) */
+        fputs("#define FMU_CS_ONCE 1\n", f);
     return fclose(f) == 0 ? 0 : fail(e, "cannot write %s", p);
 }
 
@@ -152,7 +335,10 @@ static int build_description(ex *e)
     for (int i = 0; i < e->nsrcs; i++)
         fprintf(f, "      <SourceFile name=\"%s\"/>\n", e->srcs[i]);
     fputs("      <IncludeDirectory name=\".\"/>\n      <IncludeDirectory name=\"rt\"/>\n"
-          "      <IncludeDirectory name=\"models\"/>\n    </SourceFileSet>\n"
+          "      <IncludeDirectory name=\"models\"/>\n", f);
+    for (int i = 0; i < e->nincs; i++)
+        fprintf(f, "      <IncludeDirectory name=\"%s\"/>\n", e->incs[i]);
+    fputs("    </SourceFileSet>\n"
           "    <Library name=\"m\"/>\n  </BuildConfiguration>\n</fmiBuildDescription>\n", f);
     return fclose(f) == 0 ? 0 : fail(e, "cannot write %s", p);
 }
@@ -168,7 +354,7 @@ static int compile(ex *e)
         return fail(e, "cannot create %s", out);
     snprintf(out, sizeof out, "%s/binaries/%s/%s.so", e->dir, plat, e->sc->name);
     const char *cc = getenv("CC") && *getenv("CC") ? getenv("CC") : "cc";
-    const char *argv[300];
+    const char *argv[EX_MAX_SRCS + EX_MAX_INCS + 32];
     int n = 0;
     argv[n++] = cc;
     const char *flags[] = {"-std=c11", "-O2", "-fPIC", "-shared", "-ffp-contract=off",
@@ -178,6 +364,8 @@ static int compile(ex *e)
         argv[n++] = flags[i];
     /* a shared object: the functions' plain names */
     argv[n++] = e->version == 2 ? "-DFMI2_OVERRIDE_FUNCTION_PREFIX" : "-DFMI3_OVERRIDE_FUNCTION_PREFIX";
+    for (int i = 0; i < e->nincs; i++)
+        argv[n++] = scn_fmt(e->c, "-I%s", e->incs[i]);
     for (int i = 0; i < e->nsrcs; i++)
         argv[n++] = e->srcs[i];
     argv[n++] = "-o", argv[n++] = out, argv[n++] = "-lm", argv[n] = NULL;
@@ -324,6 +512,8 @@ static void start_unit(FILE *f, const xvar *x)
     }
 }
 
+static const char *flag(int on) { return on ? "true" : "false"; }
+
 static void md3(ex *e, FILE *f)
 {
     const rt_scene *sc = e->sc;
@@ -334,9 +524,11 @@ static void md3(ex *e, FILE *f)
     xml_text(f, sc->doc ? sc->doc : "");
     fprintf(f, "\" generationTool=\"modrt scenec --fmu\">\n  <CoSimulation modelIdentifier=\"%s\" "
                "canHandleVariableCommunicationStepSize=\"true\" fixedInternalStepSize=\"%s\" "
-               "canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\" "
+               "canBeInstantiatedOnlyOncePerProcess=\"%s\" "
+               "canGetAndSetFMUState=\"%s\" canSerializeFMUState=\"%s\" "
                "hasEventMode=\"false\" providesIntermediateUpdate=\"false\" "
-               "mightReturnEarlyFromDoStep=\"false\"/>\n", sc->name, real(b1, (double)sc->dt));
+               "mightReturnEarlyFromDoStep=\"false\"/>\n", sc->name, real(b1, (double)sc->dt),
+            flag(e->nfmu > 0), flag(e->can_state), flag(e->can_state));
     unit_definitions(e, f);
     default_experiment(e, f);
     fputs("  <ModelVariables>\n", f);
@@ -371,9 +563,11 @@ static void md2(ex *e, FILE *f)
     fprintf(f, "\" generationTool=\"modrt scenec --fmu\" variableNamingConvention=\"flat\" "
                "numberOfEventIndicators=\"0\">\n  <CoSimulation modelIdentifier=\"%s\" "
                "canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"false\" "
-               "maxOutputDerivativeOrder=\"0\" canGetAndSetFMUstate=\"true\" "
-               "canSerializeFMUstate=\"true\" canNotUseMemoryManagementFunctions=\"false\" "
-               "providesDirectionalDerivative=\"false\">\n    <SourceFiles>\n", sc->name);
+               "maxOutputDerivativeOrder=\"0\" canBeInstantiatedOnlyOncePerProcess=\"%s\" "
+               "canGetAndSetFMUstate=\"%s\" canSerializeFMUstate=\"%s\" "
+               "canNotUseMemoryManagementFunctions=\"false\" "
+               "providesDirectionalDerivative=\"false\">\n    <SourceFiles>\n", sc->name,
+            flag(e->nfmu > 0), flag(e->can_state), flag(e->can_state));
     for (int i = 0; i < e->nsrcs; i++)
         fprintf(f, "      <File name=\"%s\"/>\n", e->srcs[i]);
     fputs("    </SourceFiles>\n  </CoSimulation>\n", f);

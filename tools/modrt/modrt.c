@@ -16,6 +16,7 @@
 #include "cli.h"
 #include "fingerprint.h"
 #include "fmu.h"
+#include "fmu_scn.h"
 #include "info.h"
 #include "link.h"
 #include "models.h"
@@ -750,7 +751,7 @@ static int cmd_sizes(void *ctx, int npos, char **pos)
     rt_status st = rt_init(sc, &sim);
     if (st != RT_OK)
         return cli_fail(rt_status_name(st), rt_error_text(&sim));
-    scn_host_sizes(stdout, sc, &sim);
+    fmu_scn_sizes(stdout, stderr, pos[0], sc, &sim); /* with an FMU block's arena */
     return 0;
 }
 

@@ -404,7 +404,7 @@ static void fmu_kinds(FILE *f, scn_ctx *c)
                   "(docs/fmi.md) */\n#include \"fmu_int.h\"\n", f);
         if (c->fmu->emit(f, bl->kind, err, sizeof err) != 0)
             scn_fail(c, bl->type.pos, bl->type.s, scn_fmt(c, "FMU of %s: %s", bl->name.s, err),
-                     "a source FMU (sources/) for a per-scene image");
+                     "a source FMU (sources/) for a per-scene image or an exported FMU");
     }
 }
 

@@ -86,9 +86,9 @@ static scn_ctx *compile(const opts *o, const char *path)
     }
     for (int i = 0; i < o->ninc; i++)
         c->incdirs[c->nincdirs++] = o->inc[i];
-    /* FMU systems: loaded on the host; their C for an image needs their sources. An
-       exported FMU or a registry holds library kinds and defines only */
-    c->fmu = o->mode == 'f' || o->mode == 'g' ? NULL : &fmu_scn_ops;
+    /* FMU systems: loaded on the host; their C for an image or an exported FMU needs
+       their sources. A registry holds library kinds and defines only */
+    c->fmu = o->mode == 'g' ? NULL : &fmu_scn_ops;
     if (scn_compile(c, path, NULL, 0) == 0)
         return c;
     fprintf(stderr, "%s\n", c->msg);
@@ -207,24 +207,9 @@ static int cmd_sizes(const opts *o)
         return 1;
     rt_sim *sim = scn_alloc(c, sizeof *sim);
     rt_status st = rt_init(&c->image, sim);
-    if (st == RT_OK) { /* the limits, then an image's FMU arena (docs/fmi.md) */
-        char *line = NULL;
-        size_t n = 0;
-        FILE *f = open_memstream(&line, &n);
-        if (f)
-            scn_host_sizes(f, &c->image, sim), fclose(f);
-        long arena = fmu_arena_need();
-        if (line && n && line[n - 1] == '\n')
-            line[--n] = 0;
-        printf("%s", line ? line : "");
-        if (arena > 0)
-            printf(" -DFMU_ARENA_BYTES=%ld", arena);
-        putchar('\n');
-        free(line);
-        if (arena < 0)
-            fprintf(stderr, "%s: note: the FMU arena's size is not known (an FMI 3.0 FMU "
-                    "not built here from its sources)\n", o->in[0]);
-    } else
+    if (st == RT_OK) /* the limits, then an image's FMU arena (docs/fmi.md) */
+        fmu_scn_sizes(stdout, stderr, o->in[0], &c->image, sim);
+    else
         fprintf(stderr, "%s: error: %s: %s\n", o->in[0], rt_status_name(st), rt_error_text(sim));
     scn_free(c);
     return st != RT_OK;

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fmu_cs_id.h"
 #include "fmu_cs_vars.h"
 
 #define CS_MAGIC "modrt-cs-state-2" /* a saved FMU state begins with it */
@@ -43,6 +44,28 @@ static uint64_t cs_scene_id(const cs_slave *s)
     for (const char *p = s->sc->name; *p; p++)
         h = (h ^ (unsigned char)*p) * 0x100000001b3ull;
     return h;
+}
+
+#ifdef FMU_CS_ONCE
+static int live; /* instances of a scene with FMU blocks: 0 or 1 */
+#endif
+
+const char *cs_claim(void)
+{
+#ifdef FMU_CS_ONCE
+    if (live)
+        return "an instance of this FMU exists already: its scene's FMU blocks are static "
+               "instances (canBeInstantiatedOnlyOncePerProcess)";
+    live = 1;
+#endif
+    return NULL;
+}
+
+void cs_release(void)
+{
+#ifdef FMU_CS_ONCE
+    live = 0;
+#endif
 }
 
 size_t cs_size(const rt_scene *sc)
@@ -183,14 +206,16 @@ size_t cs_state_size(const cs_slave *s)
     return sizeof(cs_state) + fmu_cs_nimp(s->sc) * sizeof(real_t);
 }
 
-void cs_state_save(const cs_slave *s, void *buf)
+int cs_state_save(cs_slave *s, void *buf)
 {
     cs_state *st = buf;
     memcpy(st->h.magic, CS_MAGIC, sizeof st->h.magic);
     st->h.scene = cs_scene_id(s);
     st->h.nimp = fmu_cs_nimp(s->sc);
-    rt_snapshot(&s->sim, &st->st);
+    rt_status rs = rt_snapshot(&s->sim, &st->st); /* an FMU block's state with it */
     memcpy(st->u, s->u, st->h.nimp * sizeof *st->u);
+    return rs == RT_OK ? CS_OK
+         : why(s, CS_ERROR, "the FMU state cannot be saved: %s", rt_status_name(rs));
 }
 
 int cs_state_check(cs_slave *s, const void *buf, size_t size)

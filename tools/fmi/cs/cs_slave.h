@@ -32,6 +32,12 @@ size_t cs_size(const rt_scene *sc);
 /* s (cs_size bytes, zeroed) made a slave of sc in the instantiated state; also a reset */
 int cs_setup(cs_slave *s, const rt_scene *sc);
 
+/* an instance more, or one fewer: a scene with FMU blocks (FMU_CS_ONCE, their instances
+   are static) has one instance at a time (canBeInstantiatedOnlyOncePerProcess); claim
+   returns NULL or the reason it refuses */
+const char *cs_claim(void);
+void cs_release(void);
+
 /* FMI's mode changes: enter initialization (startTime must be 0, stopTime not past the
    end), exit it (the row at t = 0 recorded) */
 int cs_enter_init(cs_slave *s, double start, int stop_defined, double stop);
@@ -48,7 +54,7 @@ int cs_step(cs_slave *s, double t, double h, int *at_end);
 /* the FMU state: bytes of one, saved into / restored from such a buffer; check: CS_OK if
    buf holds a state this slave saved (its scene, its size) */
 size_t cs_state_size(const cs_slave *s);
-void cs_state_save(const cs_slave *s, void *buf);
+int cs_state_save(cs_slave *s, void *buf); /* CS_ERROR: a block's state cannot be saved */
 int cs_state_check(cs_slave *s, const void *buf, size_t size);
 int cs_state_load(cs_slave *s, const void *buf, size_t size);
 

@@ -103,16 +103,21 @@ EXPORT fmi2Component FMI2_NAME(fmi2Instantiate)(fmi2String instanceName, fmi2Typ
             "(canNotUseMemoryManagementFunctions is false)");
         return NULL;
     }
+    const char *busy = cs_claim();
+    if (busy) {
+        say(&tmp, fmi2Error, busy);
+        return NULL;
+    }
     cs_inst *in = tmp.cb.allocateMemory(1, sizeof *in);
     cs_slave *s = tmp.cb.allocateMemory(1, cs_size(&FMU_CS_SCENE));
     if (!in || !s) {
         say(&tmp, fmi2Error, "allocateMemory returned NULL");
-        tmp.cb.freeMemory(in), tmp.cb.freeMemory(s);
+        tmp.cb.freeMemory(in), tmp.cb.freeMemory(s), cs_release();
         return NULL;
     }
     *in = tmp, in->s = s;
     if (done(in, cs_setup(s, &FMU_CS_SCENE)) != fmi2OK) {
-        tmp.cb.freeMemory(in), tmp.cb.freeMemory(s);
+        tmp.cb.freeMemory(in), tmp.cb.freeMemory(s), cs_release();
         return NULL;
     }
     return in;
@@ -123,7 +128,7 @@ EXPORT void FMI2_NAME(fmi2FreeInstance)(fmi2Component c)
     cs_inst *in = c;
     if (in) {
         void (*release)(void *) = in->cb.freeMemory;
-        release(in->s), release(in);
+        release(in->s), release(in), cs_release();
     }
 }
 
@@ -339,7 +344,11 @@ EXPORT fmi2Status FMI2_NAME(fmi2GetFMUstate)(fmi2Component c, fmi2FMUstate *FMUs
     void *s = *FMUstate ? *FMUstate : in->cb.allocateMemory(1, cs_state_size(in->s));
     if (!s)
         return refuse(in, "fmi2GetFMUstate: allocateMemory returned NULL");
-    cs_state_save(in->s, s);
+    if (done(in, cs_state_save(in->s, s)) != fmi2OK) {
+        if (!*FMUstate)
+            in->cb.freeMemory(s);
+        return fmi2Error;
+    }
     *FMUstate = s;
     return fmi2OK;
 }

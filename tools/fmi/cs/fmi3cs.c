@@ -91,16 +91,21 @@ EXPORT fmi3Instance FMI3_NAME(fmi3InstantiateCoSimulation)(
         say(&tmp, fmi3Error, "event mode: the FMU has none (hasEventMode false)");
         return NULL;
     }
+    const char *busy = cs_claim();
+    if (busy) {
+        say(&tmp, fmi3Error, busy);
+        return NULL;
+    }
     cs_inst *in = calloc(1, sizeof *in);
     cs_slave *s = calloc(1, cs_size(&FMU_CS_SCENE));
     if (!in || !s) {
         say(&tmp, fmi3Error, "out of memory");
-        free(in), free(s);
+        free(in), free(s), cs_release();
         return NULL;
     }
     *in = tmp, in->s = s;
     if (done(in, cs_setup(s, &FMU_CS_SCENE)) != fmi3OK) {
-        free(in), free(s);
+        free(in), free(s), cs_release();
         return NULL;
     }
     return in;
@@ -110,7 +115,7 @@ EXPORT void FMI3_NAME(fmi3FreeInstance)(fmi3Instance instance)
 {
     cs_inst *in = instance;
     if (in)
-        free(in->s), free(in);
+        free(in->s), free(in), cs_release();
 }
 
 EXPORT fmi3Status FMI3_NAME(fmi3EnterInitializationMode)(fmi3Instance instance, fmi3Boolean toleranceDefined,
@@ -192,7 +197,11 @@ EXPORT fmi3Status FMI3_NAME(fmi3GetFMUState)(fmi3Instance instance, fmi3FMUState
     void *s = *FMUState ? *FMUState : calloc(1, cs_state_size(in->s));
     if (!s)
         return refuse(in, "fmi3GetFMUState: out of memory");
-    cs_state_save(in->s, s);
+    if (done(in, cs_state_save(in->s, s)) != fmi3OK) {
+        if (!*FMUState)
+            free(s);
+        return fmi3Error;
+    }
     *FMUState = s;
     return fmi3OK;
 }
