@@ -386,7 +386,8 @@ effects: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 	mv build/footprint.md docs/footprint.md
 	@echo "effects: wrote the section of docs/footprint.md"
 # one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes); a scene
-# outside the library: SCN=<file.scn> too, S its scene name (scenec compiles and sizes it)
+# outside the library: SCN=<file.scn> too, S its scene name (scenec compiles and sizes it);
+# FOOT_CFLAGS=-DRT_SCENE_CODE=0: the table-driven path instead of the scene's written-out code
 FOOT_TICKS ?= 1000
 FOOT_GEN = $(if $(SCN),build/foot/gen/$(S).c,build/gen/scenes/$(S).c)
 FOOT_SIZES = $(if $(SCN),$(shell build/host/scenec --sizes $(SCN)),$(shell build/host/modrt sizes $(S)))
@@ -400,7 +401,7 @@ foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@mkdir -p build/foot/$(T)$(XSUF) build/foot/gen
 	@$(if $(SCN),build/host/scenec -o $(FOOT_GEN) $(SCN))
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
-	  $(FOOT_SIZES) $(FOOT_BG) \
+	  $(FOOT_SIZES) $(FOOT_BG) $(FOOT_CFLAGS) \
 	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) $(FOOT_GEN) \
 	  $(FOOT_FMU) $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)

@@ -11,8 +11,10 @@
  *                                       CHECK_TOL and the largest error estimate equal
  *                                       modrt's to EST_TOL (exit 1 otherwise)
  *        tight_bench count SIDE METHOD SECONDS
- *                                       SIDE modrt | tight | tight-noest (without the
- *                                       error estimate); METHOD bs3 | rk4 | dopri5 */
+ *                                       SIDE modrt | modrt-tables (the table-driven
+ *                                       path: without the scene's written-out code) |
+ *                                       tight | tight-noest (without the error
+ *                                       estimate); METHOD bs3 | rk4 | dopri5 */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +23,7 @@
 #include "pendulum_tight.h"
 #include "rt_sim.h" /* allocates the run */
 #include "scenes/scenes.h"
+#include "rt_sim.h" /* the simulator in static storage */
 
 #define CHECK_T 2.0     /* simulated time of the check [s]: the chain is chaotic, rounding
                            differences grow from 1e-16 to 1e-14 m over it */
@@ -51,10 +54,13 @@ static int method_index(const char *name)
 }
 
 /* pendulum10 with method i over t_end seconds (the scene's own step); no recorded
-   signals: the tight program records nothing */
-static void modrt_init(rt_scene *sc, rt_set *set, int i, double t_end)
+   signals: the tight program records nothing. tables: without the scene's written-out
+   code (rt_scene_code), the table-driven path */
+static void modrt_init(rt_scene *sc, rt_set *set, int i, double t_end, int tables)
 {
     *sc = mdl_scene_pendulum10;
+    if (tables)
+        sc->code = 0;
     *set = sc->sets[0];
     set->method = methods[i].rt;
     sc->sets = set;
@@ -91,7 +97,7 @@ static int check(void)
         rt_scene sc;
         rt_set set;
         tight m;
-        modrt_init(&sc, &set, i, CHECK_T);
+        modrt_init(&sc, &set, i, CHECK_T, 0);
         tight_start(&m, i, 1, &sc);
         long n = lround(CHECK_T / (double)sc.dt);
         modrt_ticks(&sc, &sim, n);
@@ -127,9 +133,10 @@ int main(int argc, char **argv)
     double secs = atof(argv[4]);
     rt_scene sc;
     rt_set set;
-    modrt_init(&sc, &set, i, secs);
+    int tables = strcmp(argv[2], "modrt-tables") == 0;
+    modrt_init(&sc, &set, i, secs, tables);
     long n = lround(secs / (double)sc.dt);
-    if (strcmp(argv[2], "modrt") == 0) {
+    if (strcmp(argv[2], "modrt") == 0 || tables) {
         modrt_ticks(&sc, &sim, n);
         return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
     }
