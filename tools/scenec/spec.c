@@ -203,6 +203,21 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
     }
 }
 
+/* the entries of M^-1 W^T, q = W / M entry by entry: the quotients rti_mbs_schur and
+   rti_mbs_correct divide for every term, each formed once (the same bits) */
+static void quotients(FILE *f, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    fputs("    /* M^-1 W^T, entry by entry */\n", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned mo = w->mo[b];
+        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3)
+            fprintf(f, "    q[%u] = W[%u] / M[%u], q[%u] = W[%u] / M[%u], q[%u] = W[%u] / M[%u];\n",
+                    wi, wi, mo, wi + 1, wi + 1, mo + 1, wi + 2, wi + 2, mo + 2);
+    }
+}
+
 /* rti_mbs_schur for points: the slots cleared, each block's shares (diag_shares) */
 static void schur(FILE *f, const rt_sim *sim, uint8_t s)
 {
@@ -214,13 +229,13 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
         fputs("    ", f), slot(f, RT_MAX_MBS_ROWS + e), fputs(" = 0;\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        unsigned nt = (unsigned)(w->to[b + 1] - w->to[b]), wo = w->wo[b], mo = w->mo[b];
+        unsigned nt = (unsigned)(w->to[b + 1] - w->to[b]), wo = w->wo[b];
         const uint16_t *ps = w->pslot + w->po[b];
         for (unsigned i = 0; i < nt; i++)
             for (unsigned kk = i; kk < nt; kk++) {
                 fputs("    ", f);
                 slot(f, *ps++);
-                fprintf(f, " += dot3m(W + %u, W + %u, M + %u);\n", wo + 3 * i, wo + 3 * kk, mo);
+                fprintf(f, " += dot3q(W + %u, q + %u);\n", wo + 3 * i, wo + 3 * kk);
             }
     }
 }
@@ -314,16 +329,16 @@ static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int ad
     const rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        unsigned zo = w->zo[b], mo = w->mo[b];
+        unsigned zo = w->zo[b];
         if (add)
             fprintf(f, "    d0 = a[%u], d1 = a[%u], d2 = a[%u];\n", zo, zo + 1, zo + 2);
         else
             fputs("    d0 = 0, d1 = 0, d2 = 0;\n", f);
         for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3) {
             fprintf(f, "    vi = %s[%u];\n", v, w->trow[i]);
-            fprintf(f, "    d0 -= (W[%u] / M[%u]) * vi;\n", wi, mo);
-            fprintf(f, "    d1 -= (W[%u] / M[%u]) * vi;\n", wi + 1, mo + 1);
-            fprintf(f, "    d2 -= (W[%u] / M[%u]) * vi;\n", wi + 2, mo + 2);
+            fprintf(f, "    d0 -= q[%u] * vi;\n", wi);
+            fprintf(f, "    d1 -= q[%u] * vi;\n", wi + 1);
+            fprintf(f, "    d2 -= q[%u] * vi;\n", wi + 2);
         }
         fprintf(f, "    a[%u] = d0, a[%u] = d1, a[%u] = d2;\n", zo, zo + 1, zo + 2);
     }
@@ -389,6 +404,13 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
           "    real_t acc, d0, d1, d2, vi;\n"
           "    rt_joint_eval e;\n"
           "    (void)L, (void)gam, (void)xw, (void)sc, (void)t;\n", f);
+    unsigned nq = 0;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned end = w->wo[b] + 3u * (unsigned)(w->to[b + 1] - w->to[b]);
+        nq = end > nq ? end : nq;
+    }
+    fprintf(f, "    real_t q[%u]; /* M^-1 W^T (quotients) */\n", nq ? nq : 1);
     fputs("    if (", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
         fprintf(f, "%s!w->m_valid[%u]", k > w->sb[s] ? " || " : "", w->sblk[k]);
@@ -414,6 +436,7 @@ static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
     derivs(f, sc, sim, s);
     if (mbs) {
         assemble(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
+        quotients(f, sim, s);
         schur(f, sim, s);
         factor(f, sim, s);
         lambda_accel(f, sc, sim, s);
@@ -433,6 +456,7 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
     locals(f, sim, s);
     fputs("    /* positions (10a) */\n", f);
     assemble(f, sc, sim, s, RTI_MBS_JAC);
+    quotients(f, sim, s);
     schur(f, sim, s);
     factor(f, sim, s);
     solve(f, sim, s, "g");
@@ -444,6 +468,7 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
     points_add(f, sim, s, 0);
     fputs("    /* velocities (10b) */\n", f);
     assemble(f, sc, sim, s, RTI_MBS_JAC);
+    quotients(f, sim, s);
     schur(f, sim, s);
     factor(f, sim, s);
     solve(f, sim, s, "gd");
@@ -474,10 +499,11 @@ static const char helpers[] =
     "    ar->x = sim->state.x + xo, ar->d = sim->state.d + dof;\n"
     "    ar->u = sim->work.u + uo, ar->p = sim->state.p + po;\n"
     "    ar->spec = blocks[b].kind->spec, ar->t_piece = t;\n}\n\n"
-    "/* rt/mbs_asm.c's dot of three terms, with and without M^-1: the same sums */\n"
-    "static inline real_t dot3m(const real_t *a, const real_t *b, const real_t *m)\n{\n"
-    "    real_t acc = 0;\n    acc += a[0] * (b[0] / m[0]);\n    acc += a[1] * (b[1] / m[1]);\n"
-    "    acc += a[2] * (b[2] / m[2]);\n    return acc;\n}\n\n"
+    "/* rt/mbs_asm.c's dots of three terms, with M^-1 W^T's entries (q) and plain: the\n"
+    "   same sums */\n"
+    "static inline real_t dot3q(const real_t *a, const real_t *q)\n{\n"
+    "    real_t acc = 0;\n    acc += a[0] * q[0];\n    acc += a[1] * q[1];\n"
+    "    acc += a[2] * q[2];\n    return acc;\n}\n\n"
     "static inline real_t dot3(const real_t *a, const real_t *b)\n{\n"
     "    real_t acc = 0;\n    acc += a[0] * b[0];\n    acc += a[1] * b[1];\n"
     "    acc += a[2] * b[2];\n    return acc;\n}\n";
