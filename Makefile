@@ -434,7 +434,8 @@ $(O)/overhead_bench: $(call obj,tools/dev/bench/overhead_bench.c tools/dev/bench
                     tools/dev/bench/actuated_mono.c tools/dev/bench/actuated_mr_mono.c) \
                     $(RT_OBJS) $(MODEL_OBJS)
 	$(CC) $(LDSAN) $^ -lm -o $@
-$(O)/tight_bench: $(call obj,tools/dev/bench/tight_bench.c tools/dev/bench/pendulum_tight.c) \
+$(O)/tight_bench: $(call obj,tools/dev/bench/tight_bench.c tools/dev/bench/pendulum_tight.c \
+                  tools/dev/bench/lane_tight.c) \
                   $(RT_OBJS) $(MODEL_OBJS)
 	$(Q)$(CC) $(LDSAN) $^ -lm -o $@
 # modrt against the hand-written programs (docs/overhead.md): the trajectory checks (fail

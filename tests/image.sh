@@ -143,8 +143,8 @@ for tv in m4f:2 m3:3 rv32:2 m7:3 rv64:2 aarch64:3; do
     else bad "make image of an FMU scene: no measurement: $(grep '^image:' "$W/build$t$v.out")"; fi
 done
 # (3.0 on m4f: the working 2.0 image stays beside it)
+# shellcheck disable=SC2046
 if make -s image MEASURE=0 TARGET=m4f SCENE="$W/fmu_ball3.scn" IMAGE_CFLAGS=-DFMU_ARENA_BYTES=64 >/dev/null 2>&1 &&
-   # shellcheck disable=SC2046
    timeout 300 $(make -s print-TARGET_RUN_m4f | sed 's/^timeout [0-9]* //') \
        build/image/m4f/fmu_ball3.elf 2>&1 | grep -q '^rt scene ball_fmu3 init parameter out of range: block Ball'
 then ok; else bad "an FMU image with a 64-byte arena does not fail its rt_init in one line"; fi

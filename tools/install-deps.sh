@@ -64,7 +64,7 @@ if [ "$(id -u)" -ne 0 ]; then
     if have sudo && sudo -n true 2>/dev/null; then
         SUDO=sudo
     elif [ "$auto" -eq 1 ]; then
-        echo "make: missing tools ($(echo $need)); install them with: sudo sh tools/install-deps.sh" >&2
+        echo "make: missing tools (${need# }); install them with: sudo sh tools/install-deps.sh" >&2
         exit 1
     else
         SUDO=sudo
@@ -72,6 +72,8 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 echo "install-deps: installing$need"
 $SUDO apt-get update -qq
+# $need is a list of package names: split on purpose
+# shellcheck disable=SC2086
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $need \
     >/tmp/install-deps.$$.log 2>&1 || {
     tail -20 /tmp/install-deps.$$.log >&2

@@ -4,8 +4,11 @@
  * arm_motor) under a sampled computed-torque controller (arm_pd, 1 kHz), all in one set
  * integrated by ROS2 at the base tick of 1 ms as rt/integ_implicit.c does it:
  * M = I - gamma h J with J from forward differences at the step's first evaluation
- * (x_j + sqrt(eps) max(|x_j|, 1), the increment re-measured), refreshed every 1024 steps
- * and at the first; M factored by Gauss with partial pivoting;
+ * (x_j + sqrt(eps) max(|x_j|, 1), the increment re-measured), whole at the first step,
+ * then every 1024 steps spread as modrt spreads it (rt/integ_implicit.c spread_parts): in
+ * the last 2n + 1 steps of a cycle one part each, a column of J at that step's first
+ * evaluation, then M formed, then one elimination stage of Gauss with partial pivoting;
+ * the step at the cycle's end installs the factors;
  *     M k1 = f(t, x0),
  *     M k2 = f(t + h, x0 + h k1) - 2 k1,
  * (the f_t term gamma (f(t + h, x0) - f(t, x0)) is zero: the model does not read t and
@@ -56,29 +59,44 @@ static void control(amono *m, double t)
 
 /* ------------------------------------------------------------------ ROS2 */
 
-/* forward-difference Jacobian at x around fb = f(x); then M = I - h gamma J factored */
-static void jacobian(amono *m, const double *fb)
+/* the spread refresh: 2 NA + 1 parts, PER per step in the last SPREAD steps of a cycle */
+#define PARTS (2 * NA + 1)
+#define PER ((PARTS + JAC_EVERY - 2) / (JAC_EVERY - 1))
+#define SPREAD ((PARTS + PER - 1) / PER)
+
+/* columns j0 .. j1 - 1 of the forward-difference Jacobian into a, at x around fb = f(x) */
+static void columns(amono *m, const double *fb, double *a, int j0, int j1)
 {
-    double *x = m->x, fd[NA], sq = sqrt(DBL_EPSILON), hg = m->h * GAMMA;
-    for (int j = 0; j < NA; j++) {
+    double *x = m->x, fd[NA], sq = sqrt(DBL_EPSILON);
+    for (int j = j0; j < j1; j++) {
         double xj = x[j], ax = fabs(xj);
         x[j] = xj + sq * (ax > 1 ? ax : 1);
         double d = x[j] - xj;
         rhs(m, x, fd);
         x[j] = xj;
         for (int i = 0; i < NA; i++)
-            m->jac[i * NA + j] = (fd[i] - fb[i]) / d;
+            a[i * NA + j] = (fd[i] - fb[i]) / d;
     }
-    double *a = m->lu;
+}
+
+/* J in a becomes M = I - h gamma J */
+static void iteration_matrix(const amono *m, double *a)
+{
+    double hg = m->h * GAMMA;
     for (int i = 0; i < NA; i++)
         for (int j = 0; j < NA; j++)
-            a[i * NA + j] = (i == j ? 1 : 0) - hg * m->jac[i * NA + j];
-    for (int k = 0; k < NA; k++) {
+            a[i * NA + j] = (i == j ? 1 : 0) - hg * a[i * NA + j];
+}
+
+/* elimination stages k0 .. k1 - 1 of Gauss with partial pivoting on a */
+static void eliminate(double *a, int *piv, int k0, int k1)
+{
+    for (int k = k0; k < k1; k++) {
         int p = k;
         for (int i = k + 1; i < NA; i++)
             if (fabs(a[i * NA + k]) > fabs(a[p * NA + k]))
                 p = i;
-        m->piv[k] = p;
+        piv[k] = p;
         if (p != k)
             for (int j = 0; j < NA; j++) {
                 double t = a[k * NA + j];
@@ -90,8 +108,42 @@ static void jacobian(amono *m, const double *fb)
                 a[i * NA + j] -= l * a[k * NA + j];
         }
     }
+}
+
+/* the whole refresh at x around fb = f(x) (the first step's; modrt's before the first tick) */
+static void jacobian(amono *m, const double *fb)
+{
+    columns(m, fb, m->lu, 0, NA);
+    iteration_matrix(m, m->lu);
+    eliminate(m->lu, m->piv, 0, NA);
     m->age = 0, m->valid = 1;
     m->jac_evals++;
+}
+
+/* the parts of the spread refresh due at this step (in m->jac), or at the cycle's end its
+   factors installed */
+static void refresh(amono *m, const double *fb)
+{
+    if (!m->valid) {
+        jacobian(m, fb);
+        return;
+    }
+    if (m->age >= JAC_EVERY) {
+        memcpy(m->lu, m->jac, sizeof m->lu);
+        memcpy(m->piv, m->piv_next, sizeof m->piv);
+        m->age = 0;
+        m->jac_evals++;
+        return;
+    }
+    if (m->age + SPREAD < JAC_EVERY)
+        return;
+    int p0 = (m->age + SPREAD - JAC_EVERY) * PER, p1 = p0 + PER < PARTS ? p0 + PER : PARTS;
+    if (p0 < NA)
+        columns(m, fb, m->jac, p0, p1 < NA ? p1 : NA);
+    if (p0 <= NA && NA < p1)
+        iteration_matrix(m, m->jac);
+    if (p1 > NA + 1)
+        eliminate(m->jac, m->piv_next, p0 > NA + 1 ? p0 - NA - 1 : 0, p1 - NA - 1);
 }
 
 static void msolve(const amono *m, double *b)
@@ -117,8 +169,7 @@ static void step(amono *m)
     double *x = m->x, x0[NA], k1[NA], k2[NA], h = m->h;
     memcpy(x0, x, sizeof x0);
     rhs(m, x, k1);
-    if (!m->valid || m->age >= JAC_EVERY)
-        jacobian(m, k1);
+    refresh(m, k1);
     msolve(m, k1);
     for (int i = 0; i < NA; i++)
         x[i] = x0[i] + h * k1[i];

@@ -16,8 +16,9 @@ typedef struct amono {
     double c, thp;         /* controller: command [N m], last angle [rad] */
     double u;              /* its output, the servo's input: the previous sample's c */
     int started;           /* controller: 0 before the first sample */
-    double jac[AMONO_NX * AMONO_NX], lu[AMONO_NX * AMONO_NX];
-    int piv[AMONO_NX];
+    double jac[AMONO_NX * AMONO_NX]; /* the spread refresh's J, then M, then its factors */
+    double lu[AMONO_NX * AMONO_NX];  /* the factors of M in use */
+    int piv[AMONO_NX], piv_next[AMONO_NX];
     int age, valid;        /* steps since the Jacobian's refresh; 0 before the first */
     long jac_evals;        /* Jacobian refreshes */
     long over;             /* steps whose estimate exceeded the accuracy (modrt splits

@@ -1,11 +1,13 @@
 #!/bin/sh
 # overhead.sh - modrt's overhead against hand-written programs of the same formulation and
 # method: instructions per simulated second of each side counted by callgrind inside the
-# run only (--toggle-collect on modrt_ticks, tight_steps, mono_steps, amono_steps or
-# amr_steps: start-up excluded), deterministic. Prints one line per scene and method,
+# run only (--toggle-collect on modrt_ticks, tight_steps, lane_tight_steps, mono_steps,
+# amono_steps or amr_steps: start-up excluded), deterministic. Prints one line per scene
+# and method,
 #   overhead <scene> <method>: <modrt / tight program> (...)
-# pendulum10 against the tight program (tools/dev/bench/pendulum_tight.c) with and without
-# modrt's error estimate, beside the old yardstick (the dense monolith,
+# pendulum10 and lane_change_planar against their tight programs
+# (tools/dev/bench/pendulum_tight.c, lane_tight.c) with and without modrt's error
+# estimate, beside the old yardstick (the dense monolith,
 # tools/dev/bench/pendulum_mono.c, with the estimate); pendulum10_actuated_single (ROS2) and
 # the multirate pendulum10_actuated (bs3 chain in the background, ROS2 servo) against
 # their monoliths, dense and Thomas. With a third argument DOC, the table is also
@@ -40,6 +42,14 @@ for m in bs3 rk4 dopri5; do
         printf "  instructions per simulated s: modrt %d, table-driven %d, tight %d, tight without estimate %d, dense monolith %d\n", r, g, t, n, d
         printf "| pendulum10 | %s | %d | %d | **%.2f** | %d | **%.2f** | %d | %.2f | %d | %.2f |\n", m, r, t, r / t, n, r / n, d, r / d, g, g / t >> T }'
 done
+r=$(count tight_bench lane-modrt rk4 modrt_ticks)
+g=$(count tight_bench lane-modrt-tables rk4 modrt_ticks)
+t=$(count tight_bench lane-tight rk4 lane_tight_steps)
+n=$(count tight_bench lane-tight-noest rk4 lane_tight_steps)
+awk -v r=$r -v g=$g -v t=$t -v n=$n -v T=$T 'BEGIN {
+    printf "overhead lane_change_planar rk4: %.2f against the tight program (%.2f without the error estimate; the table-driven path %.2f)\n", r / t, r / n, g / t
+    printf "  instructions per simulated s: modrt %d, table-driven %d, tight %d, tight without estimate %d\n", r, g, t, n
+    printf "| lane_change_planar | rk4 5 ms (base tick 1 ms) | %d | %d | **%.2f** | %d | **%.2f** | - | - | %d | %.2f |\n", r, t, r / t, n, r / n, g, g / t >> T }'
 r=$(count overhead_bench modrt ros2 modrt_ticks)
 d=$(count overhead_bench mono ros2 amono_steps)
 t=$(count overhead_bench thomas ros2 amono_steps)

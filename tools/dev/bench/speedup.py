@@ -223,6 +223,18 @@ def multirate_sweep(ex, slow_methods, ratios, fast_methods, fast_jac, held=True,
                             m, "background" if bg else "tick"))
 
 
+def add_shipped(ex):
+    """the scene as shipped (every set at ACCURACY, as every variant): its cost and error
+    beside the swept multirate configurations, counted over the whole run"""
+    mods = {name: {"accuracy": ACCURACY} for name, _ in ex.sc.sets}
+    text = S.variant(ex.sc, mods=mods)
+    sets = [re.sub(r"\s*members \([^)]*\)|\s*accuracy \([^)]*\)|;", "", ln).strip()
+            for ln in text.splitlines() if ln.startswith("set (")]
+    ex.add("multirate", "as shipped: " + "; ".join(re.sub(r"^set \((\w+)\)", r"\1", x)
+                                                   for x in sets),
+           text, "multirate shipped", shipped=True)
+
+
 def sampled_blocks(sc):
     """the blocks the scene samples (`load system (...) ... period (...)`)"""
     out = []
@@ -290,6 +302,7 @@ def plan_actuated(quick):
     # the controller (sampled every 1 ms) in a set of its own: the servo's transition step
     # may then take 2 or 4 ms under the held command, which the 1e-3 m bound allows
     split_sweep(ex, ["heun", "bs3"], [8, 16], "transition", [1, 2, 4], ["linear", "hermite"])
+    add_shipped(ex)
     return ex
 
 
@@ -313,6 +326,14 @@ def plan_lane_change(quick):
     single_walk(ex, [1 * ms / 2 ** i for i in range(6)], [1 * ms / 2 ** i for i in range(3)])
     multirate_sweep(ex, ["bs3", "rk4", "dopri5"], [5, 10, 20], ["ros2", "trap"], 64,
                     held=False)
+    # every other macro step that divides the error's grid of 0.16 s (a step that does not
+    # shows a held value up to a step old there), and Heun's method: at 10 ms every method
+    # gives the same error, the coupling's, so the cheapest method at the longest step
+    # within a bound wins
+    multirate_sweep(ex, ["heun"], [5, 8, 10, 16, 20, 32, 40], ["ros2", "trap"], 64,
+                    held=False)
+    multirate_sweep(ex, ["bs3", "rk4"], [8, 16, 32, 40], ["ros2", "trap"], 64, held=False)
+    add_shipped(ex)
     return ex
 
 
@@ -640,6 +661,30 @@ def profile(ex, c, i):
 
 # ------------------------------------------------------------------ output
 
+def shipped_lines(ex):
+    """the scene as shipped against each bound's single-rate winner"""
+    out = []
+    for c in ex.cfgs:
+        if not c["shipped"]:
+            continue
+        if not c.get("cost_run"):
+            out.append("as shipped %s: error %s m, %s, not counted" % (
+                ex.key, err_text(c["err"]), status_text(c)))
+            continue
+        for crit, label, tol, s, _ in winners(ex):
+            if s and c[crit] and c["err"] <= tol:
+                out.append("as shipped %s at %g m%s: %.3g (%s, error %s m, %.3g insn/s; "
+                           "single %s %.3g insn/s)" % (
+                               ex.key, tol, "" if crit == "clean" else ", status ok",
+                               s["cost_run"] / c["cost_run"], c["desc"], err_text(c["err"]),
+                               c["cost_run"], s["desc"], s["cost_run"]))
+            elif s:
+                out.append("as shipped %s at %g m%s: outside the bound (error %s m, %s)" % (
+                    ex.key, tol, "" if crit == "clean" else ", status ok",
+                    err_text(c["err"]), status_text(c)))
+    return out
+
+
 def fmt(v):
     return "%.2e" % v if v is not None and v == v else "-"
 
@@ -723,6 +768,7 @@ def results_md(ex, ref_note, splits):
                 label, tol, v, c["desc"] if c else "none", err_text(c["err"]) if c else "",
                 fmt(c["cost"]) if c else "", fmt(c["cost_run"]) if c else ""))
         lines.append(line(ex, crit, tol, s, m))
+    lines += shipped_lines(ex)
     o.append("")
     o += ["    " + ln for ln in lines]
     o.append("")
@@ -756,7 +802,7 @@ def results_md(ex, ref_note, splits):
     return "\n".join(o)
 
 
-def split_md(ex, c, label, total, edges, incl):
+def split_md(ex, c, label, total, edges, incl, single=None):
     """the cost of a multirate configuration by part: the slow set's method and
     projection, the fast set's method, the tick's fixed work, recording"""
     t = ex.t_end
@@ -780,11 +826,13 @@ def split_md(ex, c, label, total, edges, incl):
         ("%s: method (ros2_step, dirk_step, transition_step: its right-hand sides, "
          "Jacobians, solves)" % fast, into("ros2_step", "dirk_step", "transition_step")),
         ("sampled controller (discrete_updates)", into("discrete_updates")),
-        ("outputs at step ends and held copies (rti_outputs, copy_outputs from rt_tick "
-         "and run_step)", into("rti_outputs", "copy_outputs.isra.0", "copy_outputs",
-                               frm=("rt_tick", "run_step"))),
-        ("outputs at the tick (refresh, rt_refresh: full or renewed; without the held "
-         "multibody signals)", into("rt_refresh", "refresh") - sig_refresh),
+        ("outputs at step ends and held copies (rti_outputs, copy_outputs, "
+         "rti_held_before_step, rti_held_after_step from rt_tick and run_step)",
+         into("rti_outputs", "copy_outputs.isra.0", "copy_outputs", "rti_held_before_step",
+              "rti_held_after_step", frm=("rt_tick", "run_step"))),
+        ("outputs at the tick (rti_held_renew, rt_refresh: full or renewed; without the "
+         "held multibody signals)", into("rt_refresh", "refresh", "rti_held_renew",
+                                         frm=("rt_tick",)) - sig_refresh),
         ("histories (rti_xset_push)", into("rti_xset_push")),
         ("background transition without the step (release_due, publish_due: copies)",
          incl.get("release_due", 0) + incl.get("publish_due", 0) - incl.get("run_step", 0)
@@ -806,6 +854,24 @@ def split_md(ex, c, label, total, edges, incl):
     for name, v in rows:
         o.append("| %s | %.3g | %.1f%% |" % (name, v / t, 100.0 * v / total))
     o.append("| **rt_tick + rt_record** | **%.3g** | 100%% |" % (total / t))
+    slow_part = rows[0][1] + rows[1][1]
+    rest = (total - slow_part) / t
+    if single and rest > 0:
+        o.append("\nWithout %s's stages and projection this configuration costs %.3g insn/s "
+                 "(%.0f%%): with %s free, no configuration with this fast side gives more than "
+                 "%.3g against the single-rate %.3g insn/s; a speedup of 20 needs the whole "
+                 "at most %.3g insn/s, so %s at most %.3g insn/s (now %.3g: %.2g times "
+                 "less)." % (slow, rest, 100.0 * (total - slow_part) / total, slow,
+                             single["cost_run"] / rest, single["cost_run"],
+                             single["cost_run"] / 20, slow, single["cost_run"] / 20 - rest,
+                             slow_part / t, (slow_part / t) / max(single["cost_run"] / 20 -
+                                                                  rest, 1e-300))
+                 if single["cost_run"] / 20 > rest else
+                 "\nWithout %s's stages and projection this configuration costs %.3g insn/s "
+                 "(%.0f%%), more than the single-rate %.3g insn/s over 20: no configuration "
+                 "with this fast side reaches a speedup of 20 (at most %.3g with %s free)." % (
+                     slow, rest, 100.0 * (total - slow_part) / total, single["cost_run"],
+                     single["cost_run"] / rest, slow))
     return "\n".join(o)
 
 
@@ -852,6 +918,8 @@ def run_example(ex, pool, log):
     log("%s: %d configurations run, %d of them outside every bound, %d smaller steps "
         "pruned (%.0f s)" % (ex.key, len(ex.cfgs), ex.outside, ex.pruned, time.time() - t0))
     fin = [c for c in finalists(ex) if not ex.whole and c.get("cost_run") is None]
+    fin += [c for c in ex.cfgs if c["shipped"] and c.get("cost") and not ex.whole and
+            c.get("cost_run") is None and c not in fin]
     list(pool.map(lambda c: run_full(ex, c), fin))
     if not ex.whole:
         log("%s: %d finalists counted over the whole run (%.0f s)" % (ex.key, len(fin),
@@ -876,8 +944,9 @@ def run_example(ex, pool, log):
         if m and tol == ex.tols[-1] and m not in profiled:
             profiled.append(m)
             total, edges, incl = profile(ex, m, len(profiled))
-            splits.append(split_md(ex, m, label, total, edges, incl))
+            splits.append(split_md(ex, m, label, total, edges, incl, s))
             log(splits[-1])
+    lines += shipped_lines(ex)
     for ln in lines:
         log(ln)
     for crit, label, tol, s, m in winners(ex):

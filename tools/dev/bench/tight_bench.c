@@ -6,20 +6,28 @@
  * tick of scene pendulum10 with its method replaced. The counted functions are
  * modrt_ticks and tight_steps; start-up is outside them.
  *
+ * The same for lane_change_planar (lane_tight.c): its own scene as shipped (RK4 at 5 ms,
+ * base tick 1 ms), the whole run of LANE_T seconds in the check.
+ *
  * Usage: tight_bench check              both sides, every method, CHECK_T seconds: the
  *                                       largest position difference must be at most
  *                                       CHECK_TOL and the largest error estimate equal
- *                                       modrt's to EST_TOL (exit 1 otherwise)
+ *                                       modrt's to EST_TOL (exit 1 otherwise); then
+ *                                       lane_change_planar likewise over LANE_T seconds
  *        tight_bench count SIDE METHOD SECONDS
  *                                       SIDE modrt | modrt-tables (the table-driven
  *                                       path: without the scene's written-out code) |
  *                                       tight | tight-noest (without the error
- *                                       estimate); METHOD bs3 | rk4 | dopri5 */
+ *                                       estimate); METHOD bs3 | rk4 | dopri5;
+ *                                       SIDE lane-modrt | lane-modrt-tables | lane-tight |
+ *                                       lane-tight-noest: lane_change_planar, METHOD rk4
+ *                                       (the scene's) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "lane_tight.h"
 #include "pendulum_tight.h"
 #include "rt_sim.h" /* allocates the run */
 #include "scenes/scenes.h"
@@ -30,6 +38,7 @@
 #define CHECK_TOL 1e-12 /* largest position difference accepted [m]; a formulation or
                            tableau error gives 1e-6 or more */
 #define EST_TOL 1e-9    /* largest relative difference of the largest error estimates */
+#define LANE_T 8.0      /* lane_change_planar's whole run [s] */
 
 static rt_sim sim;
 
@@ -121,10 +130,99 @@ static int check(void)
     return bad ? 1 : 0;
 }
 
+/* ------------------------------------------------------------------ lane_change_planar */
+
+/* lane_change_planar as shipped over t_end seconds, no recorded signals; tables: without
+   its written-out code (the table-driven path) */
+static void lane_modrt_init(rt_scene *sc, double t_end, int tables)
+{
+    const rt_scene_entry *e = mdl_scenes;
+    while (e->name && strcmp(e->name, "lane_change_planar") != 0)
+        e++;
+    if (!e->name) {
+        fprintf(stderr, "tight_bench: no scene lane_change_planar\n");
+        exit(1);
+    }
+    *sc = *e->scene;
+    sc->t_end = (real_t)t_end;
+    sc->nrecs = 0;
+    if (tables)
+        sc->code = 0;
+    if (rt_init(sc, &sim) != RT_OK) {
+        fprintf(stderr, "tight_bench: init: %s\n", rt_error_text(&sim));
+        exit(1);
+    }
+}
+
+/* the tight program from modrt's state after init (blocks V1, V2 are the scene's first) */
+static void lane_start(lane_tight *m, int estimate, const rt_scene *sc)
+{
+    double x0[LT_NX];
+    for (uint16_t b = 0; b < 2; b++)
+        for (uint16_t j = 0; j < 6; j++)
+            x0[6 * b + j] = (double)rt_block_x(&sim, b, j);
+    lane_tight_init(m, x0, (double)rt_set_step(sc, 0));
+    m->estimate = estimate;
+}
+
+static int lane_check(void)
+{
+    rt_scene sc;
+    lane_tight m;
+    lane_modrt_init(&sc, LANE_T, 0);
+    lane_start(&m, 1, &sc);
+    long n = lround(LANE_T / (double)sc.dt), k = lround(LANE_T / m.h);
+    modrt_ticks(&sc, &sim, n);
+    lane_tight_steps(&m, k);
+    double worst = 0;
+    for (uint16_t b = 0; b < 2; b++)
+        for (uint16_t j = 0; j < 2; j++) {
+            double d = fabs((double)rt_block_x(&sim, b, j) - m.x[6 * b + j]);
+            worst = d > worst || d != d ? d : worst;
+        }
+    double est = (double)rt_stats_of(&sim)->istats[0].err_max;
+    double de = fabs(m.err_max - est) / est;
+    int ok = worst <= CHECK_TOL && de <= EST_TOL && rt_stats_of(&sim)->status == RT_OK &&
+             m.res_max <= 1e-9;
+    printf("trajectory lane_change_planar rk4 tight: largest position difference at %g s "
+           "%.2e m (tolerance %.0e), largest error estimate %.6e (modrt %.6e), largest "
+           "residual %.1e m %s\n", LANE_T, worst, CHECK_TOL, m.err_max, est, m.res_max,
+           ok ? "ok" : "FAILED");
+    return ok ? 0 : 1;
+}
+
+static int lane_count(const char *side, const char *method, double secs)
+{
+    rt_scene sc;
+    if (strcmp(method, "rk4") != 0) {
+        fprintf(stderr, "tight_bench: lane_change_planar is stepped by rk4, not %s\n", method);
+        return 2;
+    }
+    int tables = strcmp(side, "lane-modrt-tables") == 0;
+    lane_modrt_init(&sc, secs, tables);
+    if (strcmp(side, "lane-modrt") == 0 || tables) {
+        modrt_ticks(&sc, &sim, lround(secs / (double)sc.dt));
+        return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
+    }
+    static lane_tight m;
+    lane_start(&m, strcmp(side, "lane-tight") == 0, &sc);
+    lane_tight_steps(&m, lround(secs / m.h));
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "check") == 0)
-        return check();
+        return check() | lane_check();
+    if (argc == 5 && strncmp(argv[2], "lane-", 5) == 0 && strcmp(argv[1], "count") == 0) {
+        if (strcmp(argv[2], "lane-modrt") && strcmp(argv[2], "lane-modrt-tables") &&
+            strcmp(argv[2], "lane-tight") &&
+            strcmp(argv[2], "lane-tight-noest")) {
+            fprintf(stderr, "tight_bench: unknown side %s\n", argv[2]);
+            return 2;
+        }
+        return lane_count(argv[2], argv[3], atof(argv[4]));
+    }
     if (argc != 5 || strcmp(argv[1], "count") != 0) {
         fprintf(stderr, "usage: tight_bench check | count SIDE METHOD SECONDS\n");
         return 2;
