@@ -187,7 +187,10 @@ static real_t span_to(real_t t, real_t te, real_t h)
    tick; at run time: anywhere), with the services at each part's end */
 static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
 {
-    uint64_t end = tick + ratio, k = tick;
+    uint64_t end = tick + ratio;
+#if RT_MAX_TEV > 0
+    uint64_t k = tick; /* the tick the next known instant is looked for from */
+#endif
     real_t t = (real_t)tick * sc->dt, t_end = (real_t)end * sc->dt;
     for (int n = 1;; n++) {
         uint64_t kb = end;
@@ -220,8 +223,10 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
                 reached = tb; /* the part's end, exactly */
         }
         part_end(sc, sim, s, reached);
+#if RT_MAX_TEV > 0
         if (reached == tb && kb != NEVER)
             k = kb;
+#endif
         t = reached;
         if (t >= t_end)
             break;
