@@ -492,6 +492,7 @@ bench: $(O)/mbs_bench $(O)/svgplot $(O)/modrt overhead mujoco-scale speedup seri
 	@rm -f build/bench/bg.txt
 	@sh tools/dev/bench/bg_bench.sh pendulum10 m7
 	@sh tools/dev/bench/bg_bench.sh pendulum10_actuated m7
+	@sh tools/dev/bench/tick_bench.sh m7
 	@echo "bench: figures in build/bench/ (make docs copies them into docs/)"
 
 # the committed references and figures: the block reference from the kinds' tables, and

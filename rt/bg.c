@@ -167,11 +167,15 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
         copy_reals(bg->state.hist_t[q], sim->state.hist_t[q], RT_HIST);
     }
     copy_gains(sc, sim, bg, s); /* as the tick last judged them (NaN: measure afresh) */
+    /* parameters change only by rt_set_param and rt_restore, which both mark the set
+       (param_changed, handed over at release): unmarked, the context has them all */
+    int params = bg->state.param_changed[s];
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
-        if (copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
+        if (params &&
+            copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
                          (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
-            bg->work.mbs.m_valid[b] = 0, bg->state.param_changed[s] = 1,
+            bg->work.mbs.m_valid[b] = 0,
             rti_tev_moved(bg, s); /* its time events may have moved (rt/tev.c) */
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             uint16_t v = sim->plan.src[i];

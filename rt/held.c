@@ -256,6 +256,13 @@ static int keeps_roots(const rt_scene *sc, rt_sim *sim, uint8_t s)
 static void evaluate_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int recall, int in_tick)
 {
     real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
+    /* the tick its state reaches (and the start, where rt_refresh shows parameters set
+       before the first tick) is an instant of its kinds that take values at instants
+       (rt_kind.instant: an FMU's discrete inputs, rt/tev.c): what another set published
+       for it shows in the row, after the event that took it */
+    if ((in_tick || sim->state.tick == 0) && (sim->plan.set_flags[s] & RTI_SET_INSTANT) &&
+        rti_tev_instant(sc, sim, s, ts))
+        recall = 0;
     rti_mode mode = recall ? RTI_AT_TICK_RECALL
                   : rti_at_tick(sim, s) ? RTI_AT_TICK : RTI_IN_STEP;
     rti_outputs(sc, sim, (rti_at){ts, s, mode});

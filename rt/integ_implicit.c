@@ -178,8 +178,9 @@ static void factor(imp_step *c)
 
 /* Spread refresh (ROS2 with jac_every = K >= 2). The next iteration matrix is built in
    jac over the steps before it is due, in 2n + 1 parts: the n columns of J (forward
-   differences at each step's own first evaluation), M = I - hg J formed in place with its
-   pivot floor, and its n elimination stages (rti_lu_stages, pivots in piv_next); the step
+   differences at each step's own first evaluation), each made M's column of I - hg J at
+   once with the h gamma of the cycle's first column (m_columns), M's pivot floor, and
+   its n elimination stages (rti_lu_stages, pivots in piv_next); the step
    at age K copies the factors into lu. Each step takes per = ceil((2n + 1) / (K - 1))
    parts, in the last ceil((2n + 1) / per) steps of the cycle (the freshest). No tick then pays for a whole
    refresh: a regular step adds at most `per` evaluations or elimination stages, or the
@@ -195,21 +196,40 @@ static void spread_parts(imp_step *c, uint32_t age, uint32_t k)
     c->part0 = (uint16_t)p0, c->part1 = (uint16_t)p1;
 }
 
+/* columns j0 .. j1 - 1 of J in jac become those of M = I - h_next J, each entry as
+   (i == j) - hg J_ij (the same bits as a pass over the whole matrix), their largest
+   magnitude joining floor_next (the running maximum until the floor is set): so no step
+   of a spread refresh passes over all n^2 entries but an elimination stage */
+static void m_columns(rt_implicit_ws *ws, uint16_t n, uint16_t j0, uint16_t j1)
+{
+    real_t hg = ws->h_next, big = ws->floor_next;
+    for (uint16_t j = j0; j < j1; j++)
+        for (uint16_t i = 0; i < n; i++) {
+            real_t *e = &ws->jac[i * n + j];
+            real_t v = (i == j ? 1 : 0) - hg * *e, a = rt_fabs(v);
+            *e = v;
+            big = a > big ? a : big;
+        }
+    ws->floor_next = big;
+}
+
 /* parts part0 .. part1 - 1 of a spread refresh, at the step's first evaluation
-   fb = f(tb, x0): columns of J, M = I - hg J, elimination stages */
+   fb = f(tb, x0): columns of J made M's, M's pivot floor, elimination stages */
 static void spread_do(imp_step *c, real_t tb, const real_t *fb)
 {
     rt_implicit_ws *ws = c->w->imp;
     uint16_t n = c->n, p0 = c->part0, p1 = c->part1;
     c->part0 = c->part1;
-    if (p0 < n)
-        fd_jacobian(c, tb, fb, p0, p1 < n ? p1 : n);
-    if (p0 <= n && n < p1) { /* M = I - hg J in place, its pivot floor */
-        for (uint16_t i = 0; i < n; i++)
-            for (uint16_t j = 0; j < n; j++)
-                ws->jac[i * n + j] = (i == j ? 1 : 0) - c->hg * ws->jac[i * n + j];
-        ws->h_next = c->hg;
-        ws->floor_next = rti_lu_floor(ws->jac, n, IMP_PIVOT_TOL);
+    if (p0 < n) {
+        uint16_t j1 = p1 < n ? p1 : n;
+        if (p0 == 0) /* the cycle's first column: its h gamma is the matrix's */
+            ws->h_next = c->hg, ws->floor_next = 0;
+        fd_jacobian(c, tb, fb, p0, j1);
+        m_columns(ws, n, p0, j1);
+    }
+    if (p0 <= n && n < p1) { /* M = I - hg J is complete: its pivot floor */
+        real_t big = ws->floor_next;
+        ws->floor_next = IMP_PIVOT_TOL * (big > 0 ? big : 1); /* as rti_lu_floor */
         ws->singular_next = 0;
     }
     if (p1 <= n + 1)

@@ -259,6 +259,21 @@ typedef struct rt_kind {
        place: returns 1 if it did (the runtime then evaluates the set's outputs and roots
        again and counts an event), else 0. NULL: none */
     int (*step_end)(const rt_args *a, real_t *x, real_t *d);
+    /* Values that may change only at an instant (FMI's discrete inputs and tunable
+       parameters, which an FMU takes in event mode alone): called at each instant of the
+       block's set, the start of every part of a step (its inputs there on the part's side
+       of the set's known time events) and its end (after step_end and the time events due
+       there), with the inputs, parameters and state there. The kind takes the new values
+       (an event of its own, which may change x and d in place: returns 1, and the runtime
+       evaluates the set's outputs and roots again and counts an event; else 0) and holds
+       them through the part that follows: its evaluations inside a part never take a new
+       one. NULL: none */
+    int (*instant)(const rt_args *a, real_t *x, real_t *d);
+    /* With instant: 1 per input of discrete variability, 0 per continuous one (NULL: all
+       continuous). A step of the block's set also ends a part at each point strictly
+       inside it of the history of a set that feeds such an input (the instant the other
+       set's held value changes), so the kind takes it there (rt/tev.c) */
+    const uint8_t *u_discrete;
     /* 1: every sign change of a root is a crossing, as FMI's event indicators need (a
        change of domain z > 0 / z <= 0): a root an event leaves on its z <= 0 side that
        then returns to z > 0 crosses there too (rt/step.c); 0: a root a handler sent back
@@ -830,7 +845,10 @@ rt_status rt_restore(rt_sim *sim, const rt_state *in);
 /* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */
 int rt_block_index(const rt_scene *scene, const char *name);
 int rt_param_index(const rt_kind *kind, const char *name);
-/* Sets parameter `name` of block `block` before or between ticks; RT_E_ARG if unknown. */
+/* Sets parameter `name` of block `block` before or between ticks; RT_E_ARG if unknown. A
+   set stepping over several ticks, whose state is ahead of the tick, takes it from its
+   next step on, where its state is (a kind that takes values at instants, rt_kind.instant:
+   at that instant). */
 rt_status rt_set_param(const rt_scene *scene, rt_sim *sim, const char *block,
                        const char *name, real_t value);
 

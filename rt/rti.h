@@ -172,7 +172,8 @@ enum {
     RTI_SET_TEV = 128,      /* holds a kind with known time events                 tev.c */
     RTI_SET_TEV_DYN = 256,  /* holds one whose instants are known at run time only tev.c */
     RTI_SET_STEP_END = 512, /* holds a kind with a step-end service (step_end)     tev.c */
-    RTI_SET_EVERY_SIGN = 1024 /* holds a kind with roots_every_sign                tev.c */
+    RTI_SET_EVERY_SIGN = 1024, /* holds a kind with roots_every_sign               tev.c */
+    RTI_SET_INSTANT = 2048  /* holds a kind taking values at instants (instant)    tev.c */
 };
 /* The first block of set s that keeps it from being linear in its state, or -1. */
 int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t s);
@@ -316,6 +317,11 @@ rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b);
 /* set s's step from base tick `tick` over `ratio` ticks: one rti_step_set, or one per
    part between the known time events inside it, each evaluated on its own side of them */
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio);
+/* an instant of set s at time t, where its state is (the start of a step part, the tick
+   its state reaches): its outputs there (on the side work.t_piece says), then each kind's
+   rt_kind.instant with its inputs there; the set's roots again after one that ran an
+   event. Returns 1 if one did */
+int rti_tev_instant(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 /* a parameter of set s changed: its next instant is found anew */
 void rti_tev_moved(rt_sim *sim, uint8_t s);
 /* is base tick `tick` a known time event of set s (of its kinds without time_event) */

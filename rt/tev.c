@@ -26,7 +26,16 @@
  * run, then the time_event of every instant due there. An event inside a part that moves
  * an instant into the rest of the part ends the part there (rt/step.c). The parts stay at
  * most RT_TEV_PARTS_MAX: an instant the last part passes is handled at the step's end and
- * counted (tev_limit, RT_E_TEV), never merged silently. */
+ * counted (tev_limit, RT_E_TEV), never merged silently.
+ *
+ * Values a kind takes only at instants (rt_kind.instant: an FMU's discrete inputs and
+ * tunable parameters, which FMI lets change in event mode alone): the start and the end
+ * of every part are such instants, where the kind is handed its inputs and parameters and
+ * takes what changed (an event of its own); inside a part it holds them. So a part also
+ * ends where such an input is known to change: at each point strictly inside the step of
+ * the history of a set that feeds it (the tick at which the other set's held value moves
+ * on). A parameter written between ticks (rt_set_param) is taken at the start of the
+ * set's next part, its next instant. */
 #include "rti.h"
 
 #define NEVER UINT64_MAX
@@ -114,11 +123,13 @@ static void keep_x(rt_sim *sim, uint8_t s)
         sim->work.xb[i] = sim->state.x[x0 + i];
 }
 
-/* block b's step_end (end 1) or time_event (end 0) at t, with its inputs there; a state
-   it leaves not finite is counted (nan, the block) and the state before it kept, as a
-   step's is (rt/step.c) */
-static void serve(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t t, int end,
-                  int *changed)
+/* the services a kind runs at an instant of its set (serve) */
+typedef enum { SERVE_TIME_EVENT, SERVE_STEP_END, SERVE_INSTANT } serve_what;
+
+/* block b's service `what` at t, with its inputs there; a state it leaves not finite is
+   counted (nan, the block) and the state before it kept, as a step's is (rt/step.c) */
+static void serve(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t t,
+                  serve_what what, int *changed)
 {
     const rt_kind *k = sc->blocks[b].kind;
     real_t *x = sim->state.x + sim->plan.x_off[b], *d = sim->state.d + sim->plan.d_off[b];
@@ -128,8 +139,10 @@ static void serve(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t
     rti_args(sc, sim, b, t, 0, &a);
     a.t_piece = rti_piece(sc, sim, t);
     int ran = 1;
-    if (end)
+    if (what == SERVE_STEP_END)
         ran = k->step_end(&a, x, d);
+    else if (what == SERVE_INSTANT)
+        ran = k->instant(&a, x, d);
     else
         k->time_event(&a, x, d);
     if (!ran)
@@ -147,7 +160,8 @@ static void serve(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t
 
 /* at the end t of a part of set s: each kind's step_end, then the time event of each
    block whose run-time instant is due (at or before t: before it only past the bound of
-   parts, counted); then the set's roots from the state after them */
+   parts, counted), then the values each kind takes at instants; then the set's roots
+   from the state after them */
 static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
     uint16_t flags = sim->plan.set_flags[s];
@@ -156,7 +170,7 @@ static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
     for (uint16_t k = sim->plan.blk_of[s]; (flags & RTI_SET_STEP_END) && k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
         if (sc->blocks[b].kind->step_end)
-            serve(sc, sim, s, b, t, 1, &changed);
+            serve(sc, sim, s, b, t, SERVE_STEP_END, &changed);
     }
     for (uint16_t k = sim->plan.blk_of[s]; (flags & RTI_SET_TEV_DYN) && k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
@@ -167,10 +181,54 @@ static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
             continue;
         if (te < t) /* passed by the last part the bound allows */
             rti_count(sim, RT_CNT_TEV_LIMIT, b, RT_E_TEV);
-        serve(sc, sim, s, b, t, 0, &changed);
+        serve(sc, sim, s, b, t, SERVE_TIME_EVENT, &changed);
+    }
+    for (uint16_t k = sim->plan.blk_of[s]; (flags & RTI_SET_INSTANT) && k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (sc->blocks[b].kind->instant)
+            serve(sc, sim, s, b, t, SERVE_INSTANT, &changed);
     }
     if (changed && sim->plan.set_r[s + 1] > sim->plan.set_r[s])
         rti_roots(sc, sim, s, t, sim->state.r + sim->plan.set_r[s]);
+}
+
+int rti_tev_instant(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
+{
+    int changed = 0;
+    rti_outputs(sc, sim, (rti_at){t, s, RTI_IN_STEP});
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (sc->blocks[b].kind->instant)
+            serve(sc, sim, s, b, t, SERVE_INSTANT, &changed);
+    }
+    if (changed && sim->plan.set_r[s + 1] > sim->plan.set_r[s])
+        rti_roots(sc, sim, s, t, sim->state.r + sim->plan.set_r[s]);
+    return changed;
+}
+
+/* the earliest point strictly between t and te of the history of a set that feeds an
+   input of discrete variability (rt_kind.u_discrete) of a block of set s: where the
+   value it reads next changes (RT_TEV_NEVER: none); *blk: that block */
+static real_t input_next(const rt_scene *sc, const rt_sim *sim, uint8_t s, real_t t, real_t te,
+                         uint16_t *blk)
+{
+    real_t tn = RT_TEV_NEVER;
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        const rt_kind *kd = sc->blocks[b].kind;
+        for (uint16_t i = 0; kd->u_discrete && i < kd->nu; i++) {
+            uint16_t j = (uint16_t)(sim->plan.u_off[b] + i);
+            if (!kd->u_discrete[i] || sim->plan.src_kind[j] != RT_SRC_XSET)
+                continue;
+            uint8_t q = sim->plan.src_set[j];
+            for (uint8_t h = 0; h < sim->state.hist_n[q]; h++) {
+                real_t th = sim->state.hist_t[q][h];
+                if (th > t && th < te && th < tn)
+                    tn = th, *blk = b;
+            }
+        }
+    }
+    return tn;
 }
 
 /* h, or the largest length with t + h <= te in this arithmetic if it reaches past te */
@@ -189,7 +247,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
 {
     uint64_t end = tick + ratio;
 #if RT_MAX_TEV > 0
-    uint64_t k = tick; /* the tick the next known instant is looked for from */
+    uint64_t k = tick; /* the tick the next known instant is sought from */
 #endif
     real_t t = (real_t)tick * sc->dt, t_end = (real_t)end * sc->dt;
     for (int n = 1;; n++) {
@@ -201,11 +259,24 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
         }
 #endif
         real_t tb = kb == end ? t_end : (real_t)kb * sc->dt;
+        if ((sim->plan.set_flags[s] & RTI_SET_INSTANT) && tb > t) {
+            /* (its side of the known instants: any time before the next one) */
+#if RT_MAX_TEV > 0
+            sim->work.t_piece = (real_t)0.5 * (t + tb);
+#endif
+            rti_tev_instant(sc, sim, s, t); /* before the instants: an event may move them */
+        }
         real_t td = (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) ? rti_tev_dyn_next(sc, sim, s)
                                                                 : (real_t)RT_TEV_NEVER;
+        uint16_t bi = 0;
+        real_t ti = (sim->plan.set_flags[s] & RTI_SET_INSTANT)
+                        ? input_next(sc, sim, s, t, t_end, &bi) : (real_t)RT_TEV_NEVER;
+        td = ti < td ? ti : td;
         int last = n >= RT_TEV_PARTS_MAX;
         if (td < tb)
             tb = td, kb = NEVER;
+        if (last && ti < t_end) /* an input's change the last part passes: taken late */
+            rti_count(sim, RT_CNT_TEV_LIMIT, bi, RT_E_TEV);
         if (last)
             tb = t_end, kb = end; /* an instant before it is handled (late) at its end */
         real_t reached = t;
@@ -238,7 +309,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
 
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
 {
-    if (sim->plan.set_flags[s] & (RTI_SET_TEV_DYN | RTI_SET_STEP_END)) {
+    if (sim->plan.set_flags[s] & (RTI_SET_TEV_DYN | RTI_SET_STEP_END | RTI_SET_INSTANT)) {
         dyn_step(sc, sim, s, tick, ratio);
         return;
     }
@@ -354,8 +425,9 @@ static rt_status check_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
 }
 
 /* the flags of set s's kinds: RTI_SET_TEV (time events, known ahead or at run time),
-   RTI_SET_TEV_DYN (at run time), RTI_SET_STEP_END (a step-end service),
-   RTI_SET_EVERY_SIGN (roots whose every sign change is a crossing, rt/step.c) */
+   RTI_SET_TEV_DYN (at run time), RTI_SET_STEP_END (a step-end service), RTI_SET_INSTANT
+   (values taken at instants), RTI_SET_EVERY_SIGN (roots whose every sign change is a
+   crossing, rt/step.c) */
 static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     uint16_t f = 0;
@@ -364,6 +436,7 @@ static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
         f = (uint16_t)(f | (kd->next_event ? RTI_SET_TEV : 0) |
                        (kd->next_event && kd->time_event ? RTI_SET_TEV_DYN : 0) |
                        (kd->step_end ? RTI_SET_STEP_END : 0) |
+                       (kd->instant ? RTI_SET_INSTANT : 0) |
                        (kd->nr && kd->roots_every_sign ? RTI_SET_EVERY_SIGN : 0));
     }
     return f;
@@ -375,7 +448,8 @@ rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
     for (uint8_t s = 0; s < sc->nsets; s++) {
         uint16_t f = tev_flags(sc, sim, s);
         sim->plan.set_flags[s] |= (uint16_t)(f & RTI_SET_EVERY_SIGN);
-        if (f & (RTI_SET_TEV_DYN | RTI_SET_STEP_END)) /* steps for its services' sake */
+        /* steps for its services' sake */
+        if (f & (RTI_SET_TEV_DYN | RTI_SET_STEP_END | RTI_SET_INSTANT))
             sim->plan.set_flags[s] = (uint16_t)((sim->plan.set_flags[s] | f) & ~RTI_SET_NO_STEP);
         if (!(f & RTI_SET_TEV))
             continue;

@@ -8,8 +8,10 @@
  * the first event, nextEventTime is the current time). A model with a variable MODEL_LATE
  * (model_gen.h) counts there every SetTime in continuous-time mode to a time past the
  * nextEventTime its last event announced: the importer evaluating it across a time
- * event, which FMI forbids. FMU_BAD_STEP_TERMINATE=t: CompletedIntegratorStep asks to
- * terminate the simulation from time t. */
+ * event, which FMI forbids. A model with a variable MODEL_WRONG counts there every new
+ * value set in continuous-time mode of a discrete input or a tunable parameter
+ * (model_event_only), which FMI lets change in event mode only. FMU_BAD_STEP_TERMINATE=t:
+ * CompletedIntegratorStep asks to terminate the simulation from time t. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -106,6 +108,10 @@ static int set_values(inst *in, const unsigned *vr, size_t n, const double *v)
             say(in, 3, "value reference out of range");
             return 3;
         }
+#ifdef MODEL_WRONG
+        if (in->mode == M_CT && model_event_only[vr[i]] && in->d.v[vr[i]] != v[i])
+            in->d.v[MODEL_WRONG] += 1;
+#endif
         in->d.v[vr[i]] = v[i];
     }
     return 0;

@@ -45,6 +45,16 @@ def gen_header(d, token):
     late = [v["vr"] for v in d["vars"] if v.get("late")]
     if late:  # the glue counts there evaluations past nextEventTime (fmi_glue.c)
         lines.append("#define MODEL_LATE %d" % late[0])
+    wrong = [v["vr"] for v in d["vars"] if v.get("wrong")]
+    if wrong:  # the glue counts there values FMI lets change in event mode only, set in
+        # continuous-time mode: discrete inputs and tunable parameters (fmi_glue.c)
+        only = ["0"] * nv
+        for v in d["vars"]:
+            if (v["causality"] == "input" and v["variability"] != "continuous") or \
+               (v["causality"] == "parameter" and v["variability"] == "tunable"):
+                only[v["vr"]] = "1"
+        lines.append("#define MODEL_WRONG %d" % wrong[0])
+        lines.append("static const unsigned char model_event_only[%d] = {%s};" % (nv, ", ".join(only)))
     return "\n".join(lines) + "\n"
 
 

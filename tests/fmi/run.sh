@@ -48,6 +48,31 @@ for v in 2 3; do
     run osc_fmu $v && closed osc osc_fmu $v 1e-7
     run stepper_fmu $v && closed stepper stepper_fmu $v 1e-12
     run liftoff_fmu $v && closed liftoff liftoff_fmu $v 1e-9
+    run probe_hold_fmu $v && closed probe_hold probe_hold_fmu $v 1e-12
+done
+
+# a tunable parameter written during the run (tests/fmi/setp.c: q = 3 after the row at
+# 0.25 s): each probe takes it in event mode at its set's next instant (check.py)
+for v in 2 3; do
+    sed "s#@V@#$v#g; s#@FMUS@#$FMUS#g" tests/fmi/scenes/probe_param_fmu.scn > "$W/probe_param_fmu$v.scn"
+    "$T/setp" "$W/probe_param_fmu$v.scn" 0.25 "$W/probe_param_fmu$v.csv" Pd.q=3 Pe.q=3 Pf.q=3 \
+        > "$W/probe_param_fmu$v.out" 2>&1
+    if [ "$(grep -c '^set P[def].q: ok$' "$W/probe_param_fmu$v.out")" = 3 ] &&
+       grep -q '^status: ok$' "$W/probe_param_fmu$v.out"; then
+        ok "probe_param_fmu (FMI $v.0): q written at 0.25 s, status ok"
+    else bad "probe_param_fmu (FMI $v.0):"; cat "$W/probe_param_fmu$v.out"; fi
+    closed probe_param probe_param_fmu $v 1e-12
+done
+
+# a fixed parameter written during the run (the stair's period after the row at 1.25 s):
+# a fault of the block at its next evaluation (the tick 1.375 s: the stair has no state to
+# integrate), the instance not started again
+for v in 2 3; do
+    "$T/setp" "$W/stair_fmu$v.scn" 1.25 "$W/fixed$v.csv" S.period=1 > "$W/fixed$v.out" 2>&1
+    if grep -q '^status: non-finite' "$W/fixed$v.out" &&
+       grep -q '^fmu.S.first_fault: t = 1.375: parameter period is fixed: it cannot change after the start' "$W/fixed$v.out"
+    then ok "stair (FMI $v.0): a fixed parameter written at 1.25 s is a fault at 1.375 s"
+    else bad "stair (FMI $v.0): a fixed parameter written during the run:"; cat "$W/fixed$v.out"; fi
 done
 
 # more time events in one step than RT_TEV_PARTS_MAX parts (S3 every 0.03 s on steps of
@@ -116,6 +141,8 @@ for s in ball osc liftoff; do
 done
 same_hash "stair: FMI 3.0 FMU = FMI 2.0 FMU" "$W/stair_fmu3.out" "$W/stair_fmu2.out"
 same_hash "stepper: FMI 3.0 FMU = FMI 2.0 FMU" "$W/stepper_fmu3.out" "$W/stepper_fmu2.out"
+same_hash "probe_hold: FMI 3.0 FMU = FMI 2.0 FMU" "$W/probe_hold_fmu3.out" "$W/probe_hold_fmu2.out"
+same_hash "probe_param: FMI 3.0 FMU = FMI 2.0 FMU" "$W/probe_param_fmu3.out" "$W/probe_param_fmu2.out"
 
 # events: two per impact before 2 s, the impact and the return of h to h > 0 (every sign
 # change of an FMU's indicator is reported, rt/step.c)

@@ -4,6 +4,7 @@
  * counter, Jacobian reuse, a singular iteration matrix, multibody sets with projection
  * (a stand-in pendulum and the library's ten-body pendulum), state events, and
  * bit-identical replays. */
+#include "linalg.h"
 #include "rti.h" /* plan.set_flags' bits */
 #include "scenes/scenes.h"
 #include "testutil.h"
@@ -363,6 +364,42 @@ static void test_ros2_spread(void)
     /* binary32: the difference quotients' rounding (increment sqrt(eps) = 3.5e-4 on
        entries up to 1e4) makes a reused J off by some 1e-4 relative, which shows */
     TH_CHECK(e < (FLT ? 30 : 1.5) * e_fresh);
+}
+
+/* the spread refresh's factors are those of one whole refresh (rt/integ_implicit.c,
+   m_columns: each column made M's of I - h gamma J as it comes, the pivot floor kept as a
+   running maximum, the elimination stages over later steps). At the equilibrium x = 0 of
+   the stiff linear system every forward-difference column is the same, (a_ij d) / d with
+   d = sqrt(eps), whichever step takes it; after one cycle (K = 8: the factors installed
+   at the ninth step) lu and its pivots equal rti_lu of I - h gamma J formed at once by
+   hand, with the h gamma of a fresh Jacobian every step */
+static void test_ros2_spread_factors(void)
+{
+    static const real_t zero[] = {0, 0, 0};
+    real_t h = (real_t)0.01;
+    stiff_matrix();
+    if (!TH_CHECK(run(&stiff3, 0, zero, &rt_ros2, (rt_set_cfg){.jac_every = 1}, h, h)))
+        return;
+    real_t hg = tu_sim.state.imp[0].h_factored;
+    if (!TH_CHECK(run(&stiff3, 0, zero, &rt_ros2, (rt_set_cfg){.jac_every = 8, .substeps = 1},
+                      h, 9 * h)))
+        return;
+    const rt_implicit_ws *ws = &tu_sim.state.imp[0];
+    TH_CHECK(tu_sim.state.tick == 9 && rt_stats_of(&tu_sim)->istats[0].jac_evals == 2);
+    TH_CHECK(ws->valid && ws->h_factored == hg);
+    real_t m[9], d = rt_sqrt(RT_EPS);
+    uint16_t piv[3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            m[i * 3 + j] = (i == j ? 1 : 0) - hg * (stiff_a[i * 3 + j] * d / d);
+    if (!TH_CHECK(rti_lu(m, 3, piv, (real_t)1e-12) == RT_OK))
+        return;
+    int same = 1; /* values (a zero of either sign is the same M) */
+    for (int k = 0; k < 9; k++)
+        same = same && m[k] == ws->lu[k];
+    for (int i = 0; i < 3; i++)
+        same = same && piv[i] == ws->piv[i];
+    TH_CHECK(same);
 }
 
 /* ------------------------------------------------------------------ degraded steps */
@@ -745,6 +782,7 @@ const th_test th_implicit_tests[] = {
     {"implicit_stiff_linear", test_stiff_linear},
     {"implicit_ros2_split", test_ros2_split},
     {"implicit_ros2_spread", test_ros2_spread},
+    {"implicit_ros2_spread_factors", test_ros2_spread_factors},
     {"implicit_ros2_autonomous", test_ros2_autonomous},
     {"implicit_degraded", test_degraded},
     {"implicit_jac_reuse", test_jac_reuse},

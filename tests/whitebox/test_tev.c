@@ -2,7 +2,8 @@
  * their closed forms converge at every method's order, with the switch on a step boundary
  * and strictly inside a step of several ticks (also in the background set); a pulse train
  * splits steps at each edge; instants off the grid, or too many in one step, are refused
- * at rt_init and by rt_set_param. */
+ * at rt_init and by rt_set_param; a discrete input read from a slower set is taken at the
+ * instants where it changes (rt_kind.instant). */
 #include "models.h"
 #include "testutil.h"
 #include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
@@ -261,6 +262,73 @@ static void test_root_at_instant(void)
     }
 }
 
+/* values taken at instants (rt_kind.instant, an FMU's discrete input): Hold in a set of 3
+   ticks reads, held, the ramp y = t of a set of 4 ticks. Its instant service takes a new
+   value into x0 (counting in x2, dating in x3), its derivative integrates the held value
+   (x1' = x0) and never reads u. Each source point inside a step of 3 ticks ends a part
+   there, so every point is taken at its time: x2 = floor(t / 4 ticks), x3 = its last
+   point, x1 = the staircase's integral, exactly (rk4 on constant derivatives). */
+static const char *const hold_x[] = {"v", "s", "n", "at"};
+static const char *const hold_u[] = {"u"};
+static const char *const ramp_x[] = {"y"};
+static const uint8_t hold_disc[] = {1};
+static void hold_out(const rt_args *a, real_t *y) { y[0] = a->x[1]; }
+static void hold_deriv(const rt_args *a, real_t *xd)
+{
+    xd[0] = 0, xd[1] = a->x[0], xd[2] = 0, xd[3] = 0;
+}
+static int hold_instant(const rt_args *a, real_t *x, real_t *d)
+{
+    (void)d;
+    if (a->u[0] == x[0])
+        return 0;
+    x[0] = a->u[0], x[2] += 1, x[3] = a->t;
+    return 1;
+}
+static const rt_kind holder = {
+    .name = "holder", .type = RT_KIND_NSS, .nu = 1, .ny = 1, .nx = 4, .u_names = hold_u,
+    .y_names = hold_x + 1, .x_names = hold_x, .feed = RT_FEED_NONE, .output = hold_out,
+    .deriv = hold_deriv, .instant = hold_instant, .u_discrete = hold_disc,
+};
+static void ramp_out(const rt_args *a, real_t *y) { y[0] = a->x[0]; }
+static void ramp_deriv(const rt_args *a, real_t *xd) { (void)a, xd[0] = 1; }
+static const rt_kind ramp = {
+    .name = "ramp", .type = RT_KIND_NSS, .nx = 1, .ny = 1, .y_names = ramp_x, .x_names = ramp_x,
+    .feed = RT_FEED_NONE, .output = ramp_out, .deriv = ramp_deriv,
+};
+
+static void test_input_instants(void)
+{
+    rt_block bl[2] = {{.name = "Ramp", .kind = &ramp, .set = 0},
+                      {.name = "Hold", .kind = &holder, .set = 1}};
+    rt_set sets[2] = {{.name = "src", .method = &rt_rk4, .ratio = 4, .cfg = {.accuracy = 1}},
+                      {.name = "hold", .method = &rt_rk4, .ratio = 3, .cfg = {.accuracy = 1}}};
+    rt_scene sc = {.name = "instants", .dt = (real_t)DT, .t_end = (real_t)0.12, .blocks = bl,
+                   .nblocks = 2, .conns = conn, .nconns = 1, .sets = sets, .nsets = 2};
+    if (!TH_CHECK(rt_init(&sc, &tu_sim) == RT_OK))
+        return;
+    double worst = 0;
+    int counts = 1;
+    while (rt_tick(&sc, &tu_sim) == RT_OK || rt_ticks_done(&tu_sim) == rt_tick_count(&tu_sim)) {
+        uint64_t k = rt_ticks_done(&tu_sim);
+        if (k % 3 == 0) { /* the holder's state is at this tick */
+            const real_t *x = tu_sim.state.x + tu_sim.plan.x_off[1];
+            double t = (double)k * DT, d = 4 * DT, n = (double)(k / 4);
+            double s = d * d * n * (n - 1) / 2 + d * n * (t - d * n);
+            double e1 = (double)x[1] - s, e3 = (double)x[3] - d * n;
+            e1 = e1 < 0 ? -e1 : e1, e3 = e3 < 0 ? -e3 : e3;
+            worst = e1 > worst ? e1 : worst;
+            worst = e3 > worst ? e3 : worst;
+            counts &= x[2] == (real_t)n;
+        }
+        if (k >= rt_tick_count(&tu_sim))
+            break;
+    }
+    th_note("held input: largest error of its integral and of its instants", worst);
+    TH_CHECK(counts && worst < (RT_REAL_IS_FLOAT ? 1e-5 : 1e-14));
+    TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
+}
+
 const th_test th_tev_tests[] = {
     {"tev_lag_boundary", test_lag_boundary},
     {"tev_lag_inside", test_lag_inside},
@@ -271,5 +339,6 @@ const th_test th_tev_tests[] = {
     {"tev_no_change_before", test_no_change_before},
     {"tev_refused", test_refused},
     {"tev_root_at_instant", test_root_at_instant},
+    {"tev_input_instants", test_input_instants},
     {0, 0},
 };

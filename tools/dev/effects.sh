@@ -33,7 +33,7 @@ flash, RAM and instructions per tick over the whole scene (8000 ticks of 1 ms; t
 context only: the vehicles' background steps run in PendSV, outside it; the max is the
 busiest tick: in \`lane_change\` a part of the steering set's spread Jacobian refresh
 at the vehicles' publication, in
-\`lane_change_planar\` a tick in which its 5 ms step lands; the slowest tick in
+\`lane_change_planar\` (whose 5 ms step runs in the background too) a publication; the slowest tick in
 microseconds at $(mhz "$t") MHz and one instruction per cycle), counted as above, the trace hash checked
 against the host's. Host: instructions per simulated second, \`valgrind --tool=callgrind
 modrt run FILE.scn\` over the 8 s divided by 8 (x86-64, gcc -O2; includes reading the

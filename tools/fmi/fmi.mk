@@ -55,7 +55,7 @@ build/fuzz/fmi-md-fuzz: $(FMI_FUZZ_SRCS) $(FMI_DIR)/fmu_md.h tests/scenec/fuzz_m
 fuzz-fmi: build/fuzz/fmi-md-fuzz fmi-fmus
 	sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz $(FUZZ_TIME) $(FMI_TDIR)
 
-test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz $(FMI_TDIR)/master $(FMI_TDIR)/snap
+test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz $(FMI_TDIR)/master $(FMI_TDIR)/snap $(FMI_TDIR)/setp
 	sh tests/fmi/run.sh $(O) $(FMI_TDIR)
 	sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz 10 $(FMI_TDIR)
 
@@ -72,3 +72,9 @@ $(FMI_TDIR)/snap: $(call obj,tests/fmi/snap.c $(FMI_SRCS)) $(SCN_LIB_OBJS) $(RT_
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(LDSAN) $^ $(FMI_LIBS) -lm -o $@
 $(call obj,tests/fmi/snap.c): CINC += -I$(FMI_DIR) -I$(SCN_DIR)
+
+# parameters written during a run with FMU blocks (tests/fmi/setp.c), linked as snap is
+$(FMI_TDIR)/setp: $(call obj,tests/fmi/setp.c $(FMI_SRCS)) $(SCN_LIB_OBJS) $(RT_OBJS) $(SCN_MODEL_OBJS)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(LDSAN) $^ $(FMI_LIBS) -lm -o $@
+$(call obj,tests/fmi/setp.c): CINC += -I$(FMI_DIR) -I$(SCN_DIR)

@@ -115,6 +115,10 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
     names(f, pre, "un", m->u_names, m->nu), names(f, pre, "yn", m->y_names, m->ny);
     names(f, pre, "pn", m->p_names, m->np), names(f, pre, "xn", m->x_names, m->nx);
     values(f, pre, "pdef", m->p_def, m->np, 1), values(f, pre, "xdef", m->x_def, m->nx, 1);
+    fprintf(f, "static uint8_t %s_ud[] = {", pre);
+    for (uint32_t i = 0; i < m->nu; i++)
+        fprintf(f, "%u, ", m->u_disc[i]);
+    fputs("0};\n", f);
     fprintf(f, "static uint8_t %s_feed[] = {", pre);
     for (uint32_t i = 0; i < m->ny * m->nu; i++)
         fprintf(f, "%u, ", m->feed[i]);
@@ -135,8 +139,9 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
                "    .vu = %s_vu, .vy = %s_vy, .vp = %s_vp, .vx = %s_vx,\n"
                "    .u_names = %s_un, .y_names = %s_yn, .p_names = %s_pn, .x_names = %s_xn,\n"
                "    .p_def = %s_pdef, .x_def = %s_xdef, .feed = %s_feed, .feed_class = %d,\n"
-               "    .units = ", pre, pre, pre, pre, pre, pre, pre, pre, pre, pre, pre, pre, pre,
-            pre, pre, pre, (int)m->feed_class);
+               "    .u_disc = %s_ud, .instants = %u, .units = ", pre, pre, pre, pre, pre, pre,
+            pre, pre, pre, pre, pre, pre, pre, pre, pre, pre, (int)m->feed_class, pre,
+            (unsigned)m->instants);
     cstr(f, m->units);
     fputs(", .ninst = 1};\n", f);
     /* the instance: its buffers, the scene's state starts, the root directions */
@@ -178,7 +183,8 @@ int fmu_emit(const fmu_inst *in, FILE *f, char *err, size_t errlen)
     cstr(f, k->units);
     fputs(", .doc = ", f), cstr(f, k->doc);
     fprintf(f, ",\n    .next_event = fmu_next_event, .time_event = fmu_time_event, "
-               ".step_end = %s, .roots_every_sign = %u};\n",
-            k->step_end ? "fmu_step_end" : "NULL", (unsigned)k->roots_every_sign);
+               ".step_end = %s, .roots_every_sign = %u,\n    .instant = %s, .u_discrete = %s_ud};\n",
+            k->step_end ? "fmu_step_end" : "NULL", (unsigned)k->roots_every_sign,
+            k->instant ? "fmu_instant" : "NULL", pre);
     return 0;
 }

@@ -11,7 +11,10 @@
  * the runtime ends a part of the step exactly there, so the FMU is never evaluated in
  * continuous time past it, and runs the same event mode at t_next (rt/tev.c). An FMU that
  * needs CompletedIntegratorStep gets it at the end of each part of its set's steps
- * (rt_kind.step_end); asked for an event there, it runs one there.
+ * (rt_kind.step_end); asked for an event there, it runs one there. Discrete inputs and
+ * tunable parameters change in event mode only: continuous-time evaluations hold them, and
+ * the runtime hands the new values over at each start and end of a step part
+ * (rt_kind.instant), where an event mode takes them.
  *
  * A call that returns Discard, Error or Fatal, a NaN, an event iteration that does not end
  * or an FMU that asks to terminate is a fault: the service writes NaN, which the runtime
@@ -166,16 +169,74 @@ static int set_in_event(fmu_inst *in, double t, const uint32_t *vr, size_t n, co
 
 /* ------------------------------------------------------------------ bringing it to (t, x, u, p) */
 
-static int set_params(fmu_inst *in, const real_t *p, double t);
+/* FMI lets discrete inputs and tunable parameters change in event mode only: an evaluation
+   in continuous time (an output, a derivative, the event indicators) holds the values the
+   FMU took at its last instant, and the runtime hands the new ones over at the instants
+   of the block's set (fmu_instant: the start and end of each step part and the tick its
+   state reaches, rt/tev.c), where the FMU takes them in event mode. The first evaluation
+   takes every input (at the start, t = 0). */
+
+static int start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given);
+
+/* a parameter of p that differs from the FMU's and is not tunable: a fault (before the
+   run, fmu_check started the instance again with it) */
+static int params_fixed(fmu_inst *in, const real_t *p, double t)
+{
+    const fmu_model *m = in->m;
+    for (uint32_t i = 0; i < m->np; i++) {
+        const fmu_var *v = &m->md.v[m->ip[i]];
+        if (in->p[i] == (double)p[i] || v->variability == FMU_V_TUNABLE)
+            continue;
+        fault(in, t, "parameter %s is %s: it cannot change after the start (t = %.17g)",
+              v->name, fmu_md_variability_name(v->variability), t);
+        in->mode = FMU_M_DEAD;
+        return -1;
+    }
+    return 0;
+}
+
+/* the first values of the inputs: all of them, the discrete ones in event mode */
+static int inputs_first(fmu_inst *in, const rt_args *a, double t)
+{
+    const fmu_model *m = in->m;
+    int du = !in->u_valid, disc = 0;
+    for (uint32_t i = 0; i < m->nu; i++) {
+        du |= in->u[i] != (double)a->u[i];
+        disc |= in->u[i] != (double)a->u[i] && m->u_disc[i];
+        in->u[i] = (double)a->u[i];
+    }
+    in->u_valid = 1;
+    if (!du)
+        return 0;
+    if (disc)
+        return set_in_event(in, t, m->vu, m->nu, in->u);
+    return CALL(in, t, m->ops == &fmu_ops2 ? "SetReal" : "SetFloat64",
+                m->ops->set(in, m->vu, m->nu, in->u));
+}
+
+/* is the instance in a run past its start (t > 0) */
+static int running(const fmu_inst *in) { return in->mode == FMU_M_CT && in->t_valid && in->t > 0; }
+
+/* an evaluation at t = 0 of an instance past its start: a new run (rt_init after one,
+   fmu_check) starts it afresh with the parameters a gives */
+static int restart_if_new(fmu_inst *in, const rt_args *a)
+{
+    if (!(a->t == 0 && running(in)))
+        return 0;
+    if (CALL(in, 0, "Reset", in->m->ops->reset(in)))
+        return -1;
+    in->mode = FMU_M_NONE;
+    return start(in, a->p, NULL, NULL);
+}
 
 static int sync(fmu_inst *in, const rt_args *a)
 {
     const fmu_model *m = in->m;
     const fmu_ops *o = m->ops;
     double t = (double)a->t;
-    if (in->mode != FMU_M_CT)
+    if (restart_if_new(in, a) || in->mode != FMU_M_CT)
         return -1;
-    if (m->np && set_params(in, a->p, t))
+    if (m->np && params_fixed(in, a->p, t))
         return -1;
     if (!in->t_valid || in->t != t) {
         if (CALL(in, t, "SetTime", o->set_time(in, t)))
@@ -192,53 +253,55 @@ static int sync(fmu_inst *in, const rt_args *a)
             return -1;
         in->x_valid = 1;
     }
-    int du = !in->u_valid;
-    for (uint32_t i = 0; i < m->nu; i++)
-        du |= in->u[i] != (double)a->u[i];
-    if (!m->nu || !du)
+    if (!m->nu)
         return 0;
-    /* continuous inputs in continuous time; a discrete one changes only at an event */
-    int disc = 0;
+    if (!in->u_valid)
+        return inputs_first(in, a, t);
+    /* continuous time: the continuous inputs that changed; a discrete one is held */
     for (uint32_t i = 0; i < m->nu; i++) {
-        disc |= in->u[i] != (double)a->u[i] && m->md.v[m->iu[i]].variability != FMU_V_CONTINUOUS;
+        if (m->u_disc[i] || in->u[i] == (double)a->u[i])
+            continue;
         in->u[i] = (double)a->u[i];
+        if (CALL(in, t, o == &fmu_ops2 ? "SetReal" : "SetFloat64",
+                 o->set(in, &m->vu[i], 1, &in->u[i])))
+            return -1;
     }
-    in->u_valid = 1;
-    if (disc)
-        return set_in_event(in, t, m->vu, m->nu, in->u);
-    return CALL(in, t, o == &fmu_ops2 ? "SetReal" : "SetFloat64", o->set(in, m->vu, m->nu, in->u));
+    return 0;
 }
 
-/* parameters that differ from the FMU's: before any event a fresh start takes them all;
-   after, only tunable ones may change (in event mode) */
-static int start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given);
-
-static int set_params(fmu_inst *in, const real_t *p, double t)
+/* do a's discrete inputs or parameters differ from what the FMU holds */
+static int pending(const fmu_inst *in, const rt_args *a)
 {
     const fmu_model *m = in->m;
-    int changed = 0;
+    int d = 0;
+    for (uint32_t i = 0; i < m->nu; i++)
+        d |= m->u_disc[i] && in->u[i] != (double)a->u[i];
     for (uint32_t i = 0; i < m->np; i++)
-        if (in->p[i] != (double)p[i]) {
-            changed = 1;
-            if (m->md.v[m->ip[i]].variability != FMU_V_TUNABLE && !in->fresh) {
-                fault(in, t, "parameter %s is %s: it cannot change after the start (t = %.17g)",
-                      m->md.v[m->ip[i]].name,
-                      fmu_md_variability_name(m->md.v[m->ip[i]].variability), t);
-                in->mode = FMU_M_DEAD;
-                return -1;
-            }
-        }
-    if (!changed)
-        return 0;
-    if (in->fresh) { /* nothing happened yet: initialize again with them */
-        if (CALL(in, t, "Reset", m->ops->reset(in)))
+        d |= in->p[i] != (double)a->p[i];
+    return d;
+}
+
+/* in event mode: each discrete input and parameter of a that differs from the FMU's (a
+   parameter that may not change was refused by sync) */
+static int set_pending(fmu_inst *in, const rt_args *a, double t)
+{
+    const fmu_model *m = in->m;
+    const char *set = m->ops == &fmu_ops2 ? "SetReal" : "SetFloat64";
+    for (uint32_t i = 0; i < m->nu; i++) {
+        if (!m->u_disc[i] || in->u[i] == (double)a->u[i])
+            continue;
+        in->u[i] = (double)a->u[i];
+        if (CALL(in, t, set, m->ops->set(in, &m->vu[i], 1, &in->u[i])))
             return -1;
-        in->mode = FMU_M_NONE;
-        return start(in, p, NULL, NULL);
     }
-    for (uint32_t i = 0; i < m->np; i++)
-        in->p[i] = (double)p[i];
-    return set_in_event(in, t, m->vp, m->np, in->p);
+    for (uint32_t i = 0; i < m->np; i++) {
+        if (in->p[i] == (double)a->p[i])
+            continue;
+        in->p[i] = (double)a->p[i];
+        if (CALL(in, t, set, m->ops->set(in, &m->vp[i], 1, &in->p[i])))
+            return -1;
+    }
+    return 0;
 }
 
 /* ------------------------------------------------------------------ the kind's services */
@@ -305,7 +368,7 @@ static void event_mode(fmu_inst *in, const rt_args *a, real_t *x)
         return;
     }
     in->mode = FMU_M_EVENT, in->fresh = 0, in->events++;
-    if (iterate(in, t, x)) {
+    if (set_pending(in, &b, t) || iterate(in, t, x)) {
         nan_fill(x, m->nx);
         return;
     }
@@ -366,6 +429,19 @@ int fmu_step_end(const rt_args *a, real_t *x, real_t *d)
     return 1;
 }
 
+/* an instant of the block's set (the start or the end of a step part, rt/tev.c): the
+   discrete inputs and parameters that changed since the last one, in an event mode there
+   (returns 1), which the FMU then holds through the part that follows */
+int fmu_instant(const rt_args *a, real_t *x, real_t *d)
+{
+    fmu_inst *in = (fmu_inst *)a->spec;
+    (void)d;
+    if (in->mode != FMU_M_CT || !pending(in, a))
+        return 0;
+    event_mode(in, a, x);
+    return 1;
+}
+
 /* ------------------------------------------------------------------ start */
 
 /* instantiation to continuous time: parameters and given initial states set before
@@ -402,7 +478,11 @@ static int start(fmu_inst *in, const real_t *p, real_t *x0, const uint8_t *given
     return 0;
 }
 
-/* the runtime's init: a run starts from a fresh instance with these parameters */
+/* the runtime's init: a run starts from a fresh instance with these parameters. Also
+   rt_set_param's check: a parameter written during a run is the instance's next instant's
+   business (tunable: taken in event mode there; else a fault, params_fixed), and the
+   instance goes on; a new run after one (rt_init, whose first evaluation is at t = 0)
+   restarts it there (restart_if_new) */
 rt_status fmu_check(const real_t *p, const void *spec)
 {
     fmu_inst *in = (fmu_inst *)spec;
@@ -410,6 +490,8 @@ rt_status fmu_check(const real_t *p, const void *spec)
     int same = in->fresh && in->mode == FMU_M_CT;
     for (uint32_t i = 0; same && i < m->np; i++)
         same = in->p[i] == (double)p[i];
+    if (!same && in->c && running(in))
+        return RT_OK;
 #ifdef FMU_TARGET /* an image: the first rt_init instantiates, with the scene's values */
     if (!in->c)
         return m->ops->instantiate(in) || start(in, p, NULL, NULL) ? RT_E_PARAM : RT_OK;
@@ -518,6 +600,7 @@ fmu_inst *fmu_inst_new(fmu_model *m, const char *block, char *err, size_t errlen
     k->roots = m->nz ? fmu_roots : NULL, k->event = m->nz ? fmu_event : NULL;
     k->next_event = fmu_next_event, k->time_event = fmu_time_event;
     k->step_end = m->md.needs_step_done ? fmu_step_end : NULL;
+    k->instant = m->instants ? fmu_instant : NULL, k->u_discrete = m->u_disc;
     k->roots_every_sign = 1; /* FMI: every change of an indicator's domain is an event */
     k->save = fmu_save, k->restore = fmu_restore; /* (RT_E_SNAPSHOT unless it can) */
     k->spec = in;

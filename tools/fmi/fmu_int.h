@@ -95,6 +95,10 @@ struct fmu_model {
     const char **u_names, **y_names, **p_names, **x_names; /* scene-language names */
     real_t *p_def, *x_def;
     uint8_t *feed;              /* ny*nu */
+    uint8_t *u_disc;            /* nu: 1 for an input of discrete variability (taken only
+                                   in event mode, at an instant: rt_kind.u_discrete) */
+    uint8_t instants;           /* a discrete input or a tunable parameter: the kind's
+                                   rt_kind.instant */
     rt_feed feed_class;
     const char *units;          /* rt_kind.units */
     int ninst;
@@ -145,6 +149,7 @@ void fmu_event(const rt_args *a, uint16_t which, real_t *x, real_t *d);
 real_t fmu_next_event(const rt_args *a);
 void fmu_time_event(const rt_args *a, real_t *x, real_t *d);
 int fmu_step_end(const rt_args *a, real_t *x, real_t *d);
+int fmu_instant(const rt_args *a, real_t *x, real_t *d);
 rt_status fmu_check(const real_t *p, const void *spec);
 /* the status of an FMI call the instance made: 0 to go on, -1 after the fault is counted
    (Discard, Error, Fatal: the instance is dead after Error and Fatal) */

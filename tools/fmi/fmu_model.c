@@ -294,9 +294,16 @@ static int interface_of(fmu_model *m, char *err, size_t errlen)
     for (uint32_t i = 0; m->p_def && i < m->np; i++)
         m->p_def[i] = (real_t)m->md.v[m->ip[i]].start;
     m->nz = m->md.n_indicators;
+    m->u_disc = calloc(m->nu + 1, 1);
+    for (uint32_t i = 0; m->u_disc && i < m->nu; i++) {
+        m->u_disc[i] = m->md.v[m->iu[i]].variability != FMU_V_CONTINUOUS;
+        m->instants |= m->u_disc[i];
+    }
+    for (uint32_t i = 0; i < m->np; i++)
+        m->instants |= m->md.v[m->ip[i]].variability == FMU_V_TUNABLE;
     feed(m);
     units(m);
-    return !m->p_def || !m->feed || !m->units ? failf(err, errlen, "out of memory")
+    return !m->p_def || !m->u_disc || !m->feed || !m->units ? failf(err, errlen, "out of memory")
                                               : clash(m, err, errlen);
 }
 
