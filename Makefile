@@ -333,6 +333,7 @@ cross-test-$(1):
 	@QEMU_TIMEOUT=$(QEMU_TIMEOUT) CROSS_PARTS=$(CROSS_PARTS) CROSS_SCENE_PARTS=$(CROSS_SCENE_PARTS) \
 	 CROSS_BUDGET_SOFTFLOAT=$(CROSS_BUDGET_SOFTFLOAT) CROSS_BUDGET_TESTS=$(CROSS_BUDGET_TESTS) \
 	 CROSS_BUDGET_SCENES=$(CROSS_BUDGET_SCENES) CROSS_BUDGET_RT=$(CROSS_BUDGET_RT) \
+	 CROSS_LDSCRIPT=$$(patsubst -T%,%,$$(filter -T%,$$(TARGET_LDFLAGS_$(1)))) \
 	 sh tests/cross/cross_test.sh $(1) build/$(1)$(XSUF) $(O) "$$(TARGET_RUN_$(1))" \
 	   "$$(TARGET_VTIME_$(1))" $(if $(filter $(1),$(CROSS_BG_TARGETS)),$(CROSS_BG_TICKS),0)
 .PHONY: cross-build-$(1)
@@ -386,7 +387,8 @@ effects: deps build/host/modrt $(SCENEC) $(INSN_COUNT_SO)
 	mv build/footprint.md docs/footprint.md
 	@echo "effects: wrote the section of docs/footprint.md"
 # one image: make foot-elf T=<target> S=<scene> (the flags come from modrt sizes); a scene
-# outside the library: SCN=<file.scn> too, S its scene name (scenec compiles and sizes it)
+# outside the library: SCN=<file.scn> too, S its scene name (scenec compiles and sizes it);
+# FOOT_CFLAGS=-DRT_SCENE_CODE=0: the table-driven path instead of the scene's written-out code
 FOOT_TICKS ?= 1000
 FOOT_GEN = $(if $(SCN),build/foot/gen/$(S).c,build/gen/scenes/$(S).c)
 FOOT_SIZES = $(if $(SCN),$(shell build/host/scenec --sizes $(SCN)),$(shell build/host/modrt sizes $(S)))
@@ -400,7 +402,7 @@ foot-elf: $(call cobj,$(T),$(TARGET_PORT_SRCS_$(T)))
 	@mkdir -p build/foot/$(T)$(XSUF) build/foot/gen
 	@$(if $(SCN),build/host/scenec -o $(FOOT_GEN) $(SCN))
 	@$(TARGET_CC_$(T)) $(filter-out -MMD -MP,$(CROSS_CFLAGS)) $(TARGET_CFLAGS_$(T)) \
-	  $(FOOT_SIZES) $(FOOT_BG) \
+	  $(FOOT_SIZES) $(FOOT_BG) $(FOOT_CFLAGS) \
 	  -DFOOT_SCENE=mdl_scene_$(S) -DFOOT_TICKS=$(FOOT_TICKS) $(FOOT_SRCS) $(FOOT_GEN) \
 	  $(FOOT_FMU) $^ $(TARGET_LDFLAGS_$(T)) -o build/foot/$(T)$(XSUF)/$(S).elf
 $(INSN_COUNT_SO): $(INSN_COUNT_SRC)

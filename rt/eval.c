@@ -339,6 +339,8 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     uint16_t base = sim->plan.set_x[set];
 
     sim->stats.rhs_evals[set]++;
+    if (sc->code && sc->code->rhs && sc->code->rhs(sc, sim, set, t, c->h, xdot))
+        return RT_OK; /* written out for this scene (rt_scene_code) */
     if (sim->plan.rhs_calls[set] > 0) /* else no output of the set is read live */
         set_outputs(sc, sim, (rti_at){t, set, RTI_IN_RHS});
     /* a multibody set's blocks have none (rti_mbs_accel gives their derivatives) */

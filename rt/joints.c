@@ -7,6 +7,7 @@
  * Orientation conditions are written as perpendicularity of node axes, u . w = 0 with
  * u = S2 e_i and w = S1 e_j: their derivative is (u x w) . (w2 - w1), smooth everywhere. */
 #include "rt.h"
+#include "rti_joints.h"
 
 static real_t dot3(const real_t *a, const real_t *b)
 {
@@ -72,36 +73,16 @@ static void perpendicular(const rt_mbs_node *n1, const rt_mbs_node *n2, int iu, 
 }
 
 /* ---- spherical difference joint |r1 - r2| - l = 0 (eq. 8); p = {l} ----
-   with d = r1 - r2, e = d / |d|: g' = e . (v1 - v2), c = (|d'|^2 - (e . d')^2) / |d|;
-   the translational entries only (eval_points); eval clears the rest first */
+   its point equations are rt/rti_joints.h's (written-out scene code inlines them) */
 static void sphdiff_points(const real_t *p, const real_t *r1, const real_t *v1,
                            const real_t *r2, const real_t *v2, rt_joint_eval *e)
 {
-    real_t d[3], dd[3], u[3] = {1, 0, 0};
-    for (int i = 0; i < 3; i++)
-        d[i] = r1[i] - r2[i], dd[i] = v1[i] - v2[i];
-    real_t len = rt_sqrt(dot3(d, d));
-    e->g[0] = len - p[0];
-    e->c[0] = 0;
-    /* coincident nodes have no direction: +x, no curvature term (finite, deterministic) */
-    if (len > RT_MBS_LEN_MIN)
-        for (int i = 0; i < 3; i++)
-            u[i] = d[i] / len;
-    for (int i = 0; i < 3; i++)
-        e->C[0][i] = u[i], e->C[0][6 + i] = -u[i];
-    if (len > RT_MBS_LEN_MIN) {
-        real_t ud = dot3(u, dd);
-        e->c[0] = (dot3(dd, dd) - ud * ud) / len;
-    }
+    rti_sphdiff_points(p, r1, v1, r2, v2, e);
 }
 
-/* g alone: the first lines of sphdiff_points */
 static void sphdiff_g(const real_t *p, const real_t *r1, const real_t *r2, real_t *g)
 {
-    real_t d[3];
-    for (int i = 0; i < 3; i++)
-        d[i] = r1[i] - r2[i];
-    g[0] = rt_sqrt(dot3(d, d)) - p[0];
+    rti_sphdiff_g(p, r1, r2, g);
 }
 
 static void sphdiff_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_node *n2,

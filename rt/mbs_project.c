@@ -173,6 +173,8 @@ void rti_mbs_project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     rt_mbs_work *w = &sim->work.mbs;
     if (w->nz[set] == 0)
         return;
+    if (sc->code && sc->code->project && sc->code->project(sc, sim, set, t))
+        return; /* written out for this scene (rt_scene_code) */
     if (sc->stab != RT_STAB_PROJECT || w->nc[set] == 0) {
         if (sc->stab == RT_STAB_PROJECT)
             normalize(sc, sim, set);

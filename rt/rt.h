@@ -620,7 +620,24 @@ typedef struct rt_scene {
     /* the background set's services (rt_bg, rt/bg.c): non-NULL exactly when a set is
        declared background, so a scene without one links none of that code */
     const struct rt_bg_ops *bg;
+    /* code scenec wrote for this scene (rt_scene_code); NULL: the table-driven path */
+    const struct rt_scene_code *code;
 } rt_scene;
+
+/* Code written for one scene by scenec (tools/scenec/spec.c, docs/overhead.md): what the
+ * table-driven path does for it, with the scene's evaluation sequence and multibody
+ * pattern written out, the same operations in the same order (the same bits). A NULL
+ * entry, or an entry that returns 0, leaves the work to the generic path. */
+typedef struct rt_scene_code {
+    /* the right-hand side of set `set` at t (after rt/eval.c's rti_rhs counted it) into
+       xdot; 0: not written for this set or not for the state it finds (a mass matrix
+       not yet factored), the generic path runs */
+    int (*rhs)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
+               real_t h, real_t *xdot);
+    /* the projection of set `set`'s multibody state at t (rt/mbs_project.c,
+       RT_STAB_PROJECT); 0: not written for it, the generic path runs */
+    int (*project)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+} rt_scene_code;
 
 /* The background set's services (rt/bg.c), named by a scene that has one (rt_scene.bg). */
 typedef struct rt_bg_ops {

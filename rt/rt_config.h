@@ -40,6 +40,13 @@ typedef double real_t;
 #define RT_KIND_DOCS 1
 #endif
 
+/* 1: a scene compiled by scenec carries the code written out for it (rt_scene_code,
+   tools/scenec/spec.c); 0: its rt_scene.code is NULL and it runs the table-driven path
+   (the same bits; make image IMAGE_CFLAGS=-DRT_SCENE_CODE=0 measures that one) */
+#ifndef RT_SCENE_CODE
+#define RT_SCENE_CODE 1
+#endif
+
 #ifndef RT_ERR_LEN
 #define RT_ERR_LEN 128 /* characters of an init error description */
 #endif

@@ -19,7 +19,7 @@ foot_count() {
     eval "$(echo "$fc_run" | sed "s|-kernel\$|-plugin $(pwd)/$so,addr=0x$fc_a,stop=0x$fc_b -d plugin -kernel|") $1" 2>&1 || true
 }
 
-# foot_measure TARGET SCENE REAL [SCN]: builds build/foot/<target>[-float]/<scene>.elf (a
+# foot_measure TARGET SCENE REAL [SCN]: builds (with FOOT_CFLAGS if set) build/foot/<target>[-float]/<scene>.elf (a
 # library scene, or the scene file SCN whose scene is named SCENE) and sets flash, ram
 # (bytes), stack (high-water mark), stats ("min | median | max" instructions per tick),
 # max, models (the kinds linked) and hash (the image's trace hash); fm_elf is the image
@@ -28,7 +28,7 @@ foot_measure() {
     fm_sfx=
     [ "$fm_real" = float ] && fm_sfx=-float
     make -s foot-elf T="$fm_t" S="$fm_s" REAL="$fm_real" ${fm_scn:+SCN="$fm_scn"} \
-        ${FOOT_TICKS:+FOOT_TICKS="$FOOT_TICKS"} ${FOOT_FMU:+FOOT_FMU="$FOOT_FMU"}
+        ${FOOT_TICKS:+FOOT_TICKS="$FOOT_TICKS"} ${FOOT_CFLAGS:+FOOT_CFLAGS="$FOOT_CFLAGS"} ${FOOT_FMU:+FOOT_FMU="$FOOT_FMU"}
     fm_elf=build/foot/$fm_t$fm_sfx/$fm_s.elf
     fm_size=$(make -s "print-TARGET_SIZE_$fm_t")
     fm_nm=$(make -s "print-TARGET_NM_$fm_t")

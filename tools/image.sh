@@ -159,6 +159,14 @@ t_end=$(echo "$info" | sed -n 's/^end time: \([^ ]*\) s$/\1/p')
 [ -n "$clock" ] || clock=$(mhz "$target")
 # shellcheck disable=SC2034 # read by foot_measure
 FOOT_TICKS=$ticks
+# the path the image runs: the scene's written-out code, or with -DRT_SCENE_CODE=0 in
+# IMAGE_CFLAGS the table-driven one (rt/rt_config.h); the measuring image runs the same
+FOOT_CFLAGS=$(printf '%s\n' $extra | grep '^-DRT_SCENE_CODE=' | tail -1)
+if [ "$FOOT_CFLAGS" = -DRT_SCENE_CODE=0 ]; then
+    echo "image: the table-driven path (IMAGE_CFLAGS -DRT_SCENE_CODE=0)"
+elif grep -q '^    \.code = &scene_code,$' "$dir/$name.c"; then
+    echo "image: the code scenec wrote out for the scene (IMAGE_CFLAGS=-DRT_SCENE_CODE=0: the table-driven path)"
+fi
 foot_measure "$target" "${sym#mdl_scene_}" "$real" "$scene" ||
     fail "the measuring image of $scene on $target failed (see above)"
 [ -n "$stats" ] || fail "no instruction counts from the run of $fm_elf under QEMU"

@@ -6,12 +6,15 @@
 #   scenes      every library scene over its whole run, in CROSS_SCENE_PARTS images; each
 #               scene's hash against the host image's (tied to `modrt run` by check_host.sh)
 #   rt          pi_loop paced by the target's timer, against `modrt run pi_loop`
+#   segments    (CROSS_LDSCRIPT) what a loader writes for each image inside the memory of
+#               the target's link script (segments.py)
 #   bg          (CROSS_BG_TARGETS) the background set preempted for real (check_bg.sh)
 # Usage: sh tests/cross/cross_test.sh T BUILD_DIR HOST_DIR RUN VTIME BG_TICKS
 #   RUN: the target's QEMU command with -plugin ...,limit=@BUDGET@ in it; VTIME: 1 where
 #   time is virtual (no overrun may happen); BG_TICKS: ticks of the background run, or 0.
 #   Environment: QEMU_TIMEOUT, CROSS_PARTS, CROSS_SCENE_PARTS, CROSS_BUDGET_SOFTFLOAT,
-#   CROSS_BUDGET_TESTS, CROSS_BUDGET_SCENES, CROSS_BUDGET_RT, CROSS_JOBS (images at once, 2).
+#   CROSS_BUDGET_TESTS, CROSS_BUDGET_SCENES, CROSS_BUDGET_RT, CROSS_JOBS (images at once, 2),
+#   CROSS_LDSCRIPT (the target's link script; empty where the OS loads the image).
 set -u
 t=$1 B=$2 H=$3 RUN=$4 VTIME=$5 BG=$6
 fail=0
@@ -35,6 +38,31 @@ parts() {
             "$3" "$4" "$6-{}of$7.elf" "$l" > "$l.say" 2>&1; echo $? > "$l.rc"' _ \
             "cross-test $t: $1 part" "$RUN" "$budget" "$2" - "$B/$1" "$3"
 }
+
+# what a loader writes for each image (its segments at their physical addresses, zeros
+# included) inside the target's memory: a segment running past FLASH erased the code of
+# images whose code + .bss exceeded 4 MB (ports/cortex-m/link.ld); the check itself must
+# refuse an image given a memory too small for it
+if [ -n "${CROSS_LDSCRIPT:-}" ]; then
+    imgs="$B/softfloat.elf $B/rt.elf"
+    k=0
+    while [ $k -lt "$CROSS_PARTS" ]; do imgs="$imgs $B/tests-${k}of$CROSS_PARTS.elf"; k=$((k + 1)); done
+    k=0
+    while [ $k -lt "$CROSS_SCENE_PARTS" ]; do imgs="$imgs $B/scenes-${k}of$CROSS_SCENE_PARTS.elf"; k=$((k + 1)); done
+    [ "$BG" -gt 0 ] && imgs="$imgs $B/rt_bg.elf"
+    n=$(echo $imgs | wc -w)
+    # shellcheck disable=SC2086 # one word per image
+    if out=$(python3 tests/cross/segments.py "$CROSS_LDSCRIPT" $imgs 2>&1); then
+        say "every image's load segments inside the memory of $CROSS_LDSCRIPT: $n passed, 0 failed"
+    else
+        bad=$(echo "$out" | cut -d: -f1 | sort -u | wc -l)
+        echo "$out"; say "images written outside the target's memory: $((n - bad)) passed, $bad failed"; fail=1
+    fi
+    if python3 tests/cross/segments.py --region FLASH:0:0x1000 --region RAM:0x20000000:0x1000 \
+           -- "$B/softfloat.elf" >/dev/null 2>&1; then
+        say "segments.py passed an image larger than the memory given: 0 passed, 1 failed"; fail=1
+    fi
+fi
 
 # binary64 arithmetic
 if run softfloat CROSS_BUDGET_SOFTFLOAT "$B/softfloat.elf" "$B/softfloat.log"; then

@@ -2,7 +2,8 @@
 """api_only.py - applications, models and API tests read the runtime through rt/rt.h alone.
 
 Outside rt/ and the white-box tests (tests/whitebox/, and tests/faults/, the fault-injection
-build that drives rt/'s hooks), no C file
+build that drives rt/'s hooks) and scenec's code writer (tools/scenec/spec.c, which writes
+the plan out as C), no C file
   - reads a part of rt_sim's storage layout (rt/rt_sim.h): `.plan.`, `->state[`, `.work.`,
     `.stats.`, ... (rt_stats_of, rt_ticks_done, rt_trace_hash, rt_output, rt_block_x, ...
     read them), nor the background hand-over counters;
@@ -18,7 +19,10 @@ import re
 import sys
 
 SCANNED = ("models", "ports", "tools", "tests")
-WHITE_BOX = ("tests/whitebox/", "tests/faults/")
+WHITE_BOX = ("tests/whitebox/", "tests/faults/",
+             # scenec's code writer: a back end of rt/, it writes the plan rt_init built
+             # out as C constants, and the code it writes runs inside rt/ (rt_scene.code)
+             "tools/scenec/spec.c")
 INTERNAL = ("rti.h", "rti_mbs.h", "linalg.h")
 PARTS = re.compile(r"(?:\.|->)\s*(plan|state|work|stats)\s*(?:\.|->|\[)"
                    r"|(?:\.|->)\s*(bg_released|bg_finished)\b")

@@ -90,6 +90,29 @@ for s in $scenes; do
     done
 done
 
+# the written-out code against the table-driven path, one target, double
+CODE_TARGET=m7
+if make -s "check-target-$CODE_TARGET" 2>/dev/null; then
+    cat <<HDR
+
+The library scenes run the code \`scenec\` wrote out for them (\`rt_scene_code\`,
+docs/overhead.md). The same images built with \`-DRT_SCENE_CODE=0\` run the table-driven
+path; on $CODE_TARGET, double:
+
+| scene | flash, written out | flash, table-driven | insn/tick median, written out | table-driven | max, written out | table-driven | hashes equal |
+|---|---:|---:|---:|---:|---:|---:|:-:|
+HDR
+    for s in $scenes; do
+        foot_measure "$CODE_TARGET" "$s" double
+        f1=$flash st1=$stats h1=$hash
+        FOOT_CFLAGS=-DRT_SCENE_CODE=0
+        foot_measure "$CODE_TARGET" "$s" double
+        FOOT_CFLAGS=
+        echo "$st1|$stats" | awk -F'|' -v s="$s" -v f1="$f1" -v f0="$flash" -v eq="$( [ "$h1" = "$hash" ] && echo yes || echo no)" '{
+            printf "| %s | %d | %d | %d | %d | %d | %d | %s |\n", s, f1, f0, $2, $5, $3, $6, eq }'
+    done
+fi
+
 [ -z "$BG_ROWS" ] && exit 0
 cat <<HDR
 

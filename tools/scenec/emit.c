@@ -655,7 +655,7 @@ static void joints(FILE *f, const scn_scene *s)
         fputs("};\n", f);
 }
 
-static void scene(FILE *f, const scn_ctx *c)
+static void scene(FILE *f, const scn_ctx *c, int code)
 {
 #define SCN_X_ID(id, name) #id,
     static const char *const stab[] = {RT_STAB_LIST(SCN_X_ID)};
@@ -696,6 +696,8 @@ static void scene(FILE *f, const scn_ctx *c)
             fputs("    .bg = &rt_bg,\n", f);
             break;
         }
+    if (code)
+        fputs("#if RT_SCENE_CODE\n    .code = &scene_code,\n#endif\n", f);
     fputs("};\n", f);
 }
 
@@ -712,6 +714,6 @@ int scn_emit(scn_ctx *c, FILE *f)
     recs(f, &c->sc);
     link(f, &c->sc);
     joints(f, &c->sc);
-    scene(f, c);
+    scene(f, c, scn_emit_code(f, c));
     return ferror(f) ? -1 : 0;
 }

@@ -25,7 +25,7 @@ SCN_TGEN_SRCS := $(patsubst tests/scenec/scenes/%.scn,$(SCN_TGEN)/%.c,$(SCN_TFIL
                  $(SCN_TGEN)/registry.c
 # what modrt links to read scene files (`modrt run FILE.scn`)
 SCN_LIB_SRCS := $(addprefix $(SCN_DIR)/,lex.c parse.c expr.c lookup.c check.c sets.c link.c image.c \
-                  vm.c emit.c host.c fmu.c)
+                  vm.c emit.c spec.c host.c fmu.c)
 SCN_LIB_OBJS  = $(call obj,$(SCN_LIB_SRCS))
 # the model library without any scene (scenec and the test images bring their own)
 SCN_MODEL_OBJS = $(filter-out $(O)/obj/models/scenes/% $(O)/obj/build/%,$(MODEL_OBJS))

@@ -432,6 +432,8 @@ void scn_free(scn_ctx *c);
 int scn_compile(scn_ctx *c, const char *path, const char *text, size_t len);
 /* Writes the scene as C (const tables, define services) to f; returns 0 or -1. */
 int scn_emit(scn_ctx *c, FILE *f);
+/* spec.c: the scene's specialized code (rt_scene_code); 1 if it wrote any */
+int scn_emit_code(FILE *f, const scn_ctx *c);
 /* The C symbol of the compiled scene: "mdl_scene_<name>". */
 #define SCN_SYMBOL_PREFIX "mdl_scene_"
 

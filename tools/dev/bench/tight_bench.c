@@ -15,10 +15,13 @@
  *                                       modrt's to EST_TOL (exit 1 otherwise); then
  *                                       lane_change_planar likewise over LANE_T seconds
  *        tight_bench count SIDE METHOD SECONDS
- *                                       SIDE modrt | tight | tight-noest (without the
- *                                       error estimate); METHOD bs3 | rk4 | dopri5;
- *                                       SIDE lane-modrt | lane-tight | lane-tight-noest:
- *                                       lane_change_planar, METHOD rk4 (the scene's) */
+ *                                       SIDE modrt | modrt-tables (the table-driven
+ *                                       path: without the scene's written-out code) |
+ *                                       tight | tight-noest (without the error
+ *                                       estimate); METHOD bs3 | rk4 | dopri5;
+ *                                       SIDE lane-modrt | lane-modrt-tables | lane-tight |
+ *                                       lane-tight-noest: lane_change_planar, METHOD rk4
+ *                                       (the scene's) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +31,7 @@
 #include "pendulum_tight.h"
 #include "rt_sim.h" /* allocates the run */
 #include "scenes/scenes.h"
+#include "rt_sim.h" /* the simulator in static storage */
 
 #define CHECK_T 2.0     /* simulated time of the check [s]: the chain is chaotic, rounding
                            differences grow from 1e-16 to 1e-14 m over it */
@@ -59,10 +63,13 @@ static int method_index(const char *name)
 }
 
 /* pendulum10 with method i over t_end seconds (the scene's own step); no recorded
-   signals: the tight program records nothing */
-static void modrt_init(rt_scene *sc, rt_set *set, int i, double t_end)
+   signals: the tight program records nothing. tables: without the scene's written-out
+   code (rt_scene_code), the table-driven path */
+static void modrt_init(rt_scene *sc, rt_set *set, int i, double t_end, int tables)
 {
     *sc = mdl_scene_pendulum10;
+    if (tables)
+        sc->code = 0;
     *set = sc->sets[0];
     set->method = methods[i].rt;
     sc->sets = set;
@@ -99,7 +106,7 @@ static int check(void)
         rt_scene sc;
         rt_set set;
         tight m;
-        modrt_init(&sc, &set, i, CHECK_T);
+        modrt_init(&sc, &set, i, CHECK_T, 0);
         tight_start(&m, i, 1, &sc);
         long n = lround(CHECK_T / (double)sc.dt);
         modrt_ticks(&sc, &sim, n);
@@ -125,8 +132,9 @@ static int check(void)
 
 /* ------------------------------------------------------------------ lane_change_planar */
 
-/* lane_change_planar as shipped over t_end seconds, no recorded signals */
-static void lane_modrt_init(rt_scene *sc, double t_end)
+/* lane_change_planar as shipped over t_end seconds, no recorded signals; tables: without
+   its written-out code (the table-driven path) */
+static void lane_modrt_init(rt_scene *sc, double t_end, int tables)
 {
     const rt_scene_entry *e = mdl_scenes;
     while (e->name && strcmp(e->name, "lane_change_planar") != 0)
@@ -138,6 +146,8 @@ static void lane_modrt_init(rt_scene *sc, double t_end)
     *sc = *e->scene;
     sc->t_end = (real_t)t_end;
     sc->nrecs = 0;
+    if (tables)
+        sc->code = 0;
     if (rt_init(sc, &sim) != RT_OK) {
         fprintf(stderr, "tight_bench: init: %s\n", rt_error_text(&sim));
         exit(1);
@@ -159,7 +169,7 @@ static int lane_check(void)
 {
     rt_scene sc;
     lane_tight m;
-    lane_modrt_init(&sc, LANE_T);
+    lane_modrt_init(&sc, LANE_T, 0);
     lane_start(&m, 1, &sc);
     long n = lround(LANE_T / (double)sc.dt), k = lround(LANE_T / m.h);
     modrt_ticks(&sc, &sim, n);
@@ -188,8 +198,9 @@ static int lane_count(const char *side, const char *method, double secs)
         fprintf(stderr, "tight_bench: lane_change_planar is stepped by rk4, not %s\n", method);
         return 2;
     }
-    lane_modrt_init(&sc, secs);
-    if (strcmp(side, "lane-modrt") == 0) {
+    int tables = strcmp(side, "lane-modrt-tables") == 0;
+    lane_modrt_init(&sc, secs, tables);
+    if (strcmp(side, "lane-modrt") == 0 || tables) {
         modrt_ticks(&sc, &sim, lround(secs / (double)sc.dt));
         return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
     }
@@ -204,7 +215,8 @@ int main(int argc, char **argv)
     if (argc == 2 && strcmp(argv[1], "check") == 0)
         return check() | lane_check();
     if (argc == 5 && strncmp(argv[2], "lane-", 5) == 0 && strcmp(argv[1], "count") == 0) {
-        if (strcmp(argv[2], "lane-modrt") && strcmp(argv[2], "lane-tight") &&
+        if (strcmp(argv[2], "lane-modrt") && strcmp(argv[2], "lane-modrt-tables") &&
+            strcmp(argv[2], "lane-tight") &&
             strcmp(argv[2], "lane-tight-noest")) {
             fprintf(stderr, "tight_bench: unknown side %s\n", argv[2]);
             return 2;
@@ -219,9 +231,10 @@ int main(int argc, char **argv)
     double secs = atof(argv[4]);
     rt_scene sc;
     rt_set set;
-    modrt_init(&sc, &set, i, secs);
+    int tables = strcmp(argv[2], "modrt-tables") == 0;
+    modrt_init(&sc, &set, i, secs, tables);
     long n = lround(secs / (double)sc.dt);
-    if (strcmp(argv[2], "modrt") == 0) {
+    if (strcmp(argv[2], "modrt") == 0 || tables) {
         modrt_ticks(&sc, &sim, n);
         return rt_stats_of(&sim)->status == RT_OK ? 0 : 1;
     }

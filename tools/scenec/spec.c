@@ -1,0 +1,551 @@
+/* spec.c - specialized C for a scene (rt_scene_code, docs/overhead.md): the work the
+ * table-driven path does for it, written out with the tables rt_init built for the scene
+ * (scenec runs it as its last check): block and joint indices, state offsets, the
+ * multibody touches, the pattern of the sparse L D L^T and its slots, as constants.
+ *
+ * Bit-identical by construction: every sum is the generic path's, term by term in its
+ * order (the same expressions, the same +0 starts); only the loops over tables become
+ * straight-line code. Counters and faults go through the same rti_ calls. What the
+ * generator does not write out (a set with outputs or derivatives of its own in its
+ * right-hand side, a body that is not a point) is left to the generic path: its entry
+ * returns 0 for that set.
+ *
+ * The tables' offsets do not depend on the build's limits (they are packed from 0); the
+ * one that does, a slot of L in lv, is written relative to RT_MAX_MBS_ROWS. */
+#include "scn.h"
+
+#include "rti_mbs.h"
+
+/* a set whose multibody part the generator writes out: point masses only, joints with
+   eval_points, at least one constraint row */
+static int mbs_points_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    if (!sc->mbs || w->nz[s] == 0 || !w->points[s] || w->nc[s] == 0)
+        return 0;
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
+        const rt_joint *j = &sc->joints[w->sjnt[k]];
+        if (!j->kind->eval_points || j->kind->nc > RT_MBS_JOINT_NC_MAX)
+            return 0;
+    }
+    return 1;
+}
+
+/* a set whose right-hand side the generator writes out: its outputs and derivatives, and
+   a multibody part only if mbs_points_set */
+static int rhs_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    if (sim->plan.set_flags[s] & RTI_SET_NO_STEP)
+        return 0;
+    return !(sc->mbs && sim->work.mbs.nz[s] > 0) || mbs_points_set(sc, sim, s);
+}
+
+/* the written-out rti_gather of block b: each input from its source */
+static void gather(FILE *f, const rt_sim *sim, uint16_t b)
+{
+    for (unsigned i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++)
+        switch (sim->plan.src_kind[i]) {
+        case RT_SRC_Y:
+        case RT_SRC_HELD:
+            fprintf(f, "    u[%u] = y[%u];\n", i, sim->plan.src[i]);
+            break;
+        case RT_SRC_TORN:
+            fprintf(f, "    u[%u] = sim->state.torn_val[%u];\n", i, sim->plan.src[i]);
+            break;
+        case RT_SRC_XSET:
+            fprintf(f, "    u[%u] = rti_xset_value(sim, %u, %u, %u, t);\n", i, sim->plan.src[i],
+                    sim->plan.src_set[i], sim->plan.interp[i]);
+            break;
+        default:
+            fprintf(f, "    u[%u] = sim->plan.def[%u];\n", i, i);
+            break;
+        }
+}
+
+/* rt_args of block b (rti_args) with its offsets as constants, and its piece if it has
+   known time events */
+static void block_args(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b,
+                       const char *h)
+{
+    fprintf(f, "    args(sim, %u, %u, %u, %u, %u, t, %s, &ar);\n", b, sim->plan.x_off[b],
+            sim->plan.d_off[b], sim->plan.u_off[b], sim->plan.p_off[b], h);
+    if (sc->blocks[b].kind->next_event)
+        fputs("    ar.t_piece = rti_piece(sc, sim, t);\n", f);
+}
+
+/* rti_rhs's set_outputs: the set's entries of the sequence a right-hand side calls */
+static void outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    if (sim->plan.rhs_calls[s] == 0)
+        return;
+    fputs("    /* the outputs the set reads live, in sequence order (set_outputs) */\n", f);
+    for (uint16_t i = sim->plan.seq_of[s]; i < sim->plan.seq_of[s + 1]; i++) {
+        uint16_t q = sim->plan.set_seq[i], b = sim->plan.seq[q].index;
+        uint8_t fl = sim->plan.seq_flags[q] & RTI_SEQ_RHS;
+        const rt_kind *k;
+        if (sim->plan.seq[q].kind == RT_SEQ_LOOP) {
+            fprintf(f, "    sc->loop_solver->solve(sc, sim, %u, t, RTI_IN_RHS);\n", b);
+            continue;
+        }
+        k = sc->blocks[b].kind;
+        if (fl == RTI_RHS_SKIP || k->type == RT_KIND_DSS) /* held in a step: call_output */
+            continue;
+        fprintf(f, "    /* %s */\n", sc->blocks[b].name);
+        if (k->feed != RT_FEED_NONE)
+            gather(f, sim, b);
+        block_args(f, sc, sim, b, "0");
+        fprintf(f, "    blocks[%u].kind->%s(&ar, y + %u);\n", b,
+                fl == RTI_RHS_LEAN ? "output_lean" : "output", sim->plan.y_off[b]);
+        if (k->ny > 0)
+            fprintf(f, "#if RT_FAULT_INJECT\n    if (rti_fault_due(RTI_FAULT_NAN) && "
+                       "rti_fault_plan.block == %u)\n        y[%u] = (real_t)0 / (real_t)0;\n"
+                       "#endif\n", b, sim->plan.y_off[b]);
+    }
+}
+
+/* rti_rhs's derivatives of the set's blocks with states of their own */
+static void derivs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    if (!(sim->plan.set_flags[s] & RTI_SET_DERIV))
+        return;
+    fputs("    /* the blocks' derivatives */\n", f);
+    for (uint16_t i = sim->plan.blk_of[s]; i < sim->plan.blk_of[s + 1]; i++) {
+        uint16_t b = sim->plan.set_blk[i];
+        const rt_kind *k = sc->blocks[b].kind;
+        if (k->nx == 0 || !k->deriv)
+            continue;
+        fprintf(f, "    /* %s */\n", sc->blocks[b].name);
+        gather(f, sim, b);
+        block_args(f, sc, sim, b, "h");
+        fprintf(f, "    blocks[%u].kind->deriv(&ar, xdot + %u);\n", b,
+                sim->plan.x_off[b] - sim->plan.set_x[s]);
+    }
+}
+
+/* lv's slot as the build's limits place it */
+static void slot(FILE *f, unsigned v)
+{
+    if (v >= RT_MAX_MBS_ROWS)
+        fprintf(f, "lv[RT_MAX_MBS_ROWS + %u]", v - RT_MAX_MBS_ROWS);
+    else
+        fprintf(f, "lv[%u]", v);
+}
+
+/* assemble_point_set (rt/mbs_asm.c) for `what` (RTI_MBS_JAC, _FORCE, _G) */
+static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    if (what & RTI_MBS_FORCE)
+        fputs("    /* the blocks' forces, M^-1 k (M factored at the first assembly) */\n", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1] && (what & RTI_MBS_FORCE); k++) {
+        uint16_t b = w->sblk[k];
+        unsigned zo = w->zo[b], mo = w->mo[b];
+        if (sc->blocks[b].kind->nu > 0)
+            gather(f, sim, b);
+        fprintf(f, "    args(sim, %u, %u, %u, %u, %u, t, 0, &ar);\n", b, sim->plan.x_off[b],
+                sim->plan.d_off[b], sim->plan.u_off[b], sim->plan.p_off[b]);
+        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
+        fprintf(f, "    a[%u] /= M[%u], a[%u] /= M[%u], a[%u] /= M[%u];\n", zo, mo, zo + 1,
+                mo + 1, zo + 2, mo + 2);
+    }
+    fprintf(f, "    /* the joints' rows: %s (point_rows) */\n",
+            what & RTI_MBS_JAC ? "g, g', gam and W" : "g");
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
+        uint16_t ji = w->sjnt[k];
+        const rt_joint *j = &sc->joints[ji];
+        int one = j->b2 < 0, same = j->b2 == j->b1, sphdiff = j->kind == &rt_joint_sphdiff;
+        fputs("    {\n", f);
+        fprintf(f, "        const real_t *r1 = x + %u, *v1 = r1 + 3;\n", sim->plan.x_off[j->b1]);
+        if (one && j->at) /* the anchor, at rest */
+            fprintf(f, "        const real_t *r2 = joints[%u].at, *v2 = zero;\n", ji);
+        else if (one) /* the origin */
+            fputs("        const real_t *r2 = zero, *v2 = zero;\n", f);
+        else
+            fprintf(f, "        const real_t *r2 = x + %u, *v2 = r2 + 3;\n",
+                    sim->plan.x_off[j->b2]);
+        if (what == RTI_MBS_G && j->kind->g_points) {
+            fputs("        (void)v1, (void)v2;\n", f);
+            if (sphdiff)
+                fprintf(f, "        rti_sphdiff_g(joints[%u].p, r1, r2, g + %u);\n    }\n", ji,
+                        w->jrow[ji]);
+            else
+                fprintf(f, "        joints[%u].kind->g_points(joints[%u].p, r1, r2, g + %u);\n"
+                           "    }\n", ji, ji, w->jrow[ji]);
+            continue;
+        }
+        if (sphdiff) /* the kind's own equations, inline (rt/rti_joints.h) */
+            fprintf(f, "        rti_sphdiff_points(joints[%u].p, r1, v1, r2, v2, &e);\n", ji);
+        else
+            fprintf(f, "        joints[%u].kind->eval_points(joints[%u].p, r1, v1, r2, v2, &e);\n",
+                    ji, ji);
+        for (unsigned i = 0; i < j->kind->nc; i++) {
+            unsigned r = w->jrow[ji] + i, w1 = w->jw[ji][0] + 3 * i;
+            unsigned w2 = (one ? w->jw[ji][0] : w->jw[ji][1]) + 3 * i;
+            fprintf(f, "        C = e.C[%u], acc = 0;\n", i);
+            fputs("        acc += C[0] * v1[0] + C[6] * v2[0];\n"
+                  "        acc += C[1] * v1[1] + C[7] * v2[1];\n"
+                  "        acc += C[2] * v1[2] + C[8] * v2[2];\n", f);
+            fprintf(f, "        g[%u] = e.g[%u], gd[%u] = acc;\n", r, i, r);
+            if (!(what & RTI_MBS_JAC))
+                continue;
+            fprintf(f, "        gam[%u] = (real_t)0 + e.c[%u];\n", r, i);
+            fprintf(f, "        W[%u] = C[0], W[%u] = C[1], W[%u] = C[2];\n", w1, w1 + 1, w1 + 2);
+            if (one)
+                continue;
+            if (same)
+                fprintf(f, "        W[%u] += C[6], W[%u] += C[7], W[%u] += C[8];\n", w2, w2 + 1,
+                        w2 + 2);
+            else
+                fprintf(f, "        W[%u] = C[6], W[%u] = C[7], W[%u] = C[8];\n", w2, w2 + 1,
+                        w2 + 2);
+        }
+        fputs("    }\n", f);
+    }
+}
+
+/* the entries of M^-1 W^T, q = W / M entry by entry: the quotients rti_mbs_schur and
+   rti_mbs_correct divide for every term, each formed once (the same bits) */
+static void quotients(FILE *f, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    fputs("    /* M^-1 W^T, entry by entry */\n", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned mo = w->mo[b];
+        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3)
+            fprintf(f, "    q[%u] = W[%u] / M[%u], q[%u] = W[%u] / M[%u], q[%u] = W[%u] / M[%u];\n",
+                    wi, wi, mo, wi + 1, wi + 1, mo + 1, wi + 2, wi + 2, mo + 2);
+    }
+}
+
+/* rti_mbs_schur for points: the slots cleared, each block's shares (diag_shares) */
+static void schur(FILE *f, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    fputs("    /* A = W M^-1 W^T into the pattern's slots (rti_mbs_schur) */\n", f);
+    for (unsigned i = w->rb[s]; i < w->rb[s + 1]; i++)
+        fputs("    ", f), slot(f, i), fputs(" = 0;\n", f);
+    for (unsigned e = w->lp[w->rb[s]]; e < w->lp[w->rb[s + 1]]; e++)
+        fputs("    ", f), slot(f, RT_MAX_MBS_ROWS + e), fputs(" = 0;\n", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned nt = (unsigned)(w->to[b + 1] - w->to[b]), wo = w->wo[b];
+        const uint16_t *ps = w->pslot + w->po[b];
+        for (unsigned i = 0; i < nt; i++)
+            for (unsigned kk = i; kk < nt; kk++) {
+                fputs("    ", f);
+                slot(f, *ps++);
+                fprintf(f, " += dot3q(W + %u, q + %u);\n", wo + 3 * i, wo + 3 * kk);
+            }
+    }
+}
+
+/* rti_mbs_ldl_factor over the set's fixed pattern, then rti_mbs_schur's counts */
+static void factor(FILE *f, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    unsigned base = w->rb[s], n = w->rb[s + 1] - base;
+    const uint16_t *lp = w->lp + base, *lj = w->lj, *perm = w->perm + base;
+    fputs("    /* its L D L^T over the pattern found at init (rti_mbs_ldl_factor) */\n", f);
+    fprintf(f, "    {\n        real_t *D = lv + %u, u[%u], big = 0, d, tt;\n", base, n);
+    fprintf(f, "        uint16_t deficit = w->ndrop[%u], drop = 0;\n", s);
+    fputs("        int bad = -1;\n", f);
+    for (unsigned i = 0; i < n; i++)
+        fprintf(f, "        big = D[%u] > big ? D[%u] : big;\n", i, i);
+    for (unsigned i = 0; i < n; i++)
+        fprintf(f, "        u[%u] = 0;\n", i);
+    fputs("        real_t floor_ = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);\n", f);
+    fprintf(f, "        w->drop_row[%u] = 0;\n", s);
+    for (unsigned i = 0; i < n; i++) {
+        unsigned e0 = lp[i], e1 = lp[i + 1];
+        fprintf(f, "        d = D[%u];\n", i);
+        for (unsigned e = e0; e < e1; e++) {
+            unsigned j = lj[e];
+            fprintf(f, "        tt = L[%u];\n", e);
+            for (unsigned q = lp[j], q1 = e > e0 ? lp[j + 1] : q; q < q1; q++)
+                fprintf(f, "        tt -= L[%u] * u[%u];\n", q, lj[q]);
+            fprintf(f, "        u[%u] = D[%u] != 0 ? tt : 0;\n", j, j);
+            fprintf(f, "        L[%u] = D[%u] != 0 ? tt / D[%u] : 0;\n", e, j, j);
+            fprintf(f, "        d -= L[%u] * u[%u];\n", e, j);
+        }
+        for (unsigned e = e0; e < e1; e++)
+            fprintf(f, "        u[%u] = 0;\n", lj[e]);
+        if (i == 0)
+            fputs("        if (rti_fault_due(RTI_FAULT_SINGULAR))\n"
+                  "            d = -big - 1;\n", f);
+        fprintf(f, "        if (d >= -floor_ && d <= floor_)\n"
+                   "            w->drop_row[%u] = drop++ ? w->drop_row[%u] : %u, d = 0;\n"
+                   "        else if (!(d > floor_))\n"
+                   "            bad = bad < 0 ? %u : bad, d = floor_;\n"
+                   "        D[%u] = d;\n", s, s, perm[i], perm[i], i);
+    }
+    fprintf(f, "        w->ndrop[%u] = drop;\n", s);
+    fprintf(f, "        if (bad >= 0)\n"
+               "            rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, %u, "
+               "(uint16_t)bad), RT_E_SINGULAR);\n", s);
+    fprintf(f, "        if (w->ndrop[%u] != deficit && w->ndrop[%u] > 0)\n"
+               "            rti_count(sim, RT_CNT_REDUNDANT, rti_mbs_row_block(sc, sim, %u, "
+               "w->drop_row[%u]), RT_OK);\n    }\n", s, s, s, s);
+}
+
+/* rti_mbs_ldl_solve of the set's rows into v, a conflict counted as rti_mbs_solve does */
+static void solve(FILE *f, const rt_sim *sim, uint8_t s, const char *v)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    unsigned base = w->rb[s], n = w->rb[s + 1] - base;
+    const uint16_t *lp = w->lp + base, *lj = w->lj, *perm = w->perm + base;
+    fprintf(f, "    {\n        const real_t *D = lv + %u;\n        real_t y[%u], scale = 0, tt;\n",
+            base, n);
+    fputs("        int conflict = -1;\n", f);
+    fprintf(f, "        if (w->ndrop[%u]) {\n", s);
+    for (unsigned i = 0; i < n; i++)
+        fprintf(f, "            scale = rt_fmax(scale, rt_fabs(%s[%u]));\n", v, i);
+    fputs("        }\n", f);
+    for (unsigned i = 0; i < n; i++) {
+        fprintf(f, "        tt = %s[%u];\n", v, perm[i]);
+        for (unsigned e = lp[i]; e < lp[i + 1]; e++)
+            fprintf(f, "        tt -= L[%u] * y[%u];\n", e, lj[e]);
+        fprintf(f, "        y[%u] = tt;\n", i);
+    }
+    for (unsigned i = 0; i < n; i++)
+        fprintf(f, "        if (D[%u] != 0)\n            y[%u] /= D[%u];\n        else {\n"
+                   "            if (!(rt_fabs(y[%u]) <= RT_MBS_RES_TOL + RT_MBS_RANK_TOL * scale)"
+                   " && conflict < 0)\n                conflict = %u;\n"
+                   "            y[%u] = 0;\n        }\n", i, i, i, i, perm[i], i);
+    for (unsigned i = n; i-- > 0;) {
+        fprintf(f, "        tt = y[%u];\n", i);
+        for (unsigned e = lp[i]; e < lp[i + 1]; e++)
+            fprintf(f, "        y[%u] -= L[%u] * tt;\n", lj[e], e);
+        fprintf(f, "        %s[%u] = tt;\n", v, perm[i]);
+    }
+    fprintf(f, "        if (conflict >= 0)\n"
+               "            rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, %u, "
+               "(uint16_t)conflict), RT_E_SINGULAR);\n    }\n", s);
+}
+
+/* rti_mbs_correct of a set of points: dz = -M^-1 W^T v into a, added to it if add */
+static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int add)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned zo = w->zo[b];
+        if (add)
+            fprintf(f, "    d0 = a[%u], d1 = a[%u], d2 = a[%u];\n", zo, zo + 1, zo + 2);
+        else
+            fputs("    d0 = 0, d1 = 0, d2 = 0;\n", f);
+        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3) {
+            fprintf(f, "    vi = %s[%u];\n", v, w->trow[i]);
+            fprintf(f, "    d0 -= q[%u] * vi;\n", wi);
+            fprintf(f, "    d1 -= q[%u] * vi;\n", wi + 1);
+            fprintf(f, "    d2 -= q[%u] * vi;\n", wi + 2);
+        }
+        fprintf(f, "    a[%u] = d0, a[%u] = d1, a[%u] = d2;\n", zo, zo + 1, zo + 2);
+    }
+}
+
+/* points_add (rt/mbs_project.c): x[from .. from + 3) += dz of every point */
+static void points_add(FILE *f, const rt_sim *sim, uint8_t s, unsigned from)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned xo = sim->plan.x_off[b] + from, zo = w->zo[b];
+        fprintf(f, "    xw[%u] += a[%u], xw[%u] += a[%u], xw[%u] += a[%u];\n", xo, zo, xo + 1,
+                zo + 1, xo + 2, zo + 2);
+    }
+}
+
+/* rti_mbs_lambda's right side, solve and z' (rti_mbs_correct, add), then rti_mbs_accel's
+   q' = v, v' = a */
+static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    fputs("    /* A lambda = W M^-1 k + gam (eq. 7b), in gam */\n", f);
+    if (sc->stab == RT_STAB_BAUMGARTE)
+        for (unsigned r = 0; r < w->nc[s]; r++)
+            fprintf(f, "    gam[%u] += sc->baumgarte[0] * gd[%u] + sc->baumgarte[1] * g[%u];\n",
+                    r, r, r);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3)
+            fprintf(f, "    gam[%u] += dot3(W + %u, a + %u);\n", w->trow[i], wi, w->zo[b]);
+    }
+    solve(f, sim, s, "gam");
+    fputs("    /* z' = M^-1 k - M^-1 W^T lambda, into a */\n", f);
+    correct(f, sim, s, "gam", 1);
+    if (w->need_lambda) {
+        fputs("    /* the joints' multipliers, read by a reaction */\n", f);
+        for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
+            uint16_t j = w->sjnt[k];
+            for (unsigned i = 0; i < sc->joints[j].kind->nc; i++)
+                fprintf(f, "    w->jlam[%u] = gam[%u];\n", w->jlo[j] + i, w->jrow[j] + i);
+        }
+    }
+    fputs("    /* q' = v, v' = z' */\n", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned xo = sim->plan.x_off[b], q = xo - sim->plan.set_x[s], zo = w->zo[b];
+        fprintf(f, "    xdot[%u] = x[%u], xdot[%u] = x[%u], xdot[%u] = x[%u];\n", q, xo + 3,
+                q + 1, xo + 4, q + 2, xo + 5);
+        fprintf(f, "    xdot[%u] = a[%u], xdot[%u] = a[%u], xdot[%u] = a[%u];\n", q + 3, zo,
+                q + 4, zo + 1, q + 5, zo + 2);
+    }
+}
+
+/* the locals of a written-out multibody part and its guard: every point's M factored */
+static void locals(FILE *f, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    fputs("    rt_mbs_work *w = &sim->work.mbs;\n"
+          "    real_t *lv = w->lv, *L = lv + RT_MAX_MBS_ROWS, *W = w->W, *a = w->a;\n"
+          "    real_t *g = w->g, *gd = w->gd, *gam = w->gam, *xw = sim->state.x;\n"
+          "    const real_t *M = w->M, *x = xw, *C;\n"
+          "    real_t acc, d0, d1, d2, vi;\n"
+          "    rt_joint_eval e;\n"
+          "    (void)L, (void)gam, (void)xw, (void)sc, (void)t;\n", f);
+    unsigned nq = 0;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned end = w->wo[b] + 3u * (unsigned)(w->to[b + 1] - w->to[b]);
+        nq = end > nq ? end : nq;
+    }
+    fprintf(f, "    real_t q[%u]; /* M^-1 W^T (quotients) */\n", nq ? nq : 1);
+    fputs("    if (", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
+        fprintf(f, "%s!w->m_valid[%u]", k > w->sb[s] ? " || " : "", w->sblk[k]);
+    fputs(")\n        return 0; /* the first assembly factors M: the generic path */\n", f);
+}
+
+/* the right-hand side of a set (rti_rhs): outputs, derivatives, rti_mbs_accel */
+static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    int mbs = sc->mbs && w->nz[s] > 0;
+    fprintf(f, "\n/* set %s: rti_rhs", sc->sets[s].name);
+    if (mbs)
+        fprintf(f, ", rti_mbs_accel of its %u points and %u constraint rows",
+                (unsigned)(w->sb[s + 1] - w->sb[s]), (unsigned)w->nc[s]);
+    fprintf(f, " */\nstatic int rhs_%u(const rt_scene *sc, rt_sim *sim, real_t t, real_t h, "
+               "real_t *xdot)\n{\n", s);
+    fputs("    real_t *u = sim->work.u, *y = sim->state.y;\n    rt_args ar;\n"
+          "    (void)sc, (void)u, (void)y, (void)ar, (void)h, (void)xdot;\n", f);
+    if (mbs)
+        locals(f, sim, s);
+    outputs(f, sc, sim, s);
+    derivs(f, sc, sim, s);
+    if (mbs) {
+        assemble(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
+        quotients(f, sim, s);
+        schur(f, sim, s);
+        factor(f, sim, s);
+        lambda_accel(f, sc, sim, s);
+    }
+    fputs("    return 1;\n}\n", f);
+}
+
+/* rti_mbs_project of a set of points (RT_STAB_PROJECT): positions (two iterations),
+   velocities, check_residual, refresh_lambda */
+static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    fprintf(f, "\n/* set %s: rti_mbs_project (eq. 10) */\n", sc->sets[s].name);
+    fprintf(f, "static int project_%u(const rt_scene *sc, rt_sim *sim, real_t t)\n{\n", s);
+    fputs("    real_t *u = sim->work.u, *y = sim->state.y;\n    rt_args ar;\n"
+          "    (void)u, (void)y, (void)ar;\n", f);
+    locals(f, sim, s);
+    fputs("    /* positions (10a) */\n", f);
+    assemble(f, sc, sim, s, RTI_MBS_JAC);
+    quotients(f, sim, s);
+    schur(f, sim, s);
+    factor(f, sim, s);
+    solve(f, sim, s, "g");
+    correct(f, sim, s, "g", 0);
+    points_add(f, sim, s, 0);
+    assemble(f, sc, sim, s, RTI_MBS_G);
+    solve(f, sim, s, "g");
+    correct(f, sim, s, "g", 0);
+    points_add(f, sim, s, 0);
+    fputs("    /* velocities (10b) */\n", f);
+    assemble(f, sc, sim, s, RTI_MBS_JAC);
+    quotients(f, sim, s);
+    schur(f, sim, s);
+    factor(f, sim, s);
+    solve(f, sim, s, "gd");
+    correct(f, sim, s, "gd", 0);
+    points_add(f, sim, s, 3);
+    fputs("    /* check_residual */\n    {\n        real_t worst = 0, v;\n"
+          "        uint16_t row = 0;\n", f);
+    for (unsigned r = 0; r < w->nc[s]; r++)
+        fprintf(f, "        v = rt_fabs(g[%u]);\n        if (!(v <= worst))\n"
+                   "            worst = v, row = %u;\n", r, r);
+    fprintf(f, "        w->projections++;\n        if (!(worst <= w->res_max))\n"
+               "            w->res_max = worst;\n        if (!(worst <= RT_MBS_RES_TOL))\n"
+               "            rti_count(sim, RT_CNT_DEGRADED, rti_mbs_row_block(sc, sim, %u, row), "
+               "RT_E_DEGRADED);\n    }\n", s);
+    if (w->need_lambda)
+        fprintf(f, "    rti_outputs(sc, sim, (rti_at){t, %u, RTI_IN_STEP});\n"
+                   "    rti_mbs_lambda(sc, sim, %u, t);\n", s, s);
+    fputs("    return 1;\n}\n", f);
+}
+
+/* rti_args with the block's offsets as constants */
+static const char helpers[] =
+    "\n/* ---- specialized code (tools/scenec/spec.c): rt/'s work for this scene, written out */\n"
+    "#include \"rti_mbs.h\"\n\n"
+    "static inline void args(rt_sim *sim, uint16_t b, unsigned xo, unsigned dof, unsigned uo,\n"
+    "                        unsigned po, real_t t, real_t h, rt_args *ar)\n{\n"
+    "    ar->t = t, ar->h = h;\n"
+    "    ar->x = sim->state.x + xo, ar->d = sim->state.d + dof;\n"
+    "    ar->u = sim->work.u + uo, ar->p = sim->state.p + po;\n"
+    "    ar->spec = blocks[b].kind->spec, ar->t_piece = t;\n}\n\n"
+    "/* rt/mbs_asm.c's dots of three terms, with M^-1 W^T's entries (q) and plain: the\n"
+    "   same sums */\n"
+    "static inline real_t dot3q(const real_t *a, const real_t *q)\n{\n"
+    "    real_t acc = 0;\n    acc += a[0] * q[0];\n    acc += a[1] * q[1];\n"
+    "    acc += a[2] * q[2];\n    return acc;\n}\n\n"
+    "static inline real_t dot3(const real_t *a, const real_t *b)\n{\n"
+    "    real_t acc = 0;\n    acc += a[0] * b[0];\n    acc += a[1] * b[1];\n"
+    "    acc += a[2] * b[2];\n    return acc;\n}\n";
+
+int scn_emit_code(FILE *f, const scn_ctx *c)
+{
+    const rt_scene *sc = &c->image;
+    const rt_sim *sim = c->sim;
+    int any = 0, proj = 0, pts = 0;
+    for (uint8_t s = 0; sim && s < sc->nsets; s++) {
+        any |= rhs_set(sc, sim, s);
+        pts |= mbs_points_set(sc, sim, s);
+        proj |= sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s);
+    }
+    if (!any)
+        return 0;
+    fputs("\n#if RT_SCENE_CODE /* 0: the table-driven path (rt/rt_config.h) */", f);
+    fputs(helpers, f);
+    if (pts)
+        fputs("#include \"rti_joints.h\"\n\n/* the velocity of an anchor, and the origin */\n"
+              "static const real_t zero[3] = {0, 0, 0};\n", f);
+    for (uint8_t s = 0; s < sc->nsets; s++) {
+        if (rhs_set(sc, sim, s))
+            rhs_points(f, sc, sim, s);
+        if (sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s))
+            project_points(f, sc, sim, s);
+    }
+    fputs("\nstatic int rhs(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_t h,\n"
+          "               real_t *xdot)\n{\n    switch (set) {\n", f);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        if (rhs_set(sc, sim, s))
+            fprintf(f, "    case %u: return rhs_%u(sc, sim, t, h, xdot);\n", s, s);
+    fputs("    default: return 0;\n    }\n}\n", f);
+    if (proj) {
+        fputs("\nstatic int project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)\n"
+              "{\n    switch (set) {\n", f);
+        for (uint8_t s = 0; s < sc->nsets; s++)
+            if (sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s))
+                fprintf(f, "    case %u: return project_%u(sc, sim, t);\n", s, s);
+        fputs("    default: return 0;\n    }\n}\n", f);
+    }
+    fprintf(f, "\nstatic const rt_scene_code scene_code = {.rhs = rhs%s};\n#endif\n",
+            proj ? ", .project = project" : "");
+    return 1;
+}
