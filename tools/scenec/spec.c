@@ -429,7 +429,7 @@ static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
     fprintf(f, " */\nstatic int rhs_%u(const rt_scene *sc, rt_sim *sim, real_t t, real_t h, "
                "real_t *xdot)\n{\n", s);
     fputs("    real_t *u = sim->work.u, *y = sim->state.y;\n    rt_args ar;\n"
-          "    (void)sc, (void)u, (void)y, (void)ar, (void)h, (void)xdot;\n", f);
+          "    (void)sc, (void)u, (void)y, (void)ar, (void)t, (void)h, (void)xdot;\n", f);
     if (mbs)
         locals(f, sim, s);
     outputs(f, sc, sim, s);

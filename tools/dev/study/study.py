@@ -405,7 +405,7 @@ class Cross:
 
     def __init__(self, targets):
         self.targets = targets
-        base = "%s -O2 -ffunction-sections -fdata-sections %s -DRT_KIND_DOCS=0" % (
+        base = "%s -O2 -ffunction-sections -fdata-sections %s -DRT_KIND_DOCS=0 -DRT_SCENE_CODE=0" % (
             make_var("CSTD"), make_var("CINC"))
         self.cc, self.cflags, self.ldflags, self.run, self.nm = {}, {}, {}, {}, {}
         for t in targets:
