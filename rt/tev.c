@@ -39,6 +39,8 @@
 #include "rti.h"
 
 #define NEVER UINT64_MAX
+/* the services a set steps in parts for (dyn_step), known ahead or not */
+#define SET_PARTS (RTI_SET_TEV_DYN | RTI_SET_STEP_END | RTI_SET_INSTANT)
 
 /* block b's first instant strictly after time t [s] */
 static real_t block_next(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t)
@@ -158,6 +160,16 @@ static void serve(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t
     *changed = 1;
 }
 
+/* each kind's instant service at t (rt_kind.instant), with its inputs there */
+static void serve_instants(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, int *changed)
+{
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (sc->blocks[b].kind->instant)
+            serve(sc, sim, s, b, t, SERVE_INSTANT, changed);
+    }
+}
+
 /* at the end t of a part of set s: each kind's step_end, then the time event of each
    block whose run-time instant is due (at or before t: before it only past the bound of
    parts, counted), then the values each kind takes at instants; then the set's roots
@@ -183,11 +195,8 @@ static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
             rti_count(sim, RT_CNT_TEV_LIMIT, b, RT_E_TEV);
         serve(sc, sim, s, b, t, SERVE_TIME_EVENT, &changed);
     }
-    for (uint16_t k = sim->plan.blk_of[s]; (flags & RTI_SET_INSTANT) && k < sim->plan.blk_of[s + 1]; k++) {
-        uint16_t b = sim->plan.set_blk[k];
-        if (sc->blocks[b].kind->instant)
-            serve(sc, sim, s, b, t, SERVE_INSTANT, &changed);
-    }
+    if (flags & RTI_SET_INSTANT)
+        serve_instants(sc, sim, s, t, &changed);
     if (changed && sim->plan.set_r[s + 1] > sim->plan.set_r[s])
         rti_roots(sc, sim, s, t, sim->state.r + sim->plan.set_r[s]);
 }
@@ -196,11 +205,7 @@ int rti_tev_instant(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
     int changed = 0;
     rti_outputs(sc, sim, (rti_at){t, s, RTI_IN_STEP});
-    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
-        uint16_t b = sim->plan.set_blk[k];
-        if (sc->blocks[b].kind->instant)
-            serve(sc, sim, s, b, t, SERVE_INSTANT, &changed);
-    }
+    serve_instants(sc, sim, s, t, &changed);
     if (changed && sim->plan.set_r[s + 1] > sim->plan.set_r[s])
         rti_roots(sc, sim, s, t, sim->state.r + sim->plan.set_r[s]);
     return changed;
@@ -309,7 +314,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
 
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
 {
-    if (sim->plan.set_flags[s] & (RTI_SET_TEV_DYN | RTI_SET_STEP_END | RTI_SET_INSTANT)) {
+    if (sim->plan.set_flags[s] & SET_PARTS) {
         dyn_step(sc, sim, s, tick, ratio);
         return;
     }
@@ -449,7 +454,7 @@ rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
         uint16_t f = tev_flags(sc, sim, s);
         sim->plan.set_flags[s] |= (uint16_t)(f & RTI_SET_EVERY_SIGN);
         /* steps for its services' sake */
-        if (f & (RTI_SET_TEV_DYN | RTI_SET_STEP_END | RTI_SET_INSTANT))
+        if (f & SET_PARTS)
             sim->plan.set_flags[s] = (uint16_t)((sim->plan.set_flags[s] | f) & ~RTI_SET_NO_STEP);
         if (!(f & RTI_SET_TEV))
             continue;

@@ -31,6 +31,7 @@
 #define EX_MAX_SRCS 400    /* source files of an exported FMU */
 #define EX_MAX_INCS 64     /* include directories of its FMU blocks' sources */
 #define EX_MAX_FMUS 16     /* distinct FMUs (model identifiers) of its FMU blocks */
+#define EX_PATH 4300       /* characters of a path in the FMU's tree */
 
 typedef struct ex {
     scn_ctx *c;
@@ -57,6 +58,17 @@ static int fail(ex *e, const char *fmt, ...)
     return -1;
 }
 
+/* creates file `rel` of the FMU's tree for writing, its path into p[EX_PATH]; NULL with the
+   message in e->err */
+static FILE *create(ex *e, char *p, const char *rel)
+{
+    snprintf(p, EX_PATH, "%s/%s", e->dir, rel);
+    FILE *f = fopen(p, "w");
+    if (!f)
+        fail(e, "cannot write %s", p);
+    return f;
+}
+
 static int copy(ex *e, const char *from, const char *to)
 {
     FILE *in = fopen(from, "rb"), *out = in ? fopen(to, "wb") : NULL;
@@ -75,7 +87,7 @@ static int copy(ex *e, const char *from, const char *to)
 /* the .c and .h files of one source directory into sources/ */
 static int copy_dir(ex *e, const char *sub)
 {
-    char from[4200], to[4300];
+    char from[4200], to[EX_PATH];
     snprintf(from, sizeof from, "%s/%s", MODRT_SRC_DIR, sub);
     DIR *d = opendir(from);
     struct dirent *de;
@@ -147,7 +159,7 @@ static int importer(ex *e)
 {
     static const char *const c[] = {"fmu_inst.c", "fmu_state.c", "fmu_call.c", "fmu_arena.c"};
     static const char *const h[] = {"fmu_int.h", "fmu.h", "fmu_md.h"};
-    char from[4200], to[4300];
+    char from[4200], to[EX_PATH];
     snprintf(to, sizeof to, "%s/sources/fmi", e->dir);
     if (mkdir(to, 0755) != 0)
         return fail(e, "cannot create %s: %s", to, strerror(errno));
@@ -185,11 +197,10 @@ static int importer(ex *e)
 static int inner_unit(ex *e, int ver, const char *id, int k, const char *file, const char *defs)
 {
     const char *unit = scn_fmt(e->c, "fmu_%s_%d.c", id, k);
-    char p[4300];
-    snprintf(p, sizeof p, "%s/sources/%s", e->dir, unit);
-    FILE *f = fopen(p, "w");
+    char p[EX_PATH];
+    FILE *f = create(e, p, scn_fmt(e->c, "sources/%s", unit));
     if (!f)
-        return fail(e, "cannot write %s", p);
+        return -1;
     fprintf(f, "/* %s - written by scenec --fmu: %s of the FMU %s, its functions named "
                "%s_fmi%d... */\n#undef FMI2_OVERRIDE_FUNCTION_PREFIX\n"
                "#undef FMI3_OVERRIDE_FUNCTION_PREFIX\n#undef FMI3_ACTUAL_FUNCTION_PREFIX\n"
@@ -224,7 +235,7 @@ static int inner_block(ex *e, char *line, char ids[][128], char dirs[][4096], in
     if (*nids >= EX_MAX_FMUS)
         return fail(e, "FMU block %s: more than %d distinct FMUs", blk, EX_MAX_FMUS);
     snprintf(ids[*nids], 128, "%s", id), snprintf(dirs[*nids], 4096, "%s", src), ++*nids;
-    char to[4300];
+    char to[EX_PATH];
     snprintf(to, sizeof to, "%s/sources/fmu_%s", e->dir, id);
     if (copy_tree(e, src, to))
         return -1;
@@ -279,7 +290,7 @@ static int inner(ex *e, const char *scene_c)
 
 static int sources(ex *e)
 {
-    char p[4300];
+    char p[EX_PATH];
     snprintf(p, sizeof p, "%s/sources", e->dir);
     if (mkdir(p, 0755) != 0)
         return fail(e, "cannot create %s: %s", p, strerror(errno));
@@ -296,8 +307,7 @@ static int sources(ex *e)
             return -1;
     }
     e->srcs[e->nsrcs++] = fmi, e->srcs[e->nsrcs++] = "cs_slave.c";
-    snprintf(p, sizeof p, "%s/sources/scene.c", e->dir);
-    FILE *f = fopen(p, "w");
+    FILE *f = create(e, p, "sources/scene.c");
     int emitted = f && scn_emit(e->c, f) == 0;
     if (f)
         emitted = fclose(f) == 0 && emitted;
@@ -308,10 +318,9 @@ static int sources(ex *e)
         return -1;
     snprintf(e->token, sizeof e->token, "{modrt-%s-%016llx}", e->sc->name, hash_file(p));
     /* which scene the FMI functions serve, under which token and names */
-    snprintf(p, sizeof p, "%s/sources/fmu_cs_id.h", e->dir);
-    f = fopen(p, "w");
+    f = create(e, p, "sources/fmu_cs_id.h");
     if (!f)
-        return fail(e, "cannot write %s", p);
+        return -1;
     fprintf(f, "/* fmu_cs_id.h - written by scenec --fmu: the scene this FMU serves */\n"
                "#define FMU_CS_SCENE %s%s\n#define FMU_CS_TOKEN \"%s\"\n"
                "#define FMI%d_FUNCTION_PREFIX %s_\n",
@@ -323,11 +332,10 @@ static int sources(ex *e)
 
 static int build_description(ex *e)
 {
-    char p[4300];
-    snprintf(p, sizeof p, "%s/sources/buildDescription.xml", e->dir);
-    FILE *f = fopen(p, "w");
+    char p[EX_PATH];
+    FILE *f = create(e, p, "sources/buildDescription.xml");
     if (!f)
-        return fail(e, "cannot write %s", p);
+        return -1;
     fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiBuildDescription fmiVersion=\"3.0\">\n"
                "  <BuildConfiguration modelIdentifier=\"%s\">\n"
                "    <SourceFileSet language=\"C11\" compilerOptions=\"-ffp-contract=off "
@@ -346,7 +354,7 @@ static int build_description(ex *e)
 /* the binary for this host from the sources just written */
 static int compile(ex *e)
 {
-    char out[4300];
+    char out[EX_PATH];
     const char *plat = e->version == 2 ? "linux64" : "x86_64-linux";
     snprintf(out, sizeof out, "%s/binaries/%s", e->dir, plat);
     char *mk = scn_fmt(e->c, "%s/binaries", e->dir);
@@ -371,7 +379,7 @@ static int compile(ex *e)
     argv[n++] = "-o", argv[n++] = out, argv[n++] = "-lm", argv[n] = NULL;
     pid_t pid = fork();
     if (pid == 0) {
-        char src[4300];
+        char src[EX_PATH];
         snprintf(src, sizeof src, "%s/sources", e->dir);
         if (chdir(src) == 0)
             execvp(cc, (char *const *)argv);
@@ -598,11 +606,10 @@ static void md2(ex *e, FILE *f)
 
 static int model_description(ex *e)
 {
-    char p[4300];
-    snprintf(p, sizeof p, "%s/modelDescription.xml", e->dir);
-    FILE *f = fopen(p, "w");
+    char p[EX_PATH];
+    FILE *f = create(e, p, "modelDescription.xml");
     if (!f)
-        return fail(e, "cannot write %s", p);
+        return -1;
     if (e->version == 2)
         md2(e, f);
     else

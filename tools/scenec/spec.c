@@ -417,6 +417,26 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
     fputs(")\n        return 0; /* the first assembly factors M: the generic path */\n", f);
 }
 
+/* the set's assembly (`what`: RTI_MBS_JAC, with RTI_MBS_FORCE for a right-hand side) and
+   the factors of its Schur complement over the fixed pattern */
+static void factored(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
+{
+    assemble(f, sc, sim, s, what);
+    quotients(f, sim, s);
+    schur(f, sim, s);
+    factor(f, sim, s);
+}
+
+/* one correction of the projection: the solve for residual v ("g" or "gd"), the change
+   of the points' coordinates it gives, added from coordinate `from` (0 positions, 3
+   velocities) */
+static void corrected(FILE *f, const rt_sim *sim, uint8_t s, const char *v, unsigned from)
+{
+    solve(f, sim, s, v);
+    correct(f, sim, s, v, 0);
+    points_add(f, sim, s, from);
+}
+
 /* the right-hand side of a set (rti_rhs): outputs, derivatives, rti_mbs_accel */
 static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
@@ -435,10 +455,7 @@ static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
     outputs(f, sc, sim, s);
     derivs(f, sc, sim, s);
     if (mbs) {
-        assemble(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
-        quotients(f, sim, s);
-        schur(f, sim, s);
-        factor(f, sim, s);
+        factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
         lambda_accel(f, sc, sim, s);
     }
     fputs("    return 1;\n}\n", f);
@@ -455,25 +472,13 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
           "    (void)u, (void)y, (void)ar;\n", f);
     locals(f, sim, s);
     fputs("    /* positions (10a) */\n", f);
-    assemble(f, sc, sim, s, RTI_MBS_JAC);
-    quotients(f, sim, s);
-    schur(f, sim, s);
-    factor(f, sim, s);
-    solve(f, sim, s, "g");
-    correct(f, sim, s, "g", 0);
-    points_add(f, sim, s, 0);
+    factored(f, sc, sim, s, RTI_MBS_JAC);
+    corrected(f, sim, s, "g", 0);
     assemble(f, sc, sim, s, RTI_MBS_G);
-    solve(f, sim, s, "g");
-    correct(f, sim, s, "g", 0);
-    points_add(f, sim, s, 0);
+    corrected(f, sim, s, "g", 0);
     fputs("    /* velocities (10b) */\n", f);
-    assemble(f, sc, sim, s, RTI_MBS_JAC);
-    quotients(f, sim, s);
-    schur(f, sim, s);
-    factor(f, sim, s);
-    solve(f, sim, s, "gd");
-    correct(f, sim, s, "gd", 0);
-    points_add(f, sim, s, 3);
+    factored(f, sc, sim, s, RTI_MBS_JAC);
+    corrected(f, sim, s, "gd", 3);
     fputs("    /* check_residual */\n    {\n        real_t worst = 0, v;\n"
           "        uint16_t row = 0;\n", f);
     for (unsigned r = 0; r < w->nc[s]; r++)

@@ -99,6 +99,14 @@ static void tight_start(tight *m, int i, int estimate, const rt_scene *sc)
     tight_init(m, x0);
 }
 
+/* a tight program's run against modrt's (sim): positions within CHECK_TOL, the same
+   largest error estimate within EST_TOL, status ok, constraint residual within 1e-9 m */
+static int agrees(double worst, double err_max, double est, double res_max)
+{
+    return worst <= CHECK_TOL && fabs(err_max - est) / est <= EST_TOL &&
+           rt_stats_of(&sim)->status == RT_OK && res_max <= 1e-9;
+}
+
 static int check(void)
 {
     int bad = 0;
@@ -118,9 +126,7 @@ static int check(void)
                 worst = d > worst || d != d ? d : worst;
             }
         double est = (double)rt_stats_of(&sim)->istats[0].err_max;
-        double de = fabs(m.err_max - est) / est;
-        int ok = worst <= CHECK_TOL && de <= EST_TOL && rt_stats_of(&sim)->status == RT_OK &&
-                 m.res_max <= 1e-9;
+        int ok = agrees(worst, m.err_max, est, m.res_max);
         bad += !ok;
         printf("trajectory pendulum10 %s tight: largest position difference at %g s %.2e m "
                "(tolerance %.0e), largest error estimate %.6e (modrt %.6e), largest "
@@ -181,9 +187,7 @@ static int lane_check(void)
             worst = d > worst || d != d ? d : worst;
         }
     double est = (double)rt_stats_of(&sim)->istats[0].err_max;
-    double de = fabs(m.err_max - est) / est;
-    int ok = worst <= CHECK_TOL && de <= EST_TOL && rt_stats_of(&sim)->status == RT_OK &&
-             m.res_max <= 1e-9;
+    int ok = agrees(worst, m.err_max, est, m.res_max);
     printf("trajectory lane_change_planar rk4 tight: largest position difference at %g s "
            "%.2e m (tolerance %.0e), largest error estimate %.6e (modrt %.6e), largest "
            "residual %.1e m %s\n", LANE_T, worst, CHECK_TOL, m.err_max, est, m.res_max,
