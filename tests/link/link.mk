@@ -12,8 +12,8 @@ build/fuzz/link-fuzz: $(LINK_FUZZ_SRCS) tests/scenec/fuzz_main.c
 	@mkdir -p $(dir $@)
 	@if command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(){return 0;}' | \
 	    clang -x c -fsanitize=fuzzer - -o build/fuzz/probe-link 2>/dev/null; then \
-	  clang $(LINK_FUZZ_FLAGS) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	    $(LINK_FUZZ_SRCS) -o $@; \
+	  JOBS=$(JOBS) sh tools/dev/cc_par.sh $@ "clang $(LINK_FUZZ_FLAGS) \
+	    -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all" "" $(LINK_FUZZ_SRCS); \
 	else \
 	  $(CC) $(LINK_FUZZ_FLAGS) -fsanitize=address,undefined -fno-sanitize-recover=all \
 	    $(LINK_FUZZ_SRCS) tests/scenec/fuzz_main.c -o $@; \

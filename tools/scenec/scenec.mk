@@ -98,8 +98,8 @@ build/fuzz/scenec-fuzz: $(SCN_FUZZ_SRCS) tests/scenec/fuzz_main.c $(wildcard $(S
 	@if echo 'int LLVMFuzzerTestOneInput(const char*d,long n){(void)d;(void)n;return 0;}' | \
 	    clang -x c -fsanitize=fuzzer - -o build/fuzz/probe 2>/dev/null; then \
 	  echo "fuzz: libFuzzer (clang -fsanitize=fuzzer,address,undefined)"; \
-	  clang $(SCN_FUZZ_FLAGS) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	    $(SCN_FUZZ_SRCS) -o $@; \
+	  JOBS=$(JOBS) sh tools/dev/cc_par.sh $@ "clang $(SCN_FUZZ_FLAGS) \
+	    -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all" "" $(SCN_FUZZ_SRCS); \
 	else \
 	  echo "fuzz: no libFuzzer; the mutation loop of tests/scenec/fuzz_main.c with ASan+UBSan"; \
 	  $(CC) $(SCN_FUZZ_FLAGS) -fsanitize=address,undefined -fno-sanitize-recover=all \
