@@ -172,12 +172,16 @@ unit: $(O)/tests
 # rt/ and models/ linked together may leave undefined only compiler-emitted helpers
 # (_GLOBAL_OFFSET_TABLE_ is the linker symbol of position-independent host code)
 FREE_ALLOWED := memcpy memset memmove memcmp _GLOBAL_OFFSET_TABLE_
-check-freestanding: $(RT_OBJS) $(MODEL_OBJS)
-	@$(CC) -r -nostdlib -o $(O)/freestanding.o $^
+# (the objects build JOBS at a time: make test runs each suite without -j)
+$(O)/freestanding.o: $(RT_OBJS) $(MODEL_OBJS)
+	@$(CC) -r -nostdlib -o $@ $^
+check-freestanding:
+	+@$(MAKE) --no-print-directory -j$(JOBS) $(O)/freestanding.o
 	@bad=$$(nm -u $(O)/freestanding.o | awk '{print $$NF}' | sort -u | \
 	  grep -vxE '$(subst $() ,|,$(FREE_ALLOWED))'); \
 	if [ -n "$$bad" ]; then echo "check-freestanding: rt/ or models/ call outside themselves:"; \
-	  echo "$$bad"; exit 1; fi; echo "check-freestanding: ok ($(words $^) objects, no libc or libm)"
+	  echo "$$bad"; exit 1; fi; \
+	echo "check-freestanding: ok ($(words $(RT_OBJS) $(MODEL_OBJS)) objects, no libc or libm)"
 
 # every suite is a make target; `make test` runs them one after another, one line each,
 # and ends with the grand total (tools/dev/run-suites.sh). Other makefiles add theirs to
