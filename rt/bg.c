@@ -50,6 +50,30 @@ static uint32_t result_size(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     return n;
 }
 
+/* what the release and the publication copy, listed once (rt_plan.bg_in, bg_sig): the
+   set's inputs from the other sets, whose values at release the step reads, and the
+   slots of its held signals */
+static void list_copies(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    sim->plan.nbg_y = sim->plan.nbg_in = 0;
+    for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
+        uint16_t b = rti_block_run(sim, s, &k, &e);
+        sim->plan.bg_y[2 * sim->plan.nbg_y] = sim->plan.y_off[b];
+        sim->plan.bg_y[2 * sim->plan.nbg_y++ + 1] = sim->plan.y_off[e];
+    }
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++)
+            if (sim->plan.src_kind[i] == RT_SRC_HELD || sim->plan.src_kind[i] == RT_SRC_XSET)
+                sim->plan.bg_in[sim->plan.nbg_in++] = i;
+    }
+#if RT_MAX_HELD_SIG > 0
+    sim->plan.nbg_sig = rti_held_slots(sc, s, sim->plan.bg_sig);
+#else
+    (void)sc;
+#endif
+}
+
 static rt_status init(const rt_scene *sc, rt_sim *sim)
 {
     for (uint8_t s = 0; s < sc->nsets; s++) {
@@ -64,6 +88,8 @@ static rt_status init(const rt_scene *sc, rt_sim *sim)
         if (result_size(sc, sim, s) > RT_MAX_BG)
             return rti_capacity(sim, "set ", sc->sets[s].name, RT_LIM_BG);
         sim->plan.bg_set = s;
+        sim->state.bg_nonfinite = -1;
+        list_copies(sc, sim, s);
     }
     return RT_OK;
 }
@@ -101,30 +127,37 @@ static void move_result(const rt_sim *sim, uint8_t s, real_t *x, real_t *y, real
 {
     uint32_t n = (uint32_t)(sim->plan.set_x[s + 1] - sim->plan.set_x[s]);
     move_range(x + sim->plan.set_x[s], buf, n, dir);
-    for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
-        uint16_t b = rti_block_run(sim, s, &k, &e);
-        uint32_t m = (uint32_t)(sim->plan.y_off[e] - sim->plan.y_off[b]);
-        move_range(y + sim->plan.y_off[b], buf + n, m, dir);
+    for (uint16_t k = 0; k < sim->plan.nbg_y; k++) {
+        uint16_t y0 = sim->plan.bg_y[2 * k];
+        uint32_t m = (uint32_t)(sim->plan.bg_y[2 * k + 1] - y0);
+        move_range(y + y0, buf + n, m, dir);
         n += m;
     }
 }
 
+/* n values, four at a time (the publishing tick, the scene's slowest, copies the result:
+   a quarter of the loop's counting and branching) */
 static void copy_reals(real_t *dst, const real_t *src, uint32_t n)
 {
-    for (uint32_t i = 0; i < n; i++)
+    uint32_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        real_t a = src[i], b = src[i + 1], c = src[i + 2], d = src[i + 3];
+        dst[i] = a, dst[i + 1] = b, dst[i + 2] = c, dst[i + 3] = d;
+    }
+    for (; i < n; i++)
         dst[i] = src[i];
 }
 
 /* the set's result from one rt_sim to another of the same scene (same layout): from the
    context straight into the tick's state at publication, one pass instead of two through
-   bg_result (this runs in the publishing tick, the scene's slowest) */
+   bg_result */
 static void copy_result(const rt_sim *from, rt_sim *to, uint8_t s)
 {
     uint16_t x0 = from->plan.set_x[s];
     copy_reals(to->state.x + x0, from->state.x + x0, (uint32_t)(from->plan.set_x[s + 1] - x0));
-    for (uint16_t k = from->plan.blk_of[s], e; k < from->plan.blk_of[s + 1];) {
-        uint16_t y0 = from->plan.y_off[rti_block_run(from, s, &k, &e)];
-        copy_reals(to->state.y + y0, from->state.y + y0, (uint32_t)(from->plan.y_off[e] - y0));
+    for (uint16_t k = 0; k < from->plan.nbg_y; k++) {
+        uint16_t y0 = from->plan.bg_y[2 * k];
+        copy_reals(to->state.y + y0, from->state.y + y0, (uint32_t)(from->plan.bg_y[2 * k + 1] - y0));
     }
 }
 
@@ -152,12 +185,24 @@ static void copy_gains(const rt_scene *sc, const rt_sim *from, rt_sim *to, uint8
 #endif
 }
 
+/* set s's parameters into the context, a block whose changed with its constant mass
+   matrix factored anew there (as rt_set_param makes the tick's) and the set's time events
+   found anew (rt/tev.c) */
+static void copy_params(const rt_sim *sim, rt_sim *bg, uint8_t s)
+{
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k], p0 = sim->plan.p_off[b];
+        if (copy_changed(bg->state.p + p0, sim->state.p + p0,
+                         (uint32_t)(sim->plan.p_off[b + 1] - p0)))
+            bg->work.mbs.m_valid[b] = 0, rti_tev_moved(bg, s);
+    }
+}
+
 /* what the step reads from the tick's side, as it stands at release: the time, its own
-   blocks' parameters (rt_set_param may change them between ticks: a block whose changed
-   has its constant mass matrix factored anew in the context, as rt_set_param makes the
-   tick's, and the set's Jacobian formed anew), the held outputs of sampled blocks and the
-   history of the other sets' outputs its inputs read (its own states, outputs and
-   discrete states are the context's already) */
+   blocks' parameters (rt_set_param may change them between ticks; the set's Jacobian is
+   then formed anew), the held outputs of sampled blocks and the history of the other
+   sets' outputs its inputs read (plan.bg_in; its own states, outputs and discrete states
+   are the context's already) */
 static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8_t s)
 {
     bg->state.tick = sim->state.tick;
@@ -169,22 +214,15 @@ static void copy_inputs(const rt_scene *sc, const rt_sim *sim, rt_sim *bg, uint8
     copy_gains(sc, sim, bg, s); /* as the tick last judged them (NaN: measure afresh) */
     /* parameters change only by rt_set_param and rt_restore, which both mark the set
        (param_changed, handed over at release): unmarked, the context has them all */
-    int params = bg->state.param_changed[s];
-    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
-        uint16_t b = sim->plan.set_blk[k];
-        if (params &&
-            copy_changed(bg->state.p + sim->plan.p_off[b], sim->state.p + sim->plan.p_off[b],
-                         (uint32_t)(sim->plan.p_off[b + 1] - sim->plan.p_off[b])))
-            bg->work.mbs.m_valid[b] = 0,
-            rti_tev_moved(bg, s); /* its time events may have moved (rt/tev.c) */
-        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
-            uint16_t v = sim->plan.src[i];
-            if (sim->plan.src_kind[i] == RT_SRC_HELD)
-                bg->state.y[v] = sim->state.y[v];
-            else if (sim->plan.src_kind[i] == RT_SRC_XSET)
-                for (int k = 0; k < RT_HIST; k++)
-                    bg->state.hist_y[k][v] = sim->state.hist_y[k][v];
-        }
+    if (bg->state.param_changed[s])
+        copy_params(sim, bg, s);
+    for (uint16_t k = 0; k < sim->plan.nbg_in; k++) {
+        uint16_t i = sim->plan.bg_in[k], v = sim->plan.src[i];
+        if (sim->plan.src_kind[i] == RT_SRC_HELD)
+            bg->state.y[v] = sim->state.y[v];
+        else
+            for (int h = 0; h < RT_HIST; h++)
+                bg->state.hist_y[h][v] = sim->state.hist_y[h][v];
     }
 }
 
@@ -193,11 +231,23 @@ static uint32_t umax(uint32_t a, uint32_t b)
     return a > b ? a : b;
 }
 
-/* the counters and high-water marks the step left in the context, into the tick's stats
-   (the context's counters restart from zero; its per-set entries are its own) */
-static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
+/* did the step count anything that merge_counts adds up: a fault counter, the status, a
+   loop solve (asked in the background context, after its step, so that the tick that
+   publishes a clean step walks none of them) */
+static uint8_t counted(const rt_stats *b)
 {
-    rt_stats *a = &sim->stats, *b = &bg->stats;
+    int any = b->status != RT_OK;
+    for (int c = 0; c < RT_CNT_COUNT; c++)
+        any |= b->count[c] != 0;
+    for (int i = 0; i < RT_MAX_LOOP_HIST; i++)
+        any |= b->loop_hist[i] != 0;
+    return (uint8_t)any;
+}
+
+/* the context's counters, status and loop histogram, into the tick's stats (the
+   context's restart from zero) */
+static void merge_counts(rt_stats *a, rt_stats *b)
+{
     for (int c = 0; c < RT_CNT_COUNT; c++) {
         if (b->count[c] == 0)
             continue;
@@ -210,6 +260,18 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
     if (rt_status_severity(b->status) > rt_status_severity(a->status))
         a->status = b->status;
     b->status = RT_OK;
+    /* the histogram's own size: a per-scene build without loops keeps one bin */
+    for (int i = 0; i < RT_MAX_LOOP_HIST; i++)
+        a->loop_hist[i] += b->loop_hist[i], b->loop_hist[i] = 0;
+}
+
+/* the counters and high-water marks the step left in the context, into the tick's stats
+   (its per-set entries are its own) */
+static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
+{
+    rt_stats *a = &sim->stats, *b = &bg->stats;
+    if (sim->bg_counted)
+        merge_counts(a, b);
     a->growth[s] = b->growth[s], a->unstable[s] = b->unstable[s];
     /* added, not taken over: the tick counts the set's couplings lost (rti_xset_predict) */
     a->errest[s] += b->errest[s], b->errest[s] = 0;
@@ -217,15 +279,25 @@ static void merge_stats(rt_sim *sim, rt_sim *bg, uint8_t s)
     a->event_iter_max = umax(a->event_iter_max, b->event_iter_max);
     a->loop_iter_max = umax(a->loop_iter_max, b->loop_iter_max);
     a->loop_residual = b->loop_residual > a->loop_residual ? b->loop_residual : a->loop_residual;
-    /* the histogram's own size: a per-scene build without loops keeps one bin */
-    for (int i = 0; i < RT_MAX_LOOP_HIST; i++)
-        a->loop_hist[i] += b->loop_hist[i], b->loop_hist[i] = 0;
 }
 
 /* ------------------------------------------------------------------ the step */
 
+/* the first block of set s whose outputs are not finite, or -1 */
+static int16_t nonfinite_block(const rt_sim *sim, uint8_t s)
+{
+    const uint16_t *off = sim->plan.y_off;
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        if (!rt_all_finite(sim->state.y + off[b], off[b + 1] - off[b]))
+            return (int16_t)b;
+    }
+    return -1;
+}
+
 /* the step itself, in whichever rt_sim it runs: states to the end of the macro step,
-   then the outputs there (what the other sets will read) */
+   then the outputs there (what the other sets will read), checked here rather than in
+   the tick that publishes them */
 static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
 {
     uint32_t ratio = sc->sets[s].ratio;
@@ -237,6 +309,7 @@ static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
     rti_step_witness(ctx, s, r0);
     real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
     rti_outputs(sc, ctx, (rti_at){te, s, RTI_IN_STEP});
+    ctx->state.bg_nonfinite = nonfinite_block(ctx, s);
     /* its recorded multibody signals (a residual): here, not in a tick */
     rti_hold_bg_signals(sc, ctx, s, ctx->state.set_tick[s] + ratio);
 }
@@ -275,6 +348,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     rt_sim *bg = sim->bg;
     if (bg) {
         copy_result(bg, sim, s);
+        sim->state.bg_nonfinite = bg->state.bg_nonfinite;
         merge_stats(sim, bg, s);
         copy_gains(sc, bg, sim, s); /* its step's, for the tick's check at the next release */
     } else {
@@ -282,7 +356,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     }
     sim->state.set_tick[s] = sim->state.bg_due;
     sim->state.bg_busy = 0;
-    rti_publish_signals(sc, sim, bg ? bg : sim, s);
+    rti_publish_signals(sim, bg ? bg : sim);
     if (sim->plan.set_xout[s])
         rti_xset_push(sc, sim, s, (real_t)sim->state.bg_due * sc->dt);
 }
@@ -333,6 +407,7 @@ rt_status rt_bg_attach(const rt_scene *sc, rt_sim *sim, rt_sim *bg)
     rti_zero(bg->stats.errest, sizeof bg->stats.errest);
     bg->stats.status = RT_OK;
     sim->bg_released = sim->bg_finished = 0;
+    sim->bg_counted = 0;
     sim->bg = bg;
     return RT_OK;
 }
@@ -352,6 +427,7 @@ rt_status rt_background(const rt_scene *sc, rt_sim *sim)
     if (n == __atomic_load_n(&sim->bg_finished, __ATOMIC_RELAXED))
         return RT_E_ARG;
     run_step(sc, sim->bg, (uint8_t)sim->plan.bg_set);
+    sim->bg_counted = counted(&sim->bg->stats); /* visible with the count, as the step */
     __atomic_store_n(&sim->bg_finished, n, __ATOMIC_RELEASE);
     return RT_OK;
 }

@@ -123,13 +123,31 @@ void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t ti
 #endif
 }
 
-void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s)
+void rti_publish_signals(rt_sim *sim, const rt_sim *ctx)
 {
 #if RT_MAX_HELD_SIG > 0
-    held_slots(sc, sim, s, ctx->state.bg_result_sig, sim->state.held_sig);
+    for (uint16_t k = 0; k < sim->plan.nbg_sig; k++) {
+        uint16_t i = sim->plan.bg_sig[k];
+        sim->state.held_sig[i] = ctx->state.bg_result_sig[i];
+    }
 #else
-    (void)sc, (void)sim, (void)ctx, (void)s;
+    (void)sim, (void)ctx;
 #endif
+}
+
+uint16_t rti_held_slots(const rt_scene *sc, uint8_t s, uint16_t *slots)
+{
+    const rt_rec *lists[2] = {sc->recs, sc->link ? sc->link->exp : 0};
+    uint16_t n[2] = {sc->nrecs, sc->link ? sc->link->nexp : 0}, slot = 0, k = 0;
+    for (int l = 0; l < 2; l++)
+        for (uint16_t i = 0; i < n[l]; i++) {
+            if (!held_sig(sc, &lists[l][i]))
+                continue;
+            if (sc->blocks[lists[l][i].block].set == s)
+                slots[k++] = slot;
+            slot++;
+        }
+    return k;
 }
 
 real_t rti_export_value(const rt_scene *sc, const rt_sim *sim, uint16_t i)

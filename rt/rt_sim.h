@@ -85,6 +85,17 @@ typedef struct rt_plan {
     uint16_t set_xout[RT_MAX_SETS];  /* the set's highest output read by other sets, plus
                                         one (0: none): its history push stops there */
     int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
+    /* what its release and its publication copy between the tick and a context, listed
+       at init so the tick walks no block (rt/bg.c): its outputs, runs [bg_y[2k],
+       bg_y[2k + 1]) of y; its inputs from other sets (RT_SRC_HELD or RT_SRC_XSET); and
+       the slots of its held signals in state.held_sig (rt/held.c) */
+    uint16_t bg_y[2 * RT_MAX_BLOCKS];
+    uint16_t bg_in[RT_MAX_U];
+    uint16_t nbg_y, nbg_in;
+#if RT_MAX_HELD_SIG > 0
+    uint16_t bg_sig[RT_MAX_HELD_SIG];
+    uint16_t nbg_sig;
+#endif
 #if RT_MAX_XPRED > 0
     /* inputs a set extrapolates over its step from another set, whose prediction is
        checked (rti_xset_predict), and the block each belongs to */
@@ -156,6 +167,10 @@ struct rt_state {
     uint64_t tev_next[RT_MAX_SETS];
 #endif
     uint64_t hash;                   /* trace hash of the recorded values (rt_hash_real) */
+    int16_t bg_nonfinite;            /* the first block of the background set whose outputs
+                                        its step ended with are not finite, -1: none; found
+                                        by the step, counted by the tick that publishes it
+                                        (rt/bg.c, rt/sim.c) */
     /* the byte-wide members last, together: no padding after each (RAM of small targets) */
     uint8_t loop_h_valid[RT_MAX_LOOPS];/* loop_h of loop l holds an estimate */
     uint8_t hist_n[RT_MAX_SETS];     /* valid history points per set */
@@ -229,6 +244,10 @@ struct rt_sim {
        released step it finished; a step is pending while they differ. */
     struct rt_sim *bg;
     uint32_t bg_released, bg_finished;
+    /* written by the background context with bg_finished: its step counted something
+       (a fault counter, the status, a loop solve), which the publication merges into the
+       tick's statistics; 0: the publication skips those (rt/bg.c) */
+    uint8_t bg_counted;
 };
 
 #endif /* RT_SIM_H */

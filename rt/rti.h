@@ -299,9 +299,12 @@ void rti_held_after_step(rt_sim *sim, uint8_t s, uint32_t ratio);
 void rti_held_renew(const rt_scene *sc, rt_sim *sim, uint32_t recall);
 /* set s's held signals at the end of its background step, into bg_result_sig of the
    context it ran in (tick: the tick there), and at its publication from there into
-   held_sig */
+   held_sig (the slots of plan.bg_sig) */
 void rti_hold_bg_signals(const rt_scene *sc, rt_sim *ctx, uint8_t s, uint64_t tick);
-void rti_publish_signals(const rt_scene *sc, rt_sim *sim, const rt_sim *ctx, uint8_t s);
+void rti_publish_signals(rt_sim *sim, const rt_sim *ctx);
+/* the slots in held_sig of set s's held signals, ascending, into slots (as many as the
+   scene holds, RT_MAX_HELD_SIG at most after rt_init's check); returns their number */
+uint16_t rti_held_slots(const rt_scene *sc, uint8_t s, uint16_t *slots);
 
 /* ---- the background set (bg.c; the rest through rt_scene.bg) ---- */
 /* Reals of the background set's result (states and outputs), 0 without one. */

@@ -20,13 +20,18 @@ static int outputs_finite(const rt_sim *sim, uint16_t b, uint16_t e)
 }
 
 /* the first block of a set with new outputs whose outputs are not finite, or -1 (held
-   outputs were checked when they were new) */
+   outputs were checked when they were new; the background set's, published now, by its
+   step: state.bg_nonfinite, rt/bg.c) */
 static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
 {
     int first = -1, bad = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) { /* at once first; by block when one is not */
         if (!rti_at_tick(sim, s))
             continue;
+        if (s == sim->plan.bg_set) {
+            bad |= sim->state.bg_nonfinite >= 0;
+            continue;
+        }
         for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
             uint16_t b = rti_block_run(sim, s, &k, &e);
             bad |= !outputs_finite(sim, b, e);
@@ -37,6 +42,11 @@ static int nonfinite_output(const rt_scene *sc, const rt_sim *sim)
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (!rti_at_tick(sim, s))
             continue;
+        if (s == sim->plan.bg_set) {
+            int b = sim->state.bg_nonfinite;
+            first = b >= 0 && (first < 0 || b < first) ? b : first;
+            continue;
+        }
         for (unsigned i = sim->plan.blk_of[s], i1 = sim->plan.blk_of[s + 1]; i < i1; i++) {
             uint16_t b = sim->plan.set_blk[i];
             if (first >= 0 && b > (unsigned)first)
