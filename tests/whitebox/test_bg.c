@@ -361,6 +361,157 @@ static void test_bg_held_signals(void)
     TH_CHECK(z.held_sig == 0);
 }
 
+/* ------------------------------------------------------------------ test-local kinds */
+
+static const char *const one_name[] = {"v"};
+
+/* a sampled counter: n[k+1] = n[k] + 1 at each sample, y = n (held between samples) */
+static void count_out(const rt_args *a, real_t *y) { y[0] = a->d[0]; }
+static void count_update(const rt_args *a, real_t *dnext) { dnext[0] = a->d[0] + 1; }
+static const rt_kind count_kind = {
+    .name = "count", .type = RT_KIND_DSS, .ny = 1, .nd = 1, .y_names = one_name,
+    .d_names = one_name, .feed = RT_FEED_NONE, .autonomous = 1, .output = count_out,
+    .update = count_update,
+};
+
+/* an integrator: x' = u, y = x */
+static void integ_out(const rt_args *a, real_t *y) { y[0] = a->x[0]; }
+static void integ_deriv(const rt_args *a, real_t *xdot) { xdot[0] = a->u[0]; }
+static const rt_kind integ_kind = {
+    .name = "integ", .type = RT_KIND_NSS, .nu = 1, .ny = 1, .nx = 1, .u_names = one_name,
+    .y_names = one_name, .x_names = one_name, .feed = RT_FEED_NONE, .autonomous = 1,
+    .output = integ_out, .deriv = integ_deriv,
+};
+
+/* a ramp x' = 1 whose output turns non-finite for t > 0.3 (its state stays finite) */
+static void nan_out(const rt_args *a, real_t *y)
+{
+    real_t zero = 0;
+    y[0] = a->t > (real_t)0.3 ? zero / zero : a->x[0];
+}
+static void one_deriv(const rt_args *a, real_t *xdot) { (void)a, xdot[0] = 1; }
+static const rt_kind nan_out_kind = {
+    .name = "nan_out", .type = RT_KIND_NSS, .ny = 1, .nx = 1, .y_names = one_name,
+    .x_names = one_name, .feed = RT_FEED_NONE, .output = nan_out, .deriv = one_deriv,
+};
+
+/* a ramp x' = 1 whose derivative turns non-finite for t > 0.61, y = x */
+static void nan_deriv(const rt_args *a, real_t *xdot)
+{
+    real_t zero = 0;
+    xdot[0] = a->t > (real_t)0.61 ? zero / zero : 1;
+}
+static const rt_kind nan_deriv_kind = {
+    .name = "nan_deriv", .type = RT_KIND_NSS, .ny = 1, .nx = 1, .y_names = one_name,
+    .x_names = one_name, .feed = RT_FEED_NONE, .output = integ_out, .deriv = nan_deriv,
+};
+
+/* a sampled counter (every 3 ticks) read by the background set, which integrates it over
+   steps of 4 ticks (H = 1): the step released at tick k reads the count as it stands
+   then, floor(k / 3) (the output at a sample shows the count of the samples before it),
+   so x at tick 4m is the sum of those counts at ticks 0, 4, ..., 4(m - 1) */
+static double held_want(uint64_t tick)
+{
+    double x = 0;
+    for (uint64_t k = 0; k + 4 <= tick; k += 4)
+        x += (double)(k / 3);
+    return x;
+}
+
+/* sim's largest error against held_want at its publications over 160 ticks; restore: a
+   snapshot taken at tick 80 restored at tick 100 (then re-run from 80) */
+static double held_run(const rt_scene *sc, rt_sim *sim, int restore)
+{
+    static rt_state snap;
+    double worst = 0;
+    int restored = 0;
+    while (rt_ticks_done(sim) < 160) {
+        rt_tick(sc, sim);
+        if (rt_bg_pending(sim))
+            rt_background(sc, sim);
+        uint64_t k = rt_ticks_done(sim);
+        if (k % 4 == 0) {
+            double e = (double)rt_output(sim, 1, 0) - held_want(k);
+            worst = rt_fmax((real_t)worst, (real_t)(e < 0 ? -e : e));
+        }
+        if (restore && k == 80)
+            rt_snapshot(sim, &snap);
+        if (restore && k == 100 && !restored)
+            restored = rt_restore(sim, &snap) == RT_OK && rt_ticks_done(sim) == 80;
+    }
+    return restore && !restored ? 1e30 : worst;
+}
+
+/* the background set reads a sampled output of a set of the tick (RT_SRC_HELD) as it
+   stood at the step's release: inline, and in a context, where the release copies it
+   (plan.bg_in), also after a snapshot restored (the context attached anew) */
+static void test_bg_held_input(void)
+{
+    static const rt_conn cn[] = {{0, 0, 1, 0}};
+    static const rt_block bl[] = {
+        {.name = "Cnt", .kind = &count_kind, .set = 0, .ts = (real_t)0.75},
+        {.name = "Int", .kind = &integ_kind, .set = 1},
+    };
+    static const rt_set sets[] = {
+        {.name = "tick", .method = &rt_rk4, .ratio = 1},
+        {.name = "bg", .method = &rt_rk4, .ratio = 4, .background = 1},
+    };
+    const rt_scene sc = {.name = "held_input", .dt = (real_t)0.25, .t_end = 40, .blocks = bl,
+                         .nblocks = 2, .conns = cn, .nconns = 1, .sets = sets, .nsets = 2,
+                         .bg = &rt_bg};
+    int ok = rt_init(&sc, &sims[0]) == RT_OK && rt_init(&sc, &sims[1]) == RT_OK &&
+             rt_bg_attach(&sc, &sims[1], &ctx[0]) == RT_OK;
+    if (!TH_CHECK(ok))
+        return;
+    TH_CHECK(rt_input_source(&sims[0], 1, 0, 0) == RT_SRC_HELD);
+    double tol = (RT_REAL_IS_FLOAT ? 1e-5 : 1e-12) * held_want(160);
+    TH_NEAR(held_run(&sc, &sims[0], 0), 0, tol);
+    TH_NEAR(held_run(&sc, &sims[1], 1), 0, tol);
+    TH_CHECK(rt_output(&sims[0], 1, 0) == rt_output(&sims[1], 1, 0));
+    TH_CHECK(sims[0].stats.status == RT_OK && sims[1].stats.status == RT_OK);
+}
+
+/* what the background step counts reaches the tick's statistics at its publication, and
+   its outputs published non-finite are counted there, inline and in a context alike: a
+   ramp whose output turns NaN for t > 0.3 (counted at each publication from tick 32,
+   block Out), and one whose derivative does for t > 0.61 (counted by each step from the
+   one released at tick 60, its state kept: block Bad) */
+static void test_bg_faults(void)
+{
+    static const rt_block bl[] = {{.name = "Out", .kind = &nan_out_kind},
+                                  {.name = "Bad", .kind = &nan_deriv_kind}};
+    static const rt_set set[] = {{.name = "bg", .method = &rt_rk4, .ratio = 4, .background = 1}};
+    const rt_scene sc = {.name = "bg_nan", .dt = (real_t)0.01, .t_end = 1, .blocks = bl,
+                         .nblocks = 2, .sets = set, .nsets = 1, .bg = &rt_bg};
+    int ok = rt_init(&sc, &sims[0]) == RT_OK && rt_init(&sc, &sims[1]) == RT_OK &&
+             rt_bg_attach(&sc, &sims[1], &ctx[0]) == RT_OK;
+    if (!TH_CHECK(ok))
+        return;
+    int counted = 1, same = 1;
+    for (uint32_t n = 1; n <= 100; n++) {
+        for (int i = 0; i < 2; i++)
+            rt_tick(&sc, &sims[i]);
+        if (rt_bg_pending(&sims[1]))
+            rt_background(&sc, &sims[1]);
+        if (n % 4)
+            continue; /* inline, a step counts at its release; in a context, at publication */
+        uint32_t want = (n >= 32 ? (n - 32) / 4 + 1 : 0) + (n >= 64 ? (n - 60) / 4 : 0);
+        for (int i = 0; i < 2; i++) {
+            const rt_stats *st = rt_stats_of(&sims[i]);
+            counted &= st->count[RT_CNT_NAN] == want;
+            counted &= want == 0 ? st->status == RT_OK
+                                 : st->status == RT_E_NAN && st->first_tick[RT_CNT_NAN] == 32;
+        }
+        const rt_stats *a = rt_stats_of(&sims[0]), *b = rt_stats_of(&sims[1]);
+        same &= a->last_block[RT_CNT_NAN] == b->last_block[RT_CNT_NAN];
+        same &= rt_output(&sims[0], 1, 0) == rt_output(&sims[1], 1, 0);
+    }
+    TH_CHECK(counted && same);
+    TH_EQ_U64(rt_stats_of(&sims[1])->count[RT_CNT_NAN], 28);
+    TH_CHECK(rt_stats_of(&sims[1])->last_block[RT_CNT_NAN] == 0); /* the publication's */
+    TH_NEAR(rt_output(&sims[1], 1, 0), 0.6, RT_REAL_IS_FLOAT ? 1e-5 : 1e-12); /* kept */
+}
+
 const th_test th_bg_tests[] = {
     {"bg_same_trace", test_bg_same_trace},
     {"bg_param", test_bg_param},
@@ -371,5 +522,7 @@ const th_test th_bg_tests[] = {
     {"bg_overrun", test_bg_overrun},
     {"bg_checks", test_bg_checks},
     {"bg_held_signals", test_bg_held_signals},
+    {"bg_held_input", test_bg_held_input},
+    {"bg_faults", test_bg_faults},
     {0, 0},
 };
