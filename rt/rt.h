@@ -639,7 +639,7 @@ typedef struct rt_scene_code {
     int (*project)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
     /* RT_SIM_LAYOUT (rt/rt_sim.h) as the code was compiled: the code reads rt_sim's
        members at their offsets under its build's limits, so rt_init refuses it
-       (RT_E_SCENE) when the runtime's differ (other RT_MAX_*, REAL, RT_FAULT_INJECT) */
+       (RT_E_SCENE) when the runtime's differ (other RT_MAX_*, another REAL) */
     uint32_t sim_layout;
 } rt_scene_code;
 
