@@ -231,6 +231,11 @@ static rt_status check_scene(const rt_scene *sc, rt_sim *sim)
         return rti_capacity(sim, 0, 0, RT_LIM_SETS);
     if (sc->nsets == 0)
         return rti_fail(sim, RT_E_CAPACITY, "a scene needs at least one set", (const char *)0);
+    if (sc->code && sc->code->sim_layout != RT_SIM_LAYOUT)
+        /* the code reads rt_sim at its own build's offsets: run, it would compute garbage */
+        return rti_fail(sim, RT_E_SCENE, "scene code compiled with other limits than the "
+                        "runtime (RT_MAX_*, REAL): build both with the same",
+                        (const char *)0);
     if (!(sc->dt > 0) || !(sc->t_end >= 0) || !rt_isfinite(sc->t_end))
         return rti_fail(sim, RT_E_SCENE, "base tick must be > 0 and end time >= 0",
                         (const char *)0);

@@ -637,6 +637,10 @@ typedef struct rt_scene_code {
     /* the projection of set `set`'s multibody state at t (rt/mbs_project.c,
        RT_STAB_PROJECT); 0: not written for it, the generic path runs */
     int (*project)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+    /* RT_SIM_LAYOUT (rt/rt_sim.h) as the code was compiled: the code reads rt_sim's
+       members at their offsets under its build's limits, so rt_init refuses it
+       (RT_E_SCENE) when the runtime's differ (other RT_MAX_*, another REAL) */
+    uint32_t sim_layout;
 } rt_scene_code;
 
 /* The background set's services (rt/bg.c), named by a scene that has one (rt_scene.bg). */

@@ -250,4 +250,11 @@ struct rt_sim {
     uint8_t bg_counted;
 };
 
+/* rt_sim's layout under this build's limits, as one number: its size and where its parts
+   start (rt_scene_code.sim_layout; two builds with other limits differ in one of them) */
+#define RT_SIM_LAYOUT                                                                     \
+    ((uint32_t)sizeof(rt_sim) ^ (uint32_t)offsetof(rt_sim, state) * 2654435761u ^        \
+     (uint32_t)offsetof(rt_sim, stats) * 40503u ^ (uint32_t)offsetof(rt_sim, work) * 97u ^ \
+     (uint32_t)offsetof(rt_sim, err) * 7u)
+
 #endif /* RT_SIM_H */

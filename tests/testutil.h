@@ -6,6 +6,17 @@
 #include "harness.h"
 #include "rt.h"
 
+/* TU_FULL: 1 where the long tests run their full span, the host's own builds; 0 in the
+   cross-test images (CROSS_TEST_DEFS defines TU_CROSS) and other bare-metal builds, which
+   run under QEMU, where binary64 in software (m3, m4f, rv32) or user-mode emulation
+   (aarch64) makes a second of host work minutes: those tests run a shorter span there
+   that still shows what they check (each says how) */
+#ifdef TU_CROSS
+#define TU_FULL 0
+#else
+#define TU_FULL __STDC_HOSTED__
+#endif
+
 /* one simulator for all tests (large: it holds every static limit), and a second one a
    test may use for anything (a copy, a background context): the cross targets' RAM
    holds few. Declared without the layout: a test that reads rt_sim's parts includes

@@ -10,7 +10,8 @@ evaluations) and what the status said, and it FAILS where
   * a case's own requirement is not met (e.g. backward Euler and SDIRK2 on Robertson at
     h = 0.1 and 0.01 follow the reference to O(h) with status ok; the ball rests).
 A wrong answer whose status says doubtful (exit 3) or failed (exit 1) passes: saying so
-is what the runtime owes. Usage: hard.py MODRT [--long] [--table FILE]."""
+is what the runtime owes. Usage: hard.py MODRT [--long] [--table FILE] [--lane 1|2]
+(--lane: one of the two halves of the suite, which test-hard runs side by side)."""
 import math
 import os
 import subprocess
@@ -206,22 +207,41 @@ class Suite:
                        "0.01: not O(h)" % (m, e1, e2))
 
 
+def lanes(s, long):
+    """the suite's groups in two lanes of about equal time (14 + 5 + 1 + 1 s and 20 + 4 +
+    1 s at test size): test-hard runs the lanes side by side, one per core"""
+    import hard_cases
+
+    def grid():
+        s.robertson_order(s.grid(long))
+
+    def mod(name, fn="extra"):
+        return lambda: getattr(__import__(name), fn)(s, long)
+
+    return [[grid, lambda: hard_cases.extra(s, long),
+             mod("cases_global"),  # class E of issue 26: the global error
+             mod("cases_multirate")],  # multirate coupling (docs/multirate.md)
+            [mod("cases_events", "run_all"),
+             mod("cases_tev"),  # known time events (rt/tev.c)
+             mod("cases_estimates")]]
+
+
 def main():
     if len(sys.argv) < 2:
-        sys.exit("usage: hard.py MODRT [--long] [--table FILE]")
+        sys.exit("usage: hard.py MODRT [--long] [--table FILE] [--lane 1|2]")
     long = "--long" in sys.argv
     s = Suite(sys.argv[1])
     print("| problem | method | step [s] | error | rhs evaluations | status |")
     print("|---|---|---|---|---|---|")
-    errs = s.grid(long)
-    s.robertson_order(errs)
-    import hard_cases
-    hard_cases.extra(s, long)
-    __import__("cases_global").extra(s, long)  # class E of issue 26: the global error
-    __import__("cases_events").run_all(s, long)
-    __import__("cases_multirate").extra(s, long)  # multirate coupling (docs/multirate.md)
-    __import__("cases_tev").extra(s, long)  # known time events (rt/tev.c)
-    __import__("cases_estimates").extra(s, long)
+    groups = lanes(s, long)
+    if "--lane" in sys.argv:
+        k = sys.argv[sys.argv.index("--lane") + 1]
+        if k not in ("1", "2"):
+            sys.exit("hard.py: --lane %s: expected 1 or 2" % k)
+        groups = [groups[int(k) - 1]]
+    for g in groups:
+        for run_group in g:
+            run_group()
     if "--table" in sys.argv:
         with open(sys.argv[sys.argv.index("--table") + 1], "w") as f:
             f.write("\n".join(s.table) + "\n")

@@ -12,12 +12,12 @@
 static double absd(double v) { return v < 0 ? -v : v; }
 
 #ifndef TEST_ACTUATED_T_END
-/* hosted builds run the scenes for their full 10 s (about 0.3 s at -O2); bare-metal
-   builds under QEMU (soft float on some targets: rv32 needs about 50 s for 1 s) the
+/* the host's builds run the scenes for their full 10 s (about 0.3 s at -O2); the images
+   under QEMU (TU_FULL 0; soft float on some targets: rv32 needs about 50 s for 1 s) the
    first 0.8 s, which still compare the two scenes as the link starts to rise. A
    multiple of the chain's 16 ms step: the multirate chain is then at the same time as
    the single set. */
-#if __STDC_HOSTED__
+#if TU_FULL
 #define TEST_ACTUATED_T_END 10
 #else
 #define TEST_ACTUATED_T_END 0.8

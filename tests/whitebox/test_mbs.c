@@ -328,8 +328,9 @@ static void test_drift_10s(void)
 }
 
 #ifndef TEST_MBS_LONG_STEPS
-/* hosted builds run the full 10^6 steps (about 2 s at -O2); sanitized builds (ten times
-   slower) and bare-metal builds under QEMU a shorter run that still shows the drift */
+/* the host's builds run the full 10^6 steps (about 2 s at -O2); sanitized builds (ten
+   times slower) and the images under QEMU (TU_FULL 0) a shorter run that still shows the
+   drift */
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
 #define TEST_MBS_SANITIZED 1
@@ -337,7 +338,7 @@ static void test_drift_10s(void)
 #endif
 #if defined(__SANITIZE_ADDRESS__) || defined(TEST_MBS_SANITIZED)
 #define TEST_MBS_LONG_STEPS 50000
-#elif __STDC_HOSTED__
+#elif TU_FULL
 #define TEST_MBS_LONG_STEPS 1000000
 #else
 #define TEST_MBS_LONG_STEPS 20000

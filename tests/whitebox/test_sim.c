@@ -197,10 +197,10 @@ static void test_lists(void)
     TH_CHECK(rt_streq(rt_status_name(RT_OK), "ok"));
 }
 
-/* hosted builds replay 200 ticks; bare-metal builds under QEMU (binary64 in software on
-   m3, m4f and rv32: a tick of these runs costs some 10^7 instructions) 50, past
+/* the host's builds replay 200 ticks; the images under QEMU (TU_FULL 0; binary64 in
+   software on m3, m4f and rv32: a tick of these runs costs some 10^7 instructions) 50, past
    the first Jacobian and its reuse, which is what an earlier run could leave behind */
-#if __STDC_HOSTED__
+#if TU_FULL
 #define TEST_REPLAY_TICKS 200
 #else
 #define TEST_REPLAY_TICKS 50

@@ -9,8 +9,11 @@
 # single-precision FPU, hashed against the host's float build. A scene with a background
 # set (rt/bg.c) runs its steps between ticks (PendSV on Cortex-M): the tick context is
 # counted from port_cycles() to foot_tick_end(), and a second table gives the background
-# context (foot_bg_begin() to foot_bg_end(), one interval per step).
-# Usage: [FOOT_SCENES="a b"] sh tools/dev/footprint.sh "m3 m4f m7 rv32 rv64" ["m4f m7"]
+# context (foot_bg_begin() to foot_bg_end(), one interval per step). Each double row's
+# image is built again with -DRT_SCENE_CODE=0: a third table sets the scene's written-out
+# code (rt_scene_code) against the table-driven path, flash and instructions per tick.
+# Usage: [FOOT_SCENES="a b"] [FOOT_CODE_TARGETS="m7"] sh tools/dev/footprint.sh \
+#        "m3 m4f m7 rv32 rv64" ["m4f m7"]
 set -eu
 targets=$1
 float_targets=${2:-}
@@ -54,6 +57,25 @@ HDR
 . tools/foot_lib.sh
 
 BG_ROWS=
+CODE_ROWS=
+# the targets whose double rows are measured again on the table-driven path
+CODE_TARGETS=${FOOT_CODE_TARGETS-$targets} # (set empty: none)
+# the same image built with -DRT_SCENE_CODE=0, beside the row foot_measure just measured
+# (flash, stats, hash of the written-out code): a row of the second table
+code_row() {
+    f1=$flash st1=$stats h1=$hash max1=$max # (the caller's row is printed)
+    FOOT_CFLAGS=-DRT_SCENE_CODE=0
+    foot_measure "$2" "$1" double
+    FOOT_CFLAGS=
+    CODE_ROWS="$CODE_ROWS$(echo "$st1|$stats" | awk -F'|' -v s="$1" -v t="$2" -v f1="$f1" \
+        -v f0="$flash" -v eq="$( [ "$h1" = "$hash" ] && echo yes || echo no)" '{
+        r = ($5 > 0) ? $2 / $5 : 0; q = ($6 > 0) ? $3 / $6 : 0
+        printf "| %s | %s | %d | %d | %.2f | %d | %d | %.2f | %d | %d | %.2f | %s |", s, t,
+               f1, f0, (f0 > 0 ? f1 / f0 : 0), $2, $5, r, $3, $6, q, eq }')
+"
+    flash=$f1 stats=$st1 hash=$h1 max=$max1
+}
+
 # one row: scene, target, real (double|float), host hash, base tick [s]
 row() {
     s=$1 t=$2 real=$3 want=$4 dt=$5 # sh has no locals: names the caller does not use
@@ -70,6 +92,8 @@ row() {
         BG_ROWS="$BG_ROWS| $s | $t | $real | $ratio | $bg |
 "
     fi
+    # last: it builds the scene's image again (the same file)
+    case "$real: $CODE_TARGETS " in double:*" $t "*) code_row "$s" "$t";; esac
 }
 
 for s in $scenes; do
@@ -90,27 +114,19 @@ for s in $scenes; do
     done
 done
 
-# the written-out code against the table-driven path, one target, double
-CODE_TARGET=m7
-if make -s "check-target-$CODE_TARGET" 2>/dev/null; then
+# the written-out code against the table-driven path, double
+if [ -n "$CODE_ROWS" ]; then
     cat <<HDR
 
 The library scenes run the code \`scenec\` wrote out for them (\`rt_scene_code\`,
-docs/overhead.md). The same images built with \`-DRT_SCENE_CODE=0\` run the table-driven
-path; on $CODE_TARGET, double:
+docs/overhead.md): the images above. The same images built with \`-DRT_SCENE_CODE=0\` run
+the table-driven path; double, each ratio written out over table-driven (a scene the
+generator writes nothing out for has the same image both ways):
 
-| scene | flash, written out | flash, table-driven | insn/tick median, written out | table-driven | max, written out | table-driven | hashes equal |
-|---|---:|---:|---:|---:|---:|---:|:-:|
+| scene | target | flash, written out | flash, table-driven | ratio | insn/tick median, written out | table-driven | ratio | max, written out | table-driven | ratio | hashes equal |
+|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|
 HDR
-    for s in $scenes; do
-        foot_measure "$CODE_TARGET" "$s" double
-        f1=$flash st1=$stats h1=$hash
-        FOOT_CFLAGS=-DRT_SCENE_CODE=0
-        foot_measure "$CODE_TARGET" "$s" double
-        FOOT_CFLAGS=
-        echo "$st1|$stats" | awk -F'|' -v s="$s" -v f1="$f1" -v f0="$flash" -v eq="$( [ "$h1" = "$hash" ] && echo yes || echo no)" '{
-            printf "| %s | %d | %d | %d | %d | %d | %d | %s |\n", s, f1, f0, $2, $5, $3, $6, eq }'
-    done
+    printf '%s' "$CODE_ROWS"
 fi
 
 [ -z "$BG_ROWS" ] && exit 0
@@ -119,7 +135,7 @@ cat <<HDR
 Background context of the scenes with a background set: per step of that set, the
 instructions between \`foot_bg_begin()\` and \`foot_bg_end()\` (the step and its outputs,
 run in PendSV on Cortex-M), and the tick context's slowest tick over its median (from the
-table above): with the slow set's step out of the tick, what remains is the fast sets'
+first table): with the slow set's step out of the tick, what remains is the fast sets'
 own variation (ROS2's Jacobian refresh every 64 steps, spread over the steps before it: one
 column or one elimination stage a step) and the release and publication.
 

@@ -550,7 +550,8 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
                 fprintf(f, "    case %u: return project_%u(sc, sim, t);\n", s, s);
         fputs("    default: return 0;\n    }\n}\n", f);
     }
-    fprintf(f, "\nstatic const rt_scene_code scene_code = {.rhs = rhs%s};\n#endif\n",
+    fprintf(f, "\nstatic const rt_scene_code scene_code = {.rhs = rhs%s,\n"
+               "                                          .sim_layout = RT_SIM_LAYOUT};\n#endif\n",
             proj ? ", .project = project" : "");
     return 1;
 }

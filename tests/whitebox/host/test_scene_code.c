@@ -75,7 +75,26 @@ static void test_scene_code_equal(void)
     TH_CHECK(mdl_scene_pendulum10.code != 0);
 }
 
+/* code compiled with other limits than the runtime reads rt_sim's members at other
+   offsets: rt_init refuses it, it never runs (a Cortex-M7 image whose scene .c had the
+   default RT_MAX_KSTATE, linked to a runtime library built with RT_MAX_KSTATE=256, ran
+   beltgear's code and gave another trace hash than the host) */
+static void test_scene_code_layout(void)
+{
+    rt_scene_code other = *mdl_scene_pendulum10.code;
+    rt_scene sc = mdl_scene_pendulum10;
+    /* each library scene's code was compiled with this build's limits */
+    for (const rt_scene_entry *e = mdl_scenes; e->name; e++)
+        TH_CHECK(!e->scene->code || e->scene->code->sim_layout == RT_SIM_LAYOUT);
+    sc.code = &other;
+    TH_CHECK(rt_init(&sc, &a) == RT_OK);
+    other.sim_layout = RT_SIM_LAYOUT ^ 0x100u; /* rt_state 256 bytes longer, say */
+    TH_CHECK(rt_init(&sc, &a) == RT_E_SCENE);
+    TH_CHECK(strstr(a.err, "scene code compiled with other limits than the runtime") != 0);
+}
+
 const th_test th_scene_code_tests[] = {
     {"scene_code_equal", test_scene_code_equal},
+    {"scene_code_layout", test_scene_code_layout},
     {0, 0},
 };

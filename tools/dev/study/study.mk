@@ -3,7 +3,8 @@
 # `make test-study`: its quick subset (STUDY=quick), a test suite. Included by the Makefile.
 #
 # The cross images of the study link one generated scene against a library of the runtime
-# and the models built once per target with the default limits (no per-scene sizes: a
+# and the models built once per target (the cross tests' objects: the default limits but
+# CROSS_TEST_DEFS', which study.py compiles the scene with too; no per-scene sizes: a
 # variant scene needs no rebuild of the runtime), the port's objects and the footprint
 # application (tests/cross/footprint_main.c, which marks every tick for the counter).
 STUDY_TARGETS := m4f m7

@@ -405,8 +405,11 @@ class Cross:
 
     def __init__(self, targets):
         self.targets = targets
-        base = "%s -O2 -ffunction-sections -fdata-sections %s -DRT_KIND_DOCS=0 -DRT_SCENE_CODE=0" % (
-            make_var("CSTD"), make_var("CINC"))
+        # the library (study.mk) is the cross tests' objects, with their limits
+        # (CROSS_TEST_DEFS): the variant's scene and its written-out code must see the same
+        # rt_sim, or rt_init refuses the code (rt_scene_code.sim_layout)
+        base = "%s -O2 -ffunction-sections -fdata-sections %s -DRT_KIND_DOCS=0 %s" % (
+            make_var("CSTD"), make_var("CINC"), make_var("CROSS_TEST_DEFS"))
         self.cc, self.cflags, self.ldflags, self.run, self.nm = {}, {}, {}, {}, {}
         for t in targets:
             self.cc[t] = make_var("TARGET_CC_" + t)
@@ -951,7 +954,9 @@ def write_doc(exs, out_dir, started, elapsed, all_checks, jobs, where):
          "time on a shared machine; host wall time per simulated second of the error run is "
          "the secondary, noisy axis on top of the host figures. Cortex-M7 and Cortex-M4F: one "
          "image per configuration and target (tests/cross/footprint_main.c linked with the "
-         "variant's generated C, the runtime and the models at their default limits), run "
+         "variant's generated C with the code scenec writes out for it, and the runtime and "
+         "the models at the cross tests' limits: rt_config.h's defaults, a smaller "
+         "RT_MAX_KSTATE), run "
          "under QEMU with the counting plugin tools/dev/qemu/insn_count.c, which counts the "
          "instructions of every tick (one `rt_tick` plus recording into the hash). All counts "
          "are taken over the first W simulated seconds of the run (W per example below, a "
