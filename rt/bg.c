@@ -58,8 +58,8 @@ static void list_copies(const rt_scene *sc, rt_sim *sim, uint8_t s)
     sim->plan.nbg_y = sim->plan.nbg_in = 0;
     for (uint16_t k = sim->plan.blk_of[s], e; k < sim->plan.blk_of[s + 1];) {
         uint16_t b = rti_block_run(sim, s, &k, &e);
-        sim->plan.bg_y[2 * sim->plan.nbg_y] = sim->plan.y_off[b];
-        sim->plan.bg_y[2 * sim->plan.nbg_y++ + 1] = sim->plan.y_off[e];
+        sim->plan.bg_y[sim->plan.nbg_y++] = sim->plan.y_off[b];
+        sim->plan.bg_y[sim->plan.nbg_y++] = sim->plan.y_off[e];
     }
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         uint16_t b = sim->plan.set_blk[k];
@@ -127,9 +127,9 @@ static void move_result(const rt_sim *sim, uint8_t s, real_t *x, real_t *y, real
 {
     uint32_t n = (uint32_t)(sim->plan.set_x[s + 1] - sim->plan.set_x[s]);
     move_range(x + sim->plan.set_x[s], buf, n, dir);
-    for (uint16_t k = 0; k < sim->plan.nbg_y; k++) {
-        uint16_t y0 = sim->plan.bg_y[2 * k];
-        uint32_t m = (uint32_t)(sim->plan.bg_y[2 * k + 1] - y0);
+    for (uint16_t k = 0; k < sim->plan.nbg_y; k += 2) {
+        uint16_t y0 = sim->plan.bg_y[k];
+        uint32_t m = (uint32_t)(sim->plan.bg_y[k + 1] - y0);
         move_range(y + y0, buf + n, m, dir);
         n += m;
     }
@@ -155,9 +155,9 @@ static void copy_result(const rt_sim *from, rt_sim *to, uint8_t s)
 {
     uint16_t x0 = from->plan.set_x[s];
     copy_reals(to->state.x + x0, from->state.x + x0, (uint32_t)(from->plan.set_x[s + 1] - x0));
-    for (uint16_t k = 0; k < from->plan.nbg_y; k++) {
-        uint16_t y0 = from->plan.bg_y[2 * k];
-        copy_reals(to->state.y + y0, from->state.y + y0, (uint32_t)(from->plan.bg_y[2 * k + 1] - y0));
+    for (uint16_t k = 0; k < from->plan.nbg_y; k += 2) {
+        uint16_t y0 = from->plan.bg_y[k];
+        copy_reals(to->state.y + y0, from->state.y + y0, (uint32_t)(from->plan.bg_y[k + 1] - y0));
     }
 }
 

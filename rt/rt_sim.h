@@ -86,9 +86,9 @@ typedef struct rt_plan {
                                         one (0: none): its history push stops there */
     int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
     /* what its release and its publication copy between the tick and a context, listed
-       at init so the tick walks no block (rt/bg.c): its outputs, runs [bg_y[2k],
-       bg_y[2k + 1]) of y; its inputs from other sets (RT_SRC_HELD or RT_SRC_XSET); and
-       the slots of its held signals in state.held_sig (rt/held.c) */
+       at init so the tick walks no block (rt/bg.c): its outputs, runs [bg_y[k],
+       bg_y[k + 1]) of y for even k < nbg_y; its inputs from other sets (RT_SRC_HELD or
+       RT_SRC_XSET); and the slots of its held signals in state.held_sig (rt/held.c) */
     uint16_t bg_y[2 * RT_MAX_BLOCKS];
     uint16_t bg_in[RT_MAX_U];
     uint16_t nbg_y, nbg_in;
