@@ -91,7 +91,7 @@ help:
 	@echo "make demo         run the demo scene, write its trace and SVG plots into build/demo/"
 	@echo "make test         every test suite, one line each, ending in 'N passed, N failed'"
 	@echo "                  (V=1: every command and all output; logs in build/test-logs/;"
-	@echo "                  52 min on 2 loaded cores, README.md 'Tests'). One suite alone:"
+	@echo "                  about 25 min on 2 idle cores, README.md 'Tests'). One suite alone:"
 	@$(foreach t,$(TEST_SUITES),printf '  make %-22s %s\n' '$(t)' '$(or $(TEST_HELP_$(t)),$(TEST_HELP_$(firstword $(subst cross-test-,cross-test ,$(t)))))';)
 	@echo "make hard         the hard-case suite at full size (long), table in build/hard-table.md"
 	@echo "make bench        benchmarks: figures into build/bench/ (make docs: into docs/)"
