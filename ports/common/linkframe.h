@@ -30,7 +30,7 @@
 
 /* What a frame decoder found wrong, declared once: X(id, key for summaries, meaning). */
 #define LINKFRAME_FAULTS(X)                                                                \
-    X(LINKFRAME_E_LONG, "long", "more bytes than the largest frame before a zero byte")     \
+    X(LINKFRAME_E_LONG, "long", "a frame longer than the largest one")     \
     X(LINKFRAME_E_COBS, "cobs", "a COBS code byte runs past the frame's end")               \
     X(LINKFRAME_E_VERSION, "version", "an empty payload or a framing version other than 1")
 

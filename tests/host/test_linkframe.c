@@ -130,6 +130,18 @@ static void test_frame_resync(void)
     TH_CHECK(rx.fault[LINKFRAME_E_LONG] == 1);
     feed(&rx, w, m, &o);
     TH_CHECK(o.n == 1 && o.verdict[0] == LINKFRAME_DATAGRAM && rx.fault[LINKFRAME_E_LONG] == 1);
+    /* a frame that fits the coded buffer but decodes to more than the largest datagram:
+       code 2 blocks expand each two coded bytes to two payload bytes (no COBS overhead),
+       so LINKFRAME_MAX_CODED coded bytes give LINKFRAME_MAX_CODED - 1 payload bytes */
+    static uint8_t big[LINKFRAME_MAX_CODED + 2];
+    n = 0, big[n++] = 0, big[n++] = 0x02, big[n++] = LINKFRAME_VERSION;
+    while (n + 2 <= LINKFRAME_MAX_CODED + 1)
+        big[n++] = 0x02, big[n++] = 0x33;
+    big[n++] = 0;
+    feed(&rx, big, n, &o);
+    TH_CHECK(o.n == 1 && o.verdict[0] == LINKFRAME_E_LONG && rx.fault[LINKFRAME_E_LONG] == 2);
+    feed(&rx, w, m, &o);
+    TH_CHECK(o.n == 1 && o.verdict[0] == LINKFRAME_DATAGRAM && o.len == sizeof d);
 }
 
 /* ------------------------------------------------------------------ client library */
