@@ -5,6 +5,9 @@
 # same seeds. A crash fails with the input saved in build/fuzz/fmi-crashes/.
 # Usage: sh tests/fmi/fuzz.sh FUZZER SECONDS FMI_DIR
 set -u
+# FUZZ_SEED: libFuzzer's seed; 1 (make test) makes a run the prefix of any longer run
+# with that seed, so a red CI reproduces here; 0 (make fuzz, the long runs) draws one
+SEED=${FUZZ_SEED:-1}
 BIN=$1 SECS=$2 T=$3
 C=build/fuzz/fmi-corpus
 mkdir -p "$C" build/fuzz/fmi-crashes
@@ -12,7 +15,7 @@ for f in "$T"/fmu/*.fmu; do
     unzip -p "$f" modelDescription.xml > "$C/seed-$(basename "$f" .fmu).xml"
 done
 if "$BIN" -help=1 2>&1 | grep -q libFuzzer; then
-    "$BIN" -max_total_time="$SECS" -dict=tests/fmi/md.dict -max_len=16384 -timeout=20 \
+    "$BIN" -max_total_time="$SECS" -seed="$SEED" -dict=tests/fmi/md.dict -max_len=16384 -timeout=20 \
         -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build/fuzz/fmi-crashes/ \
         "$C" > build/fuzz/fmi-fuzz.log 2>&1
     rc=$?

@@ -3,11 +3,14 @@
 # tests/scenec/fuzz_main.c), prints its counts and the decoders' verdicts; a crash fails.
 # Usage: sh tests/link/fuzz.sh FUZZER SECONDS [CORPUS [NAME]] (default: the link fuzzer's)
 set -u
+# FUZZ_SEED: libFuzzer's seed; 1 (make test) makes a run the prefix of any longer run
+# with that seed, so a red CI reproduces here; 0 (make fuzz, the long runs) draws one
+SEED=${FUZZ_SEED:-1}
 BIN=$1 SECS=$2
 C=${3:-build/fuzz/link-corpus} N=${4:-link}
 mkdir -p "$C" build/fuzz/crashes
 if "$BIN" -help=1 2>&1 | grep -q libFuzzer; then
-    "$BIN" -max_total_time="$SECS" -max_len=16384 -timeout=10 -print_final_stats=1 \
+    "$BIN" -max_total_time="$SECS" -seed="$SEED" -max_len=16384 -timeout=10 -print_final_stats=1 \
         -artifact_prefix=build/fuzz/crashes/$N- "$C" > build/fuzz/$N-fuzz.log 2>&1
     rc=$?
 else

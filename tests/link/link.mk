@@ -28,7 +28,7 @@ link-fuzz-seeds: build/host/tests
 	 python3 tests/link/seed_packets.py build/fuzz/link-corpus
 
 link-fuzz: deps build/fuzz/link-fuzz link-fuzz-seeds
-	sh tests/link/fuzz.sh build/fuzz/link-fuzz $(FUZZ_TIME)
+	FUZZ_SEED=0 sh tests/link/fuzz.sh build/fuzz/link-fuzz $(FUZZ_TIME)
 test-link-fuzz: build/fuzz/link-fuzz link-fuzz-seeds
 	@sh tests/link/fuzz.sh build/fuzz/link-fuzz 5
 

@@ -40,8 +40,11 @@ def frame(d):
 
 d = sys.argv[1]
 a, b = frame(request(1, 0, 0.0, 0.0)), frame(request(2, 10, 1.0, 0.25))
+# a frame of code-2 blocks (no COBS overhead) that fits the receiver's buffer but decodes
+# past the largest payload: once a crash of the fuzzer's own length check (regression)
+dense = b"\0\x02\x01" + b"\x02\x33" * 299 + b"\0"
 seeds = {"one": a, "two": a + b, "garbage": b"\x55\xaa\x13" + a, "cut": a[:30],
-         "repeat": a + a + b}
+         "repeat": a + a + b, "dense": dense + a}
 for name, data in seeds.items():
     with open(os.path.join(d, name), "wb") as f:
         f.write(data)

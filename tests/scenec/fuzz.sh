@@ -4,13 +4,16 @@
 # the fallback loop of fuzz_main.c on the same seeds. A crash fails with the input saved.
 # Usage: sh tests/scenec/fuzz.sh FUZZER SECONDS
 set -u
+# FUZZ_SEED: libFuzzer's seed; 1 (make test) makes a run the prefix of any longer run
+# with that seed, so a red CI reproduces here; 0 (make fuzz, the long runs) draws one
+SEED=${FUZZ_SEED:-1}
 BIN=$1 SECS=$2
 C=build/fuzz/corpus
 mkdir -p "$C" build/fuzz/crashes
 cp models/scenes/*.scn tests/scenec/scenes/*.scn tests/scenec/scenes/inc/*.inc \
    tests/scenec/errors/*.scn "$C"/ 2>/dev/null
 if "$BIN" -help=1 2>&1 | grep -q libFuzzer; then
-    "$BIN" -max_total_time="$SECS" -dict=tests/scenec/scn.dict -max_len=65536 -len_control=0 -timeout=20 \
+    "$BIN" -max_total_time="$SECS" -seed="$SEED" -dict=tests/scenec/scn.dict -max_len=65536 -len_control=0 -timeout=20 \
         -rss_limit_mb=4096 -print_final_stats=1 -artifact_prefix=build/fuzz/crashes/ \
         "$C" > build/fuzz/fuzz.log 2>&1
     rc=$?

@@ -53,7 +53,7 @@ build/fuzz/fmi-md-fuzz: $(FMI_FUZZ_SRCS) $(FMI_DIR)/fmu_md.h tests/scenec/fuzz_m
 	    $(FMI_FUZZ_SRCS) tests/scenec/fuzz_main.c -lexpat -o $@; \
 	fi
 fuzz-fmi: build/fuzz/fmi-md-fuzz fmi-fmus
-	sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz $(FUZZ_TIME) $(FMI_TDIR)
+	FUZZ_SEED=0 sh tests/fmi/fuzz.sh build/fuzz/fmi-md-fuzz $(FUZZ_TIME) $(FMI_TDIR)
 
 test-fmi: all fmi-fmus build/fuzz/fmi-md-fuzz $(FMI_TDIR)/master $(FMI_TDIR)/snap $(FMI_TDIR)/setp
 	sh tests/fmi/run.sh $(O) $(FMI_TDIR)

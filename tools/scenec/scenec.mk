@@ -106,6 +106,6 @@ build/fuzz/scenec-fuzz: $(SCN_FUZZ_SRCS) tests/scenec/fuzz_main.c $(wildcard $(S
 	    $(SCN_FUZZ_SRCS) tests/scenec/fuzz_main.c -o $@; \
 	fi
 fuzz: deps build/fuzz/scenec-fuzz
-	sh tests/scenec/fuzz.sh build/fuzz/scenec-fuzz $(FUZZ_TIME)
+	FUZZ_SEED=0 sh tests/scenec/fuzz.sh build/fuzz/scenec-fuzz $(FUZZ_TIME)
 fuzz-short: build/fuzz/scenec-fuzz
 	sh tests/scenec/fuzz.sh build/fuzz/scenec-fuzz 10
