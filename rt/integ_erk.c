@@ -31,45 +31,63 @@ typedef struct erk_tab {
 } erk_tab;
 
 /* out = base + h acc (base NULL: out = acc), acc = sum_{j<nk} c_j k_j summed from j = 0:
-   a stage's state, the new state, the estimate's sum. The coefficients and the stage
-   pointers are read once into locals (stores into out could alias them, so the compiler
-   would reload both for every term) and the sum is unrolled for the stage count, which
-   combine passes as a constant; the same sum, term by term */
-static RTI_INLINE real_t stage_sum(const real_t *cj, const real_t *const *kj, uint8_t nk,
-                                   uint16_t m)
+   a stage's state, the new state, the estimate's sum. Two states per iteration, over a
+   pair count the compiler can compute, with the stage buffers as restrict pointers (out,
+   base and the k_j are distinct buffers of rt_sim.work and the set's state): a target
+   with vector registers then takes both states in one, each lane the same scalar sum term
+   by term, so the bits are those of one state at a time. The coefficients are read once
+   into locals; nk is a constant where combine calls this (terms past it fold away). */
+#define ERK_TERM(j, kj)                                                                      if (nk > (j))                                                                            a0 += c[j] * (kj)[m], a1 += c[j] * (kj)[m + 1u]
+#define ERK_SUMS                                                                         \
+    real_t a0 = 0, a1 = 0;                                                               \
+    ERK_TERM(0, k0);                                                                     \
+    ERK_TERM(1, k1);                                                                     \
+    ERK_TERM(2, k2);                                                                     \
+    ERK_TERM(3, k3);                                                                     \
+    ERK_TERM(4, k4);                                                                     \
+    ERK_TERM(5, k5)
+static RTI_INLINE void combine_k(real_t *restrict out, const real_t *restrict base, real_t h,
+                                 const real_t *cs, const rt_iwork *w, uint16_t n, uint8_t nk)
 {
-    real_t acc = 0;
-#pragma GCC unroll 6
+    real_t c[RT_MAX_STAGES];
     for (uint8_t j = 0; j < nk; j++)
-        acc += cj[j] * kj[j][m];
-    return acc;
-}
-
-static RTI_INLINE void combine_k(real_t *out, const real_t *base, real_t h, const real_t *c,
-                                 const rt_iwork *w, uint16_t n, uint8_t nk)
-{
-    real_t cj[RT_MAX_STAGES];
-    const real_t *kj[RT_MAX_STAGES];
-    for (uint8_t j = 0; j < nk; j++)
-        cj[j] = c[j], kj[j] = w->k[j];
+        c[j] = cs[j];
+    const real_t *restrict k0 = w->k[0], *restrict k1 = w->k[1], *restrict k2 = w->k[2];
+    const real_t *restrict k3 = w->k[3], *restrict k4 = w->k[4], *restrict k5 = w->k[5];
+    uint32_t pairs = (uint32_t)n / 2u;
     if (base)
-        for (uint16_t m = 0; m < n; m++)
-            out[m] = base[m] + h * stage_sum(cj, kj, nk, m);
+        for (uint32_t p = 0; p < pairs; p++) {
+            uint32_t m = 2u * p;
+            ERK_SUMS;
+            out[m] = base[m] + h * a0, out[m + 1u] = base[m + 1u] + h * a1;
+        }
     else
-        for (uint16_t m = 0; m < n; m++)
-            out[m] = stage_sum(cj, kj, nk, m);
+        for (uint32_t p = 0; p < pairs; p++) {
+            uint32_t m = 2u * p;
+            ERK_SUMS;
+            out[m] = a0, out[m + 1u] = a1;
+        }
+    if (n & 1u) { /* the last state of an odd count, alone */
+        uint32_t m = n - 1u;
+        real_t a0 = 0;
+        for (uint8_t j = 0; j < nk; j++)
+            a0 += c[j] * w->k[j][m];
+        out[m] = base ? base[m] + h * a0 : a0;
+    }
 }
+#undef ERK_TERM
+#undef ERK_SUMS
 
 static void combine(real_t *out, const real_t *base, real_t h, const real_t *c, uint8_t nk,
                     const rt_iwork *w, uint16_t n)
 {
-    switch (nk) { /* every stage count of the tableaus (RT_MAX_STAGES >= 6, rt_config.h) */
+    switch (nk) { /* every stage count of the tableaus (RT_MAX_STAGES == 6, rt_config.h) */
     case 1: combine_k(out, base, h, c, w, n, 1); break;
     case 2: combine_k(out, base, h, c, w, n, 2); break;
     case 3: combine_k(out, base, h, c, w, n, 3); break;
     case 4: combine_k(out, base, h, c, w, n, 4); break;
     case 5: combine_k(out, base, h, c, w, n, 5); break;
-    default: combine_k(out, base, h, c, w, n, nk); break;
+    default: combine_k(out, base, h, c, w, n, 6); break;
     }
 }
 
