@@ -208,6 +208,24 @@ static void check_special_values(void)
     TH_CHECK(rt_pow(-2, 1000001) == -inf && rt_pow(-2, -1000001) == 0);
 
     TH_CHECK(rt_isfinite(1) && rt_isfinite(-z) && !rt_isfinite(inf) && !rt_isfinite(nan));
+    /* rt_all_finite: the largest finite, the smallest subnormal, -0 and 1 pass; inf, -inf
+       and a NaN of either sign are found at every place of arrays of 1 to 7 */
+    const real_t edge[] = {from_bits(INF_BITS - 1), from_bits(1), -z, 1};
+    const real_t bad[] = {inf, -inf, nan, -nan};
+    for (int n = 1; n <= 7; n++) {
+        real_t v[7];
+        for (int i = 0; i < n; i++)
+            v[i] = edge[i % 4];
+        TH_CHECK(rt_all_finite(v, n));
+        for (int i = 0; i < n; i++)
+            for (int k = 0; k < 4; k++) {
+                real_t keep = v[i];
+                v[i] = bad[k];
+                TH_CHECK(!rt_all_finite(v, n));
+                v[i] = keep;
+            }
+    }
+    TH_CHECK(rt_all_finite(bad, 0));
     TH_CHECK(rt_fmin(nan, 1) == 1 && rt_fmin(1, nan) == 1 && rt_fmax(nan, -1) == -1);
     TH_CHECK(is_nan(rt_fmax(nan, nan)) && is_nan(rt_floor(nan)));
     TH_CHECK(rt_floor(-inf) == -inf && rt_fabs(-inf) == inf);
