@@ -81,13 +81,21 @@ static RTI_INLINE void combine_k(real_t *restrict out, const real_t *restrict ba
 static void combine(real_t *out, const real_t *base, real_t h, const real_t *c, uint8_t nk,
                     const rt_iwork *w, uint16_t n)
 {
-    switch (nk) { /* every stage count of the tableaus (RT_MAX_STAGES == 6, rt_config.h) */
+    switch (nk) { /* every stage count of the tableaus: 1 to 6 */
     case 1: combine_k(out, base, h, c, w, n, 1); break;
     case 2: combine_k(out, base, h, c, w, n, 2); break;
     case 3: combine_k(out, base, h, c, w, n, 3); break;
     case 4: combine_k(out, base, h, c, w, n, 4); break;
     case 5: combine_k(out, base, h, c, w, n, 5); break;
-    default: combine_k(out, base, h, c, w, n, 6); break;
+    case 6: combine_k(out, base, h, c, w, n, 6); break;
+    default: /* no tableau has more stages; the same sums, one state at a time */
+        for (uint16_t m = 0; m < n; m++) {
+            real_t acc = 0;
+            for (uint8_t j = 0; j < nk; j++)
+                acc += c[j] * w->k[j][m];
+            out[m] = base ? base[m] + h * acc : acc;
+        }
+        break;
     }
 }
 

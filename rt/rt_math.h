@@ -56,9 +56,12 @@ typedef union rt_real_rep {
 
 static inline real_t rt_fabs(real_t x)
 {
-#if defined(__GNUC__) /* gcc, clang: the sign bit cleared where the value is (an FPU or
-                         vector register: no trip through an integer one), never a call */
-    return RT_REAL_IS_FLOAT ? __builtin_fabsf(x) : __builtin_fabs(x);
+#if defined(__GNUC__) && RT_REAL_IS_FLOAT /* gcc, clang: the sign bit cleared where the
+                         value is (an FPU or vector register, not through an integer one),
+                         never a call */
+    return __builtin_fabsf(x);
+#elif defined(__GNUC__)
+    return __builtin_fabs(x);
 #else
     rt_real_rep v = {.r = x};
     v.u &= ~RT_SIGN_BIT;
@@ -76,20 +79,16 @@ static inline int rt_isfinite(real_t x) /* 0 for NaN and +-inf */
    state after each step). A value is not finite when its exponent bits are all ones:
    adding the exponent's lowest bit to the masked exponent then carries into the sign
    bit's place, which stays clear for every other value: an and, an add and an or per
-   value, no branch (a branch costs more than the tests), two chains at a time. */
+   value, no branch (a branch costs more than the tests). */
 static inline int rt_all_finite(const real_t *v, int n)
 {
     const rt_real_bits lsb = RT_EXP_BITS & (~RT_EXP_BITS + 1u);
-    rt_real_bits b0 = 0, b1 = 0;
-    for (int p = 0; p < n / 2; p++) {
-        rt_real_rep x0 = {.r = v[2 * p]}, x1 = {.r = v[2 * p + 1]};
-        b0 |= (x0.u & RT_EXP_BITS) + lsb, b1 |= (x1.u & RT_EXP_BITS) + lsb;
+    rt_real_bits bad = 0;
+    for (int i = 0; i < n; i++) {
+        rt_real_rep x = {.r = v[i]};
+        bad |= (x.u & RT_EXP_BITS) + lsb;
     }
-    if (n > 0 && (n & 1)) {
-        rt_real_rep x = {.r = v[n - 1]};
-        b0 |= (x.u & RT_EXP_BITS) + lsb;
-    }
-    return !((b0 | b1) & RT_SIGN_BIT);
+    return !(bad & RT_SIGN_BIT);
 }
 
 #endif /* RT_MATH_H */

@@ -93,12 +93,12 @@ static linkframe_verdict close_frame(linkframe_rx *rx, const uint8_t **dgram, si
     long m = cobs_decode(rx->buf, n);
     if (m < 0)
         return fault(rx, LINKFRAME_E_COBS);
-    if (m < 1 || rx->buf[0] != LINKFRAME_VERSION)
-        return fault(rx, LINKFRAME_E_VERSION);
     /* COBS codes a frame of blocks without zeros more densely than the encoder's worst
        case the buffer is sized for: a frame that fits can still hold too much */
     if ((size_t)m > LINKFRAME_MAX_PAYLOAD)
         return fault(rx, LINKFRAME_E_LONG);
+    if (m < 1 || rx->buf[0] != LINKFRAME_VERSION)
+        return fault(rx, LINKFRAME_E_VERSION);
     *dgram = rx->buf + 1, *len = (size_t)m - 1;
     return LINKFRAME_DATAGRAM;
 }

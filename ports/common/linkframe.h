@@ -56,7 +56,8 @@ void linkframe_rx_init(linkframe_rx *rx);
 /* Takes one received byte. Returns LINKFRAME_DATAGRAM when it ended a frame whose datagram
    (without the version byte) is then at *dgram (inside rx, valid until the next call) with
    *len bytes; a fault (counted in rx->fault) when it ended a broken frame; else
-   LINKFRAME_MORE. An overlong frame is reported once, at its first byte too many. */
+   LINKFRAME_MORE. A frame too long for the buffer is reported once, at its first byte too
+   many; one that fits but decodes to more than the largest payload, at its closing zero. */
 linkframe_verdict linkframe_rx_byte(linkframe_rx *rx, uint8_t byte, const uint8_t **dgram,
                                     size_t *len);
 /* Frames datagram d (len bytes) into out (cap bytes, LINKFRAME_WIRE(len) needed); returns
