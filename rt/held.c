@@ -178,6 +178,12 @@ uint16_t rti_held_top(const rt_scene *sc, const rt_sim *sim)
 
 rt_status rti_held_plan(const rt_scene *sc, rt_sim *sim)
 {
+    for (uint16_t i = 0; i < sc->nrecs && i < RT_MAX_REC; i++) {
+        const rt_rec *r = &sc->recs[i];
+        sim->plan.rec_y[i] = r->what == RT_SIG_Y
+                                 ? (uint16_t)(sim->plan.y_off[r->block] + r->index)
+                                 : RTI_REC_OTHER;
+    }
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (holds_signals(sc, s))
             sim->plan.set_flags[s] |= RTI_SET_HOLDS_SIG;
@@ -374,23 +380,27 @@ const char *rt_rec_signal(const rt_scene *sc, uint16_t i)
     return names ? names[r->index] : "?";
 }
 
-/* every tick, every recorded value: an output (the common case) without a call */
+/* every tick, every recorded value: an output (the common case) by its place in y, listed
+   at init (rt_plan.rec_y); the records past RT_MAX_REC through the scene's table */
 void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
 {
     uint64_t h = rti_hash(sim->state.hash, rti_time(sc, sim));
-    uint16_t slot = 0;
-    const rt_rec *r = sc->recs, *end = r ? r + sc->nrecs : r; /* no records: NULL */
+    uint16_t slot = 0, n = sc->nrecs, listed = n < RT_MAX_REC ? n : (uint16_t)RT_MAX_REC;
     const real_t *y = sim->state.y;
-    const uint16_t *y_off = sim->plan.y_off;
+    const uint16_t *rec_y = sim->plan.rec_y;
     real_t discard = 0; /* no output buffer: every value lands here */
     int step = out != 0;
     out = out ? out : &discard;
-    for (; r < end; r++, out += step) {
-        real_t v;
-        if (r->what == RT_SIG_Y)
-            v = y[y_off[r->block] + r->index];
-        else
-            v = rec_value(sc, sim, r, &slot);
+    for (uint16_t i = 0; i < listed; i++, out += step) {
+        uint16_t k = rec_y[i];
+        real_t v = k != RTI_REC_OTHER ? y[k] : rec_value(sc, sim, &sc->recs[i], &slot);
+        *out = v;
+        h = rti_hash(h, v);
+    }
+    for (uint16_t i = listed; i < n; i++, out += step) {
+        const rt_rec *r = &sc->recs[i];
+        real_t v = r->what == RT_SIG_Y ? y[sim->plan.y_off[r->block] + r->index]
+                                       : rec_value(sc, sim, r, &slot);
         *out = v;
         h = rti_hash(h, v);
     }

@@ -85,6 +85,10 @@ typedef struct rt_plan {
     uint16_t set_xout[RT_MAX_SETS];  /* the set's highest output read by other sets, plus
                                         one (0: none): its history push stops there */
     int16_t bg_set;                  /* the scene's background set (rt/bg.c), -1: none */
+    /* recorded value i < RT_MAX_REC: its place in state.y when it is a block's output (the
+       common case), else RTI_REC_OTHER (read through its kind or the MBS services); set at
+       init, so rt_record reads an output with one load (rt/held.c) */
+    uint16_t rec_y[RT_MAX_REC];
     /* what its release and its publication copy between the tick and a context, listed
        at init so the tick walks no block (rt/bg.c): its outputs, runs [bg_y[k],
        bg_y[k + 1]) of y for even k < nbg_y; its inputs from other sets (RT_SRC_HELD or

@@ -31,6 +31,9 @@ typedef struct rti_at {
 
 /* src_kind of an input not routed yet (rt_init's routing fills every input) */
 #define RTI_SRC_UNSET 0xFF
+/* rt_plan.rec_y of a recorded value that is no block's output (y's places are uint16_t
+   and fewer than this) */
+#define RTI_REC_OTHER 0xFFFFu
 
 /* keeps GCC's interprocedural passes (inlining, pure/const discovery) away from a
    function; see rti_gather for the miscompilation it prevents */
