@@ -186,6 +186,49 @@ static void test_invariant(void)
 }
 
 /* every status and counter has a name, and out-of-range values are safe */
+/* rt_record writes each recorded value as the scene's table names it, past RT_MAX_REC
+   (where rt_init's list of outputs ends) too: pendulum10_actuated's records (outputs, a
+   sampled block's outputs, a multibody residual held by its background set) and then
+   outputs and states of every block in turn up to RT_MAX_REC + 9 records, the last a
+   second held residual. Each value equals rt_rec_value's (which walks the scene's table)
+   and, for outputs and states, the value in y or x itself. */
+static void test_record_values(void)
+{
+    enum { NREC = RT_MAX_REC + 9 };
+    const rt_scene *base = &mdl_scene_pendulum10_actuated;
+    static rt_rec recs[NREC];
+    static real_t out[NREC];
+    rt_scene sc = *base;
+    uint16_t n = 0, b = 0;
+    for (; n < base->nrecs; n++)
+        recs[n] = base->recs[n];
+    for (int what = RT_SIG_Y; n < NREC - 1; b = (uint16_t)((b + 1) % base->nblocks)) {
+        const rt_kind *k = base->blocks[b].kind;
+        uint16_t m = what == RT_SIG_Y ? k->ny : k->nx;
+        if (m > 0)
+            recs[n] = (rt_rec){b, (uint8_t)what, (uint16_t)(n % m)}, n++;
+        what = what == RT_SIG_Y ? RT_SIG_X : RT_SIG_Y;
+    }
+    recs[n++] = base->recs[base->nrecs - 1]; /* B1.residual again */
+    TH_CHECK(base->recs[base->nrecs - 1].what == RT_SIG_MBS);
+    sc.recs = recs, sc.nrecs = n, sc.t_end = sc.dt * 40;
+    if (!tu_init(&sc))
+        return;
+    while (rt_tick(&sc, &tu_sim) == RT_OK)
+        ;
+    rt_record(&sc, &tu_sim, out);
+    int bad = 0;
+    for (uint16_t i = 0; i < n; i++) {
+        const rt_rec *r = &recs[i];
+        bad += !same_bits(out[i], rt_rec_value(&sc, &tu_sim, i));
+        if (r->what == RT_SIG_Y)
+            bad += !same_bits(out[i], tu_sim.state.y[tu_sim.plan.y_off[r->block] + r->index]);
+        if (r->what == RT_SIG_X)
+            bad += !same_bits(out[i], tu_sim.state.x[tu_sim.plan.x_off[r->block] + r->index]);
+    }
+    TH_CHECK(bad == 0 && out[n - 1] == out[base->nrecs - 1] && out[n - 1] != 0);
+}
+
 static void test_lists(void)
 {
     for (int s = 0; s < RT_STATUS_COUNT; s++)
@@ -507,6 +550,7 @@ const th_test th_sim_tests[] = {
     {"sim_nan_contained", test_nan_contained},
     {"sim_invariant", test_invariant},
     {"sim_lists", test_lists},
+    {"sim_record_values", test_record_values},
     {"sim_held_outputs", test_held_outputs},
     {"sim_fast_reads_history", test_fast_reads_history},
     {"sim_rhs_lean_calls", test_rhs_lean_calls},
