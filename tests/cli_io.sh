@@ -60,6 +60,24 @@ for sig in INT TERM; do
         ok || bad "SIG$sig: replay: exit $rc, $(grep -E '^(status|replayed)' "$T/re" | tr '\n' ' ')"
 done
 
+# SIGTERM to `timeout`, which passes it on to modrt and to its process group: two copies,
+# the second possibly after the loop has ended; modrt still finishes (exit 5, summary, the
+# log's end marker). Three times: the window is short
+for i in 1 2 3; do
+    rm -f "$T/run.csv" "$T/run.mrl"
+    timeout -s KILL 120 "$M" run pi_loop --t-end 100000 --csv "$T/run.csv" --record "$T/run.mrl" \
+        >"$T/sum" 2>"$T/err" &
+    pid=$!
+    n=0
+    while { [ ! -f "$T/run.csv" ] || [ "$(wc -l <"$T/run.csv")" -lt 1000 ]; } && [ $n -lt 600 ]; do
+        sleep 0.1; n=$((n + 1)); done
+    kill -TERM $pid 2>/dev/null
+    wait $pid; rc=$?
+    [ $rc -eq 5 ] && grep -q '^interrupted: SIGTERM at tick' "$T/sum" &&
+        [ "$(tail -c 28 "$T/run.mrl" | head -c 4)" = MRTE ] && ok ||
+        bad "SIGTERM through timeout ($i): exit $rc, $(grep -E '^(status|interrupted)' "$T/sum" | tr '\n' ' ')"
+done
+
 # the real-time clock too (its CSV rows are written by a thread from a ring)
 rm -f "$T/run.csv"
 interrupt INT --csv "$T/run.csv" --realtime; rc=$?

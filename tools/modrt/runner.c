@@ -47,8 +47,11 @@ static void on_stop(int sig)
         return;
     }
     /* asked again: the default action, at once; but not for the copies of the first that
-       come together (Ctrl-C reaches a wrapper and modrt alike, `timeout` passes it on) */
-    if (now.tv_sec - stop_at.tv_sec > STOP_AGAIN_S) {
+       come together (Ctrl-C reaches a wrapper and modrt alike, `timeout` passes it on to
+       modrt and to its process group) */
+    double since = (double)(now.tv_sec - stop_at.tv_sec) +
+                   1e-9 * (double)(now.tv_nsec - stop_at.tv_nsec);
+    if (since > STOP_AGAIN_S) {
         signal(sig, SIG_DFL);
         raise(sig);
     }
@@ -70,8 +73,13 @@ static void catch_stop(void)
         sigaction(SIGINT, &old_int, NULL);
 }
 
+/* after a stop signal the handler stays: a copy of it that comes once the loop has
+   ended (timeout's second one) must not kill the program before it has written its
+   summary and finished its files */
 static void release_stop(void)
 {
+    if (stop_signal)
+        return;
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);
 }
