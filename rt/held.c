@@ -397,10 +397,8 @@ void rt_record(const rt_scene *sc, rt_sim *sim, real_t *out)
         *out = v;
         h = rti_hash(h, v);
     }
-    for (uint16_t i = listed; i < n; i++, out += step) {
-        const rt_rec *r = &sc->recs[i];
-        real_t v = r->what == RT_SIG_Y ? y[sim->plan.y_off[r->block] + r->index]
-                                       : rec_value(sc, sim, r, &slot);
+    for (uint16_t i = listed; i < n; i++, out += step) { /* past the list: any kind */
+        real_t v = rec_value(sc, sim, &sc->recs[i], &slot);
         *out = v;
         h = rti_hash(h, v);
     }

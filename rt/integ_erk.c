@@ -37,6 +37,16 @@ typedef struct erk_tab {
    with vector registers then takes both states in one, each lane the same scalar sum term
    by term, so the bits are those of one state at a time. The coefficients are read once
    into locals; nk is a constant where combine calls this (terms past it fold away). */
+/* out[m] = base[m] + h acc (base NULL: acc) for the one state m, summed as combine_k does */
+static void combine_one(real_t *out, const real_t *base, real_t h, const real_t *c,
+                        const rt_iwork *w, uint32_t m, uint8_t nk)
+{
+    real_t acc = 0;
+    for (uint8_t j = 0; j < nk; j++)
+        acc += c[j] * w->k[j][m];
+    out[m] = base ? base[m] + h * acc : acc;
+}
+
 #define ERK_TERM(j, kj)                                                                      if (nk > (j))                                                                            a0 += c[j] * (kj)[m], a1 += c[j] * (kj)[m + 1u]
 #define ERK_SUMS                                                                         \
     real_t a0 = 0, a1 = 0;                                                               \
@@ -67,13 +77,8 @@ static RTI_INLINE void combine_k(real_t *restrict out, const real_t *restrict ba
             ERK_SUMS;
             out[m] = a0, out[m + 1u] = a1;
         }
-    if (n & 1u) { /* the last state of an odd count, alone */
-        uint32_t m = n - 1u;
-        real_t a0 = 0;
-        for (uint8_t j = 0; j < nk; j++)
-            a0 += c[j] * w->k[j][m];
-        out[m] = base ? base[m] + h * a0 : a0;
-    }
+    if (n & 1u) /* the last state of an odd count, alone */
+        combine_one(out, base, h, c, w, n - 1u, nk);
 }
 #undef ERK_TERM
 #undef ERK_SUMS
@@ -89,12 +94,8 @@ static void combine(real_t *out, const real_t *base, real_t h, const real_t *c, 
     case 5: combine_k(out, base, h, c, w, n, 5); break;
     case 6: combine_k(out, base, h, c, w, n, 6); break;
     default: /* no tableau has more stages; the same sums, one state at a time */
-        for (uint16_t m = 0; m < n; m++) {
-            real_t acc = 0;
-            for (uint8_t j = 0; j < nk; j++)
-                acc += c[j] * w->k[j][m];
-            out[m] = base ? base[m] + h * acc : acc;
-        }
+        for (uint16_t m = 0; m < n; m++)
+            combine_one(out, base, h, c, w, m, nk);
         break;
     }
 }

@@ -11,30 +11,27 @@
 /* max(1, max_i |x_i|), NaN if x holds one. Taken on the bits: |x|'s bits (the sign
    cleared) order as the values do for every non-negative value, inf's are RT_EXP_BITS and
    a NaN's more, so an integer maximum per value gives the same bits with no compare of
-   reals (a call each on a soft-float target) and no branch */
-static real_t norm(const real_t *x, uint16_t n)
+   reals (a call each on a soft-float target) and no branch. With xs, x is also kept there
+   (the state a failed step goes back to, rti_step_set, and an event's re-steps start
+   from, trial), in the same pass */
+static RTI_INLINE real_t norm_bits(const real_t *x, real_t *xs, uint16_t n)
 {
     rt_real_rep m = {.r = 1};
     for (unsigned i = 0; i < n; i++) {
         rt_real_rep v = {.r = x[i]};
         rt_real_bits a = v.u & ~RT_SIGN_BIT;
+        if (xs)
+            xs[i] = x[i];
         m.u = a > m.u ? a : m.u;
     }
     return m.u > RT_EXP_BITS ? (real_t)0 / (real_t)0 : m.r;
 }
 
-/* norm(x, n), and x kept in xs (the state a failed step goes back to, rti_step_set, and
-   an event's re-steps start from, trial): one pass */
+static real_t norm(const real_t *x, uint16_t n) { return norm_bits(x, 0, n); }
+
 static real_t keep_norm(const real_t *x, real_t *xs, uint16_t n)
 {
-    rt_real_rep m = {.r = 1};
-    for (unsigned i = 0; i < n; i++) {
-        rt_real_rep v = {.r = x[i]};
-        rt_real_bits a = v.u & ~RT_SIGN_BIT;
-        xs[i] = x[i];
-        m.u = a > m.u ? a : m.u;
-    }
-    return m.u > RT_EXP_BITS ? (real_t)0 / (real_t)0 : m.r;
+    return norm_bits(x, xs, n);
 }
 
 /* an explicit method past its stability limit multiplies the state by |R(h lambda)| > 1

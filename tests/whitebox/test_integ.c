@@ -83,6 +83,19 @@ typedef struct est_case {
     double lo, hi; /* the estimate / the true local error lies in [lo, hi] at h = 0.05 */
 } est_case;
 
+/* a step's workspace in the shared simulator's buffers, with fresh statistics */
+static rt_iwork iwork(const rt_set_cfg *cfg, int autonomous)
+{
+    rt_iwork w;
+    for (int i = 0; i < RT_MAX_STAGES; i++)
+        w.k[i] = tu_sim.work.w.k[i];
+    w.x0 = tu_sim.work.x0, w.tm = 0;
+    w.imp = &tu_sim.state.imp[0], w.stats = &tu_sim.stats.istats[0], w.cfg = cfg;
+    w.autonomous = (uint8_t)autonomous;
+    tu_sim.stats.istats[0] = (rt_istats){0};
+    return w;
+}
+
 /* one step of m from (t0, x0) by h: its estimate and the true local error, both in the
    scaled norm |e| / (1 + |x1|) */
 static void est_step(const rt_integrator *m, int quad, real_t t0, real_t x0, real_t h,
@@ -92,14 +105,8 @@ static void est_step(const rt_integrator *m, int quad, real_t t0, real_t x0, rea
     real_t x[1] = {x0};
     est_rhs c = {x, quad};
     rt_rhs f = {est_eval, &c};
-    rt_iwork w;
-    for (int i = 0; i < RT_MAX_STAGES; i++)
-        w.k[i] = tu_sim.work.w.k[i];
-    w.x0 = tu_sim.work.x0, w.tm = 0;
-    w.imp = &tu_sim.state.imp[0], w.stats = &tu_sim.stats.istats[0], w.cfg = &cfg;
-    w.autonomous = (uint8_t)!quad;
+    rt_iwork w = iwork(&cfg, !quad);
     tu_sim.state.imp[0].valid = 0, tu_sim.state.imp[0].age = 0;
-    tu_sim.stats.istats[0] = (rt_istats){0};
     m->step(m, &f, t0, h, x, 1, &w);
     double x1 = (double)x[0], e = x1 - est_exact(quad, (double)t0, (double)x0, (double)h);
     *est = (double)w.stats->last_err;
@@ -176,12 +183,7 @@ static void test_rk4_linear(void)
             real_t x[2] = {1, 0};
             lin_rhs c = {x, hk[i], osc};
             rt_rhs f = {lin_eval, &c};
-            rt_iwork w;
-            for (int j = 0; j < RT_MAX_STAGES; j++)
-                w.k[j] = tu_sim.work.w.k[j];
-            w.x0 = tu_sim.work.x0, w.tm = 0, w.imp = &tu_sim.state.imp[0];
-            w.stats = &tu_sim.stats.istats[0], w.cfg = &cfg, w.autonomous = 1;
-            tu_sim.stats.istats[0] = (rt_istats){0};
+            rt_iwork w = iwork(&cfg, 1);
             rt_rk4.step(&rt_rk4, &f, 0, 1, x, (uint16_t)(osc + 1), &w);
             double e0, e1 = 0;
             if (osc) /* (cos k, -sin k) */
@@ -215,12 +217,7 @@ static void diag_step(const rt_integrator *m, real_t *x, uint16_t n, uint16_t fi
     static const rt_set_cfg cfg = {0};
     diag_rhs c = {x, n, first};
     rt_rhs f = {diag_eval, &c};
-    rt_iwork w;
-    for (int j = 0; j < RT_MAX_STAGES; j++)
-        w.k[j] = tu_sim.work.w.k[j];
-    w.x0 = tu_sim.work.x0, w.tm = 0, w.imp = &tu_sim.state.imp[0];
-    w.stats = &tu_sim.stats.istats[0], w.cfg = &cfg, w.autonomous = 0;
-    tu_sim.stats.istats[0] = (rt_istats){0};
+    rt_iwork w = iwork(&cfg, 0);
     m->step(m, &f, (real_t)0.3, (real_t)0.25, x, n, &w);
 }
 
