@@ -5,9 +5,10 @@
  *
  * Bit-identical by construction: every sum is the generic path's, term by term in its
  * order (the same expressions, the same +0 starts); only the loops over tables become
- * straight-line code. Counters and faults go through the same rti_ calls. What the
- * generator does not write out (a set with outputs or derivatives of its own in its
- * right-hand side, a body that is not a point) is left to the generic path: its entry
+ * straight-line code. Counters and faults go through the same rti_ calls. A set's
+ * multibody part is written out for point masses only; a set with other bodies gets its
+ * outputs and derivatives written out and calls the generic rti_mbs_accel, as rti_rhs
+ * does. A set that takes no step of its own is left to the generic path: its entry
  * returns 0 for that set.
  *
  * The tables' offsets do not depend on the build's limits (they are packed from 0); the
@@ -31,13 +32,12 @@ static int mbs_points_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     return 1;
 }
 
-/* a set whose right-hand side the generator writes out: its outputs and derivatives, and
-   a multibody part only if mbs_points_set */
-static int rhs_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+/* a set whose right-hand side the generator writes out: every set that steps (its
+   outputs and derivatives; its multibody part written out if mbs_points_set, else the
+   generic service's call) */
+static int rhs_set(const rt_sim *sim, uint8_t s)
 {
-    if (sim->plan.set_flags[s] & RTI_SET_NO_STEP)
-        return 0;
-    return !(sc->mbs && sim->work.mbs.nz[s] > 0) || mbs_points_set(sc, sim, s);
+    return !(sim->plan.set_flags[s] & RTI_SET_NO_STEP);
 }
 
 /* the written-out rti_gather of block b: each input from its source */
@@ -437,27 +437,31 @@ static void corrected(FILE *f, const rt_sim *sim, uint8_t s, const char *v, unsi
     points_add(f, sim, s, from);
 }
 
-/* the right-hand side of a set (rti_rhs): outputs, derivatives, rti_mbs_accel */
+/* the right-hand side of a set (rti_rhs): outputs, derivatives, rti_mbs_accel (written
+   out for points, else the generic service) */
 static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    int mbs = sc->mbs && w->nz[s] > 0;
+    int mbs = sc->mbs && w->nz[s] > 0, pts = mbs && mbs_points_set(sc, sim, s);
     fprintf(f, "\n/* set %s: rti_rhs", sc->sets[s].name);
-    if (mbs)
+    if (pts)
         fprintf(f, ", rti_mbs_accel of its %u points and %u constraint rows",
                 (unsigned)(w->sb[s + 1] - w->sb[s]), (unsigned)w->nc[s]);
+    else if (mbs)
+        fputs(", its multibody part by the generic rti_mbs_accel", f);
     fprintf(f, " */\nstatic int rhs_%u(const rt_scene *sc, rt_sim *sim, real_t t, real_t h, "
                "real_t *xdot)\n{\n", s);
     fputs("    real_t *u = sim->work.u, *y = sim->state.y;\n    rt_args ar;\n"
           "    (void)sc, (void)u, (void)y, (void)ar, (void)t, (void)h, (void)xdot;\n", f);
-    if (mbs)
+    if (pts)
         locals(f, sim, s);
     outputs(f, sc, sim, s);
     derivs(f, sc, sim, s);
-    if (mbs) {
+    if (pts) {
         factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
         lambda_accel(f, sc, sim, s);
-    }
+    } else if (mbs)
+        fprintf(f, "    sc->mbs->accel(sc, sim, %u, t, xdot);\n", s);
     fputs("    return 1;\n}\n", f);
 }
 
@@ -519,7 +523,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
     const rt_sim *sim = c->sim;
     int any = 0, proj = 0, pts = 0;
     for (uint8_t s = 0; sim && s < sc->nsets; s++) {
-        any |= rhs_set(sc, sim, s);
+        any |= rhs_set(sim, s);
         pts |= mbs_points_set(sc, sim, s);
         proj |= sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s);
     }
@@ -531,7 +535,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
         fputs("#include \"rti_joints.h\"\n\n/* the velocity of an anchor, and the origin */\n"
               "static const real_t zero[3] = {0, 0, 0};\n", f);
     for (uint8_t s = 0; s < sc->nsets; s++) {
-        if (rhs_set(sc, sim, s))
+        if (rhs_set(sim, s))
             rhs_points(f, sc, sim, s);
         if (sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s))
             project_points(f, sc, sim, s);
@@ -539,7 +543,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
     fputs("\nstatic int rhs(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_t h,\n"
           "               real_t *xdot)\n{\n    switch (set) {\n", f);
     for (uint8_t s = 0; s < sc->nsets; s++)
-        if (rhs_set(sc, sim, s))
+        if (rhs_set(sim, s))
             fprintf(f, "    case %u: return rhs_%u(sc, sim, t, h, xdot);\n", s, s);
     fputs("    default: return 0;\n    }\n}\n", f);
     if (proj) {
