@@ -32,6 +32,26 @@ static int mbs_points_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     return 1;
 }
 
+/* a set whose multibody part the generator writes out through the general node path:
+   bodies with a constant diagonal M of three velocities (a planar body) and no rows of
+   their own, none a point, at least one constraint row. Its Schur complement, factors,
+   solve and z' then take the points' form (rt/mbs_asm.c: a diagonal M with nz = 3 sums
+   as a point's does); its joints' rows are assemble_joint's */
+static int mbs_bodies_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    const int need = RT_MBS_M_DIAG | RT_MBS_M_CONST;
+    if (!sc->mbs || w->nz[s] == 0 || w->points[s] || w->nc[s] == 0)
+        return 0;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        const rt_mbs_spec *sp = (const rt_mbs_spec *)sc->blocks[w->sblk[k]].kind->spec;
+        if ((sp->flags & need) != need || (sp->flags & RT_MBS_NODE_POINT) || sp->nz != 3 ||
+            sp->nc != 0)
+            return 0;
+    }
+    return 1;
+}
+
 /* a set whose right-hand side the generator writes out: every set that steps (its
    outputs and derivatives; its multibody part written out if mbs_points_set, else the
    generic service's call) */
@@ -131,23 +151,38 @@ static void slot(FILE *f, unsigned v)
         fprintf(f, "lv[%u]", v);
 }
 
+/* rt_args of block b with its offsets as constants, as rti_args fills it (no piece: the
+   multibody services never set one) */
+static void mbs_args(FILE *f, const rt_sim *sim, uint16_t b)
+{
+    fprintf(f, "    args(sim, %u, %u, %u, %u, %u, t, 0, &ar);\n", b, sim->plan.x_off[b],
+            sim->plan.d_off[b], sim->plan.u_off[b], sim->plan.p_off[b]);
+}
+
+/* each block's M^-1 k (assemble_point_set, and assemble_block for a constant diagonal M
+   of three velocities: the same divisions) */
+static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    fputs("    /* the blocks' forces, M^-1 k (M factored at the first assembly) */\n", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        unsigned zo = w->zo[b], mo = w->mo[b];
+        if (sc->blocks[b].kind->nu > 0)
+            gather(f, sim, b);
+        mbs_args(f, sim, b);
+        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
+        fprintf(f, "    a[%u] /= M[%u], a[%u] /= M[%u], a[%u] /= M[%u];\n", zo, mo, zo + 1,
+                mo + 1, zo + 2, mo + 2);
+    }
+}
+
 /* assemble_point_set (rt/mbs_asm.c) for `what` (RTI_MBS_JAC, _FORCE, _G) */
 static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     if (what & RTI_MBS_FORCE)
-        fputs("    /* the blocks' forces, M^-1 k (M factored at the first assembly) */\n", f);
-    for (uint16_t k = w->sb[s]; k < w->sb[s + 1] && (what & RTI_MBS_FORCE); k++) {
-        uint16_t b = w->sblk[k];
-        unsigned zo = w->zo[b], mo = w->mo[b];
-        if (sc->blocks[b].kind->nu > 0)
-            gather(f, sim, b);
-        fprintf(f, "    args(sim, %u, %u, %u, %u, %u, t, 0, &ar);\n", b, sim->plan.x_off[b],
-                sim->plan.d_off[b], sim->plan.u_off[b], sim->plan.p_off[b]);
-        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
-        fprintf(f, "    a[%u] /= M[%u], a[%u] /= M[%u], a[%u] /= M[%u];\n", zo, mo, zo + 1,
-                mo + 1, zo + 2, mo + 2);
-    }
+        forces(f, sc, sim, s);
     fprintf(f, "    /* the joints' rows: %s (point_rows) */\n",
             what & RTI_MBS_JAC ? "g, g', gam and W" : "g");
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
@@ -203,6 +238,48 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
     }
 }
 
+/* map_row (rt/mbs_asm.c) of a body side with nz = 3: W's slice at wo (+)= the six
+   coefficients from C[c0] times the node's Jacobian J, a zero coefficient skipped */
+static void map_body_row(FILE *f, unsigned wo, unsigned c0, unsigned side, int add)
+{
+    if (!add)
+        fprintf(f, "        W[%u] = 0, W[%u] = 0, W[%u] = 0;\n", wo, wo + 1, wo + 2);
+    for (unsigned k = 0; k < 6; k++)
+        fprintf(f, "        if (C[%u] != 0)\n            W[%u] += C[%u] * J%u[%u], "
+                   "W[%u] += C[%u] * J%u[%u], W[%u] += C[%u] * J%u[%u];\n",
+                c0 + k, wo, c0 + k, side, 3 * k, wo + 1, c0 + k, side, 3 * k + 1, wo + 2,
+                c0 + k, side, 3 * k + 2);
+}
+
+/* assemble_joint of a set of bodies (mbs_bodies_set): the nodes by rti_mbs_joint, then
+   per row g, g' and gam by row_dot's sums and W's rows by map_row, term by term */
+static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    forces(f, sc, sim, s);
+    fputs("    /* the joints' rows: g, g', gam and W (assemble_joint) */\n", f);
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
+        uint16_t ji = w->sjnt[k];
+        const rt_joint *j = &sc->joints[ji];
+        const char *dot = j->kind->trans ? "rowdot6" : "rowdot12";
+        fprintf(f, "    {\n        rt_mbs_node n1, n2;\n"
+                   "        const real_t *J0 = w->J[0], *J1 = w->J[1];\n"
+                   "        rti_mbs_joint(sc, sim, %u, t, &n1, &n2, w->J[0], w->J[1], &e);\n"
+                   "        (void)J0, (void)J1;\n", ji);
+        for (unsigned i = 0; i < j->kind->nc; i++) {
+            unsigned r = w->jrow[ji] + i;
+            fprintf(f, "        C = e.C[%u];\n        g[%u] = e.g[%u];\n", i, r, i);
+            fprintf(f, "        gd[%u] = %s(C, n1.v, n1.w, n2.v, n2.w);\n", r, dot);
+            fprintf(f, "        gam[%u] = %s(C, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[%u];\n", r,
+                    dot, i);
+            map_body_row(f, w->jw[ji][0] + 3 * i, 0, 0, 0);
+            if (j->b2 >= 0)
+                map_body_row(f, w->jw[ji][1] + 3 * i, 6, 1, j->b2 == j->b1);
+        }
+        fputs("    }\n", f);
+    }
+}
+
 /* the entries of M^-1 W^T, q = W / M entry by entry: the quotients rti_mbs_schur and
    rti_mbs_correct divide for every term, each formed once (the same bits) */
 static void quotients(FILE *f, const rt_sim *sim, uint8_t s)
@@ -249,7 +326,7 @@ static void factor(FILE *f, const rt_sim *sim, uint8_t s)
     fputs("    /* its L D L^T over the pattern found at init (rti_mbs_ldl_factor) */\n", f);
     fprintf(f, "    {\n        real_t *D = lv + %u, u[%u], big = 0, d, tt;\n", base, n);
     fprintf(f, "        uint16_t deficit = w->ndrop[%u], drop = 0;\n", s);
-    fputs("        int bad = -1;\n", f);
+    fputs("        int bad = -1;\n        (void)u, (void)tt; /* (a single row eliminates nothing) */\n", f);
     for (unsigned i = 0; i < n; i++)
         fprintf(f, "        big = D[%u] > big ? D[%u] : big;\n", i, i);
     for (unsigned i = 0; i < n; i++)
@@ -356,8 +433,30 @@ static void points_add(FILE *f, const rt_sim *sim, uint8_t s, unsigned from)
     }
 }
 
+/* rti_mbs_accel's q' = K z + b (the kind's kin and kinb) and z' for a set of bodies */
+static void kinematics(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    fputs("    /* q' = K z + b, z' */\n", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        const rt_mbs_spec *sp = (const rt_mbs_spec *)sc->blocks[b].kind->spec;
+        unsigned q = sim->plan.x_off[b] - sim->plan.set_x[s], zo = w->zo[b];
+        mbs_args(f, sim, b);
+        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->kin(&ar, ar.x + %u, xdot + %u);\n",
+                sp->nq, q);
+        if (sp->kinb) {
+            fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->kinb(&ar, w->qt + %u);\n", w->qo[b]);
+            for (unsigned i = 0; i < sp->nq; i++)
+                fprintf(f, "    xdot[%u] += w->qt[%u];\n", q + i, w->qo[b] + i);
+        }
+        for (unsigned c = 0; c < sp->nz; c++)
+            fprintf(f, "    xdot[%u] = a[%u];\n", q + sp->nq + c, zo + c);
+    }
+}
+
 /* rti_mbs_lambda's right side, solve and z' (rti_mbs_correct, add), then rti_mbs_accel's
-   q' = v, v' = a */
+   q' = v, v' = a for points, kinematics for bodies */
 static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -382,6 +481,10 @@ static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t
                 fprintf(f, "    w->jlam[%u] = gam[%u];\n", w->jlo[j] + i, w->jrow[j] + i);
         }
     }
+    if (!w->points[s]) {
+        kinematics(f, sc, sim, s);
+        return;
+    }
     fputs("    /* q' = v, v' = z' */\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
@@ -403,7 +506,7 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
           "    const real_t *M = w->M, *x = xw, *C;\n"
           "    real_t acc, d0, d1, d2, vi;\n"
           "    rt_joint_eval e;\n"
-          "    (void)L, (void)gam, (void)xw, (void)sc, (void)t;\n", f);
+          "    (void)L, (void)gam, (void)xw, (void)x, (void)sc, (void)t, (void)acc;\n", f);
     unsigned nq = 0;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
@@ -443,9 +546,13 @@ static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
 {
     const rt_mbs_work *w = &sim->work.mbs;
     int mbs = sc->mbs && w->nz[s] > 0, pts = mbs && mbs_points_set(sc, sim, s);
+    int bodies = mbs && mbs_bodies_set(sc, sim, s);
     fprintf(f, "\n/* set %s: rti_rhs", sc->sets[s].name);
     if (pts)
         fprintf(f, ", rti_mbs_accel of its %u points and %u constraint rows",
+                (unsigned)(w->sb[s + 1] - w->sb[s]), (unsigned)w->nc[s]);
+    else if (bodies)
+        fprintf(f, ", rti_mbs_accel of its %u bodies and %u constraint rows",
                 (unsigned)(w->sb[s + 1] - w->sb[s]), (unsigned)w->nc[s]);
     else if (mbs)
         fputs(", its multibody part by the generic rti_mbs_accel", f);
@@ -453,12 +560,18 @@ static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
                "real_t *xdot)\n{\n", s);
     fputs("    real_t *u = sim->work.u, *y = sim->state.y;\n    rt_args ar;\n"
           "    (void)sc, (void)u, (void)y, (void)ar, (void)t, (void)h, (void)xdot;\n", f);
-    if (pts)
+    if (pts || bodies)
         locals(f, sim, s);
     outputs(f, sc, sim, s);
     derivs(f, sc, sim, s);
     if (pts) {
         factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
+        lambda_accel(f, sc, sim, s);
+    } else if (bodies) {
+        assemble_bodies(f, sc, sim, s);
+        quotients(f, sim, s);
+        schur(f, sim, s);
+        factor(f, sim, s);
         lambda_accel(f, sc, sim, s);
     } else if (mbs)
         fprintf(f, "    sc->mbs->accel(sc, sim, %u, t, xdot);\n", s);
@@ -517,14 +630,34 @@ static const char helpers[] =
     "    real_t acc = 0;\n    acc += a[0] * b[0];\n    acc += a[1] * b[1];\n"
     "    acc += a[2] * b[2];\n    return acc;\n}\n";
 
+/* row_dot (rt/mbs_asm.c) of a joint row's twelve coefficients, and of a translational
+   kind's six (its angular terms left out): the same sums */
+static const char body_helpers[] =
+    "\n/* rt/mbs_asm.c's row_dot: C . [x1; y1; x2; y2], and without the angular terms */\n"
+    "static inline real_t rowdot12(const real_t *C, const real_t *x1, const real_t *y1,\n"
+    "                              const real_t *x2, const real_t *y2)\n{\n"
+    "    real_t s = 0;\n"
+    "    s += C[0] * x1[0] + C[3] * y1[0] + C[6] * x2[0] + C[9] * y2[0];\n"
+    "    s += C[1] * x1[1] + C[4] * y1[1] + C[7] * x2[1] + C[10] * y2[1];\n"
+    "    s += C[2] * x1[2] + C[5] * y1[2] + C[8] * x2[2] + C[11] * y2[2];\n"
+    "    return s;\n}\n\n"
+    "static inline real_t rowdot6(const real_t *C, const real_t *x1, const real_t *y1,\n"
+    "                             const real_t *x2, const real_t *y2)\n{\n"
+    "    real_t s = 0;\n    (void)y1, (void)y2;\n"
+    "    s += C[0] * x1[0] + C[6] * x2[0];\n"
+    "    s += C[1] * x1[1] + C[7] * x2[1];\n"
+    "    s += C[2] * x1[2] + C[8] * x2[2];\n"
+    "    return s;\n}\n";
+
 int scn_emit_code(FILE *f, const scn_ctx *c)
 {
     const rt_scene *sc = &c->image;
     const rt_sim *sim = c->sim;
-    int any = 0, proj = 0, pts = 0;
+    int any = 0, proj = 0, pts = 0, bodies = 0;
     for (uint8_t s = 0; sim && s < sc->nsets; s++) {
         any |= rhs_set(sim, s);
         pts |= mbs_points_set(sc, sim, s);
+        bodies |= mbs_bodies_set(sc, sim, s);
         proj |= sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s);
     }
     if (!any)
@@ -534,6 +667,8 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
     if (pts)
         fputs("#include \"rti_joints.h\"\n\n/* the velocity of an anchor, and the origin */\n"
               "static const real_t zero[3] = {0, 0, 0};\n", f);
+    if (bodies)
+        fputs(body_helpers, f);
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (rhs_set(sim, s))
             rhs_points(f, sc, sim, s);
