@@ -251,25 +251,33 @@ static void map_body_row(FILE *f, unsigned wo, unsigned c0, unsigned side, int a
                 c0 + k, side, 3 * k + 2);
 }
 
-/* assemble_joint of a set of bodies (mbs_bodies_set): the nodes by rti_mbs_joint, then
-   per row g, g' and gam by row_dot's sums and W's rows by map_row, term by term */
-static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+/* rti_mbs_assemble of a set of bodies (mbs_bodies_set) for `what` (RTI_MBS_JAC, _FORCE,
+   _G): each block's M^-1 k (its only part: no rows of its own, M factored once), then
+   assemble_joint: the nodes by rti_mbs_joint (with their Jacobians for RTI_MBS_JAC), per
+   row g and g' (and gam) by row_dot's sums and W's rows by map_row, term by term */
+static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s,
+                            int what)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    forces(f, sc, sim, s);
-    fputs("    /* the joints' rows: g, g', gam and W (assemble_joint) */\n", f);
+    int jac = what & RTI_MBS_JAC;
+    if (what & RTI_MBS_FORCE)
+        forces(f, sc, sim, s);
+    fprintf(f, "    /* the joints' rows: %s (assemble_joint) */\n",
+            jac ? "g, g', gam and W" : "g, g'");
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
         uint16_t ji = w->sjnt[k];
         const rt_joint *j = &sc->joints[ji];
         const char *dot = j->kind->trans ? "rowdot6" : "rowdot12";
         fprintf(f, "    {\n        rt_mbs_node n1, n2;\n"
                    "        const real_t *J0 = w->J[0], *J1 = w->J[1];\n"
-                   "        rti_mbs_joint(sc, sim, %u, t, &n1, &n2, w->J[0], w->J[1], &e);\n"
-                   "        (void)J0, (void)J1;\n", ji);
+                   "        rti_mbs_joint(sc, sim, %u, t, &n1, &n2, %s, &e);\n"
+                   "        (void)J0, (void)J1;\n", ji, jac ? "w->J[0], w->J[1]" : "0, 0");
         for (unsigned i = 0; i < j->kind->nc; i++) {
             unsigned r = w->jrow[ji] + i;
             fprintf(f, "        C = e.C[%u];\n        g[%u] = e.g[%u];\n", i, r, i);
             fprintf(f, "        gd[%u] = %s(C, n1.v, n1.w, n2.v, n2.w);\n", r, dot);
+            if (!jac)
+                continue;
             fprintf(f, "        gam[%u] = %s(C, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[%u];\n", r,
                     dot, i);
             map_body_row(f, w->jw[ji][0] + 3 * i, 0, 0, 0);
@@ -524,20 +532,79 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
    the factors of its Schur complement over the fixed pattern */
 static void factored(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
 {
-    assemble(f, sc, sim, s, what);
+    if (sim->work.mbs.points[s])
+        assemble(f, sc, sim, s, what);
+    else
+        assemble_bodies(f, sc, sim, s, what);
     quotients(f, sim, s);
     schur(f, sim, s);
     factor(f, sim, s);
 }
 
+/* move_q and move_z (rt/mbs_project.c) of a set of bodies with a constant K: q += K dz
+   by the kind's kin (at the state's own q), or z += dz */
+static void bodies_add(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int vel)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+        uint16_t b = w->sblk[k];
+        const rt_mbs_spec *sp = (const rt_mbs_spec *)sc->blocks[b].kind->spec;
+        unsigned xo = sim->plan.x_off[b], zo = w->zo[b];
+        if (vel) {
+            for (unsigned c = 0; c < sp->nz; c++)
+                fprintf(f, "    xw[%u] += a[%u];\n", xo + sp->nq + c, zo + c);
+            continue;
+        }
+        fprintf(f, "    {\n        real_t dq[%u];\n    ", sp->nq);
+        mbs_args(f, sim, b);
+        fprintf(f, "        ((const rt_mbs_spec *)ar.spec)->kin(&ar, a + %u, dq);\n", zo);
+        for (unsigned i = 0; i < sp->nq; i++)
+            fprintf(f, "        xw[%u] += dq[%u];\n", xo + i, i);
+        fputs("    }\n", f);
+    }
+}
+
 /* one correction of the projection: the solve for residual v ("g" or "gd"), the change
-   of the points' coordinates it gives, added from coordinate `from` (0 positions, 3
-   velocities) */
-static void corrected(FILE *f, const rt_sim *sim, uint8_t s, const char *v, unsigned from)
+   of the coordinates it gives, added to the positions (vel 0) or the velocities (1) */
+static void corrected(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s,
+                      const char *v, int vel)
 {
     solve(f, sim, s, v);
     correct(f, sim, s, v, 0);
-    points_add(f, sim, s, from);
+    if (sim->work.mbs.points[s])
+        points_add(f, sim, s, vel ? 3 : 0);
+    else
+        bodies_add(f, sc, sim, s, vel);
+}
+
+/* the kinds' own normalization after the positions (rt/mbs_project.c normalize) */
+static void normalized(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1] && !w->points[s]; k++) {
+        uint16_t b = w->sblk[k];
+        if (((const rt_mbs_spec *)sc->blocks[b].kind->spec)->normalize)
+            fprintf(f, "    ((const rt_mbs_spec *)blocks[%u].kind->spec)->normalize(xw + %u);\n",
+                    b, sim->plan.x_off[b]);
+    }
+}
+
+/* a set whose projection the generator writes out (RT_STAB_PROJECT): points, or bodies
+   whose K is constant (move_q needs no frozen coordinates) */
+static int project_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    if (sc->stab != RT_STAB_PROJECT)
+        return 0;
+    if (mbs_points_set(sc, sim, s))
+        return 1;
+    if (!mbs_bodies_set(sc, sim, s))
+        return 0;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
+        if (!(((const rt_mbs_spec *)sc->blocks[w->sblk[k]].kind->spec)->flags &
+              RT_MBS_K_CONST))
+            return 0;
+    return 1;
 }
 
 /* the right-hand side of a set (rti_rhs): outputs, derivatives, rti_mbs_accel (written
@@ -568,18 +635,15 @@ static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
         factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
         lambda_accel(f, sc, sim, s);
     } else if (bodies) {
-        assemble_bodies(f, sc, sim, s);
-        quotients(f, sim, s);
-        schur(f, sim, s);
-        factor(f, sim, s);
+        factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
         lambda_accel(f, sc, sim, s);
     } else if (mbs)
         fprintf(f, "    sc->mbs->accel(sc, sim, %u, t, xdot);\n", s);
     fputs("    return 1;\n}\n", f);
 }
 
-/* rti_mbs_project of a set of points (RT_STAB_PROJECT): positions (two iterations),
-   velocities, check_residual, refresh_lambda */
+/* rti_mbs_project of a set of points or bodies (project_set): positions (two
+   iterations), velocities, check_residual, refresh_lambda */
 static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -590,12 +654,16 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
     locals(f, sim, s);
     fputs("    /* positions (10a) */\n", f);
     factored(f, sc, sim, s, RTI_MBS_JAC);
-    corrected(f, sim, s, "g", 0);
-    assemble(f, sc, sim, s, RTI_MBS_G);
-    corrected(f, sim, s, "g", 0);
+    corrected(f, sc, sim, s, "g", 0);
+    if (sim->work.mbs.points[s])
+        assemble(f, sc, sim, s, RTI_MBS_G);
+    else
+        assemble_bodies(f, sc, sim, s, RTI_MBS_G);
+    corrected(f, sc, sim, s, "g", 0);
+    normalized(f, sc, sim, s);
     fputs("    /* velocities (10b) */\n", f);
     factored(f, sc, sim, s, RTI_MBS_JAC);
-    corrected(f, sim, s, "gd", 3);
+    corrected(f, sc, sim, s, "gd", 1);
     fputs("    /* check_residual */\n    {\n        real_t worst = 0, v;\n"
           "        uint16_t row = 0;\n", f);
     for (unsigned r = 0; r < w->nc[s]; r++)
@@ -658,7 +726,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
         any |= rhs_set(sim, s);
         pts |= mbs_points_set(sc, sim, s);
         bodies |= mbs_bodies_set(sc, sim, s);
-        proj |= sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s);
+        proj |= project_set(sc, sim, s);
     }
     if (!any)
         return 0;
@@ -672,7 +740,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
     for (uint8_t s = 0; s < sc->nsets; s++) {
         if (rhs_set(sim, s))
             rhs_points(f, sc, sim, s);
-        if (sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s))
+        if (project_set(sc, sim, s))
             project_points(f, sc, sim, s);
     }
     fputs("\nstatic int rhs(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_t h,\n"
@@ -685,7 +753,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
         fputs("\nstatic int project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)\n"
               "{\n    switch (set) {\n", f);
         for (uint8_t s = 0; s < sc->nsets; s++)
-            if (sc->stab == RT_STAB_PROJECT && mbs_points_set(sc, sim, s))
+            if (project_set(sc, sim, s))
                 fprintf(f, "    case %u: return project_%u(sc, sim, t);\n", s, s);
         fputs("    default: return 0;\n    }\n}\n", f);
     }
