@@ -268,10 +268,20 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
         uint16_t ji = w->sjnt[k];
         const rt_joint *j = &sc->joints[ji];
         const char *dot = j->kind->trans ? "rowdot6" : "rowdot12";
-        fprintf(f, "    {\n        rt_mbs_node n1, n2;\n"
-                   "        const real_t *J0 = w->J[0], *J1 = w->J[1];\n"
-                   "        rti_mbs_joint(sc, sim, %u, t, &n1, &n2, %s, &e);\n"
-                   "        (void)J0, (void)J1;\n", ji, jac ? "w->J[0], w->J[1]" : "0, 0");
+        fputs("    {\n        rt_mbs_node n1, n2;\n"
+              "        const real_t *J0 = w->J[0], *J1 = w->J[1];\n"
+              "        (void)J0, (void)J1;\n", f);
+        if (j->b2 >= 0 && !j->axis_S) { /* rti_mbs_joint: both nodes by their kinds */
+            fputs("    ", f), mbs_args(f, sim, (uint16_t)j->b1);
+            fprintf(f, "        ((const rt_mbs_spec *)ar.spec)->node(&ar, %u, &n1, %s);\n",
+                    j->n1, jac ? "w->J[0]" : "0");
+            fputs("    ", f), mbs_args(f, sim, (uint16_t)j->b2);
+            fprintf(f, "        ((const rt_mbs_spec *)ar.spec)->node(&ar, %u, &n2, %s);\n",
+                    j->n2, jac ? "w->J[1]" : "0");
+            fprintf(f, "        joints[%u].kind->eval(joints[%u].p, &n1, &n2, &e);\n", ji, ji);
+        } else
+            fprintf(f, "        rti_mbs_joint(sc, sim, %u, t, &n1, &n2, %s, &e);\n", ji,
+                    jac ? "w->J[0], w->J[1]" : "0, 0");
         for (unsigned i = 0; i < j->kind->nc; i++) {
             unsigned r = w->jrow[ji] + i;
             fprintf(f, "        C = e.C[%u];\n        g[%u] = e.g[%u];\n", i, r, i);
