@@ -857,6 +857,12 @@ int rt_bg_set(const rt_sim *sim);
  * nothing changed. */
 rt_status rt_snapshot(const rt_sim *sim, rt_state *out);
 rt_status rt_restore(rt_sim *sim, const rt_state *in);
+/* rt_snapshot and rt_restore for a snapshot laid out as caller_layout says (RT_SIM_LAYOUT,
+ * rt_sim.h, in the file that allocates it): another layout than the runtime's (other
+ * RT_MAX_*, another REAL) returns RT_E_ARG, nothing written into out, nothing changed.
+ * Every rt_snapshot and rt_restore of a file that includes rt_sim.h is this call. */
+rt_status rt_snapshot_checked(const rt_sim *sim, rt_state *out, uint32_t caller_layout);
+rt_status rt_restore_checked(rt_sim *sim, const rt_state *in, uint32_t caller_layout);
 
 /* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */
 int rt_block_index(const rt_scene *scene, const char *name);

@@ -266,10 +266,13 @@ struct rt_sim {
      (uint32_t)offsetof(rt_sim, stats) * 40503u ^ (uint32_t)offsetof(rt_sim, work) * 97u ^ \
      (uint32_t)offsetof(rt_sim, plan) * 7u)
 
-/* Every file that can allocate an rt_sim includes this header: its rt_init and
-   rt_bg_attach pass the layout it allocates with, which the runtime checks against its
-   own before it writes anything (rt.h: rt_init_checked, rt_bg_attach_checked) */
+/* Every file that can allocate an rt_sim or an rt_state includes this header: its
+   rt_init, rt_bg_attach, rt_snapshot and rt_restore pass the layout it allocates with,
+   which the runtime checks against its own before it writes anything (rt.h:
+   rt_init_checked, ...) */
 #define rt_init(scene, sim) rt_init_checked((scene), (sim), RT_SIM_LAYOUT)
 #define rt_bg_attach(scene, sim, bg) rt_bg_attach_checked((scene), (sim), (bg), RT_SIM_LAYOUT)
+#define rt_snapshot(sim, out) rt_snapshot_checked((sim), (out), RT_SIM_LAYOUT)
+#define rt_restore(sim, in) rt_restore_checked((sim), (in), RT_SIM_LAYOUT)
 
 #endif /* RT_SIM_H */

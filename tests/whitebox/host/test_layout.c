@@ -3,9 +3,10 @@
  * alone), as an application's main compiled without the image's `scenec --sizes` flags
  * would be. rt_init refuses such an rt_sim with RT_E_SCENE and its text, writing nothing
  * into it but that text (table-driven or with the scene's written-out code, whose own
- * layout is the runtime's), and rt_bg_attach refuses such a context untouched. White-box:
- * allocates rt_sim (rt_sim.h, under this file's limits); the runtime's own rt_sim is
- * testutil.c's, which this file only passes by address. */
+ * layout is the runtime's); rt_bg_attach refuses such a context untouched, and
+ * rt_snapshot and rt_restore such a snapshot. White-box: allocates rt_sim and rt_state
+ * (rt_sim.h, under this file's limits); the runtime's own rt_sim is testutil.c's, which
+ * this file only passes by address. */
 #ifndef RT_MAX_X
 #error "compile with another RT_MAX_X than the runtime's (the Makefile's flags for this file)"
 #endif
@@ -19,6 +20,7 @@
 #define FILL 0xa5 /* every byte of the caller's rt_sim before the call */
 
 static rt_sim other, other_ctx; /* laid out under this file's limits */
+static rt_state other_snap;
 
 static const char *const TEXT = "rt_sim compiled with other limits than the runtime";
 
@@ -79,8 +81,26 @@ static void test_layout_bg(void)
     TH_CHECK(pending);
 }
 
+/* a snapshot of this file's layout: rt_snapshot writes nothing into it, rt_restore takes
+   nothing from it, and the run goes on unchanged */
+static void test_layout_snapshot(void)
+{
+    const rt_scene *sc = &mdl_scene_pi_loop;
+    if (!tu_init(sc))
+        return;
+    for (int k = 0; k < 10; k++)
+        rt_tick(sc, &tu_sim);
+    uint64_t hash = rt_trace_hash(&tu_sim);
+    memset(&other_snap, FILL, sizeof other_snap);
+    TH_CHECK(rt_snapshot(&tu_sim, &other_snap) == RT_E_ARG);
+    TH_CHECK(untouched(&other_snap, sizeof other_snap));
+    TH_CHECK(rt_restore(&tu_sim, &other_snap) == RT_E_ARG);
+    TH_CHECK(rt_ticks_done(&tu_sim) == 10 && rt_trace_hash(&tu_sim) == hash);
+}
+
 const th_test th_layout_tests[] = {
     {"layout_init", test_layout_init},
     {"layout_bg", test_layout_bg},
+    {"layout_snapshot", test_layout_snapshot},
     {0, 0},
 };
