@@ -257,14 +257,21 @@ struct rt_sim {
     uint8_t bg_counted;
 };
 
-/* rt_sim's layout under this build's limits, as one number: its size and where its parts
-   start (err is at 0 under every limit). Two builds with other limits (RT_MAX_*, REAL)
-   differ in one of them: rt_init refuses an rt_sim laid out otherwise than the runtime's
-   (below), and a scene's written-out code compiled so (rt_scene_code.sim_layout) */
+/* rt_sim's layout under this build's limits, as one number: its size, where its parts
+   start (err is at 0 under every limit) and the limits themselves. Two builds with other
+   limits (RT_MAX_*, REAL) differ in one of them: rt_init refuses an rt_sim laid out
+   otherwise than the runtime's (below), and a scene's written-out code compiled so
+   (rt_scene_code.sim_layout) */
 #define RT_SIM_LAYOUT                                                                     \
     ((uint32_t)sizeof(rt_sim) ^ (uint32_t)offsetof(rt_sim, state) * 2654435761u ^        \
      (uint32_t)offsetof(rt_sim, stats) * 40503u ^ (uint32_t)offsetof(rt_sim, work) * 97u ^ \
-     (uint32_t)offsetof(rt_sim, plan) * 7u)
+     (uint32_t)offsetof(rt_sim, plan) * 7u ^ RT_SIM_LIMITS)
+/* every capacity limit's value at its own odd weight (its row of RT_LIMIT_LIST), summed:
+   two builds that trade sizes inside one part of rt_sim (one more discrete state, one
+   parameter fewer: the same size and offsets) still differ */
+#define RT_X_LIMIT_MIX(name, field, least, dflt, what)                                     \
+    +(uint32_t)RT_MAX_##name * ((2u * (uint32_t)RT_LIM_##name + 1u) * 0x9e3779b1u)
+#define RT_SIM_LIMITS (0u RT_LIMIT_LIST(RT_X_LIMIT_MIX))
 
 /* Every file that can allocate an rt_sim or an rt_state includes this header: its
    rt_init, rt_bg_attach, rt_snapshot and rt_restore pass the layout it allocates with,
