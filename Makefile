@@ -73,6 +73,8 @@ HOST_TEST_SRCS := tests/host/main.c tests/host/registry.c \
 obj = $(patsubst %.c,$(O)/obj/%.o,$(1))
 RT_OBJS    := $(call obj,$(RT_SRCS))
 MODEL_OBJS := $(call obj,$(MODEL_SRCS))
+# an rt_sim allocated under other limits than the runtime's, which rt_init must refuse
+$(call obj,tests/whitebox/host/test_layout.c): CDEFS += -DRT_MAX_X=512
 
 # the scene language: scenec, generated scenes, modrt's scene files (docs/scene-language.md)
 include tools/scenec/scenec.mk

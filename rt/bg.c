@@ -393,9 +393,22 @@ const rt_bg_ops rt_bg = {
 
 /* ------------------------------------------------------------------ API */
 
-rt_status rt_bg_attach(const rt_scene *sc, rt_sim *sim, rt_sim *bg)
+/* the name in parentheses: rt_sim.h's rt_bg_attach macro does not expand here */
+rt_status (rt_bg_attach)(const rt_scene *sc, rt_sim *sim, rt_sim *bg)
 {
-    if (!sc || !sim || !bg || bg == sim || sim->state.bg_busy)
+    return rt_bg_attach_checked(sc, sim, bg, RT_SIM_LAYOUT);
+}
+
+rt_status rt_bg_attach_checked(const rt_scene *sc, rt_sim *sim, rt_sim *bg,
+                               uint32_t caller_layout)
+{
+    if (!sc || !sim || !bg || bg == sim)
+        return RT_E_ARG;
+    /* bg (the caller's) may be smaller than this build's rt_sim: copy nothing into it */
+    rt_status st = rti_layout_check(sim, caller_layout);
+    if (st != RT_OK)
+        return st;
+    if (sim->state.bg_busy)
         return RT_E_ARG;
     const unsigned char *from = (const unsigned char *)sim;
     unsigned char *to = (unsigned char *)bg;

@@ -328,11 +328,20 @@ static rt_status bg_init(const rt_scene *sc, rt_sim *sim)
     return sc->bg ? sc->bg->init(sc, sim) : RT_OK;
 }
 
-rt_status rt_init(const rt_scene *sc, rt_sim *sim)
+/* the name in parentheses: rt_sim.h's rt_init macro does not expand here */
+rt_status (rt_init)(const rt_scene *sc, rt_sim *sim)
+{
+    return rt_init_checked(sc, sim, RT_SIM_LAYOUT);
+}
+
+rt_status rt_init_checked(const rt_scene *sc, rt_sim *sim, uint32_t caller_layout)
 {
     rt_status st;
     if (!sc || !sim)
         return RT_E_ARG;
+    /* before anything else is written: sim may be smaller than this build's rt_sim */
+    if ((st = rti_layout_check(sim, caller_layout)) != RT_OK)
+        return st;
     sim->sc = sc;
     sim->err[0] = 0;
     /* a re-used rt_sim starts as a fresh one: no value of the last run can leak into

@@ -771,6 +771,12 @@ typedef struct rt_stats {
  * evaluation order, initial outputs. Returns RT_OK or the first problem found; on error
  * sim holds a description for rt_error_text. */
 rt_status rt_init(const rt_scene *scene, rt_sim *sim);
+/* rt_init for an rt_sim laid out as caller_layout says (RT_SIM_LAYOUT, rt_sim.h, in the
+ * file that allocates it): when that is not the runtime's layout (a file compiled with
+ * other RT_MAX_* or another REAL than rt/), returns RT_E_SCENE and writes nothing but
+ * the description (at the start of sim, where every layout has it). Every rt_init of a
+ * file that includes rt_sim.h (every file that can allocate an rt_sim) is this call. */
+rt_status rt_init_checked(const rt_scene *scene, rt_sim *sim, uint32_t caller_layout);
 /* Returns the text describing the last init error, or after an rt_init that returned
  * RT_OK what it reported (an initial state moved onto its constraints, a quaternion
  * normalized, redundant joints; "" if nothing). */
@@ -821,6 +827,12 @@ void rt_link_apply(const rt_scene *scene, rt_sim *sim, const real_t *v);
  * publishes it at the first tick after it finished. Attach between ticks, with no step
  * in flight (after rt_init). */
 rt_status rt_bg_attach(const rt_scene *scene, rt_sim *sim, rt_sim *bg);
+/* rt_bg_attach for a context bg laid out as caller_layout says (as rt_init_checked):
+ * another layout than the runtime's returns RT_E_SCENE, nothing attached and nothing
+ * written into bg, with the description in rt_error_text(sim). Every rt_bg_attach of a
+ * file that includes rt_sim.h is this call. */
+rt_status rt_bg_attach_checked(const rt_scene *scene, rt_sim *sim, rt_sim *bg,
+                               uint32_t caller_layout);
 /* 1 if a released background step waits for rt_background (call after rt_tick). */
 int rt_bg_pending(const rt_sim *sim);
 /* Runs the released background step to its end, in the attached context; returns RT_OK,
@@ -845,6 +857,12 @@ int rt_bg_set(const rt_sim *sim);
  * nothing changed. */
 rt_status rt_snapshot(const rt_sim *sim, rt_state *out);
 rt_status rt_restore(rt_sim *sim, const rt_state *in);
+/* rt_snapshot and rt_restore for a snapshot laid out as caller_layout says (RT_SIM_LAYOUT,
+ * rt_sim.h, in the file that allocates it): another layout than the runtime's (other
+ * RT_MAX_*, another REAL) returns RT_E_ARG, nothing written into out, nothing changed.
+ * Every rt_snapshot and rt_restore of a file that includes rt_sim.h is this call. */
+rt_status rt_snapshot_checked(const rt_sim *sim, rt_state *out, uint32_t caller_layout);
+rt_status rt_restore_checked(rt_sim *sim, const rt_state *in, uint32_t caller_layout);
 
 /* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */
 int rt_block_index(const rt_scene *scene, const char *name);

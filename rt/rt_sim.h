@@ -233,11 +233,14 @@ typedef struct rt_work {
  *   stats  rt/ writes; applications read (summaries, tests)
  *   work   rt/ only */
 struct rt_sim {
+    /* what rt_init found wrong, and where. First, at offset 0 under every limit: rt_init
+       can say that the caller's rt_sim has another layout than the runtime's (rt_sim.h's
+       rt_init) without writing past the caller's object */
+    char err[RT_ERR_LEN];
     rt_plan plan;
     rt_state state;
     rt_stats stats;
     rt_work work;
-    char err[RT_ERR_LEN];            /* what rt_init found wrong, and where */
     const rt_scene *sc;              /* (the pointers last, beside each other: no padding
                                         before the 8-byte-aligned plan on 32-bit targets) */
     /* the background context (rt_bg_attach): a second rt_sim the background set steps
@@ -254,11 +257,29 @@ struct rt_sim {
     uint8_t bg_counted;
 };
 
-/* rt_sim's layout under this build's limits, as one number: its size and where its parts
-   start (rt_scene_code.sim_layout; two builds with other limits differ in one of them) */
+/* rt_sim's layout under this build's limits, as one number: its size, where its parts
+   start (err is at 0 under every limit) and the limits themselves. Two builds with other
+   limits (RT_MAX_*, REAL) differ in one of them: rt_init refuses an rt_sim laid out
+   otherwise than the runtime's (below), and a scene's written-out code compiled so
+   (rt_scene_code.sim_layout) */
 #define RT_SIM_LAYOUT                                                                     \
     ((uint32_t)sizeof(rt_sim) ^ (uint32_t)offsetof(rt_sim, state) * 2654435761u ^        \
      (uint32_t)offsetof(rt_sim, stats) * 40503u ^ (uint32_t)offsetof(rt_sim, work) * 97u ^ \
-     (uint32_t)offsetof(rt_sim, err) * 7u)
+     (uint32_t)offsetof(rt_sim, plan) * 7u ^ RT_SIM_LIMITS)
+/* every capacity limit's value at its own odd weight (its row of RT_LIMIT_LIST), summed:
+   two builds that trade sizes inside one part of rt_sim (one more discrete state, one
+   parameter fewer: the same size and offsets) still differ */
+#define RT_X_LIMIT_MIX(name, field, least, dflt, what)                                     \
+    +(uint32_t)RT_MAX_##name * ((2u * (uint32_t)RT_LIM_##name + 1u) * 0x9e3779b1u)
+#define RT_SIM_LIMITS (0u RT_LIMIT_LIST(RT_X_LIMIT_MIX))
+
+/* Every file that can allocate an rt_sim or an rt_state includes this header: its
+   rt_init, rt_bg_attach, rt_snapshot and rt_restore pass the layout it allocates with,
+   which the runtime checks against its own before it writes anything (rt.h:
+   rt_init_checked, ...) */
+#define rt_init(scene, sim) rt_init_checked((scene), (sim), RT_SIM_LAYOUT)
+#define rt_bg_attach(scene, sim, bg) rt_bg_attach_checked((scene), (sim), (bg), RT_SIM_LAYOUT)
+#define rt_snapshot(sim, out) rt_snapshot_checked((sim), (out), RT_SIM_LAYOUT)
+#define rt_restore(sim, in) rt_restore_checked((sim), (in), RT_SIM_LAYOUT)
 
 #endif /* RT_SIM_H */

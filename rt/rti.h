@@ -76,6 +76,10 @@ const char *rti_real_text(char *buf, real_t v);
    "[<place><name>: ]<what it counts> exceed RT_MAX_<NAME> (<value> in rt_config.h)",
    place "set ", "block " or "joint " and the item's name, or both 0 for the scene */
 rt_status rti_capacity(rt_sim *sim, const char *place, const char *name, rt_limit lim);
+/* RT_OK when caller_layout is this build's RT_SIM_LAYOUT; else RT_E_SCENE with its text
+   in sim->err, which every layout has at offset 0 (nothing else of sim is written): the
+   caller's rt_sim was compiled with other limits (rt_init_checked, rt_bg_attach_checked) */
+rt_status rti_layout_check(rt_sim *sim, uint32_t caller_layout);
 /* Sets n bytes at p to zero (freestanding memset). */
 void rti_zero(void *p, size_t n);
 /* The trace hash of one more value (rt_hash_real): one multiply and one xor-shift, on the

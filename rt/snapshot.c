@@ -46,8 +46,16 @@ static rt_status save_kinds(const rt_sim *sim, uint8_t *buf, uint32_t cap)
     return RT_OK;
 }
 
-rt_status rt_snapshot(const rt_sim *sim, rt_state *out)
+/* the name in parentheses: rt_sim.h's rt_snapshot macro does not expand here */
+rt_status (rt_snapshot)(const rt_sim *sim, rt_state *out)
 {
+    return rt_snapshot_checked(sim, out, RT_SIM_LAYOUT);
+}
+
+rt_status rt_snapshot_checked(const rt_sim *sim, rt_state *out, uint32_t caller_layout)
+{
+    if (caller_layout != RT_SIM_LAYOUT) /* out may be smaller than this build's rt_state */
+        return RT_E_ARG;
     *out = sim->state;
 #if RT_MAX_KSTATE > 0
     return save_kinds(sim, out->kstate, RT_MAX_KSTATE);
@@ -91,8 +99,16 @@ static rt_status restore_kinds(const rt_scene *sc, const uint8_t *buf)
 }
 #endif
 
-rt_status rt_restore(rt_sim *sim, const rt_state *in)
+/* the name in parentheses: rt_sim.h's rt_restore macro does not expand here */
+rt_status (rt_restore)(rt_sim *sim, const rt_state *in)
 {
+    return rt_restore_checked(sim, in, RT_SIM_LAYOUT);
+}
+
+rt_status rt_restore_checked(rt_sim *sim, const rt_state *in, uint32_t caller_layout)
+{
+    if (caller_layout != RT_SIM_LAYOUT) /* in may be smaller than this build's rt_state */
+        return RT_E_ARG;
     /* with a context attached the step in flight is the context's, in no snapshot (and
        the context may be running it): only a state between steps can be restored there */
     if (sim->bg && (in->bg_busy || rt_bg_pending(sim) || sim->state.bg_busy))

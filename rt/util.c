@@ -111,6 +111,17 @@ rt_status rti_fail(rt_sim *sim, rt_status status, ...)
     return status;
 }
 
+rt_status rti_layout_check(rt_sim *sim, uint32_t caller_layout)
+{
+    if (caller_layout == RT_SIM_LAYOUT)
+        return RT_OK;
+    /* rt_init would write at this build's offsets past a smaller object (or leave a
+       larger one's parts where the caller's file does not look for them) */
+    return rti_fail(sim, RT_E_SCENE, "rt_sim compiled with other limits than the runtime "
+                    "(RT_MAX_*, REAL): build every file with the same (scenec --sizes)",
+                    (const char *)0);
+}
+
 void rti_note(rt_sim *sim, ...)
 {
     va_list ap;

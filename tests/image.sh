@@ -43,6 +43,19 @@ if make -s image MEASURE=0 TARGET=m3 SCENE=pi_loop CONSOLE=uart IMAGE_CFLAGS=-DC
         -icount shift=0,sleep=off -kernel
 else bad "m3 UART image did not build"; fi
 
+# an application whose main is compiled with other limits than the runtime (here: the
+# scene's exact torn inputs, the runtime 16), table-driven: its rt_sim is smaller than the
+# runtime's, and rt_init refuses it in one line (writing only that line's text into it)
+# before the run starts, and the image exits non-zero
+if IMAGE_MAIN_CFLAGS="-URT_MAX_TORN -DRT_MAX_TORN=1" make -s image MEASURE=0 TARGET=m3 SCENE=pi_loop \
+       IMAGE_CFLAGS="-DRT_SCENE_CODE=0 -URT_MAX_TORN -DRT_MAX_TORN=16" >/dev/null; then
+    # shellcheck disable=SC2046 # the run command is meant to split into words
+    out=$($(make -s print-TARGET_RUN_m3) build/image/m3/pi_loop.elf 2>&1); rc=$?
+    if [ $rc -ne 0 ] && [ "$out" = "rt scene pi_loop init malformed scene: rt_sim compiled with other \
+limits than the runtime (RT_MAX_*, REAL): build every file with the same (scenec --sizes)" ]; then ok
+    else bad "m3 image whose main has other limits than the runtime: exit $rc, '$out'"; fi
+else bad "m3 image whose main has other limits than the runtime did not build"; fi
+
 # a scene whose constraint rows fill its exactly sized multibody tables (two cars, one tow
 # bar): an exact fit must initialise (it used to fail with "constraint rows exceed")
 f=models/scenes/lane_change_planar.scn

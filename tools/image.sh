@@ -11,7 +11,8 @@
 # IMAGE_TICKS_MAX), and the slowest tick at CLOCK_MHZ (default: the target's stated clock
 # of make footprint) is compared with the scene's base tick. MEASURE=0: the image only.
 # IMAGE_MAIN (environment) names another application than ports/common/image_main.c (a
-# test's, e.g. tests/fmi/snap_image.c).
+# test's, e.g. tests/fmi/snap_image.c); IMAGE_MAIN_CFLAGS (environment) are added to the
+# application's compile alone (a test's: main compiled with other limits than the runtime).
 set -u
 target=$1 scene=$2 console=$3 extra=$4 clock=${5:-} ticks=${6:-} measure=${7:-1}
 main=${IMAGE_MAIN:-ports/common/image_main.c}
@@ -125,10 +126,12 @@ models=$(ls models/*.c | grep -v '^models/registry.c$')
 obj=$dir/obj-$name
 rm -rf "$obj" && mkdir -p "$obj"
 export IMG_CC="$cc" IMG_FLAGS="$cflags $cdef $sizes -DRT_SCENE=$sym $extra${fmusrc:+ -DFMU_TARGET -Itools/fmi $fmulibc}" IMG_OBJ="$obj"
+export IMG_MAIN="$main" IMG_MAIN_FLAGS="${IMAGE_MAIN_CFLAGS:-}"
 srcs="$main $dir/$name.c $rt $models $ports $linksrc $fmusrc"
 # shellcheck disable=SC2086,SC2016 # the lists are meant to split; $1 expands in the child
 printf '%s\n' $srcs | xargs -P "${JOBS:-2}" -I{} sh -c \
-    'o=$IMG_OBJ/$(echo "$1" | tr / _).o; $IMG_CC $IMG_FLAGS -c "$1" -o "$o"' sh {} ||
+    'o=$IMG_OBJ/$(echo "$1" | tr / _).o; m=; [ "$1" = "$IMG_MAIN" ] && m=$IMG_MAIN_FLAGS
+     $IMG_CC $IMG_FLAGS $m -c "$1" -o "$o"' sh {} ||
     fail "the $target build of $scene failed (see above)"
 objs=$(for f in $srcs; do printf '%s/%s.o ' "$obj" "$(echo "$f" | tr / _)"; done)
 # shellcheck disable=SC2086 # the flag lists are meant to split

@@ -12,7 +12,8 @@ extern const th_test th_bg_host_tests[];
 extern const th_test th_renew_tests[];
 extern const th_test th_linkframe_tests[];
 extern const th_test th_scene_code_tests[];
+extern const th_test th_layout_tests[];
 
 const th_test *const th_host[] = {rmath_libm_tests, th_tune_tests, th_kinds_doc_tests,
                                   th_link_tests, th_bg_host_tests, th_renew_tests,
-                                  th_linkframe_tests, th_scene_code_tests, 0};
+                                  th_linkframe_tests, th_scene_code_tests, th_layout_tests, 0};
