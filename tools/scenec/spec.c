@@ -6,10 +6,10 @@
  * Bit-identical by construction: every sum is the generic path's, term by term in its
  * order (the same expressions, the same +0 starts); only the loops over tables become
  * straight-line code. Counters and faults go through the same rti_ calls. A set's
- * multibody part is written out for point masses only; a set with other bodies gets its
- * outputs and derivatives written out and calls the generic rti_mbs_accel, as rti_rhs
- * does. A set that takes no step of its own is left to the generic path: its entry
- * returns 0 for that set.
+ * multibody part is written out for point masses and for bodies with a diagonal M and no
+ * rows of their own; another multibody set gets its outputs and derivatives written out
+ * and calls the generic rti_mbs_accel, as rti_rhs does. A set that takes no step of its
+ * own is left to the generic path: its entry returns 0 for that set.
  *
  * The tables' offsets do not depend on the build's limits (they are packed from 0); the
  * one that does, a slot of L in lv, is written relative to RT_MAX_MBS_ROWS. */
@@ -32,21 +32,31 @@ static int mbs_points_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     return 1;
 }
 
+/* block b's multibody spec, and its velocities */
+static const rt_mbs_spec *spec_of(const rt_scene *sc, uint16_t b)
+{
+    return (const rt_mbs_spec *)sc->blocks[b].kind->spec;
+}
+
+static unsigned nz_of(const rt_sim *sim, uint16_t b)
+{
+    return spec_of(sim->sc, b)->nz;
+}
+
 /* a set whose multibody part the generator writes out through the general node path:
-   bodies with a constant diagonal M of three velocities (a planar body) and no rows of
-   their own, none a point, at least one constraint row. Its Schur complement, factors,
-   solve and z' then take the points' form (rt/mbs_asm.c: a diagonal M with nz = 3 sums
-   as a point's does); its joints' rows are assemble_joint's */
+   bodies with a diagonal M (constant, or formed and checked in every assembly with
+   Jacobians) and no rows of their own, none a point, at least one constraint row. Its
+   Schur complement, factors, solve and z' take the points' form with nz velocities a
+   block (rt/mbs_asm.c: a diagonal M divides on the fly); its joints' rows are
+   assemble_joint's */
 static int mbs_bodies_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    const int need = RT_MBS_M_DIAG | RT_MBS_M_CONST;
     if (!sc->mbs || w->nz[s] == 0 || w->points[s] || w->nc[s] == 0)
         return 0;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
-        const rt_mbs_spec *sp = (const rt_mbs_spec *)sc->blocks[w->sblk[k]].kind->spec;
-        if ((sp->flags & need) != need || (sp->flags & RT_MBS_NODE_POINT) || sp->nz != 3 ||
-            sp->nc != 0)
+        const rt_mbs_spec *sp = spec_of(sc, w->sblk[k]);
+        if (!(sp->flags & RT_MBS_M_DIAG) || (sp->flags & RT_MBS_NODE_POINT) || sp->nc != 0)
             return 0;
     }
     return 1;
@@ -159,21 +169,48 @@ static void mbs_args(FILE *f, const rt_sim *sim, uint16_t b)
             sim->plan.d_off[b], sim->plan.u_off[b], sim->plan.p_off[b]);
 }
 
-/* each block's M^-1 k (assemble_point_set, and assemble_block for a constant diagonal M
-   of three velocities: the same divisions) */
-static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+/* mass_factor (rt/mbs_asm.c) of block b's diagonal M of nz entries at w->M + mo: every
+   pivot at or below the threshold replaced by it and counted */
+static void mass_diag(FILE *f, uint16_t b, unsigned mo, unsigned nz)
+{
+    fputs("    {\n        real_t big = 0, floor_;\n        int low = 0;\n", f);
+    for (unsigned i = 0; i < nz; i++)
+        fprintf(f, "        big = w->M[%u] > big ? w->M[%u] : big;\n", mo + i, mo + i);
+    fputs("        floor_ = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);\n", f);
+    for (unsigned i = 0; i < nz; i++)
+        fprintf(f, "        if (!(w->M[%u] > floor_))\n            w->M[%u] = floor_, low = 1;\n",
+                mo + i, mo + i);
+    fprintf(f, "        if (low)\n            rti_count(sim, RT_CNT_SINGULAR, %u, RT_E_SINGULAR);\n"
+               "        w->m_valid[%u] = 1;\n    }\n", b, b);
+}
+
+/* each block's part of the assembly (assemble_point_set, assemble_block for a diagonal
+   M and no rows of its own): a varying M formed and checked where `what` has
+   RTI_MBS_JAC (a constant one was at the first assembly), M^-1 k for RTI_MBS_FORCE */
+static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    fputs("    /* the blocks' forces, M^-1 k (M factored at the first assembly) */\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
+        const rt_mbs_spec *sp = spec_of(sc, b);
         unsigned zo = w->zo[b], mo = w->mo[b];
+        int mass = (what & RTI_MBS_JAC) && !(sp->flags & RT_MBS_M_CONST);
+        if (!mass && !(what & RTI_MBS_FORCE))
+            continue;
+        fprintf(f, "    /* %s: %s */\n", sc->blocks[b].name,
+                mass ? "its M, M^-1 k" : "M^-1 k (M factored at the first assembly)");
+        mbs_args(f, sim, b);
+        if (mass) {
+            fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->mass(&ar, w->M + %u);\n", mo);
+            mass_diag(f, b, mo, sp->nz);
+        }
+        if (!(what & RTI_MBS_FORCE))
+            continue;
         if (sc->blocks[b].kind->nu > 0)
             gather(f, sim, b);
-        mbs_args(f, sim, b);
         fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
-        fprintf(f, "    a[%u] /= M[%u], a[%u] /= M[%u], a[%u] /= M[%u];\n", zo, mo, zo + 1,
-                mo + 1, zo + 2, mo + 2);
+        for (unsigned c = 0; c < sp->nz; c++)
+            fprintf(f, "    a[%u] /= M[%u];\n", zo + c, mo + c);
     }
 }
 
@@ -182,7 +219,7 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
 {
     const rt_mbs_work *w = &sim->work.mbs;
     if (what & RTI_MBS_FORCE)
-        forces(f, sc, sim, s);
+        forces(f, sc, sim, s, what);
     fprintf(f, "    /* the joints' rows: %s (point_rows) */\n",
             what & RTI_MBS_JAC ? "g, g', gam and W" : "g");
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
@@ -238,17 +275,21 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
     }
 }
 
-/* map_row (rt/mbs_asm.c) of a body side with nz = 3: W's slice at wo (+)= the six
-   coefficients from C[c0] times the node's Jacobian J, a zero coefficient skipped */
-static void map_body_row(FILE *f, unsigned wo, unsigned c0, unsigned side, int add)
+/* map_row (rt/mbs_asm.c) of a body side with nz velocities: W's slice at wo (+)= the
+   six coefficients from C[c0] times the node's 6 x nz Jacobian J, a zero coefficient
+   skipped */
+static void map_body_row(FILE *f, unsigned wo, unsigned c0, unsigned side, int add,
+                         unsigned nz)
 {
-    if (!add)
-        fprintf(f, "        W[%u] = 0, W[%u] = 0, W[%u] = 0;\n", wo, wo + 1, wo + 2);
-    for (unsigned k = 0; k < 6; k++)
-        fprintf(f, "        if (C[%u] != 0)\n            W[%u] += C[%u] * J%u[%u], "
-                   "W[%u] += C[%u] * J%u[%u], W[%u] += C[%u] * J%u[%u];\n",
-                c0 + k, wo, c0 + k, side, 3 * k, wo + 1, c0 + k, side, 3 * k + 1, wo + 2,
-                c0 + k, side, 3 * k + 2);
+    for (unsigned c = 0; c < nz && !add; c++)
+        fprintf(f, "        W[%u] = 0;\n", wo + c);
+    for (unsigned k = 0; k < 6; k++) {
+        fprintf(f, "        if (C[%u] != 0) {\n", c0 + k);
+        for (unsigned c = 0; c < nz; c++)
+            fprintf(f, "            W[%u] += C[%u] * J%u[%u];\n", wo + c, c0 + k, side,
+                    k * nz + c);
+        fputs("        }\n", f);
+    }
 }
 
 /* rti_mbs_assemble of a set of bodies (mbs_bodies_set) for `what` (RTI_MBS_JAC, _FORCE,
@@ -260,8 +301,7 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
 {
     const rt_mbs_work *w = &sim->work.mbs;
     int jac = what & RTI_MBS_JAC;
-    if (what & RTI_MBS_FORCE)
-        forces(f, sc, sim, s);
+    forces(f, sc, sim, s, what);
     fprintf(f, "    /* the joints' rows: %s (assemble_joint) */\n",
             jac ? "g, g', gam and W" : "g, g'");
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
@@ -290,9 +330,12 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
                 continue;
             fprintf(f, "        gam[%u] = %s(C, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[%u];\n", r,
                     dot, i);
-            map_body_row(f, w->jw[ji][0] + 3 * i, 0, 0, 0);
-            if (j->b2 >= 0)
-                map_body_row(f, w->jw[ji][1] + 3 * i, 6, 1, j->b2 == j->b1);
+            unsigned nz1 = nz_of(sim, (uint16_t)j->b1);
+            map_body_row(f, w->jw[ji][0] + nz1 * i, 0, 0, 0, nz1);
+            if (j->b2 >= 0) {
+                unsigned nz2 = nz_of(sim, (uint16_t)j->b2);
+                map_body_row(f, w->jw[ji][1] + nz2 * i, 6, 1, j->b2 == j->b1, nz2);
+            }
         }
         fputs("    }\n", f);
     }
@@ -306,10 +349,10 @@ static void quotients(FILE *f, const rt_sim *sim, uint8_t s)
     fputs("    /* M^-1 W^T, entry by entry */\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        unsigned mo = w->mo[b];
-        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3)
-            fprintf(f, "    q[%u] = W[%u] / M[%u], q[%u] = W[%u] / M[%u], q[%u] = W[%u] / M[%u];\n",
-                    wi, wi, mo, wi + 1, wi + 1, mo + 1, wi + 2, wi + 2, mo + 2);
+        unsigned mo = w->mo[b], nz = nz_of(sim, b);
+        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += nz)
+            for (unsigned c = 0; c < nz; c++)
+                fprintf(f, "    q[%u] = W[%u] / M[%u];\n", wi + c, wi + c, mo + c);
     }
 }
 
@@ -324,13 +367,17 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
         fputs("    ", f), slot(f, RT_MAX_MBS_ROWS + e), fputs(" = 0;\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        unsigned nt = (unsigned)(w->to[b + 1] - w->to[b]), wo = w->wo[b];
+        unsigned nt = (unsigned)(w->to[b + 1] - w->to[b]), wo = w->wo[b], nz = nz_of(sim, b);
         const uint16_t *ps = w->pslot + w->po[b];
         for (unsigned i = 0; i < nt; i++)
             for (unsigned kk = i; kk < nt; kk++) {
                 fputs("    ", f);
                 slot(f, *ps++);
-                fprintf(f, " += dot3q(W + %u, q + %u);\n", wo + 3 * i, wo + 3 * kk);
+                if (nz == 3)
+                    fprintf(f, " += dot3q(W + %u, q + %u);\n", wo + 3 * i, wo + 3 * kk);
+                else
+                    fprintf(f, " += dotn(W + %u, q + %u, %u);\n", wo + nz * i, wo + nz * kk,
+                            nz);
             }
     }
 }
@@ -424,7 +471,17 @@ static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int ad
     const rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        unsigned zo = w->zo[b];
+        unsigned zo = w->zo[b], nz = nz_of(sim, b);
+        if (nz != 3) { /* rti_mbs_correct's loops over the block's nz velocities */
+            for (unsigned c = 0; c < nz && !add; c++)
+                fprintf(f, "    a[%u] = 0;\n", zo + c);
+            for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += nz) {
+                fprintf(f, "    vi = %s[%u];\n", v, w->trow[i]);
+                for (unsigned c = 0; c < nz; c++)
+                    fprintf(f, "    a[%u] -= q[%u] * vi;\n", zo + c, wi + c);
+            }
+            continue;
+        }
         if (add)
             fprintf(f, "    d0 = a[%u], d1 = a[%u], d2 = a[%u];\n", zo, zo + 1, zo + 2);
         else
@@ -458,7 +515,7 @@ static void kinematics(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
     fputs("    /* q' = K z + b, z' */\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        const rt_mbs_spec *sp = (const rt_mbs_spec *)sc->blocks[b].kind->spec;
+        const rt_mbs_spec *sp = spec_of(sc, b);
         unsigned q = sim->plan.x_off[b] - sim->plan.set_x[s], zo = w->zo[b];
         mbs_args(f, sim, b);
         fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->kin(&ar, ar.x + %u, xdot + %u);\n",
@@ -485,8 +542,13 @@ static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t
                     r, r, r);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3)
-            fprintf(f, "    gam[%u] += dot3(W + %u, a + %u);\n", w->trow[i], wi, w->zo[b]);
+        unsigned nz = nz_of(sim, b);
+        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += nz)
+            if (nz == 3)
+                fprintf(f, "    gam[%u] += dot3(W + %u, a + %u);\n", w->trow[i], wi, w->zo[b]);
+            else
+                fprintf(f, "    gam[%u] += dotn(W + %u, a + %u, %u);\n", w->trow[i], wi,
+                        w->zo[b], nz);
     }
     solve(f, sim, s, "gam");
     fputs("    /* z' = M^-1 k - M^-1 W^T lambda, into a */\n", f);
@@ -524,11 +586,12 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
           "    const real_t *M = w->M, *x = xw, *C;\n"
           "    real_t acc, d0, d1, d2, vi;\n"
           "    rt_joint_eval e;\n"
-          "    (void)L, (void)gam, (void)xw, (void)x, (void)sc, (void)t, (void)acc;\n", f);
+          "    (void)L, (void)gam, (void)xw, (void)x, (void)sc, (void)t, (void)acc;\n"
+          "    (void)d0, (void)d1, (void)d2;\n", f);
     unsigned nq = 0;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        unsigned end = w->wo[b] + 3u * (unsigned)(w->to[b + 1] - w->to[b]);
+        unsigned end = w->wo[b] + nz_of(sim, b) * (unsigned)(w->to[b + 1] - w->to[b]);
         nq = end > nq ? end : nq;
     }
     fprintf(f, "    real_t q[%u]; /* M^-1 W^T (quotients) */\n", nq ? nq : 1);
@@ -551,14 +614,27 @@ static void factored(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
     factor(f, sim, s);
 }
 
-/* move_q and move_z (rt/mbs_project.c) of a set of bodies with a constant K: q += K dz
-   by the kind's kin (at the state's own q), or z += dz */
+/* save_q (rt/mbs_project.c): the coordinates of every body whose K depends on them,
+   frozen in qt for the projection's position iterations */
+static void saved_q(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1] && !w->points[s]; k++) {
+        uint16_t b = w->sblk[k];
+        const rt_mbs_spec *sp = spec_of(sc, b);
+        for (unsigned i = 0; i < sp->nq && !(sp->flags & RT_MBS_K_CONST); i++)
+            fprintf(f, "    w->qt[%u] = xw[%u];\n", w->qo[b] + i, sim->plan.x_off[b] + i);
+    }
+}
+
+/* move_q and move_z (rt/mbs_project.c) of a set of bodies: q += K dz by the kind's kin
+   (K at the frozen coordinates if it depends on them), or z += dz */
 static void bodies_add(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int vel)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        const rt_mbs_spec *sp = (const rt_mbs_spec *)sc->blocks[b].kind->spec;
+        const rt_mbs_spec *sp = spec_of(sc, b);
         unsigned xo = sim->plan.x_off[b], zo = w->zo[b];
         if (vel) {
             for (unsigned c = 0; c < sp->nz; c++)
@@ -567,6 +643,8 @@ static void bodies_add(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
         }
         fprintf(f, "    {\n        real_t dq[%u];\n    ", sp->nq);
         mbs_args(f, sim, b);
+        if (!(sp->flags & RT_MBS_K_CONST))
+            fprintf(f, "        ar.x = w->qt + %u;\n", w->qo[b]);
         fprintf(f, "        ((const rt_mbs_spec *)ar.spec)->kin(&ar, a + %u, dq);\n", zo);
         for (unsigned i = 0; i < sp->nq; i++)
             fprintf(f, "        xw[%u] += dq[%u];\n", xo + i, i);
@@ -593,28 +671,17 @@ static void normalized(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
     const rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1] && !w->points[s]; k++) {
         uint16_t b = w->sblk[k];
-        if (((const rt_mbs_spec *)sc->blocks[b].kind->spec)->normalize)
+        if (spec_of(sc, b)->normalize)
             fprintf(f, "    ((const rt_mbs_spec *)blocks[%u].kind->spec)->normalize(xw + %u);\n",
                     b, sim->plan.x_off[b]);
     }
 }
 
-/* a set whose projection the generator writes out (RT_STAB_PROJECT): points, or bodies
-   whose K is constant (move_q needs no frozen coordinates) */
+/* a set whose projection the generator writes out (RT_STAB_PROJECT): points or bodies */
 static int project_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
-    const rt_mbs_work *w = &sim->work.mbs;
-    if (sc->stab != RT_STAB_PROJECT)
-        return 0;
-    if (mbs_points_set(sc, sim, s))
-        return 1;
-    if (!mbs_bodies_set(sc, sim, s))
-        return 0;
-    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
-        if (!(((const rt_mbs_spec *)sc->blocks[w->sblk[k]].kind->spec)->flags &
-              RT_MBS_K_CONST))
-            return 0;
-    return 1;
+    return sc->stab == RT_STAB_PROJECT &&
+           (mbs_points_set(sc, sim, s) || mbs_bodies_set(sc, sim, s));
 }
 
 /* the right-hand side of a set (rti_rhs): outputs, derivatives, rti_mbs_accel (written
@@ -663,6 +730,7 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
           "    (void)u, (void)y, (void)ar;\n", f);
     locals(f, sim, s);
     fputs("    /* positions (10a) */\n", f);
+    saved_q(f, sc, sim, s);
     factored(f, sc, sim, s, RTI_MBS_JAC);
     corrected(f, sc, sim, s, "g", 0);
     if (sim->work.mbs.points[s])
@@ -709,7 +777,7 @@ static const char helpers[] =
     "    acc += a[2] * b[2];\n    return acc;\n}\n";
 
 /* row_dot (rt/mbs_asm.c) of a joint row's twelve coefficients, and of a translational
-   kind's six (its angular terms left out): the same sums */
+   kind's six (its angular terms left out); dot of n terms: the same sums */
 static const char body_helpers[] =
     "\n/* rt/mbs_asm.c's row_dot: C . [x1; y1; x2; y2], and without the angular terms */\n"
     "static inline real_t rowdot12(const real_t *C, const real_t *x1, const real_t *y1,\n"
@@ -725,7 +793,12 @@ static const char body_helpers[] =
     "    s += C[0] * x1[0] + C[6] * x2[0];\n"
     "    s += C[1] * x1[1] + C[7] * x2[1];\n"
     "    s += C[2] * x1[2] + C[8] * x2[2];\n"
-    "    return s;\n}\n";
+    "    return s;\n}\n\n"
+    "/* rt/mbs_asm.c's dot of n terms from the first (a body's velocities other than 3) */\n"
+    "static inline real_t dotn(const real_t *a, const real_t *b, unsigned n)\n{\n"
+    "    real_t acc = 0;\n"
+    "    for (unsigned c = 0; c < n; c++)\n        acc += a[c] * b[c];\n"
+    "    return acc;\n}\n";
 
 int scn_emit_code(FILE *f, const scn_ctx *c)
 {
