@@ -30,13 +30,6 @@ typedef struct erk_tab {
     real_t ce;
 } erk_tab;
 
-/* out = base + h acc (base NULL: out = acc), acc = sum_{j<nk} c_j k_j summed from j = 0:
-   a stage's state, the new state, the estimate's sum. Two states per iteration, over a
-   pair count the compiler can compute, with the stage buffers as restrict pointers (out,
-   base and the k_j are distinct buffers of rt_sim.work and the set's state): a target
-   with vector registers then takes both states in one, each lane the same scalar sum term
-   by term, so the bits are those of one state at a time. The coefficients are read once
-   into locals; nk is a constant where combine calls this (terms past it fold away). */
 /* out[m] = base[m] + h acc (base NULL: acc) for the one state m, summed as combine_k does */
 static void combine_one(real_t *out, const real_t *base, real_t h, const real_t *c,
                         const rt_iwork *w, uint32_t m, uint8_t nk)
@@ -47,6 +40,13 @@ static void combine_one(real_t *out, const real_t *base, real_t h, const real_t 
     out[m] = base ? base[m] + h * acc : acc;
 }
 
+/* out = base + h acc (base NULL: out = acc), acc = sum_{j<nk} c_j k_j summed from j = 0:
+   a stage's state, the new state, the estimate's sum. Two states per iteration, over a
+   pair count the compiler can compute, with the stage buffers as restrict pointers (out,
+   base and the k_j are distinct buffers of rt_sim.work and the set's state): a target
+   with vector registers then takes both states in one, each lane the same scalar sum term
+   by term, so the bits are those of one state at a time. The coefficients are read once
+   into locals; nk is a constant where combine calls this (terms past it fold away). */
 #define ERK_TERM(j, kj)                                                                      if (nk > (j))                                                                            a0 += c[j] * (kj)[m], a1 += c[j] * (kj)[m + 1u]
 #define ERK_SUMS                                                                         \
     real_t a0 = 0, a1 = 0;                                                               \

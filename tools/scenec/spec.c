@@ -374,7 +374,7 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
                 fputs("    ", f);
                 slot(f, *ps++);
                 if (nz == 3)
-                    fprintf(f, " += dot3q(W + %u, q + %u);\n", wo + 3 * i, wo + 3 * kk);
+                    fprintf(f, " += dot3(W + %u, q + %u);\n", wo + 3 * i, wo + 3 * kk);
                 else
                     fprintf(f, " += dotn(W + %u, q + %u, %u);\n", wo + nz * i, wo + nz * kk,
                             nz);
@@ -767,11 +767,8 @@ static const char helpers[] =
     "    ar->x = sim->state.x + xo, ar->d = sim->state.d + dof;\n"
     "    ar->u = sim->work.u + uo, ar->p = sim->state.p + po;\n"
     "    ar->spec = blocks[b].kind->spec, ar->t_piece = t;\n}\n\n"
-    "/* rt/mbs_asm.c's dots of three terms, with M^-1 W^T's entries (q) and plain: the\n"
+    "/* rt/mbs_asm.c's dot of three terms, plain and with M^-1 W^T's entries (b = q): the\n"
     "   same sums */\n"
-    "static inline real_t dot3q(const real_t *a, const real_t *q)\n{\n"
-    "    real_t acc = 0;\n    acc += a[0] * q[0];\n    acc += a[1] * q[1];\n"
-    "    acc += a[2] * q[2];\n    return acc;\n}\n\n"
     "static inline real_t dot3(const real_t *a, const real_t *b)\n{\n"
     "    real_t acc = 0;\n    acc += a[0] * b[0];\n    acc += a[1] * b[1];\n"
     "    acc += a[2] * b[2];\n    return acc;\n}\n";
