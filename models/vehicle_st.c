@@ -52,10 +52,21 @@ typedef struct speeds {
     real_t u, v, r, us;
 } speeds;
 
-static speeds body_speeds(const rt_args *a)
+/* cos and sin of the yaw: taken once in each kind function, which hands them on */
+typedef struct yaw {
+    real_t c, s;
+} yaw;
+
+static yaw yaw_of(const rt_args *a)
+{
+    yaw w = {rt_cos(a->x[2]), rt_sin(a->x[2])};
+    return w;
+}
+
+static speeds body_speeds(const rt_args *a, yaw w)
 {
     const real_t *x = a->x;
-    real_t c = rt_cos(x[2]), s = rt_sin(x[2]);
+    real_t c = w.c, s = w.s;
     speeds b = {c * x[3] + s * x[4], -s * x[3] + c * x[4], x[5], 0};
     b.us = b.u > a->p[P_UMIN] ? b.u : a->p[P_UMIN];
     return b;
@@ -72,19 +83,17 @@ static void resultants(const rt_args *a, real_t fyf, real_t fyr, real_t *fb)
 
 /* linear tires (st_car). Each kind has its own tire function, so that an image of a
    scene with linear tires links no Magic-Formula code */
-static void tires(const rt_args *a, real_t *fb)
+static void tires(const rt_args *a, speeds b, real_t *fb)
 {
     const real_t *p = a->p;
-    speeds b = body_speeds(a);
     resultants(a, p[P_CF] * (a->u[U_DELTA] - (b.v + p[P_LF] * b.r) / b.us),
                -p[P_CR] * (b.v - p[P_LR] * b.r) / b.us, fb);
 }
 
 /* the Magic Formula with exact slip angles and static axle loads (st_car_mf) */
-static void tires_mf(const rt_args *a, real_t *fb)
+static void tires_mf(const rt_args *a, speeds b, real_t *fb)
 {
     const real_t *p = a->p;
-    speeds b = body_speeds(a);
     real_t l = p[P_LF] + p[P_LR], w = p[P_M] * p[P_G];
     resultants(a,
                magic(a->u[U_DELTA] - rt_atan((b.v + p[P_LF] * b.r) / b.us), p[P_CF],
@@ -105,9 +114,9 @@ static void mass(const rt_args *a, real_t *M)
 }
 
 /* the body-frame resultants fb turned into the ground frame */
-static void to_ground(const rt_args *a, const real_t *fb, real_t *k)
+static void to_ground(yaw w, const real_t *fb, real_t *k)
 {
-    real_t c = rt_cos(a->x[2]), s = rt_sin(a->x[2]);
+    real_t c = w.c, s = w.s;
     k[0] = c * fb[0] - s * fb[1];
     k[1] = s * fb[0] + c * fb[1];
     k[2] = fb[2];
@@ -116,15 +125,17 @@ static void to_ground(const rt_args *a, const real_t *fb, real_t *k)
 static void force(const rt_args *a, real_t *k)
 {
     real_t fb[3];
-    tires(a, fb);
-    to_ground(a, fb, k);
+    yaw w = yaw_of(a);
+    tires(a, body_speeds(a, w), fb);
+    to_ground(w, fb, k);
 }
 
 static void force_mf(const rt_args *a, real_t *k)
 {
     real_t fb[3];
-    tires_mf(a, fb);
-    to_ground(a, fb, k);
+    yaw w = yaw_of(a);
+    tires_mf(a, body_speeds(a, w), fb);
+    to_ground(w, fb, k);
 }
 
 /* hitch i at d ahead of the centre of mass (d < 0: behind) */
@@ -138,15 +149,17 @@ static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
     n->w[0] = n->w[1] = 0, n->w[2] = r;
     n->ar[0] = -d * c * r * r, n->ar[1] = -d * s * r * r, n->ar[2] = 0;
     n->aw[0] = n->aw[1] = n->aw[2] = 0;
-    const real_t S[9] = {c, -s, 0, s, c, 0, 0, 0, 1};
-    for (int k = 0; k < 9; k++)
-        n->S[k] = S[k];
+    /* stored entry by entry: through a local table and a loop it took twice the time */
+    n->S[0] = c, n->S[1] = -s, n->S[2] = 0;
+    n->S[3] = s, n->S[4] = c, n->S[5] = 0;
+    n->S[6] = 0, n->S[7] = 0, n->S[8] = 1;
     if (!J)
         return;
     /* 6 x 3: Jr = [1 0 -d s; 0 1 d c; 0 0 0], Jw = [0 0 0; 0 0 0; 0 0 1] */
-    const real_t Jn[18] = {1, 0, -d * s, 0, 1, d * c, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
-    for (int k = 0; k < 18; k++)
-        J[k] = Jn[k];
+    J[0] = 1, J[1] = 0, J[2] = -d * s;
+    J[3] = 0, J[4] = 1, J[5] = d * c;
+    J[6] = J[7] = J[8] = J[9] = J[10] = J[11] = 0;
+    J[12] = J[13] = J[14] = J[15] = J[16] = 0, J[17] = 1;
 }
 
 static void energy(const rt_args *a, real_t *e)
@@ -157,29 +170,28 @@ static void energy(const rt_args *a, real_t *e)
 }
 
 /* outputs from the state and the body-frame resultants fb */
-static void outputs(const rt_args *a, const real_t *fb, real_t *y)
+static void outputs(const rt_args *a, speeds b, const real_t *fb, real_t *y)
 {
     const real_t *x = a->x;
-    real_t c = rt_cos(x[2]), s = rt_sin(x[2]);
     y[0] = x[0], y[1] = x[1], y[2] = x[2];
-    y[3] = c * x[3] + s * x[4];
-    y[4] = -s * x[3] + c * x[4];
-    y[5] = x[5];
+    y[3] = b.u, y[4] = b.v, y[5] = x[5];
     y[6] = fb[1] / a->p[P_M]; /* v' + u r: the lateral acceleration in the body frame */
 }
 
 static void output(const rt_args *a, real_t *y)
 {
     real_t fb[3];
-    tires(a, fb);
-    outputs(a, fb, y);
+    speeds b = body_speeds(a, yaw_of(a));
+    tires(a, b, fb);
+    outputs(a, b, fb, y);
 }
 
 static void output_mf(const rt_args *a, real_t *y)
 {
     real_t fb[3];
-    tires_mf(a, fb);
-    outputs(a, fb, y);
+    speeds b = body_speeds(a, yaw_of(a));
+    tires_mf(a, b, fb);
+    outputs(a, b, fb, y);
 }
 
 static rt_status check_n(const real_t *p, int n)
