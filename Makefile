@@ -100,7 +100,7 @@ help:
 	@echo "make speedup      the multirate speedup at equal accuracy from instruction counts"
 	@echo "                  (part of bench; a few minutes; SPEEDUP_JOBS=2)"
 	@echo "make mujoco-scale MuJoCo 2.2.2 beside modrt on the scaling chains and trees at equal"
-	@echo "                  accuracy (part of bench; installs libmujoco-dev; about an hour)"
+	@echo "                  accuracy (part of bench; installs libmujoco-dev; about 15 minutes)"
 	@echo "make docs         refresh the committed figures and references under docs/"
 	@echo "make cross-test   every cross target under QEMU (cross-test-<t>: one; targets:"
 	@echo "                  $(CROSS_TARGETS))"
