@@ -295,7 +295,7 @@ static void assemble_joint(const rt_scene *sc, rt_sim *sim, uint16_t ji, real_t 
 /* factors block b's M in place (a diagonal M is only checked); a pivot at or below the
    threshold is counted and replaced by it, so the solves stay finite. A dense M keeps its
    nz row pivots after the nz^2 factors, as reals (small integers, exact) */
-static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *M)
+void rti_mbs_mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *M)
 {
     rt_status st = RT_OK;
     if (sp->flags & RT_MBS_M_DIAG) {
@@ -316,8 +316,8 @@ static void mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *
         rti_count(sim, RT_CNT_SINGULAR, b, RT_E_SINGULAR);
 }
 
-/* v <- M^-1 v with the factors of mass_factor */
-static inline void mass_solve(const rt_mbs_spec *sp, const real_t *M, real_t *v)
+/* v <- M^-1 v with the factors of rti_mbs_mass_factor */
+void rti_mbs_mass_solve(const rt_mbs_spec *sp, const real_t *M, real_t *v)
 {
     if (sp->flags & RT_MBS_M_DIAG) {
         for (unsigned i = 0, n = sp->nz; i < n; i++)
@@ -344,14 +344,14 @@ static void assemble_block(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t t
     rti_args(sc, sim, b, t, 0, &a);
     if ((what & RTI_MBS_JAC) && !((sp->flags & RT_MBS_M_CONST) && w->m_valid[b])) {
         sp->mass(&a, M);
-        mass_factor(sim, sp, b, M);
+        rti_mbs_mass_factor(sim, sp, b, M);
         w->m_valid[b] = 1;
     }
     if (what & RTI_MBS_FORCE) {
         if (sc->blocks[b].kind->nu > 0)
             rti_gather(sim, b, t); /* the inputs are applied forces (eq. 6b) */
         sp->force(&a, w->a + zo);
-        mass_solve(sp, M, w->a + zo);
+        rti_mbs_mass_solve(sp, M, w->a + zo);
     }
     if (sp->nc > 0) {
         uint16_t r = w->co[b];
@@ -457,7 +457,7 @@ static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
     for (uint16_t i = t0; i < t1; i++, Wi += nz, Yi += nz) {
         for (uint16_t c = 0; c < nz; c++)
             Yi[c] = Wi[c];
-        mass_solve(sp, M, Yi);
+        rti_mbs_mass_solve(sp, M, Yi);
     }
     for (Wi = W; t0 < t1; t0++, Wi += nz, Y += nz) {
         const real_t *Yk = Y;

@@ -30,6 +30,12 @@ void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t
    rt/mbs.c) */
 void rti_mbs_joint_g(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t ji, real_t t,
                      real_t *g, real_t *gd);
+/* Factors block b's M in place (a diagonal M is only checked; a dense one by LU, its row
+   pivots after its factors), counting a pivot at or below RT_MBS_PIVOT_TOL; and v <- M^-1 v
+   with those factors. The assembly's and a scene's written-out code's (tools/scenec/spec.c)
+   for bodies with a varying or dense M. */
+void rti_mbs_mass_factor(struct rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t *M);
+void rti_mbs_mass_solve(const rt_mbs_spec *sp, const real_t *M, real_t *v);
 /* Evaluates the set's MBS blocks and joints at the current state into sim->work.mbs. */
 void rti_mbs_assemble(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
                       int what);

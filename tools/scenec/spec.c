@@ -6,8 +6,8 @@
  * Bit-identical by construction: every sum is the generic path's, term by term in its
  * order (the same expressions, the same +0 starts); only the loops over tables become
  * straight-line code. Counters and faults go through the same rti_ calls. A set's
- * multibody part is written out for point masses and for bodies with a diagonal M and no
- * rows of their own; another multibody set gets its outputs and derivatives written out
+ * multibody part is written out for point masses and for bodies (any M, rows of their own
+ * or not); a set mixing points and bodies gets its outputs and derivatives written out
  * and calls the generic rti_mbs_accel, as rti_rhs does. A set that takes no step of its
  * own is left to the generic path: its entry returns 0 for that set.
  *
@@ -44,22 +44,53 @@ static unsigned nz_of(const rt_sim *sim, uint16_t b)
 }
 
 /* a set whose multibody part the generator writes out through the general node path:
-   bodies with a diagonal M (constant, or formed and checked in every assembly with
-   Jacobians) and no rows of their own, none a point, at least one constraint row. Its
-   Schur complement, factors, solve and z' take the points' form with nz velocities a
-   block (rt/mbs_asm.c: a diagonal M divides on the fly); its joints' rows are
-   assemble_joint's */
+   bodies (and points among them), at least one constraint row. M constant (factored at the first
+   assembly) or formed and factored in every assembly with Jacobians, diagonal or dense;
+   rows of a block's own (its constr) or not. Its Schur complement, factors, solve and z'
+   take the points' form with nz velocities a block (rt/mbs_asm.c: a diagonal M divides
+   on the fly, a dense one keeps Y = M^-1 W^T); its joints' rows are assemble_joint's */
 static int mbs_bodies_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    if (!sc->mbs || w->nz[s] == 0 || w->points[s] || w->nc[s] == 0)
-        return 0;
-    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
-        const rt_mbs_spec *sp = spec_of(sc, w->sblk[k]);
-        if (!(sp->flags & RT_MBS_M_DIAG) || (sp->flags & RT_MBS_NODE_POINT) || sp->nc != 0)
-            return 0;
+    return sc->mbs && w->nz[s] > 0 && !w->points[s] && w->nc[s] > 0;
+}
+
+/* is side `side` of joint j a point: an anchor or a block whose node is its point
+   (RT_MBS_NODE_POINT: a point in a set with bodies) */
+static int point_side(const rt_scene *sc, const rt_joint *j, int side)
+{
+    int16_t b = (int16_t)(side ? j->b2 : j->b1);
+    return b < 0 || (spec_of(sc, (uint16_t)b)->flags & RT_MBS_NODE_POINT) != 0;
+}
+
+/* does set s of bodies (mbs_bodies_set) have a joint between two points, whose rows
+   point_joint writes */
+static int point_joints(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
+        const rt_joint *j = &sc->joints[w->sjnt[k]];
+        if (j->kind->eval_points && point_side(sc, j, 0) && point_side(sc, j, 1))
+            return 1;
     }
-    return 1;
+    return 0;
+}
+
+/* does block b keep Y = M^-1 W^T (a dense M), and where the written-out code finds that
+   block's entries of M^-1 W^T for its touch i: the local quotients q (a diagonal M) or
+   w->Y */
+static int dense_m(const rt_scene *sc, uint16_t b)
+{
+    return !(spec_of(sc, b)->flags & RT_MBS_M_DIAG);
+}
+
+static void y_of(const rt_scene *sc, const rt_sim *sim, uint16_t b, unsigned i,
+                 const char **name, unsigned *at)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    unsigned nz = spec_of(sc, b)->nz;
+    *name = dense_m(sc, b) ? "Y" : "q";
+    *at = (dense_m(sc, b) ? w->yo[b] : w->wo[b]) + nz * i;
 }
 
 /* a set whose right-hand side the generator writes out: every set that steps (its
@@ -184,9 +215,10 @@ static void mass_diag(FILE *f, uint16_t b, unsigned mo, unsigned nz)
                "        w->m_valid[%u] = 1;\n    }\n", b, b);
 }
 
-/* each block's part of the assembly (assemble_point_set, assemble_block for a diagonal
-   M and no rows of its own): a varying M formed and checked where `what` has
-   RTI_MBS_JAC (a constant one was at the first assembly), M^-1 k for RTI_MBS_FORCE */
+/* each block's part of the assembly (assemble_point_set; assemble_block): a varying M
+   formed and factored where `what` has RTI_MBS_JAC (a constant one was at the first
+   assembly), M^-1 k for RTI_MBS_FORCE (a diagonal M divided out, a dense one solved with
+   its factors), the block's own rows by its constr (W's rows for RTI_MBS_JAC) */
 static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -195,23 +227,96 @@ static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, in
         const rt_mbs_spec *sp = spec_of(sc, b);
         unsigned zo = w->zo[b], mo = w->mo[b];
         int mass = (what & RTI_MBS_JAC) && !(sp->flags & RT_MBS_M_CONST);
-        if (!mass && !(what & RTI_MBS_FORCE))
+        int force = what & RTI_MBS_FORCE, dense = dense_m(sc, b);
+        if (!mass && !force && sp->nc == 0)
             continue;
-        fprintf(f, "    /* %s: %s */\n", sc->blocks[b].name,
-                mass ? "its M, M^-1 k" : "M^-1 k (M factored at the first assembly)");
+        fprintf(f, "    /* %s: %s%s */\n", sc->blocks[b].name,
+                mass ? "its M, M^-1 k" : force ? "M^-1 k (M factored at the first assembly)" : "",
+                sp->nc ? (mass || force ? ", its own rows" : "its own rows") : "");
         mbs_args(f, sim, b);
         if (mass) {
             fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->mass(&ar, w->M + %u);\n", mo);
-            mass_diag(f, b, mo, sp->nz);
+            if (dense)
+                fprintf(f, "    rti_mbs_mass_factor(sim, ar.spec, %u, w->M + %u);\n"
+                           "    w->m_valid[%u] = 1;\n", b, mo, b);
+            else
+                mass_diag(f, b, mo, sp->nz);
         }
-        if (!(what & RTI_MBS_FORCE))
+        if (force) {
+            if (sc->blocks[b].kind->nu > 0)
+                gather(f, sim, b);
+            fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
+            if (dense)
+                fprintf(f, "    rti_mbs_mass_solve(ar.spec, w->M + %u, a + %u);\n", mo, zo);
+            for (unsigned c = 0; c < sp->nz && !dense; c++)
+                fprintf(f, "    a[%u] /= M[%u];\n", zo + c, mo + c);
+        }
+        if (sp->nc == 0)
             continue;
-        if (sc->blocks[b].kind->nu > 0)
-            gather(f, sim, b);
-        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
-        for (unsigned c = 0; c < sp->nz; c++)
-            fprintf(f, "    a[%u] /= M[%u];\n", zo + c, mo + c);
+        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->constr(&ar, g + %u, gd + %u, ", w->co[b],
+                w->co[b]);
+        if (what & RTI_MBS_JAC)
+            fprintf(f, "W + %u, %u, gam + %u);\n", w->wo[b], sp->nz, w->co[b]);
+        else
+            fprintf(f, "0, %u, gam + %u);\n", sp->nz, w->co[b]);
     }
+}
+
+/* point_rows (rt/mbs_asm.c) of joint ji between two points (point nodes or an anchor)
+   for `what` (RTI_MBS_JAC, _FORCE, _G): g by g_points alone for RTI_MBS_G where the kind
+   has it, else its eval_points (a spherical difference joint's equations inline) and
+   the rows */
+static void point_joint(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t ji, int what)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    const rt_joint *j = &sc->joints[ji];
+    int one = j->b2 < 0, same = j->b2 == j->b1, sphdiff = j->kind == &rt_joint_sphdiff;
+    fputs("    {\n", f);
+    if (one) /* the velocity of an anchor, and the origin */
+        fputs("        static const real_t zero[3] = {0, 0, 0};\n", f);
+    fprintf(f, "        const real_t *r1 = x + %u, *v1 = r1 + 3;\n", sim->plan.x_off[j->b1]);
+    if (one && j->at) /* the anchor, at rest */
+        fprintf(f, "        const real_t *r2 = joints[%u].at, *v2 = zero;\n", ji);
+    else if (one) /* the origin */
+        fputs("        const real_t *r2 = zero, *v2 = zero;\n", f);
+    else
+        fprintf(f, "        const real_t *r2 = x + %u, *v2 = r2 + 3;\n", sim->plan.x_off[j->b2]);
+    if (what == RTI_MBS_G && j->kind->g_points) {
+        fputs("        (void)v1, (void)v2;\n", f);
+        if (sphdiff)
+            fprintf(f, "        rti_sphdiff_g(joints[%u].p, r1, r2, g + %u);\n    }\n", ji,
+                    w->jrow[ji]);
+        else
+            fprintf(f, "        joints[%u].kind->g_points(joints[%u].p, r1, r2, g + %u);\n"
+                       "    }\n", ji, ji, w->jrow[ji]);
+        return;
+    }
+    if (sphdiff) /* the kind's own equations, inline (rt/rti_joints.h) */
+        fprintf(f, "        rti_sphdiff_points(joints[%u].p, r1, v1, r2, v2, &e);\n", ji);
+    else
+        fprintf(f, "        joints[%u].kind->eval_points(joints[%u].p, r1, v1, r2, v2, &e);\n",
+                ji, ji);
+    for (unsigned i = 0; i < j->kind->nc; i++) {
+        unsigned r = w->jrow[ji] + i, w1 = w->jw[ji][0] + 3 * i;
+        unsigned w2 = (one ? w->jw[ji][0] : w->jw[ji][1]) + 3 * i;
+        fprintf(f, "        C = e.C[%u], acc = 0;\n", i);
+        fputs("        acc += C[0] * v1[0] + C[6] * v2[0];\n"
+              "        acc += C[1] * v1[1] + C[7] * v2[1];\n"
+              "        acc += C[2] * v1[2] + C[8] * v2[2];\n", f);
+        fprintf(f, "        g[%u] = e.g[%u], gd[%u] = acc;\n", r, i, r);
+        if (!(what & RTI_MBS_JAC))
+            continue;
+        fprintf(f, "        gam[%u] = (real_t)0 + e.c[%u];\n", r, i);
+        fprintf(f, "        W[%u] = C[0], W[%u] = C[1], W[%u] = C[2];\n", w1, w1 + 1, w1 + 2);
+        if (one)
+            continue;
+        if (same)
+            fprintf(f, "        W[%u] += C[6], W[%u] += C[7], W[%u] += C[8];\n", w2, w2 + 1,
+                    w2 + 2);
+        else
+            fprintf(f, "        W[%u] = C[6], W[%u] = C[7], W[%u] = C[8];\n", w2, w2 + 1, w2 + 2);
+    }
+    fputs("    }\n", f);
 }
 
 /* assemble_point_set (rt/mbs_asm.c) for `what` (RTI_MBS_JAC, _FORCE, _G) */
@@ -222,57 +327,8 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
         forces(f, sc, sim, s, what);
     fprintf(f, "    /* the joints' rows: %s (point_rows) */\n",
             what & RTI_MBS_JAC ? "g, g', gam and W" : "g");
-    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
-        uint16_t ji = w->sjnt[k];
-        const rt_joint *j = &sc->joints[ji];
-        int one = j->b2 < 0, same = j->b2 == j->b1, sphdiff = j->kind == &rt_joint_sphdiff;
-        fputs("    {\n", f);
-        fprintf(f, "        const real_t *r1 = x + %u, *v1 = r1 + 3;\n", sim->plan.x_off[j->b1]);
-        if (one && j->at) /* the anchor, at rest */
-            fprintf(f, "        const real_t *r2 = joints[%u].at, *v2 = zero;\n", ji);
-        else if (one) /* the origin */
-            fputs("        const real_t *r2 = zero, *v2 = zero;\n", f);
-        else
-            fprintf(f, "        const real_t *r2 = x + %u, *v2 = r2 + 3;\n",
-                    sim->plan.x_off[j->b2]);
-        if (what == RTI_MBS_G && j->kind->g_points) {
-            fputs("        (void)v1, (void)v2;\n", f);
-            if (sphdiff)
-                fprintf(f, "        rti_sphdiff_g(joints[%u].p, r1, r2, g + %u);\n    }\n", ji,
-                        w->jrow[ji]);
-            else
-                fprintf(f, "        joints[%u].kind->g_points(joints[%u].p, r1, r2, g + %u);\n"
-                           "    }\n", ji, ji, w->jrow[ji]);
-            continue;
-        }
-        if (sphdiff) /* the kind's own equations, inline (rt/rti_joints.h) */
-            fprintf(f, "        rti_sphdiff_points(joints[%u].p, r1, v1, r2, v2, &e);\n", ji);
-        else
-            fprintf(f, "        joints[%u].kind->eval_points(joints[%u].p, r1, v1, r2, v2, &e);\n",
-                    ji, ji);
-        for (unsigned i = 0; i < j->kind->nc; i++) {
-            unsigned r = w->jrow[ji] + i, w1 = w->jw[ji][0] + 3 * i;
-            unsigned w2 = (one ? w->jw[ji][0] : w->jw[ji][1]) + 3 * i;
-            fprintf(f, "        C = e.C[%u], acc = 0;\n", i);
-            fputs("        acc += C[0] * v1[0] + C[6] * v2[0];\n"
-                  "        acc += C[1] * v1[1] + C[7] * v2[1];\n"
-                  "        acc += C[2] * v1[2] + C[8] * v2[2];\n", f);
-            fprintf(f, "        g[%u] = e.g[%u], gd[%u] = acc;\n", r, i, r);
-            if (!(what & RTI_MBS_JAC))
-                continue;
-            fprintf(f, "        gam[%u] = (real_t)0 + e.c[%u];\n", r, i);
-            fprintf(f, "        W[%u] = C[0], W[%u] = C[1], W[%u] = C[2];\n", w1, w1 + 1, w1 + 2);
-            if (one)
-                continue;
-            if (same)
-                fprintf(f, "        W[%u] += C[6], W[%u] += C[7], W[%u] += C[8];\n", w2, w2 + 1,
-                        w2 + 2);
-            else
-                fprintf(f, "        W[%u] = C[6], W[%u] = C[7], W[%u] = C[8];\n", w2, w2 + 1,
-                        w2 + 2);
-        }
-        fputs("    }\n", f);
-    }
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++)
+        point_joint(f, sc, sim, w->sjnt[k], what);
 }
 
 /* map_row (rt/mbs_asm.c) of a body side with nz velocities: W's slice at wo (+)= the
@@ -292,6 +348,19 @@ static void map_body_row(FILE *f, unsigned wo, unsigned c0, unsigned side, int a
     }
 }
 
+/* map_row of a joint side: a point node's Jacobian [I; 0] takes the first three
+   coefficients as they are, a body's goes through map_body_row */
+static void map_side_row(FILE *f, unsigned wo, unsigned c0, unsigned side, int add,
+                         unsigned nz, int point)
+{
+    if (!point) {
+        map_body_row(f, wo, c0, side, add, nz);
+        return;
+    }
+    for (unsigned c = 0; c < 3; c++)
+        fprintf(f, add ? "        W[%u] += C[%u];\n" : "        W[%u] = C[%u];\n", wo + c, c0 + c);
+}
+
 /* rti_mbs_assemble of a set of bodies (mbs_bodies_set) for `what` (RTI_MBS_JAC, _FORCE,
    _G): each block's M^-1 k (its only part: no rows of its own, M factored once), then
    assemble_joint: the nodes by rti_mbs_joint (with their Jacobians for RTI_MBS_JAC), per
@@ -308,10 +377,15 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
         uint16_t ji = w->sjnt[k];
         const rt_joint *j = &sc->joints[ji];
         const char *dot = j->kind->trans ? "rowdot6" : "rowdot12";
+        int p1 = point_side(sc, j, 0), p2 = point_side(sc, j, 1);
+        if (j->kind->eval_points && p1 && p2) { /* assemble_points: between two points */
+            point_joint(f, sc, sim, ji, what);
+            continue;
+        }
         fputs("    {\n        rt_mbs_node n1, n2;\n"
               "        const real_t *J0 = w->J[0], *J1 = w->J[1];\n"
               "        (void)J0, (void)J1;\n", f);
-        if (j->b2 >= 0 && !j->axis_S) { /* rti_mbs_joint: both nodes by their kinds */
+        if (j->b2 >= 0 && !j->axis_S && !p1 && !p2) { /* rti_mbs_joint: both by their kinds */
             fputs("    ", f), mbs_args(f, sim, (uint16_t)j->b1);
             fprintf(f, "        ((const rt_mbs_spec *)ar.spec)->node(&ar, %u, &n1, %s);\n",
                     j->n1, jac ? "w->J[0]" : "0");
@@ -331,26 +405,34 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
             fprintf(f, "        gam[%u] = %s(C, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[%u];\n", r,
                     dot, i);
             unsigned nz1 = nz_of(sim, (uint16_t)j->b1);
-            map_body_row(f, w->jw[ji][0] + nz1 * i, 0, 0, 0, nz1);
+            map_side_row(f, w->jw[ji][0] + nz1 * i, 0, 0, 0, nz1, p1);
             if (j->b2 >= 0) {
                 unsigned nz2 = nz_of(sim, (uint16_t)j->b2);
-                map_body_row(f, w->jw[ji][1] + nz2 * i, 6, 1, j->b2 == j->b1, nz2);
+                map_side_row(f, w->jw[ji][1] + nz2 * i, 6, 1, j->b2 == j->b1, nz2, p2);
             }
         }
         fputs("    }\n", f);
     }
 }
 
-/* the entries of M^-1 W^T, q = W / M entry by entry: the quotients rti_mbs_schur and
-   rti_mbs_correct divide for every term, each formed once (the same bits) */
-static void quotients(FILE *f, const rt_sim *sim, uint8_t s)
+/* the entries of M^-1 W^T: of a diagonal M, q = W / M entry by entry (the quotients
+   rti_mbs_schur and rti_mbs_correct divide for every term, each formed once: the same
+   bits); of a dense M, schur_block's Y, each touch's row of W solved with M's factors */
+static void quotients(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     fputs("    /* M^-1 W^T, entry by entry */\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        unsigned mo = w->mo[b], nz = nz_of(sim, b);
-        for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += nz)
+        unsigned mo = w->mo[b], nz = nz_of(sim, b), nt = (unsigned)(w->to[b + 1] - w->to[b]);
+        for (unsigned i = 0, wi = w->wo[b], yi = w->yo[b]; i < nt && dense_m(sc, b);
+             i++, wi += nz, yi += nz) {
+            for (unsigned c = 0; c < nz; c++)
+                fprintf(f, "    Y[%u] = W[%u];\n", yi + c, wi + c);
+            fprintf(f, "    rti_mbs_mass_solve(blocks[%u].kind->spec, w->M + %u, Y + %u);\n", b,
+                    mo, yi);
+        }
+        for (unsigned i = 0, wi = w->wo[b]; i < nt && !dense_m(sc, b); i++, wi += nz)
             for (unsigned c = 0; c < nz; c++)
                 fprintf(f, "    q[%u] = W[%u] / M[%u];\n", wi + c, wi + c, mo + c);
     }
@@ -371,13 +453,15 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
         const uint16_t *ps = w->pslot + w->po[b];
         for (unsigned i = 0; i < nt; i++)
             for (unsigned kk = i; kk < nt; kk++) {
+                const char *y;
+                unsigned at;
+                y_of(sim->sc, sim, b, kk, &y, &at);
                 fputs("    ", f);
                 slot(f, *ps++);
                 if (nz == 3)
-                    fprintf(f, " += dot3(W + %u, q + %u);\n", wo + 3 * i, wo + 3 * kk);
+                    fprintf(f, " += dot3(W + %u, %s + %u);\n", wo + 3 * i, y, at);
                 else
-                    fprintf(f, " += dotn(W + %u, q + %u, %u);\n", wo + nz * i, wo + nz * kk,
-                            nz);
+                    fprintf(f, " += dotn(W + %u, %s + %u, %u);\n", wo + nz * i, y, at, nz);
             }
     }
 }
@@ -472,13 +556,17 @@ static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int ad
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
         unsigned zo = w->zo[b], nz = nz_of(sim, b);
-        if (nz != 3) { /* rti_mbs_correct's loops over the block's nz velocities */
+        if (nz != 3 || dense_m(sim->sc, b)) { /* rti_mbs_correct's loops over the block's
+                                                  nz velocities */
             for (unsigned c = 0; c < nz && !add; c++)
                 fprintf(f, "    a[%u] = 0;\n", zo + c);
-            for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += nz) {
+            for (unsigned i = w->to[b]; i < w->to[b + 1]; i++) {
+                const char *y;
+                unsigned at;
+                y_of(sim->sc, sim, b, i - w->to[b], &y, &at);
                 fprintf(f, "    vi = %s[%u];\n", v, w->trow[i]);
                 for (unsigned c = 0; c < nz; c++)
-                    fprintf(f, "    a[%u] -= q[%u] * vi;\n", zo + c, wi + c);
+                    fprintf(f, "    a[%u] -= %s[%u] * vi;\n", zo + c, y, at + c);
             }
             continue;
         }
@@ -516,7 +604,14 @@ static void kinematics(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
         const rt_mbs_spec *sp = spec_of(sc, b);
-        unsigned q = sim->plan.x_off[b] - sim->plan.set_x[s], zo = w->zo[b];
+        unsigned xo = sim->plan.x_off[b], q = xo - sim->plan.set_x[s], zo = w->zo[b];
+        if (sp->flags & RT_MBS_NODE_POINT) { /* a point: copies, no call */
+            fprintf(f, "    xdot[%u] = x[%u], xdot[%u] = x[%u], xdot[%u] = x[%u];\n", q, xo + 3,
+                    q + 1, xo + 4, q + 2, xo + 5);
+            fprintf(f, "    xdot[%u] = a[%u], xdot[%u] = a[%u], xdot[%u] = a[%u];\n", q + 3, zo,
+                    q + 4, zo + 1, q + 5, zo + 2);
+            continue;
+        }
         mbs_args(f, sim, b);
         fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->kin(&ar, ar.x + %u, xdot + %u);\n",
                 sp->nq, q);
@@ -581,12 +676,13 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     fputs("    rt_mbs_work *w = &sim->work.mbs;\n"
-          "    real_t *lv = w->lv, *L = lv + RT_MAX_MBS_ROWS, *W = w->W, *a = w->a;\n"
+          "    real_t *lv = w->lv, *L = lv + RT_MAX_MBS_ROWS, *W = w->W, *a = w->a, *Y = w->Y;\n"
           "    real_t *g = w->g, *gd = w->gd, *gam = w->gam, *xw = sim->state.x;\n"
           "    const real_t *M = w->M, *x = xw, *C;\n"
           "    real_t acc, d0, d1, d2, vi;\n"
           "    rt_joint_eval e;\n"
-          "    (void)L, (void)gam, (void)xw, (void)x, (void)sc, (void)t, (void)acc;\n"
+          "    (void)L, (void)gam, (void)xw, (void)x, (void)sc, (void)t, (void)acc, (void)Y;\n"
+          "    (void)M;\n"
           "    (void)d0, (void)d1, (void)d2;\n", f);
     unsigned nq = 0;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
@@ -594,7 +690,7 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
         unsigned end = w->wo[b] + nz_of(sim, b) * (unsigned)(w->to[b + 1] - w->to[b]);
         nq = end > nq ? end : nq;
     }
-    fprintf(f, "    real_t q[%u]; /* M^-1 W^T (quotients) */\n", nq ? nq : 1);
+    fprintf(f, "    real_t q[%u]; /* M^-1 W^T (quotients) */\n    (void)q;\n", nq ? nq : 1);
     fputs("    if (", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
         fprintf(f, "%s!w->m_valid[%u]", k > w->sb[s] ? " || " : "", w->sblk[k]);
@@ -609,7 +705,7 @@ static void factored(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
         assemble(f, sc, sim, s, what);
     else
         assemble_bodies(f, sc, sim, s, what);
-    quotients(f, sim, s);
+    quotients(f, sc, sim, s);
     schur(f, sim, s);
     factor(f, sim, s);
 }
@@ -806,6 +902,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
         any |= rhs_set(sim, s);
         pts |= mbs_points_set(sc, sim, s);
         bodies |= mbs_bodies_set(sc, sim, s);
+        pts |= mbs_bodies_set(sc, sim, s) && point_joints(sc, sim, s);
         proj |= project_set(sc, sim, s);
     }
     if (!any)
@@ -813,8 +910,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
     fputs("\n#if RT_SCENE_CODE /* 0: the table-driven path (rt/rt_config.h) */", f);
     fputs(helpers, f);
     if (pts)
-        fputs("#include \"rti_joints.h\"\n\n/* the velocity of an anchor, and the origin */\n"
-              "static const real_t zero[3] = {0, 0, 0};\n", f);
+        fputs("#include \"rti_joints.h\"\n", f);
     if (bodies)
         fputs(body_helpers, f);
     for (uint8_t s = 0; s < sc->nsets; s++) {
