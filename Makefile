@@ -475,10 +475,14 @@ mujoco-scale: deps-bench overhead
 # errors from the host binary, costs from callgrind's instruction counts; spliced into a
 # copy of docs/multirate.md in build/bench/, with the work-precision plot
 SPEEDUP_JOBS ?= 2
-speedup: $(O)/modrt $(O)/svgplot
+# the finalists are also compiled by scenec (the code it writes out, as the scenes ship)
+# and linked with the runtime and the models (tools/dev/bench/code_run.c)
+SPEEDUP_OBJS = $(RT_OBJS) $(call obj,$(wildcard models/*.c))
+speedup: $(O)/modrt $(O)/svgplot $(SCENEC) $(SPEEDUP_OBJS)
 	@mkdir -p build/bench
 	@cp docs/multirate.md build/bench/
 	python3 tools/dev/bench/speedup.py --modrt $(O)/modrt --jobs $(SPEEDUP_JOBS) \
+	    --code $(SCENEC) "$(CC) $(CSTD) $(COPT) $(CINC) $(CDEFS)" "$(SPEEDUP_OBJS)" \
 	    --doc build/bench/multirate.md
 	$(O)/svgplot --xy --logx --logy \
 	    -t "pendulum10_actuated: error against instructions" \

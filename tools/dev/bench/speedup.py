@@ -26,6 +26,14 @@ speedup is taken from those whole-run counts. Last, the cheapest multirate confi
 within the tightest bound is profiled (callgrind_annotate, inclusive counts): what its
 slow set, its fast set and recording cost.
 
+Compiled: the scenes ship compiled by scenec with the code it writes out for them
+(docs/overhead.md), which the interpreter (`modrt run FILE.scn`) does not run. So every
+finalist is also compiled (scenec, then tools/dev/bench/code_run.c linked with the
+runtime and the models), its trace hash checked against the interpreter's and its
+instructions of rt_tick + rt_record counted over the whole run; the speedup of the
+cheapest of each variant among them is printed beside the interpreted one:
+  multirate speedup <example> at <bound> m, compiled: <ratio> (...)
+
 Prints the cheapest of each variant within each bound and the lines
   multirate speedup <example> at <bound> m: <ratio> (single <config> <insn/s>, multirate
   <config> <insn/s>)
@@ -49,6 +57,7 @@ import scene as S  # noqa: E402
 
 OUT = "build/bench/speedup"
 MODRT = "build/host/modrt"
+CODE = None  # compiled runs: {"scenec", "cc" (command and flags), "objs"}, from --code
 WINDOW = 0.256     # shortest cost window [s] (then whole periods of the variant)
 FINALIST = 1.25    # finalists: window count within this factor of the variant's cheapest
 ACCURACY = "1e-2"  # every set's `accuracy` (the shipped implicit sets'): errest's threshold
@@ -563,6 +572,35 @@ def run_full(ex, c):
     return c
 
 
+def run_code(ex, c):
+    """the whole run of configuration c compiled by scenec with its written-out code
+    (code_run.c): instructions of rt_tick + rt_record, its hash the interpreter's"""
+    d = "%s/%s/code" % (OUT, ex.key)
+    os.makedirs(d, exist_ok=True)
+    base = "%s/%s" % (d, c["key"])
+    n = S._ticks(ex.t_end, c["tick"])
+    r = sh([CODE["scenec"], "-o", base + ".c", c["path"]])
+    if r.returncode != 0:
+        raise SystemExit("speedup: scenec failed on %s: %s" % (c["path"], r.stderr[-400:]))
+    sym = re.search(r"^const rt_scene (mdl_scene_\w+) = \{$", open(base + ".c").read(), re.M)
+    main = os.path.join(os.path.dirname(os.path.abspath(__file__)), "code_run.c")
+    r = sh(CODE["cc"].split() + ["-DCODE_RUN_SCENE=" + sym.group(1), "-o", base, main,
+                                 base + ".c"] + CODE["objs"].split() + ["-lm"])
+    if r.returncode != 0:
+        raise SystemExit("speedup: cannot build %s: %s" % (base, r.stderr[-400:]))
+    r = sh(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
+            "--collect-atstart=no", "--toggle-collect=rt_tick", "--toggle-collect=rt_record",
+            base, str(n)])
+    m = re.search(r"Collected : (\d+)", r.stderr)
+    interp = summary(sh([MODRT, "run", c["path"], "--t-end=%.17g" % (n * c["tick"])]).stdout)
+    mine = summary(r.stdout)
+    if not m or mine.get("hash") != interp.get("hash"):
+        raise SystemExit("speedup: %s compiled: hash %s, interpreted %s" % (
+            c["path"], mine.get("hash"), interp.get("hash")))
+    c["cost_code"] = int(m.group(1)) / ex.t_end
+    return c
+
+
 def run_tick_only(ex, c):
     """rt_tick alone over the whole run: the cost without recording"""
     n = S._ticks(ex.t_end, c["tick"])
@@ -689,6 +727,18 @@ def fmt(v):
     return "%.2e" % v if v is not None and v == v else "-"
 
 
+def line_code(ex, crit, tol):
+    """the speedup of the cheapest compiled single-rate and multirate finalists"""
+    s = cheapest(ex, "single", tol, crit, "cost_code")
+    m = cheapest(ex, "multirate", tol, crit, "cost_code")
+    if not s or not m:
+        return None
+    return "multirate speedup %s at %g m%s, compiled: %.3g (single %s %.3g insn/s, multirate " \
+        "%s %.3g insn/s)" % (ex.key, tol, "" if crit == "clean" else ", status ok",
+                             s["cost_code"] / m["cost_code"], s["desc"], s["cost_code"],
+                             m["desc"], m["cost_code"])
+
+
 def line_tick(ex, crit, tol, s, m):
     if not s or not m:
         return None
@@ -772,6 +822,14 @@ def results_md(ex, ref_note, splits):
     o.append("")
     o += ["    " + ln for ln in lines]
     o.append("")
+    code = [line_code(ex, crit, tol) for crit, _, tol, _, _ in winners(ex)]
+    if any(code):
+        o.append("Compiled, as the scenes ship: each finalist compiled by scenec with the code "
+                 "it writes out (tools/dev/bench/code_run.c, its trace hash equal to the "
+                 "interpreter's), instructions of rt_tick + rt_record over the whole run; the "
+                 "cheapest of each variant:\n")
+        o += ["    " + ln for ln in code if ln]
+        o.append("")
     o.append("The same winners without recording (instructions of rt_tick alone over the "
              "whole run; recording every tick is part of both variants' fixed work):\n")
     o += ["- " + line_tick(ex, crit, tol, s, m) for crit, _, tol, s, m in winners(ex)
@@ -921,6 +979,11 @@ def run_example(ex, pool, log):
     fin += [c for c in ex.cfgs if c["shipped"] and c.get("cost") and not ex.whole and
             c.get("cost_run") is None and c not in fin]
     list(pool.map(lambda c: run_full(ex, c), fin))
+    if CODE:
+        code = fin + [c for c in finalists(ex) if c not in fin]
+        list(pool.map(lambda c: run_code(ex, c), code))
+        log("%s: %d finalists compiled and counted over the whole run (%.0f s)" % (
+            ex.key, len(code), time.time() - t0))
     if not ex.whole:
         log("%s: %d finalists counted over the whole run (%.0f s)" % (ex.key, len(fin),
                                                                       time.time() - t0))
@@ -952,6 +1015,8 @@ def run_example(ex, pool, log):
     for crit, label, tol, s, m in winners(ex):
         if line_tick(ex, crit, tol, s, m):
             log(line_tick(ex, crit, tol, s, m))
+        if line_code(ex, crit, tol):
+            log(line_code(ex, crit, tol))
     write_csv(ex)
     return results_md(ex, note, splits)
 
@@ -965,8 +1030,14 @@ def main():
     ap.add_argument("--only", default="pendulum10_actuated,lane_change",
                     help="examples, comma-separated")
     ap.add_argument("--doc", help="Markdown file whose bench markers receive the results")
+    ap.add_argument("--code", nargs=3, metavar=("SCENEC", "CC", "OBJS"),
+                    help="also compile the finalists: scenec, the compiler with its flags, "
+                    "the runtime's and the models' objects")
     a = ap.parse_args()
     MODRT = a.modrt
+    global CODE
+    if a.code:
+        CODE = {"scenec": a.code[0], "cc": a.code[1], "objs": a.code[2]}
     global CACHE_SALT
     with open(MODRT, "rb") as f:
         CACHE_SALT = hashlib.sha1(f.read()).hexdigest() + " %g" % WINDOW
