@@ -5,10 +5,11 @@
  *
  * Bit-identical by construction: every sum is the generic path's, term by term in its
  * order (the same expressions, the same +0 starts); only the loops over tables become
- * straight-line code. Counters and faults go through the same rti_ calls. A set's
- * multibody part is written out for point masses and for bodies (any M, rows of their own
- * or not); a set mixing points and bodies gets its outputs and derivatives written out
- * and calls the generic rti_mbs_accel, as rti_rhs does. A set that takes no step of its
+ * straight-line code. Counters and faults go through the same rti_ calls. The multibody
+ * part of a set with constraint rows is written out, for point masses alone and for
+ * bodies (any M, rows of their own or not, points among them); a multibody set without
+ * rows gets its outputs and derivatives written out and calls the generic
+ * rti_mbs_accel, as rti_rhs does. A set that takes no step of its
  * own is left to the generic path: its entry returns 0 for that set.
  *
  * The tables' offsets do not depend on the build's limits (they are packed from 0); the
@@ -44,11 +45,12 @@ static unsigned nz_of(const rt_sim *sim, uint16_t b)
 }
 
 /* a set whose multibody part the generator writes out through the general node path:
-   bodies (and points among them), at least one constraint row. M constant (factored at the first
-   assembly) or formed and factored in every assembly with Jacobians, diagonal or dense;
-   rows of a block's own (its constr) or not. Its Schur complement, factors, solve and z'
-   take the points' form with nz velocities a block (rt/mbs_asm.c: a diagonal M divides
-   on the fly, a dense one keeps Y = M^-1 W^T); its joints' rows are assemble_joint's */
+   bodies (and points among them), at least one constraint row. M constant (factored at
+   the first assembly) or formed and factored in every assembly with Jacobians, diagonal
+   or dense; rows of a block's own (its constr) or not. Its Schur complement, factors,
+   solve and z' take the points' form with nz velocities a block (rt/mbs_asm.c: a
+   diagonal M divides on the fly, a dense one keeps Y = M^-1 W^T); its joints' rows are
+   assemble_joint's */
 static int mbs_bodies_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -231,7 +233,9 @@ static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, in
         if (!mass && !force && sp->nc == 0)
             continue;
         fprintf(f, "    /* %s: %s%s */\n", sc->blocks[b].name,
-                mass ? "its M, M^-1 k" : force ? "M^-1 k (M factored at the first assembly)" : "",
+                mass    ? "its M, M^-1 k"
+                : force ? "M^-1 k (M factored at the first assembly)"
+                        : "",
                 sp->nc ? (mass || force ? ", its own rows" : "its own rows") : "");
         mbs_args(f, sim, b);
         if (mass) {
