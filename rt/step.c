@@ -179,23 +179,41 @@ static uint16_t next_root_block(const rt_scene *sc, const rt_sim *sim, uint8_t s
     return sc->nblocks;
 }
 
-/* first root of the set (in block order) crossing between ra and rb, or (rs->lost) going
-   NaN from a finite value; -1 if none. Writes the owning block into *blk and the root's
-   index within it into *which. */
+/* where between ra (0) and rb (1) a root's straight line meets its level: the order in
+   which crossings of one interval came (1 where the line says nothing: flat, or NaN) */
+static real_t crossing_at(real_t ra, real_t rb, real_t lvl)
+{
+    real_t fa = ra - lvl, fb = rb - lvl, th = fa / (fa - fb);
+    return th >= 0 && th <= 1 ? th : 1;
+}
+
+/* the root of the set crossing between ra and rb (or, rs->lost, going NaN from a finite
+   value) that crossed first by its straight line between them, the first in block order
+   among equals; -1 if none. With two crossings in one interval the earlier must be
+   located and handled first: taking the first in block order would run both handlers at
+   the later one's time. Writes the owning block into *blk and the root's index within it
+   into *which. */
 static int find_crossing(const rt_scene *sc, const rt_sim *sim, uint8_t s, const rootset *rs,
                          const real_t *ra, const real_t *rb, uint16_t *blk, uint16_t *which)
 {
     uint16_t n = 0, j = sim->plan.blk_of[s];
+    int best = -1;
+    real_t at = 2;
     for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
-        for (uint16_t i = 0; i < k->nr; i++, n++)
-            if (crossed(k, i, ra[n], rb[n], rs->lvl[n], rs->side[n]) ||
-                (rs->lost && ra[n] == ra[n] && rb[n] != rb[n])) {
-                *blk = b, *which = i;
-                return n;
-            }
+        for (uint16_t i = 0; i < k->nr; i++, n++) {
+            real_t th;
+            if (crossed(k, i, ra[n], rb[n], rs->lvl[n], rs->side[n]))
+                th = crossing_at(ra[n], rb[n], rs->lvl[n]);
+            else if (rs->lost && ra[n] == ra[n] && rb[n] != rb[n])
+                th = 1;
+            else
+                continue;
+            if (th < at)
+                best = n, at = th, *blk = b, *which = i;
+        }
     }
-    return -1;
+    return best;
 }
 
 /* state at fraction th of the step from the saved start state, with its roots in r */

@@ -2,8 +2,9 @@
 docs/scene-language.md; rt/step.c): a defined bouncing ball over every method at 0.1, 1
 and 10 ms against the analytic impact times and time of rest (the geometric series of
 its flights), the same ball without its rest clause past its Zeno point, a ball on a
-table moving as A sin(w t) against tests/hard/table_ref.py, and a root that is NaN at the
-end of the step that holds its crossing. Hooked into tests/hard/hard.py."""
+table moving as A sin(w t) against tests/hard/table_ref.py, a root that is NaN at the
+end of the step that holds its crossing, and two crossings in one step, the later root
+listed first. Hooked into tests/hard/hard.py."""
 import math
 
 import table_ref
@@ -138,6 +139,23 @@ def nan_root(s):
             % (n[-1] if n else "?", tl[-1] if tl else "?"))
 
 
+def two_in_one_step(s, m, h):
+    """events_two.scn: roots through 0.37 (listed first) and 0.32 in one step, of time and
+    of a state at constant speed: handled in time order, y = 2.05 and q(1) = 0.68 (by
+    hand); at the later crossing's time, q = 0.63 and y = 1 (the first's effect lost)"""
+    rc, summ, rows = run(s.modrt, "events_two.scn",
+                         ["--method", "main=" + m, "--step", "main=" + h])
+    last = rows[-1] if rows else []
+    want = [1.0, 0.68, 2.05, 0.68, 2.05]
+    err = max((abs(a - b) for a, b in zip(last, want)), default=math.inf) \
+        if len(last) == len(want) else math.inf
+    s.row("two crossings in one step, the later root first: q and y at 1 s", m, h, err, summ, rc)
+    what = "two events %s h=%s" % (m, h)
+    s.check(rc == 0 and summ.get("events") == "4", "%s: status %s, events %s" % (
+        what, summ.get("status"), summ.get("events")))
+    s.check(err < 1e-9, "%s: q, y at 1 s %s, want %s" % (what, last[1:], want[1:]))
+
+
 def run_all(s, long):
     for m in EXACT + FIRST:
         for h in STEPS:
@@ -153,3 +171,6 @@ def run_all(s, long):
         for h in STEPS:
             table(s, m, h, ref)
     nan_root(s)
+    for m in EXACT:
+        for h in ("0.05", "0.1", "0.25"):
+            two_in_one_step(s, m, h)
