@@ -143,7 +143,8 @@ static void node(const rt_args *a, uint16_t i, rt_mbs_node *n, real_t *J)
 {
     const real_t *x = a->x;
     real_t d = i == 0 ? a->p[P_DF] : -a->p[P_DR];
-    real_t c = rt_cos(x[2]), s = rt_sin(x[2]), r = x[5];
+    yaw w = yaw_of(a);
+    real_t c = w.c, s = w.s, r = x[5];
     n->r[0] = x[0] + d * c, n->r[1] = x[1] + d * s, n->r[2] = 0;
     n->v[0] = x[3] - d * s * r, n->v[1] = x[4] + d * c * r, n->v[2] = 0;
     n->w[0] = n->w[1] = 0, n->w[2] = r;
