@@ -138,6 +138,10 @@ expect_err "bad set form" 2 "BLOCK.PARAM=VALUE" $M run oscillator --set Osc.omeg
 expect_err "bad set block" 2 "unknown block: Nobody" $M run oscillator --set Nobody.omega=1
 expect_err "bad set param" 2 "no parameter or state named: zeta" $M run oscillator --set Osc.zeta=1
 expect_err "bad set value" 2 "not a finite number" $M run oscillator --set Osc.omega=abc
+expect_err "overflowing set value" 2 "not a finite number" $M run oscillator --set Osc.omega=1e999
+# a subnormal value is a value (strtod says ERANGE for it): taken as it is
+sub=$($M run oscillator --set Osc.omega=5e-324 --t-end 0.01 2>&1)
+if echo "$sub" | grep -q '^status: ok'; then ok; else bad "subnormal --set refused: $sub"; fi
 expect_err "bad set range" 2 "out of range" $M run pi_loop --set Plant.T=0
 expect_err "bad csv path" 4 "cannot write the CSV file /nonexistent/x.csv: No such file or directory" $M run oscillator --csv /nonexistent/x.csv
 

@@ -1,6 +1,8 @@
 /* cli.c - option parsing and the shared helpers of the modrt subcommands (cli.h). */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <float.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,7 +23,10 @@ int cli_real(const char *s, double *v)
     char *end;
     errno = 0;
     *v = strtod(s, &end);
-    return *s && !*end && errno == 0 && *v == *v && *v - *v == 0;
+    /* an underflow (ERANGE with a result of at most DBL_MIN: a subnormal, or 0 below
+       it) is the nearest value there is; an overflow is infinite and refused */
+    return *s && !*end && (errno == 0 || (errno == ERANGE && fabs(*v) <= DBL_MIN)) &&
+           *v == *v && *v - *v == 0;
 }
 
 int cli_uint(const char *s, unsigned long lo, unsigned long hi, unsigned long *v)
