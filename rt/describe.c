@@ -38,7 +38,7 @@ static uint32_t checked_inputs(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 /* the method's bound times the method steps one step of the set can take: the step
    itself and, with roots, every located event's re-steps and the rest of the step after
    it (rt/step.c), with one probe per handled event (and one integration more where a
-   root's every sign change counts, up to its return); each part at a known time event
+   root's every sign change counts, up to its return) and one trial of an excursion; each part at a known time event
    again (rt/tev.c); and the coupling monitor's two right-hand sides per sensitivity,
    measured at most twice a step per checked input (rt/xset.c) */
 rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
@@ -47,7 +47,8 @@ rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     uint32_t steps = 1, probes = 0;
     uint32_t parts = (sim->plan.set_flags[s] & RTI_SET_TEV) ? RT_TEV_PARTS_MAX : 1;
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
-        steps += RT_EVENTS_PER_STEP_MAX * (RT_EVENT_ITER_MAX + 1u);
+        /* (and one trial of a root's excursion within the step, rt/step.c) */
+        steps += RT_EVENTS_PER_STEP_MAX * (RT_EVENT_ITER_MAX + 1u) + 1u;
         /* a root that returns within the probe ends the next integration there */
         if (sim->plan.set_flags[s] & RTI_SET_EVERY_SIGN)
             steps += RT_EVENTS_PER_STEP_MAX;

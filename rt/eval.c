@@ -25,7 +25,8 @@ RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b, real_t t)
             u[i] = sim->state.torn_val[src[i]];
             break;
         case RT_SRC_XSET:
-            u[i] = rti_xset_value(sim, src[i], sim->plan.src_set[i], sim->plan.interp[i], t);
+            u[i] = rti_xset_value(sim, src[i], sim->plan.src_set[i], sim->plan.interp[i], t,
+                                  sim->sc->blocks[b].set);
             break;
         default:
             u[i] = sim->plan.def[i];

@@ -329,6 +329,10 @@ void rti_held_renew(const rt_scene *sc, rt_sim *sim, uint32_t recall)
 
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
+    /* before the first tick the loops learn their signals' scales afresh (rt/loop.c): the
+       parameters they were solved with at init may have changed */
+    if (sim->state.tick == 0)
+        rti_zero(sim->state.torn_range, sizeof sim->state.torn_range);
     renew(sc, sim, 0, 0);
     /* before the first tick the history starts afresh (parameters may have changed), and
        the sets are evaluated once more so each reads the others' initial outputs rather

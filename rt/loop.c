@@ -23,7 +23,8 @@ typedef struct solve_ctx {
     real_t t;
     rti_mode mode;
     uint16_t n;
-    real_t *w; /* the torn inputs of this loop (in rt_sim.torn_val) */
+    real_t *w;     /* the torn inputs of this loop (in rt_sim.torn_val) */
+    real_t *range; /* and their scales (rt_sim.torn_range) */
 } solve_ctx;
 
 /* F(w) = w - y(w) after running the loop's segment; 0 if any value is not finite */
@@ -39,13 +40,22 @@ static int residual(const solve_ctx *c, real_t *f)
     return finite;
 }
 
-/* max_i |f_i| / (1 + |w_i|): relative for large signals, absolute near zero */
+/* the scale below which torn input i is taken as absolute: 1, or the largest |w_i| it
+   has had if that is less (so a loop of signals near 1e-11 is solved to its digits, not to
+   1e-10 of a unit; a first solve from 0, relative to the iterate alone) */
+static real_t unit(const solve_ctx *c, uint16_t i)
+{
+    return c->range[i] < 1 ? c->range[i] : 1;
+}
+
+/* max_i |f_i| / (unit_i + |w_i|): relative for large signals, absolute near zero (a
+   residual of exactly 0 is 0 whatever the scale) */
 static real_t scaled_norm(const solve_ctx *c, const real_t *f)
 {
     real_t m = 0;
     for (uint16_t i = 0; i < c->n; i++) {
-        real_t v = rt_fabs(f[i]) / (1 + rt_fabs(c->w[i]));
-        m = v > m ? v : m;
+        real_t a = rt_fabs(f[i]), v = a > 0 ? a / (unit(c, i) + rt_fabs(c->w[i])) : 0;
+        m = v > m || v != v ? v : m;
     }
     return m;
 }
@@ -60,8 +70,9 @@ static void fd_inverse(const solve_ctx *c, const real_t *f, real_t *H, real_t *J
     uint16_t n = c->n;
     real_t fmax = rti_norm_inf(f, n);
     for (uint16_t j = 0; j < n; j++) {
-        real_t wj = c->w[j];
-        real_t d = SQRT_EPS * (rt_fabs(wj) > 1 ? rt_fabs(wj) : 1) + QUART_EPS * fmax;
+        real_t wj = c->w[j], aw = rt_fabs(wj), u = unit(c, j);
+        real_t d = SQRT_EPS * (aw > u ? aw : u) + QUART_EPS * fmax;
+        d = d > 0 ? d : SQRT_EPS; /* (w, its scale and F all 0: any size) */
         c->w[j] = wj + d;
         residual(c, fj);
         for (uint16_t i = 0; i < n; i++)
@@ -137,7 +148,8 @@ static int newton_step(const solve_ctx *c, real_t *H, real_t *f, real_t *fn, rea
 static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode)
 {
     rt_loop *lp = &sim->plan.loops[l];
-    solve_ctx c = {sc, sim, lp, t, (rti_mode)mode, lp->ntorn, sim->state.torn_val + lp->torn0};
+    solve_ctx c = {sc, sim, lp, t, (rti_mode)mode, lp->ntorn, sim->state.torn_val + lp->torn0,
+                   sim->state.torn_range + lp->torn0};
     uint16_t n = c.n;
     real_t *H = sim->state.loop_h + lp->h0;
     real_t *f = sim->work.loop_work, *fn = f + n, *s = fn + n, *scratch = s + n;
@@ -161,7 +173,9 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
     sim->stats.loop_hist[it]++;
     sim->stats.loop_iter_max = it > sim->stats.loop_iter_max ? it : sim->stats.loop_iter_max;
     real_t r = ok ? scaled_norm(&c, f) : (real_t)1 / (real_t)0;
-    if (r > tol) {
+    for (uint16_t i = 0; ok && i < n; i++)
+        c.range[i] = rt_fabs(c.w[i]) > c.range[i] ? rt_fabs(c.w[i]) : c.range[i];
+    if (!(r <= tol)) {
         rti_count(sim, RT_CNT_NOCONV, sim->plan.loop_blocks[lp->first], RT_E_NOCONV);
         sim->stats.loop_residual = r > sim->stats.loop_residual ? r : sim->stats.loop_residual;
     }

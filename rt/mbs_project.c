@@ -168,6 +168,26 @@ static real_t g_max(const rt_mbs_work *w, uint8_t set)
     return worst;
 }
 
+/* without projection (stabilization none or Baumgarte) the constraints drift: g at the
+   step's end against the set's accuracy (a length [m] or a unit), the row's block counted
+   as one whose invariant broke above it. Reads the state, changes nothing */
+static void check_drift(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
+{
+    rt_mbs_work *w = &sim->work.mbs;
+    rti_mbs_assemble(sc, sim, set, t, RTI_MBS_G);
+    real_t worst = 0;
+    uint16_t row = 0;
+    for (uint16_t r = 0; r < w->nc[set]; r++) {
+        real_t v = rt_fabs(w->g[r]);
+        if (!(v <= worst)) /* NaN counts as worst */
+            worst = v, row = r;
+    }
+    if (!(worst <= w->res_max))
+        w->res_max = worst;
+    if (!(worst <= rti_accuracy(&sc->sets[set].cfg)))
+        rti_count(sim, RT_CNT_INVARIANT, rti_mbs_row_block(sc, sim, set, row), RT_E_INVARIANT);
+}
+
 void rti_mbs_project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
     rt_mbs_work *w = &sim->work.mbs;
@@ -178,6 +198,8 @@ void rti_mbs_project(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     if (sc->stab != RT_STAB_PROJECT || w->nc[set] == 0) {
         if (sc->stab == RT_STAB_PROJECT)
             normalize(sc, sim, set);
+        else if (w->nc[set] > 0)
+            check_drift(sc, sim, set, t);
         refresh_lambda(sc, sim, set, t);
         return;
     }

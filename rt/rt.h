@@ -38,7 +38,7 @@
     X(RT_E_EVENT, 2, "too many state events in one step")                        \
     X(RT_E_TEV, 2, "more time events in one step than RT_TEV_PARTS_MAX parts")  \
     X(RT_E_NOLOC, 2, "state event not located within its bound")                 \
-    X(RT_E_INVARIANT, 2, "an invariant broken: a kind's declared invariant, or a guard root crossed without a located event") \
+    X(RT_E_INVARIANT, 2, "an invariant broken: a kind's declared invariant, a guard root crossed without a located event, or joints drifted past the set's accuracy unprojected") \
     X(RT_E_UNSTABLE, 2, "numerically unstable: the state grows without bound")   \
     X(RT_E_LINK, 2, "controller link lost (an import with policy stop)")         \
     X(RT_E_LINK_FAULT, 2, "controller link faults: bad datagrams or missing answers (link_bad, link_missing)") \
@@ -68,7 +68,7 @@ typedef enum {
     X(RT_CNT_DEGRADED, "degraded", "step accepted with residual above tolerance")\
     X(RT_CNT_SUBSTEP, "substep", "implicit step that converged only in substeps") \
     X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy (or an input it extrapolated from another set lost every digit)") \
-    X(RT_CNT_INVARIANT, "invariant", "step ending with a kind's declared invariant broken (a negative concentration, a conserved sum lost), or further below a guard root (a floor) without a located crossing: the model tunnels") \
+    X(RT_CNT_INVARIANT, "invariant", "step ending with a kind's declared invariant broken (a negative concentration, a conserved sum lost), or further below a guard root (a floor) without a located crossing: the model tunnels; or a multibody set without projection whose constraints drifted past its accuracy") \
     X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
     X(RT_CNT_REDUNDANT, "redundant", "constraint rows found dependent on others and consistent with them: solved with their multipliers zero (counted when a set's rank deficit changes)") \
     X(RT_CNT_INIT_MOVED, "init_moved", "rt_init moved an initial multibody state onto its constraints or normalized its quaternion (rt_error_text says by how much)") \
@@ -756,11 +756,12 @@ typedef struct rt_stats {
     uint32_t bg_late;                /* background steps not finished at their deadline
                                         (also counted as RT_CNT_OVERRUN) */
 #if RT_MAX_XPRED > 0
-    real_t xset_est[RT_MAX_SETS];    /* the largest local error a set's step took from the
-                                        inputs it extrapolates from other sets, estimated
-                                        from the missed prediction and the set's
-                                        sensitivity to it (state.xgain), in the scaled
-                                        norm of its accuracy (rti_xset_predict) */
+    real_t xset_est[RT_MAX_SETS];    /* the largest local error a set took from the inputs
+                                        it reads from other sets, estimated from a missed
+                                        prediction (extrapolated) or the scheme's error
+                                        over the source's step (interpolated) and the
+                                        set's sensitivity to it (state.xgain), in the
+                                        scaled norm of its accuracy (rti_xset_predict) */
 #endif
 } rt_stats;
 

@@ -101,9 +101,10 @@ typedef struct rt_plan {
     uint16_t nbg_sig;
 #endif
 #if RT_MAX_XPRED > 0
-    /* inputs a set extrapolates over its step from another set, whose prediction is
-       checked (rti_xset_predict), and the block each belongs to */
+    /* inputs a set reads from another set's history, whose error is checked
+       (rti_xset_predict), the block each belongs to and how it reads it (RTI_XP_*) */
     uint16_t xpred_in[RT_MAX_XPRED], xpred_blk[RT_MAX_XPRED];
+    uint8_t xpred_how[RT_MAX_XPRED];
     uint16_t nxpred;
 #endif
 
@@ -120,10 +121,18 @@ struct rt_state {
     real_t y[RT_MAX_Y];              /* outputs (DSS outputs held between hits) */
     real_t p[RT_MAX_P];              /* parameters (may be changed before the run) */
     real_t r[RT_MAX_ROOTS];          /* root values at the end of the last step */
+    real_t r_prev[RT_MAX_ROOTS];     /* root values one integration before state.r, and
+                                        per set that integration's length (r_prev_h; 0:
+                                        none, or an event since): three equally spaced
+                                        values show a root that crosses and returns
+                                        within one step (rt/step.c, excursion) */
+    real_t r_prev_h[RT_MAX_SETS];
     real_t r_lvl[RT_MAX_ROOTS];      /* level each root crosses at: 0, or after a handler
                                         that sent it back (or stopped it) the value it
                                         was handled at, less a margin (rt/step.c) */
     real_t torn_val[RT_MAX_TORN];    /* torn inputs' values (warm start of the next solve) */
+    real_t torn_range[RT_MAX_TORN];  /* the largest |value| each has had at a solve's end, up
+                                        to 1: its scale below 1 (rt/loop.c) */
     real_t loop_h[RT_MAX_TORN * RT_MAX_TORN]; /* inverse Jacobians, Broyden-updated */
     real_t hist_t[RT_MAX_SETS][RT_HIST]; /* communication times, newest first [s] */
     real_t hist_y[RT_HIST][RT_MAX_HIST_Y];/* cross-set outputs at those times */
@@ -133,10 +142,19 @@ struct rt_state {
        its blocks) until then when it ran inline (no background context attached) */
     uint64_t bg_due;                 /* tick its result is due */
     real_t bg_result[RT_MAX_BG];     /* inline result, published at bg_due */
-    /* per output of the background set another set reads: what the parabolic
-       extrapolation showed at the newest point, minus that point; faded out over the next
-       macro step, so the value read stays continuous (rt/xset.c) */
-    real_t bg_jump[RT_MAX_HIST_Y];
+    /* per cross-set output, one of two: the background set is read ahead of its history
+       only, every other set between its points or ahead, so an output needs one, and a
+       second array would cost every rt_sim RT_MAX_HIST_Y reals for nothing */
+    union {
+        /* of the background set: what the parabolic extrapolation showed at the newest
+           point, minus that point; faded out over the next macro step, so the value read
+           stays continuous (rt/xset.c) */
+        real_t bg_jump[RT_MAX_HIST_Y];
+        /* of any other set: the second difference of the three points before the newest
+           (NaN: fewer), whose change to the newest three is the third difference a
+           parabola's error is estimated by (rt/xpred.c) */
+        real_t hist_d2[RT_MAX_HIST_Y];
+    };
 #if RT_MAX_HELD_Y > 0
     /* a set stepping over several ticks in the tick whose outputs another set reads: its
        outputs at its step's end, evaluated then for its history and taken from here when
@@ -144,9 +162,10 @@ struct rt_state {
     real_t y_end[RT_MAX_HELD_Y];
 #endif
 #if RT_MAX_XPRED > 0
-    /* per input of plan.xpred_in: the value its scheme gave for the end of its set's step,
-       made at the step's start (NaN: none yet), checked at the next, and the largest |u|
-       the input has had at those checks, its scale (rti_xset_predict) */
+    /* per input of plan.xpred_in: ahead, the value its scheme gave for the end of its
+       set's step, made at the step's start (NaN: none yet), checked at the next; between
+       two points, the newer point's time when that interval was judged; and the largest
+       |u| the input has had at those checks, its scale (rti_xset_predict) */
     real_t xpred[RT_MAX_XPRED], xscale[RT_MAX_XPRED];
     /* per input of plan.xpred_in: the sensitivity of its set's derivatives to it, the
        largest |df_i/du| / (1 + |x_i|) [1/s per unit of u], measured by a difference every

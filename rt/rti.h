@@ -174,7 +174,7 @@ enum {
     RTI_SET_LINEAR = 4,     /* linear in its state (the transition method's test)  eval.c */
     RTI_SET_NO_STEP = 8,    /* no state, root or rhs call: the tick skips its step eval.c */
     RTI_SET_HOLDS_SIG = 16, /* holds recorded/exported multibody signals (held_sig) held.c */
-    RTI_SET_XPRED = 32,     /* extrapolates another set: its predictions checked   eval.c */
+    RTI_SET_XPRED = 32,     /* reads another set's history: its error checked      eval.c */
     RTI_SET_KEEPS_END = 64, /* multi-tick, read by others: step end kept in y_end  held.c */
     RTI_SET_TEV = 128,      /* holds a kind with known time events                 tev.c */
     RTI_SET_TEV_DYN = 256,  /* holds one whose instants are known at run time only tev.c */
@@ -268,20 +268,30 @@ real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s);
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
 /* Pushes set s's outputs read by other sets, at time t, into their history. */
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
-/* Output v of set q reconstructed at time t by the scheme. */
-real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t);
-/* does set s extrapolate another set over its step (its predictions are checked);
-   _npred: the inputs that do, of every set (RT_MAX_XPRED) */
+/* Output v of set q reconstructed at time t by the scheme, for an evaluation of set
+   reader (RT_MAX_SETS: at a tick, outside any set's step). */
+real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t,
+                      uint8_t reader);
+/* does set s read another set's history (the error of each such input is checked,
+   rt/xpred.c); _npred: the inputs that do, of every set (RT_MAX_XPRED) */
 int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s);
 uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim);
+/* how an input reads its source's history over its set's step (plan.xpred_how) */
+enum {
+    RTI_XP_NONE,   /* not from another set's history */
+    RTI_XP_AHEAD,  /* beyond the newest point: its prediction checked at the next */
+    RTI_XP_BRACKET /* between two points: the scheme's error over them estimated */
+};
 
 /* ---- the communication-error monitor (xpred.c) ---- */
 /* at the start of set s's step over [t, t + h]: the inputs it extrapolates from other sets
    against what their schemes predicted at its last step (RT_E_COUPLING past
-   RT_XSET_LOST), and their predictions for t + h kept. _reset: none (the run's start) */
+   RT_XSET_LOST), and their predictions for t + h kept; the inputs it reads between two
+   points of a source's history, at the first step in a new interval, by the error of
+   their scheme over it. _reset: none (the run's start) */
 void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
 void rti_xset_predict_reset(rt_sim *sim);
-/* set s's sensitivity to the inputs it extrapolates, at its step's start t (step h), when
+/* set s's sensitivity to the inputs it reads from other sets, at its step's start t (step h), when
    due (every RT_XSET_GAIN_EVERY steps of it, or NaN: none yet, or marked by a miss near
    the accuracy): two right-hand sides per input, in the context that runs the step
    (rti_xset_predict calls it for a set of the tick, rt/bg.c for the background set) */
@@ -336,6 +346,8 @@ int rti_tev_instant(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 void rti_tev_moved(rt_sim *sim, uint8_t s);
 /* is base tick `tick` a known time event of set s (of its kinds without time_event) */
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
+/* the same for any tick, past ones too (without rti_tev_at's memory of the next one) */
+int rti_tev_was(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
 
 /* ---- set steps and events (step.c) ---- */
 /* Advances set s from t by its step h, handling state events; never stops half-way, but

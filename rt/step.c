@@ -434,6 +434,52 @@ static real_t probe_limit(const rt_scene *sc, rt_sim *sim, uint8_t s)
     return rti_tev_dyn_next(sc, sim, s);
 }
 
+/* a root that crossed its level and came back within the integration from t0 over sub
+   (ra at its start, rb at its end, on one side): the parabola through it one integration
+   before (state.r_prev, of the same length), ra and rb reaches beyond the level between
+   them. The first such root's parabola's extremum is tried (trial: the real state there)
+   and, if a root crossed by then, the crossing is located in [0, th] as any other: a
+   ball thrown up to a ceiling it touches for less than a step. Its roots are written
+   into rt, th into *th and its block into *blk; -1 if none (the state and outputs at the
+   end restored). Once
+   a step at most: one integration more in its work bound (rt_set_step_bound). A root
+   whose path is no parabola may be missed (a spike within the step); `modrt check`
+   sees such a step at half the step (docs/solvers.md) */
+static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *rs,
+                     const real_t *ra, real_t t0, real_t sub, real_t *rt, real_t *th,
+                     uint16_t *blk)
+{
+    uint16_t r0 = sim->plan.set_r[s], nr = (uint16_t)(sim->plan.set_r[s + 1] - r0);
+    const real_t *rp = sim->state.r_prev + r0, *rb = sim->work.rs;
+    if (sim->state.r_prev_h[s] != sub)
+        return -1;
+    real_t at = 2;
+    for (uint16_t i = 0; i < nr; i++) {
+        if (rs->side[i] != 0 || rs->lvl[i] != 0 || !(ra[i] * rb[i] > 0))
+            continue; /* held at a level, or not on one side at both ends */
+        real_t a = (real_t)0.5 * (rb[i] - 2 * ra[i] + rp[i]), b = (real_t)0.5 * (rb[i] - rp[i]);
+        real_t sx = -b / (2 * a); /* the extremum, in steps from t0 */
+        if (sx > 0 && sx < 1 && sx < at && (ra[i] + (b + a * sx) * sx) * ra[i] < 0)
+            at = sx;
+    }
+    if (!(at < 1))
+        return -1;
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    for (uint16_t i = 0; i < n; i++)
+        sim->work.xb[i] = sim->state.x[x0 + i]; /* the end, kept */
+    trial(sc, sim, s, t0, sub, at, rt);
+    uint16_t which;
+    int c = find_crossing(sc, sim, s, rs, ra, rt, blk, &which);
+    if (c >= 0) {
+        *th = at;
+        return c;
+    }
+    for (uint16_t i = 0; i < n; i++)
+        sim->state.x[x0 + i] = sim->work.xb[i];
+    rti_outputs(sc, sim, (rti_at){t0 + sub, s, RTI_IN_STEP});
+    return -1;
+}
+
 /* sub-steps from t0 to t + h, locating and firing events on the way. A root that ends a
    span NaN (its state finite) is counted (nan, with its block): where it went NaN from a
    finite value is located like a crossing, so a crossing of any root before that point
@@ -451,8 +497,8 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
     rootset rs = roots_of(sim, s);
     /* span: the rest of the step from t0; sub: this integration's part of it (less only
        after an event whose root returns within the probe, settle) */
-    real_t t0 = t, span = h, cap = 0;
-    int nan_seen = 0;
+    real_t t0 = t, span = h, cap = 0, rt[RT_MAX_ROOTS];
+    int nan_seen = 0, tried = 0;
     for (int ev = 0;; ev++) {
         real_t sub = cap > 0 && cap < span ? cap : span;
         cap = 0;
@@ -465,9 +511,16 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
             rti_count(sim, RT_CNT_NAN, nb, RT_E_NAN), nan_seen = 1;
         uint16_t blk, which;
         int c = find_crossing(sc, sim, s, &rs, r, sim->work.rs, &blk, &which);
+        real_t b = 1, rb = c >= 0 ? sim->work.rs[c] : 0;
+        if (c < 0 && !tried++ &&
+            (c = excursion(sc, sim, s, &rs, r, t0, sub, rt, &b, &blk)) >= 0)
+            rb = rt[c];
         if (c < 0) {
             check_guards(sc, sim, s, &rs, r, sim->work.rs);
             release(nr, &rs, sim->work.rs);
+            for (uint16_t i = 0; i < nr; i++) /* three points for the next excursion */
+                sim->state.r_prev[sim->plan.set_r[s] + i] = r[i];
+            sim->state.r_prev_h[s] = sub;
             if (!(sub < span))
                 break;
             for (uint16_t i = 0; i < nr; i++) /* the rest of the step from there */
@@ -477,7 +530,8 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
             ev--; /* no event */
             continue;
         }
-        bracket k = {0, 1, r[c], sim->work.rs[c], c};
+        sim->state.r_prev_h[s] = 0; /* the roots jump at the handlers */
+        bracket k = {0, b, r[c], rb, c};
         for (uint16_t i = 0; i < n; i++)
             sim->work.xb[i] = sim->state.x[x0 + i];
         /* past the bound the crossing is handled where the step ends, unlocated: the work

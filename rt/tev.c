@@ -346,6 +346,12 @@ int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
 #endif
 }
 
+int rti_tev_was(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
+{
+    return tick > 0 && (sim->plan.set_flags[s] & RTI_SET_TEV) &&
+           next_after(sc, sim, s, tick - 1).tick == tick;
+}
+
 void rti_tev_moved(rt_sim *sim, uint8_t s)
 {
 #if RT_MAX_TEV > 0

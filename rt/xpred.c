@@ -1,6 +1,6 @@
-/* xpred.c - the communication-error monitor: the inputs a set extrapolates from another
- * set over its step, checked against the source's point at the next step's start, and
- * the reader's sensitivity to them (paper, section 3; docs/multirate.md).
+/* xpred.c - the communication-error monitor: the inputs a set reads from another set's
+ * history, the error their schemes make, and the reader's sensitivity to them (paper,
+ * section 3; docs/multirate.md).
  *
  * A set reading a faster one (or one of its own rate that steps after it, or the
  * background set) extrapolates it over its whole step. At each step's start
@@ -12,7 +12,13 @@
  * the input (its derivatives' change per unit of it, measured every RT_XSET_GAIN_EVERY
  * steps and afresh near the accuracy) and half its step estimates the local error the
  * coupling put into its state, which is held to the reader's accuracy like its own
- * estimate (doubtful above it). */
+ * estimate (doubtful above it).
+ *
+ * A set reading a slower one (or one of its ratio that steps before it) reads it between
+ * two points of its history: a hold, a line or a parabola over the source's step. Once
+ * per such interval the scheme's error over it is estimated by the next higher difference
+ * of the points, and its integral over the interval times the reader's sensitivity is
+ * held to the reader's accuracy in the same way: the source's step is the coupling's. */
 #include "rti.h"
 
 void rti_xset_predict_reset(rt_sim *sim)
@@ -78,23 +84,21 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
 }
 
 #if RT_MAX_XPRED > 0
-/* input k of set s (block b) missed its prediction over the set's last step h by e: the
-   local error it put into the set's state, at most e h / 2 times the set's sensitivity
-   (the miss grows from 0 at the step's start to e at its end, no faster than linearly
-   for a hold and slower for the schemes that extrapolate a slope), against the set's
-   accuracy; above it the step is counted as one whose estimate exceeds its accuracy. Near
-   the accuracy (RT_XSET_FRESH) the sensitivity, measured up to RT_XSET_GAIN_EVERY steps
-   ago, is measured afresh first: now for a set of the tick (t: this step's start), by its
-   next step for the background set (which never evaluates in the tick) */
+/* input k of set s (block b) put an error into the set's state of w times the set's
+   sensitivity to it: against the set's accuracy; above it the step is counted as one
+   whose estimate exceeds its accuracy. Near the accuracy (RT_XSET_FRESH) the sensitivity,
+   measured up to RT_XSET_GAIN_EVERY steps ago, is measured afresh first: now for a set of
+   the tick (t: this step's start, h its step), by its next step for the background set
+   (which never evaluates in the tick) */
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
-                  real_t e, real_t t, real_t h)
+                  real_t w, real_t t, real_t h)
 {
     real_t acc = rti_accuracy(&sc->sets[s].cfg);
-    real_t est = (real_t)0.5 * h * sim->state.xgain[k] * e;
+    real_t est = w * sim->state.xgain[k];
     if (!(est <= RT_XSET_FRESH * acc)) {
         if (!sc->sets[s].background) {
             measure(sc, sim, s, k, t, h);
-            est = (real_t)0.5 * h * sim->state.xgain[k] * e;
+            est = w * sim->state.xgain[k];
         } else {
             sim->state.xgain[k] = (real_t)0 / (real_t)0;
         }
@@ -108,36 +112,113 @@ static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16
         sim->stats.errest[s]++;
     }
 }
+
+/* an input extrapolated over set s's step [t, t + h] (block b, input i, source output v
+   of set q): where the source has a point at this step's start (at every common multiple
+   of the two sets' steps), how far the prediction made at the last start was off, against
+   the largest size the input has had there. The miss grows from 0 at the step's start to
+   e at its end, no faster than linearly for a hold and slower for the schemes that
+   extrapolate a slope: the error it put into the state is at most e h / 2 times the set's
+   sensitivity. Then the prediction for t + h */
+static void check_ahead(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real_t t,
+                        real_t h)
+{
+    uint16_t b = sim->plan.xpred_blk[k], i = sim->plan.xpred_in[k];
+    uint16_t v = sim->plan.src[i];
+    uint8_t q = sim->plan.src_set[i];
+    real_t p = sim->state.xpred[k], y = sim->state.hist_y[0][v];
+    if (rt_isfinite(y) && sim->state.hist_n[q] > 0 && sim->state.hist_t[q][0] == t) {
+        real_t e = rt_fabs(y - p), a = rt_fabs(y);
+        sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
+        if (p == p) { /* (y is finite: e is NaN only without a prediction) */
+            if (!(e <= sim->stats.xset_err[q]))
+                sim->stats.xset_err[q] = e;
+            if (!(e <= RT_XSET_LOST * (1 + sim->state.xscale[k]))) {
+                rti_count(sim, RT_CNT_ERREST, (int)b, RT_E_COUPLING);
+                sim->stats.errest[s]++;
+            } else {
+                judge(sc, sim, s, b, k, (real_t)0.5 * h * e, t, h);
+            }
+        }
+    }
+    sim->state.xpred[k] = rti_xset_value(sim, v, q, sim->plan.interp[i], t + h, s);
+}
+
+/* the mean over [T1, T0] of the difference between what scheme reads of output v there
+   (from its history of n points) and the signal, by the difference of the order the
+   scheme leaves out: a hold, half the change; a line, a twelfth of the second difference;
+   a parabola, a twenty-fourth of the third; the line through the two points before
+   (extrapolated), five twelfths of the second. NaN where too few points say it */
+static real_t bracket_miss(const rt_sim *sim, uint16_t v, int n, uint8_t scheme)
+{
+    const real_t nan = (real_t)0 / (real_t)0;
+    real_t y0 = sim->state.hist_y[0][v], y1 = sim->state.hist_y[1][v];
+    real_t d2 = n >= 3 ? y0 - 2 * y1 + sim->state.hist_y[2][v] : nan;
+    switch (scheme) {
+    case RT_INTERP_HOLD:
+        return (real_t)0.5 * rt_fabs(y0 - y1);
+    case RT_INTERP_LINEAR:
+        return rt_fabs(d2) / 12;
+    case RT_INTERP_HERMITE: /* a parabola through three points, a line through two */
+    case RT_INTERP_QUAD:
+        return n == RT_HIST ? rt_fabs(d2 - sim->state.hist_d2[v]) / 24 : nan;
+    case RT_INTERP_EXTRAP:
+        return n >= 3 ? (real_t)5 / 12 * rt_fabs(d2) : (real_t)0.5 * rt_fabs(y0 - y1);
+    default:
+        return nan;
+    }
+}
+
+/* does a switch of source set q at a known instant (rt/tev.c) fall where the difference
+   bracket_miss takes for scheme's error is not one: a hold's at the interval's end (its
+   points, left of it and right, differ by the jump the hold is right to leave out), a
+   line's at its start (the second difference reaches past the jump the line does not) */
+static int jumps_past(const rt_scene *sc, rt_sim *sim, uint8_t q, uint8_t scheme)
+{
+    if (!(sim->plan.set_flags[q] & RTI_SET_TEV))
+        return 0;
+    real_t at = scheme == RT_INTERP_HOLD ? sim->state.hist_t[q][0]
+              : scheme == RT_INTERP_LINEAR ? sim->state.hist_t[q][1] : -1;
+    return at >= 0 && rti_tev_was(sc, sim, q, (uint64_t)(at / sc->dt + (real_t)0.5));
+}
+
+/* an input read between the two newest points of its source's history by set s at its
+   step's start t (step h): once per interval, at the first step of s in it, the error
+   its scheme makes over the interval, integrated: its length times the mean miss, times
+   the set's sensitivity. A source read this way has stepped to (or past) the end of s's
+   step before it (the schedule: slower first, rt/xset.c) */
+static void check_bracket(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real_t t,
+                          real_t h)
+{
+    uint16_t b = sim->plan.xpred_blk[k], i = sim->plan.xpred_in[k];
+    uint16_t v = sim->plan.src[i];
+    uint8_t q = sim->plan.src_set[i];
+    const real_t *T = sim->state.hist_t[q];
+    int n = sim->state.hist_n[q];
+    if (n < 2 || !(T[1] <= t && t < T[0]) || T[0] == sim->state.xpred[k])
+        return; /* no interval, or this one judged already */
+    sim->state.xpred[k] = T[0];
+    uint8_t scheme = sim->plan.interp[i];
+    if (jumps_past(sc, sim, q, scheme))
+        return;
+    real_t m = bracket_miss(sim, v, n, scheme), a = rt_fabs(sim->state.hist_y[0][v]);
+    if (!rt_isfinite(m))
+        return;
+    sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
+    judge(sc, sim, s, b, k, (T[0] - T[1]) * m, t, h);
+}
 #endif
 
 void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
 #if RT_MAX_XPRED > 0
     for (uint16_t k = 0; k < sim->plan.nxpred; k++) {
-        uint16_t b = sim->plan.xpred_blk[k], i = sim->plan.xpred_in[k];
-        if (sc->blocks[b].set != s)
+        if (sc->blocks[sim->plan.xpred_blk[k]].set != s)
             continue;
-        uint16_t v = sim->plan.src[i];
-        uint8_t q = sim->plan.src_set[i];
-        real_t p = sim->state.xpred[k], y = sim->state.hist_y[0][v];
-        /* where the source has a point at this step's start (at every common multiple of
-           the two sets' steps): how far the prediction made at the last start was off,
-           against the largest size the input has had there */
-        if (rt_isfinite(y) && sim->state.hist_n[q] > 0 && sim->state.hist_t[q][0] == t) {
-            real_t e = rt_fabs(y - p), a = rt_fabs(y);
-            sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
-            if (p == p) { /* (y is finite: e is NaN only without a prediction) */
-                if (!(e <= sim->stats.xset_err[q]))
-                    sim->stats.xset_err[q] = e;
-                if (!(e <= RT_XSET_LOST * (1 + sim->state.xscale[k]))) {
-                    rti_count(sim, RT_CNT_ERREST, (int)b, RT_E_COUPLING);
-                    sim->stats.errest[s]++;
-                } else {
-                    judge(sc, sim, s, b, k, e, t, h);
-                }
-            }
-        }
-        sim->state.xpred[k] = rti_xset_value(sim, v, q, sim->plan.interp[i], t + h);
+        if (sim->plan.xpred_how[k] == RTI_XP_AHEAD)
+            check_ahead(sc, sim, s, k, t, h);
+        else
+            check_bracket(sc, sim, s, k, t, h);
     }
     /* the background set's sensitivity is measured by its step, in the context that runs
        it (rt/bg.c): not in the tick */

@@ -10,22 +10,24 @@
  * evaluates only its own blocks, and a cross-set edge is no algebraic dependency. */
 #include "rti.h"
 
-/* does input i, of a block of set st, extrapolate its source over st's step: a source
-   faster than st, or of st's ratio and behind it (the background set and any set it
-   reads or that reads it: rt/bg.c; a set of the tick that steps after st) */
-static int extrapolated(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint8_t st)
+/* how input i, of a block of set st, reads another set's history over st's step
+   (RTI_XP_*): ahead, extrapolating its source (a source faster than st, or of st's ratio
+   and behind it; the background set and any set it reads or that reads it: rt/bg.c; a
+   set of the tick that steps after st), or between two points of it (a source slower
+   than st, or of its ratio and ahead of it) */
+static int monitored(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint8_t st)
 {
     if (sim->plan.src_kind[i] != RT_SRC_XSET)
-        return 0;
+        return RTI_XP_NONE;
     uint8_t q = sim->plan.src_set[i];
     if (sc->sets[q].ratio != sc->sets[st].ratio)
-        return sc->sets[q].ratio < sc->sets[st].ratio;
+        return sc->sets[q].ratio < sc->sets[st].ratio ? RTI_XP_AHEAD : RTI_XP_BRACKET;
     if (sc->sets[q].background || sc->sets[st].background)
-        return 1;
+        return RTI_XP_AHEAD;
     for (uint8_t k = 0; k < sc->nsets; k++) /* which of the two steps first */
         if (sim->plan.sched[k] == q || sim->plan.sched[k] == st)
-            return sim->plan.sched[k] == st;
-    return 0;
+            return sim->plan.sched[k] == st ? RTI_XP_AHEAD : RTI_XP_BRACKET;
+    return RTI_XP_NONE;
 }
 
 uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim)
@@ -33,11 +35,11 @@ uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim)
     uint16_t n = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++)
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++)
-            n = (uint16_t)(n + extrapolated(sc, sim, i, sc->blocks[b].set));
+            n = (uint16_t)(n + (monitored(sc, sim, i, sc->blocks[b].set) != RTI_XP_NONE));
     return n;
 }
 
-/* the extrapolated inputs, whose predictions are checked (rti_xset_predict) */
+/* the inputs read from another set's history, whose error is checked (rti_xset_predict) */
 static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
 {
     if (rti_xset_npred(sc, sim) > RT_MAX_XPRED)
@@ -45,11 +47,14 @@ static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
 #if RT_MAX_XPRED > 0
     sim->plan.nxpred = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++)
-        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++)
-            if (extrapolated(sc, sim, i, sc->blocks[b].set)) {
-                sim->plan.xpred_in[sim->plan.nxpred] = i;
-                sim->plan.xpred_blk[sim->plan.nxpred++] = b;
-            }
+        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
+            int how = monitored(sc, sim, i, sc->blocks[b].set);
+            if (how == RTI_XP_NONE)
+                continue;
+            sim->plan.xpred_in[sim->plan.nxpred] = i;
+            sim->plan.xpred_blk[sim->plan.nxpred] = b;
+            sim->plan.xpred_how[sim->plan.nxpred++] = (uint8_t)how;
+        }
 #endif
     return RT_OK;
 }
@@ -235,6 +240,9 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
                point, fades out over the next macro step (rti_xset_value) */
             if (bg)
                 sim->state.bg_jump[v] = n == RT_HIST ? parabola(sim, T, v, t) - y[v] : 0;
+            else /* (a set steps at a fixed interval: a plain difference is a divided one) */
+                sim->state.hist_d2[v] = n == RT_HIST ? hy[0][v] - 2 * hy[1][v] + hy[2][v]
+                                                     : (real_t)0 / (real_t)0;
             for (int k = RT_HIST - 1; k > 0; k--)
                 hy[k][v] = hy[k - 1][v];
             hy[0][v] = y[v];
@@ -259,7 +267,27 @@ static real_t extrap(const rt_sim *sim, const real_t *T, uint16_t v, int n, int 
     return e;
 }
 
-real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t)
+/* is an evaluation of set reader at t one at the end of the step (or step part) it is
+   integrating? There a hold, or a line through the points before, reads a point at t as
+   the left end of the interval before it (a sampled output's hold gives the same,
+   rt/held.c): a method's stage at the step's end would otherwise read the next
+   interval's value one step early. Not in a set whose parts end at instants with services
+   (rt/tev.c), which take the value at the instant */
+static int ends_there(const rt_sim *sim, uint8_t reader, real_t t)
+{
+    if (reader >= RT_MAX_SETS ||
+        (sim->plan.set_flags[reader] & (RTI_SET_TEV_DYN | RTI_SET_STEP_END | RTI_SET_INSTANT)))
+        return 0;
+    real_t from = (real_t)sim->state.set_tick[reader] * sim->sc->dt;
+#if RT_MAX_TEV > 0
+    if (sim->work.t_piece > 0)
+        from = sim->work.t_piece; /* a part: its midpoint */
+#endif
+    return t > from;
+}
+
+real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t,
+                      uint8_t reader)
 {
     const real_t *T = sim->state.hist_t[q];
     int n = sim->state.hist_n[q], k = 0;
@@ -272,6 +300,9 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
                                                           : line(sim, T, v, 0, 1, t);
     /* the newest point at or before t (the source may have stepped past t already) */
     while (k + 1 < n && T[k] > t)
+        k++;
+    if ((scheme == RT_INTERP_HOLD || scheme == RT_INTERP_EXTRAP) && T[k] == t && k + 1 < n &&
+        ends_there(sim, reader, t))
         k++;
     int bracket = k > 0 && T[k] <= t; /* points k and k - 1 enclose t */
     /* the background set is always read ahead of its history (rt/bg.c): the jump its

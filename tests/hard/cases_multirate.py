@@ -12,7 +12,14 @@ What must hold (rt/xset.c, docs/multirate.md "Error control"):
   * the steps that alias (a hold at half the signal's period or at its period: every
     sample is the same, the monitor sees a constant) are what a sampled monitor cannot
     see: listed in the table, their status not asserted (the global error check re-runs
-    the scene at half the steps, which catches them)."""
+    the scene at half the steps, which catches them).
+
+The mirror: a 1 ms set reading a slower one between two points of its history
+(mr_slow_sine.scn, mr_slow_lag.scn: a 10 Hz sine with a phase of 1 rad, so that only a
+whole period aliases), over the slow set's step and the reader's scheme, under the same
+two rules; and a unit step computed in a slow set of 0.1 s (mr_slow_step.scn), at an
+instant of its grid (which a hold reads exactly: within 1e-12 and ok) and inside its step
+(read late by every scheme: never ok)."""
 import math
 import os
 import tempfile
@@ -85,6 +92,79 @@ def grid(s):
                 os.unlink(path)
 
 
+def x_slow_int(t):
+    return (math.cos(1) - math.cos(W * t + 1)) / W
+
+
+def x_slow_lag(t):
+    a = W * T_LAG
+    return ((math.sin(W * t + 1) - a * math.cos(W * t + 1)
+             - (math.sin(1) - a * math.cos(1)) * math.exp(-t / T_LAG)) / (1 + a * a))
+
+
+def variant_of(scene, old, new):
+    """the scene with one phrase replaced, in a temporary file"""
+    with open(os.path.join(HERE, scene)) as f:
+        text = f.read().replace(old, new)
+    fd, path = tempfile.mkstemp(suffix=".scn", prefix="modrt-mr-")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    return path
+
+
+def judged(s, tag, h, rc, err, summ):
+    """the two rules: more than ten times the accuracy off is never ok; a flag only on an
+    answer at least a tenth of the accuracy off"""
+    s.check(rc in (0, 1, 3), "%s h=%s: modrt exit %d" % (tag, h, rc))
+    s.check(rc != 0 or err <= 10 * ACC,
+            "%s h=%s: error %.3g above %g with status ok (xset_est %s)"
+            % (tag, h, err, 10 * ACC, summ.get("xset_est.fast", "-")))
+    s.check(rc == 0 or err >= ACC / 10,
+            "%s h=%s: flagged (%s) with error %.3g, within a tenth of the accuracy"
+            % (tag, h, summ.get("status"), err))
+
+
+def grid_slow_source(s):
+    """a 1 ms reader of a slower set, every scheme, the slow set's step swept"""
+    for scene, exact in (("mr_slow_sine.scn", x_slow_int), ("mr_slow_lag.scn", x_slow_lag)):
+        name = scene[:-4]
+        for scheme in SCHEMES + ["linear"]:
+            path = variant_of(scene, "interpolation (hold)", "interpolation (%s)" % scheme)
+            try:
+                for h in STEPS:
+                    rc, summ, rows = run(s.modrt, path, ["--step", "slow=" + h])
+                    # the reader's every tick: its step is 1 ms
+                    err = error(rows, 0.001, exact) if rows else math.inf
+                    whole = abs(float(h) * 10 - round(float(h) * 10)) < 1e-9
+                    tag = "%s %s" % (name, scheme) + (" (aliased)" if whole else "")
+                    s.row(tag, "rk4", h, err, summ, rc)
+                    if whole:  # every sample at one phase: a constant to any monitor
+                        s.check(rc in (0, 1, 3), "%s h=%s: modrt exit %d" % (tag, h, rc))
+                        continue
+                    judged(s, tag, h, rc, err, summ)
+            finally:
+                os.unlink(path)
+
+
+def steps_slow_source(s):
+    """a step computed in a 0.1 s set, read by a 1 ms integrator"""
+    for scheme in SCHEMES + ["linear"]:
+        path = variant_of("mr_slow_step.scn", "interpolation (hold)", "interpolation (%s)" % scheme)
+        try:
+            for t0 in ("0.3", "0.25", "0.301"):
+                rc, summ, rows = run(s.modrt, path, ["--set", "Src.t0=" + t0])
+                err = error(rows, 0.001, lambda t: max(0.0, t - float(t0))) if rows else math.inf
+                tag = "mr_slow_step %s t0=%s" % (scheme, t0)
+                s.row(tag, "rk4", "0.1", err, summ, rc)
+                judged(s, tag, "0.1", rc, err, summ)
+                if scheme == "hold" and t0 == "0.3":
+                    s.check(rc == 0 and err <= 1e-12,
+                            "%s: a hold of a step at the source's point: error %.3g, %s"
+                            % (tag, err, summ.get("status")))
+        finally:
+            os.unlink(path)
+
+
 def library(s):
     """the library's multirate scenes: accurate, and ok (their coupling estimate below
     their accuracy)"""
@@ -98,4 +178,6 @@ def library(s):
 
 def extra(s, long):
     grid(s)
+    grid_slow_source(s)
+    steps_slow_source(s)
     library(s)

@@ -220,7 +220,8 @@ def lanes(s, long):
 
     return [[grid, lambda: hard_cases.extra(s, long),
              mod("cases_global"),  # class E of issue 26: the global error
-             mod("cases_multirate")],  # multirate coupling (docs/multirate.md)
+             mod("cases_multirate"),  # multirate coupling (docs/multirate.md)
+             mod("cases_loops")],  # algebraic loops at every scale (rt/loop.c)
             [mod("cases_events", "run_all"),
              mod("cases_tev"),  # known time events (rt/tev.c)
              mod("cases_estimates")]]

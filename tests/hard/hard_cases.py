@@ -4,6 +4,7 @@ Zeno ball against its analytic impact and rest times."""
 import math
 import os
 import subprocess
+import tempfile
 
 from hard import run, cost, HERE
 
@@ -184,6 +185,33 @@ def mbs_drift(s, long):
     s.check(long or rc == 0, "pendulum drift: status %s over 1e5 steps" % summ.get("status"))
 
 
+def mbs_nostab(s):
+    """a pendulum without projection (pendulum_nostab.scn): stabilization none at 20, 5
+    and 2 ms, Baumgarte (20, 100) at 20 and 5 ms. The recorded residual is the drift: a
+    run whose residual passes the set's accuracy (1e-3) never ends ok, and one whose
+    residual stays within a tenth of it is not flagged"""
+    with open(os.path.join(HERE, "pendulum_nostab.scn")) as f:
+        text = f.read()
+    for stab, ticks in (("none", 20), ("none", 5), ("none", 2),
+                        ("baumgarte) alpha (20) beta (100", 20),
+                        ("baumgarte) alpha (20) beta (100", 5)):
+        fd, path = tempfile.mkstemp(suffix=".scn", prefix="modrt-nostab-")
+        with os.fdopen(fd, "w") as f:
+            f.write(text.replace("stabilization (none)", "stabilization (%s)" % stab)
+                    .replace("step (20 ticks)", "step (%d ticks)" % ticks))
+        try:
+            rc, summ, rows = run(s.modrt, path, [])
+        finally:
+            os.unlink(path)
+        res = max((abs(r[1]) for r in rows), default=math.inf)
+        tag = "pendulum, stabilization %s: largest residual" % stab.split(")")[0]
+        s.row(tag, "rk4", "%g" % (ticks * 1e-3), res, summ, rc)
+        s.check(rc != 0 or res <= 1e-3,
+                "%s at %d ms: residual %g with status ok" % (tag, ticks, res))
+        s.check(rc == 0 or res > 1e-4,
+                "%s at %d ms: residual %g, status %s" % (tag, ticks, res, summ.get("status")))
+
+
 def refused(modrt, scene):
     """runs a scene rt_init must refuse; returns (exit code, the message)"""
     p = subprocess.run([modrt, "run", os.path.join(HERE, scene), "--csv", os.devnull],
@@ -239,6 +267,7 @@ def kinetics(s):
 def extra(s, long):
     dahlquist(s)
     mbs_drift(s, long)
+    mbs_nostab(s)
     joints(s)
     kinetics(s)
     events(s)

@@ -92,9 +92,12 @@ static void test_tune_chosen_meets_tol(void)
     TH_CHECK(e <= tol);
     TH_NEAR(e, r.best.err, tol / 100);
     /* cost: derivatives per simulated second, 4 RK4 stages and the end-point derivative
-       of its error estimate x states x steps per second */
+       of its error estimate x states x steps per second, and the coupling monitor's two
+       right-hand sides per sensitivity measurement of the faster set's input from the
+       slower (every RT_XSET_GAIN_EVERY steps, and near its accuracy: under 1 %) */
     double steps0 = 1 / (DT * r.best.ratio[0]), steps1 = 1 / (DT * r.best.ratio[1]);
-    TH_NEAR(r.best.cost, 5 * (2 * steps0 + steps1), 1e-9 * r.best.cost);
+    double base = 5 * (2 * steps0 + steps1);
+    TH_CHECK(r.best.cost >= base - 1e-9 * base && r.best.cost <= 1.01 * base);
     /* no cheaper neighbour: doubling either step breaks the tolerance */
     for (int s = 0; s < 2; s++) {
         uint32_t d[2] = {r.best.ratio[0], r.best.ratio[1]};

@@ -715,7 +715,11 @@ static void test_points_path(void)
                 return;
             TH_CHECK(tu_sim.work.mbs.points[0] == (v == 0));
             tu_run_to(&sc, 1);
-            TH_CHECK(rt_stats_of(&tu_sim)->status == RT_OK);
+            /* the second point starts moving along its rod at 0.32 m/s: only the
+               projection keeps it on; without, the drift past the set's accuracy is
+               counted (0.32 m at 1 s, none; 1.2e-2 m, Baumgarte) */
+            TH_CHECK(rt_stats_of(&tu_sim)->status ==
+                     (stab == RT_STAB_PROJECT ? RT_OK : RT_E_INVARIANT));
             if (v == 0) {
                 for (int i = 0; i < 12; i++)
                     x[i] = tu_sim.state.x[i];

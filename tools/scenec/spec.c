@@ -116,8 +116,9 @@ static void gather(FILE *f, const rt_sim *sim, uint16_t b)
             fprintf(f, "    u[%u] = sim->state.torn_val[%u];\n", i, sim->plan.src[i]);
             break;
         case RT_SRC_XSET:
-            fprintf(f, "    u[%u] = rti_xset_value(sim, %u, %u, %u, t);\n", i, sim->plan.src[i],
-                    sim->plan.src_set[i], sim->plan.interp[i]);
+            fprintf(f, "    u[%u] = rti_xset_value(sim, %u, %u, %u, t, %u);\n", i,
+                    sim->plan.src[i], sim->plan.src_set[i], sim->plan.interp[i],
+                    sim->sc->blocks[b].set);
             break;
         default:
             fprintf(f, "    u[%u] = sim->plan.def[%u];\n", i, i);
