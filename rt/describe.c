@@ -47,8 +47,9 @@ rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     uint32_t steps = 1, probes = 0;
     uint32_t parts = (sim->plan.set_flags[s] & RTI_SET_TEV) ? RT_TEV_PARTS_MAX : 1;
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
-        /* (and one trial of a root's excursion within the step, rt/step.c) */
-        steps += RT_EVENTS_PER_STEP_MAX * (RT_EVENT_ITER_MAX + 1u) + 1u;
+        /* (and one trial of a root's excursion within the step, rt/step.c; a multibody
+           set integrates its step again after a trial that found nothing) */
+        steps += RT_EVENTS_PER_STEP_MAX * (RT_EVENT_ITER_MAX + 1u) + 2u;
         /* a root that returns within the probe ends the next integration there */
         if (sim->plan.set_flags[s] & RTI_SET_EVERY_SIGN)
             steps += RT_EVENTS_PER_STEP_MAX;

@@ -442,7 +442,8 @@ static real_t probe_limit(const rt_scene *sc, rt_sim *sim, uint8_t s)
    ball thrown up to a ceiling it touches for less than a step. Its roots are written
    into rt, th into *th and its block into *blk; -1 if none (the state and outputs at the
    end restored). Once
-   a step at most: one integration more in its work bound (rt_set_step_bound). A root
+   a step at most: one integration more in its work bound, two for a multibody set
+   (rt_set_step_bound). A root
    whose path is no parabola may be missed (a spike within the step); `modrt check`
    sees such a step at half the step (docs/solvers.md) */
 static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *rs,
@@ -474,8 +475,16 @@ static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *
         *th = at;
         return c;
     }
-    for (uint16_t i = 0; i < n; i++)
-        sim->state.x[x0 + i] = sim->work.xb[i];
+    if (sc->mbs && sim->work.mbs.nz[s] > 0) {
+        /* a projection's multipliers (recorded reactions) are the trial's now: the
+           integration again from its start (one more in the bound) */
+        for (uint16_t i = 0; i < n; i++)
+            sim->state.x[x0 + i] = sim->work.xs[i];
+        integrate(sc, sim, s, t0, sub);
+    } else {
+        for (uint16_t i = 0; i < n; i++)
+            sim->state.x[x0 + i] = sim->work.xb[i];
+    }
     rti_outputs(sc, sim, (rti_at){t0 + sub, s, RTI_IN_STEP});
     return -1;
 }
