@@ -177,9 +177,9 @@ static int copy_changed(real_t *dst, const real_t *src, uint32_t n)
 static void copy_gains(const rt_scene *sc, const rt_sim *from, rt_sim *to, uint8_t s)
 {
 #if RT_MAX_XPRED > 0
-    for (uint16_t k = 0; k < from->plan.nxpred; k++)
-        if (sc->blocks[from->plan.xpred_blk[k]].set == s)
-            to->state.xgain[k] = from->state.xgain[k];
+    (void)sc;
+    for (uint16_t k = from->plan.xpred_of[s]; k < from->plan.xpred_of[s + 1]; k++)
+        to->state.xgain[k] = from->state.xgain[k];
 #else
     (void)sc, (void)from, (void)to, (void)s;
 #endif

@@ -25,14 +25,13 @@ rt_step_work rt_step_bound(const rt_scene *sc, uint8_t s, uint16_t n)
 /* inputs of set s whose extrapolation the coupling monitor checks (rt/xset.c) */
 static uint32_t checked_inputs(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
-    uint32_t m = 0;
+    (void)sc;
 #if RT_MAX_XPRED > 0
-    for (uint16_t k = 0; k < sim->plan.nxpred; k++)
-        m += sc->blocks[sim->plan.xpred_blk[k]].set == s;
+    return (uint32_t)(sim->plan.xpred_of[s + 1] - sim->plan.xpred_of[s]);
 #else
-    (void)sc, (void)sim, (void)s;
+    (void)sim, (void)s;
+    return 0;
 #endif
-    return m;
 }
 
 /* the method's bound times the method steps one step of the set can take: the step

@@ -26,7 +26,7 @@ RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b, real_t t)
             break;
         case RT_SRC_XSET:
             u[i] = rti_xset_value(sim, src[i], sim->plan.src_set[i], sim->plan.interp[i], t,
-                                  sim->sc->blocks[b].set);
+                                  (uint16_t)b);
             break;
         default:
             u[i] = sim->plan.def[i];

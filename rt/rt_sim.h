@@ -102,10 +102,11 @@ typedef struct rt_plan {
 #endif
 #if RT_MAX_XPRED > 0
     /* inputs a set reads from another set's history, whose error is checked
-       (rti_xset_predict), the block each belongs to and how it reads it (RTI_XP_*) */
+       (rti_xset_predict), the block each belongs to and how it reads it (RTI_XP_*);
+       grouped by set, set s's from xpred_of[s] to xpred_of[s + 1] */
     uint16_t xpred_in[RT_MAX_XPRED], xpred_blk[RT_MAX_XPRED];
     uint8_t xpred_how[RT_MAX_XPRED];
-    uint16_t nxpred;
+    uint16_t nxpred, xpred_of[RT_MAX_SETS + 1];
 #endif
 
     uint64_t n_ticks;                /* ticks to reach t_end */

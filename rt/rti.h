@@ -268,10 +268,10 @@ real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s);
 rt_status rti_xset_init(const rt_scene *sc, rt_sim *sim);
 /* Pushes set s's outputs read by other sets, at time t, into their history. */
 void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
-/* Output v of set q reconstructed at time t by the scheme, for an evaluation of set
-   reader (RT_MAX_SETS: at a tick, outside any set's step). */
+/* Output v of set q reconstructed at time t by the scheme, for an evaluation of block
+   reader's set (RT_MAX_BLOCKS: at a tick, outside any set's step). */
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t,
-                      uint8_t reader);
+                      uint16_t reader);
 /* does set s read another set's history (the error of each such input is checked,
    rt/xpred.c); _npred: the inputs that do, of every set (RT_MAX_XPRED) */
 int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s);

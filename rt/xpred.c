@@ -73,10 +73,9 @@ static void measure(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real
 void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
 #if RT_MAX_XPRED > 0
-    uint64_t step = sim->state.set_tick[s] / sc->sets[s].ratio;
-    for (uint16_t k = 0; k < sim->plan.nxpred; k++)
-        if (sc->blocks[sim->plan.xpred_blk[k]].set == s &&
-            (step % RT_XSET_GAIN_EVERY == 0 || sim->state.xgain[k] != sim->state.xgain[k]))
+    int due = sim->state.set_tick[s] / sc->sets[s].ratio % RT_XSET_GAIN_EVERY == 0;
+    for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++)
+        if (due || sim->state.xgain[k] != sim->state.xgain[k])
             measure(sc, sim, s, k, t, h);
 #else
     (void)sc, (void)sim, (void)s, (void)t, (void)h;
@@ -141,7 +140,7 @@ static void check_ahead(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, 
             }
         }
     }
-    sim->state.xpred[k] = rti_xset_value(sim, v, q, sim->plan.interp[i], t + h, s);
+    sim->state.xpred[k] = rti_xset_value(sim, v, q, sim->plan.interp[i], t + h, b);
 }
 
 /* the mean over [T1, T0] of the difference between what scheme reads of output v there
@@ -190,13 +189,15 @@ static int jumps_past(const rt_scene *sc, rt_sim *sim, uint8_t q, uint8_t scheme
 static void check_bracket(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real_t t,
                           real_t h)
 {
-    uint16_t b = sim->plan.xpred_blk[k], i = sim->plan.xpred_in[k];
-    uint16_t v = sim->plan.src[i];
+    uint16_t i = sim->plan.xpred_in[k];
     uint8_t q = sim->plan.src_set[i];
     const real_t *T = sim->state.hist_t[q];
+    if (T[0] == sim->state.xpred[k]) /* (the common case, every step but the first) */
+        return;                       /* this interval judged already */
+    uint16_t b = sim->plan.xpred_blk[k], v = sim->plan.src[i];
     int n = sim->state.hist_n[q];
-    if (n < 2 || !(T[1] <= t && t < T[0]) || T[0] == sim->state.xpred[k])
-        return; /* no interval, or this one judged already */
+    if (n < 2 || !(T[1] <= t && t < T[0]))
+        return; /* no interval */
     sim->state.xpred[k] = T[0];
     uint8_t scheme = sim->plan.interp[i];
     if (jumps_past(sc, sim, q, scheme))
@@ -212,9 +213,7 @@ static void check_bracket(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k
 void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
 #if RT_MAX_XPRED > 0
-    for (uint16_t k = 0; k < sim->plan.nxpred; k++) {
-        if (sc->blocks[sim->plan.xpred_blk[k]].set != s)
-            continue;
+    for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++) {
         if (sim->plan.xpred_how[k] == RTI_XP_AHEAD)
             check_ahead(sc, sim, s, k, t, h);
         else

@@ -10,23 +10,29 @@
  * evaluates only its own blocks, and a cross-set edge is no algebraic dependency. */
 #include "rti.h"
 
-/* how input i, of a block of set st, reads another set's history over st's step
+/* how input i, of block b of set st, reads another set's history over st's step
    (RTI_XP_*): ahead, extrapolating its source (a source faster than st, or of st's ratio
    and behind it; the background set and any set it reads or that reads it: rt/bg.c; a
    set of the tick that steps after st), or between two points of it (a source slower
-   than st, or of its ratio and ahead of it) */
-static int monitored(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint8_t st)
+   than st, or of its ratio and ahead of it). Between points, a sampled block's input is
+   not monitored: it enters no derivative of the step (its sensitivity is 0) */
+static int monitored(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint16_t b, uint8_t st)
 {
     if (sim->plan.src_kind[i] != RT_SRC_XSET)
         return RTI_XP_NONE;
     uint8_t q = sim->plan.src_set[i];
+    int sampled = sc->blocks[b].kind->type == RT_KIND_DSS;
     if (sc->sets[q].ratio != sc->sets[st].ratio)
-        return sc->sets[q].ratio < sc->sets[st].ratio ? RTI_XP_AHEAD : RTI_XP_BRACKET;
+        return sc->sets[q].ratio < sc->sets[st].ratio ? RTI_XP_AHEAD
+               : sampled                              ? RTI_XP_NONE
+                                                      : RTI_XP_BRACKET;
     if (sc->sets[q].background || sc->sets[st].background)
         return RTI_XP_AHEAD;
     for (uint8_t k = 0; k < sc->nsets; k++) /* which of the two steps first */
         if (sim->plan.sched[k] == q || sim->plan.sched[k] == st)
-            return sim->plan.sched[k] == st ? RTI_XP_AHEAD : RTI_XP_BRACKET;
+            return sim->plan.sched[k] == st ? RTI_XP_AHEAD
+                   : sampled                ? RTI_XP_NONE
+                                            : RTI_XP_BRACKET;
     return RTI_XP_NONE;
 }
 
@@ -35,7 +41,7 @@ uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim)
     uint16_t n = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++)
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++)
-            n = (uint16_t)(n + (monitored(sc, sim, i, sc->blocks[b].set) != RTI_XP_NONE));
+            n = (uint16_t)(n + (monitored(sc, sim, i, b, sc->blocks[b].set) != RTI_XP_NONE));
     return n;
 }
 
@@ -46,15 +52,20 @@ static rt_status collect_predicted(const rt_scene *sc, rt_sim *sim)
         return rti_capacity(sim, 0, 0, RT_LIM_XPRED);
 #if RT_MAX_XPRED > 0
     sim->plan.nxpred = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++)
-        for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
-            int how = monitored(sc, sim, i, sc->blocks[b].set);
-            if (how == RTI_XP_NONE)
-                continue;
-            sim->plan.xpred_in[sim->plan.nxpred] = i;
-            sim->plan.xpred_blk[sim->plan.nxpred] = b;
-            sim->plan.xpred_how[sim->plan.nxpred++] = (uint8_t)how;
-        }
+    for (uint8_t s = 0; s < sc->nsets; s++) { /* by set: each set's step walks its own */
+        sim->plan.xpred_of[s] = sim->plan.nxpred;
+        for (uint16_t b = 0; b < sc->nblocks; b++)
+            for (uint16_t i = sim->plan.u_off[b]; sc->blocks[b].set == s && i < sim->plan.u_off[b + 1];
+                 i++) {
+                int how = monitored(sc, sim, i, b, s);
+                if (how == RTI_XP_NONE)
+                    continue;
+                sim->plan.xpred_in[sim->plan.nxpred] = i;
+                sim->plan.xpred_blk[sim->plan.nxpred] = b;
+                sim->plan.xpred_how[sim->plan.nxpred++] = (uint8_t)how;
+            }
+    }
+    sim->plan.xpred_of[sc->nsets] = sim->plan.nxpred;
 #endif
     return RT_OK;
 }
@@ -267,18 +278,20 @@ static real_t extrap(const rt_sim *sim, const real_t *T, uint16_t v, int n, int 
     return e;
 }
 
-/* is an evaluation of set reader at t one at the end of the step (or step part) it is
-   integrating? There a hold, or a line through the points before, reads a point at t as
-   the left end of the interval before it (a sampled output's hold gives the same,
+/* is an evaluation of block reader's set at t one at the end of the step (or step part)
+   it is integrating? There a hold, or a line through the points before, reads a point at
+   t as the left end of the interval before it (a sampled output's hold gives the same,
    rt/held.c): a method's stage at the step's end would otherwise read the next
    interval's value one step early. Not in a set whose parts end at instants with services
    (rt/tev.c), which take the value at the instant */
-static int ends_there(const rt_sim *sim, uint8_t reader, real_t t)
+static int ends_there(const rt_sim *sim, uint16_t reader, real_t t)
 {
-    if (reader >= RT_MAX_SETS ||
-        (sim->plan.set_flags[reader] & (RTI_SET_TEV_DYN | RTI_SET_STEP_END | RTI_SET_INSTANT)))
+    if (reader >= sim->sc->nblocks)
         return 0;
-    real_t from = (real_t)sim->state.set_tick[reader] * sim->sc->dt;
+    uint8_t s = sim->sc->blocks[reader].set;
+    if (sim->plan.set_flags[s] & (RTI_SET_TEV_DYN | RTI_SET_STEP_END | RTI_SET_INSTANT))
+        return 0;
+    real_t from = (real_t)sim->state.set_tick[s] * sim->sc->dt;
 #if RT_MAX_TEV > 0
     if (sim->work.t_piece > 0)
         from = sim->work.t_piece; /* a part: its midpoint */
@@ -287,7 +300,7 @@ static int ends_there(const rt_sim *sim, uint8_t reader, real_t t)
 }
 
 real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, real_t t,
-                      uint8_t reader)
+                      uint16_t reader)
 {
     const real_t *T = sim->state.hist_t[q];
     int n = sim->state.hist_n[q], k = 0;
@@ -342,12 +355,11 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
 
 int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
+    (void)sc;
 #if RT_MAX_XPRED > 0
-    for (uint16_t k = 0; k < sim->plan.nxpred; k++)
-        if (sc->blocks[sim->plan.xpred_blk[k]].set == s)
-            return 1;
+    return sim->plan.xpred_of[s + 1] > sim->plan.xpred_of[s];
 #else
-    (void)sc, (void)sim, (void)s;
-#endif
+    (void)sim, (void)s;
     return 0;
+#endif
 }

@@ -399,17 +399,17 @@ static void test_value_between_points(void)
         }
         double lin = t_r >= T[1] ? line01 : line12;
         double tol = RT_REAL_IS_FLOAT ? 1e-5 : 1e-13;
-        double got_l = (double)rti_xset_value(sim, 0, q, RT_INTERP_LINEAR, (real_t)t, RT_MAX_SETS);
-        double got_h = (double)rti_xset_value(sim, 0, q, RT_INTERP_HERMITE, (real_t)t, RT_MAX_SETS);
-        double got_q = (double)rti_xset_value(sim, 0, q, RT_INTERP_QUAD, (real_t)t, RT_MAX_SETS);
+        double got_l = (double)rti_xset_value(sim, 0, q, RT_INTERP_LINEAR, (real_t)t, RT_MAX_BLOCKS);
+        double got_h = (double)rti_xset_value(sim, 0, q, RT_INTERP_HERMITE, (real_t)t, RT_MAX_BLOCKS);
+        double got_q = (double)rti_xset_value(sim, 0, q, RT_INTERP_QUAD, (real_t)t, RT_MAX_BLOCKS);
         ok &= rt_fabs((real_t)(got_l - lin)) <= tol && rt_fabs((real_t)(got_q - par)) <= tol &&
               rt_fabs((real_t)(got_h - par)) <= tol;
     }
     TH_CHECK(ok);
     sim->state.hist_n[q] = 2; /* two points: the line for every interpolating scheme */
     double t = 0.25, line01 = Y[1] + (Y[0] - Y[1]) * ((double)(real_t)t - T[1]) / (T[0] - T[1]);
-    TH_NEAR((double)rti_xset_value(sim, 0, q, RT_INTERP_HERMITE, (real_t)t, RT_MAX_SETS), line01, 1e-5);
-    TH_NEAR((double)rti_xset_value(sim, 0, q, RT_INTERP_QUAD, (real_t)t, RT_MAX_SETS), line01, 1e-5);
+    TH_NEAR((double)rti_xset_value(sim, 0, q, RT_INTERP_HERMITE, (real_t)t, RT_MAX_BLOCKS), line01, 1e-5);
+    TH_NEAR((double)rti_xset_value(sim, 0, q, RT_INTERP_QUAD, (real_t)t, RT_MAX_BLOCKS), line01, 1e-5);
 }
 
 const th_test th_xset_tests[] = {

@@ -117,8 +117,7 @@ static void gather(FILE *f, const rt_sim *sim, uint16_t b)
             break;
         case RT_SRC_XSET:
             fprintf(f, "    u[%u] = rti_xset_value(sim, %u, %u, %u, t, %u);\n", i,
-                    sim->plan.src[i], sim->plan.src_set[i], sim->plan.interp[i],
-                    sim->sc->blocks[b].set);
+                    sim->plan.src[i], sim->plan.src_set[i], sim->plan.interp[i], b);
             break;
         default:
             fprintf(f, "    u[%u] = sim->plan.def[%u];\n", i, i);
