@@ -434,6 +434,27 @@ static real_t probe_limit(const rt_scene *sc, rt_sim *sim, uint8_t s)
     return rti_tev_dyn_next(sc, sim, s);
 }
 
+/* at the run's start a directional root may sit exactly on its level (a ball released on
+   its floor, falling): 0 is on neither side, so no sign change ever shows, and the body
+   goes through. Such a root moving the way it crosses over the first integration (rb) is
+   taken to start a hair before its level in ra (the span's start values), so its
+   crossing is located at once and its handler runs; one moving away, or an undirected
+   root (which would fire whichever way it left), stays as it is */
+static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, const rootset *rs,
+                           real_t *ra, const real_t *rb)
+{
+    const real_t tiny = RT_REAL_IS_FLOAT ? (real_t)1e-30 : (real_t)1e-300;
+    uint16_t n = 0, j = sim->plan.blk_of[s];
+    for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
+        const rt_kind *k = sc->blocks[b].kind;
+        for (uint16_t i = 0; i < k->nr; i++, n++) {
+            int dir = k->root_dir ? k->root_dir[i] : 0;
+            if (ra[n] == 0 && rs->side[n] == 0 && rs->lvl[n] == 0 && dir * rb[n] > 0)
+                ra[n] = (real_t)-dir * tiny;
+        }
+    }
+}
+
 /* a root that crossed its level and came back within the integration from t0 over sub
    (ra at its start, rb at its end, on one side): the parabola through it one integration
    before (state.r_prev, of the same length), ra and rb reaches beyond the level between
@@ -519,6 +540,8 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
         if (rs.lost && !nan_seen)
             rti_count(sim, RT_CNT_NAN, nb, RT_E_NAN), nan_seen = 1;
         uint16_t blk, which;
+        if (ev == 0 && t0 == 0 && sim->state.tick == 0)
+            start_on_level(sc, sim, s, &rs, r, sim->work.rs);
         int c = find_crossing(sc, sim, s, &rs, r, sim->work.rs, &blk, &which);
         real_t b = 1, rb = c >= 0 ? sim->work.rs[c] : 0;
         if (c < 0 && !tried++ &&

@@ -4,7 +4,8 @@ and 10 ms against the analytic impact times and time of rest (the geometric seri
 its flights), the same ball without its rest clause past its Zeno point, a ball on a
 table moving as A sin(w t) against tests/hard/table_ref.py, a root that is NaN at the
 end of the step that holds its crossing, two crossings in one step, the later root
-listed first, and a root that crosses and returns within one step (a ceiling). Hooked into tests/hard/hard.py."""
+listed first, a root that crosses and returns within one step (a ceiling), and a root
+exactly on its level at the start. Hooked into tests/hard/hard.py."""
 import math
 
 import table_ref
@@ -178,6 +179,19 @@ def ceiling(s, m, h):
             % (m, h, summ.get("status"), last, want))
 
 
+def start_on_level(s, m, h):
+    """events_start.scn: a point starting exactly on its floor, moving down (one contact at
+    t = 0, z(1) = 1) or up (none, z(1) = 1); through its floor (z(1) = -1) is wrong"""
+    for v, hits in (("-1", 1.0), ("1", 0.0)):
+        rc, summ, rows = run(s.modrt, "events_start.scn",
+                             ["--method", "main=" + m, "--step", "main=" + h, "--set", "P.v=" + v])
+        last = rows[-1][1:] if rows else []
+        err = max(abs(last[0] - 1), abs(last[1] - hits)) if len(last) == 2 else math.inf
+        s.row("a root on its level at the start, speed %s: z, n at 1 s" % v, m, h, err, summ, rc)
+        s.check(rc in (0, 3) and err < 1e-9, "start on level %s h=%s v=%s: status %s, z n %s"
+                % (m, h, v, summ.get("status"), last))
+
+
 def run_all(s, long):
     for m in EXACT + FIRST:
         for h in STEPS:
@@ -198,3 +212,5 @@ def run_all(s, long):
             two_in_one_step(s, m, h)
         for h in ("0.01", "0.05", "0.1", "0.2"):
             ceiling(s, m, h)
+        for h in ("0.01", "0.1"):
+            start_on_level(s, m, h)
