@@ -273,6 +273,27 @@ static int keeps_roots(const rt_scene *sc, rt_sim *sim, uint8_t s)
     return (sim->plan.set_flags[s] & RTI_SET_TEV) && rti_tev_at(sc, sim, s, sim->state.tick);
 }
 
+/* set s's roots recomputed at a tick (r) after an input jumped there (another set's new
+   point, a sampled block's update): a free directional root that went from before its
+   level at the step's end (r0) to past it crossed by the jump alone, and no handler runs
+   for it (the next step starts past it). Counted (event_noloc, the block): never an ok
+   run with an event lost */
+static void jumped_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, const real_t *r0,
+                         const real_t *r)
+{
+    uint16_t n = 0, base = sim->plan.set_r[s];
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        uint16_t b = sim->plan.set_blk[k];
+        const rt_kind *kd = sc->blocks[b].kind;
+        for (uint16_t i = 0; i < kd->nr; i++, n++) {
+            int dir = kd->root_dir ? kd->root_dir[i] : 0;
+            if (dir != 0 && sim->state.r_side[base + n] == 0 && sim->state.r_lvl[base + n] == 0 &&
+                (real_t)dir * r0[n] < 0 && (real_t)dir * r[n] >= 0)
+                rti_count(sim, RT_CNT_EVENT_NOLOC, b, RT_E_NOLOC);
+        }
+    }
+}
+
 /* outputs and roots of set s at the time of its state (and its held signals); recall:
    its step's end evaluated its outputs at this time already (for its history), so only
    the entries that may give something else now are called (RTI_AT_TICK_RECALL);
@@ -290,8 +311,15 @@ static void evaluate_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int recall,
     rti_mode mode = recall ? RTI_AT_TICK_RECALL
                   : rti_at_tick(sim, s) ? RTI_AT_TICK : RTI_IN_STEP;
     rti_outputs(sc, sim, (rti_at){ts, s, mode});
-    if (sim->plan.set_r[s + 1] > sim->plan.set_r[s] && !(in_tick && keeps_roots(sc, sim, s)))
-        rti_roots(sc, sim, s, ts, sim->state.r + sim->plan.set_r[s]);
+    uint16_t r0 = sim->plan.set_r[s], nr = (uint16_t)(sim->plan.set_r[s + 1] - r0);
+    if (nr > 0 && !(in_tick && keeps_roots(sc, sim, s))) {
+        real_t before[RT_MAX_ROOTS];
+        for (uint16_t i = 0; i < nr; i++)
+            before[i] = sim->state.r[r0 + i];
+        rti_roots(sc, sim, s, ts, sim->state.r + r0);
+        if (in_tick)
+            jumped_roots(sc, sim, s, before, sim->state.r + r0);
+    }
     if (sim->plan.set_flags[s] & RTI_SET_HOLDS_SIG)
         hold_signals(sc, sim, s);
 }

@@ -7,9 +7,11 @@ end of the step that holds its crossing, two crossings in one step, the later ro
 listed first, a root that crosses and returns within one step (a ceiling), and a root
 exactly on its level at the start. Hooked into tests/hard/hard.py."""
 import math
+import os
+import tempfile
 
 import table_ref
-from hard import run
+from hard import run, HERE
 from hard_cases import ball_times
 
 # order >= 2: exact on the ball's parabola, so its impacts are the analytic ones to the
@@ -192,6 +194,26 @@ def start_on_level(s, m, h):
                 % (m, h, v, summ.get("status"), last))
 
 
+def relay_split(s):
+    """relay_lag.scn with the relay in a 1 ms set and the lag in a 10 ms one (hold): the
+    relay's root crosses only by the lag's new point at a tick, where no handler runs
+    (the limit cycle is lost: x(10) = -1 where it is 0.11); never status ok"""
+    with open(os.path.join(HERE, "relay_lag.scn")) as f:
+        text = "\n".join(l for l in f.read().splitlines() if not l.startswith("set "))
+    fd, path = tempfile.mkstemp(suffix=".scn", prefix="modrt-relay-")
+    with os.fdopen(fd, "w") as f:
+        f.write(text + "\nset (p) method (rk4) step (10 ticks) members (L);\n"
+                "set (c) method (rk4) step (1 ticks) members (R);\n")
+    try:
+        rc, summ, rows = run(s.modrt, path, [])
+    finally:
+        os.unlink(path)
+    s.row("relay and lag in two sets: an event by a jump at a tick", "rk4", "0.01", math.nan,
+          summ, rc)
+    s.check(rc != 0 or summ.get("events", "0") != "0",
+            "relay split: status %s with no event" % summ.get("status"))
+
+
 def run_all(s, long):
     for m in EXACT + FIRST:
         for h in STEPS:
@@ -207,6 +229,7 @@ def run_all(s, long):
         for h in STEPS:
             table(s, m, h, ref)
     nan_root(s)
+    relay_split(s)
     for m in EXACT:
         for h in ("0.05", "0.1", "0.25"):
             two_in_one_step(s, m, h)
