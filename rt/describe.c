@@ -37,8 +37,8 @@ static uint32_t checked_inputs(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 /* the method's bound times the method steps one step of the set can take: the step
    itself and, with roots, every located event's re-steps and the rest of the step after
    it (rt/step.c), with one probe per handled event (and one integration more where a
-   root's every sign change counts, up to its return) and one trial of an excursion; each part at a known time event
-   again (rt/tev.c); and the coupling monitor's two right-hand sides per sensitivity,
+   root's every sign change counts, up to its return) and one trial of an excursion;
+   each part at a known time event again (rt/tev.c); and the coupling monitor's two right-hand sides per sensitivity,
    measured at most twice a step per checked input (rt/xset.c) */
 rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {

@@ -266,7 +266,7 @@ rt_status rti_eval_plan(const rt_scene *sc, rt_sim *sim)
         if (rti_set_nx(sim, set) == 0 && sim->plan.set_r[set + 1] == sim->plan.set_r[set] &&
             sim->plan.rhs_calls[set] == 0)
             sim->plan.set_flags[set] |= RTI_SET_NO_STEP;
-        if (rti_xset_extrapolates(sc, sim, set))
+        if (rti_xset_monitors(sc, sim, set))
             sim->plan.set_flags[set] |= RTI_SET_XPRED;
     }
     return RT_OK;

@@ -104,21 +104,30 @@ static void correct(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t *v)
     rti_mbs_correct(sc, sim, set, v, sim->work.mbs.a, 0);
 }
 
+/* the largest |g| of the set's rows in w->g (NaN counts as worst) and its row into *row,
+   kept in the high-water mark res_max */
+static real_t worst_row(rt_mbs_work *w, uint8_t set, uint16_t *row)
+{
+    real_t worst = 0;
+    *row = 0;
+    for (uint16_t r = 0; r < w->nc[set]; r++) {
+        real_t v = rt_fabs(w->g[r]);
+        if (!(v <= worst))
+            worst = v, *row = r;
+    }
+    if (!(worst <= w->res_max))
+        w->res_max = worst;
+    return worst;
+}
+
 /* largest |g| after the projection: a high-water mark, and a degraded step above the
    tolerance (the two iterations did not reach the manifold: a far-off or singular state) */
 static void check_residual(const rt_scene *sc, rt_sim *sim, uint8_t set)
 {
     rt_mbs_work *w = &sim->work.mbs;
-    real_t worst = 0;
-    uint16_t row = 0;
-    for (uint16_t r = 0; r < w->nc[set]; r++) {
-        real_t v = rt_fabs(w->g[r]);
-        if (!(v <= worst)) /* NaN counts as worst */
-            worst = v, row = r;
-    }
+    uint16_t row;
+    real_t worst = worst_row(w, set, &row);
     w->projections++;
-    if (!(worst <= w->res_max))
-        w->res_max = worst;
     if (!(worst <= RT_MBS_RES_TOL))
         rti_count(sim, RT_CNT_DEGRADED, rti_mbs_row_block(sc, sim, set, row), RT_E_DEGRADED);
 }
@@ -173,17 +182,9 @@ static real_t g_max(const rt_mbs_work *w, uint8_t set)
    as one whose invariant broke above it. Reads the state, changes nothing */
 static void check_drift(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
-    rt_mbs_work *w = &sim->work.mbs;
+    uint16_t row;
     rti_mbs_assemble(sc, sim, set, t, RTI_MBS_G);
-    real_t worst = 0;
-    uint16_t row = 0;
-    for (uint16_t r = 0; r < w->nc[set]; r++) {
-        real_t v = rt_fabs(w->g[r]);
-        if (!(v <= worst)) /* NaN counts as worst */
-            worst = v, row = r;
-    }
-    if (!(worst <= w->res_max))
-        w->res_max = worst;
+    real_t worst = worst_row(&sim->work.mbs, set, &row);
     if (!(worst <= rti_accuracy(&sc->sets[set].cfg)))
         rti_count(sim, RT_CNT_INVARIANT, rti_mbs_row_block(sc, sim, set, row), RT_E_INVARIANT);
 }

@@ -274,7 +274,7 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
                       uint16_t reader);
 /* does set s read another set's history (the error of each such input is checked,
    rt/xpred.c); _npred: the inputs that do, of every set (RT_MAX_XPRED) */
-int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s);
+int rti_xset_monitors(const rt_scene *sc, const rt_sim *sim, uint8_t s);
 uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim);
 /* how an input reads its source's history over its set's step (plan.xpred_how) */
 enum {

@@ -462,11 +462,10 @@ static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, con
    and, if a root crossed by then, the crossing is located in [0, th] as any other: a
    ball thrown up to a ceiling it touches for less than a step. Its roots are written
    into rt, th into *th and its block into *blk; -1 if none (the state and outputs at the
-   end restored). Once
-   a step at most: one integration more in its work bound, two for a multibody set
-   (rt_set_step_bound). A root
-   whose path is no parabola may be missed (a spike within the step); `modrt check`
-   sees such a step at half the step (docs/solvers.md) */
+   end restored). Once a step at most: one integration more in its work bound, two for a
+   multibody set (rt_set_step_bound). A root whose path is no parabola may be missed (a
+   spike within the step); `modrt check` sees such a step at half the step
+   (docs/solvers.md) */
 static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *rs,
                      const real_t *ra, real_t t0, real_t sub, real_t *rt, real_t *th,
                      uint16_t *blk)

@@ -353,7 +353,7 @@ real_t rti_xset_value(const rt_sim *sim, uint16_t v, uint8_t q, uint8_t scheme, 
     return extrap(sim, T, v, n, k, t, ahead, fade);
 }
 
-int rti_xset_extrapolates(const rt_scene *sc, const rt_sim *sim, uint8_t s)
+int rti_xset_monitors(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     (void)sc;
 #if RT_MAX_XPRED > 0
