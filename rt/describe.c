@@ -53,6 +53,10 @@ rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
         if (sim->plan.set_flags[s] & RTI_SET_EVERY_SIGN)
             steps += RT_EVENTS_PER_STEP_MAX;
         probes = RT_EVENTS_PER_STEP_MAX + 1u;
+        /* an event of a set reading other sets is judged: a probe before its handlers
+           and the derivatives after them (rt/step.c, unsure_by) */
+        if (sim->plan.set_flags[s] & RTI_SET_XPRED)
+            probes += 2u * RT_EVENTS_PER_STEP_MAX;
     }
     w.rhs = parts * (steps * w.rhs + probes) + 4u * checked_inputs(sc, sim, s);
     w.lu = parts * steps * w.lu;

@@ -274,24 +274,25 @@ static int keeps_roots(const rt_scene *sc, rt_sim *sim, uint8_t s)
 }
 
 /* set s's roots recomputed at a tick (r) after an input jumped there (another set's new
-   point, a sampled block's update): a free directional root that went from before its
-   level at the step's end (r0) to past it crossed by the jump alone, and no handler runs
-   for it (the next step starts past it). Counted (event_noloc, the block): never an ok
-   run with an event lost */
-static void jumped_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, const real_t *r0,
-                         const real_t *r)
+   point, a sampled block's update): a root that crossed from its step's end (r0) by the
+   jump alone keeps its value there, the left limit, and the set is marked (r_kept): its
+   next step fires it at its start, the tick (the step would start past it otherwise,
+   and the event be lost). How long before the tick it may have crossed (the
+   longest interval of a source from another set over which the jump built up, 0 for a
+   sampled block's or a known instant's) is kept in state.r_late for its event */
+static void keep_jumped(const rt_scene *sc, rt_sim *sim, uint8_t s, const real_t *r0, real_t *r)
 {
     uint16_t n = 0, base = sim->plan.set_r[s];
+    int any = 0;
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
-        uint16_t b = sim->plan.set_blk[k];
-        const rt_kind *kd = sc->blocks[b].kind;
-        for (uint16_t i = 0; i < kd->nr; i++, n++) {
-            int dir = kd->root_dir ? kd->root_dir[i] : 0;
-            if (dir != 0 && sim->state.r_side[base + n] == 0 && sim->state.r_lvl[base + n] == 0 &&
-                (real_t)dir * r0[n] < 0 && (real_t)dir * r[n] >= 0)
-                rti_count(sim, RT_CNT_EVENT_NOLOC, b, RT_E_NOLOC);
-        }
+        const rt_kind *kd = sc->blocks[sim->plan.set_blk[k]].kind;
+        for (uint16_t i = 0; i < kd->nr; i++, n++)
+            if (rti_root_crossed(kd, i, r0[n], r[n], sim->state.r_lvl[base + n],
+                                 sim->state.r_side[base + n]))
+                r[n] = r0[n], any = 1;
     }
+    sim->state.r_kept[s] = (uint8_t)any;
+    sim->state.r_late[s] = any ? rti_xset_late(sc, sim, s) : 0;
 }
 
 /* outputs and roots of set s at the time of its state (and its held signals); recall:
@@ -318,7 +319,7 @@ static void evaluate_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int recall,
             before[i] = sim->state.r[r0 + i];
         rti_roots(sc, sim, s, ts, sim->state.r + r0);
         if (in_tick)
-            jumped_roots(sc, sim, s, before, sim->state.r + r0);
+            keep_jumped(sc, sim, s, before, sim->state.r + r0);
     }
     if (sim->plan.set_flags[s] & RTI_SET_HOLDS_SIG)
         hold_signals(sc, sim, s);

@@ -128,6 +128,9 @@ struct rt_state {
                                         values show a root that crosses and returns
                                         within one step (rt/step.c, excursion) */
     real_t r_prev_h[RT_MAX_SETS];
+    real_t r_late[RT_MAX_SETS];      /* per set with r_kept: how long before the tick the
+                                        crossing may have come (0: at the tick), judged
+                                        at its event (rt/held.c, step.c) */
     real_t r_lvl[RT_MAX_ROOTS];      /* level each root crosses at: 0, or after a handler
                                         that sent it back (or stopped it) the value it
                                         was handled at, less a margin (rt/step.c) */
@@ -204,6 +207,14 @@ struct rt_state {
                                         and a multi-tick set's renewal evaluates its
                                         outputs in full (rt/held.c) */
     uint8_t bg_busy;                 /* 1: a step is released and not yet published */
+    uint8_t hist_ev[RT_MAX_SETS];    /* per set, a bit per interval of its history that
+                                        holds a state event (bit 0: the newest, between
+                                        hist_t[s][1] and [0]), whose outputs may jump
+                                        anywhere inside it; RTI_HIST_EV_STEP: one in the
+                                        step not yet pushed (rt/step.c, rt/xset.c) */
+    uint8_t r_kept[RT_MAX_SETS];     /* 1: a root of the set crossed by its inputs' jump at
+                                        the tick its state reached; its value kept from
+                                        the step's end, and its handler due at the tick */
 #if RT_MAX_KSTATE > 0
     /* the internal state of the blocks whose kind keeps one (rt_kind.save), written by
        rt_snapshot only: per such block in block order its size (4 bytes, little-endian;

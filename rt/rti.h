@@ -283,6 +283,9 @@ enum {
     RTI_XP_BRACKET /* between two points: the scheme's error over them estimated */
 };
 
+/* state.hist_ev: the set's step in progress fired an event (its next push's interval) */
+#define RTI_HIST_EV_STEP 0x80u
+
 /* ---- the communication-error monitor (xpred.c) ---- */
 /* at the start of set s's step over [t, t + h]: the inputs it extrapolates from other sets
    against what their schemes predicted at its last step (RT_E_COUPLING past
@@ -296,6 +299,27 @@ void rti_xset_predict_reset(rt_sim *sim);
    the accuracy): two right-hand sides per input, in the context that runs the step
    (rti_xset_predict calls it for a set of the tick, rt/bg.c for the background set) */
 void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
+/* set s, its state at a tick where an input from another set's history jumped: how long
+   before the tick the jump built up, the longest such interval (a source extrapolated
+   over s's step: the step; one read between points: its interval ending there); 0 where
+   no such source has a point now, or its jump is at a known instant (rt/tev.c) */
+real_t rti_xset_late(const rt_scene *sc, rt_sim *sim, uint8_t s);
+
+/* ---- what a signal read from another set misses by (xmiss.c) ---- */
+/* an error est that set s took from its coupling (block b), against its accuracy: above
+   it, counted like a step whose estimate exceeds it (errest, RT_E_ACCURACY); the largest
+   kept in stats.xset_est */
+void rti_xset_judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t est);
+/* what the inputs set s reads from other sets may put into something computed from them
+   (a root, a handler's result) at time t of its step h: per input whose scheme misses
+   there (by the points' next difference, at t's place among them), its history
+   shifted by a small d that every scheme reproduces, fn is called with w = miss / d (so
+   w times the change is that input's share) and the window the miss spans (the source's
+   interval read between points, h read ahead), then the history restored bit for bit.
+   An interval of the source that holds a state event (state.hist_ev) misses as a hold */
+typedef void (*rti_xset_effect)(void *ctx, real_t w, real_t window);
+void rti_xset_shifted(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h,
+                      rti_xset_effect fn, void *ctx);
 
 /* ---- what a set shows between its steps (held.c) ---- */
 /* the highest output index of a set stepping over several ticks, plus one (RT_MAX_HELD_Y) */
@@ -337,6 +361,11 @@ rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b);
 /* set s's step from base tick `tick` over `ratio` ticks: one rti_step_set, or one per
    part between the known time events inside it, each evaluated on its own side of them */
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio);
+/* the known instants strictly inside set s's step from base tick `tick` over `ratio`
+   ticks, of a set with nothing to integrate (RTI_SET_NO_STEP; rti_tev_step does the
+   same for the others): a block switching there whose outputs another set reads through
+   the history (whose points are the step's ends) is counted, errest */
+void rti_tev_inside(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio);
 /* an instant of set s at time t, where its state is (the start of a step part, the tick
    its state reaches): its outputs there (on the side work.t_piece says), then each kind's
    rt_kind.instant with its inputs there; the set's roots again after one that ran an
@@ -354,6 +383,10 @@ int rti_tev_was(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
    (may_stop) at an event that moved a time event known at run time inside the step
    (rt/tev.c). Returns the time reached: t + h, or that event's. */
 real_t rti_step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h, int may_stop);
+/* does root i of kind k cross from ra to rb in its declared direction? A root a handler
+   sent back to (or stopped on) side `side` of its level lvl (rt_state.r_side, r_lvl)
+   crosses when it leaves the level to the other */
+int rti_root_crossed(const rt_kind *k, uint16_t i, real_t ra, real_t rb, real_t lvl, int side);
 /* before the first tick: set s's method makes ready what it keeps between steps of h
    from time t (rt_integrator.prime; ROS2's first Jacobian of a spread refresh) */
 void rti_prime_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);

@@ -100,7 +100,7 @@ static uint32_t step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
     if (!(sim->plan.set_flags[s] & RTI_SET_NO_STEP)) /* ending parts at time events */
         rti_tev_step(sc, sim, s, sim->state.tick, ratio);
     else /* nothing to integrate; a parameter change is taken */
-        sim->state.param_changed[s] = 0;
+        sim->state.param_changed[s] = 0, rti_tev_inside(sc, sim, s, sim->state.tick, ratio);
     rti_step_witness(sim, s, r0);
     sim->state.set_tick[s] = sim->state.tick + ratio;
     if (sim->plan.set_xout[s]) {

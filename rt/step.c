@@ -144,9 +144,7 @@ static int returned(const rt_kind *k, real_t ra, real_t rb, int side)
     return k->roots_every_sign && side != 0 && (real_t)side * ra <= 0 && (real_t)side * rb > 0;
 }
 
-/* does root i cross from ra to rb in its declared direction? A root a handler sent back
-   to (or stopped on) a side of its level crosses when it leaves the level to the other */
-static int crossed(const rt_kind *k, uint16_t i, real_t ra, real_t rb, real_t lvl, int side)
+int rti_root_crossed(const rt_kind *k, uint16_t i, real_t ra, real_t rb, real_t lvl, int side)
 {
     if (side != 0)
         return ((real_t)side * (ra - lvl) >= 0 && (real_t)side * (rb - lvl) < 0) ||
@@ -203,7 +201,7 @@ static int find_crossing(const rt_scene *sc, const rt_sim *sim, uint8_t s, const
         const rt_kind *k = sc->blocks[b].kind;
         for (uint16_t i = 0; i < k->nr; i++, n++) {
             real_t th;
-            if (crossed(k, i, ra[n], rb[n], rs->lvl[n], rs->side[n]))
+            if (rti_root_crossed(k, i, ra[n], rb[n], rs->lvl[n], rs->side[n]))
                 th = crossing_at(ra[n], rb[n], rs->lvl[n]);
             else if (rs->lost && ra[n] == ra[n] && rb[n] != rb[n])
                 th = 1;
@@ -294,7 +292,7 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const ro
         const rt_kind *k = sc->blocks[b].kind;
         for (uint16_t i = 0; i < k->nr; i++, m++) {
             fired[m] = 0;
-            if (!crossed(k, i, r_start[m], sim->work.rs[m], rs->lvl[m], rs->side[m]))
+            if (!rti_root_crossed(k, i, r_start[m], sim->work.rs[m], rs->lvl[m], rs->side[m]))
                 continue;
             fired[m] = side_before(k, i, r_start[m], sim->work.rs[m], rs->lvl[m], rs->side[m]);
             rt_args a;
@@ -303,6 +301,48 @@ static void fire(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const ro
             k->event(&a, i, sim->state.x + sim->plan.x_off[b], sim->state.d + sim->plan.d_off[b]);
             rti_count(sim, RT_CNT_EVENTS, b, RT_OK);
             rti_outputs(sc, sim, (rti_at){te, s, RTI_IN_STEP});
+        }
+    }
+}
+
+/* after fire at te: a handler that moved another root of the set past its level there
+   (a handler's output another block's `when` watches) runs that root's handler too, at
+   te, in rounds until none crosses: each root's crossing is judged from its value before
+   the round's handlers, or after its own where it fired. RT_EVENTS_PER_STEP_MAX rounds
+   at most (past them counted event_limit, block -1). fired gathers the roots that fired */
+static void cascade(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const rootset *rs,
+                    int8_t *fired)
+{
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    real_t start[RT_MAX_ROOTS], now[RT_MAX_ROOTS];
+    int8_t last[RT_MAX_ROOTS] = {0}, more[RT_MAX_ROOTS] = {0};
+    uint16_t nr = (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]);
+    for (uint16_t m = 0; m < nr; m++)
+        start[m] = sim->work.rs[m], last[m] = fired[m];
+    for (int round = 0;; round++) {
+        uint16_t m = 0, j = sim->plan.blk_of[s];
+        int any = 0;
+        rti_roots(sc, sim, s, te, now);
+        for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
+            const rt_kind *k = sc->blocks[b].kind;
+            for (uint16_t i = 0; i < k->nr; i++, m++) {
+                start[m] = last[m] ? now[m] : start[m];
+                any |= rti_root_crossed(k, i, start[m], now[m], rs->lvl[m], rs->side[m]);
+            }
+        }
+        if (!any)
+            return;
+        if (round + 1 >= RT_EVENTS_PER_STEP_MAX) {
+            rti_count(sim, RT_CNT_EVENT_LIMIT, -1, RT_E_EVENT);
+            return;
+        }
+        for (uint16_t i = 0; i < n; i++)
+            sim->work.xb[i] = sim->state.x[x0 + i];
+        fire(sc, sim, s, te, rs, start, more);
+        for (m = 0; m < nr; m++) {
+            last[m] = more[m];
+            if (more[m] != 0)
+                fired[m] = more[m];
         }
     }
 }
@@ -331,8 +371,10 @@ static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t t
    on the way down within one step (a flight shorter than the step) shows no sign change
    at the step's end, and the body tunnels. So the root's motion is probed: sent back, it
    is held on its side of the level it was handled at (less a margin): leaving that level
-   again is its next crossing. Stopped there (a directional root, or a guard), the same.
-   Moving on (a handler that only counts a pass), it waits to be seen on its side again,
+   again is its next crossing. Stopped there (a directional root, or a guard), the same;
+   but not one fired by an input's jump (jumped: the step's start, rt/held.c): it stands
+   where the jump left it, past its level, and moves on with the input (a counter of a
+   sampled staircase crossing its level once). Moving on (a handler that only counts a pass), it waits to be seen on its side again,
    unless it was held when it fired: a contact whose handler let it through fires again
    at once (its handler turns it back, or the per-step bound counts it), never silently.
    A root of a kind that asks for every sign change (rt_kind.roots_every_sign, FMI's event
@@ -341,7 +383,8 @@ static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t t
    such a root was sent back and the probe finds it back on its side, so that the next
    integration ends there and its return is located, else 0 */
 static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
-                     real_t t_max, const rootset *rs, const int8_t *fired, const real_t *r)
+                     real_t t_max, const rootset *rs, const int8_t *fired, const real_t *r,
+                     int jumped)
 {
     uint16_t m = 0, j = sim->plan.blk_of[s];
     uint8_t done[RT_MAX_ROOTS];
@@ -373,8 +416,8 @@ static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real
             real_t d = rp[m] - r[m], v = (real_t)sd * d;
             if (k->roots_every_sign && v > 0 && (real_t)sd * rp[m] > 0)
                 cap = tau;
-            int held = (k->root_dir && k->root_dir[i] != 0) ||
-                       (k->root_guard && k->root_guard[i]);
+            int held = !jumped && ((k->root_dir && k->root_dir[i] != 0) ||
+                                   (k->root_guard && k->root_guard[i]));
             if (v > 0)
                 rs->side[m] = sd, rs->lvl[m] = r[m] - d * RT_EVENT_MARGIN;
             else if ((v == 0 && held) || rs->side[m] != 0)
@@ -434,6 +477,144 @@ static real_t probe_limit(const rt_scene *sc, rt_sim *sim, uint8_t s)
     return rti_tev_dyn_next(sc, sim, s);
 }
 
+/* what the inputs a set reads from other sets may do to its event at te (the state
+   before the handlers in xb and in the set's state): the located root c's share, in its
+   units, and the handled state's, relative (|dx_i| / (1 + |x_i|)), summed over the inputs
+   by rti_xset_shifted (event_effect_of) */
+typedef struct event_effect {
+    const rt_scene *sc;
+    rt_sim *sim;
+    uint8_t s;
+    real_t te;
+    int c;              /* the located root, within the set */
+    uint16_t blk, which; /* its block and its index there */
+    int run;            /* 1: the handler may be run on trial (a kind without a state of its
+                           own, rt_kind.save, whose discrete state fits a stage buffer) */
+    real_t r0, dr, dx;  /* the root unshifted; the sums */
+    real_t window;      /* the longest window an input moving the root misses over */
+} event_effect;
+
+/* block blk's handler `which` run at t on the state before it (at te), its result (the
+   block's states) into out; the state and discrete state as they were after */
+static void handled(const event_effect *e, real_t t, real_t *out)
+{
+    rt_sim *sim = e->sim;
+    const rt_kind *kd = e->sc->blocks[e->blk].kind;
+    real_t *x = sim->state.x + sim->plan.x_off[e->blk], *d = sim->state.d + sim->plan.d_off[e->blk];
+    real_t *keep_d = sim->work.w.k[4];
+    uint16_t xs = (uint16_t)(sim->plan.x_off[e->blk] - sim->plan.set_x[e->s]);
+    for (uint16_t i = 0; i < kd->nd; i++)
+        keep_d[i] = d[i];
+    rt_args a;
+    rti_gather(sim, e->blk, t);
+    rti_args(e->sc, sim, e->blk, t, 0, &a);
+    kd->event(&a, e->which, x, d);
+    for (uint16_t i = 0; i < kd->nx; i++)
+        out[i] = x[i], x[i] = sim->work.xb[xs + i];
+    for (uint16_t i = 0; i < kd->nd; i++)
+        d[i] = keep_d[i];
+}
+
+/* the largest relative difference of the handled states in k[3] from those in k[2] */
+static real_t handled_diff(const event_effect *e)
+{
+    const real_t *x0 = e->sim->work.w.k[2], *x1 = e->sim->work.w.k[3];
+    real_t g = 0;
+    for (uint16_t i = 0; i < e->sc->blocks[e->blk].kind->nx; i++) {
+        real_t q = rt_fabs(x1[i] - x0[i]) / (1 + rt_fabs(x0[i]));
+        g = q > g || q != q ? q : g;
+    }
+    return g;
+}
+
+static void event_effect_of(void *ctx, real_t w, real_t window)
+{
+    event_effect *e = ctx;
+    real_t r[RT_MAX_ROOTS];
+    rti_outputs(e->sc, e->sim, (rti_at){e->te, e->s, RTI_IN_STEP});
+    rti_roots(e->sc, e->sim, e->s, e->te, r);
+    real_t dr = w * rt_fabs(r[e->c] - e->r0);
+    e->dr += dr;
+    e->window = dr > 0 && window > e->window ? window : e->window;
+    if (!e->run)
+        return;
+    handled(e, e->te, e->sim->work.w.k[3]);
+    e->dx += w * handled_diff(e);
+}
+
+/* how far the event of root c (block blk, its root `which`) at te may be off (the state
+   there in xb, before its handlers): its time, and (*dx) the state its handler leaves.
+   A crossing kept from a jump of the set's inputs at the step's start (rt/held.c; r_left
+   its value before the jump) came up to `late` before te: its distance from its level
+   over its rate there (an Euler probe) plus the jump's spread over `late` (exact for a
+   hold of a line); a root reading other sets is off by what their schemes miss, which over its
+   rate is a time (at most the step h); a handler reading them leaves a state off by what
+   they miss. 0 and *dx 0: nothing to judge; else the derivatives at te before the
+   handlers are left in k[1] */
+static real_t unsure_by(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
+                        const rootset *rs, int c, uint16_t blk, uint16_t which, real_t late,
+                        real_t r_left, real_t *dx)
+{
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    const rt_kind *kd = sc->blocks[blk].kind;
+    *dx = 0;
+    if (!(late > 0) && !(sim->plan.set_flags[s] & RTI_SET_XPRED))
+        return 0;
+    real_t ra[RT_MAX_ROOTS], rp[RT_MAX_ROOTS], tau = h * RT_EVENT_PROBE;
+    real_t t_max = probe_limit(sc, sim, s);
+    tau = te + tau > t_max ? t_max - te : tau;
+    for (uint16_t i = 0; i < n; i++)
+        sim->state.x[x0 + i] = sim->work.xb[i];
+    rti_outputs(sc, sim, (rti_at){te, s, RTI_IN_STEP});
+    rti_roots(sc, sim, s, te, ra);
+    probe(sc, sim, s, te, tau, rp);
+    for (uint16_t i = 0; i < n; i++)
+        sim->work.w.k[1][i] = sim->work.w.k[0][i];
+    real_t own = (rp[c] - ra[c]) / tau, rate = rt_fabs(own), d = 0;
+    if (late > 0) {
+        /* over the interval the root moved by its own rate and by the jump, spread over
+           it: it met its level its distance over both before te */
+        d = rt_fabs(ra[c] - rs->lvl[c]) / rt_fabs(own + (ra[c] - r_left) / late);
+        d = d < late ? d : late; /* (NaN: the interval) */
+    }
+    event_effect e = {sc, sim, s, te, c, blk, which, !kd->save && kd->nd <= RT_MAX_X, ra[c],
+                      0, 0, h};
+    if (e.run)
+        handled(&e, te, sim->work.w.k[2]);
+    rti_xset_shifted(sc, sim, s, te, h, event_effect_of, &e);
+    rti_outputs(sc, sim, (rti_at){te, s, RTI_IN_STEP});
+    real_t m = e.dr / rate, off = d + (m < e.window ? m : e.window);
+    *dx = e.dx;
+    if (e.run && off > 0) {
+        /* a handler that reads the time (a time stamp, a rest clause's t + T) or inputs
+           moving with it leaves a state off by its rate times the time's miss */
+        handled(&e, te + tau, sim->work.w.k[3]);
+        *dx += handled_diff(&e) / tau * off;
+    }
+    return off;
+}
+
+/* the handlers at te ran up to `off` off the crossing's time and left a state up to dx
+   off (unsure_by): the error that put into the set's state, the change of its
+   derivatives across them times `off` (a bounce a step late moves its body by the
+   velocity's jump times the delay) and dx, held to the set's accuracy as a coupling
+   error (block b's) */
+static void judge_event(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
+                        uint16_t b, real_t off, real_t dx)
+{
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    const real_t *f0 = sim->work.w.k[1], *f1 = sim->work.w.k[0], *x = sim->state.x + x0;
+    rti_rhs_ctx ctx = {sc, sim, s, h};
+    rti_rhs(&ctx, te, sim->work.w.k[0]);
+    real_t g = 0;
+    for (uint16_t i = 0; i < n; i++) {
+        real_t e = rt_fabs(f1[i] - f0[i]) / (1 + rt_fabs(x[i]));
+        g = e > g || e != e ? e : g;
+    }
+    rti_xset_judge(sc, sim, s, b, g * off + dx);
+    rti_outputs(sc, sim, (rti_at){te, s, RTI_IN_STEP});
+}
+
 /* at the run's start a directional root may sit exactly on its level (a ball released on
    its floor, falling): 0 is on neither side, so no sign change ever shows, and the body
    goes through. Such a root moving the way it crosses over the first integration (rb) is
@@ -461,14 +642,14 @@ static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, con
    them. The first such root's parabola's extremum is tried (trial: the real state there)
    and, if a root crossed by then, the crossing is located in [0, th] as any other: a
    ball thrown up to a ceiling it touches for less than a step. Its roots are written
-   into rt, th into *th and its block into *blk; -1 if none (the state and outputs at the
+   into rt, th into *th, its block into *blk and its index there into *which; -1 if none (the state and outputs at the
    end restored). Once a step at most: one integration more in its work bound, two for a
    multibody set (rt_set_step_bound). A root whose path is no parabola may be missed (a
    spike within the step); `modrt check` sees such a step at half the step
    (docs/solvers.md) */
 static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *rs,
                      const real_t *ra, real_t t0, real_t sub, real_t *rt, real_t *th,
-                     uint16_t *blk)
+                     uint16_t *blk, uint16_t *which)
 {
     uint16_t r0 = sim->plan.set_r[s], nr = (uint16_t)(sim->plan.set_r[s + 1] - r0);
     const real_t *rp = sim->state.r_prev + r0, *rb = sim->work.rs;
@@ -489,8 +670,7 @@ static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *
     for (uint16_t i = 0; i < n; i++)
         sim->work.xb[i] = sim->state.x[x0 + i]; /* the end, kept */
     trial(sc, sim, s, t0, sub, at, rt);
-    uint16_t which;
-    int c = find_crossing(sc, sim, s, rs, ra, rt, blk, &which);
+    int c = find_crossing(sc, sim, s, rs, ra, rt, blk, which);
     if (c >= 0) {
         *th = at;
         return c;
@@ -526,12 +706,16 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
     rootset rs = roots_of(sim, s);
     /* span: the rest of the step from t0; sub: this integration's part of it (less only
        after an event whose root returns within the probe, settle) */
-    real_t t0 = t, span = h, cap = 0, rt[RT_MAX_ROOTS];
-    int nan_seen = 0, tried = 0;
+    real_t t0 = t, span = h, cap = 0, rt[RT_MAX_ROOTS], late = sim->state.r_late[s];
+    int nan_seen = 0, tried = 0, kept = sim->state.r_kept[s];
+    sim->state.r_late[s] = 0, sim->state.r_kept[s] = 0;
     for (int ev = 0;; ev++) {
-        real_t sub = cap > 0 && cap < span ? cap : span;
+        /* a root crossed by the inputs' jump at the tick (rt/held.c): its crossing is at
+           the step's start, an integration of length 0 from there */
+        real_t sub = ev == 0 && kept ? 0 : cap > 0 && cap < span ? cap : span;
         cap = 0;
-        integrate(sc, sim, s, t0, sub); /* keeps the span's start in work.xs */
+        if (sub > 0)
+            integrate(sc, sim, s, t0, sub); /* keeps the span's start in work.xs */
         rti_outputs(sc, sim, (rti_at){t0 + sub, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0 + sub, sim->work.rs);
         int nb = nan_root_block(sc, sim, s, sim->work.rs);
@@ -543,8 +727,8 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
             start_on_level(sc, sim, s, &rs, r, sim->work.rs);
         int c = find_crossing(sc, sim, s, &rs, r, sim->work.rs, &blk, &which);
         real_t b = 1, rb = c >= 0 ? sim->work.rs[c] : 0;
-        if (c < 0 && !tried++ &&
-            (c = excursion(sc, sim, s, &rs, r, t0, sub, rt, &b, &blk)) >= 0)
+        if (c < 0 && sub > 0 && !tried++ &&
+            (c = excursion(sc, sim, s, &rs, r, t0, sub, rt, &b, &blk, &which)) >= 0)
             rb = rt[c];
         if (c < 0) {
             check_guards(sc, sim, s, &rs, r, sim->work.rs);
@@ -569,16 +753,22 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
            stays bounded, and a body chattering on its floor (Zeno) stays on it */
         if (ev >= RT_EVENTS_PER_STEP_MAX)
             rti_count(sim, RT_CNT_EVENT_LIMIT, blk, RT_E_EVENT);
-        else
+        else if (sub > 0)
             locate(sc, sim, s, t0, sub, &k, &rs, r);
         real_t te = t0 + k.b * sub;
+        real_t dx, off = unsure_by(sc, sim, s, te, h, &rs, c, blk, which, ev == 0 ? late : 0,
+                                        r[c], &dx);
         fire(sc, sim, s, te, &rs, r, fired);
+        cascade(sc, sim, s, te, &rs, fired);
+        sim->state.hist_ev[s] |= RTI_HIST_EV_STEP; /* its readers: a jump inside */
+        if (off > 0 || dx > 0)
+            judge_event(sc, sim, s, te, h, blk, off, dx);
         /* the rest of the step starts from the handled state */
         span = (t0 + span) - te;
         t0 = te;
         rti_outputs(sc, sim, (rti_at){t0, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0, r);
-        cap = settle(sc, sim, s, t0, h, probe_limit(sc, sim, s), &rs, fired, r);
+        cap = settle(sc, sim, s, t0, h, probe_limit(sc, sim, s), &rs, fired, r, sub == 0);
         cap = ev + 1 < RT_EVENTS_PER_STEP_MAX ? cap : 0; /* past the bound: to the end */
         if (!(span > 0))
             return t + h; /* an event at the step's end: r holds the roots after them */

@@ -105,6 +105,25 @@ static uint64_t next_tick(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k
     return *next;
 }
 
+/* an instant of set s at base tick k strictly inside its step: another set reads its
+   outputs only through its history, whose points are the step's ends, so a switch there
+   (a pulse shorter than the step) is seen late, or not at all. The block switching there
+   whose outputs another set reads is counted (errest: doubtful), its set's step too long
+   for the edges its readers take */
+static void inside_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k)
+{
+    instant in = set_next(sc, sim, s, ((real_t)k - (real_t)0.5) * sc->dt);
+    if (in.tick != k)
+        return;
+    uint16_t b = in.block;
+    for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1]; v++)
+        if (v < sim->plan.set_xout[s] && sim->plan.xsrc[v]) {
+            rti_count(sim, RT_CNT_ERREST, b, RT_E_ACCURACY);
+            sim->stats.errest[s]++;
+            return;
+        }
+}
+
 /* set s's step from tick k to ke (one part), its evaluations on their side of the
    instants around it (rt_args.t_piece) */
 static void part(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k, uint64_t ke)
@@ -302,6 +321,8 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
 #if RT_MAX_TEV > 0
         if (reached == tb && kb != NEVER)
             k = kb;
+        if (reached == tb && kb != NEVER && kb < end)
+            inside_step(sc, sim, s, kb);
 #endif
         t = reached;
         if (t >= t_end)
@@ -309,6 +330,18 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
     }
 #if RT_MAX_TEV > 0
     sim->work.t_piece = 0;
+#endif
+}
+
+void rti_tev_inside(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
+{
+#if RT_MAX_TEV > 0
+    if (!(sim->plan.set_flags[s] & RTI_SET_TEV))
+        return;
+    for (uint64_t k = tick, end = tick + ratio; (k = next_tick(sc, sim, s, k)) < end;)
+        inside_step(sc, sim, s, k);
+#else
+    (void)sc, (void)sim, (void)s, (void)tick, (void)ratio;
 #endif
 }
 
@@ -325,6 +358,7 @@ void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uin
            end whatever lies inside it (rti_tev_init refused a scene needing more parts) */
         for (int n = 1; n < RT_TEV_PARTS_MAX && (ke = next_tick(sc, sim, s, k)) < end; n++) {
             part(sc, sim, s, k, ke);
+            inside_step(sc, sim, s, ke);
             k = ke;
         }
         part(sc, sim, s, k, end);

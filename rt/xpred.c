@@ -92,9 +92,8 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
                   real_t w, real_t t, real_t h)
 {
-    real_t acc = rti_accuracy(&sc->sets[s].cfg);
     real_t est = w * sim->state.xgain[k];
-    if (!(est <= RT_XSET_FRESH * acc)) {
+    if (!(est <= RT_XSET_FRESH * rti_accuracy(&sc->sets[s].cfg))) {
         if (!sc->sets[s].background) {
             measure(sc, sim, s, k, t, h);
             est = w * sim->state.xgain[k];
@@ -102,15 +101,34 @@ static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16
             sim->state.xgain[k] = (real_t)0 / (real_t)0;
         }
     }
-    if (!(est == est))
-        return; /* no sensitivity measured (its right-hand side was not finite) */
-    if (est > sim->stats.xset_est[s])
-        sim->stats.xset_est[s] = est;
-    if (est > acc) {
-        rti_count(sim, RT_CNT_ERREST, (int)b, RT_E_ACCURACY);
-        sim->stats.errest[s]++;
-    }
+    rti_xset_judge(sc, sim, s, b, est);
 }
+#endif
+
+real_t rti_xset_late(const rt_scene *sc, rt_sim *sim, uint8_t s)
+{
+    real_t late = 0;
+#if RT_MAX_XPRED > 0
+    real_t now = (real_t)sim->state.set_tick[s] * sc->dt;
+    for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++) {
+        uint8_t q = sim->plan.src_set[sim->plan.xpred_in[k]];
+        const real_t *T = sim->state.hist_t[q];
+        int j = 0, n = sim->state.hist_n[q];
+        while (j < n && T[j] > now)
+            j++;
+        if (j >= n || T[j] != now || rti_tev_was(sc, sim, q, sim->state.set_tick[s]))
+            continue; /* no new point here, or a jump at a known instant */
+        real_t d = sim->plan.xpred_how[k] == RTI_XP_AHEAD ? (real_t)sc->sets[s].ratio * sc->dt
+                 : j + 1 < n ? T[j] - T[j + 1] : 0;
+        late = d > late ? d : late;
+    }
+#else
+    (void)sc, (void)sim, (void)s;
+#endif
+    return late;
+}
+
+#if RT_MAX_XPRED > 0
 
 /* an input extrapolated over set s's step [t, t + h] (block b, input i, source output v
    of set q): where the source has a point at this step's start (at every common multiple
@@ -202,6 +220,8 @@ static void check_bracket(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k
     uint8_t scheme = sim->plan.interp[i];
     if (jumps_past(sc, sim, q, scheme))
         return;
+    if (sim->state.hist_ev[q] & 1u)
+        scheme = RT_INTERP_HOLD; /* a jump anywhere inside: any scheme misses as a hold */
     real_t m = bracket_miss(sim, v, n, scheme), a = rt_fabs(sim->state.hist_y[0][v]);
     if (!rt_isfinite(m))
         return;

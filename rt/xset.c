@@ -264,6 +264,10 @@ void rti_xset_push(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
         T[k] = T[k - 1];
     T[0] = t;
     sim->state.hist_n[s] = (uint8_t)(n < RT_HIST ? n + 1 : RT_HIST);
+    /* the new interval holds an event if the step that reached it fired one */
+    unsigned ev = sim->state.hist_ev[s];
+    ev = (ev << 1) | (ev & RTI_HIST_EV_STEP ? 1u : 0u);
+    sim->state.hist_ev[s] = (uint8_t)(ev & ((1u << (RT_HIST - 1)) - 1));
 }
 
 /* the line through points k + 1 and k at t (point k held if it is the only one), and

@@ -19,7 +19,8 @@ The mirror: a 1 ms set reading a slower one between two points of its history
 whole period aliases), over the slow set's step and the reader's scheme, under the same
 two rules; and a unit step computed in a slow set of 0.1 s (mr_slow_step.scn), at an
 instant of its grid (which a hold reads exactly: within 1e-12 and ok) and inside its step
-(read late by every scheme: never ok)."""
+(read late by every scheme: never ok); and a pulse computed there (mr_slow_pulse.scn), on
+its grid and inside its step, where the history's points do not show it: never ok."""
 import math
 import os
 import tempfile
@@ -165,6 +166,32 @@ def steps_slow_source(s):
             os.unlink(path)
 
 
+def pulse_slow_source(s):
+    """a pulse computed in a 10 ms set, read by a 1 ms integrator: edges on the slow
+    set's grid (read exactly by a hold) and inside its step (read late or not at all:
+    never ok); the answer is 100 times the time spent in the pulse"""
+    for scheme in ("hold", "linear"):
+        path = variant_of("mr_slow_pulse.scn", "interpolation (hold)",
+                          "interpolation (%s)" % scheme)
+        try:
+            for t0, w in (("0.1", "0.01"), ("0.103", "0.004"), ("0.105", "0.01"),
+                          ("0.1", "0.004")):
+                rc, summ, rows = run(s.modrt, path, ["--set", "Src.t0=" + t0,
+                                                     "--set", "Src.width=" + w])
+                a, b = float(t0), float(t0) + float(w)
+                err = error(rows, 0.001, lambda t: 100 * max(0.0, min(t, b) - a)) \
+                    if rows else math.inf
+                tag = "mr_slow_pulse %s t0=%s width=%s" % (scheme, t0, w)
+                s.row(tag, "rk4", "0.01", err, summ, rc)
+                judged(s, tag, "0.01", rc, err, summ)
+                if scheme == "hold" and w == "0.01" and t0 == "0.1":
+                    s.check(rc == 0 and err <= 1e-12,
+                            "%s: a hold of a pulse on the source's points: error %.3g, %s"
+                            % (tag, err, summ.get("status")))
+        finally:
+            os.unlink(path)
+
+
 def library(s):
     """the library's multirate scenes: accurate, and ok (their coupling estimate below
     their accuracy)"""
@@ -180,4 +207,5 @@ def extra(s, long):
     grid(s)
     grid_slow_source(s)
     steps_slow_source(s)
+    pulse_slow_source(s)
     library(s)
