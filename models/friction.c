@@ -47,9 +47,13 @@ static void roots(const rt_args *a, real_t *r)
 static void event(const rt_args *a, uint16_t which, real_t *x, real_t *d)
 {
     real_t f = a->u[0];
-    (void)which;
     x[1] = 0;
-    d[0] = f > a->p[2] ? 1 : f < -a->p[2] ? -1 : 0;
+    /* a break-away is located where |F| meets Fs, to rounding: it slides the way F
+       pushes, whatever side of Fs its last bit is on */
+    if (which == 1)
+        d[0] = f < 0 ? -1 : 1;
+    else
+        d[0] = f > a->p[2] ? 1 : f < -a->p[2] ? -1 : 0;
 }
 
 static rt_status check(const real_t *p, const void *spec)
@@ -64,7 +68,7 @@ const rt_kind mdl_coulomb_kind = {
     .u_names = u_names, .y_names = x_names, .x_names = x_names, .d_names = d_names,
     .p_names = p_names, .p_default = p_default, .x_default = x_default,
     .d_default = d_default, .root_dir = root_dir,
-    .feed = RT_FEED_NONE, .autonomous = 1,
+    .feed = RT_FEED_NONE, .autonomous = 1, .roots_at_start = 1,
     .check = check, .output = output, .deriv = deriv, .roots = roots, .event = event,
     .doc = RT_DOC(
         "Mass on a surface with dry (Coulomb) friction: stick and slip by two roots.\n"
@@ -72,7 +76,8 @@ const rt_kind mdl_coulomb_kind = {
         "mode 0: stuck, x' = v' = 0. Root 0: the sliding speed mode v falls through 0\n"
         "(stop): stuck if |F| <= Fs, else sliding the way F pushes. Root 1: |F| - Fs\n"
         "rises through 0 while stuck (break-away). The initial mode must match the\n"
-        "initial v (+1 for v > 0, -1 for v < 0, 0 for v = 0). Outputs x, v.\n"
+        "initial v (+1 for v > 0, -1 for v < 0, 0 for v = 0); stuck under |F| > Fs\n"
+        "at the start, it breaks away at once. Outputs x, v.\n"
         "m > 0; 0 <= Fc <= Fs (Fs finite)."),
     .units = RT_DOC("N m m/s m m/s - kg N N"),
 };

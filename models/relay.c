@@ -46,12 +46,13 @@ const rt_kind mdl_relay_kind = {
     .nu = 1, .ny = 1, .nd = 1, .np = 2, .nr = 2,
     .u_names = u_names, .y_names = y_names, .d_names = d_names, .p_names = p_names,
     .p_default = p_default, .d_default = d_default, .root_dir = root_dir,
-    .feed = RT_FEED_NONE, .autonomous = 1,
+    .feed = RT_FEED_NONE, .autonomous = 1, .roots_at_start = 1,
     .check = check, .output = output, .deriv = deriv, .roots = roots, .event = event,
     .doc = RT_DOC(
         "Relay with hysteresis, switching by two roots: y = A while on = 1, -A\n"
         "while on = 0. Root 0: u - a rises through 0 while off (switch on); root 1:\n"
         "u + a falls through 0 while on (switch off). a: half the hysteresis width,\n"
-        "finite and >= 0; A: amplitude, finite."),
+        "finite and >= 0; A: amplitude, finite. Started on with u below -a (off with\n"
+        "u above a), it switches at once."),
     .units = RT_DOC("- - - - -"),
 };

@@ -295,6 +295,26 @@ static void keep_jumped(const rt_scene *sc, rt_sim *sim, uint8_t s, const real_t
     sim->state.r_late[s] = any ? rti_xset_late(sc, sim, s) : 0;
 }
 
+/* set s's roots at the run's start (r): one of a kind whose roots are its mode's
+   conditions (rt_kind.roots_at_start) that starts past its level, directional and free,
+   is taken to start a hair before it, and the set marked as after a jump (r_kept): its
+   first step fires the handler at t = 0, before any integration (a relay started on
+   with its input below its switch-off level switches off; without this, never) */
+static void start_past(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t *r)
+{
+    const real_t tiny = RT_REAL_IS_FLOAT ? (real_t)1e-30 : (real_t)1e-300;
+    uint16_t n = 0, base = sim->plan.set_r[s];
+    for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
+        const rt_kind *kd = sc->blocks[sim->plan.set_blk[k]].kind;
+        for (uint16_t i = 0; i < kd->nr; i++, n++) {
+            int dir = kd->root_dir ? kd->root_dir[i] : 0;
+            if (kd->roots_at_start && dir != 0 && (real_t)dir * r[n] > 0 &&
+                sim->state.r_side[base + n] == 0 && sim->state.r_lvl[base + n] == 0)
+                r[n] = (real_t)-dir * tiny, sim->state.r_kept[s] = 1;
+        }
+    }
+}
+
 /* outputs and roots of set s at the time of its state (and its held signals); recall:
    its step's end evaluated its outputs at this time already (for its history), so only
    the entries that may give something else now are called (RTI_AT_TICK_RECALL);
@@ -320,6 +340,8 @@ static void evaluate_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int recall,
         rti_roots(sc, sim, s, ts, sim->state.r + r0);
         if (in_tick)
             keep_jumped(sc, sim, s, before, sim->state.r + r0);
+        else if (sim->state.tick == 0)
+            start_past(sc, sim, s, sim->state.r + r0);
     }
     if (sim->plan.set_flags[s] & RTI_SET_HOLDS_SIG)
         hold_signals(sc, sim, s);

@@ -279,6 +279,11 @@ typedef struct rt_kind {
        then returns to z > 0 crosses there too (rt/step.c); 0: a root a handler sent back
        is held on its side until it leaves that side again (the library's) */
     uint8_t roots_every_sign;
+    /* 1: a directional root that starts past its level says the start state breaks the
+       kind's mode (a relay on with its input below its switch-off level, a mass stuck
+       under a force beyond static friction): its handler runs at the run's start
+       (rt/held.c). 0: a root only fires on crossing (a defined system's `when`) */
+    uint8_t roots_at_start;
 
     /* Internal state the kind keeps outside x, d and p (an FMU's memory: its counters, its
        discrete states, its pending time event), carried by snapshots (rt/snapshot.c).

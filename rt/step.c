@@ -326,7 +326,9 @@ static void cascade(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, const
         for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
             const rt_kind *k = sc->blocks[b].kind;
             for (uint16_t i = 0; i < k->nr; i++, m++) {
-                start[m] = last[m] ? now[m] : start[m];
+                /* (a handler that puts a root exactly on its level, a stop's v = 0,
+                   does not cross it) */
+                start[m] = last[m] || now[m] == rs->lvl[m] ? now[m] : start[m];
                 any |= rti_root_crossed(k, i, start[m], now[m], rs->lvl[m], rs->side[m]);
             }
         }
