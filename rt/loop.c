@@ -145,6 +145,23 @@ static int newton_step(const solve_ctx *c, real_t *H, real_t *f, real_t *fn, rea
     return 1;
 }
 
+/* is the loop solved: its residual within tol, and the Newton correction H F it still
+   asks for within RT_LOOP_STEP_FACTOR tolerances of the torn inputs (scaled the same).
+   An ill-conditioned loop (a gain near 1) has a residual within tol relative to a large
+   torn input long before that input is right: |F| = (1 - g) |w - w*|. The check costs
+   n^2 multiply-adds; a well-conditioned loop passes it where its residual does */
+static int solved(const solve_ctx *c, const real_t *H, const real_t *f, real_t *s, real_t tol)
+{
+    if (!(scaled_norm(c, f) <= tol))
+        return 0;
+    for (uint16_t i = 0; i < c->n; i++) {
+        s[i] = 0;
+        for (uint16_t j = 0; j < c->n; j++)
+            s[i] += H[i * c->n + j] * f[j];
+    }
+    return scaled_norm(c, s) <= RT_LOOP_STEP_FACTOR * tol;
+}
+
 static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode)
 {
     rt_loop *lp = &sim->plan.loops[l];
@@ -166,13 +183,14 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
         sim->state.loop_h_valid[l] = 1;
         ok = residual(&c, f); /* the difference steps left the segment at w + d e_n */
     }
-    while (ok && scaled_norm(&c, f) > tol && it < max) {
+    while (ok && !(sim->state.loop_h_valid[l] ? solved(&c, H, f, s, tol)
+                                               : scaled_norm(&c, f) <= tol) && it < max) {
         ok = newton_step(&c, H, f, fn, s, scratch, tol);
         it++;
     }
     sim->stats.loop_hist[it]++;
     sim->stats.loop_iter_max = it > sim->stats.loop_iter_max ? it : sim->stats.loop_iter_max;
-    real_t r = ok ? scaled_norm(&c, f) : (real_t)1 / (real_t)0;
+    real_t r = ok && solved(&c, H, f, s, tol) ? scaled_norm(&c, f) : (real_t)1 / (real_t)0;
     for (uint16_t i = 0; ok && i < n; i++)
         c.range[i] = rt_fabs(c.w[i]) > c.range[i] ? rt_fabs(c.w[i]) : c.range[i];
     if (!(r <= tol)) {

@@ -27,6 +27,9 @@ typedef double real_t;
 #endif
 /* torn loops (rt/loop.c): residual tolerance of the torn inputs when the scene gives
    none (scaled norm), and the pivot threshold of the inverse-Jacobian initialisation */
+#ifndef RT_LOOP_STEP_FACTOR
+#define RT_LOOP_STEP_FACTOR 1000 /* a solved loop's Newton correction, in its tolerances */
+#endif
 #ifndef RT_LOOP_TOL
 #define RT_LOOP_TOL (RT_REAL_IS_FLOAT ? 1e-5 : 1e-10)
 #endif

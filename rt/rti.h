@@ -280,7 +280,9 @@ uint16_t rti_xset_npred(const rt_scene *sc, const rt_sim *sim);
 enum {
     RTI_XP_NONE,   /* not from another set's history */
     RTI_XP_AHEAD,  /* beyond the newest point: its prediction checked at the next */
-    RTI_XP_BRACKET /* between two points: the scheme's error over them estimated */
+    RTI_XP_BRACKET, /* between two points: the scheme's error over them estimated */
+    RTI_XP_HELD    /* a sampled output that moves inside the reader's step, held over it:
+                      checked at the next step's start, as ahead */
 };
 
 /* state.hist_ev: the set's step in progress fired an event (its next push's interval) */

@@ -72,8 +72,8 @@ void rti_xset_shifted(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
         uint8_t q = sim->plan.src_set[i];
         int n = sim->state.hist_n[q];
         const real_t *T = sim->state.hist_t[q];
-        if (n < 2)
-            continue;
+        if (n < 2 || sim->plan.xpred_how[k] == RTI_XP_HELD)
+            continue; /* (a sampled output held: no history) */
         real_t d2p = sc->sets[q].background ? (real_t)0 / (real_t)0 : sim->state.hist_d2[v];
         real_t m = read_miss(sim, v, n, sim->plan.interp[i], T, t, d2p,
                              (sim->state.hist_ev[q] & 1u) != 0);

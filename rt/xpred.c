@@ -38,17 +38,23 @@ void rti_xset_predict_reset(rt_sim *sim)
    size d. Every scheme reproduces a constant shift of all the history's points, so the
    points of v move by d for one right-hand side and are restored bit for bit; the second
    one, unshifted, leaves the set's outputs as they were at t. NaN if f is not finite */
-static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, real_t t, real_t h,
-                   real_t d)
+static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, int held, real_t t,
+                   real_t h, real_t d)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     real_t *f1 = sim->work.w.k[0], *f0 = sim->work.w.k[1], keep[RT_HIST], g = 0;
     rti_rhs_ctx c = {sc, sim, s, h};
-    for (int i = 0; i < RT_HIST; i++)
-        keep[i] = sim->state.hist_y[i][v], sim->state.hist_y[i][v] += d;
-    rti_rhs(&c, t, f1);
-    for (int i = 0; i < RT_HIST; i++)
-        sim->state.hist_y[i][v] = keep[i];
+    if (held) { /* a sampled output: its live value, which no evaluation of s writes */
+        keep[0] = sim->state.y[v], sim->state.y[v] += d;
+        rti_rhs(&c, t, f1);
+        sim->state.y[v] = keep[0];
+    } else {
+        for (int i = 0; i < RT_HIST; i++)
+            keep[i] = sim->state.hist_y[i][v], sim->state.hist_y[i][v] += d;
+        rti_rhs(&c, t, f1);
+        for (int i = 0; i < RT_HIST; i++)
+            sim->state.hist_y[i][v] = keep[i];
+    }
     rti_rhs(&c, t, f0);
     for (uint16_t i = 0; i < n; i++) {
         real_t e = rt_fabs(f1[i] - f0[i]) / (1 + rt_fabs(sim->state.x[x0 + i]));
@@ -66,7 +72,8 @@ static void measure(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real
     /* a set without states (sampled blocks alone) takes no error from it */
     real_t d = RT_XSET_FD * (1 + sim->state.xscale[k]);
     uint16_t v = sim->plan.src[sim->plan.xpred_in[k]];
-    sim->state.xgain[k] = rti_set_nx(sim, s) ? gain(sc, sim, s, v, t, h, d) : 0;
+    int held = sim->plan.xpred_how[k] == RTI_XP_HELD;
+    sim->state.xgain[k] = rti_set_nx(sim, s) ? gain(sc, sim, s, v, held, t, h, d) : 0;
 }
 #endif
 
@@ -113,6 +120,8 @@ real_t rti_xset_late(const rt_scene *sc, rt_sim *sim, uint8_t s)
     for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++) {
         uint8_t q = sim->plan.src_set[sim->plan.xpred_in[k]];
         const real_t *T = sim->state.hist_t[q];
+        if (sim->plan.xpred_how[k] == RTI_XP_HELD)
+            continue; /* (a sampled output's jump is at its instant) */
         int j = 0, n = sim->state.hist_n[q];
         while (j < n && T[j] > now)
             j++;
@@ -159,6 +168,47 @@ static void check_ahead(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, 
         }
     }
     sim->state.xpred[k] = rti_xset_value(sim, v, q, sim->plan.interp[i], t + h, b);
+}
+
+/* a sampled output held over set s's step [t, t + h] (block b): its value at this
+   step's start against the one the last step held, the change it made inside that step,
+   which the step read as constant (a hold's miss, judged as check_ahead's); then the
+   value this step holds */
+static void check_held(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real_t t,
+                       real_t h)
+{
+    uint16_t b = sim->plan.xpred_blk[k], v = sim->plan.src[sim->plan.xpred_in[k]];
+    real_t p = sim->state.xpred[k], y = sim->state.y[v], a = rt_fabs(y);
+    sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
+    if (p == p && rt_isfinite(y))
+        judge(sc, sim, s, b, k, (real_t)0.5 * h * rt_fabs(y - p), t, h);
+    sim->state.xpred[k] = y;
+}
+
+/* an input read ahead of the background set's history by set s (block b): the background
+   publishes a point late, at its deadline, never at a step start of s, so check_ahead
+   never sees one. Once per new point T0: what the points before it extrapolated to T0 (a
+   line through the two before where there are two, else the one before held: the
+   schemes read the background set ahead, rti_xset_value) against the point, a miss
+   grown over the whole interval T1..T0 the reader read ahead: half that interval times
+   it, judged as check_ahead's */
+static void check_bg(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real_t t, real_t h)
+{
+    uint16_t b = sim->plan.xpred_blk[k], i = sim->plan.xpred_in[k], v = sim->plan.src[i];
+    uint8_t q = sim->plan.src_set[i];
+    const real_t *T = sim->state.hist_t[q];
+    int n = sim->state.hist_n[q];
+    if (n < 2 || T[0] == sim->state.xpred[k])
+        return; /* no interval yet, or this point judged */
+    sim->state.xpred[k] = T[0];
+    const real_t *y0 = &sim->state.hist_y[0][v], y1 = sim->state.hist_y[1][v];
+    real_t p = y1;
+    if (n >= 3 && sim->plan.interp[i] != RT_INTERP_HOLD)
+        p = y1 + (y1 - sim->state.hist_y[2][v]) * (T[0] - T[1]) / (T[1] - T[2]);
+    real_t e = rt_fabs(*y0 - p), a = rt_fabs(*y0);
+    sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
+    if (rt_isfinite(e))
+        judge(sc, sim, s, b, k, (real_t)0.5 * (T[0] - T[1]) * e, t, h);
 }
 
 /* the mean over [T1, T0] of the difference between what scheme reads of output v there
@@ -234,8 +284,13 @@ void rti_xset_predict(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real
 {
 #if RT_MAX_XPRED > 0
     for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++) {
-        if (sim->plan.xpred_how[k] == RTI_XP_AHEAD)
+        if (sim->plan.xpred_how[k] == RTI_XP_AHEAD &&
+            sim->plan.src_set[sim->plan.xpred_in[k]] == sim->plan.bg_set && !sc->sets[s].background)
+            check_bg(sc, sim, s, k, t, h);
+        else if (sim->plan.xpred_how[k] == RTI_XP_AHEAD)
             check_ahead(sc, sim, s, k, t, h);
+        else if (sim->plan.xpred_how[k] == RTI_XP_HELD)
+            check_held(sc, sim, s, k, t, h);
         else
             check_bracket(sc, sim, s, k, t, h);
     }

@@ -10,6 +10,22 @@
  * evaluates only its own blocks, and a cross-set edge is no algebraic dependency. */
 #include "rti.h"
 
+/* does input i of block b, in set st, read a sampled output (RT_SRC_HELD) whose block
+   samples inside st's steps (its period not a whole number of them): st's stages then
+   hold the value from the step's start while it moves on. A sampled reader reads it at
+   its own instants */
+static int held_inside(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint16_t b, uint8_t st)
+{
+    if (sc->blocks[b].kind->type == RT_KIND_DSS)
+        return 0;
+    for (uint16_t f = 0; f < sc->nblocks; f++)
+        if (sim->plan.y_off[f] <= sim->plan.src[i] && sim->plan.src[i] < sim->plan.y_off[f + 1]) {
+            uint64_t ts = (uint64_t)(sc->blocks[f].ts / sc->dt + (real_t)0.5);
+            return ts % sc->sets[st].ratio != 0;
+        }
+    return 0;
+}
+
 /* how input i, of block b of set st, reads another set's history over st's step
    (RTI_XP_*): ahead, extrapolating its source (a source faster than st, or of st's ratio
    and behind it; the background set and any set it reads or that reads it: rt/bg.c; a
@@ -18,16 +34,18 @@
    not monitored: it enters no derivative of the step (its sensitivity is 0) */
 static int monitored(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint16_t b, uint8_t st)
 {
+    if (sim->plan.src_kind[i] == RT_SRC_HELD)
+        return held_inside(sc, sim, i, b, st) ? RTI_XP_HELD : RTI_XP_NONE;
     if (sim->plan.src_kind[i] != RT_SRC_XSET)
         return RTI_XP_NONE;
     uint8_t q = sim->plan.src_set[i];
     int sampled = sc->blocks[b].kind->type == RT_KIND_DSS;
+    if (sc->sets[q].background || sc->sets[st].background) /* (however slow) */
+        return RTI_XP_AHEAD;
     if (sc->sets[q].ratio != sc->sets[st].ratio)
         return sc->sets[q].ratio < sc->sets[st].ratio ? RTI_XP_AHEAD
                : sampled                              ? RTI_XP_NONE
                                                       : RTI_XP_BRACKET;
-    if (sc->sets[q].background || sc->sets[st].background)
-        return RTI_XP_AHEAD;
     for (uint8_t k = 0; k < sc->nsets; k++) /* which of the two steps first */
         if (sim->plan.sched[k] == q || sim->plan.sched[k] == st)
             return sim->plan.sched[k] == st ? RTI_XP_AHEAD

@@ -15,7 +15,7 @@ import tempfile
 
 import coulomb_ref
 import table_ref
-from hard import run, HERE
+from hard import run, run_text, HERE
 from hard_cases import ball_times
 from cases_estimates import relay_exact
 from cases_multirate import variant_of
@@ -293,13 +293,7 @@ def start_modes(s):
     text = open(os.path.join(HERE, "coulomb_sine.scn")).read().replace(
         "connect(F.y, B.F);", "B.F = 5;").replace("end time (3 s);", "end time (1 s);")
     text = "\n".join(l for l in text.splitlines() if "(F)" not in l and not l.startswith("F."))
-    fd, path = tempfile.mkstemp(suffix=".scn", prefix="modrt-stuck-")
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    try:
-        rc, summ, rows = run(s.modrt, path, [])
-    finally:
-        os.unlink(path)
+    rc, summ, rows = run_text(s.modrt, text, [])
     x, v = col(summ, rows, "B.x"), col(summ, rows, "B.v")
     err = max(abs(x[-1] - 1.5), abs(v[-1] - 3) / 4) if x else math.inf
     s.row("coulomb stuck at the start under F > Fs", "rk4", "0.01", err, summ, rc)

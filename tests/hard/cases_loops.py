@@ -7,12 +7,12 @@ cos(c + 0.3 t) solved here by Newton to the last digit, times S.
 What must hold (rt/loop.c): the loop's residual is judged relative to its signals' own
 scale where that is below 1, so every S down to 1e-150 gives the same relative answer
 (within 1e-9) with status ok; at 1e-200 products of two signals underflow and the solve
-may fail, but a run off by more is never ok."""
+may fail, but a run off by more is never ok. And an ill-conditioned loop (loop_gain.scn,
+a gain of 1 - 1e-9) is never ok more than ten times the accuracy off."""
 import math
 import os
-import tempfile
 
-from hard import run, HERE
+from hard import run, run_text, HERE
 
 SCALES = ["1e3", "1", "1e-3", "1e-9", "1e-11", "1e-13", "1e-100", "1e-150", "1e-200"]
 
@@ -24,18 +24,30 @@ def exact_c(t):
     return c
 
 
+def lag_gain(t, g=0.999999999, K=1e-9, T=0.1, w=3.0):
+    """loop_gain.scn's lag from 0 under K (1 + 0.05 sin w t) / (1 - g)"""
+    a = K / (1 - g)
+    b = 0.05 * a
+    e = math.exp(-t / T)
+    return a * (1 - e) + b * (math.sin(w * t) - w * T * math.cos(w * t) + w * T * e) / (1 + (w * T) ** 2)
+
+
+def ill_conditioned(s):
+    rc, summ, rows = run(s.modrt, "loop_gain.scn", [])
+    i = summ["columns"].index("L.y") if rows else 0
+    err = max((abs(r[i] - lag_gain(r[0])) / (1 + abs(r[i])) for r in rows), default=math.inf)
+    s.row("loop_gain g = 1 - 1e-9", "broyden", "0.001", err, summ, rc)
+    s.check(rc in (0, 1, 3), "loop_gain: modrt exit %d" % rc)
+    s.check(rc != 0 or err <= 1e-2, "loop_gain: error %.3g with status ok" % err)
+
+
 def extra(s, long):
+    ill_conditioned(s)
     for sc in SCALES:
         S = float(sc)
         with open(os.path.join(HERE, "loop_scale.scn")) as f:
             text = f.read().replace("parameters (S = 1)", "parameters (S = %s)" % sc)
-        fd, path = tempfile.mkstemp(suffix=".scn", prefix="modrt-loop-")
-        with os.fdopen(fd, "w") as f:
-            f.write(text)
-        try:
-            rc, summ, rows = run(s.modrt, path, [])
-        finally:
-            os.unlink(path)
+        rc, summ, rows = run_text(s.modrt, text, [])
         err = max((abs(r[1] / S - exact_c(r[0])) for r in rows), default=math.inf)
         s.row("loop_scale S=%s" % sc, "broyden", "0.001", err, summ, rc)
         s.check(rc in (0, 1, 3), "loop_scale S=%s: modrt exit %d" % (sc, rc))

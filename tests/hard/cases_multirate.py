@@ -192,6 +192,62 @@ def pulse_slow_source(s):
             os.unlink(path)
 
 
+def sampled_fast_exact(t_end=0.99):
+    """mr_sampled_fast.scn's lag under c = 8 pulse(t) sampled every 3 ms: exact per 1 ms
+    tick (c is constant over each), {tick: y}"""
+    a, y, c, out = math.exp(-0.001 / 0.05), 0.0, 0.0, {}
+    for k in range(int(round(t_end * 1000))):
+        if k % 3 == 0:
+            ph = (k - 33) % 60
+            c = 8.0 if k >= 33 and ph < 30 else 0.0
+        y = a * y + (1 - a) * 2 * c
+        out[k + 1] = y
+    return out
+
+
+def sampled_fast(s):
+    """a sampled controller of 3 ms read by a lag stepping at 1, 3, 5 or 10 ms: where its
+    samples fall inside the lag's step, the step holds the value from its start (judged:
+    never ok more than ten times the accuracy off); at 1 and 3 ms, exact and ok"""
+    ref = sampled_fast_exact()
+    for h in ("0.001", "0.003", "0.005", "0.01"):
+        rc, summ, rows = run(s.modrt, "mr_sampled_fast.scn", ["--step", "main=" + h])
+        i = summ.get("columns", []).index("Plant.y") if rows else 0
+        err = max((abs(r[i] - ref[int(round(r[0] * 1000))]) / (1 + abs(r[i]))
+                   for r in rows if r[0] > 0 and abs(r[0] / float(h) - round(r[0] / float(h))) < 1e-6),
+                  default=math.inf)
+        tag = "mr_sampled_fast plant %s s" % h
+        s.row(tag, "rk4", h, err, summ, rc)
+        s.check(rc != 0 or err <= 10 * ACC, "%s: error %.3g with status ok" % (tag, err))
+        if h in ("0.001", "0.003"):
+            s.check(rc == 0 and err < 1e-6, "%s: exit %d, error %.3g" % (tag, rc, err))
+
+
+def bg_lag(t, w=2 * math.pi, T=0.05):
+    """mr_bg_read.scn's lag from 0 under cos(w t)"""
+    a = w * T
+    return (math.cos(w * t) + a * math.sin(w * t) - math.exp(-t / T)) / (1 + a * a)
+
+
+def bg_read(s):
+    """a 1 ms lag reading the background set (20, 40 ms) ahead of its history, each scheme:
+    never ok more than ten times the accuracy off"""
+    for scheme in ("hold", "extrapolate", "linear", "quadratic"):
+        path = variant_of("mr_bg_read.scn", "interpolation (quadratic)",
+                          "interpolation (%s)" % scheme)
+        try:
+            for h in ("0.02", "0.04"):
+                rc, summ, rows = run(s.modrt, path, ["--step", "slow=" + h])
+                i = summ["columns"].index("Lag.y") if rows else 0
+                err = max((abs(r[i] - bg_lag(r[0])) for r in rows), default=math.inf)
+                tag = "mr_bg_read %s slow %s s" % (scheme, h)
+                s.row(tag, "rk4", "0.001", err, summ, rc)
+                s.check(rc in (0, 1, 3), "%s: modrt exit %d" % (tag, rc))
+                s.check(rc != 0 or err <= 10 * ACC, "%s: error %.3g with status ok" % (tag, err))
+        finally:
+            os.unlink(path)
+
+
 def library(s):
     """the library's multirate scenes: accurate, and ok (their coupling estimate below
     their accuracy)"""
@@ -208,4 +264,6 @@ def extra(s, long):
     grid_slow_source(s)
     steps_slow_source(s)
     pulse_slow_source(s)
+    sampled_fast(s)
+    bg_read(s)
     library(s)

@@ -15,6 +15,7 @@ is what the runtime owes. Usage: hard.py MODRT [--long] [--table FILE] [--lane 1
 import math
 import os
 import subprocess
+import tempfile
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -56,6 +57,17 @@ def run(modrt, scene, args):
         sys.stderr.write(p.stderr)
     os.unlink(csv) if os.path.exists(csv) else None
     return p.returncode, summ, rows
+
+
+def run_text(modrt, text, args, prefix="modrt-hard-"):
+    """runs a scene given as its text (a variant written by a test), as run does"""
+    fd, path = tempfile.mkstemp(suffix=".scn", prefix=prefix)
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    try:
+        return run(modrt, path, args)
+    finally:
+        os.unlink(path)
 
 
 def cost(summ):

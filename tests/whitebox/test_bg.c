@@ -468,7 +468,12 @@ static void test_bg_held_input(void)
     TH_NEAR(held_run(&sc, &sims[0], 0), 0, tol);
     TH_NEAR(held_run(&sc, &sims[1], 1), 0, tol);
     TH_CHECK(rt_output(&sims[0], 1, 0) == rt_output(&sims[1], 1, 0));
-    TH_CHECK(sims[0].stats.status == RT_OK && sims[1].stats.status == RT_OK);
+    /* the counter samples inside the background step (every 0.75 s, the step 1 s), which
+       holds its value from the release: judged as a hold (RTI_XP_HELD), inline and in a
+       context alike */
+    th_note("status inline", (double)sims[0].stats.status);
+    th_note("status in a context", (double)sims[1].stats.status);
+    TH_CHECK(sims[0].stats.status == RT_E_ACCURACY && sims[1].stats.status == RT_E_ACCURACY);
 }
 
 /* what the background step counts reaches the tick's statistics at its publication, and

@@ -402,7 +402,8 @@ static void scene_schedule(FILE *f, const rt_scene *sc, const rt_sim *s)
                 sc->blocks[cn->from].kind->y_names[cn->y], sc->blocks[cn->to].name,
                 sc->blocks[cn->to].kind->u_names[cn->u],
                 src == RT_SRC_HELD ? "zero-order hold from its sample instant (a sampled "
-                                     "output is piecewise constant; no delay)"
+                                     "output is piecewise constant; no delay where its "
+                                     "period is a whole number of the reader's steps)"
                 : sc->sets[sc->blocks[cn->from].set].background && how != RT_INTERP_HOLD
                     ? "extrapolation of the background set's history (its jumps faded)"
                     : rt_interp_name(how));
