@@ -763,6 +763,10 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
         fire(sc, sim, s, te, &rs, r, fired);
         cascade(sc, sim, s, te, &rs, fired);
         sim->state.hist_ev[s] |= RTI_HIST_EV_STEP; /* its readers: a jump inside */
+        /* the handlers may have changed the dynamics (a mode, a stiffness that ends): an
+           implicit method's kept Jacobian belongs to the state before them, and a
+           W-method's estimate filtered by it reads a frozen state as exact */
+        sim->state.imp[s].valid = 0;
         if (off > 0 || dx > 0)
             judge_event(sc, sim, s, te, h, blk, off, dx);
         /* the rest of the step starts from the handled state */

@@ -40,12 +40,13 @@ static int monitored(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint16_t
         return RTI_XP_NONE;
     uint8_t q = sim->plan.src_set[i];
     int sampled = sc->blocks[b].kind->type == RT_KIND_DSS;
-    if (sc->sets[q].background || sc->sets[st].background) /* (however slow) */
-        return RTI_XP_AHEAD;
     if (sc->sets[q].ratio != sc->sets[st].ratio)
         return sc->sets[q].ratio < sc->sets[st].ratio ? RTI_XP_AHEAD
                : sampled                              ? RTI_XP_NONE
+               : sc->sets[q].background               ? RTI_XP_AHEAD /* however slow */
                                                       : RTI_XP_BRACKET;
+    if (sc->sets[q].background || sc->sets[st].background)
+        return RTI_XP_AHEAD;
     for (uint8_t k = 0; k < sc->nsets; k++) /* which of the two steps first */
         if (sim->plan.sched[k] == q || sim->plan.sched[k] == st)
             return sim->plan.sched[k] == st ? RTI_XP_AHEAD

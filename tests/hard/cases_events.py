@@ -300,6 +300,21 @@ def start_modes(s):
     s.check(rc == 0 and err < 1e-9, "coulomb stuck start: exit %d, %.3g off" % (rc, err))
 
 
+def stiff_end(s, m, jac):
+    """events_stiff_end.scn by an implicit method keeping its Jacobian jac steps: y = 1
+    to 0.5 s, exp(-10 (t - 0.5)) after, at the set's steps; never ok more than ten times
+    the accuracy off"""
+    rc, summ, rows = run(s.modrt, "events_stiff_end.scn", ["--method", "main=" + m,
+                                                           "--jacobian", "main=" + jac])
+    y = col(summ, rows, "S.yo")
+    ref = lambda t: 1.0 if t <= 0.5 else math.exp(-10 * (t - 0.5))
+    err = max((abs(v - ref(r[0])) / (1 + abs(v)) for r, v in zip(rows, y)
+               if abs(r[0] * 100 - round(r[0] * 100)) < 1e-6), default=math.inf)
+    s.row("a state event ending the stiffness (jacobian %s)" % jac, m, "0.01", err, summ, rc)
+    s.check(rc != 0 or err <= 1e-2, "stiff end %s jacobian %s: %.3g off with status ok"
+            % (m, jac, err))
+
+
 def run_scheme(s, scene, scheme, args):
     """scene run with its interpolation (hold ...) phrase read as scheme"""
     with open(os.path.join(HERE, scene)) as f:
@@ -388,6 +403,9 @@ def run_all(s, long):
         for case in JUMPS:
             jump(s, m, *case)
     start_modes(s)
+    for m in ("ros2", "sdirk2", "sdirk3", "trap", "beuler"):
+        for jac in ("1", "2", "8", "64"):
+            stiff_end(s, m, jac)
     for m in EXACT:  # (the first-order methods' global error is not an event question)
         for h in ("0.001", "0.002", "0.01", "0.02", "0.05"):
             for amp in ("5", "3.2"):
