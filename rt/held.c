@@ -304,6 +304,7 @@ static void start_past(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t *r)
 {
     const real_t tiny = RT_REAL_IS_FLOAT ? (real_t)1e-30 : (real_t)1e-300;
     uint16_t n = 0, base = sim->plan.set_r[s];
+    sim->state.r_kept[s] = 0; /* (this evaluation's roots decide) */
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         const rt_kind *kd = sc->blocks[sim->plan.set_blk[k]].kind;
         for (uint16_t i = 0; i < kd->nr; i++, n++) {
@@ -382,8 +383,12 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
     /* before the first tick the loops learn their signals' scales afresh (rt/loop.c): the
        parameters they were solved with at init may have changed */
-    if (sim->state.tick == 0)
+    if (sim->state.tick == 0) { /* (start_past marks the sets afresh) */
         rti_zero(sim->state.torn_range, sizeof sim->state.torn_range);
+        rti_zero(sim->state.r_kept, sizeof sim->state.r_kept);
+        rti_zero(sim->state.r_late, sizeof sim->state.r_late);
+        rti_zero(sim->state.hist_ev, sizeof sim->state.hist_ev);
+    }
     renew(sc, sim, 0, 0);
     /* before the first tick the history starts afresh (parameters may have changed), and
        the sets are evaluated once more so each reads the others' initial outputs rather

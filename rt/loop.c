@@ -190,7 +190,9 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
     }
     sim->stats.loop_hist[it]++;
     sim->stats.loop_iter_max = it > sim->stats.loop_iter_max ? it : sim->stats.loop_iter_max;
-    real_t r = ok && solved(&c, H, f, s, tol) ? scaled_norm(&c, f) : (real_t)1 / (real_t)0;
+    int done = ok && (sim->state.loop_h_valid[l] ? solved(&c, H, f, s, tol)
+                                                 : scaled_norm(&c, f) <= tol);
+    real_t r = done ? scaled_norm(&c, f) : (real_t)1 / (real_t)0;
     for (uint16_t i = 0; ok && i < n; i++)
         c.range[i] = rt_fabs(c.w[i]) > c.range[i] ? rt_fabs(c.w[i]) : c.range[i];
     if (!(r <= tol)) {

@@ -223,7 +223,10 @@ typedef struct rt_kind {
     /* Root functions of state events: writes nr values. NULL iff nr == 0. */
     void (*roots)(const rt_args *a, real_t *r);
     /* Event handler, called at the located time of root `which` with the state after the
-       crossing; may change x and d in place. NULL iff nr == 0. */
+       crossing; may change x and d in place, and nothing else: in a set reading other
+       sets it is also run on trial, on copies, to judge what their inputs' misses do to
+       it (rt/step.c; not for a kind with `save`, whose state lives elsewhere). NULL iff
+       nr == 0. */
     void (*event)(const rt_args *a, uint16_t which, real_t *x, real_t *d);
     const void *spec;           /* type-specific part (LSS matrices, MBS description) */
     /* Reference text (`modrt info KIND`, docs/blocks.md), compiled in only where

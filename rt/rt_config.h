@@ -367,6 +367,9 @@ RT_LIMIT_LIST(RT_X_HAS_VALUE)
 #if RT_MAX_STAGES < 6
 #error "RT_MAX_STAGES must be at least 6: the fifth-order Dormand-Prince method has six stages."
 #endif
+#if RT_HIST > 7
+#error "state.hist_ev keeps a bit per history interval below its step bit (0x80): RT_HIST at most 7."
+#endif
 #if RT_MAX_SETS > 32
 #error "rt_tick keeps a bit per set in a 32-bit word (its renewals): RT_MAX_SETS at most 32."
 #endif

@@ -368,22 +368,24 @@ static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t t
 }
 
 /* after the handlers at te (roots r there): each fired root the handlers did not put back
-   on its side of zero. The handler ran just past the crossing, so a bounce leaves its root
-   a hair on the far side, moving back: crossing zero again on the way out and once more
-   on the way down within one step (a flight shorter than the step) shows no sign change
-   at the step's end, and the body tunnels. So the root's motion is probed: sent back, it
-   is held on its side of the level it was handled at (less a margin): leaving that level
-   again is its next crossing. Stopped there (a directional root, or a guard), the same;
-   but not one fired by an input's jump (jumped: the step's start, rt/held.c): it stands
-   where the jump left it, past its level, and moves on with the input (a counter of a
-   sampled staircase crossing its level once). Moving on (a handler that only counts a pass), it waits to be seen on its side again,
-   unless it was held when it fired: a contact whose handler let it through fires again
-   at once (its handler turns it back, or the per-step bound counts it), never silently.
-   A root of a kind that asks for every sign change (rt_kind.roots_every_sign, FMI's event
-   indicators) is held the same way, and its return to the side of zero it was held from
-   is a crossing too (returned): fired by that, it is free. Returns the probe's length if
-   such a root was sent back and the probe finds it back on its side, so that the next
-   integration ends there and its return is located, else 0 */
+   on its side of zero. The handler ran just past the crossing, so a bounce leaves its
+   root a hair on the far side, moving back: crossing zero again on the way out and once
+   more on the way down within one step (a flight shorter than the step) shows no sign
+   change at the step's end, and the body tunnels. So the root's motion is probed: sent
+   back, it is held on its side of the level it was handled at (less a margin): leaving
+   that level again is its next crossing. Stopped there (a directional root, or a guard),
+   the same. A root fired by an input's jump (jumped: at the step's start, rt/held.c) is
+   freed whatever its motion: it stands where the jump left it, past its level, not a hair
+   from it, and a level held there would count every later jump a crossing (a counter of a
+   sampled staircase crossing its level once). Moving on (a handler that only counts a
+   pass), it waits to be seen on its side again, unless it was held when it fired: a
+   contact whose handler let it through fires again at once (its handler turns it back, or
+   the per-step bound counts it), never silently. A root of a kind that asks for every
+   sign change (rt_kind.roots_every_sign, FMI's event indicators) is held the same way,
+   and its return to the side of zero it was held from is a crossing too (returned): fired
+   by that, it is free. Returns the probe's length if such a root was sent back and the
+   probe finds it back on its side, so that the next integration ends there and its return
+   is located, else 0 */
 static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
                      real_t t_max, const rootset *rs, const int8_t *fired, const real_t *r,
                      int jumped)
@@ -395,7 +397,7 @@ static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real
         const rt_kind *k = sc->blocks[b].kind;
         for (uint16_t i = 0; i < k->nr; i++, m++) {
             int back = k->roots_every_sign && rs->side[m] != 0 && fired[m] == -rs->side[m];
-            done[m] = fired[m] == 0 || (real_t)fired[m] * r[m] > 0 || back;
+            done[m] = fired[m] == 0 || (real_t)fired[m] * r[m] > 0 || back || jumped;
             if (fired[m] != 0 && done[m])
                 rs->lvl[m] = 0, rs->side[m] = 0; /* put back on its side, or returned */
             far |= !done[m];
@@ -418,8 +420,7 @@ static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real
             real_t d = rp[m] - r[m], v = (real_t)sd * d;
             if (k->roots_every_sign && v > 0 && (real_t)sd * rp[m] > 0)
                 cap = tau;
-            int held = !jumped && ((k->root_dir && k->root_dir[i] != 0) ||
-                                   (k->root_guard && k->root_guard[i]));
+            int held = (k->root_dir && k->root_dir[i] != 0) || (k->root_guard && k->root_guard[i]);
             if (v > 0)
                 rs->side[m] = sd, rs->lvl[m] = r[m] - d * RT_EVENT_MARGIN;
             else if ((v == 0 && held) || rs->side[m] != 0)
@@ -638,17 +639,17 @@ static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, con
     }
 }
 
-/* a root that crossed its level and came back within the integration from t0 over sub
-   (ra at its start, rb at its end, on one side): the parabola through it one integration
+/* a root that crossed its level and came back within the integration from t0 over sub (ra
+   at its start, rb at its end, on one side): the parabola through it one integration
    before (state.r_prev, of the same length), ra and rb reaches beyond the level between
    them. The first such root's parabola's extremum is tried (trial: the real state there)
-   and, if a root crossed by then, the crossing is located in [0, th] as any other: a
-   ball thrown up to a ceiling it touches for less than a step. Its roots are written
-   into rt, th into *th, its block into *blk and its index there into *which; -1 if none (the state and outputs at the
-   end restored). Once a step at most: one integration more in its work bound, two for a
-   multibody set (rt_set_step_bound). A root whose path is no parabola may be missed (a
-   spike within the step); `modrt check` sees such a step at half the step
-   (docs/solvers.md) */
+   and, if a root crossed by then, the crossing is located in [0, th] as any other: a ball
+   thrown up to a ceiling it touches for less than a step. Its roots are written into rt,
+   th into *th, its block into *blk and its index there into *which; -1 if none (the state
+   and outputs at the end restored). Once a step at most: one integration more in its work
+   bound, two for a multibody set (rt_set_step_bound). A root whose path is no parabola
+   may be missed (a spike within the step); `modrt check` sees such a step at half the
+   step (docs/solvers.md) */
 static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *rs,
                      const real_t *ra, real_t t0, real_t sub, real_t *rt, real_t *th,
                      uint16_t *blk, uint16_t *which)
@@ -714,8 +715,8 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
     for (int ev = 0;; ev++) {
         /* a root crossed by the inputs' jump at the tick (rt/held.c): its crossing is at
            the step's start, an integration of length 0 from there */
-        real_t sub = ev == 0 && kept ? 0 : cap > 0 && cap < span ? cap : span;
-        cap = 0;
+        real_t sub = kept ? 0 : cap > 0 && cap < span ? cap : span;
+        cap = 0, kept = 0; /* (once: if nothing crosses there, the step goes on) */
         if (sub > 0)
             integrate(sc, sim, s, t0, sub); /* keeps the span's start in work.xs */
         rti_outputs(sc, sim, (rti_at){t0 + sub, s, RTI_IN_STEP});

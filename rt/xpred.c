@@ -201,11 +201,10 @@ static void check_bg(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, rea
     if (n < 2 || T[0] == sim->state.xpred[k])
         return; /* no interval yet, or this point judged */
     sim->state.xpred[k] = T[0];
-    const real_t *y0 = &sim->state.hist_y[0][v], y1 = sim->state.hist_y[1][v];
-    real_t p = y1;
+    real_t y0 = sim->state.hist_y[0][v], y1 = sim->state.hist_y[1][v], p = y1;
     if (n >= 3 && sim->plan.interp[i] != RT_INTERP_HOLD)
         p = y1 + (y1 - sim->state.hist_y[2][v]) * (T[0] - T[1]) / (T[1] - T[2]);
-    real_t e = rt_fabs(*y0 - p), a = rt_fabs(*y0);
+    real_t e = rt_fabs(y0 - p), a = rt_fabs(y0);
     sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
     if (rt_isfinite(e))
         judge(sc, sim, s, b, k, (real_t)0.5 * (T[0] - T[1]) * e, t, h);

@@ -26,12 +26,14 @@ static int held_inside(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint16
     return 0;
 }
 
-/* how input i, of block b of set st, reads another set's history over st's step
-   (RTI_XP_*): ahead, extrapolating its source (a source faster than st, or of st's ratio
-   and behind it; the background set and any set it reads or that reads it: rt/bg.c; a
-   set of the tick that steps after st), or between two points of it (a source slower
-   than st, or of its ratio and ahead of it). Between points, a sampled block's input is
-   not monitored: it enters no derivative of the step (its sensitivity is 0) */
+/* how input i, of block b of set st, reads another set over st's step (RTI_XP_*): ahead,
+   extrapolating its source's history (a source faster than st, or of st's ratio and
+   behind it; the background set, however slow, and any set of its ratio it reads or that
+   reads it: rt/bg.c; a set of the tick that steps after st), or between two points of it
+   (a source slower than st, or of its ratio and ahead of it); a sampled output held over
+   st's step while it moves inside it (held_inside). A sampled block's input is not
+   monitored where it would be read between points or from a slower background set: it
+   enters no derivative of the step (its sensitivity is 0) */
 static int monitored(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint16_t b, uint8_t st)
 {
     if (sim->plan.src_kind[i] == RT_SRC_HELD)
