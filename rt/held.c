@@ -302,16 +302,15 @@ static void keep_jumped(const rt_scene *sc, rt_sim *sim, uint8_t s, const real_t
    with its input below its switch-off level switches off; without this, never) */
 static void start_past(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t *r)
 {
-    const real_t tiny = RT_REAL_IS_FLOAT ? (real_t)1e-30 : (real_t)1e-300;
     uint16_t n = 0, base = sim->plan.set_r[s];
-    sim->state.r_kept[s] = 0; /* (this evaluation's roots decide) */
+    sim->state.r_kept[s] = 0, sim->state.r_late[s] = 0; /* (this evaluation's decide) */
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
         const rt_kind *kd = sc->blocks[sim->plan.set_blk[k]].kind;
         for (uint16_t i = 0; i < kd->nr; i++, n++) {
             int dir = kd->root_dir ? kd->root_dir[i] : 0;
             if (kd->roots_at_start && dir != 0 && (real_t)dir * r[n] > 0 &&
                 sim->state.r_side[base + n] == 0 && sim->state.r_lvl[base + n] == 0)
-                r[n] = (real_t)-dir * tiny, sim->state.r_kept[s] = 1;
+                r[n] = (real_t)-dir * RTI_ROOT_HAIR, sim->state.r_kept[s] = 1;
         }
     }
 }
@@ -383,10 +382,8 @@ rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
     /* before the first tick the loops learn their signals' scales afresh (rt/loop.c): the
        parameters they were solved with at init may have changed */
-    if (sim->state.tick == 0) { /* (start_past marks the sets afresh) */
+    if (sim->state.tick == 0) { /* (start_past marks the sets with roots afresh) */
         rti_zero(sim->state.torn_range, sizeof sim->state.torn_range);
-        rti_zero(sim->state.r_kept, sizeof sim->state.r_kept);
-        rti_zero(sim->state.r_late, sizeof sim->state.r_late);
         rti_zero(sim->state.hist_ev, sizeof sim->state.hist_ev);
     }
     renew(sc, sim, 0, 0);

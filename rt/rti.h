@@ -285,6 +285,10 @@ enum {
                       checked at the next step's start, as ahead */
 };
 
+/* how far before its level a root is taken to start, so that a crossing at the very
+   start (a root on its level, rt/step.c; a mode condition past it, rt/held.c) is seen */
+#define RTI_ROOT_HAIR (RT_REAL_IS_FLOAT ? (real_t)1e-30 : (real_t)1e-300)
+
 /* state.hist_ev: the set's step in progress fired an event (its next push's interval) */
 #define RTI_HIST_EV_STEP 0x80u
 

@@ -627,14 +627,13 @@ static void judge_event(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, r
 static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, const rootset *rs,
                            real_t *ra, const real_t *rb)
 {
-    const real_t tiny = RT_REAL_IS_FLOAT ? (real_t)1e-30 : (real_t)1e-300;
     uint16_t n = 0, j = sim->plan.blk_of[s];
     for (uint16_t b; (b = next_root_block(sc, sim, s, &j)) < sc->nblocks;) {
         const rt_kind *k = sc->blocks[b].kind;
         for (uint16_t i = 0; i < k->nr; i++, n++) {
             int dir = k->root_dir ? k->root_dir[i] : 0;
             if (ra[n] == 0 && rs->side[n] == 0 && rs->lvl[n] == 0 && dir * rb[n] > 0)
-                ra[n] = (real_t)-dir * tiny;
+                ra[n] = (real_t)-dir * RTI_ROOT_HAIR;
         }
     }
 }
