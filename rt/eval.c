@@ -301,7 +301,8 @@ static void set_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
 void rti_outputs(const rt_scene *sc, rt_sim *sim, rti_at at)
 {
     if (at.set != RT_ALL_SETS) {
-        set_outputs(sc, sim, at);
+        if (!(sc->code && sc->code->outputs && sc->code->outputs(sc, sim, at.set, at.t, at.mode)))
+            set_outputs(sc, sim, at); /* not written out for this scene (rt_scene_code) */
         return;
     }
     for (uint16_t s = 0; s < sim->plan.nseq; s = next_entry(sim, s)) {

@@ -645,6 +645,11 @@ typedef struct rt_scene_code {
     /* the projection of set `set`'s multibody state at t (rt/mbs_project.c,
        RT_STAB_PROJECT); 0: not written for it, the generic path runs */
     int (*project)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+    /* the outputs of set `set`'s sequence at t, at a tick or in a step (rt/eval.c's
+       set_outputs; mode: rti_mode, rt/rti.h); 0: not written for that mode (a
+       right-hand side's outputs are its rhs entry's), the generic path runs */
+    int (*outputs)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t,
+                   int mode);
     /* RT_SIM_LAYOUT (rt/rt_sim.h) as the code was compiled: the code reads rt_sim's
        members at their offsets under its build's limits, so rt_init refuses it
        (RT_E_SCENE) when the runtime's differ (other RT_MAX_*, another REAL) */

@@ -166,6 +166,58 @@ static void outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
     }
 }
 
+/* one block's output call of set_outputs at a tick or in a step (call_output): a
+   sampled block only at its sample hits, with its period for h */
+static void tick_call(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b)
+{
+    const rt_kind *k = sc->blocks[b].kind;
+    char h[64] = "0";
+    fprintf(f, "    /* %s */\n", sc->blocks[b].name);
+    if (k->type == RT_KIND_DSS) {
+        /* the period from the plan: a copy of the scene at another base tick (a
+           reference run) keeps this code */
+        fprintf(f, "    if (hit && sim->state.tick %% sim->plan.period[%u] == 0) {\n", b);
+        snprintf(h, sizeof h, "sc->dt * (real_t)sim->plan.period[%u]", b);
+    } else
+        fputs("    {\n", f);
+    if (k->feed != RT_FEED_NONE)
+        gather(f, sim, b);
+    block_args(f, sc, sim, b, h);
+    fprintf(f, "    blocks[%u].kind->output(&ar, y + %u);\n", b, sim->plan.y_off[b]);
+    if (k->ny > 0)
+        fprintf(f, "#if RT_FAULT_INJECT\n    if (rti_fault_due(RTI_FAULT_NAN) && "
+                   "rti_fault_plan.block == %u)\n        y[%u] = (real_t)0 / (real_t)0;\n"
+                   "#endif\n", b, sim->plan.y_off[b]);
+    fputs("    }\n", f);
+}
+
+/* rti_outputs of set s at a tick or in a step (set_outputs), its sequence written out;
+   a right-hand side's are its rhs entry's (outputs, above) */
+static void tick_outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
+{
+    fprintf(f, "\n/* set %s: rti_outputs at a tick or in a step (set_outputs) */\n"
+               "static int outputs_%u(const rt_scene *sc, rt_sim *sim, real_t t, int mode)\n{\n"
+               "    real_t *u = sim->work.u, *y = sim->state.y;\n"
+               "    rt_args ar;\n"
+               "    int hit = mode == RTI_AT_TICK || mode == RTI_AT_TICK_RECALL;\n"
+               "    (void)sc, (void)u, (void)y, (void)ar, (void)t, (void)hit;\n"
+               "    if (mode == RTI_IN_RHS)\n        return 0;\n",
+            sc->sets[s].name, s);
+    for (uint16_t i = sim->plan.seq_of[s]; i < sim->plan.seq_of[s + 1]; i++) {
+        uint16_t q = sim->plan.set_seq[i], b = sim->plan.seq[q].index;
+        int recall = (sim->plan.seq_flags[q] & RTI_SEQ_RECALL) != 0;
+        if (!recall)
+            fputs("    if (mode != RTI_AT_TICK_RECALL) {\n", f);
+        if (sim->plan.seq[q].kind == RT_SEQ_LOOP)
+            fprintf(f, "    sc->loop_solver->solve(sc, sim, %u, t, mode);\n", b);
+        else
+            tick_call(f, sc, sim, b);
+        if (!recall)
+            fputs("    }\n", f);
+    }
+    fputs("    return 1;\n}\n", f);
+}
+
 /* rti_rhs's derivatives of the set's blocks with states of their own */
 static void derivs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
@@ -922,6 +974,7 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
             rhs_points(f, sc, sim, s);
         if (project_set(sc, sim, s))
             project_points(f, sc, sim, s);
+        tick_outputs(f, sc, sim, s);
     }
     fputs("\nstatic int rhs(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_t h,\n"
           "               real_t *xdot)\n{\n    switch (set) {\n", f);
@@ -937,7 +990,12 @@ int scn_emit_code(FILE *f, const scn_ctx *c)
                 fprintf(f, "    case %u: return project_%u(sc, sim, t);\n", s, s);
         fputs("    default: return 0;\n    }\n}\n", f);
     }
-    fprintf(f, "\nstatic const rt_scene_code scene_code = {.rhs = rhs%s,\n"
+    fputs("\nstatic int outputs(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, int mode)\n"
+          "{\n    switch (set) {\n", f);
+    for (uint8_t s = 0; s < sc->nsets; s++)
+        fprintf(f, "    case %u: return outputs_%u(sc, sim, t, mode);\n", s, s);
+    fputs("    default: return 0;\n    }\n}\n", f);
+    fprintf(f, "\nstatic const rt_scene_code scene_code = {.rhs = rhs%s, .outputs = outputs,\n"
                "                                          .sim_layout = RT_SIM_LAYOUT};\n#endif\n",
             proj ? ", .project = project" : "");
     return 1;

@@ -16,7 +16,7 @@ static rt_sim a, b;
 
 /* the scene's own table, and how often each of its functions did the work */
 static const rt_scene_code *inner;
-static unsigned long rhs_done, rhs_calls, proj_done, proj_calls;
+static unsigned long rhs_done, rhs_calls, proj_done, proj_calls, out_done, out_calls;
 
 static int rhs_counted(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, real_t h,
                        real_t *xdot)
@@ -30,6 +30,13 @@ static int project_counted(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t 
 {
     int r = inner->project(sc, sim, set, t);
     proj_calls++, proj_done += (unsigned long)r;
+    return r;
+}
+
+static int outputs_counted(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t, int mode)
+{
+    int r = inner->outputs(sc, sim, set, t, mode);
+    out_calls++, out_done += (unsigned long)r;
     return r;
 }
 
@@ -53,9 +60,10 @@ static void test_scene_code_equal(void)
         inner = e->scene->code;
         counted.rhs = inner->rhs ? rhs_counted : 0;
         counted.project = inner->project ? project_counted : 0;
+        counted.outputs = inner->outputs ? outputs_counted : 0;
         spec.code = &counted;
         generic.code = 0;
-        rhs_done = rhs_calls = proj_done = proj_calls = 0;
+        rhs_done = rhs_calls = proj_done = proj_calls = out_done = out_calls = 0;
         run(&spec, &a);
         run(&generic, &b);
         th_note(e->name, (double)rhs_done);
@@ -65,6 +73,8 @@ static void test_scene_code_equal(void)
         if (e->scene == &mdl_scene_pendulum10)
             TH_CHECK(rhs_done + 8 >= rhs_calls);
         TH_CHECK(!inner->project || (proj_calls > 0 && proj_done == proj_calls));
+        /* every set's outputs at the ticks and in the steps are written out */
+        TH_CHECK(inner->outputs && out_calls > 0 && out_done == out_calls);
         TH_CHECK(rt_trace_hash(&a) == rt_trace_hash(&b));
         TH_CHECK(memcmp(a.state.x, b.state.x, sizeof a.state.x) == 0);
         TH_CHECK(memcmp(a.stats.count, b.stats.count, sizeof a.stats.count) == 0);
