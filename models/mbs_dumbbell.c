@@ -96,7 +96,7 @@ static rt_status check(const real_t *p, const void *spec)
 }
 
 static const rt_mbs_spec spec = {
-    .nq = 6, .nz = 6, .nc = 1, .nn = 2, .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST,
+    .nq = 6, .nz = 6, .nc = 1, .nn = 2, .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_F_PARAM,
     .node_names = node_names,
     .kin = kin, .mass = mass, .force = force, .constr = constr, .node = node, .energy = energy,
 };

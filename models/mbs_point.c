@@ -25,7 +25,7 @@ static void mass(const rt_args *a, real_t *M)
     M[0] = M[1] = M[2] = a->p[0];
 }
 
-/* k = m g (eq. 6b) */
+/* k = m g (eq. 6b): parameters only (RT_MBS_F_PARAM) */
 static void force(const rt_args *a, real_t *k)
 {
     for (int i = 0; i < 3; i++)
@@ -83,7 +83,8 @@ static rt_status check(const real_t *p, const void *spec)
 
 static const rt_mbs_spec spec = {
     .nq = 3, .nz = 3, .nn = 1, 
-    .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_NODE_POINT,
+    .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_F_PARAM |
+             RT_MBS_NODE_POINT,
     .node_names = node_names,
     .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
 };

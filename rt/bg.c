@@ -304,10 +304,10 @@ static void run_step(const rt_scene *sc, rt_sim *ctx, uint8_t s)
     uint64_t r0 = ctx->stats.rhs_evals[s];
     /* its sensitivity to the inputs it extrapolates, when due (here, not in the tick) */
     if (ctx->plan.set_flags[s] & RTI_SET_XPRED)
-        rti_xset_gain(sc, ctx, s, (real_t)ctx->state.set_tick[s] * sc->dt, ctx->plan.set_h[s]);
+        rti_xset_gain(sc, ctx, s, rti_tick_time(ctx->state.set_tick[s], sc->dt), ctx->plan.set_h[s]);
     rti_tev_step(sc, ctx, s, ctx->state.set_tick[s], ratio); /* parts at time events */
     rti_step_witness(ctx, s, r0);
-    real_t te = (real_t)(ctx->state.set_tick[s] + ratio) * sc->dt;
+    real_t te = rti_tick_time(ctx->state.set_tick[s] + ratio, sc->dt);
     rti_outputs(sc, ctx, (rti_at){te, s, RTI_IN_STEP});
     ctx->state.bg_nonfinite = nonfinite_block(ctx, s);
     /* its recorded multibody signals (a residual): here, not in a tick */
@@ -324,7 +324,7 @@ static void release(const rt_scene *sc, rt_sim *sim, uint8_t s)
     /* the inputs it extrapolates against their prediction, from the tick's history
        (the context's copy is the same, rather than the other way round) */
     if (sim->plan.set_flags[s] & RTI_SET_XPRED)
-        rti_xset_predict(sc, sim, s, (real_t)sim->state.set_tick[s] * sc->dt,
+        rti_xset_predict(sc, sim, s, rti_tick_time(sim->state.set_tick[s], sc->dt),
                          sim->plan.set_h[s]);
     if (!sim->bg) {
         move_result(sim, s, sim->state.x, sim->state.y, sim->state.bg_result, 0);
@@ -358,7 +358,7 @@ static void publish(const rt_scene *sc, rt_sim *sim, uint8_t s)
     sim->state.bg_busy = 0;
     rti_publish_signals(sim, bg ? bg : sim);
     if (sim->plan.set_xout[s])
-        rti_xset_push(sc, sim, s, (real_t)sim->state.bg_due * sc->dt);
+        rti_xset_push(sc, sim, s, rti_tick_time(sim->state.bg_due, sc->dt));
 }
 
 static void release_due(const rt_scene *sc, rt_sim *sim)

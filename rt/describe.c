@@ -2,7 +2,7 @@
  * `modrt sizes`, the tuner, the scene compiler), and what a run shows (its tick, trace
  * hash, outputs, states and stats): read-only accessors, so that nothing outside rt/
  * reads rt_sim's layout (rt_sim.h), which is the runtime's own business. */
-#include "rti.h"
+#include "rti_mbs.h"
 
 uint8_t rt_set_at(const rt_sim *sim, uint8_t i)
 {
@@ -149,8 +149,7 @@ static void mbs_sizes(const rt_scene *sc, const rt_sim *sim, rt_sizes *z)
         if (!(sp->flags & RT_MBS_M_DIAG))
             z->mbs_ty = (uint16_t)(z->mbs_ty + t * sp->nz);
         z->mbs_pairs = (uint16_t)(z->mbs_pairs + t * (t + 1) / 2);
-        uint16_t me = (sp->flags & RT_MBS_M_DIAG) ? sp->nz : (uint16_t)(sp->nz * (sp->nz + 1));
-        z->mbs_m = (uint16_t)(z->mbs_m + me); /* M's entries: factors (and pivots) */
+        z->mbs_m = (uint16_t)(z->mbs_m + rti_mbs_m_entries(sp)); /* factors (pivots) */
         if (!(sp->flags & RT_MBS_NODE_POINT) && sp->nz > z->mbs_jz)
             z->mbs_jz = sp->nz;
     }

@@ -39,7 +39,7 @@ RTI_NOIPA void rti_gather(rt_sim *sim, uint16_t b, real_t t)
 static int dss_hit(const rt_sim *sim, uint16_t b, rti_mode mode)
 {
     return (mode == RTI_AT_TICK || mode == RTI_AT_TICK_RECALL) &&
-           sim->state.tick % sim->plan.period[b] == 0;
+           rti_tick_mod(sim->state.tick, sim->plan.period[b]) == 0;
 }
 
 /* calls the output equation of block b (its lean one if lean, rt_kind.output_lean) */

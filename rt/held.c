@@ -321,7 +321,7 @@ static void start_past(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t *r)
    in_tick: rt_tick's */
 static void evaluate_set(const rt_scene *sc, rt_sim *sim, uint8_t s, int recall, int in_tick)
 {
-    real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
+    real_t ts = rti_tick_time(sim->state.set_tick[s], sc->dt);
     /* the tick its state reaches (and the start, where rt_refresh shows parameters set
        before the first tick) is an instant of its kinds that take values at instants
        (rt_kind.instant: an FMU's discrete inputs, rt/tev.c): what another set published

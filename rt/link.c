@@ -49,7 +49,7 @@ rt_status rti_link_check(const rt_scene *sc, rt_sim *sim)
 
 int rt_link_due(const rt_scene *sc, const rt_sim *sim)
 {
-    return sc->link && sim->state.tick % sc->link->period == 0;
+    return sc->link && rti_tick_mod(sim->state.tick, sc->link->period) == 0;
 }
 
 real_t rt_link_export(const rt_scene *sc, const rt_sim *sim, uint16_t i)

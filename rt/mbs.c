@@ -86,7 +86,7 @@ static rt_status block_tables(const rt_scene *sc, rt_sim *sim)
             nqt[s] += sp->nq;
         uint32_t nz = (uint32_t)w->nz[s] + sp->nz, nq = (uint32_t)w->nq[s] + sp->nq;
         uint32_t nc = (uint32_t)w->nc[s] + sp->nc;
-        mo += (sp->flags & RT_MBS_M_DIAG) ? sp->nz : (uint32_t)sp->nz * (sp->nz + 1u);
+        mo += rti_mbs_m_entries(sp);
         rt_limit over = nz > RT_MAX_MBS_Z       ? RT_LIM_MBS_Z
                         : nq > RT_MAX_MBS_Q     ? RT_LIM_MBS_Q
                         : nc > RT_MAX_MBS_C     ? RT_LIM_MBS_C

@@ -58,6 +58,11 @@ typedef struct rt_mbs_node {
                                after a parameter change or a restored state */
 #define RT_MBS_K_CONST 0x08    /* K does not depend on q (kin reads no coordinate): the
                                   projection keeps no predicted q for the block */
+#define RT_MBS_F_PARAM 0x10    /* k depends on the parameters alone (force reads no q, z,
+                                  u or t): with RT_MBS_M_CONST and a diagonal M, M^-1 k
+                                  stays the same until a parameter changes, and a scene's
+                                  written-out code forms it once (kept after M's factors
+                                  in rt_mbs_work.M) */
 #define RT_MBS_NODE_POINT 0x04 /* every node is the point itself: x = [r, v], nq = nz = 3,
                                   r' = v (K = I, no kinb: the runtime copies instead of
                                   calling kin), Jr = I, Jw = 0, S = I, no acceleration
@@ -247,7 +252,10 @@ typedef struct rt_mbs_work {
     uint16_t nq[RT_MAX_SETS];       /* coordinates of each set's MBS blocks */
     uint16_t nc[RT_MAX_SETS];       /* constraint rows of each set */
     uint8_t need_lambda;            /* the scene records or exports joint reactions */
-    uint8_t m_valid[RT_MAX_BLOCKS]; /* 1: M of a block with RT_MBS_M_CONST is factored */
+    uint8_t m_valid[RT_MAX_BLOCKS]; /* bit 0: M of a block with RT_MBS_M_CONST is
+                                       factored; bit 1: M^-1 k of its parameters alone is
+                                       kept after them (written-out code); 0 after a
+                                       parameter change or a restore */
     uint8_t points[RT_MAX_SETS];    /* 1: the set holds points only (rt/mbs.c points_only) */
     uint16_t ndrop[RT_MAX_SETS];    /* rows of each set's A dropped as dependent on others
                                        at its last factorization (its rank deficit) */

@@ -202,14 +202,39 @@ static inline uint16_t rti_block_run(const rt_sim *sim, uint8_t s, uint16_t *k, 
     *end = e;
     return b;
 }
-/* the time of the current state: the tick count times the base step (rt_time) */
+/* a tick count as a real, from 32 bits while it fits (the same value, so the same
+   bits): a 64-bit integer's conversion is a library call on a 32-bit core, a 32-bit
+   one an instruction with an FPU; and the time of tick `tick`: the count times the base
+   step, never a running sum */
+static inline real_t rti_tick_real(uint64_t tick)
+{
+    return tick <= UINT32_MAX ? (real_t)(uint32_t)tick : (real_t)tick;
+}
+/* ... and back: a real in [0, 2^64) truncated to a count, through 32 bits below 2^32 */
+static inline uint64_t rti_real_tick(real_t q)
+{
+    return q < (real_t)4294967296.0 ? (uint64_t)(uint32_t)q : (uint64_t)q;
+}
+static inline real_t rti_tick_time(uint64_t tick, real_t dt)
+{
+    return rti_tick_real(tick) * dt;
+}
+/* the time of the current state (rt_time) */
 static inline real_t rti_time(const rt_scene *sc, const rt_sim *sim)
 {
-    return (real_t)sim->state.tick * sc->dt;
+    return rti_tick_time(sim->state.tick, sc->dt);
 }
 /* does set s's state belong to the current tick: it has just stepped to it (each tick for
    a set of ratio 1), its background step was published at it (rt/bg.c), or the run is
    at its start. Between those ticks its outputs are held (rt/held.c) */
+/* the tick count modulo r (a set's ratio, a sampled block's period): in 32 bits while
+   the count fits, as it does for 49 days at 1 ms: a 64-bit remainder is a library call
+   of some hundred instructions on a 32-bit core, a 32-bit one an instruction (Cortex-M3,
+   M4, M7) */
+static inline uint32_t rti_tick_mod(uint64_t tick, uint32_t r)
+{
+    return tick <= UINT32_MAX ? (uint32_t)tick % r : (uint32_t)(tick % r);
+}
 static inline int rti_at_tick(const rt_sim *sim, uint8_t s)
 {
     return sim->state.set_tick[s] == sim->state.tick;

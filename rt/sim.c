@@ -66,7 +66,7 @@ static void discrete_updates(const rt_scene *sc, rt_sim *sim, real_t t)
     for (uint16_t b = sim->plan.dss_first; b < sim->plan.dss_end; b++) {
         /* a DSS block's period only is not 0 (rt/init.c): no kind to look up for others */
         uint32_t period = sim->plan.period[b];
-        if (period == 0 || sim->state.tick % period != 0)
+        if (period == 0 || rti_tick_mod(sim->state.tick, period) != 0)
             continue;
         const rt_kind *k = sc->blocks[b].kind;
         real_t next[RT_MAX_D];
@@ -104,7 +104,7 @@ static uint32_t step_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
     rti_step_witness(sim, s, r0);
     sim->state.set_tick[s] = sim->state.tick + ratio;
     if (sim->plan.set_xout[s]) {
-        real_t ts = (real_t)sim->state.set_tick[s] * sc->dt;
+        real_t ts = rti_tick_time(sim->state.set_tick[s], sc->dt);
         rti_outputs(sc, sim, (rti_at){ts, s, RTI_IN_STEP});
         rti_xset_push(sc, sim, s, ts);
         /* y holds them until the renewal; a set over several ticks keeps them in y_end
@@ -122,7 +122,7 @@ static uint32_t step_sets(const rt_scene *sc, rt_sim *sim, real_t t)
     uint32_t recall = 0;
     for (uint8_t i = 0; i < sc->nsets; i++) {
         uint8_t s = sim->plan.sched[i];
-        if (sim->state.tick % sc->sets[s].ratio == 0 && !sc->sets[s].background)
+        if (rti_tick_mod(sim->state.tick, sc->sets[s].ratio) == 0 && !sc->sets[s].background)
             recall |= step_set(sc, sim, s, t);
     }
     return recall;

@@ -51,8 +51,8 @@ static void watch_growth(rt_sim *sim, uint8_t s, real_t before, real_t after)
 /* integrates the set from t by h in place (its state before the step kept in work.xs),
    then post-stabilizes its multibody part (eq. 10); a step that ended above its residual
    tolerance is counted as degraded.
-   Returns the final state's norm (NaN or inf if a value is not finite), or -1 if the
-   projection moved it after the norm was taken */
+   Returns the final state's norm, after the projection (NaN or inf if a value is not
+   finite): one pass serves the growth watch and the finite check */
 /* the integrator's workspace of set s */
 static void iwork_of(const rt_scene *sc, rt_sim *sim, uint8_t s, rt_iwork *w)
 {
@@ -112,13 +112,11 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
                   w.stats->last_err <= RT_ERR_LOST ? RT_E_ACCURACY : RT_E_LOST);
         sim->stats.errest[s]++;
     }
+    /* projects when stab is RT_STAB_PROJECT; otherwise refreshes recorded reactions */
+    if (sc->mbs && sim->work.mbs.nz[s] > 0)
+        sc->mbs->project(sc, sim, s, t + h);
     real_t after = norm(sim->state.x + x0, n);
     watch_growth(sim, s, before, after);
-    /* projects when stab is RT_STAB_PROJECT; otherwise refreshes recorded reactions */
-    if (sc->mbs && sim->work.mbs.nz[s] > 0) {
-        sc->mbs->project(sc, sim, s, t + h);
-        return -1;
-    }
     return after;
 }
 

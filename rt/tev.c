@@ -77,10 +77,10 @@ static instant set_next(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
             in.t = te, in.block = b;
     }
     real_t q = in.t / sc->dt;
-    if (!(q < (real_t)sim->plan.n_ticks))
+    if (!(q < rti_tick_real(sim->plan.n_ticks)))
         return in;
-    in.tick = (uint64_t)(q + (real_t)0.5);
-    in.off = rt_fabs(q - (real_t)in.tick);
+    in.tick = rti_real_tick(q + (real_t)0.5);
+    in.off = rt_fabs(q - rti_tick_real(in.tick));
     return in;
 }
 
@@ -88,7 +88,7 @@ static instant set_next(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
    instant at k cannot return k again */
 static instant next_after(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k)
 {
-    instant in = set_next(sc, sim, s, ((real_t)k + (real_t)0.5) * sc->dt);
+    instant in = set_next(sc, sim, s, (rti_tick_real(k) + (real_t)0.5) * sc->dt);
     if (in.tick != NEVER && in.tick <= k)
         in.tick = k + 1;
     return in;
@@ -112,7 +112,7 @@ static uint64_t next_tick(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k
    for the edges its readers take */
 static void inside_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k)
 {
-    instant in = set_next(sc, sim, s, ((real_t)k - (real_t)0.5) * sc->dt);
+    instant in = set_next(sc, sim, s, (rti_tick_real(k) - (real_t)0.5) * sc->dt);
     if (in.tick != k)
         return;
     uint16_t b = in.block;
@@ -128,7 +128,7 @@ static void inside_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k)
    instants around it (rt_args.t_piece) */
 static void part(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k, uint64_t ke)
 {
-    real_t t = (real_t)k * sc->dt, h = sc->dt * (real_t)(ke - k);
+    real_t t = rti_tick_time(k, sc->dt), h = sc->dt * rti_tick_real(ke - k);
     sim->work.t_piece = t + (real_t)0.5 * h;
     rti_step_set(sc, sim, s, t, h, 0);
 }
@@ -273,7 +273,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
 #if RT_MAX_TEV > 0
     uint64_t k = tick; /* the tick the next known instant is sought from */
 #endif
-    real_t t = (real_t)tick * sc->dt, t_end = (real_t)end * sc->dt;
+    real_t t = rti_tick_time(tick, sc->dt), t_end = rti_tick_time(end, sc->dt);
     for (int n = 1;; n++) {
         uint64_t kb = end;
 #if RT_MAX_TEV > 0
@@ -282,7 +282,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
             kb = ks < end ? ks : end;
         }
 #endif
-        real_t tb = kb == end ? t_end : (real_t)kb * sc->dt;
+        real_t tb = kb == end ? t_end : rti_tick_time(kb, sc->dt);
         if ((sim->plan.set_flags[s] & RTI_SET_INSTANT) && tb > t) {
             /* (its side of the known instants: any time before the next one) */
 #if RT_MAX_TEV > 0
@@ -366,7 +366,7 @@ void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uin
         return;
     }
 #endif
-    rti_step_set(sc, sim, s, (real_t)tick * sc->dt, sim->plan.set_h[s], 0);
+    rti_step_set(sc, sim, s, rti_tick_time(tick, sc->dt), sim->plan.set_h[s], 0);
 }
 
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)

@@ -116,7 +116,7 @@ real_t rti_xset_late(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
     real_t late = 0;
 #if RT_MAX_XPRED > 0
-    real_t now = (real_t)sim->state.set_tick[s] * sc->dt;
+    real_t now = rti_tick_time(sim->state.set_tick[s], sc->dt);
     for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++) {
         uint8_t q = sim->plan.src_set[sim->plan.xpred_in[k]];
         const real_t *T = sim->state.hist_t[q];

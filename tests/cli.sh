@@ -190,7 +190,7 @@ want_pe="$want_pe -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_TRANSITION_N=0 -DRT_MAX_HIST_Y=
 want_pe="$want_pe -DRT_MAX_LOOP_HIST=1 -DRT_MAX_BG=1 -DRT_MAX_XPRED=0 -DRT_MAX_TEV=0 -DRT_MAX_KSTATE=0 -DRT_MAX_JOINTS=10 -DRT_MAX_MBS_Z=30 -DRT_MAX_MBS_Q=30"
 want_pe="$want_pe -DRT_MAX_MBS_C=10 -DRT_MAX_MBS_BZ=3 -DRT_MAX_MBS_ROWS=10 -DRT_MAX_MBS_TOUCH=19"
 want_pe="$want_pe -DRT_MAX_MBS_TW=57 -DRT_MAX_MBS_QT=1 -DRT_MAX_MBS_TY=1 -DRT_MAX_MBS_PAIRS=28"
-want_pe="$want_pe -DRT_MAX_MBS_LNZ=9 -DRT_MAX_MBS_M=30 -DRT_MAX_MBS_JROWS=10 -DRT_MAX_MBS_JZ=1"
+want_pe="$want_pe -DRT_MAX_MBS_LNZ=9 -DRT_MAX_MBS_M=60 -DRT_MAX_MBS_JROWS=10 -DRT_MAX_MBS_JZ=1"
 [ "$(build/host/scenec --sizes models/scenes/pi_loop.scn)" = "$want_pi" ] && ok ||
     bad "scenec --sizes pi_loop: $(build/host/scenec --sizes models/scenes/pi_loop.scn)"
 [ "$(build/host/scenec --sizes models/scenes/pendulum10.scn)" = "$want_pe" ] && ok ||

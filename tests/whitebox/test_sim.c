@@ -5,7 +5,7 @@
 #include "models.h"
 #include "scenes/scenes.h"
 #include "testutil.h"
-#include "rt_sim.h" /* white box: reads rt_sim's parts (plan, state, work) */
+#include "rti.h" /* white box: reads rt_sim's parts (plan, state, work), the tick helpers */
 
 /* a and b have the same bits (NaN included; the freestanding targets have no memcmp) */
 static int same_bits(real_t a, real_t b)
@@ -72,6 +72,25 @@ static void test_integer_time(void)
     TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE);
     TH_CHECK(rt_time(&sc, &tu_sim) == (real_t)1000000 * (real_t)1e-3);
     TH_CHECK(rt_tick(&sc, &tu_sim) == RT_E_DONE && rt_ticks_done(&tu_sim) == 1000000);
+}
+
+/* the tick arithmetic taken through 32 bits while the count fits (rti_tick_mod,
+   rti_tick_real, rti_real_tick) equals the 64-bit one on both sides of 2^32 */
+static void test_tick_width(void)
+{
+    static const uint64_t ticks[] = {0, 1, 999, 4294967295u, 4294967296u, 4294967297u,
+                                     ((uint64_t)1 << 40) | 12345u, ~(uint64_t)0 >> 11};
+    static const uint32_t r[] = {1, 3, 4, 7, 1000, 4294967295u};
+    for (unsigned i = 0; i < sizeof ticks / sizeof ticks[0]; i++) {
+        uint64_t t = ticks[i];
+        for (unsigned k = 0; k < sizeof r / sizeof r[0]; k++)
+            TH_CHECK(rti_tick_mod(t, r[k]) == t % r[k]);
+        TH_CHECK(same_bits(rti_tick_real(t), (real_t)t));
+        TH_CHECK(same_bits(rti_tick_time(t, (real_t)1e-3), (real_t)t * (real_t)1e-3));
+        real_t q = (real_t)t + (real_t)0.25;
+        TH_CHECK(rti_real_tick(q) == (uint64_t)q);
+    }
+    TH_CHECK(rti_real_tick((real_t)4294967296.0) == 4294967296u);
 }
 
 static void test_set_param(void)
@@ -545,6 +564,7 @@ const th_test th_sim_tests[] = {
     {"sim_reinit_replay", test_reinit_replay},
     {"sim_hash_determinism", test_hash_determinism},
     {"sim_integer_time", test_integer_time},
+    {"sim_tick_width", test_tick_width},
     {"sim_set_param", test_set_param},
     {"sim_lss", test_lss},
     {"sim_nan_contained", test_nan_contained},

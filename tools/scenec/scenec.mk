@@ -42,9 +42,12 @@ $(call obj,tools/modrt/modrt.c tools/modrt/cli.c tools/modrt/study.c): CINC += -
 $(O)/obj/tests/scenec/%.o: CINC += -I$(SCN_DIR)
 
 ifeq ($(O),build/host)
+# (linked under another name and renamed: the rules that run it never exec a file a
+# writer may still hold open, which failed a clean build once with "Text file busy")
 $(SCENEC): $(call obj,$(SCN_DIR)/scenec.c tools/fmi/fmu_export.c) $(SCN_LIB_OBJS) $(RT_OBJS) \
            $(SCN_MODEL_OBJS)
-	$(CC) $(LDSAN) $^ $(FMI_LIBS) -o $@
+	$(CC) $(LDSAN) $^ $(FMI_LIBS) -o $@.tmp
+	mv -f $@.tmp $@
 else
 # other builds (REAL=float, SAN=1, FAULT=1) use the double compiler of build/host
 $(SCENEC): scenec-always

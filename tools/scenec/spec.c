@@ -176,7 +176,7 @@ static void tick_call(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b
     if (k->type == RT_KIND_DSS) {
         /* the period from the plan: a copy of the scene at another base tick (a
            reference run) keeps this code */
-        fprintf(f, "    if (hit && sim->state.tick %% sim->plan.period[%u] == 0) {\n", b);
+        fprintf(f, "    if (hit && rti_tick_mod(sim->state.tick, sim->plan.period[%u]) == 0) {\n", b);
         snprintf(h, sizeof h, "sc->dt * (real_t)sim->plan.period[%u]", b);
     } else
         fputs("    {\n", f);
@@ -269,6 +269,34 @@ static void mass_diag(FILE *f, uint16_t b, unsigned mo, unsigned nz)
                "        w->m_valid[%u] = 1;\n    }\n", b, b);
 }
 
+/* does block b's M^-1 k depend on its parameters alone (RT_MBS_F_PARAM, a constant
+   diagonal M, no inputs): formed once, kept until a parameter changes */
+static int param_force(const rt_scene *sc, uint16_t b)
+{
+    const rt_mbs_spec *sp = spec_of(sc, b);
+    unsigned need = RT_MBS_F_PARAM | RT_MBS_M_CONST | RT_MBS_M_DIAG;
+    return (sp->flags & need) == need && sc->blocks[b].kind->nu == 0;
+}
+
+/* block b's M^-1 k kept after its diagonal M's factors (rti_mbs_m_entries), formed
+   there (force, divided by M) at the first evaluation after M's factoring (m_valid bit
+   1, cleared with bit 0) */
+static void kept_force(FILE *f, const rt_sim *sim, uint16_t b, unsigned nz)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    unsigned zo = w->zo[b], mo = w->mo[b];
+    fprintf(f, "    if (w->m_valid[%u] & 2u) {\n", b);
+    for (unsigned c = 0; c < nz; c++)
+        fprintf(f, "        a[%u] = M[%u];\n", zo + c, mo + nz + c);
+    fputs("    } else {\n", f);
+    mbs_args(f, sim, b);
+    fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
+    for (unsigned c = 0; c < nz; c++)
+        fprintf(f, "    a[%u] /= M[%u];\n    w->M[%u] = a[%u];\n", zo + c, mo + c,
+                mo + nz + c, zo + c);
+    fprintf(f, "    w->m_valid[%u] |= 2u;\n    }\n", b);
+}
+
 /* each block's part of the assembly (assemble_point_set; assemble_block): a varying M
    formed and factored where `what` has RTI_MBS_JAC (a constant one was at the first
    assembly), M^-1 k for RTI_MBS_FORCE (a diagonal M divided out, a dense one solved with
@@ -282,14 +310,17 @@ static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, in
         unsigned zo = w->zo[b], mo = w->mo[b];
         int mass = (what & RTI_MBS_JAC) && !(sp->flags & RT_MBS_M_CONST);
         int force = what & RTI_MBS_FORCE, dense = dense_m(sc, b);
+        int kept = force && !mass && param_force(sc, b);
         if (!mass && !force && sp->nc == 0)
             continue;
         fprintf(f, "    /* %s: %s%s */\n", sc->blocks[b].name,
                 mass    ? "its M, M^-1 k"
+                : kept  ? "M^-1 k of its parameters alone, kept"
                 : force ? "M^-1 k (M factored at the first assembly)"
                         : "",
                 sp->nc ? (mass || force ? ", its own rows" : "its own rows") : "");
-        mbs_args(f, sim, b);
+        if (!kept || sp->nc)
+            mbs_args(f, sim, b);
         if (mass) {
             fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->mass(&ar, w->M + %u);\n", mo);
             if (dense)
@@ -298,7 +329,9 @@ static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, in
             else
                 mass_diag(f, b, mo, sp->nz);
         }
-        if (force) {
+        if (kept) {
+            kept_force(f, sim, b, sp->nz);
+        } else if (force) {
             if (sc->blocks[b].kind->nu > 0)
                 gather(f, sim, b);
             fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);

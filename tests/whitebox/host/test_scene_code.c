@@ -85,6 +85,33 @@ static void test_scene_code_equal(void)
     TH_CHECK(mdl_scene_pendulum10.code != 0);
 }
 
+/* a parameter changed mid-run reaches the written-out code: pendulum10's points keep
+   M^-1 k of their parameters (RT_MBS_F_PARAM, after M in rt_mbs_work.M) until a parameter
+   changes. Gravity and a mass changed at 1 s: the run through the code must follow the
+   generic path's to the bit, and must differ from a run without the change */
+static void test_scene_code_param(void)
+{
+    rt_scene generic = mdl_scene_pendulum10;
+    const rt_scene *sc = &mdl_scene_pendulum10;
+    static rt_sim c;
+    generic.code = 0;
+    TH_CHECK(rt_init(sc, &a) == RT_OK && rt_init(&generic, &b) == RT_OK &&
+             rt_init(sc, &c) == RT_OK);
+    for (int k = 0; k < 400; k++) {
+        if (k == 200) {
+            TH_CHECK(rt_set_param(sc, &a, "B3", "gz", (real_t)-5) == RT_OK);
+            TH_CHECK(rt_set_param(&generic, &b, "B3", "gz", (real_t)-5) == RT_OK);
+            TH_CHECK(rt_set_param(sc, &a, "B7", "m", (real_t)2) == RT_OK);
+            TH_CHECK(rt_set_param(&generic, &b, "B7", "m", (real_t)2) == RT_OK);
+        }
+        rt_tick(sc, &a), rt_tick(&generic, &b), rt_tick(sc, &c);
+        rt_record(sc, &a, 0), rt_record(&generic, &b, 0), rt_record(sc, &c, 0);
+    }
+    TH_CHECK(memcmp(a.state.x, b.state.x, sizeof a.state.x) == 0);
+    TH_CHECK(rt_trace_hash(&a) == rt_trace_hash(&b));
+    TH_CHECK(rt_trace_hash(&a) != rt_trace_hash(&c));
+}
+
 /* code compiled with other limits than the runtime reads rt_sim's members at other
    offsets: rt_init refuses it, it never runs (a Cortex-M7 image whose scene .c had the
    default RT_MAX_KSTATE, linked to a runtime library built with RT_MAX_KSTATE=256, ran
@@ -105,6 +132,7 @@ static void test_scene_code_layout(void)
 
 const th_test th_scene_code_tests[] = {
     {"scene_code_equal", test_scene_code_equal},
+    {"scene_code_param", test_scene_code_param},
     {"scene_code_layout", test_scene_code_layout},
     {0, 0},
 };
