@@ -90,14 +90,22 @@ static void sine_out(const rt_args *a, real_t *y)
     y[0] = a->p[0] * rt_sin(a->p[1] * a->t + a->p[2]) + a->p[3];
 }
 
+/* its band: omega (rt_kind.band) */
+static real_t sine_band(const rt_args *a)
+{
+    return rt_fabs(a->p[1]);
+}
+
 const rt_kind mdl_sine_kind = {
     .name = "sine", .type = RT_KIND_OUTPUT,
     .ny = 1, .np = 4,
     .y_names = y_names, .p_names = sine_p, .p_default = sine_def,
-    .feed = RT_FEED_NONE, .linear = 1, .output = sine_out,
+    .feed = RT_FEED_NONE, .linear = 1, .output = sine_out, .band = sine_band,
     .doc = RT_DOC(
         "Sine source (output only, eq. (1)): y = amp sin(omega t + phase) + offset.\n"
         "amp: amplitude; omega: angular frequency; phase: phase at t = 0; offset: mean\n"
-        "value; any values (no check)."),
+        "value; any values, but a set integrating y (or reading it through blocks with\n"
+        "throughput or another set's history) must step below pi / |omega|: its steps\n"
+        "would sample an alias (rt_init refuses the scene)."),
     .units = RT_DOC("- - rad/s rad -"),
 };

@@ -81,8 +81,7 @@ static uint8_t entry_set(const rt_scene *sc, const rt_sim *sim, uint16_t s)
     return sc->blocks[b].set;
 }
 
-/* the block whose outputs hold global output index v */
-static uint16_t writer(const rt_scene *sc, const rt_sim *sim, uint16_t v)
+uint16_t rti_writer(const rt_scene *sc, const rt_sim *sim, uint16_t v)
 {
     uint16_t b = 0;
     while (b + 1 < sc->nblocks && sim->plan.y_off[b + 1] <= v)
@@ -139,7 +138,7 @@ static void live_reads(const rt_scene *sc, const rt_sim *sim, uint8_t *live)
         for (uint16_t i = sim->plan.u_off[b]; i < sim->plan.u_off[b + 1]; i++) {
             if (sim->plan.src_kind[i] != RT_SRC_Y || sc->blocks[b].kind->type == RT_KIND_DSS)
                 continue;
-            uint16_t v = sim->plan.src[i], wb = writer(sc, sim, v);
+            uint16_t v = sim->plan.src[i], wb = rti_writer(sc, sim, v);
             if (sc->blocks[wb].set != sc->blocks[b].set)
                 continue;
             const rt_kind *k = sc->blocks[wb].kind;
@@ -210,7 +209,7 @@ static int recalled(const rt_scene *sc, const rt_sim *sim, uint16_t b, const uin
         uint8_t src = sim->plan.src_kind[j];
         if (src == RT_SRC_XSET || src == RT_SRC_HELD)
             return 1;
-        if (src == RT_SRC_Y && (seen[writer(sc, sim, sim->plan.src[j])] & SEEN_RECALLED))
+        if (src == RT_SRC_Y && (seen[rti_writer(sc, sim, sim->plan.src[j])] & SEEN_RECALLED))
             return 1;
     }
     return 0;

@@ -267,12 +267,15 @@ static rt_status check_recs(const rt_scene *sc, rt_sim *sim)
 static int init(const rt_scene *sc, rt_sim *sim)
 {
     rt_status st;
+    /* Baumgarte with alpha = beta = 0 is no stabilization under another name: a scene
+       asking for it and getting none would be told nothing */
     if (sc->stab > RT_STAB_BAUMGARTE ||
         (sc->stab == RT_STAB_BAUMGARTE &&
          !(sc->baumgarte[0] >= 0 && sc->baumgarte[1] >= 0 &&
+           sc->baumgarte[0] + sc->baumgarte[1] > 0 &&
            rt_isfinite(sc->baumgarte[0]) && rt_isfinite(sc->baumgarte[1]))))
         return rti_fail(sim, RT_E_SCENE, "unknown stabilization, or Baumgarte parameters "
-                        "not finite and >= 0", (const char *)0);
+                        "not finite, >= 0 and not both 0", (const char *)0);
     if ((st = block_tables(sc, sim)) != RT_OK || (st = joint_tables(sc, sim)) != RT_OK ||
         (st = touch_tables(sc, sim)) != RT_OK || (st = set_lists(sc, sim)) != RT_OK ||
         (st = factor_tables(sc, sim)) != RT_OK ||

@@ -27,14 +27,28 @@ static real_t dist3(const real_t *a, const real_t *b)
     return rt_sqrt(d0 * d0 + d1 * d1 + d2 * d2);
 }
 
-/* largest displacement (mv[0]) and velocity change (mv[1]) of block b's nodes between the
-   saved state x0 and now; a block without nodes: of its coordinates and velocities */
+/* the angle [rad] between two node frames, from the chord |S1 - S0| (Frobenius) =
+   2 sqrt(2) sin(angle / 2) */
+static real_t angle_between(const real_t *S0, const real_t *S1)
+{
+    real_t c = 0;
+    for (int i = 0; i < 9; i++)
+        c += (S1[i] - S0[i]) * (S1[i] - S0[i]);
+    real_t h = rt_sqrt(c) / (real_t)2.8284271247461903;
+    return 2 * rt_asin(h < 1 ? h : 1);
+}
+
+/* what the start moved block b's nodes by between the saved state x0 and now, the
+   largest over its nodes: displacement [m] (mv[0]), velocity change [m/s] (mv[1]),
+   rotation [rad] (mv[2]) and angular velocity change [rad/s] (mv[3]): a node at a body's
+   centre of mass keeps its place when the body's orientation is put right. A block
+   without nodes: of its coordinates and velocities (mv[0], mv[1]) */
 static void node_moves(const rt_scene *sc, const rt_sim *sim, uint16_t b, const real_t *x0,
                        real_t *mv)
 {
     const rt_mbs_spec *sp = spec_of(sc, b);
     uint32_t off = sim->plan.x_off[b];
-    mv[0] = mv[1] = 0;
+    mv[0] = mv[1] = mv[2] = mv[3] = 0;
     if (sp->nn == 0) {
         for (uint16_t i = 0; i < sp->nq + sp->nz; i++)
             mv[i >= sp->nq] = rt_fmax(mv[i >= sp->nq], rt_fabs(sim->state.x[off + i] - x0[off + i]));
@@ -49,6 +63,8 @@ static void node_moves(const rt_scene *sc, const rt_sim *sim, uint16_t b, const 
         sp->node(&now, i, &n1, 0);
         mv[0] = rt_fmax(mv[0], dist3(n0.r, n1.r));
         mv[1] = rt_fmax(mv[1], dist3(n0.v, n1.v));
+        mv[2] = rt_fmax(mv[2], angle_between(n0.S, n1.S));
+        mv[3] = rt_fmax(mv[3], dist3(n0.w, n1.w));
     }
 }
 
@@ -76,6 +92,8 @@ static rt_status quaternions(const rt_scene *sc, rt_sim *sim, uint8_t set)
         rti_count(sim, RT_CNT_INIT_MOVED, b, RT_OK);
         rti_note(sim, sc->blocks[b].name, ": quaternion of norm ", rti_real_text(txt, n),
                  " normalized", (const char *)0);
+        for (uint16_t i = 0; i < sp->nq; i++) /* the moves below: from the unit one */
+            sim->work.x0[sim->plan.x_off[b] + i] = q[i];
     }
     return RT_OK;
 }
@@ -131,21 +149,30 @@ static rt_status report_moves(const rt_scene *sc, rt_sim *sim, uint8_t set,
                               const char *joint, real_t g0)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    char t1[RTI_REAL_TEXT], t2[RTI_REAL_TEXT], t3[RTI_REAL_TEXT];
+    char t1[RTI_REAL_TEXT], t2[RTI_REAL_TEXT], t3[RTI_REAL_TEXT], t4[RTI_REAL_TEXT];
     for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++) {
         uint16_t b = w->sblk[k];
-        real_t mv[2];
+        real_t mv[4];
         node_moves(sc, sim, b, sim->work.x0, mv);
-        if (!(mv[0] <= RT_INIT_TOL))
-            return rti_fail(sim, RT_E_INCONSISTENT, sc->blocks[b].name, " starts ",
-                            rti_real_text(t1, mv[0]), " m off its constraints (",
+        int rot = !(mv[2] <= mv[0]); /* the rotation is the larger mistake: name it */
+        if (!(mv[0] <= RT_INIT_TOL) || !(mv[2] <= RT_INIT_TOL))
+            return rti_fail(sim, RT_E_INCONSISTENT, sc->blocks[b].name,
+                            rot ? " starts rotated " : " starts ",
+                            rti_real_text(t1, rot ? mv[2] : mv[0]),
+                            rot ? " rad off its constraints (" : " m off its constraints (",
                             joint, " violated by ", rti_real_text(t2, g0), "), above RT_INIT_TOL = ",
                             rti_real_text(t3, RT_INIT_TOL), (const char *)0);
-        if (mv[0] <= RT_MBS_RES_TOL && mv[1] <= RT_MBS_RES_TOL)
+        if (mv[0] <= RT_MBS_RES_TOL && mv[1] <= RT_MBS_RES_TOL && mv[2] <= RT_MBS_RES_TOL &&
+            mv[3] <= RT_MBS_RES_TOL)
             continue;
         rti_count(sim, RT_CNT_INIT_MOVED, b, RT_OK);
-        rti_note(sim, sc->blocks[b].name, " moved ", rti_real_text(t1, mv[0]), " m, ",
-                 rti_real_text(t2, mv[1]), " m/s onto its constraints", (const char *)0);
+        if (mv[2] <= RT_MBS_RES_TOL && mv[3] <= RT_MBS_RES_TOL)
+            rti_note(sim, sc->blocks[b].name, " moved ", rti_real_text(t1, mv[0]), " m, ",
+                     rti_real_text(t2, mv[1]), " m/s onto its constraints", (const char *)0);
+        else
+            rti_note(sim, sc->blocks[b].name, " moved ", rti_real_text(t1, mv[0]), " m, ",
+                     rti_real_text(t2, mv[1]), " m/s, ", rti_real_text(t3, mv[2]), " rad, ",
+                     rti_real_text(t4, mv[3]), " rad/s onto its constraints", (const char *)0);
     }
     return RT_OK;
 }

@@ -244,6 +244,14 @@ typedef struct rt_kind {
        instants must lie on the base tick grid (rt_init refuses the scene otherwise,
        rt/tev.c). NULL: none (the kind has no switch in time) */
     real_t (*next_event)(const rt_args *a);
+    /* The highest angular frequency [rad/s] of the kind's explicit time dependence (its
+       outputs or derivatives as functions of t at fixed inputs and state: a sine's
+       omega). Reads a->p only. A step h samples t at its stages: at omega h >= pi the
+       samples are an alias (at omega h = 2 pi every stage sees the same phase and no
+       estimate can tell), so rt_init refuses a scene (and rt_set_param a parameter)
+       where a set integrating the signal steps that long (rt/tev.c). NULL: none, or
+       not known (a defined system, an FMU) */
+    real_t (*band)(const rt_args *a);
 
     /* Services of a kind that is a state machine of its own (an FMU, tools/fmi/); NULL or
        0 in the library's kinds. */

@@ -153,6 +153,8 @@ static inline real_t rti_piece(const rt_scene *sc, const rt_sim *sim, real_t t)
 /* Gathers the inputs of block b at time t from the outputs that feed them (y = P u; an
    input from another set is reconstructed at t). */
 void rti_gather(rt_sim *sim, uint16_t b, real_t t);
+/* the block whose outputs hold global output index v */
+uint16_t rti_writer(const rt_scene *sc, const rt_sim *sim, uint16_t v);
 /* Calls the output equations of sequence entries [begin, end) (a loop segment). */
 void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, rti_at at);
 /* Evaluates the output sequence at the instant at, solving actual loops on the way. */
@@ -385,9 +387,13 @@ uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim);
 /* ---- known time events (tev.c) ---- */
 /* at init (after rti_eval_plan and the tick count): flags the sets holding a kind with
    known time events (RTI_SET_TEV) and checks every instant up to the end time: on the
-   base tick grid, and at most RT_TEV_PARTS_MAX parts per step; else RT_E_SCENE */
+   base tick grid, and at most RT_TEV_PARTS_MAX parts per step; else RT_E_SCENE; and
+   every block's band (rt_kind.band) below pi / h of each set that integrates it, else
+   RT_E_PARAM */
 rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim);
-/* the same checks for block b's set after a parameter of b changed (rt_set_param) */
+/* the same checks for block b's set after a parameter of b changed (rt_set_param), and
+   its band (rt_kind.band) against the steps that integrate it: at or above pi / h the
+   steps sample an alias of it, RT_E_PARAM */
 rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b);
 /* set s's step from base tick `tick` over `ratio` ticks: one rti_step_set, or one per
    part between the known time events inside it, each evaluated on its own side of them */

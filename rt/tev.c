@@ -487,8 +487,80 @@ static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     return f;
 }
 
+/* ------------------------------------------------------------------ bands */
+
+/* does block r read an output of a block marked in carry (an output, a held one, or
+   another set's history) */
+static int reads_marked(const rt_scene *sc, const rt_sim *sim, uint16_t r, const uint8_t *carry)
+{
+    for (uint16_t i = sim->plan.u_off[r]; i < sim->plan.u_off[r + 1]; i++) {
+        uint8_t k = sim->plan.src_kind[i];
+        if ((k == RT_SRC_Y || k == RT_SRC_HELD || k == RT_SRC_XSET) &&
+            carry[rti_writer(sc, sim, sim->plan.src[i])])
+            return 1;
+    }
+    return 0;
+}
+
+/* the blocks whose outputs carry block b's time dependence: b, and each block whose
+   outputs read a carrier directly (rt_kind.feed), not a sampled one (it holds samples:
+   the model's own sampling, not the integration's) */
+static void carriers(const rt_scene *sc, const rt_sim *sim, uint16_t b, uint8_t *carry)
+{
+    for (uint16_t k = 0; k < sc->nblocks; k++)
+        carry[k] = k == b;
+    for (int grew = 1; grew;) {
+        grew = 0;
+        for (uint16_t r = 0; r < sc->nblocks; r++) {
+            const rt_kind *k = sc->blocks[r].kind;
+            if (!carry[r] && k->feed != RT_FEED_NONE && k->type != RT_KIND_DSS &&
+                reads_marked(sc, sim, r, carry))
+                carry[r] = 1, grew = 1;
+        }
+    }
+}
+
+/* block b's band against the step of every set that integrates it: a block with states
+   of its own that carries it or reads a carrier (the step of the carrier's set too, when
+   it is another's: its history samples it) */
+static rt_status check_band(const rt_scene *sc, rt_sim *sim, uint16_t b)
+{
+    const rt_kind *kb = sc->blocks[b].kind;
+    if (!kb->band)
+        return RT_OK;
+    rt_args a;
+    rti_args(sc, sim, b, 0, 0, &a);
+    real_t w = kb->band(&a), worst = 0;
+    uint8_t carry[RT_MAX_BLOCKS];
+    int at = -1;
+    carriers(sc, sim, b, carry);
+    for (uint16_t r = 0; r < sc->nblocks; r++) {
+        const rt_kind *k = sc->blocks[r].kind;
+        if (k->nx == 0 || k->type == RT_KIND_DSS || !(carry[r] || reads_marked(sc, sim, r, carry)))
+            continue;
+        uint8_t s = sc->blocks[r].set;
+        real_t h = sim->plan.set_h[s];
+        for (uint16_t i = sim->plan.u_off[r]; i < sim->plan.u_off[r + 1]; i++)
+            if (sim->plan.src_kind[i] == RT_SRC_XSET && carry[rti_writer(sc, sim, sim->plan.src[i])])
+                h = rt_fmax(h, sim->plan.set_h[sim->plan.src_set[i]]);
+        if (!(h <= worst))
+            worst = h, at = s;
+    }
+    if (at < 0 || w * worst < (real_t)RT_PI)
+        return RT_OK;
+    char t1[RTI_REAL_TEXT], t2[RTI_REAL_TEXT];
+    return rti_fail(sim, RT_E_PARAM, sc->blocks[b].name, ": ", rti_real_text(t1, w),
+                    " rad/s aliased by set ", sc->sets[at].name, "'s step (needs h < ",
+                    rti_real_text(t2, (real_t)RT_PI / w), " s)", (const char *)0);
+}
+
 rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
 {
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        rt_status st = check_band(sc, sim, b);
+        if (st != RT_OK)
+            return st;
+    }
     unsigned n = 0;
     for (uint8_t s = 0; s < sc->nsets; s++) {
         uint16_t f = tev_flags(sc, sim, s);
@@ -510,8 +582,9 @@ rt_status rti_tev_init(const rt_scene *sc, rt_sim *sim)
 
 rt_status rti_tev_check_block(const rt_scene *sc, rt_sim *sim, uint16_t b)
 {
-    if (!sc->blocks[b].kind->next_event)
-        return RT_OK;
+    rt_status st = check_band(sc, sim, b);
+    if (st != RT_OK || !sc->blocks[b].kind->next_event)
+        return st;
     rti_tev_moved(sim, sc->blocks[b].set); /* its instants may have moved */
     return check_set(sc, sim, sc->blocks[b].set);
 }

@@ -243,6 +243,20 @@ def joints(s):
     # a point 0.5 mm off its rod: moved at init, reported with the block and distance
     rc, msg = refused(s.modrt, "joints_offset.scn")
     s.check(rc == 0 and "B moved 5.00e-04 m" in msg, "joints_offset: exit %d, %s" % (rc, msg))
+    # a body on a hinge at its centre of mass: the node stays where it is while the start
+    # rotates the body 30 deg (refused, as a node moved 0.5 m would be) or takes an
+    # angular velocity of 5 rad/s away (reported with the block)
+    rc, msg = refused(s.modrt, "joints_tilted.scn")
+    s.check(rc == 2 and "B starts rotated 5.24e-01 rad off its constraints" in msg,
+            "joints_tilted: exit %d, %s" % (rc, msg))
+    rc, summ, rows = run(s.modrt, "joints_spin_off.scn", [])
+    s.check(rc == 0 and summ.get("init_moved", "").startswith("1 (last B)") and
+            abs(rows[0][1]) < 1e-12 and abs(rows[0][2] - 1) < 1e-12,
+            "joints_spin_off: exit %d, init_moved %s, first row %s" % (
+                rc, summ.get("init_moved"), rows[:1]))
+    rc, msg = refused(s.modrt, "joints_spin_off.scn")
+    s.check("B moved 0.00e+00 m, 0.00e+00 m/s, 0.00e+00 rad, 5.00e+00 rad/s" in msg,
+            "joints_spin_off: %s" % msg)
 
 
 def kinetics(s):

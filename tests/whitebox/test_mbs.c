@@ -316,6 +316,10 @@ static void test_drift_10s(void)
     sc.stab = RT_STAB_BAUMGARTE;
     sc.baumgarte[0] = 20, sc.baumgarte[1] = 100;
     drift baum = run_drift(&sc, 10000);
+    /* alpha = beta = 0 would be no stabilization under Baumgarte's name: refused */
+    rt_scene zero = sc;
+    zero.baumgarte[0] = zero.baumgarte[1] = 0;
+    TH_CHECK(rt_init(&zero, &tu_sim) == RT_E_SCENE);
     note_drift("10 s, projection:   ", &on);
     note_drift("10 s, no projection:", &off);
     th_note("10 s, Baumgarte 20/100: |g|", baum.res);
