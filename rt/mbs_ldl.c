@@ -192,12 +192,18 @@ int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
         big = D[i] > big ? D[i] : big; /* semidefinite: the largest entry is on it */
         u[i] = 0;
     }
-    real_t floor_ = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);
+    /* each row's pivot is judged against its own diagonal (a rod on a heavy body has a
+       far smaller one than a rod on a light body, and is as independent: pendulums of
+       1e6 and 1e-5 kg in one set lost the heavy one's rod to a threshold relative to the
+       set's largest), but never below the tolerance times the set's scale (a row that
+       restrains nothing, zero to roundoff, is still dropped) */
+    real_t low = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);
     int bad = -1;
     uint16_t drop = 0;
     w->drop_row[set] = 0;
     for (unsigned i = 0; i < n; i++) {
         real_t d = D[i];
+        real_t floor_ = RT_MBS_PIVOT_TOL * (d > low ? d : low);
         unsigned e0 = lp[i], e1 = lp[i + 1];
         for (unsigned e = e0; e < e1; e++) {
             unsigned j = lj[e];

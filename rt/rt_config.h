@@ -69,8 +69,9 @@ typedef double real_t;
 /* ---- multibody (rt/mbs.c) ---- */
 #ifndef RT_MBS_PIVOT_TOL
 /* pivot threshold of the factorizations of M and W M^-1 W^T, relative to the largest
-   entry: a well-posed chain of ten links has relative pivots near 1e-2, a redundant or
-   straightened chain near the unit roundoff */
+   entry (for W M^-1 W^T: to the row's own diagonal, never below this tolerance times the
+   largest, rt/mbs_ldl.c): a well-posed chain of ten links has relative pivots near 1e-2,
+   a redundant or straightened chain near the unit roundoff */
 #define RT_MBS_PIVOT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-5 : (real_t)1e-10)
 #endif
 #ifndef RT_MBS_RES_TOL

@@ -254,6 +254,12 @@ def joints(s):
             abs(rows[0][1]) < 1e-12 and abs(rows[0][2] - 1) < 1e-12,
             "joints_spin_off: exit %d, init_moved %s, first row %s" % (
                 rc, summ.get("init_moved"), rows[:1]))
+    # pendulums of 1e6 and 1e-5 kg in one set: independent rows, whatever their scales
+    rc, summ, rows = run(s.modrt, "joints_masses.scn", [])
+    diff = max((max(abs(r[1] - r[3]), abs(r[2] - r[4])) for r in rows), default=math.inf)
+    s.row("pendulums of 1e6 and 1e-5 kg: heavy against light", "rk4", "0.001", diff, summ, rc)
+    s.check(rc == 0 and diff < 1e-9 and summ.get("redundant") == "0",
+            "joints_masses: exit %d, %g apart, redundant %s" % (rc, diff, summ.get("redundant")))
     rc, msg = refused(s.modrt, "joints_spin_off.scn")
     s.check("B moved 0.00e+00 m, 0.00e+00 m/s, 0.00e+00 rad, 5.00e+00 rad/s" in msg,
             "joints_spin_off: %s" % msg)

@@ -569,11 +569,12 @@ static void factor(FILE *f, const rt_sim *sim, uint8_t s)
         fprintf(f, "        big = D[%u] > big ? D[%u] : big;\n", i, i);
     for (unsigned i = 0; i < n; i++)
         fprintf(f, "        u[%u] = 0;\n", i);
-    fputs("        real_t floor_ = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1);\n", f);
+    fputs("        real_t low = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1), floor_;\n", f);
     fprintf(f, "        w->drop_row[%u] = 0;\n", s);
     for (unsigned i = 0; i < n; i++) {
         unsigned e0 = lp[i], e1 = lp[i + 1];
         fprintf(f, "        d = D[%u];\n", i);
+        fputs("        floor_ = RT_MBS_PIVOT_TOL * (d > low ? d : low);\n", f);
         for (unsigned e = e0; e < e1; e++) {
             unsigned j = lj[e];
             fprintf(f, "        tt = L[%u];\n", e);
