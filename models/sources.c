@@ -90,10 +90,10 @@ static void sine_out(const rt_args *a, real_t *y)
     y[0] = a->p[0] * rt_sin(a->p[1] * a->t + a->p[2]) + a->p[3];
 }
 
-/* its band: omega (rt_kind.band) */
+/* its band: omega (rt_kind.band); none at amplitude 0 (a constant) */
 static real_t sine_band(const rt_args *a)
 {
-    return rt_fabs(a->p[1]);
+    return a->p[0] != 0 ? rt_fabs(a->p[1]) : 0;
 }
 
 const rt_kind mdl_sine_kind = {

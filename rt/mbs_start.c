@@ -7,8 +7,9 @@
  *       when |n - 1| > RT_MBS_RES_TOL; refused (RT_E_PARAM) when n is 0 or not finite;
  *   constraints: projected (rti_mbs_settle) with the scene's projection, and also under
  *       the other stabilizations when |g| > RT_MBS_RES_TOL (the index-1 formulation needs
- *       consistent values); a node moved by more than RT_MBS_RES_TOL is counted with its
- *       block, by more than RT_INIT_TOL refused (RT_E_INCONSISTENT) naming the most
+ *       consistent values); a node moved (or turned, or its velocities changed) by more
+ *       than RT_MBS_RES_TOL is counted with its block, moved by more than RT_INIT_TOL or
+ *       turned by more than RT_INIT_ROT_TOL refused (RT_E_INCONSISTENT) naming the most
  *       violated joint;
  *   rows dependent on others (rt/mbs_ldl.c): consistent ones are reported (redundant,
  *       status ok); an initial state they leave off the constraints is refused, naming
@@ -31,10 +32,11 @@ static real_t dist3(const real_t *a, const real_t *b)
    2 sqrt(2) sin(angle / 2) */
 static real_t angle_between(const real_t *S0, const real_t *S1)
 {
+    static const real_t two_sqrt2 = (real_t)2.8284271247461903;
     real_t c = 0;
     for (int i = 0; i < 9; i++)
         c += (S1[i] - S0[i]) * (S1[i] - S0[i]);
-    real_t h = rt_sqrt(c) / (real_t)2.8284271247461903;
+    real_t h = rt_sqrt(c) / two_sqrt2;
     return 2 * rt_asin(h < 1 ? h : 1);
 }
 
@@ -154,14 +156,16 @@ static rt_status report_moves(const rt_scene *sc, rt_sim *sim, uint8_t set,
         uint16_t b = w->sblk[k];
         real_t mv[4];
         node_moves(sc, sim, b, sim->work.x0, mv);
-        int rot = !(mv[2] <= mv[0]); /* the rotation is the larger mistake: name it */
-        if (!(mv[0] <= RT_INIT_TOL) || !(mv[2] <= RT_INIT_TOL))
-            return rti_fail(sim, RT_E_INCONSISTENT, sc->blocks[b].name,
-                            rot ? " starts rotated " : " starts ",
-                            rti_real_text(t1, rot ? mv[2] : mv[0]),
-                            rot ? " rad off its constraints (" : " m off its constraints (",
+        if (!(mv[0] <= RT_INIT_TOL))
+            return rti_fail(sim, RT_E_INCONSISTENT, sc->blocks[b].name, " starts ",
+                            rti_real_text(t1, mv[0]), " m off its constraints (",
                             joint, " violated by ", rti_real_text(t2, g0), "), above RT_INIT_TOL = ",
                             rti_real_text(t3, RT_INIT_TOL), (const char *)0);
+        if (!(mv[2] <= RT_INIT_ROT_TOL))
+            return rti_fail(sim, RT_E_INCONSISTENT, sc->blocks[b].name, " starts rotated ",
+                            rti_real_text(t1, mv[2]), " rad off its constraints (", joint,
+                            " violated by ", rti_real_text(t2, g0), "), above RT_INIT_ROT_TOL = ",
+                            rti_real_text(t3, RT_INIT_ROT_TOL), (const char *)0);
         if (mv[0] <= RT_MBS_RES_TOL && mv[1] <= RT_MBS_RES_TOL && mv[2] <= RT_MBS_RES_TOL &&
             mv[3] <= RT_MBS_RES_TOL)
             continue;

@@ -29,7 +29,7 @@
     X(RT_E_UNCONNECTED, 3, "input is not connected and has no default value")    \
     X(RT_E_LOOP, 3, "algebraic loop that cannot be solved")                      \
     X(RT_E_PARAM, 3, "parameter out of range")                                   \
-    X(RT_E_INCONSISTENT, 3, "initial state inconsistent: conflicting constraints, or off them by more than RT_INIT_TOL") \
+    X(RT_E_INCONSISTENT, 3, "initial state inconsistent: conflicting constraints, or too far off them (RT_INIT_TOL, RT_INIT_ROT_TOL)") \
     X(RT_E_SNAPSHOT, 3, "a block's internal state cannot be saved or restored (rt_snapshot, rt_restore)") \
     X(RT_E_NAN, 2, "non-finite value")                                           \
     X(RT_E_NOCONV, 2, "algebraic loop iteration did not converge")               \

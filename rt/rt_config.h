@@ -98,6 +98,14 @@ typedef double real_t;
    [m or 1] */
 #define RT_INIT_TOL (RT_REAL_IS_FLOAT ? (real_t)1e-2 : (real_t)1e-3)
 #endif
+#ifndef RT_INIT_ROT_TOL
+/* the largest rotation [rad] rt_init gives a multibody node's frame to put the initial
+   state on its constraints; beyond it the set-up is refused (RT_E_INCONSISTENT), below it
+   the turn is reported with the block (RT_CNT_INIT_MOVED). Not RT_INIT_TOL's number: a
+   position error within that on a short lever turns a small body by more (0.5 mm at a
+   node 1 cm from the centre of mass: 0.05 rad) */
+#define RT_INIT_ROT_TOL (real_t)0.1
+#endif
 #ifndef RT_INIT_PROJ_MAX
 /* projections rt_init may do to bring the initial state within RT_MBS_RES_TOL of its
    constraints (a step's projection does one: two position iterations) */

@@ -226,9 +226,6 @@ static inline real_t rti_time(const rt_scene *sc, const rt_sim *sim)
 {
     return rti_tick_time(sim->state.tick, sc->dt);
 }
-/* does set s's state belong to the current tick: it has just stepped to it (each tick for
-   a set of ratio 1), its background step was published at it (rt/bg.c), or the run is
-   at its start. Between those ticks its outputs are held (rt/held.c) */
 /* the tick count modulo r (a set's ratio, a sampled block's period): in 32 bits while
    the count fits, as it does for 49 days at 1 ms: a 64-bit remainder is a library call
    of some hundred instructions on a 32-bit core, a 32-bit one an instruction (Cortex-M3,
@@ -237,6 +234,9 @@ static inline uint32_t rti_tick_mod(uint64_t tick, uint32_t r)
 {
     return tick <= UINT32_MAX ? (uint32_t)tick % r : (uint32_t)(tick % r);
 }
+/* does set s's state belong to the current tick: it has just stepped to it (each tick for
+   a set of ratio 1), its background step was published at it (rt/bg.c), or the run is
+   at its start. Between those ticks its outputs are held (rt/held.c) */
 static inline int rti_at_tick(const rt_sim *sim, uint8_t s)
 {
     return sim->state.set_tick[s] == sim->state.tick;

@@ -48,11 +48,6 @@ static void watch_growth(rt_sim *sim, uint8_t s, real_t before, real_t after)
     }
 }
 
-/* integrates the set from t by h in place (its state before the step kept in work.xs),
-   then post-stabilizes its multibody part (eq. 10); a step that ended above its residual
-   tolerance is counted as degraded.
-   Returns the final state's norm, after the projection (NaN or inf if a value is not
-   finite): one pass serves the growth watch and the finite check */
 /* the integrator's workspace of set s */
 static void iwork_of(const rt_scene *sc, rt_sim *sim, uint8_t s, rt_iwork *w)
 {
@@ -83,6 +78,11 @@ void rti_prime_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
     m->prime(m, &f, t, h, sim->state.x + x0, n, &w);
 }
 
+/* integrates the set from t by h in place (its state before the step kept in work.xs),
+   then post-stabilizes its multibody part (eq. 10); a step that ended above its residual
+   tolerance is counted as degraded.
+   Returns the final state's norm, after the projection (NaN or inf if a value is not
+   finite): one pass serves the growth watch and the finite check */
 static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
     rti_rhs_ctx ctx = {sc, sim, s, h};

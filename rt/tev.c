@@ -489,40 +489,65 @@ static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 
 /* ------------------------------------------------------------------ bands */
 
-/* does block r read an output of a block marked in carry (an output, a held one, or
-   another set's history) */
-static int reads_marked(const rt_scene *sc, const rt_sim *sim, uint16_t r, const uint8_t *carry)
+/* How block b's time dependence travels: carriers[k] is, for each block whose outputs
+   carry it (b, and each block with throughput reading a carrier; not a sampled block,
+   whose samples are the model's own), the longest step at which the signal has been
+   sampled on its way there (another set's history of it is sampled at that set's step),
+   and the set of that step; at < 0: not a carrier */
+typedef struct carried {
+    real_t h;
+    int16_t at;   /* the set whose step h is; -1: none yet (0 s); -2: not a carrier */
+} carried;
+
+/* what input i reads of the carriers: the sampling its value has had (its writer's, and
+   another set's history), or at = -2 when it reads none. A torn loop input reads the
+   output that closes the loop */
+static carried input_carried(const rt_scene *sc, const rt_sim *sim, uint16_t i,
+                             const carried *via)
 {
-    for (uint16_t i = sim->plan.u_off[r]; i < sim->plan.u_off[r + 1]; i++) {
-        uint8_t k = sim->plan.src_kind[i];
-        if ((k == RT_SRC_Y || k == RT_SRC_HELD || k == RT_SRC_XSET) &&
-            carry[rti_writer(sc, sim, sim->plan.src[i])])
-            return 1;
-    }
-    return 0;
+    carried c = {0, -2};
+    uint8_t k = sim->plan.src_kind[i];
+    uint16_t v = sim->plan.src[i];
+    if (k == RT_SRC_TORN)
+        v = sim->plan.torn_src[v];
+    else if (k != RT_SRC_Y && k != RT_SRC_HELD && k != RT_SRC_XSET)
+        return c;
+    c = via[rti_writer(sc, sim, v)];
+    if (c.at != -2 && k == RT_SRC_XSET && !(sim->plan.set_h[sim->plan.src_set[i]] <= c.h))
+        c.h = sim->plan.set_h[sim->plan.src_set[i]], c.at = sim->plan.src_set[i];
+    return c;
 }
 
-/* the blocks whose outputs carry block b's time dependence: b, and each block whose
-   outputs read a carrier directly (rt_kind.feed), not a sampled one (it holds samples:
-   the model's own sampling, not the integration's) */
-static void carriers(const rt_scene *sc, const rt_sim *sim, uint16_t b, uint8_t *carry)
+/* the longer sampling of a and b (b if a carries nothing) */
+static carried longer(carried a, carried b)
+{
+    return b.at != -2 && (a.at == -2 || b.h > a.h) ? b : a;
+}
+
+/* the fixed point of the carriers from b (each pass can only lengthen a sampling, so it
+   ends after at most one pass per block) */
+static void carriers(const rt_scene *sc, const rt_sim *sim, uint16_t b, carried *via)
 {
     for (uint16_t k = 0; k < sc->nblocks; k++)
-        carry[k] = k == b;
+        via[k] = (carried){0, k == b ? -1 : -2};
     for (int grew = 1; grew;) {
         grew = 0;
         for (uint16_t r = 0; r < sc->nblocks; r++) {
             const rt_kind *k = sc->blocks[r].kind;
-            if (!carry[r] && k->feed != RT_FEED_NONE && k->type != RT_KIND_DSS &&
-                reads_marked(sc, sim, r, carry))
-                carry[r] = 1, grew = 1;
+            if (r == b || k->feed == RT_FEED_NONE || k->type == RT_KIND_DSS)
+                continue;
+            carried c = via[r];
+            for (uint16_t i = sim->plan.u_off[r]; i < sim->plan.u_off[r + 1]; i++)
+                c = longer(c, input_carried(sc, sim, i, via));
+            if (c.at != via[r].at || c.h != via[r].h)
+                via[r] = c, grew = 1;
         }
     }
 }
 
-/* block b's band against the step of every set that integrates it: a block with states
-   of its own that carries it or reads a carrier (the step of the carrier's set too, when
-   it is another's: its history samples it) */
+/* block b's band against the steps that integrate it: each block with states of its own
+   that carries it or reads a carrier, at its set's step or the longer sampling the
+   signal had on its way; a band of 0 (no time dependence, a sine of amplitude 0) none */
 static rt_status check_band(const rt_scene *sc, rt_sim *sim, uint16_t b)
 {
     const rt_kind *kb = sc->blocks[b].kind;
@@ -530,27 +555,28 @@ static rt_status check_band(const rt_scene *sc, rt_sim *sim, uint16_t b)
         return RT_OK;
     rt_args a;
     rti_args(sc, sim, b, 0, 0, &a);
-    real_t w = kb->band(&a), worst = 0;
-    uint8_t carry[RT_MAX_BLOCKS];
-    int at = -1;
-    carriers(sc, sim, b, carry);
+    real_t w = kb->band(&a);
+    if (w == 0)
+        return RT_OK;
+    carried via[RT_MAX_BLOCKS], worst = {0, -2};
+    carriers(sc, sim, b, via);
     for (uint16_t r = 0; r < sc->nblocks; r++) {
         const rt_kind *k = sc->blocks[r].kind;
-        if (k->nx == 0 || k->type == RT_KIND_DSS || !(carry[r] || reads_marked(sc, sim, r, carry)))
+        if (k->nx == 0 || k->type == RT_KIND_DSS)
             continue;
-        uint8_t s = sc->blocks[r].set;
-        real_t h = sim->plan.set_h[s];
+        carried c = via[r];
         for (uint16_t i = sim->plan.u_off[r]; i < sim->plan.u_off[r + 1]; i++)
-            if (sim->plan.src_kind[i] == RT_SRC_XSET && carry[rti_writer(sc, sim, sim->plan.src[i])])
-                h = rt_fmax(h, sim->plan.set_h[sim->plan.src_set[i]]);
-        if (!(h <= worst))
-            worst = h, at = s;
+            c = longer(c, input_carried(sc, sim, i, via));
+        if (c.at == -2)
+            continue;
+        c = longer(c, (carried){sim->plan.set_h[sc->blocks[r].set], sc->blocks[r].set});
+        worst = longer(worst, c);
     }
-    if (at < 0 || w * worst < (real_t)RT_PI)
+    if (worst.at < 0 || w * worst.h < (real_t)RT_PI)
         return RT_OK;
     char t1[RTI_REAL_TEXT], t2[RTI_REAL_TEXT];
     return rti_fail(sim, RT_E_PARAM, sc->blocks[b].name, ": ", rti_real_text(t1, w),
-                    " rad/s aliased by set ", sc->sets[at].name, "'s step (needs h < ",
+                    " rad/s aliased by set ", sc->sets[worst.at].name, "'s step (needs h < ",
                     rti_real_text(t2, (real_t)RT_PI / w), " s)", (const char *)0);
 }
 

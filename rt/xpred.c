@@ -80,7 +80,10 @@ static void measure(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real
 void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
 {
 #if RT_MAX_XPRED > 0
-    int due = sim->state.set_tick[s] / sc->sets[s].ratio % RT_XSET_GAIN_EVERY == 0;
+    uint64_t st = sim->state.set_tick[s];
+    uint32_t ratio = sc->sets[s].ratio; /* (in 32 bits while it fits: rti_tick_mod) */
+    uint64_t steps = st <= UINT32_MAX ? (uint32_t)st / ratio : st / ratio;
+    int due = rti_tick_mod(steps, RT_XSET_GAIN_EVERY) == 0;
     for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++)
         if (due || sim->state.xgain[k] != sim->state.xgain[k])
             measure(sc, sim, s, k, t, h);

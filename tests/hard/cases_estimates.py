@@ -5,9 +5,10 @@ step of every run is checked in hard.py's Suite.row.)"""
 import math
 import os
 import subprocess
+import tempfile
 
 from cases_global import check
-from hard import HERE, REFS, STATUS, at, run
+from hard import HERE, REFS, STATUS, at, run, run_text
 
 IMPLICIT = ["beuler", "trap", "sdirk2", "sdirk3", "ros2"]
 
@@ -158,10 +159,30 @@ def aliasing(s):
         s.check(err <= 1e-2 or rc != 0 or summ.get("global_status") != "ok",
                 "alias_lag %s 1 ms: error %.3g, status %s, global %s" % (
                     m, err, summ.get("status"), summ.get("global_status")))
-    for scene, where in (("alias_chain.scn", "set main's"), ("alias_split.scn", "set slow's")):
+    for scene, where in (("alias_chain.scn", "set main's"), ("alias_split.scn", "set slow's"),
+                         ("alias_via.scn", "set slow's"), ("alias_loop.scn", "set main's")):
         rc, msg = refused(s.modrt, scene)
         s.check(rc == 2 and ("aliased by %s step" % where) in msg,
                 "%s: exit %d, %s" % (scene, rc, msg))
+    # the loop torn at its other input (the blocks declared the other way round)
+    with open(os.path.join(HERE, "alias_loop.scn")) as f:
+        text = f.read().replace("load system (A) of type (gain);\nload system (B) of type (sum);",
+                                "load system (B) of type (sum);\nload system (A) of type (gain);")
+    fd, path = tempfile.mkstemp(suffix=".scn", prefix="modrt-alias-")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    try:
+        rc, msg = refused(s.modrt, path)
+    finally:
+        os.unlink(path)
+    s.check(rc == 2 and "aliased by set main's step" in msg, "alias_loop, B before A: exit %d, %s"
+            % (rc, msg))
+    # a sine of amplitude 0 is a constant: nothing to alias
+    with open(os.path.join(HERE, "alias_lag.scn")) as f:
+        text = f.read().replace("W.amp = 1;", "W.amp = 0;")
+    rc, summ, rows = run_text(s.modrt, text, ["--step", "main=0.01"])
+    s.check(rc == 0 and rows and abs(rows[-1][1]) < 1e-15,
+            "alias_lag amp 0: exit %d" % rc)
     rc, summ, rows = run(s.modrt, "alias_sampled.scn", [])
     e, y = math.exp(-0.01 / 0.5), 0.0
     for k in range(100):

@@ -247,13 +247,18 @@ def joints(s):
     # rotates the body 30 deg (refused, as a node moved 0.5 m would be) or takes an
     # angular velocity of 5 rad/s away (reported with the block)
     rc, msg = refused(s.modrt, "joints_tilted.scn")
-    s.check(rc == 2 and "B starts rotated 5.24e-01 rad off its constraints" in msg,
+    s.check(rc == 2 and "B starts rotated 5.24e-01 rad off its constraints" in msg and
+            "above RT_INIT_ROT_TOL = 1.00e-01" in msg,
             "joints_tilted: exit %d, %s" % (rc, msg))
     rc, summ, rows = run(s.modrt, "joints_spin_off.scn", [])
     s.check(rc == 0 and summ.get("init_moved", "").startswith("1 (last B)") and
             abs(rows[0][1]) < 1e-12 and abs(rows[0][2] - 1) < 1e-12,
             "joints_spin_off: exit %d, init_moved %s, first row %s" % (
                 rc, summ.get("init_moved"), rows[:1]))
+    # a position error within RT_INIT_TOL on a short lever: a turn within RT_INIT_ROT_TOL
+    rc, msg = refused(s.modrt, "joints_small_body.scn")
+    s.check(rc == 0 and "B moved 5.00e-04 m, 0.00e+00 m/s, 4.95e-02 rad" in msg,
+            "joints_small_body: exit %d, %s" % (rc, msg))
     # pendulums of 1e6 and 1e-5 kg in one set: independent rows, whatever their scales
     rc, summ, rows = run(s.modrt, "joints_masses.scn", [])
     diff = max((max(abs(r[1] - r[3]), abs(r[2] - r[4])) for r in rows), default=math.inf)

@@ -444,7 +444,7 @@ static void options(scn_ctx *c)
     if (!c->err && s->stab_kind != RT_STAB_BAUMGARTE && (s->alpha != 0 || s->beta != 0))
         scn_fail(c, s->stab.pos, s->stab.s, "alpha and beta apply to baumgarte only",
                  "stabilization (baumgarte) alpha (...) beta (...);");
-    if (!c->err && s->stab_kind == RT_STAB_BAUMGARTE && !(s->alpha > 0 || s->beta > 0))
+    if (!c->err && s->stab_kind == RT_STAB_BAUMGARTE && s->alpha == 0 && s->beta == 0)
         scn_fail(c, s->stab.pos, s->stab.s, "baumgarte with alpha = beta = 0 stabilizes nothing",
                  "stabilization (baumgarte) alpha (...) beta (...); or stabilization (none);");
 }

@@ -10,7 +10,8 @@
  * bodies (any M, rows of their own or not, points among them); a multibody set without
  * rows gets its outputs and derivatives written out and calls the generic
  * rti_mbs_accel, as rti_rhs does. A set that takes no step of its
- * own is left to the generic path: its entry returns 0 for that set.
+ * own is left to the generic path: its rhs and project entries return 0 for that set.
+ * Every set's output sequence at a tick or in a step is written out (outputs).
  *
  * The tables' offsets do not depend on the build's limits (they are packed from 0); the
  * one that does, a slot of L in lv, is written relative to RT_MAX_MBS_ROWS. */
