@@ -81,13 +81,6 @@ static uint8_t entry_set(const rt_scene *sc, const rt_sim *sim, uint16_t s)
     return sc->blocks[b].set;
 }
 
-uint16_t rti_writer(const rt_scene *sc, const rt_sim *sim, uint16_t v)
-{
-    uint16_t b = 0;
-    while (b + 1 < sc->nblocks && sim->plan.y_off[b + 1] <= v)
-        b++;
-    return b;
-}
 
 /* the sequence entry after entry s at the top level: a loop's calls follow its entry and
    are its solver's, not the walk's */

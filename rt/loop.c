@@ -145,15 +145,19 @@ static int newton_step(const solve_ctx *c, real_t *H, real_t *f, real_t *fn, rea
     return 1;
 }
 
-/* is the loop solved: its residual within tol, and the Newton correction H F it still
+/* is the loop solved: its residual within tol, and (once its inverse Jacobian H is
+   formed, h_valid) the Newton correction H F it still
    asks for within RT_LOOP_STEP_FACTOR tolerances of the torn inputs (scaled the same).
    An ill-conditioned loop (a gain near 1) has a residual within tol relative to a large
    torn input long before that input is right: |F| = (1 - g) |w - w*|. The check costs
    n^2 multiply-adds; a well-conditioned loop passes it where its residual does */
-static int solved(const solve_ctx *c, const real_t *H, const real_t *f, real_t *s, real_t tol)
+static int solved(const solve_ctx *c, const real_t *H, int h_valid, const real_t *f, real_t *s,
+                  real_t tol)
 {
     if (!(scaled_norm(c, f) <= tol))
         return 0;
+    if (!h_valid)
+        return 1;
     for (uint16_t i = 0; i < c->n; i++) {
         s[i] = 0;
         for (uint16_t j = 0; j < c->n; j++)
@@ -183,15 +187,14 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
         sim->state.loop_h_valid[l] = 1;
         ok = residual(&c, f); /* the difference steps left the segment at w + d e_n */
     }
-    while (ok && !(sim->state.loop_h_valid[l] ? solved(&c, H, f, s, tol)
-                                               : scaled_norm(&c, f) <= tol) && it < max) {
+    int done = ok && solved(&c, H, sim->state.loop_h_valid[l], f, s, tol);
+    while (!done && ok && it < max) {
         ok = newton_step(&c, H, f, fn, s, scratch, tol);
         it++;
+        done = ok && solved(&c, H, sim->state.loop_h_valid[l], f, s, tol);
     }
     sim->stats.loop_hist[it]++;
     sim->stats.loop_iter_max = it > sim->stats.loop_iter_max ? it : sim->stats.loop_iter_max;
-    int done = ok && (sim->state.loop_h_valid[l] ? solved(&c, H, f, s, tol)
-                                                 : scaled_norm(&c, f) <= tol);
     real_t r = done ? scaled_norm(&c, f) : (real_t)1 / (real_t)0;
     for (uint16_t i = 0; ok && i < n; i++)
         c.range[i] = rt_fabs(c.w[i]) > c.range[i] ? rt_fabs(c.w[i]) : c.range[i];

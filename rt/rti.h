@@ -153,8 +153,15 @@ static inline real_t rti_piece(const rt_scene *sc, const rt_sim *sim, real_t t)
 /* Gathers the inputs of block b at time t from the outputs that feed them (y = P u; an
    input from another set is reconstructed at t). */
 void rti_gather(rt_sim *sim, uint16_t b, real_t t);
-/* the block whose outputs hold global output index v */
-uint16_t rti_writer(const rt_scene *sc, const rt_sim *sim, uint16_t v);
+/* the block whose outputs hold global output index v (inline: the plan builders in
+   eval.c, xset.c and tev.c ask it without calling one another for it) */
+static inline uint16_t rti_writer(const rt_scene *sc, const rt_sim *sim, uint16_t v)
+{
+    uint16_t b = 0;
+    while (b + 1 < sc->nblocks && sim->plan.y_off[b + 1] <= v)
+        b++;
+    return b;
+}
 /* Calls the output equations of sequence entries [begin, end) (a loop segment). */
 void rti_run_calls(const rt_scene *sc, rt_sim *sim, uint16_t begin, uint16_t end, rti_at at);
 /* Evaluates the output sequence at the instant at, solving actual loops on the way. */

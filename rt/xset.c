@@ -18,12 +18,7 @@ static int held_inside(const rt_scene *sc, const rt_sim *sim, uint16_t i, uint16
 {
     if (sc->blocks[b].kind->type == RT_KIND_DSS)
         return 0;
-    for (uint16_t f = 0; f < sc->nblocks; f++)
-        if (sim->plan.y_off[f] <= sim->plan.src[i] && sim->plan.src[i] < sim->plan.y_off[f + 1]) {
-            uint64_t ts = (uint64_t)(sc->blocks[f].ts / sc->dt + (real_t)0.5);
-            return ts % sc->sets[st].ratio != 0;
-        }
-    return 0;
+    return sim->plan.period[rti_writer(sc, sim, sim->plan.src[i])] % sc->sets[st].ratio != 0;
 }
 
 /* how input i, of block b of set st, reads another set over st's step (RTI_XP_*): ahead,

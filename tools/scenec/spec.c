@@ -137,6 +137,15 @@ static void block_args(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t 
         fputs("    ar.t_piece = rti_piece(sc, sim, t);\n", f);
 }
 
+/* call_output's injected fault after block b's output call (RT_FAULT_INJECT builds) */
+static void fault_nan(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b)
+{
+    if (sc->blocks[b].kind->ny > 0)
+        fprintf(f, "#if RT_FAULT_INJECT\n    if (rti_fault_due(RTI_FAULT_NAN) && "
+                   "rti_fault_plan.block == %u)\n        y[%u] = (real_t)0 / (real_t)0;\n"
+                   "#endif\n", b, sim->plan.y_off[b]);
+}
+
 /* rti_rhs's set_outputs: the set's entries of the sequence a right-hand side calls */
 static void outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
@@ -160,10 +169,7 @@ static void outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
         block_args(f, sc, sim, b, "0");
         fprintf(f, "    blocks[%u].kind->%s(&ar, y + %u);\n", b,
                 fl == RTI_RHS_LEAN ? "output_lean" : "output", sim->plan.y_off[b]);
-        if (k->ny > 0)
-            fprintf(f, "#if RT_FAULT_INJECT\n    if (rti_fault_due(RTI_FAULT_NAN) && "
-                       "rti_fault_plan.block == %u)\n        y[%u] = (real_t)0 / (real_t)0;\n"
-                       "#endif\n", b, sim->plan.y_off[b]);
+        fault_nan(f, sc, sim, b);
     }
 }
 
@@ -172,23 +178,20 @@ static void outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 static void tick_call(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b)
 {
     const rt_kind *k = sc->blocks[b].kind;
-    char h[64] = "0";
+    int dss = k->type == RT_KIND_DSS;
     fprintf(f, "    /* %s */\n", sc->blocks[b].name);
-    if (k->type == RT_KIND_DSS) {
-        /* the period from the plan: a copy of the scene at another base tick (a
-           reference run) keeps this code */
-        fprintf(f, "    if (hit && rti_tick_mod(sim->state.tick, sim->plan.period[%u]) == 0) {\n", b);
-        snprintf(h, sizeof h, "sc->dt * (real_t)sim->plan.period[%u]", b);
-    } else
+    /* the period from the plan: a copy of the scene at another base tick (a reference
+       run) keeps this code */
+    if (dss)
+        fprintf(f, "    if (hit && rti_tick_mod(sim->state.tick, sim->plan.period[%u]) == 0) {\n"
+                   "    real_t hs = sc->dt * (real_t)sim->plan.period[%u];\n", b, b);
+    else
         fputs("    {\n", f);
     if (k->feed != RT_FEED_NONE)
         gather(f, sim, b);
-    block_args(f, sc, sim, b, h);
+    block_args(f, sc, sim, b, dss ? "hs" : "0");
     fprintf(f, "    blocks[%u].kind->output(&ar, y + %u);\n", b, sim->plan.y_off[b]);
-    if (k->ny > 0)
-        fprintf(f, "#if RT_FAULT_INJECT\n    if (rti_fault_due(RTI_FAULT_NAN) && "
-                   "rti_fault_plan.block == %u)\n        y[%u] = (real_t)0 / (real_t)0;\n"
-                   "#endif\n", b, sim->plan.y_off[b]);
+    fault_nan(f, sc, sim, b);
     fputs("    }\n", f);
 }
 
