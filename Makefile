@@ -262,14 +262,14 @@ CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tes
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c
 CROSS_RT_SRCS := ports/common/image_main.c
 # the background set preempted for real (cross-test-<t> of these targets): pendulum10_actuated
-# ticked in SysTick every 40 us of virtual time (40,000 instructions under -icount), its
+# ticked in SysTick every 30 us of virtual time (30,000 instructions under -icount), its
 # chain stepping in PendSV below it, preempted by the ticks that fall while it runs (a
-# chain step takes longer than the 40 us between two ticks; at 80 or 100 us each step
+# chain step takes longer than the 30 us between two ticks; at 80 or 100 us each step
 # fits between two ticks, and nothing is preempted)
 CROSS_BG_TARGETS := m7
 CROSS_BG_TICKS := 1000
 CROSS_BG_DEFS = -DRT_SCENE=mdl_scene_pendulum10_actuated -DRT_IMAGE_BG=1 \
-                -DRT_IMAGE_TICKS=$(CROSS_BG_TICKS) -DRT_IMAGE_PERIOD_US=40
+                -DRT_IMAGE_TICKS=$(CROSS_BG_TICKS) -DRT_IMAGE_PERIOD_US=30
 CROSS_SOFTFLOAT_SRCS := tests/cross/softfloat_test.c tests/harness.c
 # The unit tests run as several images, and each library scene as an image of its own
 # (tests/cross/tests_main.c, scenes_main.c), so that no one emulated run is long. Each

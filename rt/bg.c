@@ -101,23 +101,46 @@ uint32_t rti_bg_size(const rt_scene *sc, const rt_sim *sim)
 
 /* ------------------------------------------------------------------ copies */
 
+/* n values, four at a time (a quarter of a plain loop's counting and branching: the
+   result is copied three times per background step without a context, and the
+   publishing tick, the scene's slowest, copies it once with one) */
+static void copy_reals(real_t *dst, const real_t *src, uint32_t n)
+{
+    uint32_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        real_t a = src[i], b = src[i + 1], c = src[i + 2], d = src[i + 3];
+        dst[i] = a, dst[i + 1] = b, dst[i + 2] = c, dst[i + 3] = d;
+    }
+    for (; i < n; i++)
+        dst[i] = src[i];
+}
+
+/* n values of a and b exchanged, four at a time */
+static void swap_reals(real_t *a, real_t *b, uint32_t n)
+{
+    uint32_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        real_t a0 = a[i], a1 = a[i + 1], a2 = a[i + 2], a3 = a[i + 3];
+        real_t b0 = b[i], b1 = b[i + 1], b2 = b[i + 2], b3 = b[i + 3];
+        a[i] = b0, a[i + 1] = b1, a[i + 2] = b2, a[i + 3] = b3;
+        b[i] = a0, b[i + 1] = a1, b[i + 2] = a2, b[i + 3] = a3;
+    }
+    for (; i < n; i++) {
+        real_t v = a[i];
+        a[i] = b[i], b[i] = v;
+    }
+}
+
 /* n values between a and a packed buffer: dir 0 packs a into buf, 1 unpacks buf into a,
-   2 swaps the two (one loop per direction: without a context this runs three times per
-   background step) */
+   2 swaps the two */
 static void move_range(real_t *a, real_t *buf, uint32_t n, int dir)
 {
-    if (dir == 0) {
-        for (uint32_t i = 0; i < n; i++)
-            buf[i] = a[i];
-    } else if (dir == 1) {
-        for (uint32_t i = 0; i < n; i++)
-            a[i] = buf[i];
-    } else {
-        for (uint32_t i = 0; i < n; i++) {
-            real_t v = a[i];
-            a[i] = buf[i], buf[i] = v;
-        }
-    }
+    if (dir == 0)
+        copy_reals(buf, a, n);
+    else if (dir == 1)
+        copy_reals(a, buf, n);
+    else
+        swap_reals(a, buf, n);
 }
 
 /* the set's result between rt_state arrays and a packed buffer (move_range's dir): its
@@ -133,19 +156,6 @@ static void move_result(const rt_sim *sim, uint8_t s, real_t *x, real_t *y, real
         move_range(y + y0, buf + n, m, dir);
         n += m;
     }
-}
-
-/* n values, four at a time (the publishing tick, the scene's slowest, copies the result:
-   a quarter of the loop's counting and branching) */
-static void copy_reals(real_t *dst, const real_t *src, uint32_t n)
-{
-    uint32_t i = 0;
-    for (; i + 4 <= n; i += 4) {
-        real_t a = src[i], b = src[i + 1], c = src[i + 2], d = src[i + 3];
-        dst[i] = a, dst[i + 1] = b, dst[i + 2] = c, dst[i + 3] = d;
-    }
-    for (; i < n; i++)
-        dst[i] = src[i];
 }
 
 /* the set's result from one rt_sim to another of the same scene (same layout): from the

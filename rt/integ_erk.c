@@ -121,9 +121,10 @@ static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, re
         if (st != RT_OK) /* no derivative at the end: nothing to vouch for the step */
             return (real_t)1 / (real_t)0;
     }
-    real_t mx = 0, sa = rti_err_floor(w->cfg);
+    real_t mx = 0, sa = rti_err_floor(w->cfg), es = kx ? tab->e[s] : 0;
+    const real_t *restrict x0 = w->x0;
     for (uint16_t i = 0; i < n; i++) {
-        real_t acc = kx ? w->x0[i] + tab->e[s] * kx[i] : w->x0[i];
+        real_t acc = kx ? x0[i] + es * kx[i] : x0[i];
         real_t r = rt_fabs(h * acc) / (sa + rt_fabs(x[i]));
         if (r != r)
             return r;

@@ -81,28 +81,6 @@
 #pragma GCC optimize("fp-contract=off")
 #endif
 
-/* ------------------------------------------------------------------ hardware sqrt */
-
-/* Use the compiler's square root only where it is a single exact instruction (-DRT_SOFT_SQRT
-   forces the software one, so host tests can compare the two bit for bit). Without
-   -fno-math-errno (__NO_MATH_ERRNO__) gcc would also emit a call to libm's sqrt. */
-#if defined(RT_SOFT_SQRT) || !defined(__NO_MATH_ERRNO__)
-#define RMATH_HW_SQRT_D 0
-#define RMATH_HW_SQRT_F 0
-#elif (defined(__x86_64__) && defined(__SSE2__)) || defined(__aarch64__)
-#define RMATH_HW_SQRT_D 1
-#define RMATH_HW_SQRT_F 1
-#elif defined(__arm__) && defined(__ARM_FP)
-#define RMATH_HW_SQRT_D ((__ARM_FP & 8) != 0)
-#define RMATH_HW_SQRT_F ((__ARM_FP & 4) != 0)
-#elif defined(__riscv) && defined(__riscv_fdiv) && defined(__riscv_flen)
-#define RMATH_HW_SQRT_D (__riscv_flen >= 64)
-#define RMATH_HW_SQRT_F (__riscv_flen >= 32)
-#else
-#define RMATH_HW_SQRT_D 0
-#define RMATH_HW_SQRT_F 0
-#endif
-
 /* ------------------------------------------------------------------ bits */
 
 typedef union {
@@ -233,7 +211,7 @@ double rti_sqrt_soft(double x)
 /* Square root of a non-negative double, for the inverse trig functions. */
 static inline double sqrt_d(double x)
 {
-#if RMATH_HW_SQRT_D
+#if RT_HW_SQRT_D
     return __builtin_sqrt(x);
 #else
     return rti_sqrt_soft(x);
@@ -1113,10 +1091,10 @@ static inline real_t R(double v)
     return v != v ? from_bits_f(0x7fc00000u) : (float)v;
 }
 
-real_t rt_sqrt(real_t x)
+real_t(rt_sqrt)(real_t x) /* the name in parentheses: not rt_math.h's inline macro */
 {
     if (!(x >= 0.0f)) return from_bits_f(0x7fc00000u); /* x < 0 or NaN; -0 passes */
-#if RMATH_HW_SQRT_F
+#if RT_HW_SQRT_F
     return __builtin_sqrtf(x);
 #else
     return (float)rti_sqrt_soft((double)x); /* 53 >= 2*24 + 2: double rounding is exact */
@@ -1142,10 +1120,10 @@ real_t rt_floor(real_t x)
 
 #define R(v) (v)
 
-real_t rt_sqrt(real_t x)
+real_t(rt_sqrt)(real_t x) /* the name in parentheses: not rt_math.h's inline macro */
 {
     if (!(x >= 0.0)) return NAN_D; /* x < 0 or NaN; -0 passes */
-#if RMATH_HW_SQRT_D
+#if RT_HW_SQRT_D
     return __builtin_sqrt(x);
 #else
     return rti_sqrt_soft(x);

@@ -54,6 +54,52 @@ typedef union rt_real_rep {
     rt_real_bits u;
 } rt_real_rep;
 
+/* The hardware square root where it is a single exact instruction (-DRT_SOFT_SQRT forces
+   the software one, so host tests can compare the two bit for bit). Without
+   -fno-math-errno (__NO_MATH_ERRNO__) gcc would also emit a call to libm's sqrt. */
+#if defined(RT_SOFT_SQRT) || !defined(__NO_MATH_ERRNO__)
+#define RT_HW_SQRT_D 0
+#define RT_HW_SQRT_F 0
+#elif (defined(__x86_64__) && defined(__SSE2__)) || defined(__aarch64__)
+#define RT_HW_SQRT_D 1
+#define RT_HW_SQRT_F 1
+#elif defined(__arm__) && defined(__ARM_FP)
+#define RT_HW_SQRT_D ((__ARM_FP & 8) != 0)
+#define RT_HW_SQRT_F ((__ARM_FP & 4) != 0)
+#elif defined(__riscv) && defined(__riscv_fdiv) && defined(__riscv_flen)
+#define RT_HW_SQRT_D (__riscv_flen >= 64)
+#define RT_HW_SQRT_F (__riscv_flen >= 32)
+#else
+#define RT_HW_SQRT_D 0
+#define RT_HW_SQRT_F 0
+#endif
+#if RT_REAL_IS_FLOAT
+#define RT_HW_SQRT RT_HW_SQRT_F
+#define RT_QNAN_BITS 0x7fc00000u
+#else
+#define RT_HW_SQRT RT_HW_SQRT_D
+#define RT_QNAN_BITS 0x7ff8000000000000ull
+#endif
+
+#if RT_HW_SQRT
+/* rt_sqrt inline where it is one instruction: the joints and norms call it in every
+   stage, and the call cost more than the root. The same bits as rt/rmath.c's rt_sqrt
+   (which stays, for a caller compiled without the macro or taking its address) */
+static inline real_t rti_sqrt_hw(real_t x)
+{
+    if (!(x >= 0)) { /* x < 0 or NaN: the canonical quiet NaN; -0 passes */
+        rt_real_rep v = {.u = RT_QNAN_BITS};
+        return v.r;
+    }
+#if RT_REAL_IS_FLOAT
+    return __builtin_sqrtf(x);
+#else
+    return __builtin_sqrt(x);
+#endif
+}
+#define rt_sqrt(x) rti_sqrt_hw(x)
+#endif
+
 static inline real_t rt_fabs(real_t x)
 {
 #if defined(__GNUC__) && RT_REAL_IS_FLOAT /* gcc, clang: the sign bit cleared where the

@@ -19,6 +19,21 @@
 
 #include "rti_mbs.h"
 
+/* which of a constraint row's g, g' and gam an assembly writes: what the code after it
+   reads (the generic path writes all three; the state's bits do not depend on the ones
+   nobody reads, and each assembly forms its own before they are read) */
+enum {
+    ROW_G = 1,  /* the position residual: the projection's, Baumgarte's */
+    ROW_GD = 2, /* g': the velocity projection's, Baumgarte's */
+    ROW_GAM = 4 /* the curvature term: a right-hand side's */
+};
+
+/* the rows a right-hand side reads: gam, and g and g' under Baumgarte (lambda_accel) */
+static int accel_rows(const rt_scene *sc)
+{
+    return ROW_GAM | (sc->stab == RT_STAB_BAUMGARTE ? ROW_G | ROW_GD : 0);
+}
+
 /* a set whose multibody part the generator writes out: point masses only, joints with
    eval_points, at least one constraint row */
 static int mbs_points_set(const rt_scene *sc, const rt_sim *sim, uint8_t s)
@@ -358,8 +373,9 @@ static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, in
 /* point_rows (rt/mbs_asm.c) of joint ji between two points (point nodes or an anchor)
    for `what` (RTI_MBS_JAC, _FORCE, _G): g by g_points alone for RTI_MBS_G where the kind
    has it, else its eval_points (a spherical difference joint's equations inline) and
-   the rows */
-static void point_joint(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t ji, int what)
+   of g, g' and gam the ones `rows` asks for (W with RTI_MBS_JAC) */
+static void point_joint(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t ji, int what,
+                        int rows)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     const rt_joint *j = &sc->joints[ji];
@@ -392,14 +408,19 @@ static void point_joint(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t
     for (unsigned i = 0; i < j->kind->nc; i++) {
         unsigned r = w->jrow[ji] + i, w1 = w->jw[ji][0] + 3 * i;
         unsigned w2 = (one ? w->jw[ji][0] : w->jw[ji][1]) + 3 * i;
-        fprintf(f, "        C = e.C[%u], acc = 0;\n", i);
-        fputs("        acc += C[0] * v1[0] + C[6] * v2[0];\n"
-              "        acc += C[1] * v1[1] + C[7] * v2[1];\n"
-              "        acc += C[2] * v1[2] + C[8] * v2[2];\n", f);
-        fprintf(f, "        g[%u] = e.g[%u], gd[%u] = acc;\n", r, i, r);
+        fprintf(f, "        C = e.C[%u];\n", i);
+        if (rows & ROW_G)
+            fprintf(f, "        g[%u] = e.g[%u];\n", r, i);
+        if (rows & ROW_GD)
+            fprintf(f, "        acc = 0;\n"
+                       "        acc += C[0] * v1[0] + C[6] * v2[0];\n"
+                       "        acc += C[1] * v1[1] + C[7] * v2[1];\n"
+                       "        acc += C[2] * v1[2] + C[8] * v2[2];\n"
+                       "        gd[%u] = acc;\n", r);
         if (!(what & RTI_MBS_JAC))
             continue;
-        fprintf(f, "        gam[%u] = (real_t)0 + e.c[%u];\n", r, i);
+        if (rows & ROW_GAM)
+            fprintf(f, "        gam[%u] = (real_t)0 + e.c[%u];\n", r, i);
         fprintf(f, "        W[%u] = C[0], W[%u] = C[1], W[%u] = C[2];\n", w1, w1 + 1, w1 + 2);
         if (one)
             continue;
@@ -412,8 +433,9 @@ static void point_joint(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t
     fputs("    }\n", f);
 }
 
-/* assemble_point_set (rt/mbs_asm.c) for `what` (RTI_MBS_JAC, _FORCE, _G) */
-static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
+/* assemble_point_set (rt/mbs_asm.c) for `what` (RTI_MBS_JAC, _FORCE, _G), the rows' `rows` */
+static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what,
+                     int rows)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     if (what & RTI_MBS_FORCE)
@@ -421,7 +443,7 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
     fprintf(f, "    /* the joints' rows: %s (point_rows) */\n",
             what & RTI_MBS_JAC ? "g, g', gam and W" : "g");
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++)
-        point_joint(f, sc, sim, w->sjnt[k], what);
+        point_joint(f, sc, sim, w->sjnt[k], what, rows);
 }
 
 /* map_row (rt/mbs_asm.c) of a body side with nz velocities: W's slice at wo (+)= the
@@ -459,7 +481,7 @@ static void map_side_row(FILE *f, unsigned wo, unsigned c0, unsigned side, int a
    assemble_joint: the nodes by rti_mbs_joint (with their Jacobians for RTI_MBS_JAC), per
    row g and g' (and gam) by row_dot's sums and W's rows by map_row, term by term */
 static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s,
-                            int what)
+                            int what, int rows)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     int jac = what & RTI_MBS_JAC;
@@ -472,7 +494,7 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
         const char *dot = j->kind->trans ? "rowdot6" : "rowdot12";
         int p1 = point_side(sc, j, 0), p2 = point_side(sc, j, 1);
         if (j->kind->eval_points && p1 && p2) { /* assemble_points: between two points */
-            point_joint(f, sc, sim, ji, what);
+            point_joint(f, sc, sim, ji, what, rows);
             continue;
         }
         fputs("    {\n        rt_mbs_node n1, n2;\n"
@@ -491,12 +513,16 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
                     jac ? "w->J[0], w->J[1]" : "0, 0");
         for (unsigned i = 0; i < j->kind->nc; i++) {
             unsigned r = w->jrow[ji] + i;
-            fprintf(f, "        C = e.C[%u];\n        g[%u] = e.g[%u];\n", i, r, i);
-            fprintf(f, "        gd[%u] = %s(C, n1.v, n1.w, n2.v, n2.w);\n", r, dot);
+            fprintf(f, "        C = e.C[%u];\n", i);
+            if (rows & ROW_G)
+                fprintf(f, "        g[%u] = e.g[%u];\n", r, i);
+            if (rows & ROW_GD)
+                fprintf(f, "        gd[%u] = %s(C, n1.v, n1.w, n2.v, n2.w);\n", r, dot);
             if (!jac)
                 continue;
-            fprintf(f, "        gam[%u] = %s(C, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[%u];\n", r,
-                    dot, i);
+            if (rows & ROW_GAM)
+                fprintf(f, "        gam[%u] = %s(C, n1.ar, n1.aw, n2.ar, n2.aw) + e.c[%u];\n",
+                        r, dot, i);
             unsigned nz1 = nz_of(sim, (uint16_t)j->b1);
             map_side_row(f, w->jw[ji][0] + nz1 * i, 0, 0, 0, nz1, p1);
             if (j->b2 >= 0) {
@@ -775,7 +801,8 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
           "    const real_t *M = w->M, *x = xw, *C;\n"
           "    real_t acc, d0, d1, d2, vi;\n"
           "    rt_joint_eval e;\n"
-          "    (void)L, (void)gam, (void)xw, (void)x, (void)sc, (void)t, (void)acc, (void)Y;\n"
+          "    (void)L, (void)g, (void)gd, (void)gam, (void)xw, (void)x, (void)sc, (void)t, (void)acc;\n"
+          "    (void)Y;\n"
           "    (void)M;\n"
           "    (void)d0, (void)d1, (void)d2;\n", f);
     unsigned nq = 0;
@@ -791,14 +818,15 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
     fputs(")\n        return 0; /* the first assembly factors M: the generic path */\n", f);
 }
 
-/* the set's assembly (`what`: RTI_MBS_JAC, with RTI_MBS_FORCE for a right-hand side) and
-   the factors of its Schur complement over the fixed pattern */
-static void factored(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
+/* the set's assembly (`what`: RTI_MBS_JAC, with RTI_MBS_FORCE for a right-hand side; the
+   rows' `rows`) and the factors of its Schur complement over the fixed pattern */
+static void factored(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what,
+                     int rows)
 {
     if (sim->work.mbs.points[s])
-        assemble(f, sc, sim, s, what);
+        assemble(f, sc, sim, s, what, rows);
     else
-        assemble_bodies(f, sc, sim, s, what);
+        assemble_bodies(f, sc, sim, s, what, rows);
     quotients(f, sc, sim, s);
     schur(f, sim, s);
     factor(f, sim, s);
@@ -899,10 +927,10 @@ static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
     outputs(f, sc, sim, s);
     derivs(f, sc, sim, s);
     if (pts) {
-        factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
+        factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE, accel_rows(sc));
         lambda_accel(f, sc, sim, s);
     } else if (bodies) {
-        factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE);
+        factored(f, sc, sim, s, RTI_MBS_JAC | RTI_MBS_FORCE, accel_rows(sc));
         lambda_accel(f, sc, sim, s);
     } else if (mbs)
         fprintf(f, "    sc->mbs->accel(sc, sim, %u, t, xdot);\n", s);
@@ -921,16 +949,16 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
     locals(f, sim, s);
     fputs("    /* positions (10a) */\n", f);
     saved_q(f, sc, sim, s);
-    factored(f, sc, sim, s, RTI_MBS_JAC);
+    factored(f, sc, sim, s, RTI_MBS_JAC, ROW_G);
     corrected(f, sc, sim, s, "g", 0);
     if (sim->work.mbs.points[s])
-        assemble(f, sc, sim, s, RTI_MBS_G);
+        assemble(f, sc, sim, s, RTI_MBS_G, ROW_G);
     else
-        assemble_bodies(f, sc, sim, s, RTI_MBS_G);
+        assemble_bodies(f, sc, sim, s, RTI_MBS_G, ROW_G);
     corrected(f, sc, sim, s, "g", 0);
     normalized(f, sc, sim, s);
     fputs("    /* velocities (10b) */\n", f);
-    factored(f, sc, sim, s, RTI_MBS_JAC);
+    factored(f, sc, sim, s, RTI_MBS_JAC, ROW_G | ROW_GD); /* g: check_residual's */
     corrected(f, sc, sim, s, "gd", 1);
     fputs("    /* check_residual */\n    {\n        real_t worst = 0, v;\n"
           "        uint16_t row = 0;\n", f);
