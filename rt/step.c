@@ -381,11 +381,14 @@ static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t t
    the per-step bound counts it), never silently. A root of a kind that asks for every
    sign change (rt_kind.roots_every_sign, FMI's event indicators) is held the same way,
    and its return to the side of zero it was held from is a crossing too (returned): fired
-   by that, it is free. Returns the probe's length if such a root was sent back and the
-   probe finds it back on its side, so that the next integration ends there and its return
-   is located, else 0 */
+   by that, it is free. A free root the handlers left exactly on zero (the located end
+   sat on it) shows no sign change however it moves on: it is moved a hair to the side the
+   probe sends it, so that leaving zero again in the rest of the step is seen (a crest
+   above a level inside one step: up at te, down before the step ends). Returns the
+   probe's length if such a root was sent back and the probe finds it back on its side,
+   so that the next integration ends there and its return is located, else 0 */
 static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
-                     real_t t_max, const rootset *rs, const int8_t *fired, const real_t *r,
+                     real_t t_max, const rootset *rs, const int8_t *fired, real_t *r,
                      int jumped)
 {
     uint16_t m = 0, j = sim->plan.blk_of[s];
@@ -427,6 +430,9 @@ static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real
                 rs->side[m] = 0, rs->lvl[m] = 0;
         }
     }
+    for (m = 0; m < (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]); m++)
+        if (r[m] == 0 && rs->side[m] == 0 && rp[m] != 0 && rp[m] == rp[m])
+            r[m] = rp[m] > 0 ? RTI_ROOT_HAIR : -RTI_ROOT_HAIR;
     return cap;
 }
 
