@@ -192,7 +192,25 @@ def aliasing(s):
     s.check(rc == 0 and err < 1e-8, "alias_sampled: exit %d, error %.3g" % (rc, err))
 
 
+def nan_guard(s):
+    """nan_guard.scn: a NaN inside a condition or limit of a defined system (min of
+    sqrt of a negative level) reaches the derivative: counted (nan; an implicit method's
+    Newton iteration fails on it), never a finite derivative from an invalid state with
+    status ok. Before that, the level to the closed form"""
+    for m in ("rk4", "dopri5", "bs3", "sdirk3"):
+        rc, summ, rows = run(s.modrt, "nan_guard.scn", ["--method", "main=" + m])
+        at1 = [r[1] for r in rows if abs(r[0] - 1.0) < 1e-9]
+        err = abs(at1[0] - 0.5) if at1 else math.inf
+        s.row("tank run dry, min(sqrt(z), q): level at 1 s; status after 2.5 s", m, "0.01",
+              err, summ, rc)
+        # (an implicit method's Newton iteration meets the NaN first: degraded, failed)
+        s.check(rc != 0 and (m == "sdirk3" or summ.get("nan", "0") != "0") and err < 1e-12,
+                "nan_guard %s: exit %d, status %s, nan %s, level at 1 s off by %.3g" % (
+                    m, rc, summ.get("status"), summ.get("nan"), err))
+
+
 def extra(s, long):
+    nan_guard(s)
     aliasing(s)
     quadrature(s)
     quad_cos(s)

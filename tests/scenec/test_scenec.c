@@ -67,6 +67,27 @@ static void test_logic(void)
     TH_CHECK(eval("1 + 2 < 4", 0, 0) == R(1));      /* arithmetic before comparison */
 }
 
+/* a NaN operand (sqrt(a), a = -1) reaches the result of every condition and limit
+   (rt/rt_expr.h): C's < and fmin would drop it */
+static void test_nan_kept(void)
+{
+    static const char *const ex[] = {
+        "sqrt(a) < b",     "sqrt(a) >= b",       "sqrt(a) == sqrt(a)", "b != sqrt(a)",
+        "!sqrt(a)",        "sqrt(a) && b",       "b || sqrt(a)",       "0 && sqrt(a)",
+        "if(sqrt(a), 1, 2)", "sqrt(a) ? 1 : 2",  "min(sqrt(a), b)",    "max(b, sqrt(a))",
+        "b + (sqrt(a) > 0 ? 1 : 0)"};
+    for (unsigned i = 0; i < sizeof ex / sizeof ex[0]; i++) {
+        double v = eval(ex[i], -1, 2);
+        TH_CHECK(v != v);
+        if (v == v)
+            th_note(ex[i], v);
+    }
+    /* finite operands as before: infinities compare, -0 is the smaller zero */
+    TH_CHECK(eval("a * 1e308 < b", -10, 0) == R(1) && eval("a * 1e308 > b", 10, 1e308) == R(1));
+    TH_CHECK(eval("1 / min(a, b)", 0, -0.0) < 0 && eval("1 / max(a, b)", -0.0, 0) > 0);
+    TH_CHECK(eval("if(a, b, 3)", 1e-300, 2) == R(2));
+}
+
 static void test_names_and_functions(void)
 {
     TH_CHECK(eval("k * a", 2, 0) == R(6));          /* parameter default */
@@ -288,6 +309,7 @@ static const th_test tests[] = {
     {"scenec_joint_frames", test_joint_frames},
     {"scenec_precedence", test_precedence},
     {"scenec_logic", test_logic},
+    {"scenec_nan_kept", test_nan_kept},
     {"scenec_names_functions", test_names_and_functions},
     {"scenec_define_kinds", test_define_kinds},
     {"scenec_dss_runs", test_dss_runs},

@@ -106,8 +106,9 @@ static void kids(FILE *f, const scn_ctx *c, const node *nd, const node *x, const
 
 static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top)
 {
-    static const char *const bin[] = {" + ", " - ", " * ", " / ", " < ", " <= ", " > ",
-                                      " >= ", " == ", " != "};
+    static const char *const bin[] = {" + ", " - ", " * ", " / "};
+    static const char *const cond[] = {"rt_x_lt", "rt_x_le", "rt_x_gt", "rt_x_ge",
+                                       "rt_x_eq", "rt_x_ne", "rt_x_and", "rt_x_or"};
     const node *x = &nd[i];
     const scn_ins *in = x->in;
     if (x->temp >= 0 && !top) {
@@ -125,16 +126,11 @@ static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top)
     case SCN_OP_LOC: fprintf(f, "l%u", in->a); return;
     case SCN_OP_NEG: fputs("(-", f), expr(f, c, nd, x->kid[0], 0), fputs(")", f); return;
     case SCN_OP_NOT:
-        fputs("(", f), expr(f, c, nd, x->kid[0], 0), fputs(" == 0 ? (real_t)1 : (real_t)0)", f);
-        return;
-    case SCN_OP_AND:
-    case SCN_OP_OR:
-        fputs("(", f), kids(f, c, nd, x, in->op == SCN_OP_AND ? " != 0 && " : " != 0 || ");
-        fputs(" != 0 ? (real_t)1 : (real_t)0)", f);
+        fputs("rt_x_not(", f), expr(f, c, nd, x->kid[0], 0), fputs(")", f);
         return;
     case SCN_OP_SEL:
-        fputs("(", f), expr(f, c, nd, x->kid[0], 0), fputs(" != 0 ? ", f);
-        kids(f, c, nd, &(node){.kid = {x->kid[1], x->kid[2]}}, " : "), fputs(")", f);
+        fputs("rt_x_if(", f), expr(f, c, nd, x->kid[0], 0), fputs(", ", f);
+        kids(f, c, nd, &(node){.kid = {x->kid[1], x->kid[2]}}, ", "), fputs(")", f);
         return;
     case SCN_OP_CALL:
         fprintf(f, "%s(", scn_fns[in->a].c), expr(f, c, nd, x->kid[0], 0);
@@ -142,9 +138,13 @@ static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top)
             fputs(", ", f), expr(f, c, nd, x->kid[1], 0);
         fputs(")", f);
         return;
-    default: /* arithmetic and comparisons */
-        fputs("(", f), kids(f, c, nd, x, bin[in->op - SCN_OP_ADD]);
-        fputs(in->op >= SCN_OP_LT ? " ? (real_t)1 : (real_t)0)" : ")", f);
+    default:
+        if (in->op >= SCN_OP_LT) { /* comparisons, and, or: rt/rt_expr.h, as the VM */
+            fprintf(f, "%s(", cond[in->op - SCN_OP_LT]), kids(f, c, nd, x, ", ");
+            fputs(")", f);
+            return;
+        }
+        fputs("(", f), kids(f, c, nd, x, bin[in->op - SCN_OP_ADD]), fputs(")", f);
     }
 }
 
@@ -423,7 +423,8 @@ static void header(FILE *f, scn_ctx *c)
             units = scn_fmt(c, "%s%s%s", units, *units ? ", " : "", s->blk[b].unit);
     if (*units)
         fputs("\n * Units named by `from file`: ", f), ctext(f, units), fputs(".", f);
-    fputs(" */\n#include \"rt.h\"\n\n/* the model kinds this scene names, and only those */\n", f);
+    fputs(" */\n#include \"rt.h\"\n#include \"rt_expr.h\"\n\n"
+          "/* the model kinds this scene names, and only those */\n", f);
     for (uint16_t b = 0; b < s->nblk; b++) {
         int first = 1;
         for (uint16_t e = 0; e < b; e++)

@@ -7,6 +7,8 @@
  * same operations in the same order (the build uses -ffp-contract=off). */
 #include "scn.h"
 
+#include "rt_expr.h"
+
 #include <string.h>
 
 const scn_fn scn_fns[] = {
@@ -17,7 +19,7 @@ const scn_fn scn_fns[] = {
     {"exp", 1, rt_exp, 0, "rt_exp"},        {"log", 1, rt_log, 0, "rt_log"},
     {"pow", 2, 0, rt_pow, "rt_pow"},        {"tanh", 1, rt_tanh, 0, "rt_tanh"},
     {"abs", 1, rt_fabs, 0, "rt_fabs"},      {"floor", 1, rt_floor, 0, "rt_floor"},
-    {"min", 2, 0, rt_fmin, "rt_fmin"},      {"max", 2, 0, rt_fmax, "rt_fmax"},
+    {"min", 2, 0, rt_x_min, "rt_x_min"},    {"max", 2, 0, rt_x_max, "rt_x_max"},
     {0, 0, 0, 0, 0},
 };
 

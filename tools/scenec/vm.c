@@ -1,8 +1,11 @@
 /* vm.c - the expression VM of the host interpreter (`modrt run FILE.scn`): runs the
  * service programs of defined systems on a small stack of real_t. Each operation is the
  * one emit.c prints as C, in the same order, so an interpreted scene and its compiled
- * form compute the same bits. */
+ * form compute the same bits (conditions and limits by rt/rt_expr.h's functions on
+ * both sides). */
 #include "scn.h"
+
+#include "rt_expr.h"
 
 /* a binary operation on the two top operands */
 static real_t binop(uint8_t op, real_t a, real_t b)
@@ -12,14 +15,14 @@ static real_t binop(uint8_t op, real_t a, real_t b)
     case SCN_OP_SUB: return a - b;
     case SCN_OP_MUL: return a * b;
     case SCN_OP_DIV: return a / b;
-    case SCN_OP_LT: return a < b ? (real_t)1 : (real_t)0;
-    case SCN_OP_LE: return a <= b ? (real_t)1 : (real_t)0;
-    case SCN_OP_GT: return a > b ? (real_t)1 : (real_t)0;
-    case SCN_OP_GE: return a >= b ? (real_t)1 : (real_t)0;
-    case SCN_OP_EQ: return a == b ? (real_t)1 : (real_t)0;
-    case SCN_OP_NE: return a != b ? (real_t)1 : (real_t)0;
-    case SCN_OP_AND: return a != 0 && b != 0 ? (real_t)1 : (real_t)0;
-    default: return a != 0 || b != 0 ? (real_t)1 : (real_t)0; /* SCN_OP_OR */
+    case SCN_OP_LT: return rt_x_lt(a, b);
+    case SCN_OP_LE: return rt_x_le(a, b);
+    case SCN_OP_GT: return rt_x_gt(a, b);
+    case SCN_OP_GE: return rt_x_ge(a, b);
+    case SCN_OP_EQ: return rt_x_eq(a, b);
+    case SCN_OP_NE: return rt_x_ne(a, b);
+    case SCN_OP_AND: return rt_x_and(a, b);
+    default: return rt_x_or(a, b); /* SCN_OP_OR */
     }
 }
 
@@ -52,11 +55,11 @@ static void run(const scn_prog *p, const rt_args *a, real_t *out)
             st[sp - 1] = -st[sp - 1];
             break;
         case SCN_OP_NOT:
-            st[sp - 1] = st[sp - 1] == 0 ? (real_t)1 : (real_t)0;
+            st[sp - 1] = rt_x_not(st[sp - 1]);
             break;
         case SCN_OP_SEL:
             sp -= 2;
-            st[sp - 1] = st[sp - 1] != 0 ? st[sp] : st[sp + 1];
+            st[sp - 1] = rt_x_if(st[sp - 1], st[sp], st[sp + 1]);
             break;
         case SCN_OP_CALL:
             f = &scn_fns[in->a];
