@@ -384,12 +384,14 @@ static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t t
    by that, it is free. A free root the handlers left exactly on zero (the located end
    sat on it) shows no sign change however it moves on: it is moved a hair to the side the
    probe sends it, so that leaving zero again in the rest of the step is seen (a crest
-   above a level inside one step: up at te, down before the step ends). Returns the
+   above a level inside one step: up at te, down before the step ends); not at the
+   step's end (rest 0), where the tick takes the root's value afresh and a hair left
+   there would read as a jump across the level (rt/held.c keep_jumped: fired again). Returns the
    probe's length if such a root was sent back and the probe finds it back on its side,
    so that the next integration ends there and its return is located, else 0 */
 static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
                      real_t t_max, const rootset *rs, const int8_t *fired, real_t *r,
-                     int jumped)
+                     int jumped, int rest)
 {
     uint16_t m = 0, j = sim->plan.blk_of[s];
     uint8_t done[RT_MAX_ROOTS];
@@ -430,7 +432,7 @@ static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real
                 rs->side[m] = 0, rs->lvl[m] = 0;
         }
     }
-    for (m = 0; m < (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]); m++)
+    for (m = 0; rest && m < (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]); m++)
         if (r[m] == 0 && rs->side[m] == 0 && rp[m] != 0 && rp[m] == rp[m])
             r[m] = rp[m] > 0 ? RTI_ROOT_HAIR : -RTI_ROOT_HAIR;
     return cap;
@@ -778,7 +780,8 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
         t0 = te;
         rti_outputs(sc, sim, (rti_at){t0, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0, r);
-        cap = settle(sc, sim, s, t0, h, probe_limit(sc, sim, s), &rs, fired, r, sub == 0);
+        cap = settle(sc, sim, s, t0, h, probe_limit(sc, sim, s), &rs, fired, r, sub == 0,
+                     span > 0);
         cap = ev + 1 < RT_EVENTS_PER_STEP_MAX ? cap : 0; /* past the bound: to the end */
         if (!(span > 0))
             return t + h; /* an event at the step's end: r holds the roots after them */

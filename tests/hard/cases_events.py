@@ -206,6 +206,20 @@ def crest(s, m, h):
             "want %s" % (m, h, summ.get("status"), last, want))
 
 
+def end_hit(s, m, h):
+    """events_endhit.scn: a timer and a pass counter whose roots reach their levels exactly
+    at a step's end: one crossing each (n1 = n2 = 1 at 2 s); counted twice when the
+    step's end leaves the root a hair off its level for the tick"""
+    rc, summ, rows = run(s.modrt, "events_endhit.scn",
+                         ["--method", "main=" + m, "--step", "main=" + h])
+    last = rows[-1][2:] if rows else []
+    err = max(abs(last[0] - 1), abs(last[1] - 1)) if len(last) == 2 else math.inf
+    s.row("a timer and a counter reaching their levels at a step's end: n1, n2 at 2 s",
+          m, h, err, summ, rc)
+    s.check(rc in (0, 3) and err == 0, "end hit %s h=%s: status %s, n1 n2 %s, want 1 1"
+            % (m, h, summ.get("status"), last))
+
+
 def start_on_level(s, m, h):
     """events_start.scn: a point starting exactly on its floor, moving down (one contact at
     t = 0, z(1) = 1) or up (none, z(1) = 1); through its floor (z(1) = -1) is wrong"""
@@ -470,6 +484,9 @@ def run_all(s, long):
             ceiling(s, m, h)
         for h in ("0.01", "0.1"):
             start_on_level(s, m, h)
+    for m in EXACT + FIRST:
+        for h in ("0.05", "0.25"):
+            end_hit(s, m, h)
     for m in ("rk4", "dopri5"):  # (bs3's and heun's crests fall short of the level at
         for h in ("0.1", "0.2", "0.25", "0.3"):  # these steps: their amplitude error)
             crest(s, m, h)
