@@ -35,6 +35,22 @@ $M info pi_loop >"$T/info" && ok || bad "info pi_loop failed"
 grep -q '^evaluation order: Plant Ref PI$' "$T/info" && ok || bad "info order: $(grep order "$T/info")"
 grep -q 'potential: PI Plant; solved by ordering' "$T/info" && ok || bad "info lacks the potential loop"
 
+# a run that ends inside a set's step says which values are not of its end time: the
+# integrator's output held from 0.9 s, its state at 1.2 s (x = t: 0.9 and 1.2 recorded)
+cat >"$T/end.scn" <<'SCN'
+base tick (100 ms); end time (1 s);
+define ss_system (I) with outputs (x) states (s = 0) by { x = s; der(s) = 1; };
+load system (Q) of type (I);
+set (main) method (rk4) step (300 ms);
+record (Q.x, state Q.s);
+SCN
+$M run "$T/end.scn" --csv="$T/end.csv" >"$T/end.out" 2>&1
+grep -q '^held_at_end.main: outputs from 0.90000000000000002 s, states at 1.2000000000000002 s$' \
+    "$T/end.out" && ok || bad "held_at_end: $(grep -E 'held|status' "$T/end.out")"
+tail -1 "$T/end.csv" | grep -q '^1,0.8999999999999999[0-9]*,1.2$' && ok ||
+    bad "held_at_end record: $(tail -1 "$T/end.csv")"
+$M run "$T/end.scn" --t-end=0.9 | grep -q '^held_at_end' && bad "held_at_end at 0.9 s" || ok
+
 # every scene runs clean, twice with the same 16-digit hash
 for s in oscillator vanderpol pi_loop bouncing_ball; do
     h1=$($M run $s | hash_of); h2=$($M run $s | hash_of)
