@@ -62,6 +62,19 @@ static rt_status check(const real_t *p, const void *spec)
     return p[0] > 0 && p[1] >= 0 && p[2] >= p[1] && rt_isfinite(p[2]) ? RT_OK : RT_E_PARAM;
 }
 
+/* the mode the motion needs: sliding the way v points (at v = 0 any mode: the start's
+   roots settle it). A mode against v would hold the mass stuck while it moves, or fire
+   the stop at t = 0 and take its velocity away */
+static const char *check_start(const rt_args *a)
+{
+    real_t v = a->x[1], s = a->d[0];
+    if (s != 1 && s != 0 && s != -1)
+        return "mode must be +1, 0 or -1";
+    if ((v > 0 && s != 1) || (v < 0 && s != -1))
+        return "mode must be +1 for v > 0 and -1 for v < 0";
+    return 0;
+}
+
 const rt_kind mdl_coulomb_kind = {
     .name = "coulomb", .type = RT_KIND_NSS,
     .nu = 1, .ny = 2, .nx = 2, .nd = 1, .np = 3, .nr = 2,
@@ -69,7 +82,8 @@ const rt_kind mdl_coulomb_kind = {
     .p_names = p_names, .p_default = p_default, .x_default = x_default,
     .d_default = d_default, .root_dir = root_dir,
     .feed = RT_FEED_NONE, .autonomous = 1, .roots_at_start = 1,
-    .check = check, .output = output, .deriv = deriv, .roots = roots, .event = event,
+    .check = check, .check_start = check_start, .output = output, .deriv = deriv,
+    .roots = roots, .event = event,
     .doc = RT_DOC(
         "Mass on a surface with dry (Coulomb) friction: stick and slip by two roots.\n"
         "mode +1/-1: sliding forward/backward, x' = v, m v' = F - mode Fc;\n"

@@ -358,7 +358,8 @@ rt_status rt_init_checked(const rt_scene *sc, rt_sim *sim, uint32_t caller_layou
         sim->plan.set_xout[s] = 0, sim->plan.sched[s] = s;
     if ((st = check_scene(sc, sim)) != RT_OK || (st = rti_invariant_init(sc, sim)) != RT_OK ||
         (st = layout(sc, sim)) != RT_OK ||
-        (st = initial_values(sc, sim)) != RT_OK || (st = route(sc, sim)) != RT_OK ||
+        (st = initial_values(sc, sim)) != RT_OK || (st = rti_check_starts(sc, sim)) != RT_OK ||
+        (st = route(sc, sim)) != RT_OK ||
         (st = rti_xset_init(sc, sim)) != RT_OK || (st = rti_order(sc, sim)) != RT_OK ||
         /* the link's exports count among the held signals (check_history) */
         (st = rti_link_check(sc, sim)) != RT_OK || (st = check_history(sc, sim)) != RT_OK ||

@@ -1,6 +1,7 @@
 /* invariant.c - the invariants a kind declares of its continuous state (rt_kind.inv:
  * nonnegative states, a conserved sum, a bounded norm), checked after every step of the
- * block's set. A stiff solver can return y1 = -4.36 for a concentration with a small
+ * block's set, and the rules its initial state must keep (rt_kind.check_start), checked
+ * at rt_init and again by rt_refresh before the first tick. A stiff solver can return y1 = -4.36 for a concentration with a small
  * error estimate; the kind knows better, and a broken invariant fails the run
  * (RT_CNT_INVARIANT with the block, RT_E_INVARIANT) instead of letting it pass as
  * doubtful. The check reads the state and changes nothing: a trace is the same with or
@@ -44,6 +45,22 @@ void rti_invariants(const rt_scene *sc, rt_sim *sim, uint8_t s)
                 break; /* one count per block and step */
             }
     }
+}
+
+rt_status rti_check_starts(const rt_scene *sc, rt_sim *sim)
+{
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *kd = sc->blocks[b].kind;
+        rt_args a;
+        if (!kd->check_start)
+            continue;
+        rti_args(sc, sim, b, 0, 0, &a);
+        const char *why = kd->check_start(&a);
+        if (why)
+            return rti_fail(sim, RT_E_PARAM, "block ", sc->blocks[b].name,
+                            ": initial state: ", why, (const char *)0);
+    }
+    return RT_OK;
 }
 
 rt_status rti_invariant_init(const rt_scene *sc, rt_sim *sim)

@@ -264,6 +264,12 @@ static rt_status check_recs(const rt_scene *sc, rt_sim *sim)
     return RT_OK;
 }
 
+/* the start again, with the tables init built (rt_refresh before the first tick) */
+static int restart(const rt_scene *sc, rt_sim *sim)
+{
+    return rti_mbs_start(sc, sim);
+}
+
 static int init(const rt_scene *sc, rt_sim *sim)
 {
     rt_status st;
@@ -391,6 +397,7 @@ const rt_mbs_ops rt_mbs = {
     .init = init,
     .accel = rti_mbs_accel,
     .project = rti_mbs_project,
+    .restart = restart,
     .signal = signal,
     .signal_name = signal_name,
 };

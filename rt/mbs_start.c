@@ -230,8 +230,11 @@ rt_status rti_mbs_start(const rt_scene *sc, rt_sim *sim)
         if (sim->work.mbs.nz[s] == 0)
             continue;
         rt_status st = start_set(sc, sim, s);
-        if (st != RT_OK)
+        if (st != RT_OK) { /* refused: the state as given, not half projected */
+            for (uint32_t i = 0; i < sim->plan.x_off[sc->nblocks]; i++)
+                sim->state.x[i] = sim->work.x0[i];
             return st;
+        }
     }
     return RT_OK;
 }

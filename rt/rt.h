@@ -206,6 +206,11 @@ typedef struct rt_kind {
     /* Called once at rt_init with the instance parameters: returns RT_OK or RT_E_PARAM.
        May be NULL (no check). */
     rt_status (*check)(const real_t *p, const void *spec);
+    /* The initial state against the kind's own rules (a mode that must match the
+       continuous state): NULL when it holds, else why not. rt_init refuses a scene whose
+       initial state breaks them, and rt_refresh before the first tick one changed since
+       (RT_E_PARAM, the block and the reason). May be NULL (any initial state). */
+    const char *(*check_start)(const rt_args *a);
     /* Output equation: writes ny outputs. Called in evaluation order at every stage;
        for DSS only at sample hits (outputs are held in between). NULL iff ny == 0. */
     void (*output)(const rt_args *a, real_t *y);
@@ -818,7 +823,11 @@ void rt_note_count(rt_sim *sim, rt_counter c, uint32_t n, uint64_t first_tick,
 real_t rt_time(const rt_scene *scene, const rt_sim *sim);
 /* Re-evaluates the outputs and root values of every set whose state belongs to the current
  * tick (all sets at t = 0; between its steps a set's outputs are held): call it after
- * changing parameters or initial states before the run. */
+ * changing parameters or initial states before the run. Before the first tick it checks
+ * the initial state again as rt_init does: the kinds' start rules (rt_kind.check_start),
+ * and a multibody block's parameters or states changed since rt_init are projected onto
+ * the constraints, refused past RT_INIT_TOL and counted (init_moved) below it. Returns
+ * RT_OK, or the refusal's status with rt_error_text; then run rt_init again. */
 rt_status rt_refresh(const rt_scene *scene, rt_sim *sim);
 
 /* Recording: fills the nrecs recorded values at the current state and folds them into

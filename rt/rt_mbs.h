@@ -302,6 +302,9 @@ typedef struct rt_mbs_ops {
     /* Post-stabilizing projection of the set's MBS state at time t (eq. 10), after every
        step of the set when the scene's stab is RT_STAB_PROJECT. */
     void (*project)(const struct rt_scene *sc, struct rt_sim *sim, uint8_t set, real_t t);
+    /* Projects the initial state of every set onto its constraints again and judges the
+       moves as init does (before the first tick, after rt_set_param changed a block). */
+    int (*restart)(const struct rt_scene *sc, struct rt_sim *sim);
     /* Value of the recorded signal {block, RT_SIG_MBS, index} at the current state. */
     real_t (*signal)(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t block,
                      uint16_t index);

@@ -225,6 +225,10 @@ struct rt_state {
                                         handler sent it back to (or stopped it on) and
                                         it must not leave without a located crossing;
                                         0: none (until it is seen on that side of 0) */
+    uint8_t mbs_restart;             /* a multibody block's parameter or state changed
+                                        before the first tick (rt_set_param): rt_refresh
+                                        projects the start again (rt/mbs_start.c); kept
+                                        while the start it makes is refused */
 };
 
 

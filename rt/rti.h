@@ -54,6 +54,9 @@ typedef struct rti_at {
 /* ---- invariants (invariant.c) ---- */
 /* Checks the kinds' declared invariants (types, indices, tolerances) at init. */
 rt_status rti_invariant_init(const rt_scene *sc, rt_sim *sim);
+/* Each block's initial state against its kind's rules (rt_kind.check_start): RT_E_PARAM
+   with the block and the kind's reason for the first that breaks them. */
+rt_status rti_check_starts(const rt_scene *sc, rt_sim *sim);
 /* After a step of set s: each block's invariants at its new state, a violation counted
    (RT_CNT_INVARIANT with the block, RT_E_INVARIANT). */
 void rti_invariants(const rt_scene *sc, rt_sim *sim, uint8_t s);

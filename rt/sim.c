@@ -178,6 +178,15 @@ int rt_param_index(const rt_kind *k, const char *name)
     return name_index(k->p_names, k->np, name);
 }
 
+/* a multibody block's geometry or state changed before the first tick: its start is
+   projected and judged again, as at rt_init (rt_refresh), not left to the first step's
+   projection, which would move it silently */
+static void mbs_changed(const rt_kind *k, rt_sim *sim)
+{
+    if (k->type == RT_KIND_MBS && sim->state.tick == 0)
+        sim->state.mbs_restart = 1;
+}
+
 rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const char *name,
                        real_t value)
 {
@@ -199,11 +208,13 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
         sim->work.mbs.m_valid[b] = 0; /* a constant mass matrix is factored anew (#14) */
         if (value != old) /* and the set's Jacobian formed at its next step */
             sim->state.param_changed[sc->blocks[b].set] = 1;
+        mbs_changed(k, sim);
         return RT_OK;
     }
     /* before the first tick, initial states can be set by name too */
     if (sim->state.tick == 0 && (i = name_index(k->x_names, k->nx, name)) >= 0) {
         sim->state.x[sim->plan.x_off[b] + i] = value;
+        mbs_changed(k, sim);
         return RT_OK;
     }
     if (sim->state.tick == 0 && (i = name_index(k->d_names, k->nd, name)) >= 0) {

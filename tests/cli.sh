@@ -51,6 +51,20 @@ tail -1 "$T/end.csv" | grep -q '^1,0.8999999999999999[0-9]*,1.2$' && ok ||
     bad "held_at_end record: $(tail -1 "$T/end.csv")"
 $M run "$T/end.scn" --t-end=0.9 | grep -q '^held_at_end' && bad "held_at_end at 0.9 s" || ok
 
+# --set values are judged as the scene's own: a point 0.5 m off its rods is refused
+# (rt_init refuses it in a scene file), 0.5 mm off it is moved and counted; a friction
+# mode against the velocity is refused
+expect_err "set off joints" 2 "the initial state is refused: B3 starts 5.00e-01 m off its constraints" \
+    $M run pendulum10 --set=B3.x=3.5
+$M run pendulum10 --set=B3.x=3.0005 --t-end=0.01 | grep -q '^init_moved: 1 (last B3)' && ok ||
+    bad "set near joints: $($M run pendulum10 --set=B3.x=3.0005 --t-end=0.01 2>&1 | grep -E 'status|init_moved')"
+$M run pendulum10 --t-end=0.01 | grep -q '^init_moved: 0' && ok || bad "pendulum10 init_moved"
+sed -e 's/M.v = -1; M.F = 0;/M.v = -1; M.mode = -1; M.F = 0;/' -e '/^\/\/ expect/d' \
+    tests/scenec/errors/coulomb_mode.scn > "$T/coul.scn"
+$M run "$T/coul.scn" | grep -q '^status: ok' && ok || bad "coulomb with its mode"
+expect_err "set mode against v" 2 "mode must be +1 for v > 0 and -1 for v < 0" \
+    $M run "$T/coul.scn" --set=M.v=1
+
 # every scene runs clean, twice with the same 16-digit hash
 for s in oscillator vanderpol pi_loop bouncing_ball; do
     h1=$($M run $s | hash_of); h2=$($M run $s | hash_of)

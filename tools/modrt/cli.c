@@ -79,6 +79,13 @@ int cli_set_param(const rt_scene *sc, rt_sim *sim, const char *arg)
     return CLI_OK;
 }
 
+int cli_refresh(const rt_scene *sc, rt_sim *sim)
+{
+    rt_status st = rt_refresh(sc, sim);
+    return st == RT_OK ? CLI_OK : cli_fail("--set: the initial state is refused",
+                                           rt_error_text(sim));
+}
+
 void cli_rec_name(const rt_scene *sc, uint16_t i, char *buf, size_t n)
 {
     snprintf(buf, n, "%s.%s", sc->blocks[sc->recs[i].block].name, rt_rec_signal(sc, i));

@@ -57,6 +57,10 @@ int cli_exit_code(int sev);
 /* `--set BLOCK.PARAM=VALUE` onto the initialised sim. CLI_OK, or CLI_USAGE after one
    line that says what is wrong (the runtime's reason when it gives one). */
 int cli_set_param(const rt_scene *sc, rt_sim *sim, const char *arg);
+/* rt_refresh after the --set values: the initial state they make is judged as rt_init
+   judges a scene's (a body off its joints, a mode against its state); CLI_OK or the
+   refusal on stderr */
+int cli_refresh(const rt_scene *sc, rt_sim *sim);
 /* The end time t_end [s] onto sc: a whole number of its base ticks (within rt_init's
    slack, RT_TICK_SLACK) and at most RT_MAX_TICKS of them. CLI_OK, or CLI_USAGE after one
    line "WHAT must be ..." (what: the option or the file that asked for it). */

@@ -596,7 +596,7 @@ static int setup_sets(void *ctx, const rt_scene *sc, rt_sim *s)
         if (cli_set_param(sc, s, a->sets[i]))
             return CLI_USAGE;
     if (a->nsets > 0) /* only then: a refresh re-solves loops from a new warm start */
-        rt_refresh(sc, s);
+        return cli_refresh(sc, s);
     return CLI_OK;
 }
 

@@ -98,7 +98,7 @@ int replay_scene(const mrl_header *h, const char *path, const replay_more *more,
         if (cli_set_param(sc, sim, more->sets[i]) != CLI_OK)
             return CLI_USAGE;
     if (nsets > 0)
-        rt_refresh(sc, sim);
+        return cli_refresh(sc, sim);
     return CLI_OK;
 }
 

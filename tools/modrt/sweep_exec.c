@@ -81,7 +81,7 @@ static int setup(const sweep_campaign *c, const sweep_exec_args *a, rt_scene *sc
         if (cli_set_param(sc, &sim, a->sets[i]) != CLI_OK)
             return CLI_USAGE;
     if (a->nsets > 0) /* a refresh re-solves loops from the new values */
-        rt_refresh(sc, &sim);
+        return cli_refresh(sc, &sim);
     return CLI_OK;
 }
 

@@ -102,7 +102,9 @@ int cs_exit_init(cs_slave *s)
     if (s->mode != CS_INIT)
         return why(s, CS_ERROR, "initialization exited outside initialization mode");
     rt_link_apply(s->sc, &s->sim, s->u);
-    rt_refresh(s->sc, &s->sim);
+    /* the start values set in initialization mode are judged as the scene's own */
+    if (rt_refresh(s->sc, &s->sim) != RT_OK)
+        return why(s, CS_ERROR, "the initial state is refused: %s", rt_error_text(&s->sim));
     rt_record(s->sc, &s->sim, NULL); /* the trace's row at t = 0, as modrt run's */
     s->mode = CS_STEP;
     return CS_OK;
