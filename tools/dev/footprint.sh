@@ -22,7 +22,10 @@ MF=build/host-float/modrt
 so=$(make -s print-INSN_COUNT_SO)
 scenes=${FOOT_SCENES:-$($M list | awk '{print $1}')}
 
-commit=$(git describe --always --dirty 2>/dev/null || echo unknown)
+# the commit measured; dirty when a file other than the one being written differs from it
+# (the redirection into docs/footprint.md has already emptied that one)
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+git diff --quiet HEAD -- . ':(exclude)docs/footprint.md' 2>/dev/null || commit="$commit-dirty"
 cat <<HDR
 # Footprint and cost per tick
 
