@@ -71,7 +71,7 @@ typedef enum {
     X(RT_CNT_INVARIANT, "invariant", "step ending with a kind's declared invariant broken (a negative concentration, a conserved sum lost), or further below a guard root (a floor) without a located crossing: the model tunnels; or a multibody set without projection whose constraints drifted past its accuracy") \
     X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
     X(RT_CNT_REDUNDANT, "redundant", "constraint rows found dependent on others and consistent with them: solved with their multipliers zero (counted when a set's rank deficit changes)") \
-    X(RT_CNT_INIT_MOVED, "init_moved", "rt_init moved an initial multibody state onto its constraints or normalized its quaternion (rt_error_text says by how much)") \
+    X(RT_CNT_INIT_MOVED, "init_moved", "rt_init moved an initial multibody state onto its constraints or normalized its quaternion (rt_error_text says by how much), or a parameter set during the run put a multibody set off its constraints past RT_INIT_TOL (its next projection moves it back at once)") \
     X(RT_CNT_OVERRUN, "overrun", "tick finished after its deadline")             \
     X(RT_CNT_EVENTS, "events", "state events handled")
 
@@ -901,7 +901,10 @@ int rt_param_index(const rt_kind *kind, const char *name);
 /* Sets parameter `name` of block `block` before or between ticks; RT_E_ARG if unknown. A
    set stepping over several ticks, whose state is ahead of the tick, takes it from its
    next step on, where its state is (a kind that takes values at instants, rt_kind.instant:
-   at that instant). */
+   at that instant). Before the first tick an initial state can be set by name too, and
+   rt_refresh then judges the start again. During the run, a multibody parameter that puts
+   its set off its constraints past RT_INIT_TOL (a joint point moved) is counted
+   (init_moved, the block, rt_error_text): the next projection moves the bodies back. */
 rt_status rt_set_param(const rt_scene *scene, rt_sim *sim, const char *block,
                        const char *name, real_t value);
 

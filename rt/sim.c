@@ -187,6 +187,29 @@ static void mbs_changed(const rt_kind *k, rt_sim *sim)
         sim->state.mbs_restart = 1;
 }
 
+/* the largest constraint residual of block b's multibody set now (0: none) */
+static real_t mbs_residual(const rt_scene *sc, const rt_sim *sim, uint16_t b)
+{
+    return sc->mbs && sc->blocks[b].kind->type == RT_KIND_MBS
+               ? sc->mbs->signal(sc, sim, b, RT_MBS_SIG_RESIDUAL)
+               : 0;
+}
+
+/* during the run, a parameter that moved a node (a body's joint point) puts its set off
+   its constraints: the next projection moves the bodies back at once, a jump no step
+   made. Past RT_INIT_TOL (and past the residual before) it is counted, with the block,
+   and named, as a start that far off is */
+static void mbs_moved(const rt_scene *sc, rt_sim *sim, uint16_t b, real_t before)
+{
+    real_t after = mbs_residual(sc, sim, b);
+    if (!(after > (real_t)RT_INIT_TOL && after > before))
+        return;
+    char t1[RTI_REAL_TEXT];
+    rti_count(sim, RT_CNT_INIT_MOVED, (int)b, RT_OK);
+    rti_note(sim, "a parameter of ", sc->blocks[b].name, " put its set ", rti_real_text(t1, after),
+             " m off its constraints: moved back at the next projection", (const char *)0);
+}
+
 rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const char *name,
                        real_t value)
 {
@@ -197,7 +220,7 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
     int i = rt_param_index(k, name);
     if (i >= 0) {
         real_t *p = sim->state.p + sim->plan.p_off[b];
-        real_t old = p[i];
+        real_t old = p[i], before = sim->state.tick > 0 ? mbs_residual(sc, sim, (uint16_t)b) : 0;
         p[i] = value;
         /* a known time event must stay on the grid, in few enough parts (rt/tev.c) */
         if ((k->check && k->check(p, k->spec) != RT_OK) ||
@@ -209,6 +232,8 @@ rt_status rt_set_param(const rt_scene *sc, rt_sim *sim, const char *block, const
         if (value != old) /* and the set's Jacobian formed at its next step */
             sim->state.param_changed[sc->blocks[b].set] = 1;
         mbs_changed(k, sim);
+        if (sim->state.tick > 0 && value != old)
+            mbs_moved(sc, sim, (uint16_t)b, before);
         return RT_OK;
     }
     /* before the first tick, initial states can be set by name too */

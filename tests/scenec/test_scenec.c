@@ -149,6 +149,38 @@ static void test_dss_runs(void)
     scn_free(c);
 }
 
+/* a body's joint point moved by rt_set_param during the run: the next projection moves
+   the body 0.5 m at once, counted (init_moved) with the block and named; a mass change
+   moves no node and counts nothing. Before the first tick the same move is refused
+   (rt_refresh). */
+static void test_mbs_param_moves(void)
+{
+    scn_ctx *c = compile("base tick (1 ms); end time (1 s);\n"
+                         "load system (B) of type (mbs_body);\n"
+                         "B.m = 2; B.Jxx = 0.2; B.Jyy = 0.3; B.Jzz = 0.4; B.x = 0.5; B.n1x = -0.5;\n"
+                         "load joint (H) of type (revolute); H.axis = (0, 1, 0);\n"
+                         "link(B.n1, ground) by (H);\n"
+                         "set (mbs) method (rk4) step (10 ticks); stabilization (project);\n");
+    TH_CHECK(!c->err);
+    if (!c->err) {
+        rt_sim *sim = c->sim;
+        const rt_scene *sc = &c->image;
+        TH_CHECK(rt_init(sc, sim) == RT_OK);
+        TH_CHECK(rt_set_param(sc, sim, "B", "n1x", 0) == RT_OK);
+        TH_CHECK(rt_refresh(sc, sim) == RT_E_INCONSISTENT);
+        TH_CHECK(rt_init(sc, sim) == RT_OK && rt_refresh(sc, sim) == RT_OK);
+        for (int i = 0; i < 50; i++)
+            rt_tick(sc, sim);
+        TH_CHECK(rt_stats_of(sim)->count[RT_CNT_INIT_MOVED] == 0);
+        TH_CHECK(rt_set_param(sc, sim, "B", "m", 3) == RT_OK);
+        TH_CHECK(rt_stats_of(sim)->count[RT_CNT_INIT_MOVED] == 0);
+        TH_CHECK(rt_set_param(sc, sim, "B", "n1x", 0) == RT_OK);
+        TH_CHECK(rt_stats_of(sim)->count[RT_CNT_INIT_MOVED] == 1);
+        TH_CHECK(th_has(rt_error_text(sim), "a parameter of B put its set"));
+    }
+    scn_free(c);
+}
+
 /* times round once: 10 ms is the double 0.01; steps in seconds become tick ratios */
 static void test_times_and_sets(void)
 {
@@ -313,6 +345,7 @@ static const th_test tests[] = {
     {"scenec_names_functions", test_names_and_functions},
     {"scenec_define_kinds", test_define_kinds},
     {"scenec_dss_runs", test_dss_runs},
+    {"scenec_mbs_param_moves", test_mbs_param_moves},
     {"scenec_times_sets", test_times_and_sets},
     {"scenec_sandbox_include", test_sandbox_include},
     {"scenec_emit_names", test_emit_names},
