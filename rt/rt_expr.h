@@ -9,12 +9,11 @@
  * wrong with status ok. Here a NaN operand makes a comparison NaN, a NaN condition makes
  * not, and, or and if NaN, and min and max of a NaN are NaN: the NaN reaches the state or
  * output, where the step's finite check counts it. Finite operands (infinities included)
- * give what C gives: 1 or 0, the selected branch, the smaller or larger value.
- * Also the next of the instants a defined system compares `t` with (rt_x_next). */
+ * give what C gives: 1 or 0, the selected branch, the smaller or larger value. */
 #ifndef RT_EXPR_H
 #define RT_EXPR_H
 
-#include "rt.h"
+#include "rt_math.h"
 
 /* NaN if a or b is (a's own NaN first), else the truth value c as 1 or 0 */
 static inline real_t rt_x_truth(real_t a, real_t b, int c)
@@ -45,17 +44,6 @@ static inline real_t rt_x_min(real_t a, real_t b)
 static inline real_t rt_x_max(real_t a, real_t b)
 {
     return a != a ? a : b != b ? b : rt_fmax(a, b);
-}
-
-/* the first of the n instants v strictly after t, RT_TEV_NEVER if none (a NaN is no
-   instant): a defined system's rt_kind.next_event, over the expressions it compares `t`
-   with (`t < t1`: tools/scenec makes each a known time event) */
-static inline real_t rt_x_next(real_t t, const real_t *v, unsigned n)
-{
-    real_t best = RT_TEV_NEVER;
-    for (unsigned i = 0; i < n; i++)
-        best = v[i] > t && v[i] < best ? v[i] : best;
-    return best;
 }
 
 #endif /* RT_EXPR_H */

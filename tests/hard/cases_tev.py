@@ -8,9 +8,7 @@ before, so a scene driven by steps keeps every method's order.
     steps is at least its order less 0.2;
   * a DC motor whose load torque steps at 0.3 s (dcmotor_load.scn): up to and at the
     instant the run is the one without the step, to rounding; after it the speed settles
-    at the closed-form (k v - R TL) / (k^2 + R b);
-  * a switch on t in a defined system's derivative (tev_tswitch.scn): its integral exact
-    for every method."""
+    at the closed-form (k v - R TL) / (k^2 + R b)."""
 import math
 import os
 import subprocess
@@ -91,21 +89,6 @@ def dcmotor(s):
             "settled %.12g" % (rows[-1][1], w_end))
 
 
-def tswitch(s):
-    """tev_tswitch.scn: a switch on t in a defined system's derivative, inside a step: a
-    known time event, so s(1) = 0.51 for every method at 0.1 and 0.05 s (before, 0.50
-    with status ok under sdirk3 and sdirk2, whose stages all lie past the switch)"""
-    for m in ORDER:
-        for h in ("0.1", "0.05"):
-            rc, summ, rows = run(s.modrt, "tev_tswitch.scn", ["--method", "main=" + m,
-                                                              "--step", "main=" + h])
-            err = abs(rows[-1][1] - 0.51) if rows else math.inf
-            s.row("a switch on t inside a step: s(1)", m, h, err, summ, rc)
-            s.check(rc == 0 and err <= 1e-13, "tev_tswitch %s h=%s: status %s, s(1) off by "
-                    "%.3g" % (m, h, summ.get("status"), err))
-
-
 def extra(s, long):
     beltgear(s)
     dcmotor(s)
-    tswitch(s)

@@ -91,10 +91,6 @@ static const rt_kind *define_services(scn_ctx *c, const scn_define *d, const rea
     kd->output = d->ny ? scn_vm_output : NULL;
     kd->deriv = d->type == SCN_DEF_SS && d->nx ? scn_vm_deriv : NULL;
     kd->update = d->type == SCN_DEF_DSS ? scn_vm_update : NULL;
-    if (d->ntev) { /* the instants its body compares t with: known time events */
-        vs->tev = program(c, d, SCN_ST_TEV, k), vs->ntev = d->ntev;
-        kd->next_event = scn_vm_next;
-    }
     events(c, d, k, vs, kd);
     return kd;
 }

@@ -33,7 +33,6 @@ static real_t operand(const scn_prog *p, const scn_ins *in, const rt_args *a,
     switch (in->op) {
     case SCN_OP_CONST: return p->k[in->a];
     case SCN_OP_TIME: return a->t;
-    case SCN_OP_TPIECE: return a->t_piece;
     case SCN_OP_STEP: return a->h;
     case SCN_OP_IN: return a->u[in->a];
     case SCN_OP_PAR: return a->p[in->a];
@@ -101,14 +100,6 @@ void scn_vm_deriv(const rt_args *a, real_t *xdot)
 void scn_vm_update(const rt_args *a, real_t *dnext)
 {
     run(&((const scn_vm_spec *)a->spec)->upd, a, dnext);
-}
-
-real_t scn_vm_next(const rt_args *a)
-{
-    const scn_vm_spec *vs = a->spec;
-    real_t v[SCN_MAX_TEV];
-    run(&vs->tev, a, v);
-    return rt_x_next(a->t, v, vs->ntev);
 }
 
 void scn_vm_roots(const rt_args *a, real_t *r)
