@@ -380,18 +380,16 @@ void rti_held_renew(const rt_scene *sc, rt_sim *sim, uint32_t recall)
 
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
-    /* before the first tick the initial state is judged again as rt_init judged it */
-    if (sim->state.tick == 0) {
+    /* before the first tick the initial state is judged again as rt_init judged it, and
+       the loops learn their signals' scales afresh (rt/loop.c): the parameters they were
+       solved with at init may have changed */
+    if (sim->state.tick == 0) { /* (start_past marks the sets with roots afresh) */
         rt_status st = rti_check_starts(sc, sim);
         if (st == RT_OK && sim->state.mbs_restart && sc->mbs)
             st = (rt_status)sc->mbs->restart(sc, sim);
         if (st != RT_OK) /* refused again by another call: never run from it */
             return st;
         sim->state.mbs_restart = 0;
-    }
-    /* before the first tick the loops learn their signals' scales afresh (rt/loop.c): the
-       parameters they were solved with at init may have changed */
-    if (sim->state.tick == 0) { /* (start_past marks the sets with roots afresh) */
         rti_zero(sim->state.torn_range, sizeof sim->state.torn_range);
         rti_zero(sim->state.hist_ev, sizeof sim->state.hist_ev);
     }

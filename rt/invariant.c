@@ -1,8 +1,8 @@
 /* invariant.c - the invariants a kind declares of its continuous state (rt_kind.inv:
  * nonnegative states, a conserved sum, a bounded norm), checked after every step of the
  * block's set, and the rules its initial state must keep (rt_kind.check_start), checked
- * at rt_init and again by rt_refresh before the first tick. A stiff solver can return y1 = -4.36 for a concentration with a small
- * error estimate; the kind knows better, and a broken invariant fails the run
+ * at rt_init and again by rt_refresh before the first tick. A stiff solver can return
+ * y1 = -4.36 for a concentration with a small error estimate; the kind knows better, and a broken invariant fails the run
  * (RT_CNT_INVARIANT with the block, RT_E_INVARIANT) instead of letting it pass as
  * doubtful. The check reads the state and changes nothing: a trace is the same with or
  * without declared invariants. */

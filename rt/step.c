@@ -386,9 +386,9 @@ static void probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t t
    probe sends it, so that leaving zero again in the rest of the step is seen (a crest
    above a level inside one step: up at te, down before the step ends); not at the
    step's end (rest 0), where the tick takes the root's value afresh and a hair left
-   there would read as a jump across the level (rt/held.c keep_jumped: fired again). Returns the
-   probe's length if such a root was sent back and the probe finds it back on its side,
-   so that the next integration ends there and its return is located, else 0 */
+   there would read as a jump across the level (rt/held.c keep_jumped: fired again).
+   Returns the probe's length if such a root was sent back and the probe finds it back on
+   its side, so that the next integration ends there and its return is located, else 0 */
 static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real_t h,
                      real_t t_max, const rootset *rs, const int8_t *fired, real_t *r,
                      int jumped, int rest)
@@ -432,9 +432,9 @@ static real_t settle(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, real
                 rs->side[m] = 0, rs->lvl[m] = 0;
         }
     }
-    for (m = 0; rest && m < (uint16_t)(sim->plan.set_r[s + 1] - sim->plan.set_r[s]); m++)
-        if (r[m] == 0 && rs->side[m] == 0 && rp[m] != 0 && rp[m] == rp[m])
-            r[m] = rp[m] > 0 ? RTI_ROOT_HAIR : -RTI_ROOT_HAIR;
+    for (uint16_t i = 0; rest && i < m; i++) /* (m: the set's roots, counted above) */
+        if (r[i] == 0 && rs->side[i] == 0 && rp[i] != 0 && rp[i] == rp[i])
+            r[i] = rp[i] > 0 ? RTI_ROOT_HAIR : -RTI_ROOT_HAIR;
     return cap;
 }
 

@@ -524,6 +524,15 @@ static carried longer(carried a, carried b)
     return b.at != -2 && (a.at == -2 || b.h > a.h) ? b : a;
 }
 
+/* block r's own sampling of the signal and the longest its inputs read */
+static carried reads(const rt_scene *sc, const rt_sim *sim, uint16_t r, const carried *via)
+{
+    carried c = via[r];
+    for (uint16_t i = sim->plan.u_off[r]; i < sim->plan.u_off[r + 1]; i++)
+        c = longer(c, input_carried(sc, sim, i, via));
+    return c;
+}
+
 /* the fixed point of the carriers from b (each pass can only lengthen a sampling, so it
    ends after at most one pass per block) */
 static void carriers(const rt_scene *sc, const rt_sim *sim, uint16_t b, carried *via)
@@ -536,9 +545,7 @@ static void carriers(const rt_scene *sc, const rt_sim *sim, uint16_t b, carried 
             const rt_kind *k = sc->blocks[r].kind;
             if (r == b || k->feed == RT_FEED_NONE || k->type == RT_KIND_DSS)
                 continue;
-            carried c = via[r];
-            for (uint16_t i = sim->plan.u_off[r]; i < sim->plan.u_off[r + 1]; i++)
-                c = longer(c, input_carried(sc, sim, i, via));
+            carried c = reads(sc, sim, r, via);
             if (c.at != via[r].at || c.h != via[r].h)
                 via[r] = c, grew = 1;
         }
@@ -564,9 +571,7 @@ static rt_status check_band(const rt_scene *sc, rt_sim *sim, uint16_t b)
         const rt_kind *k = sc->blocks[r].kind;
         if (k->nx == 0 || k->type == RT_KIND_DSS)
             continue;
-        carried c = via[r];
-        for (uint16_t i = sim->plan.u_off[r]; i < sim->plan.u_off[r + 1]; i++)
-            c = longer(c, input_carried(sc, sim, i, via));
+        carried c = reads(sc, sim, r, via);
         if (c.at == -2)
             continue;
         c = longer(c, (carried){sim->plan.set_h[sc->blocks[r].set], sc->blocks[r].set});

@@ -28,6 +28,14 @@ enum {
     ROW_GAM = 4 /* the curvature term: a right-hand side's */
 };
 
+/* the comment over an assembly's rows: what it writes of them */
+static void rows_comment(FILE *f, const char *what, int jac, int rows)
+{
+    fprintf(f, "    /* the joints' rows:%s%s%s%s (%s) */\n", rows & ROW_G ? " g" : "",
+            rows & ROW_GD ? " g'" : "", jac && (rows & ROW_GAM) ? " gam" : "", jac ? " W" : "",
+            what);
+}
+
 /* the rows a right-hand side reads: gam, and g and g' under Baumgarte (lambda_accel) */
 static int accel_rows(const rt_scene *sc)
 {
@@ -440,8 +448,7 @@ static void assemble(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, 
     const rt_mbs_work *w = &sim->work.mbs;
     if (what & RTI_MBS_FORCE)
         forces(f, sc, sim, s, what);
-    fprintf(f, "    /* the joints' rows: %s (point_rows) */\n",
-            what & RTI_MBS_JAC ? "g, g', gam and W" : "g");
+    rows_comment(f, "point_rows", what & RTI_MBS_JAC, rows);
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++)
         point_joint(f, sc, sim, w->sjnt[k], what, rows);
 }
@@ -486,8 +493,7 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
     const rt_mbs_work *w = &sim->work.mbs;
     int jac = what & RTI_MBS_JAC;
     forces(f, sc, sim, s, what);
-    fprintf(f, "    /* the joints' rows: %s (assemble_joint) */\n",
-            jac ? "g, g', gam and W" : "g, g'");
+    rows_comment(f, "assemble_joint", jac, rows);
     for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
         uint16_t ji = w->sjnt[k];
         const rt_joint *j = &sc->joints[ji];
