@@ -57,7 +57,7 @@ static void call_output(const rt_scene *sc, rt_sim *sim, uint16_t b, rti_at at, 
         rti_gather(sim, b, at.t);
     rti_args(sc, sim, b, at.t, h, &a);
     if (k->next_event) /* a switch in time: which side of it (rt/tev.c) */
-        a.t_piece = rti_piece(sc, sim, at.t);
+        a.t_piece = rti_piece(sc, sim, k, at.t);
     (lean ? k->output_lean : k->output)(&a, sim->state.y + sim->plan.y_off[b]);
 #if RT_FAULT_INJECT
     if (rti_fault_due(RTI_FAULT_NAN) && rti_fault_plan.block == (int16_t)b && k->ny > 0)
@@ -318,7 +318,7 @@ void rti_roots(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t *r)
         rti_gather(sim, b, t);
         rti_args(sc, sim, b, t, 0, &a);
         if (k->next_event)
-            a.t_piece = rti_piece(sc, sim, t);
+            a.t_piece = rti_piece(sc, sim, k, t);
         k->roots(&a, r + n);
         n = (uint16_t)(n + k->nr);
     }
@@ -348,7 +348,7 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
         rti_gather(sim, b, t);
         rti_args(sc, sim, b, t, c->h, &a);
         if (k->next_event)
-            a.t_piece = rti_piece(sc, sim, t);
+            a.t_piece = rti_piece(sc, sim, k, t);
         k->deriv(&a, xdot + (sim->plan.x_off[b] - base));
     }
     /* multibody blocks of the set are solved together (eqs. 6, 7b, 9) */
@@ -357,10 +357,11 @@ rt_status rti_rhs(void *ctx, real_t t, real_t *xdot)
     return RT_OK;
 }
 
-/* set s's earliest pending instant known only at run time (rt_kind.time_event: an FMU's
-   nextEventTime), read from its kinds' own state; here, below rt/step.c and rt/tev.c,
-   since both ask it (the parts of a step, an event that moves an instant) */
-real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s)
+/* set s's earliest instant after t known only at run time (rt_kind.time_event: an FMU's
+   nextEventTime, read from its own state; a defined system's comparison of t with a
+   parameter); here, below rt/step.c and rt/tev.c, since both ask it (the parts of a
+   step, an event that moves an instant) */
+real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
     real_t tn = RT_TEV_NEVER;
     for (uint16_t k = sim->plan.blk_of[s]; k < sim->plan.blk_of[s + 1]; k++) {
@@ -368,7 +369,7 @@ real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s)
         if (!sc->blocks[b].kind->time_event)
             continue;
         rt_args a;
-        rti_args(sc, sim, b, 0, 0, &a);
+        rti_args(sc, sim, b, t, 0, &a);
         real_t te = sc->blocks[b].kind->next_event(&a);
         tn = te < tn ? te : tn; /* (a NaN is no instant) */
     }

@@ -127,16 +127,28 @@ typedef struct rt_args {
     const void *spec;  /* the kind's type-specific const data (rt_kind.spec) */
     /* a time strictly between the known time events (rt_kind.next_event) on either side
        of this evaluation [s]: the midpoint of the step part being integrated, or half a
-       base tick after t at a tick. A kind whose outputs switch at its instants picks its
-       piece by t_piece, never by t: the step ending at an instant then sees the left
-       limit at its end (t == the instant), the step starting there the right limit, and
-       rounding of t near an instant cannot pick the wrong side (rt/tev.c). Given to the
-       output, derivative and roots of a kind with rt_kind.next_event; t elsewhere */
+       base tick after t at a tick (t itself for a kind with time_event, whose next
+       instant may lie closer: t_piece == t says "at t itself", rt_x_at). A kind whose
+       outputs switch at its instants picks its piece by t_piece, never by t: the step
+       ending at an instant then sees the left limit at its end (t == the instant), the
+       step starting there the right limit, and rounding of t near an instant cannot pick
+       the wrong side (rt/tev.c). Given to the output, derivative and roots of a kind
+       with rt_kind.next_event; t elsewhere */
     real_t t_piece;
 } rt_args;
 
 /* what rt_kind.next_event returns when no known time event follows */
 #define RT_TEV_NEVER ((real_t)1e30)
+
+/* do times a and b [s] name one instant: equal to the rounding a time on the base tick
+   grid carries (RT_TICK_SLACK relative; 3 * 0.1 is the instant 0.3). A defined system's
+   next instant is never such a neighbour of t (rt_x_next), and a step part never ends
+   that close before its step's end (rt/tev.c) */
+static inline int rt_same_instant(real_t a, real_t b)
+{
+    real_t m = rt_fabs(a) > rt_fabs(b) ? rt_fabs(a) : rt_fabs(b);
+    return rt_fabs(a - b) <= (real_t)RT_TICK_SLACK * m;
+}
 
 /* What a kind knows of its continuous state and declares (rt_kind.inv), checked after
  * every step of its set (rt/invariant.c); a violation beyond the tolerance is counted
@@ -261,13 +273,15 @@ typedef struct rt_kind {
     /* Services of a kind that is a state machine of its own (an FMU, tools/fmi/); NULL or
        0 in the library's kinds. */
     /* Time events known only at run time: with this slot, next_event returns the block's
-       pending instant as its own state holds it now (an FMU's nextEventTime, set by its
-       last event; it may read nothing of a), RT_TEV_NEVER if none. Such instants may lie
-       off the base tick grid and are not walked at rt_init: every step of the block's set
-       ends a part exactly at the next one (rt/tev.c), and this handler runs there with the
-       state at the instant; it may change x and d in place. More instants in one step than
-       RT_TEV_PARTS_MAX parts are counted (tev_limit, RT_E_TEV) and handled at the step's
-       end, never merged silently. */
+       first instant after a->t as its own state holds it now (an FMU's nextEventTime,
+       set by its last event: it may read nothing of a) or as its parameters give it (a
+       defined system's comparison of t with one: no service due, the handler does
+       nothing), RT_TEV_NEVER if none. Such instants may lie off the base tick grid and
+       are not walked at rt_init: every step of the block's set ends a part exactly at the
+       next one (rt/tev.c), and this handler runs there with the state at the instant; it
+       may change x and d in place. More instants in one step than RT_TEV_PARTS_MAX parts
+       are counted (tev_limit, RT_E_TEV) and handled at the step's end, never merged
+       silently. */
     void (*time_event)(const rt_args *a, real_t *x, real_t *d);
     /* Called once at the end of each completed integration of the block's set (each step,
        or each part of a step split at time events, rt/tev.c), with the state there, before

@@ -9,11 +9,15 @@
  * wrong with status ok. Here a NaN operand makes a comparison NaN, a NaN condition makes
  * not, and, or and if NaN, and min and max of a NaN are NaN: the NaN reaches the state or
  * output, where the step's finite check counts it. Finite operands (infinities included)
- * give what C gives: 1 or 0, the selected branch, the smaller or larger value. */
+ * give what C gives: 1 or 0, the selected branch, the smaller or larger value.
+ *
+ * Also a defined system's comparisons of `t` with a parameter, which tools/scenec makes
+ * time events known at run time (rt_kind.time_event): rt_x_next gives the next instant,
+ * rt_x_at the time the comparison reads. */
 #ifndef RT_EXPR_H
 #define RT_EXPR_H
 
-#include "rt_math.h"
+#include "rt.h"
 
 /* NaN if a or b is (a's own NaN first), else the truth value c as 1 or 0 */
 static inline real_t rt_x_truth(real_t a, real_t b, int c)
@@ -44,6 +48,37 @@ static inline real_t rt_x_min(real_t a, real_t b)
 static inline real_t rt_x_max(real_t a, real_t b)
 {
     return a != a ? a : b != b ? b : rt_fmax(a, b);
+}
+
+/* the first of the n instants v after t, RT_TEV_NEVER if none: a defined system's
+   rt_kind.next_event over the values it compares `t` with. An instant t names to rounding
+   (rt_same_instant) is t's, not a next one: a tick of 3 * 0.1 s has passed 0.3 s, and no
+   step part of one rounding's length follows it. A NaN is no instant */
+static inline real_t rt_x_next(real_t t, const real_t *v, unsigned n)
+{
+    real_t best = RT_TEV_NEVER;
+    for (unsigned i = 0; i < n; i++)
+        best = v[i] > t && v[i] < best && !rt_same_instant(v[i], t) ? v[i] : best;
+    return best;
+}
+
+/* the time a comparison of `t` with the instant c reads, t_piece tp given: inside a step
+   part (tp != t) the part's midpoint, whose side of c is the whole part's, as a step
+   source's (the part ending at c sees the left limit at its end, rt/tev.c); at t itself
+   (a tick) t, or c where t is c to rounding: t <= c then holds at the instant, t < c
+   not, as the operators say */
+static inline real_t rt_x_at(real_t t, real_t tp, real_t c)
+{
+    if (tp != t)
+        return tp;
+    return rt_same_instant(t, c) ? c : t;
+}
+
+/* a defined system's rt_kind.time_event at such an instant: the switch lies in the
+   comparisons (rt_x_at), no state changes there */
+static inline void rt_x_switched(const rt_args *a, real_t *x, real_t *d)
+{
+    (void)a, (void)x, (void)d;
 }
 
 #endif /* RT_EXPR_H */

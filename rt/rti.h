@@ -139,11 +139,14 @@ static inline void rti_args(const rt_scene *sc, const rt_sim *sim, uint16_t b, r
     a->spec = sc->blocks[b].kind->spec;
     a->t_piece = t; /* a kind with known time events gets its piece: rti_piece */
 }
-/* the time of the piece between known time events an evaluation at t lies in
-   (rt_args.t_piece): the midpoint of the step part being integrated (rt/tev.c), else half
-   a base tick after t. Set where a kind with rt_kind.next_event is called (its output,
-   derivative and roots, rt/eval.c): the others never read it */
-static inline real_t rti_piece(const rt_scene *sc, const rt_sim *sim, real_t t)
+/* the time of the piece between known time events an evaluation of kind k at t lies in
+   (rt_args.t_piece): the midpoint of the step part being integrated (rt/tev.c); else, at
+   a tick, half a base tick after t, or t itself for a kind whose instants may lie off the
+   grid (rt_kind.time_event: one may lie within half a tick after t). Set where a kind
+   with rt_kind.next_event is called (its output, derivative and roots, rt/eval.c): the
+   others never read it */
+static inline real_t rti_piece(const rt_scene *sc, const rt_sim *sim, const rt_kind *k,
+                               real_t t)
 {
 #if RT_MAX_TEV > 0
     if (sim->work.t_piece > 0)
@@ -151,7 +154,7 @@ static inline real_t rti_piece(const rt_scene *sc, const rt_sim *sim, real_t t)
 #else
     (void)sim; /* no set has known time events: never inside a part */
 #endif
-    return t + (real_t)0.5 * sc->dt;
+    return k->time_event ? t : t + (real_t)0.5 * sc->dt;
 }
 /* Gathers the inputs of block b at time t from the outputs that feed them (y = P u; an
    input from another set is reconstructed at t). */
@@ -296,9 +299,9 @@ typedef struct rti_rhs_ctx {
     real_t h;
 } rti_rhs_ctx;
 
-/* the earliest pending time event known at run time (rt_kind.time_event) of set s [s],
+/* the earliest time event after t known at run time (rt_kind.time_event) of set s [s],
    RT_TEV_NEVER if none (eval.c) */
-real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s);
+real_t rti_tev_dyn_next(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t);
 
 /* ---- multirate (xset.c) ---- */
 /* Marks inputs fed by another set, chooses their schemes, orders the schedule. */

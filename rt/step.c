@@ -479,11 +479,11 @@ static int nan_root_block(const rt_scene *sc, const rt_sim *sim, uint8_t s, cons
 
 /* the latest time the probe after an event may reach: the set's next time event known at
    run time (rt/tev.c), if it has them; else no limit */
-static real_t probe_limit(const rt_scene *sc, rt_sim *sim, uint8_t s)
+static real_t probe_limit(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
 {
     if (!(sim->plan.set_flags[s] & RTI_SET_TEV_DYN))
         return (real_t)RT_TEV_NEVER;
-    return rti_tev_dyn_next(sc, sim, s);
+    return rti_tev_dyn_next(sc, sim, s, t);
 }
 
 /* what the inputs a set reads from other sets may do to its event at te (the state
@@ -570,7 +570,7 @@ static real_t unsure_by(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, r
     if (!(late > 0) && !(sim->plan.set_flags[s] & RTI_SET_XPRED))
         return 0;
     real_t ra[RT_MAX_ROOTS], rp[RT_MAX_ROOTS], tau = h * RT_EVENT_PROBE;
-    real_t t_max = probe_limit(sc, sim, s);
+    real_t t_max = probe_limit(sc, sim, s, te);
     tau = te + tau > t_max ? t_max - te : tau;
     for (uint16_t i = 0; i < n; i++)
         sim->state.x[x0 + i] = sim->work.xb[i];
@@ -780,13 +780,13 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
         t0 = te;
         rti_outputs(sc, sim, (rti_at){t0, s, RTI_IN_STEP});
         rti_roots(sc, sim, s, t0, r);
-        cap = settle(sc, sim, s, t0, h, probe_limit(sc, sim, s), &rs, fired, r, sub == 0,
+        cap = settle(sc, sim, s, t0, h, probe_limit(sc, sim, s, t0), &rs, fired, r, sub == 0,
                      span > 0);
         cap = ev + 1 < RT_EVENTS_PER_STEP_MAX ? cap : 0; /* past the bound: to the end */
         if (!(span > 0))
             return t + h; /* an event at the step's end: r holds the roots after them */
         if (may_stop && (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) &&
-            rti_tev_dyn_next(sc, sim, s) < t0 + span)
+            rti_tev_dyn_next(sc, sim, s, t0) < t0 + span)
             return t0; /* r holds the roots after its handlers */
     }
     for (uint16_t i = 0; i < nr; i++)

@@ -19,14 +19,16 @@
  * then converges at first order whatever its own.)
  *
  * An instant known only at run time (the kind's next_event reads its own state, set by
- * its last event) cannot be walked at init and may lie anywhere: each step of its set is
- * integrated part by part, each part ending exactly at the earliest of the step's end, the
- * next instant of the set's other kinds (a tick) and the next run-time instant, so no
- * stage of a part evaluates a kind past its instant; at a part's end the kinds' step_end
- * run, then the time_event of every instant due there. An event inside a part that moves
- * an instant into the rest of the part ends the part there (rt/step.c). The parts stay at
- * most RT_TEV_PARTS_MAX: an instant the last part passes is handled at the step's end and
- * counted (tev_limit, RT_E_TEV), never merged silently.
+ * its last event, or parameters rt_set_param may change: a defined system's comparison
+ * of t with one, tools/scenec) cannot be walked at init and may lie anywhere: each step
+ * of its set is integrated part by part, each part ending exactly at the earliest of the
+ * step's end, the next instant of the set's other kinds (a tick) and the next run-time
+ * instant (one within rounding before the step's end is the end: no sliver of a part),
+ * so no stage of a part evaluates a kind past its instant; at a part's end the kinds'
+ * step_end run, then the time_event of every instant due there. An event inside a part
+ * that moves an instant into the rest of the part ends the part there (rt/step.c). The
+ * parts stay at most RT_TEV_PARTS_MAX: an instant the last part passes is handled at the
+ * step's end and counted (tev_limit, RT_E_TEV), never merged silently.
  *
  * Values a kind takes only at instants (rt_kind.instant: an FMU's discrete inputs and
  * tunable parameters, which FMI lets change in event mode alone): the start and the end
@@ -94,6 +96,21 @@ static instant next_after(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k
     return in;
 }
 
+/* block b of set s switched strictly inside the set's step: another set reads its
+   outputs only through its history, whose points are the step's ends, so a switch there
+   (a pulse shorter than the step) is seen late, or not at all. Counted (errest:
+   doubtful) if another set reads an output of b: its set's step is too long for the
+   edges its readers take */
+static void switched_inside(rt_sim *sim, uint8_t s, uint16_t b)
+{
+    for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1]; v++)
+        if (v < sim->plan.set_xout[s] && sim->plan.xsrc[v]) {
+            rti_count(sim, RT_CNT_ERREST, b, RT_E_ACCURACY);
+            sim->stats.errest[s]++;
+            return;
+        }
+}
+
 #if RT_MAX_TEV > 0
 /* set s's first instant after base tick k, from state.tev_next while it lies after k
    (none can lie between the tick it was found from and it), else found anew */
@@ -105,23 +122,12 @@ static uint64_t next_tick(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k
     return *next;
 }
 
-/* an instant of set s at base tick k strictly inside its step: another set reads its
-   outputs only through its history, whose points are the step's ends, so a switch there
-   (a pulse shorter than the step) is seen late, or not at all. The block switching there
-   whose outputs another set reads is counted (errest: doubtful), its set's step too long
-   for the edges its readers take */
+/* an instant of set s at base tick k strictly inside its step (switched_inside) */
 static void inside_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k)
 {
     instant in = set_next(sc, sim, s, (rti_tick_real(k) - (real_t)0.5) * sc->dt);
-    if (in.tick != k)
-        return;
-    uint16_t b = in.block;
-    for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1]; v++)
-        if (v < sim->plan.set_xout[s] && sim->plan.xsrc[v]) {
-            rti_count(sim, RT_CNT_ERREST, b, RT_E_ACCURACY);
-            sim->stats.errest[s]++;
-            return;
-        }
+    if (in.tick == k)
+        switched_inside(sim, s, in.block);
 }
 
 /* set s's step from tick k to ke (one part), its evaluations on their side of the
@@ -158,7 +164,7 @@ static void serve(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t
     keep_x(sim, s);
     rti_gather(sim, b, t);
     rti_args(sc, sim, b, t, 0, &a);
-    a.t_piece = rti_piece(sc, sim, t);
+    a.t_piece = rti_piece(sc, sim, k, t);
     int ran = 1;
     if (what == SERVE_STEP_END)
         ran = k->step_end(&a, x, d);
@@ -189,11 +195,13 @@ static void serve_instants(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t,
     }
 }
 
-/* at the end t of a part of set s: each kind's step_end, then the time event of each
-   block whose run-time instant is due (at or before t: before it only past the bound of
-   parts, counted), then the values each kind takes at instants; then the set's roots
+/* at the end t of a part of set s begun at t0 (inside: strictly inside the set's step):
+   each kind's step_end, then the time event of each block whose first run-time instant
+   after t0 is due (at or before t: before it, by more than rounding, only past the bound
+   of parts, counted), then the values each kind takes at instants; then the set's roots
    from the state after them */
-static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
+static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t0, real_t t,
+                     int inside)
 {
     uint16_t flags = sim->plan.set_flags[s];
     int changed = 0;
@@ -207,11 +215,13 @@ static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
         uint16_t b = sim->plan.set_blk[k];
         if (!sc->blocks[b].kind->time_event)
             continue;
-        real_t te = block_next(sc, sim, b, t);
+        real_t te = block_next(sc, sim, b, t0);
         if (!(te <= t))
             continue;
-        if (te < t) /* passed by the last part the bound allows */
+        if (te < t && !rt_same_instant(te, t)) /* passed by the last part the bound allows */
             rti_count(sim, RT_CNT_TEV_LIMIT, b, RT_E_TEV);
+        if (inside)
+            switched_inside(sim, s, b);
         serve(sc, sim, s, b, t, SERVE_TIME_EVENT, &changed);
     }
     if (flags & RTI_SET_INSTANT)
@@ -290,12 +300,14 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
 #endif
             rti_tev_instant(sc, sim, s, t); /* before the instants: an event may move them */
         }
-        real_t td = (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) ? rti_tev_dyn_next(sc, sim, s)
+        real_t td = (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) ? rti_tev_dyn_next(sc, sim, s, t)
                                                                 : (real_t)RT_TEV_NEVER;
         uint16_t bi = 0;
         real_t ti = (sim->plan.set_flags[s] & RTI_SET_INSTANT)
                         ? input_next(sc, sim, s, t, t_end, &bi) : (real_t)RT_TEV_NEVER;
         td = ti < td ? ti : td;
+        if (td < tb && rt_same_instant(td, tb))
+            td = tb; /* the instant is the part's end to rounding: no sliver of a part */
         int last = n >= RT_TEV_PARTS_MAX;
         if (td < tb)
             tb = td, kb = NEVER;
@@ -317,7 +329,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
             if (reached >= t + h)
                 reached = tb; /* the part's end, exactly */
         }
-        part_end(sc, sim, s, reached);
+        part_end(sc, sim, s, t, reached, reached < t_end);
 #if RT_MAX_TEV > 0
         if (reached == tb && kb != NEVER)
             k = kb;

@@ -8,7 +8,11 @@ before, so a scene driven by steps keeps every method's order.
     steps is at least its order less 0.2;
   * a DC motor whose load torque steps at 0.3 s (dcmotor_load.scn): up to and at the
     instant the run is the one without the step, to rounding; after it the speed settles
-    at the closed-form (k v - R TL) / (k^2 + R b)."""
+    at the closed-form (k v - R TL) / (k^2 + R b);
+  * a switch on t in a defined system's derivative (tev_tswitch.scn): its integral exact
+    for every method, the instant on the base tick grid or off it; comparisons of t at a
+    tick that is the instant to rounding, a guard at 1e-9 s (tev_tswitch_edges.scn); more
+    instants in one step than its parts, counted (tev_limit; tev_tswitch_many.scn)."""
 import math
 import os
 import subprocess
@@ -89,6 +93,70 @@ def dcmotor(s):
             "settled %.12g" % (rows[-1][1], w_end))
 
 
+def tswitch(s):
+    """tev_tswitch.scn: a switch on t in a defined system's derivative, inside a step: a
+    time event, so s(1) = ts for every method at 0.1 and 0.05 s, at ts = 0.51 (on the
+    base tick grid) and 0.5137 (off it) (before, 0.50 with status ok under sdirk3 and
+    sdirk2, whose stages all lie past the switch)"""
+    for m in ORDER:
+        for h in ("0.1", "0.05"):
+            for ts in (0.51, 0.5137):
+                rc, summ, rows = run(s.modrt, "tev_tswitch.scn", [
+                    "--method", "main=" + m, "--step", "main=" + h, "--set", "A.ts=%r" % ts])
+                err = abs(rows[-1][1] - ts) if rows else math.inf
+                s.row("a switch on t at %g inside a step: s(1)" % ts, m, h, err, summ, rc)
+                s.check(rc == 0 and err <= 1e-13, "tev_tswitch %s h=%s ts=%g: status %s, "
+                        "s(1) off by %.3g" % (m, h, ts, summ.get("status"), err))
+
+
+def si(x):
+    """the sine integral Si(x), by its power series (|x| <= 4: 40 terms reach rounding)"""
+    return sum((-1) ** n * x ** (2 * n + 1) / ((2 * n + 1) * math.factorial(2 * n + 1))
+               for n in range(40))
+
+
+def tswitch_edges(s):
+    """tev_tswitch_edges.scn: at each tick k * 0.1 s, t <= 0.3 and 0.3 >= t are 1 up to
+    k = 3 (the tick 3 * 0.1 is the instant 0.3 to rounding), t < 0.3 and 0.3 > t up to
+    k = 2; the guard t > 1e-9 gives sinc(0) = w = 3 (not 0 / 0) and sinc(t) = sin(3 t) / t
+    after; s(1) = Si(3) to rk4's error at 0.1 s (1e-5 allowed; the instant 1e-9 is off
+    the grid, so the first step is split there)"""
+    rc, summ, rows = run(s.modrt, "tev_tswitch_edges.scn", [])
+    s.row("comparisons of t at ticks and a guard", "rk4", "0.1",
+          abs(rows[-1][6] - si(3.0)) if rows else math.inf, summ, rc)
+    s.check(rc == 0 and len(rows) == 11, "tev_tswitch_edges: status %s, %d rows" %
+            (summ.get("status"), len(rows)))
+    for r in rows:
+        k = round(r[0] * 10)
+        want = [1 if k <= 3 else 0, 1 if k <= 2 else 0, 1 if k <= 3 else 0,
+                1 if k <= 2 else 0, 3.0 if k == 0 else math.sin(3 * r[0]) / r[0]]
+        s.check(r[1:5] == want[:4] and abs(r[5] - want[4]) <= 1e-15 * 3,
+                "tev_tswitch_edges at %g s: le lt ge gt sinc %s, want %s" % (r[0], r[1:6],
+                                                                              want))
+    if rows:
+        s.check(abs(rows[-1][6] - si(3.0)) <= 1e-5, "tev_tswitch_edges: s(1) %.12g, Si(3) "
+                "%.12g" % (rows[-1][6], si(3.0)))
+
+
+def tswitch_many(s):
+    """tev_tswitch_many.scn: five instants inside one 0.1 s step, more than its parts:
+    counted (tev_limit, exit 1), s(1) short of 2.65; at 0.01 s exact, status ok"""
+    rc, summ, rows = run(s.modrt, "tev_tswitch_many.scn", [])
+    s.row("five switches on t in one step", "rk4", "0.1",
+          abs(rows[-1][1] - 2.65) if rows else math.inf, summ, rc)
+    s.check(rc == 1 and summ.get("tev_limit", "0").split()[0] != "0",
+            "tev_tswitch_many at 0.1 s: exit %d, tev_limit %s (want counted)" %
+            (rc, summ.get("tev_limit")))
+    rc, summ, rows = run(s.modrt, "tev_tswitch_many.scn", ["--step", "main=0.01"])
+    err = abs(rows[-1][1] - 2.65) if rows else math.inf
+    s.row("five switches on t in one step", "rk4", "0.01", err, summ, rc)
+    s.check(rc == 0 and err <= 1e-13, "tev_tswitch_many at 0.01 s: status %s, s(1) off by "
+            "%.3g" % (summ.get("status"), err))
+
+
 def extra(s, long):
     beltgear(s)
     dcmotor(s)
+    tswitch(s)
+    tswitch_edges(s)
+    tswitch_many(s)

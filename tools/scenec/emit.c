@@ -118,6 +118,7 @@ static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top)
     switch (in->op) {
     case SCN_OP_CONST: fputs(R(c->sc.k[in->a]), f); return;
     case SCN_OP_TIME: fputs("a->t", f); return;
+    case SCN_OP_TPIECE: fputs("a->t_piece", f); return;
     case SCN_OP_STEP: fputs("a->h", f); return;
     case SCN_OP_IN: fprintf(f, "a->u[%u]", in->a); return;
     case SCN_OP_PAR: fprintf(f, "a->p[%u]", in->a); return;
@@ -139,6 +140,18 @@ static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top)
         fputs(")", f);
         return;
     default:
+        if (in->op >= SCN_OP_LT && in->a) { /* t with an instant: rt_x_at, as the VM */
+            int tk = x->kid[in->a == SCN_TSIDE_LEFT ? 0 : 1], ck = x->kid[in->a == SCN_TSIDE_LEFT];
+            fprintf(f, "%s(", cond[in->op - SCN_OP_LT]);
+            if (in->a == SCN_TSIDE_RIGHT)
+                expr(f, c, nd, ck, 0), fputs(", ", f);
+            fputs("rt_x_at(a->t, ", f), expr(f, c, nd, tk, 0), fputs(", ", f);
+            expr(f, c, nd, ck, 0), fputs(")", f);
+            if (in->a == SCN_TSIDE_LEFT)
+                fputs(", ", f), expr(f, c, nd, ck, 0);
+            fputs(")", f);
+            return;
+        }
         if (in->op >= SCN_OP_LT) { /* comparisons, and, or: rt/rt_expr.h, as the VM */
             fprintf(f, "%s(", cond[in->op - SCN_OP_LT]), kids(f, c, nd, x, ", ");
             fputs(")", f);
@@ -215,6 +228,20 @@ static void service(FILE *f, const scn_ctx *c, const scn_define *d, const char *
         if (in[s - d->st0])
             statement(f, c, &c->sc.st[s], out[kind], &ntemp);
     fputs("}\n", f);
+}
+
+/* the instants the body compares t with, and the kind's next_event over them */
+static void instants(FILE *f, const scn_ctx *c, const scn_define *d, const char *id)
+{
+    uint8_t in[SCN_MAX_STMTS];
+    int ntemp = 0;
+    scn_service(c, d, SCN_ST_TEV, in);
+    fprintf(f, "\nstatic real_t %s_next(const rt_args *a)\n{\n    real_t v[%u];\n", id,
+            (unsigned)d->ntev);
+    for (uint32_t s = d->st0; s < d->st1; s++)
+        if (in[s - d->st0])
+            statement(f, c, &c->sc.st[s], "v", &ntemp);
+    fprintf(f, "    return rt_x_next(a->t, v, %u);\n}\n", (unsigned)d->ntev);
 }
 
 /* the statements of root r's service kind (handler, rest time or rest handler) */
@@ -340,6 +367,8 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
             service(f, c, d, pre, SCN_ST_NEXT);
         if (d->nr)
             event_services(f, c, d, pre);
+        if (d->ntev)
+            instants(f, c, d, pre);
     }
     invariants(f, k, pre);
     fprintf(f, "\nstatic const rt_kind %s_kind = {\n    .name = \"%s\", .type = %s,\n", pre, id,
@@ -373,6 +402,8 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
         fprintf(f, " .update = %s_update,", pre);
     if (d->nr)
         fprintf(f, " .roots = %s_roots, .event = %s_event, .root_dir = %s_rdir,", pre, pre, pre);
+    if (d->ntev)
+        fprintf(f, " .next_event = %s_next, .time_event = rt_x_switched,", pre);
     if (k->ninv)
         fprintf(f, " .inv = %s_inv, .ninv = %u,", pre, k->ninv);
     fputs("\n};\n", f);

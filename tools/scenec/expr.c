@@ -462,18 +462,68 @@ static int level_op(const scn_ctx *c, size_t lv)
     return -1;
 }
 
+/* code [i0, i1) reads nothing that changes during a run: constants, parameters and
+   operations on them */
+static int fixed_code(const scn_ins *code, uint32_t i0, uint32_t i1)
+{
+    for (uint32_t i = i0; i < i1; i++) {
+        uint8_t op = code[i].op;
+        if (op != SCN_OP_CONST && op != SCN_OP_PAR && op < SCN_OP_NEG)
+            return 0;
+    }
+    return i1 > i0;
+}
+
+/* an order comparison of `t` alone with an expression fixed during the run (`t < t1`,
+   `2 * T <= t`) in an output, derivative or let of a continuous define: a time event
+   known at run time (rt_kind.next_event with time_event: the instant may lie anywhere,
+   and follows the parameters), so a step of its set ends a part at the instant and
+   every method keeps its order across the switch, as across a step source's. Its `t`
+   reads t_piece through rt_x_at (the part ending at the instant sees the left limit
+   there, the part from it the right, a tick at the instant the operator's own value),
+   and the instant becomes an SCN_ST_TEV statement after the one compiled (flush_tev).
+   lhs is code [a0, a1), rhs [a1, b1). Returns the comparison's SCN_TSIDE_*, 0 if none */
+static uint16_t time_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
+{
+    scn_ins *code = c->sc.code;
+    uint32_t t, i0, i1;
+    uint16_t side;
+    if (c->err || !c->def || c->def->type != SCN_DEF_SS ||
+        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET))
+        return 0;
+    if (a1 == a0 + 1 && code[a0].op == SCN_OP_TIME && fixed_code(code, a1, b1))
+        t = a0, i0 = a1, i1 = b1, side = SCN_TSIDE_LEFT;
+    else if (b1 == a1 + 1 && code[a1].op == SCN_OP_TIME && fixed_code(code, a0, a1))
+        t = a1, i0 = a0, i1 = a1, side = SCN_TSIDE_RIGHT;
+    else
+        return 0;
+    if (c->def->ntev + c->ntev >= SCN_MAX_TEV) {
+        scn_fail_tok(c, "too many comparisons of t",
+                     scn_fmt(c, "at most %u in one define's body", SCN_MAX_TEV));
+        return 0;
+    }
+    code[t].op = SCN_OP_TPIECE;
+    c->tev[c->ntev][0] = i0, c->tev[c->ntev][1] = i1, c->ntev++;
+    return side;
+}
+
 static void binary(scn_ctx *c, size_t lv)
 {
     if (lv == NLEVELS) {
         unary(c);
         return;
     }
+    uint32_t a0 = c->sc.ncode;
     binary(c, lv + 1);
     int i;
     while (!c->err && (i = level_op(c, lv)) >= 0) {
+        uint32_t a1 = c->sc.ncode;
         scn_next(c);
         binary(c, lv + 1);
-        emit(c, levels[lv].code[i], 0, -1);
+        uint16_t side = 0; /* (t == c holds at an instant alone: no time event) */
+        if (levels[lv].code[i] >= SCN_OP_LT && levels[lv].code[i] <= SCN_OP_GE)
+            side = time_switch(c, a0, a1, c->sc.ncode);
+        emit(c, levels[lv].code[i], side, -1);
     }
 }
 
@@ -493,6 +543,26 @@ static void expr(scn_ctx *c)
 
 /* ------------------------------------------------------------------ body statements */
 
+/* the instants the statement just compiled compares `t` with (time_switch): each an
+   SCN_ST_TEV statement of its own, a copy of its code stored into the next instant */
+static void flush_tev(scn_ctx *c, scn_pos pos)
+{
+    scn_scene *s = &c->sc;
+    for (uint16_t k = 0; k < c->ntev && !c->err; k++) {
+        if (s->nst >= SCN_MAX_STMTS) {
+            scn_fail(c, pos, "t", "too many body statements",
+                     scn_fmt(c, "at most %u in all bodies", SCN_MAX_STMTS));
+            return;
+        }
+        uint32_t code0 = s->ncode;
+        for (uint32_t i = c->tev[k][0]; i < c->tev[k][1]; i++)
+            emit(c, s->code[i].op, s->code[i].a, 0);
+        emit(c, SCN_OP_OUT, c->def->ntev, 0);
+        s->st[s->nst++] = (scn_stmt){SCN_ST_TEV, c->def->ntev++, code0, s->ncode, pos, 0};
+    }
+    c->ntev = 0;
+}
+
 /* one statement: its expression, stored into index, ended by the operator term */
 static void add_stmt_to(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, scn_pos pos,
                         const char *term)
@@ -505,10 +575,12 @@ static void add_stmt_to(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root,
     }
     uint32_t code0 = s->ncode;
     c->sdepth = 0;
+    c->st_kind = kind, c->ntev = 0;
     expr(c);
     emit(c, kind == SCN_ST_LET ? SCN_OP_SETLOC : SCN_OP_OUT, index, -1);
     scn_expect_op(c, term);
     s->st[s->nst++] = (scn_stmt){kind, index, code0, s->ncode, pos, root};
+    flush_tev(c, pos);
 }
 
 static void add_stmt(scn_ctx *c, uint8_t kind, uint16_t index, scn_pos pos)

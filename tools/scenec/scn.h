@@ -81,9 +81,14 @@ typedef struct scn_tok {
 
 /* Operations of the expression VM (vm.c) and their C forms (emit.c). Operands on a stack
  * of real_t; `a` is the instruction's argument. */
+/* a comparison's `a`: which operand is `t` compared with an instant (SCN_OP_TPIECE),
+   read through rt_x_at; 0: a plain comparison */
+enum { SCN_TSIDE_LEFT = 1, SCN_TSIDE_RIGHT = 2 };
 #define SCN_OP_LIST(X)                                                              \
     X(SCN_OP_CONST)  /* push k[a] */                                                \
     X(SCN_OP_TIME)   /* push t [s] */                                               \
+    X(SCN_OP_TPIECE) /* push t_piece [s]: t compared with an instant (a time event; \
+                        the comparison's a: SCN_TSIDE_*) */                         \
     X(SCN_OP_STEP)   /* push h: the step of the call [s] */                         \
     X(SCN_OP_IN)     /* push u[a] */                                                \
     X(SCN_OP_PAR)    /* push p[a] */                                                \
@@ -132,6 +137,8 @@ typedef struct scn_prog {
 /* rt_kind.spec of an interpreted define: one program per service. */
 typedef struct scn_vm_spec {
     scn_prog out, der, upd, roots;
+    scn_prog tev;               /* the instants `t` is compared with (ntev values) */
+    uint16_t ntev;
     const scn_prog *event;      /* one handler program per root */
     const scn_prog *rest_t;     /* per root: its shortest flight (n = 0: no rest clause) */
     const scn_prog *rest;       /* per root: its rest handler */
@@ -143,6 +150,7 @@ void scn_vm_deriv(const rt_args *a, real_t *xdot);
 void scn_vm_update(const rt_args *a, real_t *dnext);
 void scn_vm_roots(const rt_args *a, real_t *r);
 void scn_vm_event(const rt_args *a, uint16_t which, real_t *x, real_t *d);
+real_t scn_vm_next(const rt_args *a);
 
 /* ------------------------------------------------------------------ the scene */
 
@@ -155,7 +163,9 @@ typedef enum {
     SCN_ST_ROOT,                /* the root function `when (...)`, index: the root */
     SCN_ST_EVENT,               /* a state assignment of root `root`'s handler */
     SCN_ST_REST_T,              /* the shortest flight of `rest (...)`, index: the root */
-    SCN_ST_REST                 /* a state assignment of root `root`'s rest handler */
+    SCN_ST_REST,                /* a state assignment of root `root`'s rest handler */
+    SCN_ST_TEV                  /* an instant `t` is compared with (a known time event),
+                                   index: the instant */
 } scn_stmt_kind;
 
 /* a port, parameter or state of a define, with its default value */
@@ -181,6 +191,7 @@ typedef struct scn_matrix {
 } scn_matrix;
 
 #define SCN_MAX_INV 8           /* invariants of one define */
+#define SCN_MAX_TEV 64          /* instants `t` is compared with in one define's body */
 #define SCN_MAX_INV_N 16        /* states of one invariant */
 
 /* invariants (nonnegative (a, b) [within (tol)], sum (a, b) = c, norm (a, b) <= c) */
@@ -204,6 +215,7 @@ typedef struct scn_define {
     int8_t rdir[SCN_MAX_PORTS]; /* root directions of `when`: -1 falling, +1 rising, 0 both */
     uint8_t rest[SCN_MAX_PORTS];/* 1: the `when` has a rest clause */
     uint16_t nr;                /* roots (`when` statements) */
+    uint16_t ntev;              /* instants `t` is compared with (SCN_ST_TEV statements) */
     scn_matrix A, B, C, D;      /* LSS */
     scn_inv inv[SCN_MAX_INV];   /* invariants (...) */
     uint8_t ninv;
@@ -404,6 +416,10 @@ typedef struct scn_ctx {
                                    t_last is readable there); 0: none */
     uint16_t after_when;        /* 1 + the root of a `when` the last body statement was
                                    (a rest clause may follow it); 0: none */
+    uint32_t tev[SCN_MAX_TEV][2];/* the code of the instants the statement being compiled
+                                   compares `t` with, made SCN_ST_TEV statements after it */
+    uint16_t ntev;
+    uint8_t st_kind;            /* the kind (SCN_ST_*) of the statement being compiled */
     /* the error of the check under way (err, its position), the errors of independent
        checks before it (scn_keep_error), and at the end all of them, one per line, in the
        order of the file (msg) */

@@ -157,7 +157,7 @@ static void block_args(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t 
     fprintf(f, "    args(sim, %u, %u, %u, %u, %u, t, %s, &ar);\n", b, sim->plan.x_off[b],
             sim->plan.d_off[b], sim->plan.u_off[b], sim->plan.p_off[b], h);
     if (sc->blocks[b].kind->next_event)
-        fputs("    ar.t_piece = rti_piece(sc, sim, t);\n", f);
+        fprintf(f, "    ar.t_piece = rti_piece(sc, sim, sc->blocks[%u].kind, t);\n", b);
 }
 
 /* call_output's injected fault after block b's output call (RT_FAULT_INJECT builds) */

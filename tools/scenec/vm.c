@@ -33,6 +33,7 @@ static real_t operand(const scn_prog *p, const scn_ins *in, const rt_args *a,
     switch (in->op) {
     case SCN_OP_CONST: return p->k[in->a];
     case SCN_OP_TIME: return a->t;
+    case SCN_OP_TPIECE: return a->t_piece;
     case SCN_OP_STEP: return a->h;
     case SCN_OP_IN: return a->u[in->a];
     case SCN_OP_PAR: return a->p[in->a];
@@ -79,9 +80,12 @@ static void run(const scn_prog *p, const rt_args *a, real_t *out)
         default:
             if (in->op <= SCN_OP_LOC) {
                 st[sp++] = operand(p, in, a, loc);
-            } else {
+            } else { /* (t compared with an instant: the time rt_x_at reads) */
                 sp--;
-                st[sp - 1] = binop(in->op, st[sp - 1], st[sp]);
+                real_t l = st[sp - 1], r = st[sp];
+                l = in->a == SCN_TSIDE_LEFT ? rt_x_at(a->t, l, r) : l;
+                r = in->a == SCN_TSIDE_RIGHT ? rt_x_at(a->t, r, l) : r;
+                st[sp - 1] = binop(in->op, l, r);
             }
         }
     }
@@ -100,6 +104,14 @@ void scn_vm_deriv(const rt_args *a, real_t *xdot)
 void scn_vm_update(const rt_args *a, real_t *dnext)
 {
     run(&((const scn_vm_spec *)a->spec)->upd, a, dnext);
+}
+
+real_t scn_vm_next(const rt_args *a)
+{
+    const scn_vm_spec *vs = a->spec;
+    real_t v[SCN_MAX_TEV];
+    run(&vs->tev, a, v);
+    return rt_x_next(a->t, v, vs->ntev);
 }
 
 void scn_vm_roots(const rt_args *a, real_t *r)
