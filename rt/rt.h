@@ -140,6 +140,12 @@ typedef struct rt_args {
 /* what rt_kind.next_event returns when no known time event follows */
 #define RT_TEV_NEVER ((real_t)1e30)
 
+/* the rt_kind.time_event of a kind whose run-time instants serve nothing but end step
+   parts (a defined system's comparisons of t, tools/scenec): the runtime never calls it
+   (rt/tev.c), and the kind's set reads other sets' histories as a set without services
+   does (rt/xset.c) */
+void rt_tev_none(const rt_args *a, real_t *x, real_t *d);
+
 /* do times a and b [s] name one instant: equal to the rounding a time on the base tick
    grid carries (RT_TICK_SLACK relative; 3 * 0.1 is the instant 0.3). A defined system's
    next instant is never such a neighbour of t (rt_x_next), and a step part never ends
@@ -275,13 +281,13 @@ typedef struct rt_kind {
     /* Time events known only at run time: with this slot, next_event returns the block's
        first instant after a->t as its own state holds it now (an FMU's nextEventTime,
        set by its last event: it may read nothing of a) or as its parameters give it (a
-       defined system's comparison of t with one: no service due, the handler does
-       nothing), RT_TEV_NEVER if none. Such instants may lie off the base tick grid and
+       defined system's comparison of t with one, whose handler is rt_tev_none),
+       RT_TEV_NEVER if none. Such instants may lie off the base tick grid and
        are not walked at rt_init: every step of the block's set ends a part exactly at the
        next one (rt/tev.c), and this handler runs there with the state at the instant; it
        may change x and d in place. More instants in one step than RT_TEV_PARTS_MAX parts
        are counted (tev_limit, RT_E_TEV) and handled at the step's end, never merged
-       silently. */
+       silently. rt_tev_none: instants that only end step parts */
     void (*time_event)(const rt_args *a, real_t *x, real_t *d);
     /* Called once at the end of each completed integration of the block's set (each step,
        or each part of a step split at time events, rt/tev.c), with the state there, before

@@ -74,11 +74,4 @@ static inline real_t rt_x_at(real_t t, real_t tp, real_t c)
     return rt_same_instant(t, c) ? c : t;
 }
 
-/* a defined system's rt_kind.time_event at such an instant: the switch lies in the
-   comparisons (rt_x_at), no state changes there */
-static inline void rt_x_switched(const rt_args *a, real_t *x, real_t *d)
-{
-    (void)a, (void)x, (void)d;
-}
-
 #endif /* RT_EXPR_H */

@@ -96,6 +96,11 @@ static instant next_after(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t k
     return in;
 }
 
+void rt_tev_none(const rt_args *a, real_t *x, real_t *d)
+{
+    (void)a, (void)x, (void)d; /* never called: part_end skips it */
+}
+
 /* block b of set s switched strictly inside the set's step: another set reads its
    outputs only through its history, whose points are the step's ends, so a switch there
    (a pulse shorter than the step) is seen late, or not at all. Counted (errest:
@@ -195,6 +200,40 @@ static void serve_instants(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t,
     }
 }
 
+/* a signature of block b's outputs that another set reads: their bits (FNV-1a) */
+static uint64_t read_sig(const rt_sim *sim, uint8_t s, uint16_t b)
+{
+    uint64_t h = 14695981039346656037u;
+    for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1]; v++)
+        if (v < sim->plan.set_xout[s] && sim->plan.xsrc[v]) {
+            rt_real_rep r = {.r = sim->state.y[v]};
+            h = (h ^ (uint64_t)r.u) * 1099511628211u;
+        }
+    return h;
+}
+
+/* does an output of block b that another set reads jump at b's run-time instant t, where
+   a part of set s ends (state.y holds the left limit there): the right limit against it,
+   y left as it was. A kind's switch may lie in its derivatives alone (a kink in its
+   outputs, which the readers' interpolation follows) */
+static int jumps_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, real_t t)
+{
+    const rt_kind *k = sc->blocks[b].kind;
+    real_t *y = sim->state.y + sim->plan.y_off[b];
+    if (!k->output)
+        return 0;
+    uint64_t left = read_sig(sim, s, b);
+    rt_args a;
+    rti_args(sc, sim, b, t, 0, &a);
+    real_t tn = k->next_event(&a), half = (real_t)0.5 * sc->dt;
+    a.t_piece = t + (tn - t < 2 * half ? (real_t)0.5 * (tn - t) : half); /* before the next */
+    k->output(&a, y);
+    int jump = read_sig(sim, s, b) != left;
+    a.t_piece = rti_piece(sc, sim, k, t);
+    k->output(&a, y);
+    return jump;
+}
+
 /* at the end t of a part of set s begun at t0 (inside: strictly inside the set's step):
    each kind's step_end, then the time event of each block whose first run-time instant
    after t0 is due (at or before t: before it, by more than rounding, only past the bound
@@ -220,9 +259,10 @@ static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t0, real
             continue;
         if (te < t && !rt_same_instant(te, t)) /* passed by the last part the bound allows */
             rti_count(sim, RT_CNT_TEV_LIMIT, b, RT_E_TEV);
-        if (inside)
+        if (sc->blocks[b].kind->time_event != rt_tev_none)
+            serve(sc, sim, s, b, t, SERVE_TIME_EVENT, &changed);
+        else if (inside && jumps_at(sc, sim, s, b, t))
             switched_inside(sim, s, b);
-        serve(sc, sim, s, b, t, SERVE_TIME_EVENT, &changed);
     }
     if (flags & RTI_SET_INSTANT)
         serve_instants(sc, sim, s, t, &changed);
@@ -482,7 +522,8 @@ static rt_status check_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
 }
 
 /* the flags of set s's kinds: RTI_SET_TEV (time events, known ahead or at run time),
-   RTI_SET_TEV_DYN (at run time), RTI_SET_STEP_END (a step-end service), RTI_SET_INSTANT
+   RTI_SET_TEV_DYN (at run time), RTI_SET_TEV_SERVE (with a handler that serves: not
+   rt_tev_none), RTI_SET_STEP_END (a step-end service), RTI_SET_INSTANT
    (values taken at instants), RTI_SET_EVERY_SIGN (roots whose every sign change is a
    crossing, rt/step.c) */
 static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
@@ -492,6 +533,8 @@ static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
         const rt_kind *kd = sc->blocks[sim->plan.set_blk[k]].kind;
         f = (uint16_t)(f | (kd->next_event ? RTI_SET_TEV : 0) |
                        (kd->next_event && kd->time_event ? RTI_SET_TEV_DYN : 0) |
+                       (kd->time_event && kd->time_event != rt_tev_none ? RTI_SET_TEV_SERVE
+                                                                        : 0) |
                        (kd->step_end ? RTI_SET_STEP_END : 0) |
                        (kd->instant ? RTI_SET_INSTANT : 0) |
                        (kd->nr && kd->roots_every_sign ? RTI_SET_EVERY_SIGN : 0));

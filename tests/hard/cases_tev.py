@@ -19,7 +19,7 @@ import subprocess
 import sys
 import tempfile
 
-from hard import run, HERE
+from hard import run, run_text, HERE
 
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 ORDER = {"euler": 1, "heun": 2, "bs3": 3, "rk4": 4, "dopri5": 5, "beuler": 1, "trap": 2,
@@ -116,26 +116,28 @@ def si(x):
 
 
 def tswitch_edges(s):
-    """tev_tswitch_edges.scn: at each tick k * 0.1 s, t <= 0.3 and 0.3 >= t are 1 up to
-    k = 3 (the tick 3 * 0.1 is the instant 0.3 to rounding), t < 0.3 and 0.3 > t up to
-    k = 2; the guard t > 1e-9 gives sinc(0) = w = 3 (not 0 / 0) and sinc(t) = sin(3 t) / t
-    after; s(1) = Si(3) to rk4's error at 0.1 s (1e-5 allowed; the instant 1e-9 is off
-    the grid, so the first step is split there)"""
+    """tev_tswitch_edges.scn: at each tick k * 0.03 s, t <= 0.33 and 0.33 >= t are 1 up to
+    k = 11 (the tick 11 * 0.03 = 0.32999999999999996 is the instant 0.33 to rounding, where
+    each operator has its own value), t < 0.33 and 0.33 > t up to k = 10 (before: 1 at
+    k = 11, the tick read as before the instant); the guards t > 1e-9 (off the grid) and
+    t > 0 give sinc(0) = w = 3, not 0 / 0, and sin(3 t) / t after; s(0.9) = Si(2.7) to
+    rk4's error at 0.03 s (1e-7 allowed; the first step is split at 1e-9 s)"""
     rc, summ, rows = run(s.modrt, "tev_tswitch_edges.scn", [])
-    s.row("comparisons of t at ticks and a guard", "rk4", "0.1",
-          abs(rows[-1][6] - si(3.0)) if rows else math.inf, summ, rc)
-    s.check(rc == 0 and len(rows) == 11, "tev_tswitch_edges: status %s, %d rows" %
+    s.row("comparisons of t at ticks and guards", "rk4", "0.03",
+          abs(rows[-1][7] - si(2.7)) if rows else math.inf, summ, rc)
+    s.check(rc == 0 and len(rows) == 31, "tev_tswitch_edges: status %s, %d rows" %
             (summ.get("status"), len(rows)))
     for r in rows:
-        k = round(r[0] * 10)
-        want = [1 if k <= 3 else 0, 1 if k <= 2 else 0, 1 if k <= 3 else 0,
-                1 if k <= 2 else 0, 3.0 if k == 0 else math.sin(3 * r[0]) / r[0]]
-        s.check(r[1:5] == want[:4] and abs(r[5] - want[4]) <= 1e-15 * 3,
-                "tev_tswitch_edges at %g s: le lt ge gt sinc %s, want %s" % (r[0], r[1:6],
-                                                                              want))
+        k = round(r[0] / 0.03)
+        sinc = 3.0 if k == 0 else math.sin(3 * r[0]) / r[0]
+        want = [1 if k <= 11 else 0, 1 if k <= 10 else 0, 1 if k <= 11 else 0,
+                1 if k <= 10 else 0]
+        s.check(r[1:5] == want and abs(r[5] - sinc) <= 1e-14 and abs(r[6] - sinc) <= 1e-14,
+                "tev_tswitch_edges at %r s: le lt ge gt sinc sinc0 %s, want %s, %.17g" %
+                (r[0], r[1:7], want, sinc))
     if rows:
-        s.check(abs(rows[-1][6] - si(3.0)) <= 1e-5, "tev_tswitch_edges: s(1) %.12g, Si(3) "
-                "%.12g" % (rows[-1][6], si(3.0)))
+        s.check(abs(rows[-1][7] - si(2.7)) <= 1e-7, "tev_tswitch_edges: s(0.9) %.12g, "
+                "Si(2.7) %.12g" % (rows[-1][7], si(2.7)))
 
 
 def tswitch_many(s):
@@ -154,9 +156,67 @@ def tswitch_many(s):
             "%.3g" % (summ.get("status"), err))
 
 
+READER = """scene (tswitch_reader) doc ("a switch on t and a set that reads another");
+base tick (10 ms);
+end time (1 s);
+define ss_system (S) with outputs (x) parameters (ts = 0.555) states (s = 0) by {
+    x = %s;
+    der(s) = %s;
+};
+define ss_system (I) with inputs (u) outputs (y) parameters (tq = 100) states (z = 0) by {
+    y = z;
+    der(z) = %s;
+};
+load system (A) of type (S);
+load system (B) of type (I);
+connect (A.x, B.u);
+set (a) method (rk4) step (%s) members (A);
+set (b) method (%s) step (%s) accuracy (1) members (B);
+record (A.x, B.y);
+"""
+
+
+def tswitch_readers(s):
+    """a switch on t beside a set reading another set's history:
+      * B's `t < tq` whose instant (100 s) never comes changes nothing: B.y(1) equal to the
+        bit to the run without the comparison, reading A's ramp by hold every 0.1 s (before
+        the review, the comparison made B's stages at a step's end read A's next value:
+        0.465 for 0.4517 under rk4, status ok);
+      * A's switch in its derivative alone at 0.555 s, off the grid, read by B at 1 tick:
+        A's output only kinks there, nothing to count (status ok; the review found errest);
+      * A's output itself switching at 0.555 s inside its 0.1 s step, read by B at 1 tick:
+        B sees it at 0.6 s, late, counted (errest, exit 3; before, B.y(1) = 0.6 for 0.555
+        with status ok)"""
+    for m in ("rk4", "heun", "sdirk3"):
+        got = []
+        for der in ("u * (t < tq ? 1 : 0)", "u"):
+            rc, summ, rows = run_text(s.modrt, READER % ("s", "1", der, "10 ticks", m,
+                                                         "10 ticks"), [])
+            got.append((rc, rows[-1][2] if rows else math.nan))
+        s.row("a comparison of t that never switches, reader", m, "0.1",
+              abs(got[0][1] - got[1][1]), summ, got[0][0])
+        s.check(got[0] == got[1] and got[0][0] == 0, "tswitch_readers %s: B.y(1) %r with a "
+                "comparison that never switches, %r without" % (m, got[0], got[1]))
+    rc, summ, rows = run_text(s.modrt, READER % ("s", "t < ts ? 1 : 0", "u", "1 tick", "rk4",
+                                                 "1 tick"), [])
+    y = rows[-1][2] if rows else math.nan
+    s.row("a switch on t in a derivative, read by another set", "rk4", "0.01",
+          abs(y - (0.555 - 0.555 ** 2 / 2)), summ, rc)
+    s.check(rc == 0 and summ.get("errest", "").startswith("0"), "tswitch_readers: a switch "
+            "in A's derivative alone: exit %d, errest %s" % (rc, summ.get("errest")))
+    rc, summ, rows = run_text(s.modrt, READER % ("t < ts ? 1 : 0", "0", "u", "10 ticks", "rk4",
+                                                 "1 tick"), [])
+    y = rows[-1][2] if rows else math.nan
+    s.row("a switch on t in an output inside its step, read by another set", "rk4", "0.01",
+          abs(y - 0.555), summ, rc)
+    s.check(rc == 3 or abs(y - 0.555) <= 1e-3, "tswitch_readers: A's output switching inside "
+            "its step: B.y(1) %.6g for 0.555, exit %d" % (y, rc))
+
+
 def extra(s, long):
     beltgear(s)
     dcmotor(s)
     tswitch(s)
     tswitch_edges(s)
     tswitch_many(s)
+    tswitch_readers(s)

@@ -403,7 +403,7 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
     if (d->nr)
         fprintf(f, " .roots = %s_roots, .event = %s_event, .root_dir = %s_rdir,", pre, pre, pre);
     if (d->ntev)
-        fprintf(f, " .next_event = %s_next, .time_event = rt_x_switched,", pre);
+        fprintf(f, " .next_event = %s_next, .time_event = rt_tev_none,", pre);
     if (k->ninv)
         fprintf(f, " .inv = %s_inv, .ninv = %u,", pre, k->ninv);
     fputs("\n};\n", f);

@@ -5,7 +5,6 @@
  * Also scn_compile, the one entry point of a compilation. */
 #include "scn.h"
 #include "rt_sim.h" /* allocates the rt_sim it checks the scene with */
-#include "rt_expr.h" /* a defined system's time events: rt_x_switched */
 
 #include <string.h>
 
@@ -94,7 +93,7 @@ static const rt_kind *define_services(scn_ctx *c, const scn_define *d, const rea
     kd->update = d->type == SCN_DEF_DSS ? scn_vm_update : NULL;
     if (d->ntev) { /* the instants its body compares t with: time events */
         vs->tev = program(c, d, SCN_ST_TEV, k), vs->ntev = d->ntev;
-        kd->next_event = scn_vm_next, kd->time_event = rt_x_switched;
+        kd->next_event = scn_vm_next, kd->time_event = rt_tev_none;
     }
     events(c, d, k, vs, kd);
     return kd;
