@@ -85,6 +85,24 @@ for v in 2 3; do
     else bad "stair (FMI $v.0) every 0.03 s:"; cat "$W/many$v.out"; fi
 done
 
+# modrt check runs the scene again at half the steps beside the run, on the same FMU
+# instances: each run's FMU state is kept apart and put in place around its ticks
+# (tools/modrt/check.c), so the check's run is the straight run (its hash) and the half
+# run sees every event the run does (before, they stepped one instance: the stair's half
+# run saw none of its 8 time events, and a run of an FMU whose discrete state flips at its
+# events was changed by the check)
+for v in 2 3; do
+    for s in stair_fmu ball_fmu; do
+        "$M" check "$W/$s$v.scn" > "$W/check_$s$v.out" 2>&1
+        ev=$(sed -n 's/^check_events: \([0-9]*\), at half the steps \([0-9]*\);.*/\1 \2/p' "$W/check_$s$v.out")
+        set -- $ev
+        if [ "$(hash_of "$W/check_$s$v.out")" = "$(hash_of "$W/$s$v.out")" ] && [ $# -eq 2 ] &&
+           [ "$1" = "$2" ] && [ "$1" -gt 0 ] && grep -q '^global_status: ok' "$W/check_$s$v.out"; then
+            ok "$s (FMI $v.0): modrt check's run is the run (hash $(hash_of "$W/$s$v.out")), $1 events at h and h/2, global ok"
+        else bad "$s (FMI $v.0) under modrt check:"; cat "$W/check_$s$v.out"; fi
+    done
+done
+
 # snapshots (rt_snapshot / rt_restore, tests/fmi/snap.c): to t1, a snapshot, on to t2
 # across the FMUs' events, restored, to t2 again: the rows after the restore against the
 # closed form, and the hash of the straight run. The stair's counter lives in the FMU's
@@ -114,6 +132,12 @@ for v in 2 3; do
        grep -q "^restore: a block's internal state cannot be saved" "$W/nostate$v.out"; then
         ok "stair without canGetAndSetFMUState (FMI $v.0): rt_snapshot says so, rt_restore refuses it"
     else bad "stair without canGetAndSetFMUState (FMI $v.0):"; cat "$W/nostate$v.out"; fi
+    # nor can modrt check give its half run an instance state of its own: refused (exit 2)
+    "$M" check "$W/nostate$v.scn" > "$W/nostate_check$v.out" 2>&1
+    rc=$?
+    if [ $rc -eq 2 ] && grep -q "internal state (an FMU's) cannot be saved, so the run at half the steps cannot have its own" "$W/nostate_check$v.out"; then
+        ok "stair without canGetAndSetFMUState (FMI $v.0): modrt check refused"
+    else bad "stair without canGetAndSetFMUState (FMI $v.0) under modrt check: exit $rc"; cat "$W/nostate_check$v.out"; fi
 done
 
 # source FMUs: no binary, sources/ built on the host (buildDescription.xml for 3.0, the

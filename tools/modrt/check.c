@@ -37,6 +37,12 @@
  * (1 - 2^-p) / (1 - 2^-q): 1.9 for p = 4, q = 1); q below p - CHECK_Q_SLACK takes p's
  * place, and q below CHECK_Q_MIN (the differences do not shrink) leaves no estimate.
  *
+ * Internal states: a block whose kind keeps state outside x, d and p (rt_kind.save: an
+ * FMU's instance) is one object every run shares, since the half scene is a copy of the
+ * run's tables. Each run's such state is kept apart here and put in place around that
+ * run's ticks (swap_in), so no run steps another's FMU; a kind that cannot save its state
+ * (an FMU without canGetAndSetFMUState) leaves the check refused, the run untouched.
+ *
  * Host only: libc, no libm (rt_log, rt_exp of the runtime). */
 #include <float.h>
 #include <math.h> /* HUGE_VAL only: modrt links without libm */
@@ -51,6 +57,10 @@ static rt_sim half;  /* the run at half the steps */
 static rt_sim quarter; /* --observe: the run at a quarter of the steps */
 static rt_sim own;   /* the run at the scene's steps, for check_scene */
 
+enum { RUN_MAIN, RUN_HALF, RUN_QUARTER, RUNS };
+static uint8_t kst[RUNS][RT_MAX_KSTATE]; /* each run's blocks' internal states, in block
+                                            order, each after its 4-byte size */
+
 static struct {
     rt_scene sc;          /* the half scene */
     rt_link link;         /* its link, with the period doubled */
@@ -58,6 +68,7 @@ static struct {
     rt_link link4;
     check_opts o;
     check_result r;
+    int kinds;            /* 1: a block keeps internal state (swap_in) */
     int differ;           /* the event counts differ since shift_from */
     uint64_t shift_from;
     char err[400];
@@ -72,6 +83,50 @@ static rt_status refuse(rt_status st, const char *what, const char *detail)
 {
     snprintf(C.err, sizeof C.err, "%s%s%s", what, detail ? ": " : "", detail ? detail : "");
     return st;
+}
+
+/* the blocks' internal states (rt_kind.save) into kst[run], or back from it (restore) */
+static rt_status kstate(const rt_scene *sc, int run, int restore)
+{
+    uint32_t off = 0;
+    for (uint16_t b = 0; b < sc->nblocks; b++) {
+        const rt_kind *k = sc->blocks[b].kind;
+        uint32_t n = 0;
+        if (!k->save)
+            continue;
+        if (off + 4 > RT_MAX_KSTATE)
+            return RT_E_CAPACITY;
+        rt_status st;
+        if (restore) {
+            memcpy(&n, kst[run] + off, 4);
+            st = k->restore(k->spec, kst[run] + off + 4, n);
+        } else {
+            st = k->save(k->spec, kst[run] + off + 4, RT_MAX_KSTATE - off - 4, &n);
+            memcpy(kst[run] + off, &n, 4);
+        }
+        if (st != RT_OK)
+            return st;
+        off += 4 + n;
+    }
+    return RT_OK;
+}
+
+/* run `to`'s internal states in place of run `from`'s, which are kept: 1 if done; 0 (the
+   check has no estimate from here, r.kstate_lost) with `from`'s left in place */
+static int swap_in(const rt_scene *sc, int from, int to)
+{
+    if (!C.kinds)
+        return 1;
+    if (C.r.kstate_lost || kstate(sc, from, 0) != RT_OK) {
+        C.r.kstate_lost = 1;
+        return 0;
+    }
+    if (kstate(sc, to, 1) == RT_OK)
+        return 1;
+    C.r.kstate_lost = 1;
+    if (kstate(sc, from, 1) != RT_OK && from == RUN_MAIN)
+        C.r.kstate_lost = 2;
+    return 0;
 }
 
 static double fabs_(double v)
@@ -156,7 +211,7 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
 {
     char b[160];
     memset(&C.r, 0, sizeof C.r);
-    C.err[0] = 0, C.o = *o, C.differ = 0;
+    C.err[0] = 0, C.o = *o, C.differ = 0, C.kinds = 0;
     C.r.atol = o->atol, C.r.rtol = o->rtol;
     uint64_t n = rt_tick_count(sim);
     if (n > RT_MAX_TICKS / 2) {
@@ -195,14 +250,22 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
         C.sc.link = &C.link;
     }
     C.r.dt_half = (double)C.sc.dt;
-    rt_status st = rt_init(&C.sc, &half);
+    for (uint16_t b = 0; b < sc->nblocks; b++)
+        C.kinds |= sc->blocks[b].kind->save != NULL;
+    rt_status st = C.kinds ? kstate(sc, RUN_MAIN, 0) : RT_OK;
     if (st != RT_OK)
+        return refuse(st, "a block's internal state (an FMU's) cannot be saved, so the run "
+                      "at half the steps cannot have its own", rt_status_name(st));
+    if ((st = rt_init(&C.sc, &half)) != RT_OK)
         return refuse(st, "the scene at half the steps", rt_error_text(&half));
     if (setup && setup(ctx, &C.sc, &half) != 0)
         return refuse(RT_E_ARG, "the scene at half the steps: an override failed", NULL);
+    if (C.kinds && kstate(sc, RUN_HALF, 0) != RT_OK)
+        return refuse(RT_E_SNAPSHOT, "the half run's internal states", NULL);
     C.r.observe = o->observe;
     if (!o->observe)
-        return RT_OK;
+        return C.kinds && kstate(sc, RUN_MAIN, 1) != RT_OK
+                   ? refuse(RT_E_SNAPSHOT, "the run's internal states back", NULL) : RT_OK;
     if (n > RT_MAX_TICKS / 4)
         return refuse(RT_E_CAPACITY, "the check's quarter run exceeds RT_MAX_TICKS", NULL);
     C.sc4 = C.sc;
@@ -217,6 +280,8 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
     if (setup && setup(ctx, &C.sc4, &quarter) != 0)
         return refuse(RT_E_ARG, "the scene at a quarter of the steps: an override failed",
                       NULL);
+    if (C.kinds && (kstate(sc, RUN_QUARTER, 0) != RT_OK || kstate(sc, RUN_MAIN, 1) != RT_OK))
+        return refuse(RT_E_SNAPSHOT, "the quarter run's internal states", NULL);
     return RT_OK;
 }
 
@@ -273,11 +338,18 @@ void check_tick(const rt_scene *sc, const rt_sim *sim)
 {
     if (rt_ticks_done(sim) == 0) /* the initial state: the same in both runs */
         return;
+    if (!swap_in(sc, RUN_MAIN, RUN_HALF))
+        return; /* (no estimate: the half run stops) */
     for (int k = 0; k < 2 && rt_ticks_done(&half) < rt_tick_count(&half); k++)
         rt_tick(&C.sc, &half);
-    for (int k = 0; C.r.observe && k < 4 && rt_ticks_done(&quarter) < rt_tick_count(&quarter);
-         k++)
-        rt_tick(&C.sc4, &quarter);
+    int last = RUN_HALF;
+    if (C.r.observe && swap_in(sc, RUN_HALF, RUN_QUARTER)) {
+        last = RUN_QUARTER;
+        for (int k = 0; k < 4 && rt_ticks_done(&quarter) < rt_tick_count(&quarter); k++)
+            rt_tick(&C.sc4, &quarter);
+    }
+    if (!swap_in(sc, last, RUN_MAIN) && C.r.kstate_lost < 2)
+        C.r.kstate_lost = 2; /* the run goes on from another run's internal state */
     if (rt_ticks_done(sim) % C.r.every == 0)
         compare(sc, sim);
 }
@@ -331,7 +403,7 @@ void check_end(const rt_scene *sc, const rt_sim *sim, check_result *r)
         sev = 1;
     if (C.r.observe && (C.r.events != C.r.events_quarter || C.r.substeps_quarter) && sev < 1)
         sev = 1;
-    if (rt_status_severity(C.r.status_half) >= 2 ||
+    if (rt_status_severity(C.r.status_half) >= 2 || C.r.kstate_lost ||
         (C.r.observe && rt_status_severity(C.r.status_quarter) >= 2))
         sev = 2;
     C.r.severity = sev;
@@ -399,6 +471,11 @@ void check_print(FILE *f, const rt_scene *sc, const check_result *r)
                 r->events != r->events_half ? " (different: the event sequence is not "
                                               "resolved)" : "",
                 (unsigned long long)r->nshift, r->shift_s);
+    if (r->kstate_lost)
+        fprintf(f, "check_kstate: a block's internal state (an FMU's) could not be swapped "
+                   "between the runs: no estimate%s\n", r->kstate_lost > 1
+                   ? "; the run went on from another run's state, its answer is not the "
+                     "scene's" : "");
     if (r->substeps || r->substeps_half)
         fprintf(f, "check_substeps: %u, at half the steps %u (steps split into substeps did "
                    "not take h and h/2: the estimates below are no estimates)\n",

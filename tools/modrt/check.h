@@ -62,6 +62,9 @@ typedef struct check_result {
     int observe;          /* 1: the quarter run took place */
     rt_status status_quarter;
     uint32_t events_quarter, substeps_quarter;
+    uint8_t kstate_lost;  /* 1: a block's internal state (an FMU's) could not be kept apart
+                             between the runs: no estimate from then (severity 2); 2: nor
+                             put back into the run, which went on from another's */
     uint16_t nsig;
     check_sig sig[RT_MAX_REC];
     int severity;         /* 0 within the tolerance; 1 above it, the event sequence not
