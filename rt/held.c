@@ -380,10 +380,20 @@ void rti_held_renew(const rt_scene *sc, rt_sim *sim, uint32_t recall)
 
 rt_status rt_refresh(const rt_scene *sc, rt_sim *sim)
 {
-    /* before the first tick the initial state is judged again as rt_init judged it, and
-       the loops learn their signals' scales afresh (rt/loop.c): the parameters they were
-       solved with at init may have changed */
+    /* before the first tick the initial state is judged again as rt_init judged it, the
+       counts of the last such judgement taken back first (work.count0), and the loops
+       learn their signals' scales afresh (rt/loop.c): the parameters they were solved
+       with at init may have changed */
     if (sim->state.tick == 0) { /* (start_past marks the sets with roots afresh) */
+        for (int c = 0; sim->work.has0 && c < RT_CNT_COUNT; c++) {
+            sim->stats.count[c] = sim->work.count0[c];
+            if (sim->stats.count[c] == 0)
+                sim->stats.last_block[c] = -1;
+        }
+        sim->stats.status = sim->work.has0 ? sim->work.status0 : sim->stats.status;
+        for (int c = 0; c < RT_CNT_COUNT; c++)
+            sim->work.count0[c] = sim->stats.count[c];
+        sim->work.status0 = sim->stats.status, sim->work.has0 = 1;
         rt_status st = rti_check_starts(sc, sim);
         if (st == RT_OK && sim->state.mbs_restart && sc->mbs)
             st = (rt_status)sc->mbs->restart(sc, sim);

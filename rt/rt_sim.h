@@ -253,6 +253,13 @@ typedef struct rt_work {
 #endif
     real_t loop_work[RT_MAX_TORN * (RT_MAX_TORN + 4)]; /* loop solver scratch */
     uint16_t loop_piv[RT_MAX_TORN];
+    /* the fault counters and status before the last rt_refresh before the first tick
+       (held.c; has0: taken): the next such refresh takes its counts back first, so the
+       start is judged with the parameters it has then alone (rt_init's own refresh
+       solved the loops with the scene's values, which --set may have replaced) */
+    uint32_t count0[RT_CNT_COUNT];
+    rt_status status0;
+    uint8_t has0;
     rt_mbs_work mbs;                 /* multibody tables and assembly workspace */
 #if RT_MAX_TEV > 0
     real_t t_piece;                  /* midpoint of the step part a set with known time

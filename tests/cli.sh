@@ -64,6 +64,27 @@ sed -e 's/M.v = -1; M.F = 0;/M.v = -1; M.mode = -1; M.F = 0;/' -e '/^\/\/ expect
 $M run "$T/coul.scn" | grep -q '^status: ok' && ok || bad "coulomb with its mode"
 expect_err "set mode against v" 2 "mode must be +1 for v > 0 and -1 for v < 0" \
     $M run "$T/coul.scn" --set=M.v=1
+# a loop whose scene value has no fixed point (y = u^2 / 4 + 5), set to one that has
+# (c = 0.5: y = 2 - sqrt(2)): judged with the value set alone, status ok (before, the
+# start's solve with the scene's value stayed counted, noconv 1, the run failed)
+cat > "$T/loopset.scn" <<'SCN'
+scene (loopset);
+base tick (1 ms);
+end time (0.05 s);
+define ss_system (F) with inputs (u) outputs (y) parameters (c = 5, a = 0.25) by { y = a * u * u + c; };
+load system (A) of type (F);
+connect (A.y, A.u);
+solve loops by (broyden);
+set (main) method (rk4) step (10 ticks);
+record (A.y);
+SCN
+$M run "$T/loopset.scn" | grep -q '^status: algebraic loop iteration did not converge' && ok ||
+    bad "a loop without a fixed point: $($M run "$T/loopset.scn" | grep -E '^status|^noconv')"
+$M run "$T/loopset.scn" --set=A.c=0.5 > "$T/loopset.out"
+y0=$($M run "$T/loopset.scn" --set=A.c=0.5 --csv=- 2>/dev/null | sed -n '2p' | cut -d, -f2)
+grep -q '^status: ok' "$T/loopset.out" && grep -q '^noconv: 0$' "$T/loopset.out" &&
+    awk -v y="$y0" 'BEGIN { d = y - (2 - sqrt(2)); exit !(d < 1e-9 && d > -1e-9) }' && ok ||
+    bad "a loop set to a fixed point: y(0) $y0, $(grep -E '^status|^noconv' "$T/loopset.out")"
 
 # every scene runs clean, twice with the same 16-digit hash
 for s in oscillator vanderpol pi_loop bouncing_ball; do
