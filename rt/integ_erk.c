@@ -105,10 +105,11 @@ static void combine(real_t *out, const real_t *base, real_t h, const real_t *c, 
    pairs whose estimate needs a stage of its own pay one more right-hand side for it
    (erk_extra_stage): the FSAL pairs' f(t + h, x1) cannot be the next step's first stage
    at a fixed step, which sees the state after projection, events and the other sets' new
-   outputs. The sum over the s stages goes into x0 (dead once x1 is formed), the extra
-   stage's derivative is in k[s] (an estimate stage) or k[0] (FSAL: no buffer of its own,
-   so Dormand-Prince needs six stage buffers, not seven, RT_MAX_STAGES, #14), and its term
-   is added last, in the order one sum would take (the same bits). */
+   outputs. The sum over the s stages goes into x0 (dead once x1 is formed; scratch when
+   the start is the caller's, rt_iwork.xs), the extra stage's derivative is in k[s] (an
+   estimate stage) or k[0] (FSAL: no buffer of its own, so Dormand-Prince needs six stage
+   buffers, not seven, RT_MAX_STAGES, #14), and its term is added last, in the order one
+   sum would take (the same bits). */
 static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
                            const real_t *x, uint16_t n, const rt_iwork *w)
 {
@@ -135,11 +136,11 @@ static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, re
 
 /* the stage that serves only the estimate (erk_tab.ae), into k[s], evaluated with the
    step's stages before the new state is formed (its state is written where the blocks
-   read it, x); a failed evaluation makes the estimate infinite */
+   read it, x; x0 the step's start); a failed evaluation makes the estimate infinite */
 static int erk_extra_stage(const erk_tab *tab, const rt_rhs *f, real_t t, real_t h, real_t *x,
-                           uint16_t n, const rt_iwork *w)
+                           const real_t *x0, uint16_t n, const rt_iwork *w)
 {
-    combine(x, w->x0, h, tab->ae, tab->s, w, n);
+    combine(x, x0, h, tab->ae, tab->s, w, n);
     return f->eval(f->ctx, t + tab->ce * h, w->k[tab->s]) == RT_OK;
 }
 
@@ -148,18 +149,23 @@ static rt_status erk_step(const rt_integrator *m, const rt_rhs *f, real_t t, rea
 {
     const erk_tab *tab = m->tab;
     rt_status st = RT_OK;
-    for (uint16_t i = 0; i < n; i++)
-        w->x0[i] = x[i];
+    /* the start: where the caller keeps it (rt/step.c), else a copy in x0 */
+    const real_t *x0 = w->xs;
+    if (!x0) {
+        for (uint16_t i = 0; i < n; i++)
+            w->x0[i] = x[i];
+        x0 = w->x0;
+    }
     for (uint8_t i = 0; i < tab->s; i++) {
         if (i > 0) /* x = x0 + h sum_{j<i} a_ij k_j, the state of stage i */
-            combine(x, w->x0, h, tab->a + (size_t)i * tab->s, i, w, n);
+            combine(x, x0, h, tab->a + (size_t)i * tab->s, i, w, n);
         rt_status si = f->eval(f->ctx, t + tab->c[i] * h, w->k[i]);
         if (st == RT_OK)
             st = si;
     }
     /* no statistics (a bare step): no estimate, no extra evaluation */
-    int extra = w->stats && tab->ae ? erk_extra_stage(tab, f, t, h, x, n, w) : 1;
-    combine(x, w->x0, h, tab->b, tab->s, w, n);
+    int extra = w->stats && tab->ae ? erk_extra_stage(tab, f, t, h, x, x0, n, w) : 1;
+    combine(x, x0, h, tab->b, tab->s, w, n);
     if (w->stats) {
         real_t e = extra ? erk_estimate(m, f, t, h, x, n, w) : (real_t)1 / (real_t)0;
         w->stats->last_err = e;

@@ -36,6 +36,8 @@ static int holds(const rt_invariant *v, const real_t *x)
 
 void rti_invariants(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
+    if (!((sim->plan.inv_sets >> s) & 1u)) /* no kind of the set declares one */
+        return;
     for (unsigned k = sim->plan.blk_of[s], k1 = sim->plan.blk_of[s + 1]; k < k1; k++) {
         uint16_t b = sim->plan.set_blk[k];
         const rt_kind *kd = sc->blocks[b].kind;
@@ -65,6 +67,7 @@ rt_status rti_check_starts(const rt_scene *sc, rt_sim *sim)
 
 rt_status rti_invariant_init(const rt_scene *sc, rt_sim *sim)
 {
+    sim->plan.inv_sets = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *kd = sc->blocks[b].kind;
         int ok = kd->ninv == 0 || kd->inv;
@@ -79,6 +82,8 @@ rt_status rti_invariant_init(const rt_scene *sc, rt_sim *sim)
             return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name, ": kind ", kd->name,
                             " declares an invariant with an unknown type, a state out of "
                             "range or a tolerance not finite and >= 0", (const char *)0);
+        if (kd->ninv > 0)
+            sim->plan.inv_sets |= 1u << sc->blocks[b].set;
     }
     return RT_OK;
 }

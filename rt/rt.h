@@ -465,7 +465,11 @@ int rt_method_iterates(const struct rt_integrator *m);
 typedef struct rt_iwork {
     real_t *k[RT_MAX_STAGES]; /* stage derivatives, n values each */
     uint8_t autonomous;       /* 1: f(t, x) does not depend on t over the step */
-    real_t *x0;               /* state at the start of the step */
+    real_t *x0;               /* n values the method may write: the state at the start of
+                                 the step, copied from x, or scratch if it reads xs */
+    const real_t *xs;         /* NULL, or the state at the start of the step, which the
+                                 caller keeps (n values, not to be written): a method may
+                                 read it there instead of copying x into x0 */
     real_t *tm;               /* 2 RT_MAX_TRANSITION_N^2 scratch (method transition) */
     rt_implicit_ws *imp;      /* persistent implicit data of this set */
     rt_istats *stats;         /* statistics of this set */

@@ -78,6 +78,8 @@ typedef struct rt_plan {
                                         so the trace does not depend on how the scene
                                         lists its sets */
     uint16_t set_flags[RT_MAX_SETS]; /* rti_set_flag bits of each set (rti_eval_plan) */
+    uint32_t inv_sets;               /* bit s: set s holds a kind declaring invariants, which
+                                        its steps check (rti_invariant_init) */
     uint8_t interp[RT_MAX_U];        /* rt_interp of each cross-set input */
     uint8_t src_set[RT_MAX_U];       /* the set a cross-set input comes from */
     uint8_t xsrc[RT_MAX_HIST_Y];     /* 1: output read by another set (keeps history);

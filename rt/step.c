@@ -11,19 +11,31 @@
 /* max(1, max_i |x_i|), NaN if x holds one. Taken on the bits: |x|'s bits (the sign
    cleared) order as the values do for every non-negative value, inf's are RT_EXP_BITS and
    a NaN's more, so an integer maximum per value gives the same bits with no compare of
-   reals (a call each on a soft-float target) and no branch. With xs, x is also kept there
-   (the state a failed step goes back to, rti_step_set, and an event's re-steps start
-   from, trial), in the same pass */
+   reals (a call each on a soft-float target) and no branch. An integer maximum is exact
+   in any order: two states per iteration, each into a maximum of its own, halve the
+   loop's overhead. With xs, x is also kept there (the state a failed step goes back to,
+   rti_step_set, an event's re-steps start from, trial, and the method reads as the
+   step's start, rt_iwork.xs), in the same pass */
 static RTI_INLINE real_t norm_bits(const real_t *x, real_t *xs, uint16_t n)
 {
-    rt_real_rep m = {.r = 1};
-    for (unsigned i = 0; i < n; i++) {
-        rt_real_rep v = {.r = x[i]};
+    rt_real_bits m0 = ((rt_real_rep){.r = 1}).u, m1 = m0;
+    uint32_t pairs = (uint32_t)n / 2u;
+    for (uint32_t p = 0; p < pairs; p++) {
+        uint32_t i = 2u * p;
+        rt_real_rep v0 = {.r = x[i]}, v1 = {.r = x[i + 1u]};
+        rt_real_bits a0 = v0.u & ~RT_SIGN_BIT, a1 = v1.u & ~RT_SIGN_BIT;
+        if (xs)
+            xs[i] = v0.r, xs[i + 1u] = v1.r; /* as read: a store to xs makes no reload of x */
+        m0 = a0 > m0 ? a0 : m0, m1 = a1 > m1 ? a1 : m1;
+    }
+    if (n & 1u) { /* the last state of an odd count, alone */
+        rt_real_rep v = {.r = x[n - 1u]};
         rt_real_bits a = v.u & ~RT_SIGN_BIT;
         if (xs)
-            xs[i] = x[i];
-        m.u = a > m.u ? a : m.u;
+            xs[n - 1u] = v.r;
+        m0 = a > m0 ? a : m0;
     }
+    rt_real_rep m = {.u = m1 > m0 ? m1 : m0};
     return m.u > RT_EXP_BITS ? (real_t)0 / (real_t)0 : m.r;
 }
 
@@ -53,7 +65,7 @@ static void iwork_of(const rt_scene *sc, rt_sim *sim, uint8_t s, rt_iwork *w)
 {
     for (int i = 0; i < RT_MAX_STAGES; i++)
         w->k[i] = sim->work.w.k[i];
-    w->x0 = sim->work.x0;
+    w->x0 = sim->work.x0, w->xs = 0;
 #if RT_MAX_TRANSITION_N > 0
     w->tm = sim->work.tm;
 #else
@@ -78,9 +90,9 @@ void rti_prime_set(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
     m->prime(m, &f, t, h, sim->state.x + x0, n, &w);
 }
 
-/* integrates the set from t by h in place (its state before the step kept in work.xs),
-   then post-stabilizes its multibody part (eq. 10); a step that ended above its residual
-   tolerance is counted as degraded.
+/* integrates the set from t by h in place (its state before the step kept in work.xs,
+   where the method reads it too), then post-stabilizes its multibody part (eq. 10); a
+   step that ended above its residual tolerance is counted as degraded.
    Returns the final state's norm, after the projection (NaN or inf if a value is not
    finite): one pass serves the growth watch and the finite check */
 static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
@@ -94,6 +106,7 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
         sim->state.imp[s].valid = 0, sim->state.param_changed[s] = 0;
     uint32_t split = w.stats->substepped;
     real_t before = keep_norm(sim->state.x + x0, sim->work.xs, n);
+    w.xs = sim->work.xs; /* one copy of the start: the method need not make its own */
     w.stats->last_err = 0;
     uint64_t r0 = sim->stats.rhs_evals[s];
     rt_status st = sc->sets[s].method->step(sc->sets[s].method, &f, t, h, sim->state.x + x0, n, &w);

@@ -502,7 +502,7 @@ static rt_iwork direct_work(const rt_set_cfg *cfg)
     rt_iwork w;
     for (int i = 0; i < RT_MAX_STAGES; i++)
         w.k[i] = tu_sim.work.w.k[i];
-    w.x0 = tu_sim.work.x0;
+    w.x0 = tu_sim.work.x0, w.xs = 0;
     w.imp = &tu_sim.state.imp[0];
     w.stats = &tu_sim.stats.istats[0];
     w.cfg = cfg;
