@@ -85,20 +85,21 @@ for v in 2 3; do
     else bad "stair (FMI $v.0) every 0.03 s:"; cat "$W/many$v.out"; fi
 done
 
-# modrt check runs the scene again at half the steps beside the run, on the same FMU
-# instances: each run's FMU state is kept apart and put in place around its ticks
-# (tools/modrt/check.c), so the check's run is the straight run (its hash) and the half
-# run sees every event the run does (before, they stepped one instance: the stair's half
-# run saw none of its 8 time events, and a run of an FMU whose discrete state flips at its
-# events was changed by the check)
+# modrt check runs the scene again at half the steps (and a quarter: --observe) beside
+# the run, on the same FMU instances: each run's FMU state and tally are kept apart and
+# put in place around its ticks (tools/modrt/check.c), so the check's run is the straight
+# run (its hash, its fmu. lines) and the half run sees every event the run does (before,
+# they stepped one instance: the stair's half run saw none of its 8 time events, and a
+# run of an FMU whose discrete state flips at its events was changed by the check)
 for v in 2 3; do
     for s in stair_fmu ball_fmu; do
-        "$M" check "$W/$s$v.scn" > "$W/check_$s$v.out" 2>&1
+        "$M" check --observe "$W/$s$v.scn" > "$W/check_$s$v.out" 2>&1
         ev=$(sed -n 's/^check_events: \([0-9]*\), at half the steps \([0-9]*\);.*/\1 \2/p' "$W/check_$s$v.out")
         set -- $ev
         if [ "$(hash_of "$W/check_$s$v.out")" = "$(hash_of "$W/$s$v.out")" ] && [ $# -eq 2 ] &&
-           [ "$1" = "$2" ] && [ "$1" -gt 0 ] && grep -q '^global_status: ok' "$W/check_$s$v.out"; then
-            ok "$s (FMI $v.0): modrt check's run is the run (hash $(hash_of "$W/$s$v.out")), $1 events at h and h/2, global ok"
+           [ "$1" = "$2" ] && [ "$1" -gt 0 ] && grep -q '^global_status: ok' "$W/check_$s$v.out" &&
+           [ "$(grep '^fmu\.' "$W/check_$s$v.out")" = "$(grep '^fmu\.' "$W/$s$v.out")" ]; then
+            ok "$s (FMI $v.0): modrt check's run is the run (hash $(hash_of "$W/$s$v.out"), fmu. lines), $1 events at h and h/2, global ok"
         else bad "$s (FMI $v.0) under modrt check:"; cat "$W/check_$s$v.out"; fi
     done
 done

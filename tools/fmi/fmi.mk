@@ -12,7 +12,7 @@ FMI_SRCS  := $(addprefix $(FMI_DIR)/,fmu_md.c fmu_zip.c fmu_model.c fmu_build.c 
 FMI_LIBS  := -lzip -lexpat -ldl
 FMI_TDIR  := $(O)/fmi
 $(call obj,$(FMI_SRCS)): CINC += -I$(FMI_DIR) -I$(SCN_DIR)
-$(call obj,tools/modrt/modrt.c tools/modrt/cli.c): CINC += -I$(FMI_DIR)
+$(call obj,tools/modrt/modrt.c tools/modrt/cli.c tools/modrt/check.c): CINC += -I$(FMI_DIR)
 # scenec loads FMU systems too (their C for an image, tools/fmi/fmu_emit.c)
 ifeq ($(O),build/host)
 $(SCENEC): $(call obj,$(FMI_SRCS))

@@ -72,6 +72,15 @@ long fmu_arena_need(void);
 /* The FMU lines of a run summary: per FMU block its faults, the first with its time, the
    call, its status and the message the FMU logged. Nothing without FMU blocks. */
 void fmu_summary(FILE *f);
+/* Each FMU block's tally, what fmu_summary prints (faults, warnings, events, event
+   iterations, completed integrator steps, the first fault), for `modrt check`, whose runs
+   share the instances: fmu_tally_keep copies every instance's into slot `run` (0 ..
+   FMU_TALLY_RUNS - 1), fmu_tally_use puts slot `run`'s in place, fmu_tally_zero starts
+   every instance's afresh. */
+#define FMU_TALLY_RUNS 3
+void fmu_tally_keep(int run);
+void fmu_tally_use(int run);
+void fmu_tally_zero(void);
 /* `modrt info FILE.fmu`: the model, its interface and every variable (causality,
    variability, type, unit, start). 0, or -1 with the message on stderr. */
 int fmu_info(FILE *f, const char *path);

@@ -23,6 +23,48 @@ void fmu_summary(FILE *f)
     }
 }
 
+/* an instance's tally (fmu_inst's "what went wrong" fields) */
+typedef struct tally {
+    unsigned long faults, warnings, events, steps_done;
+    uint32_t iter_max;
+    double fault_t;
+    char fault[FMU_ERR_LEN];
+} tally;
+static tally tallies[FMU_TALLY_RUNS][FMU_MAX_INSTANCES];
+
+static void tally_copy(tally *to, const fmu_inst *in)
+{
+    to->faults = in->faults, to->warnings = in->warnings, to->events = in->events;
+    to->steps_done = in->steps_done, to->iter_max = in->iter_max, to->fault_t = in->fault_t;
+    memcpy(to->fault, in->fault, sizeof to->fault);
+}
+
+void fmu_tally_keep(int run)
+{
+    for (int i = 0; i < fmu_ninstances && run >= 0 && run < FMU_TALLY_RUNS; i++)
+        tally_copy(&tallies[run][i], fmu_instances[i]);
+}
+
+void fmu_tally_use(int run)
+{
+    for (int i = 0; i < fmu_ninstances && run >= 0 && run < FMU_TALLY_RUNS; i++) {
+        fmu_inst *in = fmu_instances[i];
+        const tally *t = &tallies[run][i];
+        in->faults = t->faults, in->warnings = t->warnings, in->events = t->events;
+        in->steps_done = t->steps_done, in->iter_max = t->iter_max, in->fault_t = t->fault_t;
+        memcpy(in->fault, t->fault, sizeof in->fault);
+    }
+}
+
+void fmu_tally_zero(void)
+{
+    for (int i = 0; i < fmu_ninstances; i++) {
+        fmu_inst *in = fmu_instances[i];
+        in->faults = in->warnings = in->events = in->steps_done = 0;
+        in->iter_max = 0, in->fault_t = 0, in->fault[0] = 0;
+    }
+}
+
 static int read_all(const char *path, char **buf, size_t *n)
 {
     FILE *f = fopen(path, "rb");

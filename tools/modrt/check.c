@@ -51,6 +51,7 @@
 
 #include "check.h"
 #include "cli.h"
+#include "fmu.h" /* each run's FMU tallies */
 #include "rt_sim.h" /* allocates the runs it compares with */
 
 static rt_sim half;  /* the run at half the steps */
@@ -58,6 +59,7 @@ static rt_sim quarter; /* --observe: the run at a quarter of the steps */
 static rt_sim own;   /* the run at the scene's steps, for check_scene */
 
 enum { RUN_MAIN, RUN_HALF, RUN_QUARTER, RUNS };
+_Static_assert(RUNS == FMU_TALLY_RUNS, "a tally slot per run (fmu.h)");
 static uint8_t kst[RUNS][RT_MAX_KSTATE]; /* each run's blocks' internal states, in block
                                             order, each after its 4-byte size */
 
@@ -111,20 +113,25 @@ static rt_status kstate(const rt_scene *sc, int run, int restore)
     return RT_OK;
 }
 
-/* run `to`'s internal states in place of run `from`'s, which are kept: 1 if done; 0 (the
-   check has no estimate from here, r.kstate_lost) with `from`'s left in place */
+/* run `to`'s internal states in place of run `from`'s, which are kept first: 1 if done.
+   0: the check has no estimate from here on (r.kstate_lost 1), and the run's own states
+   are in place again: still there (its save failed), or put back from this tick's copy
+   (else r.kstate_lost 2: the run goes on from another run's) */
 static int swap_in(const rt_scene *sc, int from, int to)
 {
     if (!C.kinds)
         return 1;
-    if (C.r.kstate_lost || kstate(sc, from, 0) != RT_OK) {
-        C.r.kstate_lost = 1;
-        return 0;
-    }
-    if (kstate(sc, to, 1) == RT_OK)
+    if (C.r.kstate_lost)
+        return 0; /* (the run's own are in place since the failure) */
+    int saved = kstate(sc, from, 0) == RT_OK;
+    fmu_tally_keep(from); /* (what each FMU block met in each run: its own summary) */
+    if (saved && kstate(sc, to, 1) == RT_OK) {
+        fmu_tally_use(to);
         return 1;
+    }
+    fmu_tally_use(RUN_MAIN);
     C.r.kstate_lost = 1;
-    if (kstate(sc, from, 1) != RT_OK && from == RUN_MAIN)
+    if ((from != RUN_MAIN || saved) && kstate(sc, RUN_MAIN, 1) != RT_OK)
         C.r.kstate_lost = 2;
     return 0;
 }
@@ -256,20 +263,25 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
     if (st != RT_OK)
         return refuse(st, "a block's internal state (an FMU's) cannot be saved, so the run "
                       "at half the steps cannot have its own", rt_status_name(st));
+    fmu_tally_keep(RUN_MAIN), fmu_tally_zero();
     if ((st = rt_init(&C.sc, &half)) != RT_OK)
         return refuse(st, "the scene at half the steps", rt_error_text(&half));
     if (setup && setup(ctx, &C.sc, &half) != 0)
         return refuse(RT_E_ARG, "the scene at half the steps: an override failed", NULL);
     if (C.kinds && kstate(sc, RUN_HALF, 0) != RT_OK)
         return refuse(RT_E_SNAPSHOT, "the half run's internal states", NULL);
+    fmu_tally_keep(RUN_HALF);
     C.r.observe = o->observe;
-    if (!o->observe)
+    if (!o->observe) {
+        fmu_tally_use(RUN_MAIN);
         return C.kinds && kstate(sc, RUN_MAIN, 1) != RT_OK
                    ? refuse(RT_E_SNAPSHOT, "the run's internal states back", NULL) : RT_OK;
+    }
     if (n > RT_MAX_TICKS / 4)
         return refuse(RT_E_CAPACITY, "the check's quarter run exceeds RT_MAX_TICKS", NULL);
     C.sc4 = C.sc;
     C.sc4.dt = C.sc.dt / 2;
+    fmu_tally_zero();
     if (sc->link) {
         C.link4 = C.link;
         C.link4.period *= 2;
@@ -282,6 +294,7 @@ rt_status check_begin(const rt_scene *sc, const rt_sim *sim, const check_opts *o
                       NULL);
     if (C.kinds && (kstate(sc, RUN_QUARTER, 0) != RT_OK || kstate(sc, RUN_MAIN, 1) != RT_OK))
         return refuse(RT_E_SNAPSHOT, "the quarter run's internal states", NULL);
+    fmu_tally_keep(RUN_QUARTER), fmu_tally_use(RUN_MAIN);
     return RT_OK;
 }
 
@@ -348,8 +361,7 @@ void check_tick(const rt_scene *sc, const rt_sim *sim)
         for (int k = 0; k < 4 && rt_ticks_done(&quarter) < rt_tick_count(&quarter); k++)
             rt_tick(&C.sc4, &quarter);
     }
-    if (!swap_in(sc, last, RUN_MAIN) && C.r.kstate_lost < 2)
-        C.r.kstate_lost = 2; /* the run goes on from another run's internal state */
+    swap_in(sc, last, RUN_MAIN);
     if (rt_ticks_done(sim) % C.r.every == 0)
         compare(sc, sim);
 }
