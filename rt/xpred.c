@@ -12,7 +12,8 @@
  * the input (its derivatives' change per unit of it, measured every RT_XSET_GAIN_EVERY
  * steps and afresh near the accuracy) and half its step estimates the local error the
  * coupling put into its state, which is held to the reader's accuracy like its own
- * estimate (doubtful above it).
+ * estimate (doubtful above it). A sensitivity found next to none is measured again at
+ * every step while the miss would matter at a strong one (RT_XSET_NOGAIN).
  *
  * A set reading a slower one (or one of its ratio that steps before it) reads it between
  * two points of its history: a hold, a line or a parabola over the source's step. Once
@@ -95,15 +96,17 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
 #if RT_MAX_XPRED > 0
 /* input k of set s (block b) put an error into the set's state of w times the set's
    sensitivity to it: against the set's accuracy; above it the step is counted as one
-   whose estimate exceeds its accuracy. Near the accuracy (RT_XSET_FRESH) the sensitivity,
-   measured up to RT_XSET_GAIN_EVERY steps ago, is measured afresh first: now for a set of
+   whose estimate exceeds its accuracy. Near the accuracy (RT_XSET_FRESH), or after one
+   found next to none (RT_XSET_NOGAIN), the sensitivity, measured up to
+   RT_XSET_GAIN_EVERY steps ago, is measured afresh first: now for a set of
    the tick (t: this step's start, h its step), by its next step for the background set
    (which never evaluates in the tick) */
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
                   real_t w, real_t t, real_t h)
 {
-    real_t est = w * sim->state.xgain[k];
-    if (!(est <= RT_XSET_FRESH * rti_accuracy(&sc->sets[s].cfg))) {
+    real_t g = sim->state.xgain[k], fresh = RT_XSET_FRESH * rti_accuracy(&sc->sets[s].cfg);
+    real_t strong = 1 / ((1 + sim->state.xscale[k]) * h), est = w * g; /* RT_XSET_NOGAIN */
+    if (!(est <= fresh) || (g <= RT_XSET_NOGAIN * strong && w * strong > fresh)) {
         if (!sc->sets[s].background) {
             measure(sc, sim, s, k, t, h);
             est = w * sim->state.xgain[k];

@@ -21,12 +21,16 @@ whole period aliases), over the slow set's step and the reader's scheme, under t
 two rules; and a unit step computed in a slow set of 0.1 s (mr_slow_step.scn), at an
 instant of its grid (which a hold reads exactly: within 1e-12 and ok) and inside its step
 (read late by every scheme: never ok); and a pulse computed there (mr_slow_pulse.scn), on
-its grid and inside its step, where the history's points do not show it: never ok."""
+its grid and inside its step, where the history's points do not show it: never ok.
+
+A reader whose sensitivity to the input is 0 when it is measured and rises later (an
+enable switching on 0.1 s in, a gain that is a state growing from 0), over a 20 rad/s
+sine held over 50 ms: never ok more than ten times the accuracy off (enabled_reader)."""
 import math
 import os
 import tempfile
 
-from hard import run, HERE
+from hard import run, run_text, HERE
 
 W = 2 * math.pi * 10      # the signal's angular frequency [rad/s]
 T_LAG = 0.05              # mr_lag's time constant [s]
@@ -279,6 +283,55 @@ def library(s):
                                         if k.startswith("xset_est")}))
 
 
+ENABLED = """scene (enabled_reader);
+base tick (1 ms);
+end time (10 s);
+define ss_system (Src) with outputs (u) parameters (w = 20) states (c = 1, s = 0) by {
+    u = s;
+    der(c) = -w * s;
+    der(s) = w * c;
+};
+define ss_system (Rd) with inputs (u, g) outputs (x) parameters (T = 0.5) states (xs = 0, ks = 0) by {
+    x = xs;
+    der(ks) = 1;
+    der(xs) = %s;
+};
+load system (S) of type (Src);
+load system (En) of type (step) from file ("sources");
+load system (R) of type (Rd);
+En.t0 = 0.1;
+connect(S.u, R.u);
+connect(En.y, R.g);
+set (fast) members (S) method (rk4) step (1 tick);
+set (slow) members (En, R) method (rk4) step (50 ticks);
+record (R.x);
+"""
+
+
+def enabled_reader(s):
+    """a slow set (rk4, 50 ms) holding a 20 rad/s sine from a 1 ms set, whose sensitivity
+    to it is 0 at the start, where it is first measured: a lag enabled at 0.1 s (x' =
+    (g u - x) / T, closed form below), and an integrator whose gain is a state growing
+    from 0 (x' = t u: x(10) = sin(200) / 400 - cos(200) / 2). Before RT_XSET_NOGAIN the
+    sensitivity stayed 0 until its next measurement 256 steps later: 82 % and 98 % off,
+    status ok"""
+    w, T, t0 = 20.0, 0.5, 0.1
+
+    def lag_p(t):
+        return (math.sin(w * t) - w * T * math.cos(w * t)) / (1 + (w * T) ** 2)
+
+    cases = [("(g u - x) / T", "(g * u - xs) / T",
+              lag_p(10) - lag_p(t0) * math.exp(-(10 - t0) / T)),
+             ("t u", "ks * u", math.sin(200) / 400 - math.cos(200) / 2)]
+    for tag, der, exact in cases:
+        rc, summ, rows = run_text(s.modrt, ENABLED % der, [])
+        err = abs(rows[-1][1] - exact) if rows else math.inf
+        s.row("a sensitivity 0 at its measurement, then not: x' = %s" % tag, "rk4", "0.05",
+              err, summ, rc)
+        s.check(rc in (1, 3) or err <= 10 * ACC, "enabled_reader x' = %s: error %.3g with "
+                "status %s" % (der, err, summ.get("status")))
+
+
 def extra(s, long):
     grid(s)
     grid_slow_source(s)
@@ -286,4 +339,5 @@ def extra(s, long):
     pulse_slow_source(s)
     sampled_fast(s)
     bg_read(s)
+    enabled_reader(s)
     library(s)
