@@ -75,11 +75,13 @@ void fmu_summary(FILE *f);
 /* Each FMU block's tally, what fmu_summary prints (faults, warnings, events, event
    iterations, completed integrator steps, the first fault), for `modrt check`, whose runs
    share the instances: fmu_tally_keep copies every instance's into slot `run` (0 ..
-   FMU_TALLY_RUNS - 1), fmu_tally_use puts slot `run`'s in place, fmu_tally_zero starts
-   every instance's afresh. */
+   FMU_TALLY_RUNS - 1), fmu_tally_use puts slot `run`'s in place, fmu_tally_use_since
+   slot `run`'s with the faults met since slot `since` was kept added (the first of them
+   where `run` had none), fmu_tally_zero starts every instance's afresh. */
 #define FMU_TALLY_RUNS 3
 void fmu_tally_keep(int run);
 void fmu_tally_use(int run);
+void fmu_tally_use_since(int run, int since);
 void fmu_tally_zero(void);
 /* `modrt info FILE.fmu`: the model, its interface and every variable (causality,
    variability, type, unit, start). 0, or -1 with the message on stderr. */

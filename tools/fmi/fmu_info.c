@@ -56,6 +56,22 @@ void fmu_tally_use(int run)
     }
 }
 
+void fmu_tally_use_since(int run, int since)
+{
+    for (int i = 0; i < fmu_ninstances && run >= 0 && run < FMU_TALLY_RUNS && since >= 0 &&
+                    since < FMU_TALLY_RUNS; i++) {
+        fmu_inst *in = fmu_instances[i];
+        tally t = tallies[run][i];
+        unsigned long met = in->faults - tallies[since][i].faults;
+        if (t.faults == 0 && met > 0) /* (the instance's first since `since`'s, if it had none) */
+            t.fault_t = in->fault_t, memcpy(t.fault, in->fault, sizeof t.fault);
+        t.faults += met;
+        in->faults = t.faults, in->warnings = t.warnings, in->events = t.events;
+        in->steps_done = t.steps_done, in->iter_max = t.iter_max, in->fault_t = t.fault_t;
+        memcpy(in->fault, t.fault, sizeof in->fault);
+    }
+}
+
 void fmu_tally_zero(void)
 {
     for (int i = 0; i < fmu_ninstances; i++) {

@@ -123,13 +123,15 @@ static int swap_in(const rt_scene *sc, int from, int to)
         return 1;
     if (C.r.kstate_lost)
         return 0; /* (the run's own are in place since the failure) */
-    int saved = kstate(sc, from, 0) == RT_OK;
     fmu_tally_keep(from); /* (what each FMU block met in each run: its own summary) */
+    int saved = kstate(sc, from, 0) == RT_OK;
     if (saved && kstate(sc, to, 1) == RT_OK) {
         fmu_tally_use(to);
         return 1;
     }
-    fmu_tally_use(RUN_MAIN);
+    /* the run's tally, and the faults the failed calls met: they may have ended an FMU the
+       run goes on with */
+    fmu_tally_use_since(RUN_MAIN, from);
     C.r.kstate_lost = 1;
     if ((from != RUN_MAIN || saved) && kstate(sc, RUN_MAIN, 1) != RT_OK)
         C.r.kstate_lost = 2;
