@@ -262,6 +262,37 @@ sed -i 's/Plant.K = 2;/Plant.K = 2.5;/' $T/fp.scn
 out=$($M replay $T/fp.mrl 2>&1); rc=$?
 [ $rc -eq 2 ] && [ "$(echo "$out" | wc -l)" = 1 ] && echo "$out" | grep -q 'scene changed' && ok ||
     bad "replay against an edited scene: exit $rc: $out"
+# a define's root direction, rest clause and invariant are part of it too (they replayed
+# with another hash: 0 events for 4 after falling -> rising)
+cat > $T/fpd.scn <<'SCN'
+scene (fpd);
+base tick (1 ms);
+end time (3 s);
+define ss_system (Ball) with inputs (c) outputs (height) parameters (e = 0.9, T = 0.05)
+    states (z = 1, v = 0, r = 0) invariants (nonnegative (r)) by {
+    height = z;
+    der(z) = v;
+    der(v) = if(r, 0, -9.81 + c);
+    der(r) = 0;
+    when falling (z) { v = -e * v; }
+    rest (T) { z = 0; v = 0; r = 1; }
+};
+load system (B) of type (Ball);
+export (B.height) to (Ctrl);
+import (c = 0 hold) from (Ctrl) every (10 ms);
+connect(Ctrl.c, B.c);
+record (B.height);
+SCN
+$M run $T/fpd.scn --link none --record $T/fpd.mrl > /dev/null
+cp $T/fpd.scn $T/fpd.orig
+for e in 's/when falling (z)/when rising (z)/' 's/rest (T)/rest (20 * T)/' \
+         's/nonnegative (r)/nonnegative (z)/'; do
+    sed "$e" $T/fpd.orig > $T/fpd.scn
+    out=$($M replay $T/fpd.mrl 2>&1); rc=$?
+    [ $rc -eq 2 ] && echo "$out" | grep -q 'scene changed' && ok ||
+        bad "replay against a define edited by '$e': exit $rc: $out"
+done
+cp $T/fpd.orig $T/fpd.scn
 # --method and --set are part of the run: recorded, and replayed the same
 $M run pi_link --link none --t-end 0.5 --method main=euler --set Plant.K=3 --record $T/opt.mrl > $T/opt.out
 [ "$($M replay $T/opt.mrl | sed -n 's/^hash: //p')" = "$(field hash $T/opt.out)" ] && ok ||

@@ -60,9 +60,26 @@ static void prog(uint64_t *h, const scn_prog *p)
             real(h, p->k[p->ins[i].a]);
 }
 
-/* what a kind computes, beyond its name: a scene file's define (its programs), the
-   matrices of an LSS block, or the FMU file an FMU block runs (its name stays when the
-   file is replaced by another build of the model) */
+/* what a define's kind declares besides its programs: its roots' directions and guards,
+   its invariants */
+static void declared(uint64_t *h, const rt_kind *k)
+{
+    for (uint16_t r = 0; r < k->nr; r++)
+        u64(h, (uint64_t)(k->root_dir ? (uint8_t)k->root_dir[r] : 0) << 8 |
+                   (k->root_guard ? k->root_guard[r] : 0));
+    u64(h, k->ninv);
+    for (uint8_t i = 0; i < k->ninv; i++) {
+        const rt_invariant *v = &k->inv[i];
+        u64(h, v->type), u64(h, v->n), real(h, v->c), real(h, v->tol);
+        for (uint8_t j = 0; j < v->n; j++)
+            u64(h, v->x[j]);
+    }
+}
+
+/* what a kind computes, beyond its name: a scene file's define (its programs, among them
+   each root's rest clause, and what it declares), the matrices of an LSS block, or the FMU
+   file an FMU block runs (its name stays when the file is replaced by another build of
+   the model) */
 static void kind_spec(uint64_t *h, const rt_kind *k)
 {
     const char *fmu = fmu_kind_file_id(k);
@@ -71,8 +88,12 @@ static void kind_spec(uint64_t *h, const rt_kind *k)
     if (k->output == scn_vm_output || k->deriv == scn_vm_deriv || k->update == scn_vm_update) {
         const scn_vm_spec *v = k->spec;
         prog(h, &v->out), prog(h, &v->der), prog(h, &v->upd), prog(h, &v->roots);
+        prog(h, &v->tev);
         for (uint16_t r = 0; r < k->nr && v->event; r++)
             prog(h, &v->event[r]);
+        for (uint16_t r = 0; r < k->nr && v->rest_t; r++)
+            prog(h, &v->rest_t[r]), prog(h, &v->rest[r]);
+        declared(h, k);
     } else if (k->deriv == rt_lss_deriv && k->spec) {
         const rt_lss_spec *m = k->spec;
         size_t nx = m->nx, nu = m->nu, ny = m->ny;
