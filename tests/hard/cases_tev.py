@@ -12,7 +12,8 @@ before, so a scene driven by steps keeps every method's order.
   * a switch on t in a defined system's derivative (tev_tswitch.scn): its integral exact
     for every method, the instant on the base tick grid or off it; comparisons of t at a
     tick that is the instant to rounding, a guard at 1e-9 s (tev_tswitch_edges.scn); more
-    instants in one step than its parts, counted (tev_limit; tev_tswitch_many.scn)."""
+    instants in one step than its parts, counted (tev_limit; tev_tswitch_many.scn);
+  * a stiffness that ends at a time event under ROS2 keeping its Jacobian (stiff_end)."""
 import math
 import os
 import subprocess
@@ -213,6 +214,46 @@ def tswitch_readers(s):
             "its step: B.y(1) %.6g for 0.555, exit %d" % (y, rc))
 
 
+STIFF_END = """scene (stiff_end) doc ("a stiffness that ends at a time event");
+base tick (1 ms);
+end time (0.62 s);
+define ss_system (Sw) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 10, t1 = 0.5)
+    states (y = 1) by {
+    yo = y;
+    der(y) = %s;
+};
+load system (U) of type (step);
+U.t0 = 0.5;
+load system (S) of type (Sw);
+connect(U.y, S.u);
+set (main) method (ros2) step (10 ticks) jacobian (%d);
+record (S.yo);
+"""
+
+
+def stiff_end(s):
+    """y' = -1e5 (y - 1) until a time event t1, then -10 y (from y = 1 to 1e-5: y(0.62) =
+    e^(-10 (0.62 - t1))), by ROS2 keeping its Jacobian over 2 and 64 steps: the instant a define's
+    comparison (0.5 s, a step's start; 0.505 s, inside a step) or a step source in the set.
+    The kept Jacobian belongs to the stiff dynamics: before it was renewed at the instant
+    the state stayed at 1 (0.7 off at 0.62 s) with status ok and modrt check ok"""
+    for tag, der in (("t < t1", "if(t < t1, -k1 * (y - 1), -k2 * y)"),
+                     ("step source", "-k1 * (1 - u) * (y - 1) - k2 * u * y")):
+        for t1 in (0.5, 0.505):
+            if tag == "step source" and t1 != 0.5:
+                continue
+            for jac in (2, 64):
+                rc, summ, rows = run_text(s.modrt, STIFF_END % (der, jac),
+                                          ["--set", "S.t1=%r" % t1])
+                exact = math.exp(-10 * (0.62 - t1))
+                err = abs(rows[-1][1] - exact) if rows else math.inf
+                s.row("a stiffness ending at %s = %g, ros2 jacobian %d" % (tag, t1, jac),
+                      "ros2", "0.01", err, summ, rc)
+                s.check(rc in (1, 3) or err <= 1e-2, "stiff_end %s = %g, jacobian %d: "
+                        "y(0.62) off by %.3g with status %s" % (tag, t1, jac, err,
+                                                                 summ.get("status")))
+
+
 def extra(s, long):
     beltgear(s)
     dcmotor(s)
@@ -220,3 +261,4 @@ def extra(s, long):
     tswitch_edges(s)
     tswitch_many(s)
     tswitch_readers(s)
+    stiff_end(s)
