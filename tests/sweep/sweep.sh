@@ -49,6 +49,8 @@ checks = [
     ("lag_settle", 0.5 * math.log(50) + 0.0005, 0.0005),
     ("lag_settle_late", 0.5 * math.log(50) - 0.5 + 0.0005, 0.0005),
     ("lag_final", 1 - math.exp(-4), 1e-9),
+    # from between ticks: the samples from the next tick on (1 ms), not the one before
+    ("lag_min_off", 1 - math.exp(-0.002), 1e-9),
     ("lag_over", 0, 0),
     # over time, not per sample: (1/2) int_0^2 y dt and its RMS; the trapezoid's error is
     # below 2 h^2 max|f''| / 12 / 2 < 1e-6 (a rectangle rule's would be 2.5e-4)

@@ -213,7 +213,7 @@ void sweep_metrics_sample(const sweep_campaign *c, const rt_scene *sc, const rt_
 {
     for (int i = 0; i < c->nmetrics; i++) {
         const sweep_metric *m = &c->metrics[i];
-        if (t < m->from - 0.5 * (double)sc->dt) /* before its start (within half a tick) */
+        if (t + 1e-9 * (double)sc->dt < m->from) /* before its start (beyond a tick's rounding) */
             continue;
         if (m->kind == SWEEP_M_ERROR) {
             error_sample(i, sc, sim, &acc[i], t);
