@@ -346,6 +346,21 @@ void rti_xset_predict_reset(rt_sim *sim);
    the accuracy): two right-hand sides per input, in the context that runs the step
    (rti_xset_predict calls it for a set of the tick, rt/bg.c for the background set) */
 void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h);
+/* set s switched (a time event, an event's handlers: a gain or an enable may have moved):
+   its sensitivities are measured afresh at its next step (rti_xset_gain). Not the
+   background set's: its release is judged with what its last step measured, and a NaN
+   there would leave that step unjudged. Inline: rt/step.c and rt/tev.c mark, xpred.c
+   measures, and none of them calls another for it */
+static inline void rti_xset_gain_stale(rt_sim *sim, uint8_t s)
+{
+#if RT_MAX_XPRED > 0
+    for (uint16_t k = sim->plan.xpred_of[s];
+         s != sim->plan.bg_set && k < sim->plan.xpred_of[s + 1]; k++)
+        sim->state.xgain[k] = (real_t)0 / (real_t)0;
+#else
+    (void)sim, (void)s;
+#endif
+}
 /* set s, its state at a tick where an input from another set's history jumped: how long
    before the tick the jump built up, the longest such interval (a source extrapolated
    over s's step: the step; one read between points: its interval ending there); 0 where

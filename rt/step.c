@@ -786,6 +786,7 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
            implicit method's kept Jacobian belongs to the state before them, and a
            W-method's estimate filtered by it reads a frozen state as exact */
         sim->state.imp[s].valid = 0;
+        rti_xset_gain_stale(sim, s); /* (a mode: the inputs' sensitivity moves too) */
         if (off > 0 || dx > 0)
             judge_event(sc, sim, s, te, h, blk, off, dx);
         /* the rest of the step starts from the handled state */

@@ -105,10 +105,12 @@ void rt_tev_none(const rt_args *a, real_t *x, real_t *d)
    FMU's time event): an implicit method's kept Jacobian belongs to the dynamics before
    it, and a W-method's estimate filtered by it reads a frozen state as exact (a stiffness
    that ends at the instant, ROS2 with its Jacobian every 64 steps: 0.75 off, status ok),
-   as after a state event's handlers (rt/step.c) */
+   and the set's sensitivity to the inputs it reads from other sets may have moved (an
+   enable), as after a state event's handlers (rt/step.c) */
 static void switched(rt_sim *sim, uint8_t s)
 {
     sim->state.imp[s].valid = 0;
+    rti_xset_gain_stale(sim, s); /* (an enable at the instant: a reader's sensitivity) */
 }
 
 /* block b of set s switched strictly inside the set's step: another set reads its
