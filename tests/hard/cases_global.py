@@ -168,6 +168,12 @@ def flags(s):
             lambda t: kepler(t)[1], "K.py", col=2)
     summ = flagged(s, "library ball euler", "zeno.scn", ["--method", "main=euler"], None,
                    "Ball.h")
+    # aliased at h and h/2 alike (both read 0, the difference 0): the half run doubts its
+    # steps, the quarter run differs (before: global_status ok)
+    w = 400 * math.pi
+    for extra_args in ([], ["--observe"]):
+        flagged(s, "an integrand aliased at h and h/2 %s" % " ".join(extra_args),
+                "global_alias.scn", extra_args, lambda t: t - math.sin(w * t) / w, "I.y")
     print("  global ball euler: %s" % summ.get("check_events"))
     # ROS2 splits every step above its accuracy: at 40 and 20 ms into substeps of 5 ms,
     # the same computation; the difference is 0 and must not read as ok

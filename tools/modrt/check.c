@@ -373,6 +373,10 @@ void check_tick(const rt_scene *sc, const rt_sim *sim)
 static void observed(check_sig *g)
 {
     double noise = 1e3 * (double)RT_EPS * (1 + g->range);
+    if (!(g->d1 > noise) && g->d2 > noise) { /* h and h/2 agree, h/4 does not: aliased */
+        g->q_none = 1;
+        return;
+    }
     if (!(g->d1 > noise && g->d2 > noise) || !(g->d1 <= DBL_MAX && g->d2 <= DBL_MAX))
         return;
     g->q = (double)(rt_log((real_t)(g->d1 / g->d2)) / rt_log((real_t)2));
@@ -420,6 +424,11 @@ void check_end(const rt_scene *sc, const rt_sim *sim, check_result *r)
     if (rt_status_severity(C.r.status_half) >= 2 || C.r.kstate_lost ||
         (C.r.observe && rt_status_severity(C.r.status_quarter) >= 2))
         sev = 2;
+    /* a run at a finer step that doubts its own answer where the run does not: the two
+       do not tell the run's error (a signal aliased at h and h/2 alike reads 0) */
+    if ((rt_status_severity(C.r.status_half) >= 1 ||
+         (C.r.observe && rt_status_severity(C.r.status_quarter) >= 1)) && sev < 1)
+        sev = 1;
     C.r.severity = sev;
     *r = C.r;
 }
