@@ -62,6 +62,18 @@ static inline real_t rt_x_next(real_t t, const real_t *v, unsigned n)
     return best;
 }
 
+/* a defined system's rt_kind.band: the largest |v1_i - v0_i| over its n sin and cos
+   arguments w t + phi taken at t = 1 (v1) and t = 0 (v0), |w| each (a NaN stays) */
+static inline real_t rt_x_band(const real_t *v0, const real_t *v1, unsigned n)
+{
+    real_t w = 0;
+    for (unsigned i = 0; i < n; i++) {
+        real_t d = rt_fabs(v1[i] - v0[i]);
+        w = d > w || d != d ? d : w;
+    }
+    return w;
+}
+
 /* the time a comparison of `t` with the instant c reads, t_piece tp given: inside a step
    part (tp != t) the part's midpoint, whose side of c is the whole part's, as a step
    source's (the part ending at c sees the left limit at its end, rt/tev.c); at t itself

@@ -88,7 +88,7 @@ static void kind_spec(uint64_t *h, const rt_kind *k)
     if (k->output == scn_vm_output || k->deriv == scn_vm_deriv || k->update == scn_vm_update) {
         const scn_vm_spec *v = k->spec;
         prog(h, &v->out), prog(h, &v->der), prog(h, &v->upd), prog(h, &v->roots);
-        prog(h, &v->tev);
+        prog(h, &v->tev), prog(h, &v->band);
         for (uint16_t r = 0; r < k->nr && v->event; r++)
             prog(h, &v->event[r]);
         for (uint16_t r = 0; r < k->nr && v->rest_t; r++)

@@ -244,6 +244,23 @@ static void instants(FILE *f, const scn_ctx *c, const scn_define *d, const char 
     fprintf(f, "    return rt_x_next(a->t, v, %u);\n}\n", (unsigned)d->ntev);
 }
 
+/* the sin and cos arguments affine in t, and the kind's band over them */
+static void bands(FILE *f, const scn_ctx *c, const scn_define *d, const char *id)
+{
+    uint8_t in[SCN_MAX_STMTS];
+    int ntemp = 0;
+    scn_service(c, d, SCN_ST_BAND, in);
+    fprintf(f, "\nstatic void %s_band_at(const rt_args *a, real_t *v)\n{\n", id);
+    for (uint32_t s = d->st0; s < d->st1; s++)
+        if (in[s - d->st0])
+            statement(f, c, &c->sc.st[s], "v", &ntemp);
+    fprintf(f, "}\n\nstatic real_t %s_band(const rt_args *a)\n{\n"
+               "    rt_args b = *a;\n    real_t v0[%u], v1[%u];\n"
+               "    b.t = 0, %s_band_at(&b, v0);\n    b.t = 1, %s_band_at(&b, v1);\n"
+               "    return rt_x_band(v0, v1, %u);\n}\n", id, (unsigned)d->nband,
+            (unsigned)d->nband, id, id, (unsigned)d->nband);
+}
+
 /* the statements of root r's service kind (handler, rest time or rest handler) */
 static void handler(FILE *f, const scn_ctx *c, const scn_define *d, uint8_t kind, uint16_t r,
                     const char *out, int *ntemp)
@@ -369,6 +386,8 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
             event_services(f, c, d, pre);
         if (d->ntev)
             instants(f, c, d, pre);
+        if (d->nband)
+            bands(f, c, d, pre);
     }
     invariants(f, k, pre);
     fprintf(f, "\nstatic const rt_kind %s_kind = {\n    .name = \"%s\", .type = %s,\n", pre, id,
@@ -404,6 +423,8 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
         fprintf(f, " .roots = %s_roots, .event = %s_event, .root_dir = %s_rdir,", pre, pre, pre);
     if (d->ntev)
         fprintf(f, " .next_event = %s_next, .time_event = rt_tev_none,", pre);
+    if (d->nband)
+        fprintf(f, " .band = %s_band,", pre);
     if (k->ninv)
         fprintf(f, " .inv = %s_inv, .ninv = %u,", pre, k->ninv);
     fputs("\n};\n", f);

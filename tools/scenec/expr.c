@@ -350,6 +350,54 @@ static int indexed_ref(scn_ctx *c, scn_name n)
 }
 
 /* f(args): an elementary function, or if(c, a, b) */
+/* what code [i0, i1) is as a function of `t` (band_arg) */
+typedef enum { IN_T_FIXED, IN_T_AFFINE, IN_T_OTHER } in_t;
+
+static in_t affine_in_t(const scn_ins *code, uint32_t i0, uint32_t i1)
+{
+    uint8_t st[SCN_MAX_STACK + 1];
+    int sp = 0;
+    for (uint32_t i = i0; i < i1; i++) {
+        uint8_t op = code[i].op, a, b;
+        if (op == SCN_OP_CONST || op == SCN_OP_PAR || op == SCN_OP_TIME) {
+            if (sp > SCN_MAX_STACK)
+                return IN_T_OTHER;
+            st[sp++] = op == SCN_OP_TIME ? IN_T_AFFINE : IN_T_FIXED;
+        } else if (op <= SCN_OP_LOC) {
+            return IN_T_OTHER; /* an input, a state, a let, the step: not t alone */
+        } else if (op == SCN_OP_NEG) {
+            continue;
+        } else if (op >= SCN_OP_ADD && op <= SCN_OP_DIV && sp >= 2) {
+            b = st[--sp], a = st[sp - 1];
+            if (a == IN_T_OTHER || b == IN_T_OTHER || (op >= SCN_OP_MUL && a + b > 1) ||
+                (op == SCN_OP_DIV && b != IN_T_FIXED))
+                return IN_T_OTHER;
+            st[sp - 1] = a > b ? a : b;
+        } else {
+            return IN_T_OTHER; /* a function, a condition: not affine */
+        }
+    }
+    return sp == 1 ? (in_t)st[0] : IN_T_OTHER;
+}
+
+/* a sin or cos of an argument affine in `t` (code [a0, a1): w t + phi, w and phi fixed)
+   in an output, derivative or let of a continuous define: its |w| is the kind's band
+   (rt_kind.band), so rt_init refuses a set that samples the signal at w h >= pi, as a sine
+   source's (an alias no estimate can tell: 1 - cos(w t) read where cos is 1 is 0). The
+   argument becomes an SCN_ST_BAND statement after the one compiled (flush_tev) */
+static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
+{
+    if (c->err || !c->def || c->def->type != SCN_DEF_SS ||
+        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
+        (strcmp(scn_fns[f].name, "sin") != 0 && strcmp(scn_fns[f].name, "cos") != 0) ||
+        affine_in_t(c->sc.code, a0, a1) != IN_T_AFFINE)
+        return;
+    if (c->def->nband + c->ntev >= SCN_MAX_BAND)
+        return; /* (more than the bound: the first SCN_MAX_BAND say the band) */
+    c->tev[c->ntev][0] = a0, c->tev[c->ntev][1] = a1, c->tev[c->ntev][2] = SCN_ST_BAND;
+    c->ntev++;
+}
+
 static void call(scn_ctx *c, scn_name n)
 {
     int f = -1, nargs = 0;
@@ -367,6 +415,7 @@ static void call(scn_ctx *c, scn_name n)
         return;
     }
     scn_expect_op(c, "(");
+    uint32_t a0 = c->sc.ncode;
     while (!c->err && !scn_is_op(c, ")")) {
         expr(c), nargs++;
         if (!scn_accept_op(c, ","))
@@ -378,8 +427,11 @@ static void call(scn_ctx *c, scn_name n)
     scn_expect_op(c, ")");
     if (want == 3)
         emit(c, SCN_OP_SEL, 0, -2);
-    else
+    else if (!c->err) {
+        if (want == 1)
+            band_arg(c, f, a0, c->sc.ncode);
         emit(c, SCN_OP_CALL, (uint16_t)f, 1 - want);
+    }
 }
 
 static void primary(scn_ctx *c)
@@ -503,7 +555,8 @@ static uint16_t time_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
         return 0;
     }
     code[t].op = SCN_OP_TPIECE;
-    c->tev[c->ntev][0] = i0, c->tev[c->ntev][1] = i1, c->ntev++;
+    c->tev[c->ntev][0] = i0, c->tev[c->ntev][1] = i1, c->tev[c->ntev][2] = SCN_ST_TEV;
+    c->ntev++;
     return side;
 }
 
@@ -543,8 +596,9 @@ static void expr(scn_ctx *c)
 
 /* ------------------------------------------------------------------ body statements */
 
-/* the instants the statement just compiled compares `t` with (time_switch): each an
-   SCN_ST_TEV statement of its own, a copy of its code stored into the next instant */
+/* the instants the statement just compiled compares `t` with (time_switch), and its sin
+   and cos arguments affine in `t` (band_arg): each an SCN_ST_TEV or SCN_ST_BAND statement
+   of its own, a copy of its code stored into the next one */
 static void flush_tev(scn_ctx *c, scn_pos pos)
 {
     scn_scene *s = &c->sc;
@@ -554,11 +608,13 @@ static void flush_tev(scn_ctx *c, scn_pos pos)
                      scn_fmt(c, "at most %u in all bodies", SCN_MAX_STMTS));
             return;
         }
+        uint8_t kind = (uint8_t)c->tev[k][2];
+        uint16_t *n = kind == SCN_ST_TEV ? &c->def->ntev : &c->def->nband;
         uint32_t code0 = s->ncode;
         for (uint32_t i = c->tev[k][0]; i < c->tev[k][1]; i++)
             emit(c, s->code[i].op, s->code[i].a, 0);
-        emit(c, SCN_OP_OUT, c->def->ntev, 0);
-        s->st[s->nst++] = (scn_stmt){SCN_ST_TEV, c->def->ntev++, code0, s->ncode, pos, 0};
+        emit(c, SCN_OP_OUT, *n, 0);
+        s->st[s->nst++] = (scn_stmt){kind, (*n)++, code0, s->ncode, pos, 0};
     }
     c->ntev = 0;
 }

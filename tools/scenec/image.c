@@ -95,6 +95,10 @@ static const rt_kind *define_services(scn_ctx *c, const scn_define *d, const rea
         vs->tev = program(c, d, SCN_ST_TEV, k), vs->ntev = d->ntev;
         kd->next_event = scn_vm_next, kd->time_event = rt_tev_none;
     }
+    if (d->nband) { /* its sin and cos of t: its band */
+        vs->band = program(c, d, SCN_ST_BAND, k), vs->nband = d->nband;
+        kd->band = scn_vm_band;
+    }
     events(c, d, k, vs, kd);
     return kd;
 }

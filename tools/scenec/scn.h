@@ -139,6 +139,8 @@ typedef struct scn_vm_spec {
     scn_prog out, der, upd, roots;
     scn_prog tev;               /* the instants `t` is compared with (ntev values) */
     uint16_t ntev;
+    scn_prog band;              /* the sin and cos arguments affine in `t` (nband values) */
+    uint16_t nband;
     const scn_prog *event;      /* one handler program per root */
     const scn_prog *rest_t;     /* per root: its shortest flight (n = 0: no rest clause) */
     const scn_prog *rest;       /* per root: its rest handler */
@@ -151,6 +153,7 @@ void scn_vm_update(const rt_args *a, real_t *dnext);
 void scn_vm_roots(const rt_args *a, real_t *r);
 void scn_vm_event(const rt_args *a, uint16_t which, real_t *x, real_t *d);
 real_t scn_vm_next(const rt_args *a);
+real_t scn_vm_band(const rt_args *a);
 
 /* ------------------------------------------------------------------ the scene */
 
@@ -164,8 +167,10 @@ typedef enum {
     SCN_ST_EVENT,               /* a state assignment of root `root`'s handler */
     SCN_ST_REST_T,              /* the shortest flight of `rest (...)`, index: the root */
     SCN_ST_REST,                /* a state assignment of root `root`'s rest handler */
-    SCN_ST_TEV                  /* an instant `t` is compared with (a known time event),
+    SCN_ST_TEV,                 /* an instant `t` is compared with (a known time event),
                                    index: the instant */
+    SCN_ST_BAND                 /* the argument of a sin or cos that is affine in `t` (its
+                                   angular frequency: rt_kind.band), index: the argument */
 } scn_stmt_kind;
 
 /* a port, parameter or state of a define, with its default value */
@@ -192,6 +197,7 @@ typedef struct scn_matrix {
 
 #define SCN_MAX_INV 8           /* invariants of one define */
 #define SCN_MAX_TEV 64          /* instants `t` is compared with in one define's body */
+#define SCN_MAX_BAND 64         /* sin and cos of t in one define's body (its band) */
 #define SCN_MAX_INV_N 16        /* states of one invariant */
 
 /* invariants (nonnegative (a, b) [within (tol)], sum (a, b) = c, norm (a, b) <= c) */
@@ -216,6 +222,7 @@ typedef struct scn_define {
     uint8_t rest[SCN_MAX_PORTS];/* 1: the `when` has a rest clause */
     uint16_t nr;                /* roots (`when` statements) */
     uint16_t ntev;              /* instants `t` is compared with (SCN_ST_TEV statements) */
+    uint16_t nband;             /* sin and cos arguments affine in `t` (SCN_ST_BAND) */
     scn_matrix A, B, C, D;      /* LSS */
     scn_inv inv[SCN_MAX_INV];   /* invariants (...) */
     uint8_t ninv;
@@ -416,8 +423,10 @@ typedef struct scn_ctx {
                                    t_last is readable there); 0: none */
     uint16_t after_when;        /* 1 + the root of a `when` the last body statement was
                                    (a rest clause may follow it); 0: none */
-    uint32_t tev[SCN_MAX_TEV][2];/* the code of the instants the statement being compiled
-                                   compares `t` with, made SCN_ST_TEV statements after it */
+    uint32_t tev[SCN_MAX_TEV + SCN_MAX_BAND][3]; /* code [0, 1) of the instants the
+                                   statement being compiled compares `t` with, and of its sin
+                                   and cos arguments affine in `t`, made statements of kind
+                                   [2] (SCN_ST_TEV, SCN_ST_BAND) after it */
     uint16_t ntev;
     uint8_t st_kind;            /* the kind (SCN_ST_*) of the statement being compiled */
     /* the error of the check under way (err, its position), the errors of independent

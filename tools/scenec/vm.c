@@ -114,6 +114,18 @@ real_t scn_vm_next(const rt_args *a)
     return rt_x_next(a->t, v, vs->ntev);
 }
 
+/* the largest |w| of the body's sin and cos arguments w t + phi: each argument at t = 1
+   less its value at t = 0 */
+real_t scn_vm_band(const rt_args *a)
+{
+    const scn_vm_spec *vs = a->spec;
+    real_t v0[SCN_MAX_BAND], v1[SCN_MAX_BAND];
+    rt_args b = *a;
+    b.t = 0, run(&vs->band, &b, v0);
+    b.t = 1, run(&vs->band, &b, v1);
+    return rt_x_band(v0, v1, vs->nband);
+}
+
 void scn_vm_roots(const rt_args *a, real_t *r)
 {
     run(&((const scn_vm_spec *)a->spec)->roots, a, r);
