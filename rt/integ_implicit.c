@@ -785,5 +785,6 @@ const rt_integrator rt_sdirk2 = {.name = "sdirk2", .order = 2, .stages = 2, .imp
 const rt_integrator rt_sdirk3 = {.name = "sdirk3", .order = 3, .stages = 3, .implicit = 1,
                                  .step = dirk_step, .bound = dirk_bound, .tab = &sd3_tab};
 const rt_integrator rt_ros2 = {.name = "ros2", .order = 2, .stages = 2, .implicit = 1,
+                               .w_method = 1,
                                .step = ros2_step, .bound = ros2_bound, .tab = &ros2_tab_,
                                .prime = ros2_prime};

@@ -488,6 +488,8 @@ typedef struct rt_integrator {
     uint8_t order;     /* classical order of convergence */
     uint8_t stages;    /* stages per step (explicit: right-hand-side evaluations) */
     uint8_t implicit;  /* 1: needs rt_iwork.imp (n <= RT_MAX_IMPLICIT_N) */
+    uint8_t w_method;  /* 1: its stages solve with a Jacobian it keeps and no iteration
+                          tells a stale one (ROS2): renewed at its set's switches */
     uint8_t linear;    /* 1: only for a set linear in its state (n <= RT_MAX_TRANSITION_N;
                           checked at rt_init) */
     /* Advances x (n values) from t to t+h in place. Returns RT_OK, RT_E_NOCONV when the

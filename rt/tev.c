@@ -102,15 +102,17 @@ void rt_tev_none(const rt_args *a, real_t *x, real_t *d)
 }
 
 /* set s switches at a time event here (a source's step, an edge, a define's comparison, an
-   FMU's time event): an implicit method's kept Jacobian belongs to the dynamics before
-   it, and a W-method's estimate filtered by it reads a frozen state as exact (a stiffness
-   that ends at the instant, ROS2 with its Jacobian every 64 steps: 0.75 off, status ok),
-   and the set's sensitivity to the inputs it reads from other sets may have moved (an
-   enable), as after a state event's handlers (rt/step.c) */
-static void switched(rt_sim *sim, uint8_t s)
+   FMU's time event): a W-method's kept Jacobian belongs to the dynamics before it, and
+   its estimate, filtered by it, reads a frozen state as exact (a stiffness that ends at
+   the instant, ROS2 with its Jacobian every 64 steps: 0.75 off, status ok); a DIRK's
+   Newton iteration tells a stale one itself, and a linear set's matrices cannot change.
+   And the set's sensitivity to the inputs it reads from other sets may have moved (an
+   enable): measured afresh (rti_xset_gain_stale) */
+static void switched(const rt_scene *sc, rt_sim *sim, uint8_t s)
 {
-    sim->state.imp[s].valid = 0;
-    rti_xset_gain_stale(sim, s); /* (an enable at the instant: a reader's sensitivity) */
+    if (sc->sets[s].method->w_method)
+        sim->state.imp[s].valid = 0;
+    rti_xset_gain_stale(sim, s);
 }
 
 /* block b of set s switched strictly inside the set's step: another set reads its
@@ -271,7 +273,7 @@ static void part_end(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t0, real
             continue;
         if (te < t && !rt_same_instant(te, t)) /* passed by the last part the bound allows */
             rti_count(sim, RT_CNT_TEV_LIMIT, b, RT_E_TEV);
-        switched(sim, s);
+        switched(sc, sim, s);
         if (sc->blocks[b].kind->time_event != rt_tev_none)
             serve(sc, sim, s, b, t, SERVE_TIME_EVENT, &changed);
         else if (inside && jumps_at(sc, sim, s, b, t))
@@ -387,7 +389,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
         if (reached == tb && kb != NEVER)
             k = kb;
         if (reached == tb && kb != NEVER && kb < end)
-            inside_step(sc, sim, s, kb), switched(sim, s);
+            inside_step(sc, sim, s, kb), switched(sc, sim, s);
 #endif
         t = reached;
         if (t >= t_end)
@@ -413,7 +415,7 @@ void rti_tev_inside(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, u
 void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uint32_t ratio)
 {
     if (rti_tev_at(sc, sim, s, tick)) /* the step starts at an instant known ahead */
-        switched(sim, s);
+        switched(sc, sim, s);
     if (sim->plan.set_flags[s] & SET_PARTS) {
         dyn_step(sc, sim, s, tick, ratio);
         return;
@@ -426,7 +428,7 @@ void rti_tev_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, uin
         for (int n = 1; n < RT_TEV_PARTS_MAX && (ke = next_tick(sc, sim, s, k)) < end; n++) {
             part(sc, sim, s, k, ke);
             inside_step(sc, sim, s, ke);
-            switched(sim, s);
+            switched(sc, sim, s);
             k = ke;
         }
         part(sc, sim, s, k, end);
