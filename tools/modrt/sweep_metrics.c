@@ -213,7 +213,8 @@ void sweep_metrics_sample(const sweep_campaign *c, const rt_scene *sc, const rt_
 {
     for (int i = 0; i < c->nmetrics; i++) {
         const sweep_metric *m = &c->metrics[i];
-        if (t + 1e-9 * (double)sc->dt < m->from) /* before its start (beyond a tick's rounding) */
+        double dt = (double)sc->dt, slack = (double)RT_TICK_SLACK * (m->from > dt ? m->from : dt);
+        if (t + slack < m->from) /* before its start, beyond the rounding of a tick's time */
             continue;
         if (m->kind == SWEEP_M_ERROR) {
             error_sample(i, sc, sim, &acc[i], t);
