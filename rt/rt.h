@@ -273,7 +273,8 @@ typedef struct rt_kind {
        samples are an alias (at omega h = 2 pi every stage sees the same phase and no
        estimate can tell), so rt_init refuses a scene (and rt_set_param a parameter)
        where a set integrating the signal steps that long (rt/tev.c). NULL: none, or
-       not known (a defined system, an FMU) */
+       not known (an FMU; a defined system declares the |w| of its sin and cos of
+       w t + phi, tools/scenec) */
     real_t (*band)(const rt_args *a);
 
     /* Services of a kind that is a state machine of its own (an FMU, tools/fmi/); NULL or
