@@ -115,6 +115,12 @@ static void switched(const rt_scene *sc, rt_sim *sim, uint8_t s)
     rti_xset_gain_stale(sim, s);
 }
 
+/* is output v of set s read by another set (it keeps a history) */
+static int read_elsewhere(const rt_sim *sim, uint8_t s, uint16_t v)
+{
+    return v < sim->plan.set_xout[s] && sim->plan.xsrc[v];
+}
+
 /* block b of set s switched strictly inside the set's step: another set reads its
    outputs only through its history, whose points are the step's ends, so a switch there
    (a pulse shorter than the step) is seen late, or not at all. Counted (errest:
@@ -123,7 +129,7 @@ static void switched(const rt_scene *sc, rt_sim *sim, uint8_t s)
 static void switched_inside(rt_sim *sim, uint8_t s, uint16_t b)
 {
     for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1]; v++)
-        if (v < sim->plan.set_xout[s] && sim->plan.xsrc[v]) {
+        if (read_elsewhere(sim, s, v)) {
             rti_count(sim, RT_CNT_ERREST, b, RT_E_ACCURACY);
             sim->stats.errest[s]++;
             return;
@@ -219,7 +225,7 @@ static uint64_t read_sig(const rt_sim *sim, uint8_t s, uint16_t b)
 {
     uint64_t h = 14695981039346656037u;
     for (uint16_t v = sim->plan.y_off[b]; v < sim->plan.y_off[b + 1]; v++)
-        if (v < sim->plan.set_xout[s] && sim->plan.xsrc[v]) {
+        if (read_elsewhere(sim, s, v)) {
             rt_real_rep r = {.r = sim->state.y[v]};
             h = (h ^ (uint64_t)r.u) * 1099511628211u;
         }

@@ -39,6 +39,13 @@ static void tally_copy(tally *to, const fmu_inst *in)
     memcpy(to->fault, in->fault, sizeof to->fault);
 }
 
+static void tally_put(fmu_inst *in, const tally *t)
+{
+    in->faults = t->faults, in->warnings = t->warnings, in->events = t->events;
+    in->steps_done = t->steps_done, in->iter_max = t->iter_max, in->fault_t = t->fault_t;
+    memcpy(in->fault, t->fault, sizeof in->fault);
+}
+
 void fmu_tally_keep(int run)
 {
     for (int i = 0; i < fmu_ninstances && run >= 0 && run < FMU_TALLY_RUNS; i++)
@@ -47,13 +54,8 @@ void fmu_tally_keep(int run)
 
 void fmu_tally_use(int run)
 {
-    for (int i = 0; i < fmu_ninstances && run >= 0 && run < FMU_TALLY_RUNS; i++) {
-        fmu_inst *in = fmu_instances[i];
-        const tally *t = &tallies[run][i];
-        in->faults = t->faults, in->warnings = t->warnings, in->events = t->events;
-        in->steps_done = t->steps_done, in->iter_max = t->iter_max, in->fault_t = t->fault_t;
-        memcpy(in->fault, t->fault, sizeof in->fault);
-    }
+    for (int i = 0; i < fmu_ninstances && run >= 0 && run < FMU_TALLY_RUNS; i++)
+        tally_put(fmu_instances[i], &tallies[run][i]);
 }
 
 void fmu_tally_use_since(int run, int since)
@@ -66,19 +68,15 @@ void fmu_tally_use_since(int run, int since)
         if (t.faults == 0 && met > 0) /* (the instance's first since `since`'s, if it had none) */
             t.fault_t = in->fault_t, memcpy(t.fault, in->fault, sizeof t.fault);
         t.faults += met;
-        in->faults = t.faults, in->warnings = t.warnings, in->events = t.events;
-        in->steps_done = t.steps_done, in->iter_max = t.iter_max, in->fault_t = t.fault_t;
-        memcpy(in->fault, t.fault, sizeof in->fault);
+        tally_put(in, &t);
     }
 }
 
 void fmu_tally_zero(void)
 {
-    for (int i = 0; i < fmu_ninstances; i++) {
-        fmu_inst *in = fmu_instances[i];
-        in->faults = in->warnings = in->events = in->steps_done = 0;
-        in->iter_max = 0, in->fault_t = 0, in->fault[0] = 0;
-    }
+    static const tally none;
+    for (int i = 0; i < fmu_ninstances; i++)
+        tally_put(fmu_instances[i], &none);
 }
 
 static int read_all(const char *path, char **buf, size_t *n)

@@ -214,46 +214,46 @@ static void var_reals(FILE *f, const char *id, const char *what, const scn_var *
     reals(f, id, what, d, n);
 }
 
+/* the statements of d's service `kind` (scn_service: with the lets they read), each
+   stored into out[] */
+static void statements(FILE *f, const scn_ctx *c, const scn_define *d, uint8_t kind,
+                       const char *out, int *ntemp)
+{
+    uint8_t in[SCN_MAX_STMTS];
+    scn_service(c, d, kind, in);
+    for (uint32_t s = d->st0; s < d->st1; s++)
+        if (in[s - d->st0])
+            statement(f, c, &c->sc.st[s], out, ntemp);
+}
+
 static void service(FILE *f, const scn_ctx *c, const scn_define *d, const char *id,
                     uint8_t kind)
 {
     static const char *const fn[] = {"", "output", "deriv", "update"};
     static const char *const out[] = {"", "y", "xdot", "dnext"};
-    uint8_t in[SCN_MAX_STMTS];
     int ntemp = 0;
-    scn_service(c, d, kind, in);
     fprintf(f, "\nstatic void %s_%s(const rt_args *a, real_t *%s)\n{\n    (void)a;\n", id,
             fn[kind], out[kind]);
-    for (uint32_t s = d->st0; s < d->st1; s++)
-        if (in[s - d->st0])
-            statement(f, c, &c->sc.st[s], out[kind], &ntemp);
+    statements(f, c, d, kind, out[kind], &ntemp);
     fputs("}\n", f);
 }
 
 /* the instants the body compares t with, and the kind's next_event over them */
 static void instants(FILE *f, const scn_ctx *c, const scn_define *d, const char *id)
 {
-    uint8_t in[SCN_MAX_STMTS];
     int ntemp = 0;
-    scn_service(c, d, SCN_ST_TEV, in);
     fprintf(f, "\nstatic real_t %s_next(const rt_args *a)\n{\n    real_t v[%u];\n", id,
             (unsigned)d->ntev);
-    for (uint32_t s = d->st0; s < d->st1; s++)
-        if (in[s - d->st0])
-            statement(f, c, &c->sc.st[s], "v", &ntemp);
+    statements(f, c, d, SCN_ST_TEV, "v", &ntemp);
     fprintf(f, "    return rt_x_next(a->t, v, %u);\n}\n", (unsigned)d->ntev);
 }
 
 /* the sin and cos arguments affine in t, and the kind's band over them */
 static void bands(FILE *f, const scn_ctx *c, const scn_define *d, const char *id)
 {
-    uint8_t in[SCN_MAX_STMTS];
     int ntemp = 0;
-    scn_service(c, d, SCN_ST_BAND, in);
     fprintf(f, "\nstatic void %s_band_at(const rt_args *a, real_t *v)\n{\n", id);
-    for (uint32_t s = d->st0; s < d->st1; s++)
-        if (in[s - d->st0])
-            statement(f, c, &c->sc.st[s], "v", &ntemp);
+    statements(f, c, d, SCN_ST_BAND, "v", &ntemp);
     fprintf(f, "}\n\nstatic real_t %s_band(const rt_args *a)\n{\n"
                "    rt_args b = *a;\n    real_t v0[%u], v1[%u];\n"
                "    b.t = 0, %s_band_at(&b, v0);\n    b.t = 1, %s_band_at(&b, v1);\n"
@@ -277,13 +277,9 @@ static void handler(FILE *f, const scn_ctx *c, const scn_define *d, uint8_t kind
 /* roots and the event handlers, one case per root */
 static void event_services(FILE *f, const scn_ctx *c, const scn_define *d, const char *id)
 {
-    uint8_t in[SCN_MAX_STMTS];
     int ntemp = 0;
-    scn_service(c, d, SCN_ST_ROOT, in);
     fprintf(f, "\nstatic void %s_roots(const rt_args *a, real_t *r)\n{\n    (void)a;\n", id);
-    for (uint32_t s = d->st0; s < d->st1; s++)
-        if (in[s - d->st0])
-            statement(f, c, &c->sc.st[s], "r", &ntemp);
+    statements(f, c, d, SCN_ST_ROOT, "r", &ntemp);
     fprintf(f, "}\n\nstatic const int8_t %s_rdir[] = {", id);
     for (uint16_t r = 0; r < d->nr; r++)
         fprintf(f, "%s%d", r ? ", " : "", d->rdir[r]);

@@ -349,7 +349,6 @@ static int indexed_ref(scn_ctx *c, scn_name n)
     return 1;
 }
 
-/* f(args): an elementary function, or if(c, a, b) */
 /* what code [i0, i1) is as a function of `t` (band_arg) */
 typedef enum { IN_T_FIXED, IN_T_AFFINE, IN_T_OTHER } in_t;
 
@@ -398,6 +397,7 @@ static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
     c->ntev++;
 }
 
+/* f(args): an elementary function, or if(c, a, b) */
 static void call(scn_ctx *c, scn_name n)
 {
     int f = -1, nargs = 0;
