@@ -113,6 +113,8 @@ typedef struct imp_step {
     real_t r0;          /* the step's first Newton correction (scaled norm; -1: none yet):
                            how far its start derivative wants to move the state */
     uint8_t stall;      /* the step ended where it started though r0 said it must move */
+    uint8_t damped;     /* an iteration matrix of the attempt (or its substeps) damps a
+                           growing mode (watch_damping) */
 } imp_step;
 
 /* ------------------------------------------------------------------ iteration matrix */
@@ -343,7 +345,23 @@ static rt_status finish(imp_step *c, real_t res)
     }
     if (c->rhs_st != RT_OK)
         return c->rhs_st;
-    return c->singular ? RT_E_SINGULAR : RT_OK;
+    if (c->singular)
+        return RT_E_SINGULAR;
+    return c->damped ? RT_E_DAMPED : RT_OK;
+}
+
+/* An attempt's iteration matrix M = I - h gamma J with a negative determinant has an odd
+   number of real eigenvalues with h gamma lambda > 1: a mode the exact solution grows by
+   more than e^(1/gamma) over the step sits past the pole of the method's stability
+   function, which turns it into a decaying or sign-flipping one. The error estimate,
+   filtered by M^-1 or from a companion that passes through M too, reads that mode small
+   (y' = 50 y at 0.1 s, backward Euler: 0.78 of the accuracy where the answer is 149 times
+   off), so the step says so. A stable J never gives it (complex pairs add |1 - h gamma
+   lambda|^2 > 0); an even number of such modes escapes the test. */
+static void watch_damping(imp_step *c)
+{
+    const rt_implicit_ws *ws = c->w->imp;
+    c->damped |= ws->valid && rti_lu_det_negative(ws->lu, c->n, ws->piv);
 }
 
 /* ------------------------------------------------------------------ Newton */
@@ -477,6 +495,7 @@ static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
             acc += ce[i] * w->k[i][j];
         e[j] = h * acc;
     }
+    watch_damping(c);
     /* an A-stable method that does not damp stiff modes (trap: R(-inf) = -1) carries
        their error on, ringing: its estimate is taken raw */
     real_t err = tab->lstable ? estimate(c, e) : scaled_norm(e, c->x, c->n, c->sa);
@@ -560,7 +579,7 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     keep_best(&c, res, &best);
     /* 1: full Newton, a Jacobian at every iterate (the start's may not see the stiff
        direction: Robertson's at y = (1, 0, 0) has no 1e4 y2 y3 or 3e7 y2^2 terms) */
-    c.full = 1, c.err = 0, c.singular = 0; /* each attempt reports its own */
+    c.full = 1, c.err = 0, c.singular = 0, c.damped = 0; /* each attempt reports its own */
     c.nmax = (uint8_t)(2 * c.nmax < 255 ? 2 * c.nmax : 255); /* a cold start needs more */
     res = dirk_attempt(&c, tab, t, h);
     if (res <= c.tol) {
@@ -574,7 +593,7 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
        substep without them); dirk_bound counts it */
     uint8_t kmax = rti_set_cfg_of(w->cfg).substeps;
     for (uint8_t k = 2; k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
-        c.err = 0, c.singular = 0;
+        c.err = 0, c.singular = 0, c.damped = 0;
         res = split(&c, dirk_attempt, tab, tab->gamma, t, h, k);
         if (res <= c.tol) {
             ws->valid = 0; /* the next step's Jacobian belongs to its own h */
@@ -618,6 +637,7 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
         for (uint16_t i = 0; i < n; i++)
             ft[i] = g * (ft[i] - k1[i]), k1[i] += ft[i];
     }
+    watch_damping(c);
     rti_lu_solve(ws->lu, n, ws->piv, k1);
     for (uint16_t i = 0; i < n; i++)
         x[i] = w->x0[i] + h * k1[i];
@@ -654,19 +674,20 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     for (uint16_t j = 0; j < n; j++)
         ws->xs[j] = x[j];
     real_t e = ros2_attempt(&c, tab, t, h), best = e;
-    uint8_t kmax = rti_set_cfg_of(w->cfg).substeps;
+    uint8_t kmax = rti_set_cfg_of(w->cfg).substeps, damped = c.damped;
     for (uint16_t j = 0; j < n; j++)
         ws->best[j] = x[j];
     for (uint8_t k = 2; e > acc && k <= kmax && k != 0; k = (uint8_t)(k * 2)) {
+        c.damped = 0;
         e = split(&c, ros2_attempt, tab, tab->gamma, t, h, k);
         ws->valid = 0; /* the next step's Jacobian belongs to its own h */
         if (e <= acc) {
             w->stats->substepped++;
-            best = e;
+            best = e, damped = c.damped;
             break;
         }
         if (e < best) {
-            best = e;
+            best = e, damped = c.damped;
             for (uint16_t j = 0; j < n; j++)
                 ws->best[j] = x[j];
         }
@@ -674,7 +695,7 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     if (e > acc) /* no split met the accuracy: the smallest estimate, reported as such */
         for (uint16_t j = 0; j < n; j++)
             x[j] = ws->best[j];
-    c.err = best;
+    c.err = best, c.damped = damped;
     return finish(&c, 0); /* no iteration: residual 0, never degraded */
 }
 

@@ -96,6 +96,14 @@ void rti_lu_unfactor(real_t *a, uint16_t n, const uint16_t *piv)
 /* Each row's sum runs in a local, in the same order as b[i] -= ... would: the same bits,
    without a store and reload of b[i] per term (b may alias lu for all the compiler
    knows). The implicit sets solve with it twice per ROS2 step. */
+int rti_lu_det_negative(const real_t *lu, uint16_t n, const uint16_t *piv)
+{
+    int neg = 0;
+    for (uint16_t k = 0; k < n; k++)
+        neg ^= (lu[(size_t)k * n + k] < 0) ^ (piv[k] != k);
+    return neg;
+}
+
 void rti_lu_solve(const real_t *lu, uint16_t n, const uint16_t *piv, real_t *b)
 {
     for (size_t k = 0; k < n; k++) {

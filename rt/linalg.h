@@ -21,6 +21,10 @@ rt_status rti_lu_stages(real_t *a, uint16_t n, uint16_t *piv, real_t floor_, uin
 /* The matrix P^T L U back from its factors in place (the inverse of rti_lu, to rounding) */
 void rti_lu_unfactor(real_t *a, uint16_t n, const uint16_t *piv);
 
+/* 1 when the matrix factored by rti_lu has a negative determinant: the product of U's
+   diagonal, its sign flipped by each row exchange */
+int rti_lu_det_negative(const real_t *lu, uint16_t n, const uint16_t *piv);
+
 /* Solves A x = b in place (b becomes x) with the factors of rti_lu. */
 void rti_lu_solve(const real_t *lu, uint16_t n, const uint16_t *piv, real_t *b);
 

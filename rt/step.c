@@ -116,6 +116,8 @@ static real_t integrate(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, re
         rti_count(sim, RT_CNT_DEGRADED, -1, RT_E_DEGRADED);
     else if (st == RT_E_SINGULAR)
         rti_count(sim, RT_CNT_SINGULAR, -1, RT_E_SINGULAR);
+    else if (st == RT_E_DAMPED)
+        rti_count(sim, RT_CNT_DAMPED, -1, RT_E_DAMPED);
     if (w.stats->substepped != split)
         rti_count(sim, RT_CNT_SUBSTEP, -1, RT_OK); /* recovered: reported, not a fault */
     real_t acc = rti_accuracy(w.cfg);

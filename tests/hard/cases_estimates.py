@@ -209,7 +209,68 @@ def nan_guard(s):
                     m, rc, summ.get("status"), summ.get("nan"), err))
 
 
+GROWING = """scene (growing_mode) doc ("a mode that turns unstable at 0.2 s");
+base tick (10 ms);
+end time (0.6 s);
+define ss_system (F) with outputs (yo) parameters (t1 = 0.2, lam = 50) states (y = 0.001) by {
+    yo = y;
+    der(y) = if(t < t1, -1000 * (y - 0.001), lam * y);
+};
+load system (S) of type (F);
+set (main) method (%s) step (%s) jacobian (%d);
+record (S.yo);
+"""
+
+PAIR = """scene (growing_pair) doc ("x1' = lam x1 driving x2' = 1000 x1 - x2");
+base tick (10 ms);
+end time (0.4 s);
+define ss_system (F) with outputs (y1, y2) parameters (lam = 50) states (a = 0.000001, b = 0) by {
+    y1 = a;  y2 = b;
+    der(a) = lam * a;
+    der(b) = 1000 * a - b;
+};
+load system (S) of type (F);
+set (main) method (%s) step (10 ticks);
+record (S.y1, S.y2);
+"""
+
+
+def growing(s):
+    """A mode that turns unstable: y = 0.001 held by a stiff mode until 0.2 s, then
+    y' = 50 y, so y(0.6) = 0.001 e^20 = 4.85e5. An implicit method at 0.1 s (h lambda = 5,
+    past the pole 1 / gamma of its stability function) decays or flips it; its estimate,
+    filtered by M^-1 or from a companion that passes through M, read it small: backward
+    Euler, SDIRK3, trap and ROS2 said ok (y(0.6) 1e-3 and less). Every method at 0.1 and
+    0.01 s must be within 1 % or not say ok. The pair x1' = 50 x1, x2' = 1000 x1 - x2 from
+    x1 = 1e-6 (x1(0.4) = 1e-6 e^20) has a row exchange in M's factors: the same; with
+    lam = -50 (stable, the same exchange) no step may count damped."""
+    for m in IMPLICIT:
+        for h in ("0.1", "0.01"):
+            for jac in ((1, 64) if m == "ros2" else (1,)):
+                rc, summ, rows = run_text(s.modrt, GROWING % (m, h, jac), [])
+                exact = 0.001 * math.exp(20)
+                err = abs(rows[-1][1] - exact) / exact if rows else math.inf
+                s.row("a mode turning unstable, jacobian %d (relative error)" % jac, m, h,
+                      err, summ, rc)
+                s.check(rc in (1, 3) or err <= 0.01, "growing mode, %s at %s s, jacobian %d: "
+                        "y(0.6) %.3g for %.3g with status %s" % (
+                            m, h, jac, rows[-1][1] if rows else math.nan, exact,
+                            summ.get("status")))
+        rc, summ, rows = run_text(s.modrt, PAIR % m, [])
+        exact = 1e-6 * math.exp(20)
+        err = abs(rows[-1][1] - exact) / exact if rows else math.inf
+        s.row("x1' = 50 x1 driving x2 (relative error of x1)", m, "0.1", err, summ, rc)
+        s.check(rc in (1, 3) or err <= 0.01, "growing pair, %s: x1(0.4) %.3g for %.3g with "
+                "status %s" % (m, rows[-1][1] if rows else math.nan, exact, summ.get("status")))
+        rc, summ, rows = run_text(s.modrt, PAIR % m, ["--set", "S.lam=-50"])
+        s.row("x1' = -50 x1 driving x2: damped steps", m, "0.1", float(summ.get("damped", "-1")),
+              summ, rc)
+        s.check(summ.get("damped") == "0", "stable pair, %s: damped %s (status %s)" % (
+            m, summ.get("damped"), summ.get("status")))
+
+
 def extra(s, long):
+    growing(s)
     nan_guard(s)
     aliasing(s)
     quadrature(s)

@@ -65,9 +65,38 @@ static void test_lu_parts(void)
         TH_NEAR(lu[i], a[i], tol);
 }
 
+/* the determinant's sign from the factors against the cofactor expansion, for every
+   sign pattern of a 3 x 3 matrix whose factors exchange rows or not: a permutation of
+   the rows flips it once per transposition */
+static void test_lu_det_sign(void)
+{
+    static const real_t base[9] = {1, 2, 0, 3, 1, 4, (real_t)0.5, 5, 2};
+    int checked = 0;
+    for (int perm = 0; perm < 6; perm++)
+        for (int neg = 0; neg < 8; neg++) {
+            static const int rows[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                           {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+            real_t a[9], lu[9];
+            uint16_t piv[3];
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    a[3 * i + j] = base[3 * rows[perm][i] + j] * ((neg >> i) & 1 ? -1 : 1);
+            double det = (double)a[0] * ((double)a[4] * a[8] - (double)a[5] * a[7]) -
+                         (double)a[1] * ((double)a[3] * a[8] - (double)a[5] * a[6]) +
+                         (double)a[2] * ((double)a[3] * a[7] - (double)a[4] * a[6]);
+            for (int i = 0; i < 9; i++)
+                lu[i] = a[i];
+            TH_CHECK(rti_lu(lu, 3, piv, (real_t)1e-12) == RT_OK);
+            TH_CHECK(rti_lu_det_negative(lu, 3, piv) == (det < 0));
+            checked++;
+        }
+    TH_CHECK(checked == 48);
+}
+
 const th_test th_linalg_tests[] = {
     {"linalg_lu_solve", test_lu_solve},
     {"linalg_lu_singular", test_lu_singular},
     {"linalg_lu_parts", test_lu_parts},
+    {"linalg_lu_det_sign", test_lu_det_sign},
     {0, 0},
 };

@@ -501,7 +501,7 @@ def run_cfg1(ex, c, ref):
     c["clean"], c["ok"] = clean_of(rc, s)
     c["substep"] = int(s.get("substep", "0").split()[0])
     c["counters"] = ", ".join("%s %s" % (k, s[k]) for k in (
-        "nan", "noconv", "singular", "degraded", "substep", "errest", "unstable")
+        "nan", "noconv", "singular", "degraded", "substep", "errest", "unstable", "damped")
         if s.get(k, "0") != "0")
     c["err"] = error_of(ref, read_csv(out, ex.signals))[0] if os.path.exists(out) and \
         rc in (0, 3) else math.inf
