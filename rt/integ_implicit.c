@@ -71,6 +71,7 @@
 #define IMP_BUF_D (RT_MAX_STAGES - 1) /* perturbed f of the finite differences; the
                                         previous Newton iterate */
 #define IMP_MAX_S (RT_MAX_STAGES - 3) /* stages a tableau may have */
+#define IMP_BUF_S 3 /* ROS2 (stages in k[0..2]): f(t + h, x0) and r1 of its secant check */
 
 /* Diagonally implicit Runge-Kutta tableau with one diagonal gamma. a is s*s row-major,
    lower triangular; a_ii = gamma, except a_00 = 0 for an explicit first stage. Every
@@ -115,6 +116,8 @@ typedef struct imp_step {
     uint8_t stall;      /* the step ended where it started though r0 said it must move */
     uint8_t damped;     /* an iteration matrix of the attempt (or its substeps) damps a
                            growing mode (watch_damping) */
+    uint8_t fresh;      /* the attempt's Jacobian was taken at its own start (at_base) */
+    uint8_t stale;      /* the attempt's kept Jacobian failed its secant check (ROS2) */
 } imp_step;
 
 /* ------------------------------------------------------------------ iteration matrix */
@@ -319,7 +322,7 @@ static void at_base(imp_step *c, real_t tb, const real_t *fb)
     fd_jacobian(c, tb, fb, 0, c->n);
     c->w->stats->jac_evals++;
     c->w->imp->age = 0;
-    c->refresh = 0;
+    c->refresh = 0, c->fresh = 1;
     c->part0 = c->part1 = 0;
     factor(c);
 }
@@ -612,6 +615,30 @@ static rt_status dirk_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
 
 /* ------------------------------------------------------------------ ROS2 stepper */
 
+/* A kept Jacobian W checked along the step's first stage, at no evaluation: M k1 = r1
+   gives W h k1 = (k1 - r1) / gamma, and f(t + h, x0 + h k1) - f(t + h, x0) is the true
+   Jacobian along the same h k1 (to second order). W-methods keep their order for any W,
+   but a stiff W where the dynamics no longer are stiff (an input switched the stiffness
+   off at a sample hit, another set's history jumped) freezes the state: k1 is damped to
+   nothing and the estimate, whose companion is damped with it, reads the step exact
+   (y' = -1e5 (y - 1) until a sampled switch, then -10 y, jacobian (64): y(0.62) = 0.9986
+   for 0.3012, ok). Fails when the mismatch is above RT_W_SECANT of W h k1 and h times it
+   moves some state by more than the set's accuracy (rounding in f at a steady state
+   does neither) */
+static int secant_fails(const imp_step *c, const real_t *f1, const real_t *r1,
+                        const real_t *k1, const real_t *f2, real_t h, real_t g)
+{
+    real_t miss = 0, along = 0, acc = rti_accuracy(c->w->cfg);
+    int moved = 0;
+    for (uint16_t i = 0; i < c->n; i++) {
+        real_t wk = (k1[i] - r1[i]) / g, d = rt_fabs(f2[i] - f1[i] - wk);
+        miss = d > miss ? d : miss;
+        along = rt_fabs(wk) > along ? rt_fabs(wk) : along;
+        moved |= h * d > acc * (c->sa + rt_fabs(c->x[i]));
+    }
+    return moved && miss > RT_W_SECANT * along;
+}
+
 /* one ROS2 step of h from w->x0 into x (the Jacobian refreshed first when due); returns
    its local error estimate against the embedded x0 + h k1 */
 static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
@@ -623,6 +650,9 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     uint16_t n = c->n;
     for (uint16_t i = 0; i < n; i++)
         x[i] = w->x0[i];
+    /* kept for the secant check: f(t + h, x0) and the first stage's right side */
+    real_t *f1 = w->k[IMP_BUF_S], *r1 = w->k[IMP_BUF_S + 1];
+    c->fresh = 0;
     rhs(c, t, k1);
     at_base(c, t, k1);
     /* h gamma df/dt ~ gamma (f(t + h, x0) - f(t, x0)): over the whole step, so an input
@@ -631,17 +661,19 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
        finite), the same bits without the second one */
     if (w->autonomous)
         for (uint16_t i = 0; i < n; i++)
-            ft[i] = g * (k1[i] - k1[i]), k1[i] += ft[i];
+            f1[i] = k1[i], ft[i] = g * (k1[i] - k1[i]), k1[i] += ft[i], r1[i] = k1[i];
     else {
         rhs(c, t + h, ft);
         for (uint16_t i = 0; i < n; i++)
-            ft[i] = g * (ft[i] - k1[i]), k1[i] += ft[i];
+            f1[i] = ft[i], ft[i] = g * (ft[i] - k1[i]), k1[i] += ft[i], r1[i] = k1[i];
     }
     watch_damping(c);
     rti_lu_solve(ws->lu, n, ws->piv, k1);
     for (uint16_t i = 0; i < n; i++)
         x[i] = w->x0[i] + h * k1[i];
     rhs(c, t + h, k2);
+    if (!c->fresh)
+        c->stale = secant_fails(c, f1, r1, k1, k2, h, g);
     for (uint16_t i = 0; i < n; i++)
         k2[i] -= 2 * k1[i] + ft[i];
     rti_lu_solve(ws->lu, n, ws->piv, k2);
@@ -674,6 +706,11 @@ static rt_status ros2_step(const rt_integrator *m, const rt_rhs *f, real_t t, re
     for (uint16_t j = 0; j < n; j++)
         ws->xs[j] = x[j];
     real_t e = ros2_attempt(&c, tab, t, h), best = e;
+    if (c.stale) { /* the kept Jacobian is not the set's any more: the step on a fresh one */
+        c.refresh = 1, c.damped = 0, c.stale = 0;
+        e = best = ros2_attempt(&c, tab, t, h);
+        w->stats->retried++;
+    }
     uint8_t kmax = rti_set_cfg_of(w->cfg).substeps, damped = c.damped;
     for (uint16_t j = 0; j < n; j++)
         ws->best[j] = x[j];
@@ -740,13 +777,15 @@ static void dirk_bound(const rt_integrator *m, const rt_set_cfg *cfg, uint16_t n
 }
 
 /* ROS2: an attempt is a Jacobian (n evaluations), f(t, x0), f(t + h, x0), f(t + h, x1)
-   and one factorization; with the substeps 2, 4, ... K: 2 K - 1 attempts */
+   and one factorization; with the substeps 2, 4, ... K: 2 K - 1 attempts, and one more
+   where a kept Jacobian may fail its secant check (jacobian (K), K >= 2) */
 static void ros2_bound(const rt_integrator *m, const rt_set_cfg *cfg, uint16_t n,
                        rt_step_work *w)
 {
-    uint32_t k = rti_set_cfg_of(cfg).substeps;
+    rt_set_cfg d = rti_set_cfg_of(cfg);
+    uint32_t k = d.substeps, att = 2 * k - 1 + (d.jac_every >= 2);
     (void)m;
-    w->rhs = (2 * k - 1) * (3u + n), w->lu = 2 * k - 1;
+    w->rhs = att * (3u + n), w->lu = att;
 }
 
 /* ------------------------------------------------------------------ methods */

@@ -392,7 +392,8 @@ typedef struct rt_istats {
     uint32_t newton_iter_max; /* most Newton iterations in one step (all stages) */
     uint32_t jac_evals;       /* Jacobian refreshes */
     uint32_t degraded;        /* steps ended with residual above tolerance */
-    uint32_t retried;         /* steps that converged after a Jacobian at the iterate */
+    uint32_t retried;         /* steps that converged after a Jacobian at the iterate (DIRK),
+                                 or redone on a fresh one after a secant check (ROS2) */
     real_t last_err;          /* the last step's local error estimate (scaled norm) */
     real_t err_max;           /* the largest of them */
     uint32_t substepped;      /* steps that converged only in substeps */

@@ -231,6 +231,49 @@ record (S.yo);
 """
 
 
+STIFF_SWITCHED = """scene (stiff_switched) doc ("a stiffness that a sampled or another set's switch ends");
+base tick (1 ms);
+end time (0.62 s);
+define %s_system (Sw) with outputs (c) parameters (t1 = 0.5) states (z = 0) %s by {
+    c = if(z >= t1 - 0.000001, 1, 0);
+    %s;
+};
+define ss_system (P) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 10)
+    states (y = 1) by {
+    yo = y;
+    der(y) = -k1 * (1 - u) * (y - 1) - k2 * u * y;
+};
+load system (C) of type (Sw);
+load system (S) of type (P);
+connect(C.c, S.u);
+%s
+set (main) method (ros2) step (10 ticks) jacobian (%d) members (%s);
+record (S.yo);
+"""
+
+
+def stiff_switched(s):
+    """The same stiffness ended at 0.5 s by a switch the set cannot see coming: a sampled
+    block (a 10 ms dss_system) in the set, or a 1 ms set's output read through its
+    history. ROS2 keeping its Jacobian over 2 or 64 steps froze the state at 1 (0.70 off
+    at 0.62 s for jacobian 64, 0.067 for 2, status ok with the sampled switch); its secant
+    check now redoes the step on a fresh Jacobian"""
+    exact = math.exp(-10 * 0.12)
+    for tag, kind, period, nxt, sets in (
+            ("a sampled switch", "dss", "period (10 ms)", "next(z) = z + 0.01", ""),
+            ("another set's switch", "ss", "", "der(z) = 1",
+             "set (src) method (rk4) step (1 ticks) members (C);")):
+        for jac in (2, 64):
+            members = "S" if sets else "C, S"
+            rc, summ, rows = run_text(s.modrt, STIFF_SWITCHED % (kind, period, nxt, sets, jac,
+                                                                 members), [])
+            err = abs(rows[-1][1] - exact) if rows else math.inf
+            s.row("a stiffness ended by %s, ros2 jacobian %d" % (tag, jac), "ros2", "0.01",
+                  err, summ, rc)
+            s.check(err <= 2e-3, "stiff_switched %s, jacobian %d: y(0.62) off by %.3g "
+                    "(status %s)" % (tag, jac, err, summ.get("status")))
+
+
 def stiff_end(s):
     """y' = -1e5 (y - 1) until a time event t1, then -10 y (from y = 1 to 1e-5: y(0.62) =
     e^(-10 (0.62 - t1))), by ROS2 keeping its Jacobian over 2 and 64 steps: the instant a define's
@@ -262,3 +305,4 @@ def extra(s, long):
     tswitch_many(s)
     tswitch_readers(s)
     stiff_end(s)
+    stiff_switched(s)
