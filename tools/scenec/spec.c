@@ -591,7 +591,10 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
     }
 }
 
-/* rti_mbs_ldl_factor over the set's fixed pattern, then rti_mbs_schur's counts */
+/* rti_mbs_ldl_factor over the set's fixed pattern, then rti_mbs_schur's counts. A row's
+   judgement in the order of the rule: one comparison for a pivot above its floor, the
+   generic tests only for one that is not (the same outcomes: d > floor_ is neither
+   within +-floor_ nor below it) */
 static void factor(FILE *f, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -625,10 +628,12 @@ static void factor(FILE *f, const rt_sim *sim, uint8_t s)
         if (i == 0)
             fputs("        if (rti_fault_due(RTI_FAULT_SINGULAR))\n"
                   "            d = -big - 1;\n", f);
-        fprintf(f, "        if (d >= -floor_ && d <= floor_)\n"
-                   "            w->drop_row[%u] = drop++ ? w->drop_row[%u] : %u, d = 0;\n"
-                   "        else if (!(d > floor_))\n"
-                   "            bad = bad < 0 ? %u : bad, d = floor_;\n"
+        fprintf(f, "        if (!(d > floor_)) {\n"
+                   "            if (d >= -floor_)\n"
+                   "                w->drop_row[%u] = drop++ ? w->drop_row[%u] : %u, d = 0;\n"
+                   "            else\n"
+                   "                bad = bad < 0 ? %u : bad, d = floor_;\n"
+                   "        }\n"
                    "        D[%u] = d;\n", s, s, perm[i], perm[i], i);
     }
     fprintf(f, "        w->ndrop[%u] = drop;\n", s);
@@ -640,7 +645,9 @@ static void factor(FILE *f, const rt_sim *sim, uint8_t s)
                "w->drop_row[%u]), RT_OK);\n    }\n", s, s, s, s);
 }
 
-/* rti_mbs_ldl_solve of the set's rows into v, a conflict counted as rti_mbs_solve does */
+/* rti_mbs_ldl_solve of the set's rows into v, a conflict counted as rti_mbs_solve does.
+   With no row dropped every pivot is nonzero (a dropped row's alone is 0): the division
+   without its test, and no conflict to look for */
 static void solve(FILE *f, const rt_sim *sim, uint8_t s, const char *v)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -659,11 +666,16 @@ static void solve(FILE *f, const rt_sim *sim, uint8_t s, const char *v)
             fprintf(f, "        tt -= L[%u] * y[%u];\n", e, lj[e]);
         fprintf(f, "        y[%u] = tt;\n", i);
     }
+    fprintf(f, "        if (!w->ndrop[%u]) {\n", s);
+    for (unsigned i = 0; i < n; i++)
+        fprintf(f, "            y[%u] /= D[%u];\n", i, i);
+    fputs("        } else {\n", f);
     for (unsigned i = 0; i < n; i++)
         fprintf(f, "        if (D[%u] != 0)\n            y[%u] /= D[%u];\n        else {\n"
                    "            if (!(rt_fabs(y[%u]) <= RT_MBS_RES_TOL + RT_MBS_RANK_TOL * scale)"
                    " && conflict < 0)\n                conflict = %u;\n"
                    "            y[%u] = 0;\n        }\n", i, i, i, i, perm[i], i);
+    fputs("        }\n", f);
     for (unsigned i = n; i-- > 0;) {
         fprintf(f, "        tt = y[%u];\n", i);
         for (unsigned e = lp[i]; e < lp[i + 1]; e++)
