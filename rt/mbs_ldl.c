@@ -222,12 +222,14 @@ int rti_mbs_ldl_factor(rt_mbs_work *w, uint8_t set)
             u[lj[e]] = 0;
         if (i == 0 && rti_fault_due(RTI_FAULT_SINGULAR))
             d = -big - 1;
-        if (d >= -floor_ && d <= floor_) { /* depends on the rows before it: dropped */
-            w->drop_row[set] = drop++ ? w->drop_row[set] : w->perm[base + i];
-            d = 0;
-        } else if (!(d > floor_)) { /* indefinite or NaN: go on with the threshold */
-            bad = bad < 0 ? (int)w->perm[base + i] : bad;
-            d = floor_;
+        if (!(d > floor_)) { /* (the rule passes this one comparison) */
+            if (d >= -floor_) { /* depends on the rows before it: dropped */
+                w->drop_row[set] = drop++ ? w->drop_row[set] : w->perm[base + i];
+                d = 0;
+            } else { /* indefinite or NaN: go on with the threshold */
+                bad = bad < 0 ? (int)w->perm[base + i] : bad;
+                d = floor_;
+            }
         }
         D[i] = d;
     }
