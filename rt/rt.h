@@ -379,6 +379,8 @@ typedef struct rt_implicit_ws {
     real_t h_factored;        /* step (times method constant) lu belongs to */
     real_t h_next, floor_next;/* a spread refresh (ROS2): h gamma and pivot floor of the
                                  matrix being factored in jac */
+    real_t drift;             /* ROS2: what the steps since the refresh moved the state by
+                                 their secant checks' misses (scaled as the estimate) */
     uint32_t age;             /* steps since the Jacobian was refreshed */
     /* the narrow members last, so that no padding sits between wide ones */
     uint16_t piv[RT_MAX_IMPLICIT_N];                  /* row pivots of lu */

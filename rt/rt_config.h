@@ -209,10 +209,14 @@ typedef double real_t;
 #ifndef RT_W_SECANT
 /* a ROS2 step on a kept Jacobian W checks W along its own first stage: the secant
    f(t + h, x0 + h k1) - f(t + h, x0) against W h k1. A mismatch above this fraction of
-   W h k1 that also moves the state by more than the set's accuracy in a step (h times
-   it, scaled as the estimate) says W no longer is the Jacobian (an input switched a
-   stiffness off); the step is redone on a fresh one (integ_implicit.c) */
+   W h k1 says W is not the Jacobian there (an input switched a stiffness off); once h
+   times such misses, summed since the refresh and scaled as the estimate, moved the state
+   by more than RT_W_DRIFT times the set's accuracy, the step is redone on a fresh one
+   (integ_implicit.c) */
 #define RT_W_SECANT ((real_t)0.5)
+#endif
+#ifndef RT_W_DRIFT
+#define RT_W_DRIFT ((real_t)0.25)
 #endif
 #ifndef RT_TRANSITION_THETA
 /* the transition method's phi functions: h J is halved until its 1-norm is at most this,

@@ -257,7 +257,8 @@ def stiff_switched(s):
     block (a 10 ms dss_system) in the set, or a 1 ms set's output read through its
     history. ROS2 keeping its Jacobian over 2 or 64 steps froze the state at 1 (0.70 off
     at 0.62 s for jacobian 64, 0.067 for 2, status ok with the sampled switch); its secant
-    check now redoes the step on a fresh Jacobian"""
+    check now redoes the step on a fresh Jacobian. And -0.1 y after the switch, kept
+    1000 steps: the misses add up over the steps"""
     exact = math.exp(-10 * 0.12)
     for tag, kind, period, nxt, sets in (
             ("a sampled switch", "dss", "period (10 ms)", "next(z) = z + 0.01", ""),
@@ -272,6 +273,18 @@ def stiff_switched(s):
                   err, summ, rc)
             s.check(err <= 2e-3, "stiff_switched %s, jacobian %d: y(0.62) off by %.3g "
                     "(status %s)" % (tag, jac, err, summ.get("status")))
+        # a slow decay after the switch: each step's freeze below the accuracy, their sum
+        # not (0.9995 for 0.6376 at 5 s with jacobian (1000); 1.9e-3 off when each step
+        # was judged alone)
+        members = "S" if sets else "C, S"
+        rc, summ, rows = run_text(s.modrt, STIFF_SWITCHED % (kind, period, nxt, sets, 1000,
+                                                             members),
+                                  ["--set", "S.k2=0.1", "--t-end", "5"])
+        exact5 = math.exp(-0.1 * 4.5)
+        err = abs(rows[-1][1] - exact5) if rows else math.inf
+        s.row("a slow decay after %s, ros2 jacobian 1000" % tag, "ros2", "0.01", err, summ, rc)
+        s.check(err <= 1e-5, "stiff_switched slow, %s: y(5) off by %.3g (status %s)" % (
+            tag, err, summ.get("status")))
 
 
 def stiff_end(s):
