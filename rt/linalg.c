@@ -93,9 +93,7 @@ void rti_lu_unfactor(real_t *a, uint16_t n, const uint16_t *piv)
             swap_rows(a, n, piv[k], k);
 }
 
-/* Each row's sum runs in a local, in the same order as b[i] -= ... would: the same bits,
-   without a store and reload of b[i] per term (b may alias lu for all the compiler
-   knows). The implicit sets solve with it twice per ROS2 step. */
+/* the sign of det A = det P^T det U: a negative pivot or a row exchange flips it */
 int rti_lu_det_negative(const real_t *lu, uint16_t n, const uint16_t *piv)
 {
     int neg = 0;
@@ -104,6 +102,9 @@ int rti_lu_det_negative(const real_t *lu, uint16_t n, const uint16_t *piv)
     return neg;
 }
 
+/* Each row's sum runs in a local, in the same order as b[i] -= ... would: the same bits,
+   without a store and reload of b[i] per term (b may alias lu for all the compiler
+   knows). The implicit sets solve with it twice per ROS2 step. */
 void rti_lu_solve(const real_t *lu, uint16_t n, const uint16_t *piv, real_t *b)
 {
     for (size_t k = 0; k < n; k++) {

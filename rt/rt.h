@@ -44,10 +44,10 @@
     X(RT_E_LINK_FAULT, 2, "controller link faults: bad datagrams or missing answers (link_bad, link_missing)") \
     X(RT_E_STOPPED, 2, "run stopped at a missed deadline (--overrun stop)")       \
     X(RT_E_ACCURACY, 1, "local error estimate above the set's accuracy")         \
-    X(RT_E_DAMPED, 1, "an implicit step damped a mode that grows faster than the step resolves (damped)") \
     X(RT_E_LOST, 2, "local error estimate above RT_ERR_LOST: no correct digit left") \
     X(RT_E_COUPLING, 2, "input extrapolated from another set with no correct digit (above RT_XSET_LOST)") \
     X(RT_E_OVERRUN, 1, "tick deadline overrun")                                  \
+    X(RT_E_DAMPED, 1, "an implicit step damped a mode that grows faster than its step resolves (damped)") \
     X(RT_E_DONE, 0, "end time reached")
 
 typedef enum {
@@ -71,11 +71,11 @@ typedef enum {
     X(RT_CNT_ERREST, "errest", "step whose local error estimate exceeds the set's accuracy (or an input it extrapolated from another set lost every digit)") \
     X(RT_CNT_INVARIANT, "invariant", "step ending with a kind's declared invariant broken (a negative concentration, a conserved sum lost), or further below a guard root (a floor) without a located crossing: the model tunnels; or a multibody set without projection whose constraints drifted past its accuracy") \
     X(RT_CNT_UNSTABLE, "unstable", "state growing without bound step after step (explicit method past its stability limit)") \
-    X(RT_CNT_DAMPED, "damped", "implicit step whose iteration matrix I - h gamma J has a negative determinant: a mode growing by more than e^(1/gamma) per step, which the method turns into one that does not (a smaller step resolves it)") \
     X(RT_CNT_REDUNDANT, "redundant", "constraint rows found dependent on others and consistent with them: solved with their multipliers zero (counted when a set's rank deficit changes)") \
     X(RT_CNT_INIT_MOVED, "init_moved", "rt_init moved an initial multibody state onto its constraints or normalized its quaternion (rt_error_text says by how much), or a parameter set during the run put a multibody set off its constraints past RT_INIT_TOL (its next projection moves it back at once)") \
     X(RT_CNT_OVERRUN, "overrun", "tick finished after its deadline")             \
-    X(RT_CNT_EVENTS, "events", "state events handled")
+    X(RT_CNT_EVENTS, "events", "state events handled")                          \
+    X(RT_CNT_DAMPED, "damped", "implicit step whose iteration matrix I - h gamma J has a negative determinant: a mode growing by more than e^(1/gamma) per step, which the method turns into one that does not (a step below the pole leaves the mode to the error estimate)")
 
 typedef enum {
 #define RT_X_ENUM(id, key, text) id,

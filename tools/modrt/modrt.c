@@ -797,7 +797,8 @@ static const cli_cmd commands[] = {
     {"run", "SCENE|FILE.scn", "run a scene to its end time; prints a key: value summary",
      "Exit status 0 when no fault was counted; 1 when the answer failed (NaN, instability,\n"
      "a degraded step, a lost link...); 3 when it completed but a step's error estimate\n"
-     "exceeded its set's accuracy or a tick its deadline; 2 for bad arguments; 4 when an\n"
+     "exceeded its set's accuracy, an implicit step damped a growing mode (damped) or a\n"
+     "tick missed its deadline; 2 for bad arguments; 4 when an\n"
      "output file could not be written (the summary says how far the run got); 5 when\n"
      "SIGINT or SIGTERM ended it early (status: interrupted; the CSV ends in a whole row).\n"
      "\n"
