@@ -394,6 +394,7 @@ static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
     if (c->def->nband + c->ntev >= SCN_MAX_BAND)
         return; /* (more than the bound: the first SCN_MAX_BAND say the band) */
     c->tev[c->ntev][0] = a0, c->tev[c->ntev][1] = a1, c->tev[c->ntev][2] = SCN_ST_BAND;
+    c->tev[c->ntev][3] = c->tev[c->ntev][4] = 0;
     c->ntev++;
 }
 
@@ -526,6 +527,18 @@ static int fixed_code(const scn_ins *code, uint32_t i0, uint32_t i1)
     return i1 > i0;
 }
 
+/* the most operands code [i0, i1) of operands and unary and binary operators pushes */
+static uint32_t code_depth(const scn_ins *code, uint32_t i0, uint32_t i1)
+{
+    uint32_t d = 0, most = 0;
+    for (uint32_t i = i0; i < i1; i++) {
+        uint8_t op = code[i].op;
+        d = op <= SCN_OP_LOC ? d + 1 : op >= SCN_OP_ADD && d > 0 ? d - 1 : d;
+        most = d > most ? d : most;
+    }
+    return most;
+}
+
 /* an order comparison of `t` alone with an expression fixed during the run (`t < t1`,
    `2 * T <= t`) in an output, derivative or let of a continuous define: a time event
    known at run time (rt_kind.next_event with time_event: the instant may lie anywhere,
@@ -534,12 +547,16 @@ static int fixed_code(const scn_ins *code, uint32_t i0, uint32_t i1)
    reads t_piece through rt_x_at (the part ending at the instant sees the left limit
    there, the part from it the right, a tick at the instant the operator's own value),
    and the instant becomes an SCN_ST_TEV statement after the one compiled (flush_tev).
+   A side affine in `t`, a t + b (`t - ts > 0`, `2 * t >= T`), against a fixed one r is the
+   same switch at (r - b) / a: its `t` reads t_piece (inside a part the midpoint, clear of
+   the instant; at a tick the tick's time, the comparison's own value there to the grid's
+   rounding), the instant computed from the side at t = 0 and 1 (a = 0: no instant).
    lhs is code [a0, a1), rhs [a1, b1). Returns the comparison's SCN_TSIDE_*, 0 if none */
 static uint16_t time_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
 {
     scn_ins *code = c->sc.code;
-    uint32_t t, i0, i1;
-    uint16_t side;
+    uint32_t t = 0, i0, i1, s0 = 0, s1 = 0;
+    uint16_t side = 0;
     if (c->err || !c->def || c->def->type != SCN_DEF_SS ||
         (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET))
         return 0;
@@ -547,15 +564,26 @@ static uint16_t time_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
         t = a0, i0 = a1, i1 = b1, side = SCN_TSIDE_LEFT;
     else if (b1 == a1 + 1 && code[a1].op == SCN_OP_TIME && fixed_code(code, a0, a1))
         t = a1, i0 = a0, i1 = a1, side = SCN_TSIDE_RIGHT;
+    else if (affine_in_t(code, a0, a1) == IN_T_AFFINE && fixed_code(code, a1, b1))
+        s0 = a0, s1 = a1, i0 = a1, i1 = b1;
+    else if (affine_in_t(code, a1, b1) == IN_T_AFFINE && fixed_code(code, a0, a1))
+        s0 = a1, s1 = b1, i0 = a0, i1 = a1;
     else
         return 0;
+    if (s1 > s0 && code_depth(code, s0, s1) + 2 > SCN_MAX_STACK)
+        return 0; /* (its instant, (r - b) / a, would not fit the VM's stack) */
     if (c->def->ntev + c->ntev >= SCN_MAX_TEV) {
         scn_fail_tok(c, "too many comparisons of t",
                      scn_fmt(c, "at most %u in one define's body", SCN_MAX_TEV));
         return 0;
     }
-    code[t].op = SCN_OP_TPIECE;
+    if (side)
+        code[t].op = SCN_OP_TPIECE;
+    for (uint32_t i = s0; i < s1; i++)
+        if (code[i].op == SCN_OP_TIME)
+            code[i].op = SCN_OP_TPIECE;
     c->tev[c->ntev][0] = i0, c->tev[c->ntev][1] = i1, c->tev[c->ntev][2] = SCN_ST_TEV;
+    c->tev[c->ntev][3] = s0, c->tev[c->ntev][4] = s1;
     c->ntev++;
     return side;
 }
@@ -596,6 +624,21 @@ static void expr(scn_ctx *c)
 
 /* ------------------------------------------------------------------ body statements */
 
+/* a copy of code [i0, i1), a side a t + b of a comparison (time_switch: its `t` reads
+   t_piece), with t = v */
+static void side_at(scn_ctx *c, uint32_t i0, uint32_t i1, double v)
+{
+    for (uint32_t i = i0; i < i1 && !c->err; i++) {
+        scn_ins in = c->sc.code[i];
+        if (in.op == SCN_OP_TPIECE) {
+            emit_const(c, v);
+            c->sdepth--; /* (an instant's statement counts no depth: flush_tev) */
+        } else {
+            emit(c, in.op, in.a, 0);
+        }
+    }
+}
+
 /* the instants the statement just compiled compares `t` with (time_switch), and its sin
    and cos arguments affine in `t` (band_arg): each an SCN_ST_TEV or SCN_ST_BAND statement
    of its own, a copy of its code stored into the next one */
@@ -613,6 +656,14 @@ static void flush_tev(scn_ctx *c, scn_pos pos)
         uint32_t code0 = s->ncode;
         for (uint32_t i = c->tev[k][0]; i < c->tev[k][1]; i++)
             emit(c, s->code[i].op, s->code[i].a, 0);
+        if (c->tev[k][4] > c->tev[k][3]) { /* r, a t + b: (r - b) / a */
+            side_at(c, c->tev[k][3], c->tev[k][4], 0);
+            emit(c, SCN_OP_SUB, 0, 0);
+            side_at(c, c->tev[k][3], c->tev[k][4], 1);
+            side_at(c, c->tev[k][3], c->tev[k][4], 0);
+            emit(c, SCN_OP_SUB, 0, 0);
+            emit(c, SCN_OP_DIV, 0, 0);
+        }
         emit(c, SCN_OP_OUT, *n, 0);
         s->st[s->nst++] = (scn_stmt){kind, (*n)++, code0, s->ncode, pos, 0};
     }

@@ -423,10 +423,12 @@ typedef struct scn_ctx {
                                    t_last is readable there); 0: none */
     uint16_t after_when;        /* 1 + the root of a `when` the last body statement was
                                    (a rest clause may follow it); 0: none */
-    uint32_t tev[SCN_MAX_TEV + SCN_MAX_BAND][3]; /* code [0, 1) of the instants the
+    uint32_t tev[SCN_MAX_TEV + SCN_MAX_BAND][5]; /* code [0, 1) of the instants the
                                    statement being compiled compares `t` with, and of its sin
                                    and cos arguments affine in `t`, made statements of kind
-                                   [2] (SCN_ST_TEV, SCN_ST_BAND) after it */
+                                   [2] (SCN_ST_TEV, SCN_ST_BAND) after it; where `t` enters
+                                   the comparison as a t + b, code [3, 4) is that side (the
+                                   instant is ([0, 1) - b) / a) and [0, 1) the other */
     uint16_t ntev;
     uint8_t st_kind;            /* the kind (SCN_ST_*) of the statement being compiled */
     /* the error of the check under way (err, its position), the errors of independent
