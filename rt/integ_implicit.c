@@ -369,8 +369,13 @@ static void watch_damping(imp_step *c)
 
 /* ------------------------------------------------------------------ Newton */
 
-/* max_i |d_i| / (sa + |y_i|); NaN when d holds one. sa: 1 for a Newton correction,
-   the set's floor (imp_step.sa, rti_err_floor) for an error estimate */
+/* max_i |d_i| / (sa + |y_i|); NaN when d holds one. sa: the set's floor (imp_step.sa,
+   rti_err_floor: its absolute accuracy over its relative one, 1 unless the scene splits
+   them) for a Newton correction and an error estimate alike. A correction measured
+   against a unit where the set's values that count are far smaller met the tolerance at
+   once on a kept stiff Jacobian that shrank it: a state of 1e-6 held by a stiffness,
+   growing once a sampled switch ended it, stayed at 1e-6 (485 at 1.5 s) with status ok
+   under accuracy (1e-3, 1e-10) */
 static real_t scaled_norm(const real_t *d, const real_t *y, uint16_t n, real_t sa)
 {
     real_t m = 0;
@@ -416,7 +421,7 @@ static real_t newton(imp_step *c, real_t tc, const real_t *v, int first)
         for (uint16_t i = 0; i < c->n; i++)
             d[i] = v[i] + c->hg * d[i] - x[i];
         rti_lu_solve(ws->lu, c->n, ws->piv, d);
-        real_t r = scaled_norm(d, x, c->n, 1);
+        real_t r = scaled_norm(d, x, c->n, c->sa);
         if (c->r0 < 0)
             c->r0 = r;
         if (rti_fault_due(RTI_FAULT_NEWTON))

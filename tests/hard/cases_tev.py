@@ -305,6 +305,44 @@ def stiff_switched(s):
             tag, err, summ.get("status")))
 
 
+GROW_SWITCHED = """scene (grow_switched) doc ("a state held by a stiffness, growing once a sampled switch ends it");
+base tick (1 ms);
+end time (1.5 s);
+define dss_system (Sw) with outputs (c) parameters (t1 = 0.5) states (z = 0) period (10 ms) by {
+    c = if(z >= t1 - 0.000001, 1, 0);
+    next(z) = z + 0.01;
+};
+define ss_system (P) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 20, y0 = 0.000001)
+    states (y = 0.000001) by {
+    yo = y;
+    der(y) = -k1 * (1 - u) * (y - y0) + k2 * u * y;
+};
+load system (C) of type (Sw);
+load system (S) of type (P);
+connect(C.c, S.u);
+set (main) method (%s) step (10 ticks) jacobian (1000) accuracy (1e-3, 1e-10) members (C, S);
+record (S.yo);
+"""
+
+
+def grow_switched(s):
+    """y = 1e-6 held by a stiffness until a sampled switch at 0.5 s, then y' = 20 y:
+    y(1.5) = 1e-6 e^20 = 485, in a set whose absolute accuracy (1e-10) says such values
+    count. A DIRK keeping its Jacobian over 1000 steps met its Newton tolerance at once
+    (the stale stiff matrix shrank the correction below 1e-8 of a unit) and left y at
+    1.02e-6 with status ok; the correction is now measured as the error estimate is
+    (against 1e-10 + |y|), so the stale matrix stops converging and the retry takes a
+    fresh one"""
+    exact = 1e-6 * math.exp(20)
+    for m in ("beuler", "trap", "sdirk2", "sdirk3"):
+        rc, summ, rows = run_text(s.modrt, GROW_SWITCHED % m, [])
+        err = abs(rows[-1][1] - exact) / exact if rows else math.inf
+        s.row("a held state growing after a sampled switch, jacobian 1000 (relative)", m,
+              "0.01", err, summ, rc)
+        s.check(rc in (1, 3) or err <= 0.05, "grow_switched %s: y(1.5) %.3g for %.3g with "
+                "status %s" % (m, rows[-1][1] if rows else math.nan, exact, summ.get("status")))
+
+
 def stiff_end(s):
     """y' = -1e5 (y - 1) until a time event t1, then -10 y (from y = 1 to 1e-5: y(0.62) =
     e^(-10 (0.62 - t1))), by ROS2 keeping its Jacobian over 2 and 64 steps: the instant a define's
@@ -338,3 +376,4 @@ def extra(s, long):
     tswitch_readers(s)
     stiff_end(s)
     stiff_switched(s)
+    grow_switched(s)
