@@ -205,26 +205,41 @@ static double source_at(const reader_case *c, uint64_t k)
            (double)c->off;
 }
 
-/* formed from the sine alone: at each reader step start T (a multiple of rr) where the
-   source has a point (a multiple of rs), the miss of the line the reader drew at its last
-   start through the source's two newest points then (the one point at t = 0: held); the
-   worst miss (with the source's own, below), and the misses above RT_XSET_LOST (1 + the
-   largest |y| at such points) */
+/* the source at reader tick T between its points (T not a multiple of rs): the source has
+   stepped past T to t0, and the monitor reads its three newest points' parabola there
+   (a line through the two where there are only two) */
+static double around(const reader_case *c, uint64_t T)
+{
+    uint64_t t0 = (T + c->rs - 1) / c->rs * c->rs, t1 = t0 - c->rs;
+    double x = (double)((real_t)T * (real_t)1e-3), x0 = (double)((real_t)t0 * (real_t)1e-3);
+    double x1 = (double)((real_t)t1 * (real_t)1e-3), y0 = source_at(c, t0), y1 = source_at(c, t1);
+    if (t1 < c->rs)
+        return y1 + (y0 - y1) * (x - x1) / (x0 - x1);
+    double x2 = (double)((real_t)(t1 - c->rs) * (real_t)1e-3), y2 = source_at(c, t1 - c->rs);
+    return (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2)) * y0 +
+           (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2)) * y1 +
+           (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1)) * y2;
+}
+
+/* formed from the sine alone: at each reader step start T (a multiple of rr), the miss of
+   the line the reader drew at its last start through the source's two newest points then
+   (the one point at t = 0: held), against the source's point at T where it has one (a
+   multiple of rs), else against its points around T (around); the worst miss (with the
+   source's own, below), and the misses above RT_XSET_LOST (1 + the largest |y| at such
+   places) */
 static double predicted_miss(const reader_case *c, uint32_t *lost, uint32_t *checks)
 {
     uint64_t n = (uint64_t)((double)c->t_end / 1e-3 + 0.5);
     double worst = 0, scale = 0, pred = 0;
     *lost = *checks = 0;
     for (uint64_t T = 0; T < n; T += c->rr) {
-        if (T % c->rs == 0) {
-            double y = source_at(c, T), e = y - pred;
-            scale = (y < 0 ? -y : y) > scale ? (y < 0 ? -y : y) : scale;
-            e = e < 0 ? -e : e;
-            if (T > 0) {
-                worst = e > worst ? e : worst;
-                *lost += e > (double)RT_XSET_LOST * (1 + scale);
-                ++*checks;
-            }
+        double y = T % c->rs == 0 ? source_at(c, T) : around(c, T), e = y - pred;
+        scale = (y < 0 ? -y : y) > scale ? (y < 0 ? -y : y) : scale;
+        e = e < 0 ? -e : e;
+        if (T > 0) {
+            worst = e > worst ? e : worst;
+            *lost += e > (double)RT_XSET_LOST * (1 + scale);
+            ++*checks;
         }
         /* the source's newest point: it steps at the start of its own step, so it is
            ahead of T unless both step at T, where the reader steps first */
