@@ -570,8 +570,11 @@ static uint16_t time_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
         s0 = a1, s1 = b1, i0 = a0, i1 = a1;
     else
         return 0;
-    if (s1 > s0 && code_depth(code, s0, s1) + 2 > SCN_MAX_STACK)
-        return 0; /* (its instant, (r - b) / a, would not fit the VM's stack) */
+    if (s1 > s0 && (code_depth(code, s0, s1) + 2 > SCN_MAX_STACK ||
+                    c->def->ntev + c->ntev >= SCN_MAX_TEV))
+        return 0; /* (its instant, (r - b) / a, would not fit the VM's stack, or the define
+                     has SCN_MAX_TEV instants: the plain comparison, as before there was
+                     one for an affine side) */
     if (c->def->ntev + c->ntev >= SCN_MAX_TEV) {
         scn_fail_tok(c, "too many comparisons of t",
                      scn_fmt(c, "at most %u in one define's body", SCN_MAX_TEV));
