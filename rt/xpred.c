@@ -96,9 +96,10 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
 #if RT_MAX_XPRED > 0
 /* input k of set s (block b) put an error into the set's state of w times the set's
    sensitivity to it: against the set's accuracy; above it the step is counted as one
-   whose estimate exceeds its accuracy. Near the accuracy (RT_XSET_FRESH), or after one
-   found next to none (RT_XSET_NOGAIN), the sensitivity, measured up to
-   RT_XSET_GAIN_EVERY steps ago, is measured afresh first: now for a set of
+   whose estimate exceeds its accuracy. Near the accuracy (RT_XSET_FRESH), after one
+   found next to none (RT_XSET_NOGAIN), or for a miss above RT_XSET_BIGMISS of the input's
+   range, the sensitivity, measured up to RT_XSET_GAIN_EVERY steps ago, is measured
+   afresh first: now for a set of
    the tick (t: this step's start, h its step), by its next step for the background set
    (which never evaluates in the tick) */
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
@@ -106,7 +107,8 @@ static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16
 {
     real_t g = sim->state.xgain[k], fresh = RT_XSET_FRESH * rti_accuracy(&sc->sets[s].cfg);
     real_t strong = 1 / ((1 + sim->state.xscale[k]) * h), est = w * g; /* RT_XSET_NOGAIN */
-    if (!(est <= fresh) || (g <= RT_XSET_NOGAIN * strong && w * strong > fresh)) {
+    if (!(est <= fresh) || (g <= RT_XSET_NOGAIN * strong && w * strong > fresh) ||
+        2 * w * strong > RT_XSET_BIGMISS) {
         if (!sc->sets[s].background) {
             measure(sc, sim, s, k, t, h);
             est = w * sim->state.xgain[k];
