@@ -164,12 +164,17 @@ typedef double real_t;
 #define RT_XSET_NOGAIN ((real_t)1e-6)
 #endif
 #ifndef RT_XSET_BIGMISS
-/* and afresh at every step while the input's miss is above this fraction of its range:
-   a sensitivity measured where the reader's response was weak (a rate that switches with
-   the input's sign, measured on the weak side) is no promise once the input swings (a
-   reader of a 2 Hz source at 100 ms, measured 0.001 at its start, was 23 % off with
-   status ok) */
+/* and afresh at every RT_XSET_BIGMISS_EVERY-th step while the input's miss is above
+   this fraction of its range: a sensitivity measured where the reader's response was
+   weak (a rate that switches with the input's sign, measured on the weak side) is no
+   promise once the input swings (a reader of a 2 Hz source at 100 ms, measured 0.001 at
+   its start, was 23 % off with status ok). Not at every step: a coarse coupling's misses
+   are that large at every step (lane_change's vehicles every 40 ms in the tick: two
+   right-hand sides more a step, 7 % of the run) */
 #define RT_XSET_BIGMISS ((real_t)0.01)
+#endif
+#ifndef RT_XSET_BIGMISS_EVERY
+#define RT_XSET_BIGMISS_EVERY 4
 #endif
 #ifndef RT_XSET_FD
 /* the input's difference for that sensitivity, relative to 1 + its range */

@@ -78,13 +78,21 @@ static void measure(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real
 }
 #endif
 
-void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
-{
 #if RT_MAX_XPRED > 0
+/* is set s at a step whose count is a multiple of every */
+static int steps_at(const rt_scene *sc, const rt_sim *sim, uint8_t s, uint32_t every)
+{
     uint64_t st = sim->state.set_tick[s];
     uint32_t ratio = sc->sets[s].ratio; /* (in 32 bits while it fits: rti_tick_mod) */
     uint64_t steps = st <= UINT32_MAX ? (uint32_t)st / ratio : st / ratio;
-    int due = rti_tick_mod(steps, RT_XSET_GAIN_EVERY) == 0;
+    return rti_tick_mod(steps, every) == 0;
+}
+#endif
+
+void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t h)
+{
+#if RT_MAX_XPRED > 0
+    int due = steps_at(sc, sim, s, RT_XSET_GAIN_EVERY);
     for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++)
         if (due || sim->state.xgain[k] != sim->state.xgain[k])
             measure(sc, sim, s, k, t, h);
@@ -98,8 +106,8 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
    sensitivity to it: against the set's accuracy; above it the step is counted as one
    whose estimate exceeds its accuracy. Near the accuracy (RT_XSET_FRESH), after one
    found next to none (RT_XSET_NOGAIN), or for a miss above RT_XSET_BIGMISS of the input's
-   range, the sensitivity, measured up to RT_XSET_GAIN_EVERY steps ago, is measured
-   afresh first: now for a set of
+   range at every RT_XSET_BIGMISS_EVERY-th step, the sensitivity, measured up to
+   RT_XSET_GAIN_EVERY steps ago, is measured afresh first: now for a set of
    the tick (t: this step's start, h its step), by its next step for the background set
    (which never evaluates in the tick) */
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
@@ -108,7 +116,7 @@ static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16
     real_t g = sim->state.xgain[k], fresh = RT_XSET_FRESH * rti_accuracy(&sc->sets[s].cfg);
     real_t strong = 1 / ((1 + sim->state.xscale[k]) * h), est = w * g; /* RT_XSET_NOGAIN */
     if (!(est <= fresh) || (g <= RT_XSET_NOGAIN * strong && w * strong > fresh) ||
-        2 * w * strong > RT_XSET_BIGMISS) {
+        (2 * w * strong > RT_XSET_BIGMISS && steps_at(sc, sim, s, RT_XSET_BIGMISS_EVERY))) {
         if (!sc->sets[s].background) {
             measure(sc, sim, s, k, t, h);
             est = w * sim->state.xgain[k];
