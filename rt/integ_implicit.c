@@ -369,13 +369,23 @@ static void watch_damping(imp_step *c)
 
 /* ------------------------------------------------------------------ Newton */
 
+/* the floor of the scale a Newton correction and a step's move are measured against:
+   the set's (rti_err_floor) where it is below 1. A correction measured against a unit
+   where the set's values that count are far smaller met the tolerance at once on a kept
+   stiff Jacobian that shrank it: a state of 1e-6 held by a stiffness, growing once a
+   sampled switch ended it, stayed at 1e-6 (485 at 1.5 s) with status ok under accuracy
+   (1e-3, 1e-10). Above 1 (an absolute accuracy looser than the relative one) a unit
+   stays: a looser Newton tolerance there bought Robertson's kinetics degraded steps and
+   17 times the right-hand sides of its worst step */
+static real_t newton_floor(const imp_step *c)
+{
+    return c->sa < 1 ? c->sa : 1;
+}
+
 /* max_i |d_i| / (sa + |y_i|); NaN when d holds one. sa: the set's floor (imp_step.sa,
    rti_err_floor: its absolute accuracy over its relative one, 1 unless the scene splits
-   them) for a Newton correction and an error estimate alike. A correction measured
-   against a unit where the set's values that count are far smaller met the tolerance at
-   once on a kept stiff Jacobian that shrank it: a state of 1e-6 held by a stiffness,
-   growing once a sampled switch ended it, stayed at 1e-6 (485 at 1.5 s) with status ok
-   under accuracy (1e-3, 1e-10) */
+   them) for an error estimate, and for a Newton correction that floor up to 1
+   (newton_floor) */
 static real_t scaled_norm(const real_t *d, const real_t *y, uint16_t n, real_t sa)
 {
     real_t m = 0;
@@ -421,7 +431,7 @@ static real_t newton(imp_step *c, real_t tc, const real_t *v, int first)
         for (uint16_t i = 0; i < c->n; i++)
             d[i] = v[i] + c->hg * d[i] - x[i];
         rti_lu_solve(ws->lu, c->n, ws->piv, d);
-        real_t r = scaled_norm(d, x, c->n, c->sa);
+        real_t r = scaled_norm(d, x, c->n, newton_floor(c));
         if (c->r0 < 0)
             c->r0 = r;
         if (rti_fault_due(RTI_FAULT_NEWTON))
@@ -549,7 +559,8 @@ static real_t split(imp_step *c, attempt_fn attempt, const void *tab, real_t gam
 
 
 /* finish() of a DIRK step that met its tolerance, unless it stalled: it ended within
-   the tolerance of its start (max_i |x_i - xs_i| / (1 + |xs_i|)) while its first Newton
+   the tolerance of its start (max_i |x_i - xs_i| / (newton_floor + |xs_i|), as the
+   corrections are measured) while its first Newton
    correction, the move its start derivative asks for filtered by M (a stiff component at
    its equilibrium asks for none), was RT_IMP_STALL times larger. Nothing but a spurious
    root of the stage equations ends there (a method's cycle: SDIRK2's two half steps on a
@@ -560,7 +571,7 @@ static rt_status finish_moved(imp_step *c, real_t res)
     const real_t *xs = c->w->imp->xs;
     real_t moved = 0;
     for (uint16_t i = 0; i < c->n; i++) {
-        real_t r = rt_fabs(c->x[i] - xs[i]) / (1 + rt_fabs(xs[i]));
+        real_t r = rt_fabs(c->x[i] - xs[i]) / (newton_floor(c) + rt_fabs(xs[i]));
         moved = r > moved ? r : moved;
     }
     c->stall = moved <= c->tol && c->r0 > (real_t)RT_IMP_STALL * c->tol;

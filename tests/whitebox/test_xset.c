@@ -294,7 +294,8 @@ static void check_reader(const char *what, const reader_case *c, int want_lost)
    xset_err (its own 1 ms extrapolation misses far less), and a sound coupling stays ok
    (at the phase pi/2 the start's hold misses amp (1 - cos w H), no more than the lines);
    in the tick, in the background inline and with a context; with steps that do not
-   divide each other (30 and 40 ms: checked where both meet, every 120 ms); and with an
+   divide each other (30 and 40 ms: checked at every step of the reader, against the
+   source's point where both meet, every 120 ms, else its points around); and with an
    amplitude of 1000 around an offset, whose misses near its zero crossings are large
    against the value there but not against its range */
 /* the case in the tick, in the background inline, and with a context attached */
