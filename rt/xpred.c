@@ -45,6 +45,19 @@ static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, int h
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
     real_t *f1 = sim->work.w.k[0], *f0 = sim->work.w.k[1], keep[RT_HIST], g = 0;
     rti_rhs_ctx c = {sc, sim, s, h};
+#if RT_MAX_TEV > 0
+    /* on the side of t the step integrates: the midpoint of its first part, before the
+       set's next instant known at run time. At a tick that is an instant, t itself reads
+       the left side of a strict comparison (t > ts is 0 there): a gain switched on at ts
+       on the reader's grid was measured off, 1000 times small, and 8 times its accuracy
+       went unreported */
+    real_t tb = t + h, keep_piece = sim->work.t_piece;
+    if (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) {
+        real_t td = rti_tev_dyn_next(sc, sim, s, t);
+        tb = td < tb ? td : tb;
+    }
+    sim->work.t_piece = (real_t)0.5 * (t + tb);
+#endif
     if (held) { /* a sampled output: its live value, which no evaluation of s writes */
         keep[0] = sim->state.y[v], sim->state.y[v] += d;
         rti_rhs(&c, t, f1);
@@ -57,6 +70,9 @@ static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, int h
             sim->state.hist_y[i][v] = keep[i];
     }
     rti_rhs(&c, t, f0);
+#if RT_MAX_TEV > 0
+    sim->work.t_piece = keep_piece;
+#endif
     for (uint16_t i = 0; i < n; i++) {
         real_t e = rt_fabs(f1[i] - f0[i]) / (1 + rt_fabs(sim->state.x[x0 + i]));
         if (!(e <= g))
