@@ -177,6 +177,7 @@ static void factor(imp_step *c)
     rt_status st = rti_lu(ws->lu, n, ws->piv, IMP_PIVOT_TOL);
     ws->h_factored = c->hg;
     ws->valid = st == RT_OK;
+    ws->neg_det = (uint8_t)rti_lu_det_negative(ws->lu, n, ws->piv);
     if (st != RT_OK)
         c->singular = 1;
 }
@@ -256,6 +257,7 @@ static void spread_install(imp_step *c)
         ws->piv[i] = ws->piv_next[i];
     ws->h_factored = ws->h_next;
     ws->valid = !ws->singular_next;
+    ws->neg_det = (uint8_t)rti_lu_det_negative(ws->lu, n, ws->piv);
     c->singular = ws->singular_next;
     ws->age = 0, ws->drift = 0;
     c->w->stats->jac_evals++;
@@ -276,6 +278,7 @@ static void refactor_lu(imp_step *c)
     rt_status st = rti_lu(ws->lu, n, ws->piv, IMP_PIVOT_TOL);
     ws->h_factored = c->hg;
     ws->valid = st == RT_OK;
+    ws->neg_det = (uint8_t)rti_lu_det_negative(ws->lu, n, ws->piv);
     if (st != RT_OK)
         c->singular = 1;
 }
@@ -360,11 +363,12 @@ static rt_status finish(imp_step *c, real_t res)
    filtered by M^-1 or from a companion that passes through M too, reads that mode small
    (y' = 50 y at 0.1 s, backward Euler: 0.78 of the accuracy where the answer is 149 times
    off), so the step says so. A stable J never gives it (complex pairs add |1 - h gamma
-   lambda|^2 > 0); an even number of such modes escapes the test. */
+   lambda|^2 > 0); an even number of such modes escapes the test. The sign is read off the
+   factors where they are made (ws->neg_det), not at every step that reuses them. */
 static void watch_damping(imp_step *c)
 {
     const rt_implicit_ws *ws = c->w->imp;
-    c->damped |= ws->valid && rti_lu_det_negative(ws->lu, c->n, ws->piv);
+    c->damped |= ws->valid && ws->neg_det;
 }
 
 /* ------------------------------------------------------------------ Newton */

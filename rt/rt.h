@@ -386,6 +386,7 @@ typedef struct rt_implicit_ws {
     uint16_t piv[RT_MAX_IMPLICIT_N];                  /* row pivots of lu */
     uint16_t piv_next[RT_MAX_IMPLICIT_N];             /* a spread refresh: those of jac */
     uint8_t valid;            /* lu holds a usable factorization */
+    uint8_t neg_det;          /* the matrix lu factors has a negative determinant */
     uint8_t singular_next;    /* a spread refresh met a singular pivot */
 } rt_implicit_ws;
 
@@ -926,6 +927,13 @@ rt_status rt_restore(rt_sim *sim, const rt_state *in);
  * Every rt_snapshot and rt_restore of a file that includes rt_sim.h is this call. */
 rt_status rt_snapshot_checked(const rt_sim *sim, rt_state *out, uint32_t caller_layout);
 rt_status rt_restore_checked(rt_sim *sim, const rt_state *in, uint32_t caller_layout);
+/* The blocks' internal states alone, in the layout rt_snapshot appends them to
+ * rt_state.kstate: saved into buf (cap bytes: RT_OK, RT_E_CAPACITY or the kind's status),
+ * and back (RT_E_SNAPSHOT when buf holds no whole state for a block, nothing changed, or
+ * when a kind failed to take its own back, the others restored). For a tool that runs the
+ * same scene's blocks in turns (modrt check's runs at h, h/2, h/4). */
+rt_status rt_kinds_save(const rt_scene *sc, uint8_t *buf, uint32_t cap);
+rt_status rt_kinds_restore(const rt_scene *sc, const uint8_t *buf, uint32_t cap);
 
 /* Look-ups by name (for hosts, tests and the scene language); -1 when not found. */
 int rt_block_index(const rt_scene *scene, const char *name);

@@ -20,9 +20,8 @@ static uint32_t get32(const uint8_t *p)
 }
 
 /* the kinds' states into buf (cap bytes): per block with a save, its size and its bytes */
-static rt_status save_kinds(const rt_sim *sim, uint8_t *buf, uint32_t cap)
+rt_status rt_kinds_save(const rt_scene *sc, uint8_t *buf, uint32_t cap)
 {
-    const rt_scene *sc = sim->sc;
     uint32_t at = 0;
     for (uint16_t b = 0; b < sc->nblocks; b++) {
         const rt_kind *k = sc->blocks[b].kind;
@@ -58,9 +57,9 @@ rt_status rt_snapshot_checked(const rt_sim *sim, rt_state *out, uint32_t caller_
         return RT_E_ARG;
     *out = sim->state;
 #if RT_MAX_KSTATE > 0
-    return save_kinds(sim, out->kstate, RT_MAX_KSTATE);
+    return rt_kinds_save(sim->sc, out->kstate, RT_MAX_KSTATE);
 #else
-    return save_kinds(sim, (uint8_t *)0, 0);
+    return rt_kinds_save(sim->sc, (uint8_t *)0, 0);
 #endif
 }
 
@@ -81,7 +80,7 @@ static int kinds_fit(const rt_scene *sc, const uint8_t *buf, uint32_t cap)
     return 1;
 }
 
-#if RT_MAX_KSTATE > 0
+/* the kinds' states back from buf, where kinds_fit found them whole */
 static rt_status restore_kinds(const rt_scene *sc, const uint8_t *buf)
 {
     rt_status st = RT_OK;
@@ -97,7 +96,11 @@ static rt_status restore_kinds(const rt_scene *sc, const uint8_t *buf)
     }
     return st;
 }
-#endif
+
+rt_status rt_kinds_restore(const rt_scene *sc, const uint8_t *buf, uint32_t cap)
+{
+    return kinds_fit(sc, buf, cap) ? restore_kinds(sc, buf) : RT_E_SNAPSHOT;
+}
 
 /* the name in parentheses: rt_sim.h's rt_restore macro does not expand here */
 rt_status (rt_restore)(rt_sim *sim, const rt_state *in)

@@ -264,46 +264,66 @@ record (S.yo);
 """
 
 
-STIFF_SWITCHED = """scene (stiff_switched) doc ("a stiffness that a sampled or another set's switch ends");
-base tick (1 ms);
-end time (0.62 s);
-define %s_system (Sw) with outputs (c) parameters (t1 = 0.5) states (z = 0) %s by {
+def switched_scene(name, doc, t_end, plant, set_line, switch=None, sets=""):
+    """a scene of a plant P (its define's text, output yo) whose input u is set C's switch
+    output c: by default a 10 ms dss_system switching from 0 to 1 at t1 = 0.5 s (a sampled
+    switch in the plant's set); sets: more set lines before the plant's (set_line)"""
+    switch = switch or SAMPLED_SWITCH
+    return ("scene (%s) doc (\"%s\");\nbase tick (1 ms);\nend time (%s s);\n%s%s"
+            "load system (C) of type (Sw);\nload system (S) of type (P);\nconnect(C.c, S.u);\n"
+            "%s%s\nrecord (S.yo);\n" % (name, doc, t_end, switch, plant, sets, set_line))
+
+
+SAMPLED_SWITCH = """define dss_system (Sw) with outputs (c) parameters (t1 = 0.5) states (z = 0) period (10 ms) by {
+    c = if(z >= t1 - 0.000001, 1, 0);
+    next(z) = z + 0.01;
+};
+"""
+
+SWITCH_DEFINE = """define %s_system (Sw) with outputs (c) parameters (t1 = 0.5) states (z = 0) %s by {
     c = if(z >= t1 - 0.000001, 1, 0);
     %s;
 };
-define ss_system (P) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 10)
+"""
+
+STIFF_PLANT = """define ss_system (P) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 10)
     states (y = 1) by {
     yo = y;
     der(y) = -k1 * (1 - u) * (y - 1) - k2 * u * y;
 };
-load system (C) of type (Sw);
-load system (S) of type (P);
-connect(C.c, S.u);
-%s
-set (main) method (ros2) step (10 ticks) jacobian (%d) members (%s);
-record (S.yo);
 """
 
 
-STIFF_MASKED = """scene (stiff_masked) doc ("a stiffness a sampled switch ends, beside a fast driven state");
-base tick (1 ms);
-end time (0.62 s);
-define dss_system (Sw) with outputs (c) parameters (t1 = 0.5) states (z = 0) period (10 ms) by {
-    c = if(z >= t1 - 0.000001, 1, 0);
-    next(z) = z + 0.01;
-};
-define ss_system (P) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 10, A = 3)
+def stiff_switched_scene(kind, period, nxt, sets, jac, members):
+    return switched_scene("stiff_switched", "a stiffness that a sampled or another set's switch ends",
+                          "0.62", STIFF_PLANT,
+                          "set (main) method (ros2) step (10 ticks) jacobian (%d) members (%s);"
+                          % (jac, members), SWITCH_DEFINE % (kind, period, nxt),
+                          sets + "\n")
+
+
+def stiff_masked_scene(jac):
+    return switched_scene("stiff_masked", "a stiffness a sampled switch ends, beside a fast driven state",
+                          "0.62", """define ss_system (P) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 10, A = 3)
     states (y = 1, q = 0) by {
     yo = y;
     der(y) = -k1 * (1 - u) * (y - 1) - k2 * u * y;
     der(q) = -10000 * (q - A * sin(10 * t));
 };
-load system (C) of type (Sw);
-load system (S) of type (P);
-connect(C.c, S.u);
-set (main) method (ros2) step (10 ticks) jacobian (%d) members (C, S);
-record (S.yo);
-"""
+""", "set (main) method (ros2) step (10 ticks) jacobian (%d) members (C, S);" % jac)
+
+
+def grow_switched_scene(method):
+    return switched_scene("grow_switched", "a state held by a stiffness, growing once a sampled switch ends it",
+                          "1.5", """define ss_system (P) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 20, y0 = 0.000001)
+    states (y = 0.000001) by {
+    yo = y;
+    der(y) = -k1 * (1 - u) * (y - y0) + k2 * u * y;
+};
+""", "set (main) method (%s) step (10 ticks) jacobian (1000) accuracy (1e-3, 1e-10) members (C, S);"
+                          % method)
+
+
 
 
 def stiff_switched(s):
@@ -320,8 +340,7 @@ def stiff_switched(s):
              "set (src) method (rk4) step (1 ticks) members (C);")):
         for jac in (2, 64):
             members = "S" if sets else "C, S"
-            rc, summ, rows = run_text(s.modrt, STIFF_SWITCHED % (kind, period, nxt, sets, jac,
-                                                                 members), [])
+            rc, summ, rows = run_text(s.modrt, stiff_switched_scene(kind, period, nxt, sets, jac, members), [])
             err = abs(rows[-1][1] - exact) if rows else math.inf
             s.row("a stiffness ended by %s, ros2 jacobian %d" % (tag, jac), "ros2", "0.01",
                   err, summ, rc)
@@ -331,8 +350,7 @@ def stiff_switched(s):
         # not (0.9995 for 0.6376 at 5 s with jacobian (1000); 1.9e-3 off when each step
         # was judged alone)
         members = "S" if sets else "C, S"
-        rc, summ, rows = run_text(s.modrt, STIFF_SWITCHED % (kind, period, nxt, sets, 1000,
-                                                             members),
+        rc, summ, rows = run_text(s.modrt, stiff_switched_scene(kind, period, nxt, sets, 1000, members),
                                   ["--set", "S.k2=0.1", "--t-end", "5"])
         exact5 = math.exp(-0.1 * 4.5)
         err = abs(rows[-1][1] - exact5) if rows else math.inf
@@ -344,7 +362,7 @@ def stiff_switched(s):
     # jacobian 64, 0.99947 for the slow decay, status ok)
     for jac, args, t_end in ((2, [], 0.62), (64, [], 0.62),
                              (1000, ["--set", "S.k2=0.1", "--t-end", "5"], 5.0)):
-        rc, summ, rows = run_text(s.modrt, STIFF_MASKED % jac, args)
+        rc, summ, rows = run_text(s.modrt, stiff_masked_scene(jac), args)
         k2 = 0.1 if args else 10
         exact = math.exp(-k2 * (t_end - 0.5))
         err = abs(rows[-1][1] - exact) if rows else math.inf
@@ -354,24 +372,6 @@ def stiff_switched(s):
                 "%.3g (status %s)" % (jac, t_end, err, summ.get("status")))
 
 
-GROW_SWITCHED = """scene (grow_switched) doc ("a state held by a stiffness, growing once a sampled switch ends it");
-base tick (1 ms);
-end time (1.5 s);
-define dss_system (Sw) with outputs (c) parameters (t1 = 0.5) states (z = 0) period (10 ms) by {
-    c = if(z >= t1 - 0.000001, 1, 0);
-    next(z) = z + 0.01;
-};
-define ss_system (P) with inputs (u) outputs (yo) parameters (k1 = 100000, k2 = 20, y0 = 0.000001)
-    states (y = 0.000001) by {
-    yo = y;
-    der(y) = -k1 * (1 - u) * (y - y0) + k2 * u * y;
-};
-load system (C) of type (Sw);
-load system (S) of type (P);
-connect(C.c, S.u);
-set (main) method (%s) step (10 ticks) jacobian (1000) accuracy (1e-3, 1e-10) members (C, S);
-record (S.yo);
-"""
 
 
 def grow_switched(s):
@@ -384,7 +384,7 @@ def grow_switched(s):
     fresh one"""
     exact = 1e-6 * math.exp(20)
     for m in ("beuler", "trap", "sdirk2", "sdirk3"):
-        rc, summ, rows = run_text(s.modrt, GROW_SWITCHED % m, [])
+        rc, summ, rows = run_text(s.modrt, grow_switched_scene(m), [])
         err = abs(rows[-1][1] - exact) / exact if rows else math.inf
         s.row("a held state growing after a sampled switch, jacobian 1000 (relative)", m,
               "0.01", err, summ, rc)

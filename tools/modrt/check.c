@@ -90,27 +90,8 @@ static rt_status refuse(rt_status st, const char *what, const char *detail)
 /* the blocks' internal states (rt_kind.save) into kst[run], or back from it (restore) */
 static rt_status kstate(const rt_scene *sc, int run, int restore)
 {
-    uint32_t off = 0;
-    for (uint16_t b = 0; b < sc->nblocks; b++) {
-        const rt_kind *k = sc->blocks[b].kind;
-        uint32_t n = 0;
-        if (!k->save)
-            continue;
-        if (off + 4 > RT_MAX_KSTATE)
-            return RT_E_CAPACITY;
-        rt_status st;
-        if (restore) {
-            memcpy(&n, kst[run] + off, 4);
-            st = k->restore(k->spec, kst[run] + off + 4, n);
-        } else {
-            st = k->save(k->spec, kst[run] + off + 4, RT_MAX_KSTATE - off - 4, &n);
-            memcpy(kst[run] + off, &n, 4);
-        }
-        if (st != RT_OK)
-            return st;
-        off += 4 + n;
-    }
-    return RT_OK;
+    return restore ? rt_kinds_restore(sc, kst[run], RT_MAX_KSTATE)
+                   : rt_kinds_save(sc, kst[run], RT_MAX_KSTATE);
 }
 
 /* run `to`'s internal states in place of run `from`'s, which are kept first: 1 if done.
