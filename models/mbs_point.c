@@ -19,7 +19,7 @@ static void kin(const rt_args *a, const real_t *v, real_t *qd)
         qd[i] = v[i];
 }
 
-/* M = m I, diagonal and constant (RT_MBS_M_DIAG, RT_MBS_M_CONST) */
+/* M = m I, diagonal and constant (RT_MBS_M_DIAG, RT_MBS_M_ISO, RT_MBS_M_CONST) */
 static void mass(const rt_args *a, real_t *M)
 {
     M[0] = M[1] = M[2] = a->p[0];
@@ -84,13 +84,14 @@ static rt_status check(const real_t *p, const void *spec)
 static const rt_mbs_spec spec = {
     .nq = 3, .nz = 3, .nn = 1, 
     .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_F_PARAM |
-             RT_MBS_NODE_POINT,
+             RT_MBS_NODE_POINT | RT_MBS_M_ISO,
     .node_names = node_names,
     .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
 };
 static const rt_mbs_spec spec_u = {
     .nq = 3, .nz = 3, .nn = 1, 
-    .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_NODE_POINT,
+    .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_NODE_POINT |
+             RT_MBS_M_ISO,
     .node_names = node_names,
     .kin = kin, .mass = mass, .force = force_u, .node = node, .energy = energy,
 };

@@ -170,7 +170,7 @@ static void prismatic_eval(const real_t *p, const rt_mbs_node *n1, const rt_mbs_
 static const char *const sphdiff_p[] = {"l"};
 
 const rt_joint_kind rt_joint_sphdiff = {
-    .name = "sphdiff", .nc = 1, .np = 1, .trans = 1, .p_names = sphdiff_p,
+    .name = "sphdiff", .nc = 1, .np = 1, .trans = 1, .anti = 1, .p_names = sphdiff_p,
     .check = sphdiff_check, .eval = sphdiff_eval, .eval_points = sphdiff_points,
     .g_points = sphdiff_g,
     .doc = RT_DOC("Rod of length l between two points (spherical difference, eq. (8)):\n"

@@ -176,21 +176,24 @@ static rt_status touch_tables(const rt_scene *sc, rt_sim *sim)
 }
 
 /* does set s hold points only: each MBS block a point node (RT_MBS_NODE_POINT) with a
-   constant diagonal M, no constraints of its own and nothing to normalize, each joint's
-   kind one that evaluates points (eval_points; its ends are blocks of the set, so points,
-   or the inertial frame: check_joint)? Its multibody path then looks up no spec
-   (rt/mbs_asm.c assemble_point_set, rt/mbs_project.c points_add) */
+   constant M = m I (RT_MBS_M_ISO), no constraints of its own and nothing to normalize,
+   each joint's kind one that evaluates points with C2 = -C1 (eval_points, anti; its ends
+   are blocks of the set, so points, or the inertial frame: check_joint) between two
+   different ends? Its multibody path then looks up no spec and forms A from C.C and 1/m
+   (rt/mbs_asm.c assemble_point_set, point_shares; rt/mbs_project.c points_add) */
 static uint8_t points_only(const rt_scene *sc, const rt_mbs_work *w, uint8_t s)
 {
-    const uint8_t need = RT_MBS_NODE_POINT | RT_MBS_M_DIAG | RT_MBS_M_CONST;
+    const uint8_t need = RT_MBS_NODE_POINT | RT_MBS_M_DIAG | RT_MBS_M_ISO | RT_MBS_M_CONST;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         const rt_mbs_spec *sp = spec_of(sc, w->sblk[k]);
         if ((sp->flags & need) != need || sp->nc > 0 || sp->normalize)
             return 0;
     }
-    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++)
-        if (!sc->joints[w->sjnt[k]].kind->eval_points)
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
+        const rt_joint *j = &sc->joints[w->sjnt[k]];
+        if (!j->kind->eval_points || !j->kind->anti || j->b2 == j->b1)
             return 0;
+    }
     return 1;
 }
 

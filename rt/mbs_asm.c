@@ -306,6 +306,8 @@ void rti_mbs_mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t 
         for (uint16_t i = 0; i < sp->nz; i++)
             if (!(M[i] > floor_))
                 M[i] = floor_, st = RT_E_SINGULAR;
+        if (sp->flags & RT_MBS_M_ISO) /* M = m I: A and the corrections multiply by 1/m */
+            sim->work.mbs.im[b] = (real_t)1 / M[0];
     } else {
         uint16_t piv[RT_MAX_MBS_BZ];
         st = rti_lu(M, sp->nz, piv, RT_MBS_PIVOT_TOL);
@@ -392,6 +394,11 @@ static void assemble_point_set(const rt_scene *sc, rt_sim *sim, uint8_t set, rea
         side_rv(sim, j, j->b1, &r1, &v1);
         side_rv(sim, j, j->b2, &r2, &v2);
         point_rows(j, ji, w, what, r1, v1, r2, v2);
+        if (!(what & RTI_MBS_JAC))
+            continue;
+        const real_t *W1 = w->W + w->jw[ji][0]; /* C.C of each row, for both its points */
+        for (unsigned i = 0, r = w->jrow[ji], nc = j->kind->nc; i < nc; i++, r++, W1 += 3)
+            w->cc[r] = W1[0] * W1[0] + W1[1] * W1[1] + W1[2] * W1[2];
     }
 }
 
@@ -438,6 +445,21 @@ static RTI_INLINE void diag_shares(real_t *lv, const real_t *W, const real_t *M,
     }
 }
 
+/* point b's shares of A = W M^-1 W^T (a set of points, M = m I) over the pairs of rows
+   it touches: a row with itself C.C / m (its C.C formed once for both its points, which
+   see C and -C: rt_joint_kind.anti), two rows (W_i . W_k) / m; 1/m formed with M */
+static RTI_INLINE void point_shares(rt_mbs_work *w, unsigned b)
+{
+    const real_t *Wi = w->W + w->wo[b], im = w->im[b];
+    const uint16_t *ps = w->pslot + w->po[b], *tr = w->trow + w->to[b];
+    for (unsigned i = 0, nt = (unsigned)(w->to[b + 1] - w->to[b]); i < nt; i++, Wi += 3) {
+        w->lv[*ps++] += w->cc[tr[i]] * im;
+        const real_t *Wk = Wi + 3;
+        for (unsigned k = i + 1; k < nt; k++, Wk += 3)
+            w->lv[*ps++] += dot(Wi, Wk, 0, 3) * im;
+    }
+}
+
 /* block b's share of A = W Y over the pairs of rows it touches, Y = M^-1 W^T: a diagonal
    M divides on the fly (Y is kept only for a dense M, RT_MAX_MBS_TY) */
 static void schur_block(rt_mbs_work *w, const rt_mbs_spec *sp, uint16_t b)
@@ -472,12 +494,9 @@ void rti_mbs_schur(const rt_scene *sc, rt_sim *sim, uint8_t set)
     if (w->nc[set] == 0)
         return;
     rti_mbs_ldl_clear(w, set);
-    if (w->points[set]) /* points only: schur_block's diagonal case with nz = 3 */
-        for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
-            unsigned b = w->sblk[k];
-            diag_shares(w->lv, w->W + w->wo[b], w->M + w->mo[b], w->pslot + w->po[b],
-                        (unsigned)(w->to[b + 1] - w->to[b]), 3);
-        }
+    if (w->points[set]) /* points only: no spec to look up, 1/m for M^-1 */
+        for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++)
+            point_shares(w, w->sblk[k]);
     else
         for (uint16_t k = w->sb[set]; k < w->sb[set + 1]; k++)
             schur_block(w, spec_of(sc, w->sblk[k]), w->sblk[k]);
@@ -514,7 +533,18 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
         real_t *d = dz + w->zo[b];
         const real_t *M = w->M + w->mo[b], *Wi = w->W + w->wo[b], *Yi = w->Y + w->yo[b];
         int diag = points || (sp->flags & RT_MBS_M_DIAG);
-        if (diag && nz == 3) { /* a point: the same sums, kept in registers */
+        if (points) { /* M = m I: each touch's multiplier times 1/m, kept in registers */
+            real_t d0 = add ? d[0] : 0, d1 = add ? d[1] : 0, d2 = add ? d[2] : 0;
+            for (real_t im = w->im[b]; i < i1; i++, Wi += 3) {
+                real_t s = v[trow[i]] * im;
+                d0 -= Wi[0] * s;
+                d1 -= Wi[1] * s;
+                d2 -= Wi[2] * s;
+            }
+            d[0] = d0, d[1] = d1, d[2] = d2;
+            continue;
+        }
+        if (diag && nz == 3) { /* a point among bodies: the same sums, in registers */
             real_t d0 = add ? d[0] : 0, d1 = add ? d[1] : 0, d2 = add ? d[2] : 0;
             for (; i < i1; i++, Wi += 3) {
                 real_t vi = v[trow[i]];
@@ -537,6 +567,23 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
 
 /* ------------------------------------------------------------------ the index-1 solve */
 
+/* a set of points: W M^-1 k of each row, C . (a1 - a2) from the free accelerations a of
+   its two points (C2 = -C1, rt_joint_kind.anti; an anchor's is zero), added to lam */
+static void point_accels(const rt_scene *sc, const rt_mbs_work *w, uint8_t set, real_t *lam)
+{
+    for (unsigned k = w->sj[set], k1 = w->sj[set + 1]; k < k1; k++) {
+        const rt_joint *j = &sc->joints[w->sjnt[k]];
+        const real_t *W1 = w->W + w->jw[w->sjnt[k]][0], *a1 = w->a + w->zo[j->b1];
+        const real_t *a2 = j->b2 >= 0 ? w->a + w->zo[j->b2] : 0;
+        for (unsigned i = 0, r = w->jrow[w->sjnt[k]]; i < j->kind->nc; i++, r++, W1 += 3) {
+            real_t d[3] = {a1[0], a1[1], a1[2]};
+            if (a2)
+                d[0] -= a2[0], d[1] -= a2[1], d[2] -= a2[2];
+            lam[r] += dot(W1, d, 0, 3);
+        }
+    }
+}
+
 void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
 {
     rt_mbs_work *w = &sim->work.mbs;
@@ -551,8 +598,10 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
     if (sc->stab == RT_STAB_BAUMGARTE)
         for (uint16_t r = 0; r < m; r++)
             lam[r] += sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r];
-    for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
-        unsigned b = w->sblk[k], nz = w->points[set] ? 3 : spec_of(sc, (uint16_t)b)->nz;
+    if (w->points[set])
+        point_accels(sc, w, set, lam);
+    for (unsigned k = w->sb[set], k1 = w->points[set] ? 0 : w->sb[set + 1]; k < k1; k++) {
+        unsigned b = w->sblk[k], nz = spec_of(sc, (uint16_t)b)->nz;
         const real_t *ab = w->a + w->zo[b];
         const real_t *Wi = w->W + w->wo[b];
         for (unsigned i = w->to[b], i1 = w->to[b + 1]; i < i1; i++, Wi += nz)

@@ -676,11 +676,13 @@ static void test_mass_change(void)
     TH_NEAR(tu_sim.state.x[3], 1.5, tol);
 }
 
-/* a set of point masses takes the lean multibody path (rt_mbs_work.points) with the bits
-   of the general one: a spatial double pendulum hung from an anchor off the origin, its
-   first point pushed by an input force, against the same blocks of copies of the kinds
-   that do not declare their nodes points (RT_MBS_NODE_POINT), which the general path
-   evaluates through their node and kin services; projected and with Baumgarte's terms */
+/* a set of point masses takes the lean multibody path (rt_mbs_work.points: 1/m, C.C and
+   C . (a1 - a2) where the general one divides W by M row by row): the same motion to
+   rounding. A spatial double pendulum hung from an anchor off the origin, masses 1.3 and
+   0.7 kg, its first point pushed by an input force, against the same blocks of copies of
+   the kinds that do not declare their nodes points (RT_MBS_NODE_POINT), which the
+   general path evaluates through their node and kin services; projected and with
+   Baumgarte's terms */
 static void test_points_path(void)
 {
     static const real_t at[3] = {(real_t)0.2, (real_t)-0.1, (real_t)0.3};
@@ -730,11 +732,16 @@ static void test_points_path(void)
                 lam[0] = rt_rec_value(&sc, &tu_sim, 0);
                 continue;
             }
-            int same = 1;
-            for (int i = 0; i < 12; i++)
-                same &= x[i] == tu_sim.state.x[i];
+            double off = 0;
+            for (int i = 0; i < 12; i++) {
+                double e = rt_fabs(x[i] - tu_sim.state.x[i]);
+                off = e > off ? e : off;
+            }
             lam[1] = rt_rec_value(&sc, &tu_sim, 0);
-            TH_CHECK(same && lam[0] == lam[1] && lam[0] > 0);
+            double el = rt_fabs(lam[0] - lam[1]) / rt_fabs(lam[1]);
+            off = el > off ? el : off;
+            th_note("points path against the general one", off);
+            TH_CHECK(off <= (RT_REAL_IS_FLOAT ? 1e-3 : 1e-11) && lam[0] > 0);
         }
     }
 }

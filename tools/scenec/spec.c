@@ -283,7 +283,7 @@ static void mbs_args(FILE *f, const rt_sim *sim, uint16_t b)
 
 /* mass_factor (rt/mbs_asm.c) of block b's diagonal M of nz entries at w->M + mo: every
    pivot at or below the threshold replaced by it and counted */
-static void mass_diag(FILE *f, uint16_t b, unsigned mo, unsigned nz)
+static void mass_diag(FILE *f, uint16_t b, unsigned mo, unsigned nz, int iso)
 {
     fputs("    {\n        real_t big = 0, floor_;\n        int low = 0;\n", f);
     for (unsigned i = 0; i < nz; i++)
@@ -292,6 +292,8 @@ static void mass_diag(FILE *f, uint16_t b, unsigned mo, unsigned nz)
     for (unsigned i = 0; i < nz; i++)
         fprintf(f, "        if (!(w->M[%u] > floor_))\n            w->M[%u] = floor_, low = 1;\n",
                 mo + i, mo + i);
+    if (iso) /* M = m I (RT_MBS_M_ISO): 1/m */
+        fprintf(f, "        w->im[%u] = (real_t)1 / w->M[%u];\n", b, mo);
     fprintf(f, "        if (low)\n            rti_count(sim, RT_CNT_SINGULAR, %u, RT_E_SINGULAR);\n"
                "        w->m_valid[%u] = 1;\n    }\n", b, b);
 }
@@ -307,21 +309,37 @@ static int param_force(const rt_scene *sc, uint16_t b)
 
 /* block b's M^-1 k kept after its diagonal M's factors (rti_mbs_m_entries), formed
    there (force, divided by M) at the first evaluation after M's factoring (m_valid bit
-   1, cleared with bit 0) */
-static void kept_force(FILE *f, const rt_sim *sim, uint16_t b, unsigned nz)
+   1, cleared with bit 0); copied into a unless the set is of points, whose sums read it
+   where it is kept (force_at) */
+static void kept_force(FILE *f, const rt_sim *sim, uint16_t b, unsigned nz, int copy)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     unsigned zo = w->zo[b], mo = w->mo[b];
-    fprintf(f, "    if (w->m_valid[%u] & 2u) {\n", b);
-    for (unsigned c = 0; c < nz; c++)
-        fprintf(f, "        a[%u] = M[%u];\n", zo + c, mo + nz + c);
-    fputs("    } else {\n", f);
+    if (copy) {
+        fprintf(f, "    if (w->m_valid[%u] & 2u) {\n", b);
+        for (unsigned c = 0; c < nz; c++)
+            fprintf(f, "        a[%u] = M[%u];\n", zo + c, mo + nz + c);
+        fputs("    } else {\n", f);
+    } else {
+        fprintf(f, "    if (!(w->m_valid[%u] & 2u)) {\n", b);
+    }
     mbs_args(f, sim, b);
     fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
     for (unsigned c = 0; c < nz; c++)
         fprintf(f, "    a[%u] /= M[%u];\n    w->M[%u] = a[%u];\n", zo + c, mo + c,
                 mo + nz + c, zo + c);
     fprintf(f, "    w->m_valid[%u] |= 2u;\n    }\n", b);
+}
+
+/* where a right-hand side of set s finds block b's M^-1 k: a point's kept one where it is
+   kept (kept_force), else in a */
+static void force_at(const rt_scene *sc, const rt_sim *sim, uint8_t s, uint16_t b,
+                     const char **name, unsigned *at)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    int kept = w->points[s] && param_force(sc, b);
+    *name = kept ? "M" : "a";
+    *at = kept ? w->mo[b] + nz_of(sim, b) : w->zo[b];
 }
 
 /* each block's part of the assembly (assemble_point_set; assemble_block): a varying M
@@ -354,10 +372,10 @@ static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, in
                 fprintf(f, "    rti_mbs_mass_factor(sim, ar.spec, %u, w->M + %u);\n"
                            "    w->m_valid[%u] = 1;\n", b, mo, b);
             else
-                mass_diag(f, b, mo, sp->nz);
+                mass_diag(f, b, mo, sp->nz, (sp->flags & RT_MBS_M_ISO) != 0);
         }
         if (kept) {
-            kept_force(f, sim, b, sp->nz);
+            kept_force(f, sim, b, sp->nz, !w->points[s]);
         } else if (force) {
             if (sc->blocks[b].kind->nu > 0)
                 gather(f, sim, b);
@@ -430,6 +448,8 @@ static void point_joint(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t
         if (rows & ROW_GAM)
             fprintf(f, "        gam[%u] = (real_t)0 + e.c[%u];\n", r, i);
         fprintf(f, "        W[%u] = C[0], W[%u] = C[1], W[%u] = C[2];\n", w1, w1 + 1, w1 + 2);
+        if (w->points[sc->blocks[j->b1].set]) /* C.C for both points (anti) */
+            fprintf(f, "        cc[%u] = C[0] * C[0] + C[1] * C[1] + C[2] * C[2];\n", r);
         if (one)
             continue;
         if (same)
@@ -546,6 +566,8 @@ static void assemble_bodies(FILE *f, const rt_scene *sc, const rt_sim *sim, uint
 static void quotients(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
+    if (w->points[s]) /* M = m I: 1/m in the sums (point_shares, rti_mbs_correct) */
+        return;
     fputs("    /* M^-1 W^T, entry by entry */\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
@@ -563,7 +585,8 @@ static void quotients(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
     }
 }
 
-/* rti_mbs_schur for points: the slots cleared, each block's shares (diag_shares) */
+/* rti_mbs_schur for points: the slots cleared, each block's shares (point_shares: C.C
+   and W_i . W_k times 1/m) */
 static void schur(FILE *f, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -576,7 +599,17 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
         uint16_t b = w->sblk[k];
         unsigned nt = (unsigned)(w->to[b + 1] - w->to[b]), wo = w->wo[b], nz = nz_of(sim, b);
         const uint16_t *ps = w->pslot + w->po[b];
-        for (unsigned i = 0; i < nt; i++)
+        for (unsigned i = 0; i < nt && w->points[s]; i++)
+            for (unsigned kk = i; kk < nt; kk++) {
+                fputs("    ", f);
+                slot(f, *ps++);
+                if (kk == i)
+                    fprintf(f, " += cc[%u] * w->im[%u];\n", w->trow[w->to[b] + i], b);
+                else
+                    fprintf(f, " += dot3(W + %u, W + %u) * w->im[%u];\n", wo + 3 * i,
+                            wo + 3 * kk, b);
+            }
+        for (unsigned i = 0; i < nt && !w->points[s]; i++)
             for (unsigned kk = i; kk < nt; kk++) {
                 const char *y;
                 unsigned at;
@@ -687,7 +720,9 @@ static void solve(FILE *f, const rt_sim *sim, uint8_t s, const char *v)
                "(uint16_t)conflict), RT_E_SINGULAR);\n    }\n", s);
 }
 
-/* rti_mbs_correct of a set of points: dz = -M^-1 W^T v into a, added to it if add */
+/* rti_mbs_correct of a set of points: dz = -M^-1 W^T v into a, added to it if add (a
+   set of points adds to its M^-1 k where force_at finds it and writes z' into xdot,
+   which rti_mbs_accel copies from a) */
 static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int add)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -708,17 +743,30 @@ static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int ad
             }
             continue;
         }
+        const char *src;
+        unsigned at;
+        force_at(sim->sc, sim, s, b, &src, &at);
         if (add)
-            fprintf(f, "    d0 = a[%u], d1 = a[%u], d2 = a[%u];\n", zo, zo + 1, zo + 2);
+            fprintf(f, "    d0 = %s[%u], d1 = %s[%u], d2 = %s[%u];\n", src, at, src, at + 1,
+                    src, at + 2);
         else
             fputs("    d0 = 0, d1 = 0, d2 = 0;\n", f);
+        const char *y = w->points[s] ? "W" : "q"; /* points: v times 1/m (M = m I) */
         for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3) {
-            fprintf(f, "    vi = %s[%u];\n", v, w->trow[i]);
-            fprintf(f, "    d0 -= q[%u] * vi;\n", wi);
-            fprintf(f, "    d1 -= q[%u] * vi;\n", wi + 1);
-            fprintf(f, "    d2 -= q[%u] * vi;\n", wi + 2);
+            if (w->points[s])
+                fprintf(f, "    vi = %s[%u] * w->im[%u];\n", v, w->trow[i], b);
+            else
+                fprintf(f, "    vi = %s[%u];\n", v, w->trow[i]);
+            fprintf(f, "    d0 -= %s[%u] * vi;\n", y, wi);
+            fprintf(f, "    d1 -= %s[%u] * vi;\n", y, wi + 1);
+            fprintf(f, "    d2 -= %s[%u] * vi;\n", y, wi + 2);
         }
-        fprintf(f, "    a[%u] = d0, a[%u] = d1, a[%u] = d2;\n", zo, zo + 1, zo + 2);
+        if (add && w->points[s]) {
+            unsigned q = sim->plan.x_off[b] - sim->plan.set_x[s] + 3;
+            fprintf(f, "    xdot[%u] = d0, xdot[%u] = d1, xdot[%u] = d2;\n", q, q + 1, q + 2);
+        } else {
+            fprintf(f, "    a[%u] = d0, a[%u] = d1, a[%u] = d2;\n", zo, zo + 1, zo + 2);
+        }
     }
 }
 
@@ -773,19 +821,42 @@ static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t
         for (unsigned r = 0; r < w->nc[s]; r++)
             fprintf(f, "    gam[%u] += sc->baumgarte[0] * gd[%u] + sc->baumgarte[1] * g[%u];\n",
                     r, r, r);
-    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
+    for (uint16_t k = w->sj[s]; k < w->sj[s + 1] && w->points[s]; k++) {
+        /* point_accels: C . (a1 - a2) per row */
+        uint16_t ji = w->sjnt[k];
+        const rt_joint *j = &sc->joints[ji];
+        const char *s1, *s2;
+        unsigned at1, at2;
+        force_at(sc, sim, s, (uint16_t)j->b1, &s1, &at1);
+        for (unsigned i = 0; i < j->kind->nc; i++) {
+            unsigned r = w->jrow[ji] + i, w1 = w->jw[ji][0] + 3 * i;
+            if (j->b2 < 0) {
+                fprintf(f, "    gam[%u] += dot3(W + %u, %s + %u);\n", r, w1, s1, at1);
+                continue;
+            }
+            force_at(sc, sim, s, (uint16_t)j->b2, &s2, &at2);
+            fprintf(f, "    d0 = %s[%u] - %s[%u], d1 = %s[%u] - %s[%u], d2 = %s[%u] - %s[%u];\n",
+                    s1, at1, s2, at2, s1, at1 + 1, s2, at2 + 1, s1, at1 + 2, s2, at2 + 2);
+            fprintf(f, "    acc = 0;\n    acc += W[%u] * d0;\n    acc += W[%u] * d1;\n"
+                       "    acc += W[%u] * d2;\n    gam[%u] += acc;\n", w1, w1 + 1, w1 + 2, r);
+        }
+    }
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1] && !w->points[s]; k++) {
         uint16_t b = w->sblk[k];
         unsigned nz = nz_of(sim, b);
+        const char *src;
+        unsigned at;
+        force_at(sc, sim, s, b, &src, &at);
         for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += nz)
             if (nz == 3)
-                fprintf(f, "    gam[%u] += dot3(W + %u, a + %u);\n", w->trow[i], wi, w->zo[b]);
+                fprintf(f, "    gam[%u] += dot3(W + %u, %s + %u);\n", w->trow[i], wi, src, at);
             else
                 fprintf(f, "    gam[%u] += dotn(W + %u, a + %u, %u);\n", w->trow[i], wi,
                         w->zo[b], nz);
     }
     solve(f, sim, s, "gam");
     fputs("    /* z' = M^-1 k - M^-1 W^T lambda, into a */\n", f);
-    correct(f, sim, s, "gam", 1);
+    correct(f, sim, s, "gam", 1); /* (points: into xdot) */
     if (w->need_lambda) {
         fputs("    /* the joints' multipliers, read by a reaction */\n", f);
         for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
@@ -798,14 +869,12 @@ static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t
         kinematics(f, sc, sim, s);
         return;
     }
-    fputs("    /* q' = v, v' = z' */\n", f);
+    fputs("    /* q' = v (v' = z' is in xdot) */\n", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
-        unsigned xo = sim->plan.x_off[b], q = xo - sim->plan.set_x[s], zo = w->zo[b];
+        unsigned xo = sim->plan.x_off[b], q = xo - sim->plan.set_x[s];
         fprintf(f, "    xdot[%u] = x[%u], xdot[%u] = x[%u], xdot[%u] = x[%u];\n", q, xo + 3,
                 q + 1, xo + 4, q + 2, xo + 5);
-        fprintf(f, "    xdot[%u] = a[%u], xdot[%u] = a[%u], xdot[%u] = a[%u];\n", q + 3, zo,
-                q + 4, zo + 1, q + 5, zo + 2);
     }
 }
 
@@ -814,7 +883,7 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     fputs("    rt_mbs_work *w = &sim->work.mbs;\n"
-          "    real_t *lv = w->lv, *L = lv + RT_MAX_MBS_ROWS, *W = w->W, *a = w->a, *Y = w->Y;\n"
+          "    real_t *lv = w->lv, *L = lv + RT_MAX_MBS_ROWS, *a = w->a, *Y = w->Y;\n"
           "    real_t *g = w->g, *gd = w->gd, *gam = w->gam, *xw = sim->state.x;\n"
           "    const real_t *M = w->M, *x = xw, *C;\n"
           "    real_t acc, d0, d1, d2, vi;\n"
@@ -829,7 +898,11 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
         unsigned end = w->wo[b] + nz_of(sim, b) * (unsigned)(w->to[b + 1] - w->to[b]);
         nq = end > nq ? end : nq;
     }
-    fprintf(f, "    real_t q[%u]; /* M^-1 W^T (quotients) */\n    (void)q;\n", nq ? nq : 1);
+    if (w->points[s]) /* W is formed and read within the call; 1/m, no quotients */
+        fprintf(f, "    real_t W[%u], *cc = w->cc;\n", nq ? nq : 1);
+    else
+        fprintf(f, "    real_t *W = w->W, q[%u]; /* M^-1 W^T (quotients) */\n    (void)q;\n",
+                nq ? nq : 1);
     fputs("    if (", f);
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
         fprintf(f, "%s!w->m_valid[%u]", k > w->sb[s] ? " || " : "", w->sblk[k]);
