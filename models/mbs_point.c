@@ -84,14 +84,14 @@ static rt_status check(const real_t *p, const void *spec)
 static const rt_mbs_spec spec = {
     .nq = 3, .nz = 3, .nn = 1, 
     .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_F_PARAM |
-             RT_MBS_NODE_POINT | RT_MBS_M_ISO,
+             RT_MBS_NODE_POINT | RT_MBS_M_ISO | RT_MBS_Y_STATE,
     .node_names = node_names,
     .kin = kin, .mass = mass, .force = force, .node = node, .energy = energy,
 };
 static const rt_mbs_spec spec_u = {
     .nq = 3, .nz = 3, .nn = 1, 
     .flags = RT_MBS_M_DIAG | RT_MBS_M_CONST | RT_MBS_K_CONST | RT_MBS_NODE_POINT |
-             RT_MBS_M_ISO,
+             RT_MBS_M_ISO | RT_MBS_Y_STATE,
     .node_names = node_names,
     .kin = kin, .mass = mass, .force = force_u, .node = node, .energy = energy,
 };

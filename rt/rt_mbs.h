@@ -70,6 +70,8 @@ typedef struct rt_mbs_node {
                                   assembly fills such nodes itself, asks for no Jacobian
                                   and takes a joint's translational coefficients as the
                                   row of W */
+#define RT_MBS_Y_STATE 0x40    /* the kind's output equation copies the state (ny = nx,
+                                  y = x): written-out code copies without the call */
 #define RT_MBS_M_ISO 0x20      /* M = m I: mass() writes nz equal values (with
                                   RT_MBS_M_DIAG); a set of such points forms A with 1/m
                                   (rt_mbs_work.im) and divides no row of W by M */

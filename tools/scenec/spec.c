@@ -169,6 +169,19 @@ static void fault_nan(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b
                    "#endif\n", b, sim->plan.y_off[b]);
 }
 
+/* a block whose output equation copies its state (RT_MBS_Y_STATE): the copies, no call
+   (1), else 0 */
+static int state_copy(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b)
+{
+    const rt_kind *k = sc->blocks[b].kind;
+    if (k->type != RT_KIND_MBS || !(((const rt_mbs_spec *)k->spec)->flags & RT_MBS_Y_STATE))
+        return 0;
+    for (unsigned i = 0; i < k->ny; i++)
+        fprintf(f, "    y[%u] = sim->state.x[%u];\n", sim->plan.y_off[b] + i,
+                sim->plan.x_off[b] + i);
+    return 1;
+}
+
 /* rti_rhs's set_outputs: the set's entries of the sequence a right-hand side calls */
 static void outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
@@ -187,6 +200,10 @@ static void outputs(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s)
         if (fl == RTI_RHS_SKIP || k->type == RT_KIND_DSS) /* held in a step: call_output */
             continue;
         fprintf(f, "    /* %s */\n", sc->blocks[b].name);
+        if (state_copy(f, sc, sim, b)) {
+            fault_nan(f, sc, sim, b);
+            continue;
+        }
         if (k->feed != RT_FEED_NONE)
             gather(f, sim, b);
         block_args(f, sc, sim, b, "0");
@@ -210,6 +227,11 @@ static void tick_call(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t b
                    "    real_t hs = sc->dt * (real_t)sim->plan.period[%u];\n", b, b);
     else
         fputs("    {\n", f);
+    if (state_copy(f, sc, sim, b)) {
+        fault_nan(f, sc, sim, b);
+        fputs("    }\n", f);
+        return;
+    }
     if (k->feed != RT_FEED_NONE)
         gather(f, sim, b);
     block_args(f, sc, sim, b, dss ? "hs" : "0");
