@@ -24,11 +24,13 @@ static rt_status check_spec(const rt_scene *sc, rt_sim *sim, uint16_t b)
     const rt_mbs_spec *sp = spec_of(sc, b);
     int ok = sp->nq + sp->nz == k->nx && sp->nz > 0 && sp->kin && sp->mass && sp->force &&
              sp->energy && (sp->nc == 0 || sp->constr) && (sp->nn == 0 || sp->node) &&
-             (!(sp->flags & RT_MBS_NODE_POINT) || (sp->nq == 3 && sp->nz == 3));
-    if (!ok)
+             (!(sp->flags & RT_MBS_NODE_POINT) || (sp->nq == 3 && sp->nz == 3)) &&
+             (!(sp->flags & RT_MBS_M_ISO) || (sp->flags & RT_MBS_M_DIAG)) &&
+             (!(sp->flags & RT_MBS_Y_STATE) || (k->ny == k->nx && k->feed == RT_FEED_NONE));
+    if (!ok) /* (a flag the written-out code trusts, Y_STATE's copy, is held here too) */
         return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name,
-                        ": its MBS description is inconsistent (nx != nq + nz, or a hook "
-                        "is missing)", (const char *)0);
+                        ": its MBS description is inconsistent (nx != nq + nz, a hook "
+                        "is missing, or a flag its sizes contradict)", (const char *)0);
     if (sp->nz > RT_MAX_MBS_BZ)
         return rti_capacity(sim, "block ", sc->blocks[b].name, RT_LIM_MBS_BZ);
     if (!(sp->flags & RT_MBS_NODE_POINT) && sp->nz > RT_MAX_MBS_JZ)

@@ -544,7 +544,8 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
             d[0] = d0, d[1] = d1, d[2] = d2;
             continue;
         }
-        if (diag && nz == 3) { /* a point among bodies: the same sums, in registers */
+        if (diag && nz == 3) { /* a diagonal M of three velocities (a point among bodies, a
+                                  planar body): the same sums, kept in registers */
             real_t d0 = add ? d[0] : 0, d1 = add ? d[1] : 0, d2 = add ? d[2] : 0;
             for (; i < i1; i++, Wi += 3) {
                 real_t vi = v[trow[i]];
@@ -572,10 +573,11 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
 static void point_accels(const rt_scene *sc, const rt_mbs_work *w, uint8_t set, real_t *lam)
 {
     for (unsigned k = w->sj[set], k1 = w->sj[set + 1]; k < k1; k++) {
-        const rt_joint *j = &sc->joints[w->sjnt[k]];
-        const real_t *W1 = w->W + w->jw[w->sjnt[k]][0], *a1 = w->a + w->zo[j->b1];
+        uint16_t ji = w->sjnt[k];
+        const rt_joint *j = &sc->joints[ji];
+        const real_t *W1 = w->W + w->jw[ji][0], *a1 = w->a + w->zo[j->b1];
         const real_t *a2 = j->b2 >= 0 ? w->a + w->zo[j->b2] : 0;
-        for (unsigned i = 0, r = w->jrow[w->sjnt[k]]; i < j->kind->nc; i++, r++, W1 += 3) {
+        for (unsigned i = 0, r = w->jrow[ji]; i < j->kind->nc; i++, r++, W1 += 3) {
             real_t d[3] = {a1[0], a1[1], a1[2]};
             if (a2)
                 d[0] -= a2[0], d[1] -= a2[1], d[2] -= a2[2];

@@ -70,11 +70,11 @@ typedef struct rt_mbs_node {
                                   assembly fills such nodes itself, asks for no Jacobian
                                   and takes a joint's translational coefficients as the
                                   row of W */
-#define RT_MBS_Y_STATE 0x40    /* the kind's output equation copies the state (ny = nx,
-                                  y = x): written-out code copies without the call */
 #define RT_MBS_M_ISO 0x20      /* M = m I: mass() writes nz equal values (with
                                   RT_MBS_M_DIAG); a set of such points forms A with 1/m
                                   (rt_mbs_work.im) and divides no row of W by M */
+#define RT_MBS_Y_STATE 0x40    /* the kind's output equation copies the state (ny = nx,
+                                  y = x, no input read: rt_init checks): written-out code copies without the call */
 
 /* Type-specific part of an MBS kind (rt_kind.spec). The hooks read the block's state
  * x = [q (nq), z (nz)], inputs, parameters and time through rt_args; none may allocate
@@ -83,7 +83,7 @@ typedef struct rt_mbs_spec {
     uint16_t nq, nz;  /* coordinates, velocities: the kind's nx is nq + nz */
     uint16_t nc;      /* internal constraints (eq. 6c within the module) */
     uint16_t nn;      /* interaction nodes */
-    uint8_t flags;    /* special properties (paper, Fig. 3): RT_MBS_M_DIAG */
+    uint8_t flags;    /* special properties (paper, Fig. 3): RT_MBS_M_DIAG, ... */
     const char *const *node_names; /* nn names, e.g. "c" */
     /* Kinematics without the rheonomic term: qd = K(q) v for any v of nz values (eq. 6a).
        Reads q only (the projection calls it with the predicted q). Never NULL. */
@@ -281,10 +281,15 @@ typedef struct rt_mbs_work {
                                        (lv[rb[s] + i]), then L (lv[RT_MAX_MBS_ROWS + e]) */
     real_t M[RT_MAX_MBS_M];         /* factors of each block's M (a diagonal M: nz values;
                                        a dense M: nz^2 factors, then nz row pivots) */
-    real_t W[RT_MAX_MBS_TW];        /* W = G K: per touch the block's nz columns */
+    real_t W[RT_MAX_MBS_TW];        /* W = G K: per touch the block's nz columns (the
+                                       interpreted path's; written-out code keeps a set
+                                       of points' W in a local array) */
     real_t Y[RT_MAX_MBS_TY];        /* M^-1 W^T, transposed like W (dense M only) */
     real_t a[RT_MAX_MBS_Z];         /* forces k, free accelerations M^-1 k, then z' (the
-                                       index-1 solve); the correction dz (projection) */
+                                       index-1 solve); the correction dz (projection).
+                                       The interpreted path's: written-out code of a set
+                                       of points writes z' into the derivative and adds
+                                       dz where it forms it */
     real_t g[RT_MAX_MBS_C];         /* g [m or 1] */
     real_t gd[RT_MAX_MBS_C];        /* g' */
     real_t gam[RT_MAX_MBS_C];       /* acceleration term of eq. 7b, then the multipliers */

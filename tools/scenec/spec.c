@@ -353,69 +353,98 @@ static void kept_force(FILE *f, const rt_sim *sim, uint16_t b, unsigned nz, int 
     fprintf(f, "    w->m_valid[%u] |= 2u;\n    }\n", b);
 }
 
+/* does an assembly for `what` keep block b's M^-1 k (kept_force): forces, and one of its
+   parameters alone (a constant M then) */
+static int kept_of(const rt_scene *sc, uint16_t b, int what)
+{
+    return (what & RTI_MBS_FORCE) && param_force(sc, b);
+}
+
 /* where a right-hand side of set s finds block b's M^-1 k: a point's kept one where it is
    kept (kept_force), else in a */
 static void force_at(const rt_scene *sc, const rt_sim *sim, uint8_t s, uint16_t b,
                      const char **name, unsigned *at)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    int kept = w->points[s] && param_force(sc, b);
+    int kept = w->points[s] && kept_of(sc, b, RTI_MBS_FORCE);
     *name = kept ? "M" : "a";
     *at = kept ? w->mo[b] + nz_of(sim, b) : w->zo[b];
 }
 
-/* each block's part of the assembly (assemble_point_set; assemble_block): a varying M
+/* block b's part of the assembly (assemble_point_set; assemble_block): a varying M
    formed and factored where `what` has RTI_MBS_JAC (a constant one was at the first
    assembly), M^-1 k for RTI_MBS_FORCE (a diagonal M divided out, a dense one solved with
    its factors), the block's own rows by its constr (W's rows for RTI_MBS_JAC) */
+static void block_part(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, uint16_t b,
+                       int what)
+{
+    const rt_mbs_work *w = &sim->work.mbs;
+    const rt_mbs_spec *sp = spec_of(sc, b);
+    unsigned zo = w->zo[b], mo = w->mo[b];
+    int mass = (what & RTI_MBS_JAC) && !(sp->flags & RT_MBS_M_CONST);
+    int force = what & RTI_MBS_FORCE, dense = dense_m(sc, b), kept = kept_of(sc, b, what);
+    if (!mass && !force && sp->nc == 0)
+        return;
+    fprintf(f, "    /* %s: %s%s */\n", sc->blocks[b].name,
+            mass    ? "its M, M^-1 k"
+            : kept  ? "M^-1 k of its parameters alone, kept"
+            : force ? "M^-1 k (M factored at the first assembly)"
+                    : "",
+            sp->nc ? (mass || force ? ", its own rows" : "its own rows") : "");
+    if (!kept || sp->nc)
+        mbs_args(f, sim, b);
+    if (mass) {
+        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->mass(&ar, w->M + %u);\n", mo);
+        if (dense)
+            fprintf(f, "    rti_mbs_mass_factor(sim, ar.spec, %u, w->M + %u);\n"
+                       "    w->m_valid[%u] = 1;\n", b, mo, b);
+        else
+            mass_diag(f, b, mo, sp->nz, (sp->flags & RT_MBS_M_ISO) != 0);
+    }
+    if (kept) {
+        kept_force(f, sim, b, sp->nz, !w->points[s]);
+    } else if (force) {
+        if (sc->blocks[b].kind->nu > 0)
+            gather(f, sim, b);
+        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
+        if (dense)
+            fprintf(f, "    rti_mbs_mass_solve(ar.spec, w->M + %u, a + %u);\n", mo, zo);
+        for (unsigned c = 0; c < sp->nz && !dense; c++)
+            fprintf(f, "    a[%u] /= M[%u];\n", zo + c, mo + c);
+    }
+    if (sp->nc == 0)
+        return;
+    fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->constr(&ar, g + %u, gd + %u, ", w->co[b],
+            w->co[b]);
+    if (what & RTI_MBS_JAC)
+        fprintf(f, "W + %u, %u, gam + %u);\n", w->wo[b], sp->nz, w->co[b]);
+    else
+        fprintf(f, "0, %u, gam + %u);\n", sp->nz, w->co[b]);
+}
+
+/* every block's part, in block order; in a set of points those whose M^-1 k is kept
+   last, behind one test of their m_valid bits 1 (each block's part is its own: the
+   order changes no value) */
 static void forces(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s, int what)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
-        uint16_t b = w->sblk[k];
-        const rt_mbs_spec *sp = spec_of(sc, b);
-        unsigned zo = w->zo[b], mo = w->mo[b];
-        int mass = (what & RTI_MBS_JAC) && !(sp->flags & RT_MBS_M_CONST);
-        int force = what & RTI_MBS_FORCE, dense = dense_m(sc, b);
-        int kept = force && !mass && param_force(sc, b);
-        if (!mass && !force && sp->nc == 0)
-            continue;
-        fprintf(f, "    /* %s: %s%s */\n", sc->blocks[b].name,
-                mass    ? "its M, M^-1 k"
-                : kept  ? "M^-1 k of its parameters alone, kept"
-                : force ? "M^-1 k (M factored at the first assembly)"
-                        : "",
-                sp->nc ? (mass || force ? ", its own rows" : "its own rows") : "");
-        if (!kept || sp->nc)
-            mbs_args(f, sim, b);
-        if (mass) {
-            fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->mass(&ar, w->M + %u);\n", mo);
-            if (dense)
-                fprintf(f, "    rti_mbs_mass_factor(sim, ar.spec, %u, w->M + %u);\n"
-                           "    w->m_valid[%u] = 1;\n", b, mo, b);
-            else
-                mass_diag(f, b, mo, sp->nz, (sp->flags & RT_MBS_M_ISO) != 0);
-        }
-        if (kept) {
-            kept_force(f, sim, b, sp->nz, !w->points[s]);
-        } else if (force) {
-            if (sc->blocks[b].kind->nu > 0)
-                gather(f, sim, b);
-            fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
-            if (dense)
-                fprintf(f, "    rti_mbs_mass_solve(ar.spec, w->M + %u, a + %u);\n", mo, zo);
-            for (unsigned c = 0; c < sp->nz && !dense; c++)
-                fprintf(f, "    a[%u] /= M[%u];\n", zo + c, mo + c);
-        }
-        if (sp->nc == 0)
-            continue;
-        fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->constr(&ar, g + %u, gd + %u, ", w->co[b],
-                w->co[b]);
-        if (what & RTI_MBS_JAC)
-            fprintf(f, "W + %u, %u, gam + %u);\n", w->wo[b], sp->nz, w->co[b]);
+    int group = w->points[s] && (what & RTI_MBS_FORCE), nkept = 0;
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
+        if (!group || !kept_of(sc, w->sblk[k], what))
+            block_part(f, sc, sim, s, w->sblk[k], what);
         else
-            fprintf(f, "0, %u, gam + %u);\n", sp->nz, w->co[b]);
-    }
+            nkept++;
+    if (nkept == 0)
+        return;
+    fputs("    if (!(2u", f); /* (every kept one's m_valid bit 1: one branch) */
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
+        if (kept_of(sc, w->sblk[k], what))
+            fprintf(f, " & w->m_valid[%u]", w->sblk[k]);
+    fputs(")) {\n", f);
+    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
+        if (kept_of(sc, w->sblk[k], what))
+            block_part(f, sc, sim, s, w->sblk[k], what);
+    fputs("    }\n", f);
 }
 
 /* point_rows (rt/mbs_asm.c) of joint ji between two points (point nodes or an anchor)
@@ -646,12 +675,41 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
     }
 }
 
-/* rti_mbs_ldl_factor over the set's fixed pattern, then rti_mbs_schur's counts. A row's
-   judgement in the order of the rule: one comparison for a pivot above its floor, the
-   generic tests only for one that is not (the same outcomes: d > floor_ is neither
-   within +-floor_ nor below it) */
+/* row i's elimination of rti_mbs_ldl_factor (rows lp, columns lj): with `sure` every row
+   before it kept its pivot (above its floor, so nonzero), and the tests for a dropped
+   row's zero pivot are left out (the same operations where they pass) */
+static void factor_row(FILE *f, const uint16_t *lp, const uint16_t *lj, unsigned i, int sure)
+{
+    unsigned e0 = lp[i], e1 = lp[i + 1];
+    fprintf(f, "        d = D[%u];\n", i);
+    fputs("        floor_ = RT_MBS_PIVOT_TOL * (d > low ? d : low);\n", f);
+    for (unsigned e = e0; e < e1; e++) {
+        unsigned j = lj[e];
+        fprintf(f, "        tt = L[%u];\n", e);
+        for (unsigned q = lp[j], q1 = e > e0 ? lp[j + 1] : q; q < q1; q++)
+            fprintf(f, "        tt -= L[%u] * u[%u];\n", q, lj[q]);
+        if (sure)
+            fprintf(f, "        u[%u] = tt;\n        L[%u] = tt / D[%u];\n", j, e, j);
+        else
+            fprintf(f, "        u[%u] = D[%u] != 0 ? tt : 0;\n"
+                       "        L[%u] = D[%u] != 0 ? tt / D[%u] : 0;\n", j, j, e, j, j);
+        fprintf(f, "        d -= L[%u] * u[%u];\n", e, j);
+    }
+    for (unsigned e = e0; e < e1; e++)
+        fprintf(f, "        u[%u] = 0;\n", lj[e]);
+    if (i == 0 && sure) /* (called once: the generic row 0 is entered past it) */
+        fputs("        if (rti_fault_due(RTI_FAULT_SINGULAR))\n"
+              "            d = -big - 1;\n", f);
+}
+
+/* rti_mbs_ldl_factor over the set's fixed pattern, then rti_mbs_schur's counts. Rows
+   first as long as each keeps its pivot (one comparison, no test of an earlier pivot for
+   zero: factor_row's sure path); the first that does not is judged by the generic tests
+   and the rows after it eliminated with them (the same outcomes and operations: d >
+   floor_ is neither within +-floor_ nor below it, and a kept pivot is nonzero) */
 static void factor(FILE *f, const rt_sim *sim, uint8_t s)
 {
+    static unsigned nfactor; /* labels unique in the generated file */
     const rt_mbs_work *w = &sim->work.mbs;
     unsigned base = w->rb[s], n = w->rb[s + 1] - base;
     const uint16_t *lp = w->lp + base, *lj = w->lj, *perm = w->perm + base;
@@ -665,24 +723,17 @@ static void factor(FILE *f, const rt_sim *sim, uint8_t s)
         fprintf(f, "        u[%u] = 0;\n", i);
     fputs("        real_t low = RT_MBS_PIVOT_TOL * (big > 0 ? big : 1), floor_;\n", f);
     fprintf(f, "        w->drop_row[%u] = 0;\n", s);
+    unsigned id = nfactor++;
     for (unsigned i = 0; i < n; i++) {
-        unsigned e0 = lp[i], e1 = lp[i + 1];
-        fprintf(f, "        d = D[%u];\n", i);
-        fputs("        floor_ = RT_MBS_PIVOT_TOL * (d > low ? d : low);\n", f);
-        for (unsigned e = e0; e < e1; e++) {
-            unsigned j = lj[e];
-            fprintf(f, "        tt = L[%u];\n", e);
-            for (unsigned q = lp[j], q1 = e > e0 ? lp[j + 1] : q; q < q1; q++)
-                fprintf(f, "        tt -= L[%u] * u[%u];\n", q, lj[q]);
-            fprintf(f, "        u[%u] = D[%u] != 0 ? tt : 0;\n", j, j);
-            fprintf(f, "        L[%u] = D[%u] != 0 ? tt / D[%u] : 0;\n", e, j, j);
-            fprintf(f, "        d -= L[%u] * u[%u];\n", e, j);
-        }
-        for (unsigned e = e0; e < e1; e++)
-            fprintf(f, "        u[%u] = 0;\n", lj[e]);
-        if (i == 0)
-            fputs("        if (rti_fault_due(RTI_FAULT_SINGULAR))\n"
-                  "            d = -big - 1;\n", f);
+        factor_row(f, lp, lj, i, 1);
+        fprintf(f, "        if (!(d > floor_))\n            goto judge%u_%u;\n        D[%u] = d;\n",
+                id, i, i);
+    }
+    fprintf(f, "        goto kept%u;\n", id);
+    for (unsigned i = 0; i < n; i++) {
+        if (i > 0) /* (row 0 is entered at its judgement only) */
+            factor_row(f, lp, lj, i, 0);
+        fprintf(f, "    judge%u_%u:\n", id, i);
         fprintf(f, "        if (!(d > floor_)) {\n"
                    "            if (d >= -floor_)\n"
                    "                w->drop_row[%u] = drop++ ? w->drop_row[%u] : %u, d = 0;\n"
@@ -691,7 +742,7 @@ static void factor(FILE *f, const rt_sim *sim, uint8_t s)
                    "        }\n"
                    "        D[%u] = d;\n", s, s, perm[i], perm[i], i);
     }
-    fprintf(f, "        w->ndrop[%u] = drop;\n", s);
+    fprintf(f, "    kept%u:\n        w->ndrop[%u] = drop;\n", id, s);
     fprintf(f, "        if (bad >= 0)\n"
                "            rti_count(sim, RT_CNT_SINGULAR, rti_mbs_row_block(sc, sim, %u, "
                "(uint16_t)bad), RT_E_SINGULAR);\n", s);
@@ -744,8 +795,9 @@ static void solve(FILE *f, const rt_sim *sim, uint8_t s, const char *v)
 
 /* rti_mbs_correct of a set of points: dz = -M^-1 W^T v into a, added to it if add (a
    set of points adds to its M^-1 k where force_at finds it and writes z' into xdot,
-   which rti_mbs_accel copies from a) */
-static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int add)
+   which rti_mbs_accel copies from a); with from >= 0 a point's dz is added to its
+   x[from .. from + 3) at once (rt/mbs_project.c points_add: the same sums) */
+static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int add, int from)
 {
     const rt_mbs_work *w = &sim->work.mbs;
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
@@ -786,21 +838,12 @@ static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int ad
         if (add && w->points[s]) {
             unsigned q = sim->plan.x_off[b] - sim->plan.set_x[s] + 3;
             fprintf(f, "    xdot[%u] = d0, xdot[%u] = d1, xdot[%u] = d2;\n", q, q + 1, q + 2);
+        } else if (from >= 0 && w->points[s]) { /* points_add of this point, at once */
+            unsigned xo = sim->plan.x_off[b] + (unsigned)from;
+            fprintf(f, "    xw[%u] += d0, xw[%u] += d1, xw[%u] += d2;\n", xo, xo + 1, xo + 2);
         } else {
             fprintf(f, "    a[%u] = d0, a[%u] = d1, a[%u] = d2;\n", zo, zo + 1, zo + 2);
         }
-    }
-}
-
-/* points_add (rt/mbs_project.c): x[from .. from + 3) += dz of every point */
-static void points_add(FILE *f, const rt_sim *sim, uint8_t s, unsigned from)
-{
-    const rt_mbs_work *w = &sim->work.mbs;
-    for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
-        uint16_t b = w->sblk[k];
-        unsigned xo = sim->plan.x_off[b] + from, zo = w->zo[b];
-        fprintf(f, "    xw[%u] += a[%u], xw[%u] += a[%u], xw[%u] += a[%u];\n", xo, zo, xo + 1,
-                zo + 1, xo + 2, zo + 2);
     }
 }
 
@@ -878,7 +921,7 @@ static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t
     }
     solve(f, sim, s, "gam");
     fputs("    /* z' = M^-1 k - M^-1 W^T lambda, into a */\n", f);
-    correct(f, sim, s, "gam", 1); /* (points: into xdot) */
+    correct(f, sim, s, "gam", 1, -1); /* (points: into xdot) */
     if (w->need_lambda) {
         fputs("    /* the joints' multipliers, read by a reaction */\n", f);
         for (uint16_t k = w->sj[s]; k < w->sj[s + 1]; k++) {
@@ -911,7 +954,7 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
           "    real_t acc, d0, d1, d2, vi;\n"
           "    rt_joint_eval e;\n"
           "    (void)L, (void)g, (void)gd, (void)gam, (void)xw, (void)x, (void)sc, (void)t, (void)acc;\n"
-          "    (void)Y;\n"
+          "    (void)Y, (void)a;\n"
           "    (void)M;\n"
           "    (void)d0, (void)d1, (void)d2;\n", f);
     unsigned nq = 0;
@@ -925,10 +968,10 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
     else
         fprintf(f, "    real_t *W = w->W, q[%u]; /* M^-1 W^T (quotients) */\n    (void)q;\n",
                 nq ? nq : 1);
-    fputs("    if (", f);
+    fputs("    if (!((", f); /* (bit 0 of every block's m_valid: one branch) */
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++)
-        fprintf(f, "%s!w->m_valid[%u]", k > w->sb[s] ? " || " : "", w->sblk[k]);
-    fputs(")\n        return 0; /* the first assembly factors M: the generic path */\n", f);
+        fprintf(f, "%sw->m_valid[%u]", k > w->sb[s] ? " & " : "", w->sblk[k]);
+    fputs(") & 1u))\n        return 0; /* the first assembly factors M: the generic path */\n", f);
 }
 
 /* the set's assembly (`what`: RTI_MBS_JAC, with RTI_MBS_FORCE for a right-hand side; the
@@ -989,11 +1032,12 @@ static void corrected(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s,
                       const char *v, int vel)
 {
     solve(f, sim, s, v);
-    correct(f, sim, s, v, 0);
-    if (sim->work.mbs.points[s])
-        points_add(f, sim, s, vel ? 3 : 0);
-    else
-        bodies_add(f, sc, sim, s, vel);
+    if (sim->work.mbs.points[s]) { /* each point's correction added where it is formed */
+        correct(f, sim, s, v, 0, vel ? 3 : 0);
+        return;
+    }
+    correct(f, sim, s, v, 0, -1);
+    bodies_add(f, sc, sim, s, vel);
 }
 
 /* the kinds' own normalization after the positions (rt/mbs_project.c normalize) */
@@ -1032,7 +1076,7 @@ static void rhs_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t s
     else if (mbs)
         fputs(", its multibody part by the generic rti_mbs_accel", f);
     fprintf(f, " */\nstatic int rhs_%u(const rt_scene *sc, rt_sim *sim, real_t t, real_t h, "
-               "real_t *xdot)\n{\n", s);
+               "real_t *restrict xdot)\n{\n", s);
     fputs("    real_t *u = sim->work.u, *y = sim->state.y;\n    rt_args ar;\n"
           "    (void)sc, (void)u, (void)y, (void)ar, (void)t, (void)h, (void)xdot;\n", f);
     if (pts || bodies)
