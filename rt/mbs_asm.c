@@ -307,7 +307,7 @@ void rti_mbs_mass_factor(rt_sim *sim, const rt_mbs_spec *sp, uint16_t b, real_t 
             if (!(M[i] > floor_))
                 M[i] = floor_, st = RT_E_SINGULAR;
         if (sp->flags & RT_MBS_M_ISO) /* M = m I: A and the corrections multiply by 1/m */
-            sim->work.mbs.im[b] = (real_t)1 / M[0];
+            M[rti_mbs_m_inv(sp)] = (real_t)1 / M[0];
     } else {
         uint16_t piv[RT_MAX_MBS_BZ];
         st = rti_lu(M, sp->nz, piv, RT_MBS_PIVOT_TOL);
@@ -394,11 +394,6 @@ static void assemble_point_set(const rt_scene *sc, rt_sim *sim, uint8_t set, rea
         side_rv(sim, j, j->b1, &r1, &v1);
         side_rv(sim, j, j->b2, &r2, &v2);
         point_rows(j, ji, w, what, r1, v1, r2, v2);
-        if (!(what & RTI_MBS_JAC))
-            continue;
-        const real_t *W1 = w->W + w->jw[ji][0]; /* C.C of each row, for both its points */
-        for (unsigned i = 0, r = w->jrow[ji], nc = j->kind->nc; i < nc; i++, r++, W1 += 3)
-            w->cc[r] = W1[0] * W1[0] + W1[1] * W1[1] + W1[2] * W1[2];
     }
 }
 
@@ -446,14 +441,15 @@ static RTI_INLINE void diag_shares(real_t *lv, const real_t *W, const real_t *M,
 }
 
 /* point b's shares of A = W M^-1 W^T (a set of points, M = m I) over the pairs of rows
-   it touches: a row with itself C.C / m (its C.C formed once for both its points, which
-   see C and -C: rt_joint_kind.anti), two rows (W_i . W_k) / m; 1/m formed with M */
+   it touches: a row with itself (C.C) / m (the same C.C at both its points, which see C
+   and -C: rt_joint_kind.anti; written-out code forms it once per row), two rows
+   (W_i . W_k) / m; 1/m kept after M's factors */
 static RTI_INLINE void point_shares(rt_mbs_work *w, unsigned b)
 {
-    const real_t *Wi = w->W + w->wo[b], im = w->im[b];
-    const uint16_t *ps = w->pslot + w->po[b], *tr = w->trow + w->to[b];
+    const real_t *Wi = w->W + w->wo[b], im = w->M[w->mo[b] + 3];
+    const uint16_t *ps = w->pslot + w->po[b];
     for (unsigned i = 0, nt = (unsigned)(w->to[b + 1] - w->to[b]); i < nt; i++, Wi += 3) {
-        w->lv[*ps++] += w->cc[tr[i]] * im;
+        w->lv[*ps++] += (Wi[0] * Wi[0] + Wi[1] * Wi[1] + Wi[2] * Wi[2]) * im;
         const real_t *Wk = Wi + 3;
         for (unsigned k = i + 1; k < nt; k++, Wk += 3)
             w->lv[*ps++] += dot(Wi, Wk, 0, 3) * im;
@@ -535,7 +531,7 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
         int diag = points || (sp->flags & RT_MBS_M_DIAG);
         if (points) { /* M = m I: each touch's multiplier times 1/m, kept in registers */
             real_t d0 = add ? d[0] : 0, d1 = add ? d[1] : 0, d2 = add ? d[2] : 0;
-            for (real_t im = w->im[b]; i < i1; i++, Wi += 3) {
+            for (real_t im = M[3]; i < i1; i++, Wi += 3) { /* 1/m after M (rti_mbs_m_inv) */
                 real_t s = v[trow[i]] * im;
                 d0 -= Wi[0] * s;
                 d1 -= Wi[1] * s;

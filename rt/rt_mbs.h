@@ -72,7 +72,7 @@ typedef struct rt_mbs_node {
                                   row of W */
 #define RT_MBS_M_ISO 0x20      /* M = m I: mass() writes nz equal values (with
                                   RT_MBS_M_DIAG); a set of such points forms A with 1/m
-                                  (rt_mbs_work.im) and divides no row of W by M */
+                                  (kept after M's factors) and divides no row of W by M */
 #define RT_MBS_Y_STATE 0x40    /* the kind's output equation copies the state (ny = nx,
                                   y = x, no input read: rt_init checks): written-out code copies without the call */
 
@@ -133,7 +133,7 @@ typedef struct rt_joint_kind {
                                      (3-5, 9-11) are always zero and need not be read */
     uint8_t anti;                 /* 1: eval_points gives C[i][6..8] = -C[i][0..2] (the rows
                                      read r1 - r2 and v1 - v2 only): a row's two blocks see
-                                     the same C.C, formed once (rt_mbs_work.cc) */
+                                     the same C.C (rt/mbs_asm.c point_shares) */
     const char *const *p_names;   /* np names (NULL iff np == 0) */
     /* Returns 0 when the parameters are valid. NULL: any parameters are. */
     int (*check)(const real_t *p);
@@ -265,8 +265,6 @@ typedef struct rt_mbs_work {
                                        kept after them (written-out code); 0 after a
                                        parameter change or a restore */
     uint8_t points[RT_MAX_SETS];    /* 1: the set holds points only (rt/mbs.c points_only) */
-    real_t im[RT_MAX_BLOCKS];       /* 1/m of each point of such a set (M = m I), formed
-                                       with M's factors */
     uint16_t ndrop[RT_MAX_SETS];    /* rows of each set's A dropped as dependent on others
                                        at its last factorization (its rank deficit) */
     uint16_t drop_row[RT_MAX_SETS]; /* ... the first of them (a set row) */
@@ -293,8 +291,6 @@ typedef struct rt_mbs_work {
     real_t g[RT_MAX_MBS_C];         /* g [m or 1] */
     real_t gd[RT_MAX_MBS_C];        /* g' */
     real_t gam[RT_MAX_MBS_C];       /* acceleration term of eq. 7b, then the multipliers */
-    real_t cc[RT_MAX_MBS_C];        /* C.C of each row of a set of points (its W row at
-                                       either point, rt_joint_kind.anti), with W */
     real_t qt[RT_MAX_MBS_QT];       /* predicted coordinates (projection), kinb scratch */
     real_t J[2][6 * RT_MAX_MBS_JZ]; /* Jacobians of a joint's two nodes */
     real_t jlam[RT_MAX_MBS_JROWS];  /* multipliers of each joint (at jlo), kept only where

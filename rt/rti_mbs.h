@@ -20,14 +20,24 @@ static inline int rti_mbs_in_set(const struct rt_scene *sc, uint16_t b, uint8_t 
 {
     return sc->blocks[b].kind->type == RT_KIND_MBS && sc->blocks[b].set == set;
 }
-/* Entries of a block's M factors in rt_mbs_work.M (mo): a diagonal M's nz, and nz more
-   where M^-1 k depends on the parameters alone (RT_MBS_F_PARAM with RT_MBS_M_CONST: a
-   scene's written-out code keeps it there, tools/scenec/spec.c); a dense M's nz^2 factors
-   and nz row pivots. Init places them (rt/mbs.c), modrt sizes counts them (describe.c). */
+/* Entries of a block's M factors in rt_mbs_work.M (mo): a diagonal M's nz, then 1/m where
+   M = m I (RT_MBS_M_ISO, at rti_mbs_m_inv), then nz more where M^-1 k depends on the
+   parameters alone (RT_MBS_F_PARAM with RT_MBS_M_CONST: a scene's written-out code keeps
+   it there, at rti_mbs_m_kept, tools/scenec/spec.c); a dense M's nz^2 factors and nz row
+   pivots. Init places them (rt/mbs.c), modrt sizes counts them (describe.c). */
+static inline uint32_t rti_mbs_m_inv(const rt_mbs_spec *sp)
+{
+    return sp->nz;
+}
+static inline uint32_t rti_mbs_m_kept(const rt_mbs_spec *sp)
+{
+    return sp->nz + ((sp->flags & RT_MBS_M_ISO) ? 1u : 0u);
+}
 static inline uint32_t rti_mbs_m_entries(const rt_mbs_spec *sp)
 {
     uint32_t kept = (sp->flags & RT_MBS_F_PARAM) && (sp->flags & RT_MBS_M_CONST);
-    return (sp->flags & RT_MBS_M_DIAG) ? sp->nz * (1u + kept) : (uint32_t)sp->nz * (sp->nz + 1u);
+    return (sp->flags & RT_MBS_M_DIAG) ? rti_mbs_m_kept(sp) + sp->nz * kept
+                                       : (uint32_t)sp->nz * (sp->nz + 1u);
 }
 /* Evaluates joint ji: its nodes (Jacobians into J1, J2 unless NULL) and its kind. */
 void rti_mbs_joint(const struct rt_scene *sc, const struct rt_sim *sim, uint16_t ji, real_t t,

@@ -315,7 +315,7 @@ static void mass_diag(FILE *f, uint16_t b, unsigned mo, unsigned nz, int iso)
         fprintf(f, "        if (!(w->M[%u] > floor_))\n            w->M[%u] = floor_, low = 1;\n",
                 mo + i, mo + i);
     if (iso) /* M = m I (RT_MBS_M_ISO): 1/m */
-        fprintf(f, "        w->im[%u] = (real_t)1 / w->M[%u];\n", b, mo);
+        fprintf(f, "        w->M[%u] = (real_t)1 / w->M[%u];\n", mo + nz, mo);
     fprintf(f, "        if (low)\n            rti_count(sim, RT_CNT_SINGULAR, %u, RT_E_SINGULAR);\n"
                "        w->m_valid[%u] = 1;\n    }\n", b, b);
 }
@@ -336,11 +336,11 @@ static int param_force(const rt_scene *sc, uint16_t b)
 static void kept_force(FILE *f, const rt_sim *sim, uint16_t b, unsigned nz, int copy)
 {
     const rt_mbs_work *w = &sim->work.mbs;
-    unsigned zo = w->zo[b], mo = w->mo[b];
+    unsigned zo = w->zo[b], mo = w->mo[b], ko = mo + rti_mbs_m_kept(spec_of(sim->sc, b));
     if (copy) {
         fprintf(f, "    if (w->m_valid[%u] & 2u) {\n", b);
         for (unsigned c = 0; c < nz; c++)
-            fprintf(f, "        a[%u] = M[%u];\n", zo + c, mo + nz + c);
+            fprintf(f, "        a[%u] = M[%u];\n", zo + c, ko + c);
         fputs("    } else {\n", f);
     } else {
         fprintf(f, "    if (!(w->m_valid[%u] & 2u)) {\n", b);
@@ -349,7 +349,7 @@ static void kept_force(FILE *f, const rt_sim *sim, uint16_t b, unsigned nz, int 
     fprintf(f, "    ((const rt_mbs_spec *)ar.spec)->force(&ar, a + %u);\n", zo);
     for (unsigned c = 0; c < nz; c++)
         fprintf(f, "    a[%u] /= M[%u];\n    w->M[%u] = a[%u];\n", zo + c, mo + c,
-                mo + nz + c, zo + c);
+                ko + c, zo + c);
     fprintf(f, "    w->m_valid[%u] |= 2u;\n    }\n", b);
 }
 
@@ -368,7 +368,7 @@ static void force_at(const rt_scene *sc, const rt_sim *sim, uint8_t s, uint16_t 
     const rt_mbs_work *w = &sim->work.mbs;
     int kept = w->points[s] && kept_of(sc, b, RTI_MBS_FORCE);
     *name = kept ? "M" : "a";
-    *at = kept ? w->mo[b] + nz_of(sim, b) : w->zo[b];
+    *at = kept ? w->mo[b] + rti_mbs_m_kept(spec_of(sc, b)) : w->zo[b];
 }
 
 /* block b's part of the assembly (assemble_point_set; assemble_block): a varying M
@@ -499,8 +499,6 @@ static void point_joint(FILE *f, const rt_scene *sc, const rt_sim *sim, uint16_t
         if (rows & ROW_GAM)
             fprintf(f, "        gam[%u] = (real_t)0 + e.c[%u];\n", r, i);
         fprintf(f, "        W[%u] = C[0], W[%u] = C[1], W[%u] = C[2];\n", w1, w1 + 1, w1 + 2);
-        if (w->points[sc->blocks[j->b1].set]) /* C.C for both points (anti) */
-            fprintf(f, "        cc[%u] = C[0] * C[0] + C[1] * C[1] + C[2] * C[2];\n", r);
         if (one)
             continue;
         if (same)
@@ -654,11 +652,13 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
             for (unsigned kk = i; kk < nt; kk++) {
                 fputs("    ", f);
                 slot(f, *ps++);
-                if (kk == i)
-                    fprintf(f, " += cc[%u] * w->im[%u];\n", w->trow[w->to[b] + i], b);
+                if (kk == i) /* 1/m after M (rti_mbs_m_inv) */
+                    fprintf(f, " += (W[%u] * W[%u] + W[%u] * W[%u] + W[%u] * W[%u]) * M[%u];\n",
+                            wo + 3 * i, wo + 3 * i, wo + 3 * i + 1, wo + 3 * i + 1,
+                            wo + 3 * i + 2, wo + 3 * i + 2, w->mo[b] + 3);
                 else
-                    fprintf(f, " += dot3(W + %u, W + %u) * w->im[%u];\n", wo + 3 * i,
-                            wo + 3 * kk, b);
+                    fprintf(f, " += dot3(W + %u, W + %u) * M[%u];\n", wo + 3 * i,
+                            wo + 3 * kk, w->mo[b] + 3);
             }
         for (unsigned i = 0; i < nt && !w->points[s]; i++)
             for (unsigned kk = i; kk < nt; kk++) {
@@ -828,7 +828,7 @@ static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int ad
         const char *y = w->points[s] ? "W" : "q"; /* points: v times 1/m (M = m I) */
         for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3) {
             if (w->points[s])
-                fprintf(f, "    vi = %s[%u] * w->im[%u];\n", v, w->trow[i], b);
+                fprintf(f, "    vi = %s[%u] * M[%u];\n", v, w->trow[i], w->mo[b] + 3);
             else
                 fprintf(f, "    vi = %s[%u];\n", v, w->trow[i]);
             fprintf(f, "    d0 -= %s[%u] * vi;\n", y, wi);
@@ -963,8 +963,8 @@ static void locals(FILE *f, const rt_sim *sim, uint8_t s)
         unsigned end = w->wo[b] + nz_of(sim, b) * (unsigned)(w->to[b + 1] - w->to[b]);
         nq = end > nq ? end : nq;
     }
-    if (w->points[s]) /* W is formed and read within the call; 1/m, no quotients */
-        fprintf(f, "    real_t W[%u], *cc = w->cc;\n", nq ? nq : 1);
+    if (w->points[s]) /* W formed and read within the call; 1/m, no quotients */
+        fprintf(f, "    real_t W[%u];\n", nq ? nq : 1);
     else
         fprintf(f, "    real_t *W = w->W, q[%u]; /* M^-1 W^T (quotients) */\n    (void)q;\n",
                 nq ? nq : 1);
@@ -1136,6 +1136,13 @@ static void project_points(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8
 static const char helpers[] =
     "\n/* ---- specialized code (tools/scenec/spec.c): rt/'s work for this scene, written out */\n"
     "#include \"rti_mbs.h\"\n\n"
+    "/* GCC's straight-line (SLP) vectorizer pairs neighbouring entries of the written-out\n"
+    "   sums into vector lanes and pays more in shuffles than it saves (3 % more\n"
+    "   instructions on pendulum10, x86-64): off for this code. It computes lane by lane\n"
+    "   what the scalar code does, so no value depends on it (and -ffp-contract=off stays) */\n"
+    "#if defined(__GNUC__) && !defined(__clang__)\n"
+    "#pragma GCC optimize(\"no-tree-slp-vectorize\")\n"
+    "#endif\n\n"
     "static inline void args(rt_sim *sim, uint16_t b, unsigned xo, unsigned dof, unsigned uo,\n"
     "                        unsigned po, real_t t, real_t h, rt_args *ar)\n{\n"
     "    ar->t = t, ar->h = h;\n"
