@@ -224,7 +224,8 @@ $M run --help | grep -q "It says nothing about the global error" && ok || bad "r
 # Both have one set (no cross-set history), no roots (no event bracket), one sequence call
 # per block, no loops. pendulum10's multibody tables: 10 rows; 19 touches (each rod its
 # two points, J1 only B1); W keeps 19 x 3 entries; mass points have K = I (no predicted
-# q) and a diagonal M (no Y, 3 entries each); B1..B9 touch 2 rows (3 pairs), B10 1 (1
+# q) and a diagonal M = m I (no Y; 3 entries, 1/m and the 3 of the M^-1 k the written-out
+# code keeps: 7 each); B1..B9 touch 2 rows (3 pairs), B10 1 (1
 # pair): 28; a chain's A is tridiagonal, its L has 9 entries below the diagonal and no
 # fill; 10 joint rows; point nodes need no Jacobian.
 # (tests/image.sh runs images built with these limits against the host's hash)
@@ -241,7 +242,7 @@ want_pe="$want_pe -DRT_MAX_IMPLICIT_N=1 -DRT_MAX_TRANSITION_N=0 -DRT_MAX_HIST_Y=
 want_pe="$want_pe -DRT_MAX_LOOP_HIST=1 -DRT_MAX_BG=1 -DRT_MAX_XPRED=0 -DRT_MAX_TEV=0 -DRT_MAX_KSTATE=0 -DRT_MAX_JOINTS=10 -DRT_MAX_MBS_Z=30 -DRT_MAX_MBS_Q=30"
 want_pe="$want_pe -DRT_MAX_MBS_C=10 -DRT_MAX_MBS_BZ=3 -DRT_MAX_MBS_ROWS=10 -DRT_MAX_MBS_TOUCH=19"
 want_pe="$want_pe -DRT_MAX_MBS_TW=57 -DRT_MAX_MBS_QT=1 -DRT_MAX_MBS_TY=1 -DRT_MAX_MBS_PAIRS=28"
-want_pe="$want_pe -DRT_MAX_MBS_LNZ=9 -DRT_MAX_MBS_M=60 -DRT_MAX_MBS_JROWS=10 -DRT_MAX_MBS_JZ=1"
+want_pe="$want_pe -DRT_MAX_MBS_LNZ=9 -DRT_MAX_MBS_M=70 -DRT_MAX_MBS_JROWS=10 -DRT_MAX_MBS_JZ=1"
 [ "$(build/host/scenec --sizes models/scenes/pi_loop.scn)" = "$want_pi" ] && ok ||
     bad "scenec --sizes pi_loop: $(build/host/scenec --sizes models/scenes/pi_loop.scn)"
 [ "$(build/host/scenec --sizes models/scenes/pendulum10.scn)" = "$want_pe" ] && ok ||
