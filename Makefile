@@ -254,9 +254,11 @@ CROSS_CFLAGS := $(CSTD) -O2 -ffunction-sections -fdata-sections $(CINC) $(CDEFS)
 # the cross-test images (unit tests, scenes, rt.elf) hold no FMU: the blocks' internal
 # state in a snapshot needs only the unit tests' few bytes there, and the host default
 # (16 KB per rt_state) would not fit the unit-test images' copies of rt_sim in 4 MB of RAM.
-# Per-scene images (foot-elf, make image) take the scene's own sizes instead.
+# Per-scene images (foot-elf, make image) take the scene's own sizes instead. Their roots
+# likewise: 16 (the library scenes have at most 2; the host's 48 leave room for two per
+# located switch of a defined system).
 # TU_CROSS: the long unit tests run their shorter span (tests/testutil.h, TU_FULL)
-CROSS_TEST_DEFS := -DRT_MAX_KSTATE=256 -DTU_CROSS=1
+CROSS_TEST_DEFS := -DRT_MAX_KSTATE=256 -DTU_CROSS=1 -DRT_MAX_ROOTS=16
 CROSS_TEST_SRCS := tests/cross/tests_main.c tests/harness.c tests/testutil.c tests/registry.c \
                    $(wildcard tests/rt/*.c tests/models/*.c tests/whitebox/*.c)
 CROSS_SCENE_SRCS := tests/cross/scenes_main.c tests/harness.c

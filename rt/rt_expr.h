@@ -35,6 +35,29 @@ static inline real_t rt_x_and(real_t a, real_t b) { return rt_x_truth(a, b, a !=
 static inline real_t rt_x_or(real_t a, real_t b) { return rt_x_truth(a, b, a != 0 || b != 0); }
 static inline real_t rt_x_not(real_t a) { return rt_x_truth(a, 0, a == 0); }
 
+/* a comparison that is a located switch (a defined system's comparison of states,
+   docs/scene-language.md): its mode m, the value it took at the start of the step part
+   or at the crossing located since (1 or 0), held through the part; the comparison's own
+   value v before it has one (m = 0.5) and where a side is NaN (v is NaN then) */
+static inline real_t rt_x_sw(real_t a, real_t b, real_t m, real_t v)
+{
+    return a == a && b == b && (m == 0 || m == 1) ? m : v;
+}
+
+/* the mode a located switch takes from its sides' difference r at an instant (the start
+   of a step part): 1 or 0 as the comparison whose value is 1 where r > 0 (rising_true,
+   a > or >=) or where r < 0 (<, <=); at r == 0 the mode a crossing located at this very
+   instant set (just: the side it went to), else the comparison's own value there (eq: 1
+   for >= and <=; sides that stay equal, a comparison of a switch's value); NaN keeps it */
+static inline real_t rt_x_sw_mode(real_t r, real_t m, int rising_true, int eq, int just)
+{
+    if (r != r)
+        return m;
+    if (r == 0)
+        return just && (m == 0 || m == 1) ? m : (real_t)(eq ? 1 : 0);
+    return (real_t)((r > 0) == (rising_true != 0) ? 1 : 0);
+}
+
 /* if(c, a, b): a where c is nonzero, b where it is 0, NaN where it is NaN */
 static inline real_t rt_x_if(real_t c, real_t a, real_t b) { return c != c ? c : c != 0 ? a : b; }
 

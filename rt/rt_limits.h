@@ -34,9 +34,10 @@
 #define RT_MAX_P 512
 #endif
 
-/* state-event root functions */
+/* state-event root functions: a defined system's `when`s, and two per located switch
+   (a comparison of states, docs/scene-language.md) */
 #ifndef RT_MAX_ROOTS
-#define RT_MAX_ROOTS 16
+#define RT_MAX_ROOTS 48
 #endif
 
 /* integration sets */

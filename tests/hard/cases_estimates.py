@@ -8,6 +8,7 @@ import subprocess
 import tempfile
 
 from cases_global import check
+from cases_tev import ORDER
 from hard import HERE, REFS, STATUS, at, run, run_text
 
 IMPLICIT = ["beuler", "trap", "sdirk2", "sdirk3", "ros2"]
@@ -279,7 +280,97 @@ def growing(s):
             m, summ.get("damped"), summ.get("status")))
 
 
+SWITCH = """scene (switch_in_step) doc ("x' jumps from 0 to J where y = t passes c");
+base tick (1 ms);
+end time (0.53 s);
+define ss_system (Sw) with outputs (xo, yo) parameters (J = 100, c = 0.502)
+    states (x = 0, y = 0) by {
+    xo = x;  yo = y;
+    der(y) = 1;
+    der(x) = if(y > c, J, 0);
+};
+load system (S) of type (Sw);
+set (main) method (%s) step (10 ticks);
+record (S.xo, S.yo);
+"""
+
+KV = """scene (kelvin_voigt) doc ("a ball on a spring-damper ground, contact as a switch");
+base tick (0.1 ms);
+end time (1.2 s);
+define ss_system (Ball) with outputs (zo, vo) parameters (g = 9.81, k = 10000, c = 20)
+    states (z = 1, v = 0) by {
+    zo = z;  vo = v;
+    der(z) = v;
+    der(v) = -g + if(z < 0, -k * z - c * v, 0);
+};
+load system (B) of type (Ball);
+set (main) method (%s) step (10 ticks);
+record (B.zo, B.vo);
+"""
+
+
+def kv_exact(t, g=9.81, k=1e4, c=20.0):
+    """z, v of KV: free fall from 1 m, then at z = 0 the damped oscillator
+    z'' + c z' + k z = -g until z returns to 0, then flight again (piecewise closed form;
+    the contact's end by bisection of its closed form)"""
+    def contact(z0, v0, s):
+        zs, a = -g / k, c / 2
+        wd = math.sqrt(k - a * a)
+        A = z0 - zs
+        B = (v0 + a * A) / wd
+        e = math.exp(-a * s)
+        cs, sn = math.cos(wd * s), math.sin(wd * s)
+        return zs + e * (A * cs + B * sn), e * (-a * (A * cs + B * sn) + wd * (B * cs - A * sn))
+    t0, z, v = 0.0, 1.0, 0.0
+    while True:
+        s = (v + math.sqrt(v * v + 2 * g * z)) / g  # flight to z = 0
+        if t <= t0 + s:
+            return z + v * (t - t0) - g * (t - t0) ** 2 / 2, v - g * (t - t0)
+        t0, v, z = t0 + s, v - g * s, 0.0
+        lo = 1e-6  # the contact: z < 0 until it returns to 0
+        while contact(z, v, lo + 1e-5)[0] < 0:
+            lo += 1e-5
+        hi = lo + 1e-5
+        for _ in range(200):
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if contact(z, v, mid)[0] < 0 else (lo, mid)
+        if t <= t0 + hi:
+            return contact(z, v, t - t0)
+        z, v = 0.0, contact(z, v, hi)[1]
+        t0 += hi
+
+
+def located_switch(s):
+    """H: a derivative that jumps where a state passes a level, written as a comparison
+    (no when): x' = 0 until y = t passes c, then J = 100, x(0.53) = J (0.53 - c) exactly
+    for every method at 10 ms, c at fractions 0.2, 0.25, 0.51 and 0.9 of the step, status
+    ok (before: SDIRK3 3.0 for 2.8 and SDIRK2 3.0 for 2.9 with estimates of 7e-17, dopri5
+    0.292 for 0.28 with J = 20, status ok). A ball on a spring-damper ground (contact as
+    if(z < 0, ...)) against its piecewise closed form at the step ends: dopri5 and rk4 at
+    1 ms within 10x the accuracy (before: dopri5 off by its whole velocity at the first
+    impact, status ok)"""
+    for m in sorted(ORDER):
+        for c in (0.502, 0.5025, 0.5051, 0.509):
+            rc, summ, rows = run_text(s.modrt, SWITCH % m, ["--set", "S.c=%r" % c])
+            exact = 100 * (0.53 - c)
+            err = abs(rows[-1][1] - exact) if rows else math.inf
+            s.row("jump of x' where y passes %g: x(0.53)" % c, m, "0.01", err, summ, rc)
+            s.check(rc == 0 and err <= 1e-9 * exact, "switch %s c=%g: x(0.53) %.12g for "
+                    "%.12g, status %s" % (m, c, rows[-1][1] if rows else math.nan, exact,
+                                         summ.get("status")))
+    for m in ("dopri5", "rk4"):
+        rc, summ, rows = run_text(s.modrt, KV % m, [])
+        err = max((max(abs(r[1] - z) / (1 + abs(z)), abs(r[2] - v) / (1 + abs(v)))
+                   for r in rows if on_grid(r[0], 1e-3) for z, v in [kv_exact(r[0])]),
+                  default=math.inf)
+        s.row("ball on a spring-damper ground: relative error at step ends", m, "0.001",
+              err, summ, rc)
+        s.check(rc == 0 and err <= 1e-2, "kelvin-voigt %s: error %.3g, status %s" % (
+            m, err, summ.get("status")))
+
+
 def extra(s, long):
+    located_switch(s)
     growing(s)
     nan_guard(s)
     aliasing(s)

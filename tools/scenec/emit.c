@@ -140,6 +140,12 @@ static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top)
         fputs(")", f);
         return;
     default:
+        if (in->op >= SCN_OP_LT && in->a >= SCN_SW_BASE) { /* a located switch, as the VM */
+            fputs("rt_x_sw(", f), kids(f, c, nd, x, ", ");
+            fprintf(f, ", a->x[%u], %s(", in->a - SCN_SW_BASE, cond[in->op - SCN_OP_LT]);
+            kids(f, c, nd, x, ", "), fputs("))", f);
+            return;
+        }
         if (in->op >= SCN_OP_LT && in->a) { /* t with an instant: rt_x_at, as the VM */
             int tk = x->kid[in->a == SCN_TSIDE_LEFT ? 0 : 1], ck = x->kid[in->a == SCN_TSIDE_LEFT];
             fprintf(f, "%s(", cond[in->op - SCN_OP_LT]);
@@ -300,6 +306,19 @@ static void event_services(FILE *f, const scn_ctx *c, const scn_define *d, const
         fprintf(f, "        d[%u] = a->t;\n        break;\n    }\n", r);
     }
     fputs("    default:\n        break;\n    }\n}\n", f);
+    if (d->nswm == 0)
+        return;
+    /* scn_vm_instant: the located switches' modes at the start of a step part */
+    fprintf(f, "\nstatic int %s_instant(const rt_args *a, real_t *x, real_t *d)\n{\n"
+               "    real_t r[%u], m, v;\n    int changed = 0, just;\n"
+               "    %s_roots(a, r);\n", id, (unsigned)d->nr, id);
+    for (uint16_t k = 0; k < d->nswm; k++)
+        fprintf(f, "    just = rt_same_instant(d[%u], a->t) || rt_same_instant(d[%u], a->t);\n"
+                   "    m = x[%u], v = rt_x_sw_mode(r[%u], m, %u, %u, just);\n"
+                   "    changed |= (m == 0 || m == 1) && v != m;\n    x[%u] = v;\n",
+                d->swm[k][1], d->swm[k][1] + 1u, d->swm[k][0], d->swm[k][1], d->swm[k][2],
+                d->swm[k][3], d->swm[k][0]);
+    fputs("    return changed;\n}\n", f);
 }
 
 static void lss_spec(FILE *f, const scn_define *d, const char *id)
@@ -417,6 +436,8 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
         fprintf(f, " .update = %s_update,", pre);
     if (d->nr)
         fprintf(f, " .roots = %s_roots, .event = %s_event, .root_dir = %s_rdir,", pre, pre, pre);
+    if (d->nswm)
+        fprintf(f, " .instant = %s_instant,", pre);
     if (d->ntev)
         fprintf(f, " .next_event = %s_next, .time_event = rt_tev_none,", pre);
     if (d->nband)

@@ -591,6 +591,46 @@ static uint16_t time_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
     return side;
 }
 
+/* does code [i0, i1) hold a truth value: a comparison, !, && or ||, or a let that does
+   (a side of one switches only where those do: no switch of its own, state_switch) */
+static int logic_code(const scn_define *d, const scn_ins *code, uint32_t i0, uint32_t i1)
+{
+    for (uint32_t i = i0; i < i1; i++) {
+        uint8_t op = code[i].op;
+        if ((op >= SCN_OP_LT && op <= SCN_OP_OR) || op == SCN_OP_NOT ||
+            (op == SCN_OP_LOC && d->loc_logic[code[i].a]))
+            return 1;
+    }
+    return 0;
+}
+
+/* an order comparison in an output, derivative or let of an ss_system with states, its
+   sides not both fixed and no time event (time_switch): a switch of the dynamics where
+   its sides meet. Inside a step no estimate sees it (the stages after the crossing read
+   the other branch, and the method's companion does too), so it becomes a located
+   switch (finish_switches, at the body's end): two roots, the sides' difference rising
+   and falling, located and handled as a `when`'s, whose handlers set a hidden state, the
+   switch's mode, to the comparison's value past the crossing; where the sides are
+   exactly equal (the step that starts on the located crossing) the comparison reads that
+   mode (rt_x_sw), else its own value. Registers the comparison that is about to be
+   emitted at code index c->sc.ncode; its `a` is set by finish_switches */
+static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
+{
+    if (c->def && logic_code(c->def, c->sc.code, a0, b1))
+        return; /* (truth values change only where their comparisons' sides meet) */
+    scn_define *d = c->def;
+    const scn_ins *code = c->sc.code;
+    if (c->err || !d || d->type != SCN_DEF_SS || d->nx == 0 || d->nsw >= SCN_MAX_PORTS ||
+        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
+        (fixed_code(code, a0, a1) && fixed_code(code, a1, b1)))
+        return;
+    for (uint32_t i = a0; i < b1; i++)
+        if (code[i].op == SCN_OP_TPIECE) /* (a time event inside: t_piece is the step's) */
+            return;
+    d->sw[d->nsw][0] = a0, d->sw[d->nsw][1] = a1, d->sw[d->nsw][2] = b1;
+    d->sw_pos[d->nsw++] = c->tok.pos;
+}
+
 static void binary(scn_ctx *c, size_t lv)
 {
     if (lv == NLEVELS) {
@@ -607,6 +647,8 @@ static void binary(scn_ctx *c, size_t lv)
         uint16_t side = 0; /* (t == c holds at an instant alone: no time event) */
         if (levels[lv].code[i] >= SCN_OP_LT && levels[lv].code[i] <= SCN_OP_GE)
             side = time_switch(c, a0, a1, c->sc.ncode);
+        if (levels[lv].code[i] >= SCN_OP_LT && levels[lv].code[i] <= SCN_OP_GE && !side)
+            state_switch(c, a0, a1, c->sc.ncode);
         emit(c, levels[lv].code[i], side, -1);
     }
 }
@@ -744,7 +786,9 @@ static void let_stmt(scn_ctx *c)
     scn_expect_op(c, "=");
     /* the name is visible only after its own expression */
     uint16_t i = d->nloc;
+    uint32_t code0 = c->sc.ncode;
     add_stmt(c, SCN_ST_LET, i, pos);
+    d->loc_logic[i] = (uint8_t)logic_code(d, c->sc.code, code0, c->sc.ncode);
     d->loc[d->nloc++] = n;
 }
 
@@ -910,6 +954,70 @@ static void body_complete(scn_ctx *c, scn_define *d, scn_pos end)
     }
 }
 
+/* a statement of kind `kind` into index (root `root` for a handler) whose code is a copy
+   of the code [a0, a1) less [b0, b1) (b1 = b0: a copy alone), or with a0 = a1 the
+   constant v: the statements a switch adds (finish_switches) */
+static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, scn_pos pos,
+                       uint32_t a0, uint32_t a1, uint32_t b1, double v)
+{
+    scn_scene *s = &c->sc;
+    if (c->err || s->nst >= SCN_MAX_STMTS) {
+        if (!c->err)
+            scn_fail(c, pos, "", "too many body statements",
+                     scn_fmt(c, "at most %u in all bodies", SCN_MAX_STMTS));
+        return;
+    }
+    uint32_t code0 = s->ncode;
+    if (a0 == a1)
+        emit_const(c, v);
+    for (uint32_t i = a0; i < b1; i++) /* (the sides in a row: [a0, a1), then [a1, b1)) */
+        emit(c, s->code[i].op, s->code[i].a, 0);
+    if (b1 > a1)
+        emit(c, SCN_OP_SUB, 0, 0);
+    emit(c, SCN_OP_OUT, index, 0);
+    s->st[s->nst++] = (scn_stmt){kind, index, code0, s->ncode, pos, root};
+}
+
+/* the body's located switches (state_switch), after its own statements: for each its
+   mode, a hidden state switch<k> (0.5: no crossing yet; its derivative 0), and two roots
+   after the body's `when`s, its sides' difference rising and falling, whose handlers
+   set the mode to the comparison's value past the crossing. One past the define's
+   SCN_MAX_PORTS states or roots stays a plain comparison */
+static void finish_switches(scn_ctx *c, scn_define *d)
+{
+    static const uint8_t rising_true[] = {0, 0, 1, 1}; /* < <= > >= */
+    uint16_t nx0 = d->nx;
+    for (uint16_t k = 0; k < d->nsw && !c->err; k++) {
+        uint32_t a0 = d->sw[k][0], a1 = d->sw[k][1], b1 = d->sw[k][2];
+        scn_ins *cmp = &c->sc.code[b1];
+        if (d->nx >= SCN_MAX_PORTS || d->nr + 2 > SCN_MAX_PORTS)
+            continue; /* (a plain comparison, as before there were switches) */
+        const char *name = scn_fmt(c, "switch%u", k + 1u);
+        const scn_var *all[4] = {d->u, d->y, d->p, d->x};
+        uint16_t cnt[4] = {d->nu, d->ny, d->np, nx0};
+        for (int j = 0; j < 4; j++)
+            for (uint16_t i = 0; i < cnt[j] && !c->err; i++)
+                if (!strcmp(all[j][i].name.s, name))
+                    scn_fail(c, all[j][i].name.pos, name, "name of a switch's mode",
+                             "a name other than switch<k> (the mode of the k-th comparison "
+                             "of states, docs/scene-language.md)");
+        uint16_t q = d->nx++;
+        d->x[q] = (scn_var){{name, d->sw_pos[k]}, 0.5};
+        cmp->a = (uint16_t)(SCN_SW_BASE + q);
+        d->swm[d->nswm][0] = q, d->swm[d->nswm][1] = d->nr;
+        d->swm[d->nswm][2] = rising_true[cmp->op - SCN_OP_LT];
+        d->swm[d->nswm++][3] = cmp->op == SCN_OP_LE || cmp->op == SCN_OP_GE;
+        added_stmt(c, SCN_ST_DER, q, 0, d->sw_pos[k], 0, 0, 0, 0);
+        for (int dir = 1; dir >= -1 && !c->err; dir -= 2) {
+            uint16_t r = d->nr++;
+            d->rdir[r] = (int8_t)dir, d->rest[r] = 0;
+            added_stmt(c, SCN_ST_ROOT, r, 0, d->sw_pos[k], a0, a1, b1, 0);
+            int v = rising_true[cmp->op - SCN_OP_LT] ? dir > 0 : dir < 0;
+            added_stmt(c, SCN_ST_EVENT, q, r, d->sw_pos[k], 0, 0, 0, v);
+        }
+    }
+}
+
 void scn_parse_body(scn_ctx *c, scn_define *d)
 {
     c->def = d;
@@ -920,6 +1028,7 @@ void scn_parse_body(scn_ctx *c, scn_define *d)
         body_stmt(c);
     scn_pos end = c->tok.pos;
     scn_expect_op(c, "}");
+    finish_switches(c, d);
     d->st1 = c->sc.nst;
     body_complete(c, d, end);
 }

@@ -64,6 +64,9 @@ static void events(scn_ctx *c, const scn_define *d, const real_t *k, scn_vm_spec
     vs->roots = program(c, d, SCN_ST_ROOT, k);
     vs->event = ev, vs->rest_t = ev + d->nr, vs->rest = ev + 2 * d->nr;
     kd->roots = scn_vm_roots, kd->event = scn_vm_event;
+    vs->sw = d->swm, vs->nsw = d->nswm;
+    if (d->nswm)
+        kd->instant = scn_vm_instant;
 }
 
 /* the kind of a define with its services */

@@ -84,6 +84,9 @@ typedef struct scn_tok {
 /* a comparison's `a`: which operand is `t` compared with an instant (SCN_OP_TPIECE),
    read through rt_x_at; 0: a plain comparison */
 enum { SCN_TSIDE_LEFT = 1, SCN_TSIDE_RIGHT = 2 };
+/* a comparison's `a` from this on: a located switch (expr.c state_switch), its mode the
+   define's state a - SCN_SW_BASE */
+#define SCN_SW_BASE 0x100
 #define SCN_OP_LIST(X)                                                              \
     X(SCN_OP_CONST)  /* push k[a] */                                                \
     X(SCN_OP_TIME)   /* push t [s] */                                               \
@@ -144,6 +147,8 @@ typedef struct scn_vm_spec {
     const scn_prog *event;      /* one handler program per root */
     const scn_prog *rest_t;     /* per root: its shortest flight (n = 0: no rest clause) */
     const scn_prog *rest;       /* per root: its rest handler */
+    const uint16_t (*sw)[4];    /* the located switches (scn_define.swm) */
+    uint16_t nsw;
 } scn_vm_spec;
 
 /* VM services (vm.c): the rt_kind slots of interpreted defines; they read a->spec. */
@@ -152,6 +157,7 @@ void scn_vm_deriv(const rt_args *a, real_t *xdot);
 void scn_vm_update(const rt_args *a, real_t *dnext);
 void scn_vm_roots(const rt_args *a, real_t *r);
 void scn_vm_event(const rt_args *a, uint16_t which, real_t *x, real_t *d);
+int scn_vm_instant(const rt_args *a, real_t *x, real_t *d);
 real_t scn_vm_next(const rt_args *a);
 real_t scn_vm_band(const rt_args *a);
 
@@ -220,7 +226,16 @@ typedef struct scn_define {
     uint32_t st0, st1;          /* its statements in scn_scene.st */
     int8_t rdir[SCN_MAX_PORTS]; /* root directions of `when`: -1 falling, +1 rising, 0 both */
     uint8_t rest[SCN_MAX_PORTS];/* 1: the `when` has a rest clause */
-    uint16_t nr;                /* roots (`when` statements) */
+    uint16_t nr;                /* roots (`when` statements, then two per switch) */
+    uint16_t nsw;               /* comparisons of states made located switches (state_switch) */
+    uint32_t sw[SCN_MAX_PORTS][3]; /* each one's sides, code [0, 1) and [1, 2), and [2] its
+                                   comparison instruction */
+    scn_pos sw_pos[SCN_MAX_PORTS]; /* where its statement is */
+    uint8_t loc_logic[SCN_MAX_LOCALS]; /* 1: let i holds a truth value (state_switch) */
+    uint16_t nswm;              /* the switches made (finish_switches; one past the limits
+                                   stays a plain comparison) */
+    uint16_t swm[SCN_MAX_PORTS][4]; /* each made one's mode state, rising root, 1 if its
+                                   comparison is > or >=, 1 if it holds at equality */
     uint16_t ntev;              /* instants `t` is compared with (SCN_ST_TEV statements) */
     uint16_t nband;             /* sin and cos arguments affine in `t` (SCN_ST_BAND) */
     scn_matrix A, B, C, D;      /* LSS */

@@ -80,6 +80,10 @@ static void run(const scn_prog *p, const rt_args *a, real_t *out)
         default:
             if (in->op <= SCN_OP_LOC) {
                 st[sp++] = operand(p, in, a, loc);
+            } else if (in->a >= SCN_SW_BASE) { /* a located switch: its mode at a tie */
+                sp--;
+                real_t l = st[sp - 1], r = st[sp];
+                st[sp - 1] = rt_x_sw(l, r, a->x[in->a - SCN_SW_BASE], binop(in->op, l, r));
             } else { /* (t compared with an instant: the time rt_x_at reads) */
                 sp--;
                 real_t l = st[sp - 1], r = st[sp];
@@ -129,6 +133,28 @@ real_t scn_vm_band(const rt_args *a)
 void scn_vm_roots(const rt_args *a, real_t *r)
 {
     run(&((const scn_vm_spec *)a->spec)->roots, a, r);
+}
+
+/* the modes of the define's located switches at the start of a step part (rt_kind.instant):
+   each from its sides' difference there (its rising root, rt_x_sw_mode), held through
+   the part. Returns 1 if a mode changed from one the switch had (the runtime counts an
+   event and evaluates the set's outputs and roots again), 0 if none did or a first one
+   was taken (the comparison's own value, which it read before: nothing changes) */
+int scn_vm_instant(const rt_args *a, real_t *x, real_t *d)
+{
+    const scn_vm_spec *vs = a->spec;
+    real_t r[2 * SCN_MAX_PORTS];
+    int changed = 0;
+    run(&vs->roots, a, r);
+    for (uint16_t k = 0; k < vs->nsw; k++) {
+        const uint16_t *w = vs->sw[k];
+        /* (a crossing located at this instant: its root's t_last, d[root], is now) */
+        int just = rt_same_instant(d[w[1]], a->t) || rt_same_instant(d[w[1] + 1], a->t);
+        real_t m = x[w[0]], v = rt_x_sw_mode(r[w[1]], m, w[2], w[3], just);
+        changed |= (m == 0 || m == 1) && v != m;
+        x[w[0]] = v;
+    }
+    return changed;
 }
 
 /* the handler of root which, or its rest clause's if the crossing came less than the
