@@ -313,6 +313,11 @@ typedef struct rt_kind {
        inside it of the history of a set that feeds such an input (the instant the other
        set's held value changes), so the kind takes it there (rt/tev.c) */
     const uint8_t *u_discrete;
+    /* With instant: 1 if it takes nothing at an instant but values of its own, its modes
+       from its state and continuous inputs (a defined system's located switches,
+       docs/scene-language.md): the set's readers keep their step-end hold rule
+       (rt/xset.c). 0: an FMU's discrete inputs and tunable parameters */
+    uint8_t instant_own;
     /* 1: every sign change of a root is a crossing, as FMI's event indicators need (a
        change of domain z > 0 / z <= 0): a root an event leaves on its z <= 0 side that
        then returns to z > 0 crosses there too (rt/step.c); 0: a root a handler sent back

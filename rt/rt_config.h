@@ -312,7 +312,7 @@ typedef double real_t;
     L(U, u, 1, 256, "block inputs")                                                         \
     L(Y, y, 1, 256, "block outputs")                                                        \
     L(P, p, 1, 512, "parameters")                                                           \
-    L(ROOTS, roots, 1, 16, "state-event root functions")                                    \
+    L(ROOTS, roots, 1, 48, "state-event root functions (a when: one, a located switch: two)") \
     L(SETS, sets, 1, 4, "integration sets")                                                 \
     L(REC, recs, 1, 64, "recorded signals")                                                 \
     /* potential + actual algebraic loops reported */                                       \

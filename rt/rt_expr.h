@@ -44,6 +44,14 @@ static inline real_t rt_x_sw(real_t a, real_t b, real_t m, real_t v)
     return a == a && b == b && (m == 0 || m == 1) ? m : v;
 }
 
+/* rt_x_sw of the comparison op (0 <, 1 <=, 2 >, 3 >=) of a and b: its sides once */
+static inline real_t rt_x_swc(real_t a, real_t b, real_t m, int op)
+{
+    real_t v = op == 0 ? rt_x_lt(a, b) : op == 1 ? rt_x_le(a, b) : op == 2 ? rt_x_gt(a, b)
+                                                                        : rt_x_ge(a, b);
+    return rt_x_sw(a, b, m, v);
+}
+
 /* the mode a located switch takes from its sides' difference r at an instant (the start
    of a step part): 1 or 0 as the comparison whose value is 1 where r > 0 (rising_true,
    a > or >=) or where r < 0 (<, <=); at r == 0 the mode a crossing located at this very

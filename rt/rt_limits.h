@@ -34,8 +34,7 @@
 #define RT_MAX_P 512
 #endif
 
-/* state-event root functions: a defined system's `when`s, and two per located switch
-   (a comparison of states, docs/scene-language.md) */
+/* state-event root functions (a when: one, a located switch: two) */
 #ifndef RT_MAX_ROOTS
 #define RT_MAX_ROOTS 48
 #endif

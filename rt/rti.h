@@ -196,7 +196,9 @@ enum {
     RTI_SET_STEP_END = 512, /* holds a kind with a step-end service (step_end)     tev.c */
     RTI_SET_EVERY_SIGN = 1024, /* holds a kind with roots_every_sign               tev.c */
     RTI_SET_INSTANT = 2048, /* holds a kind taking values at instants (instant)    tev.c */
-    RTI_SET_TEV_SERVE = 4096 /* holds a time_event that serves (not rt_tev_none)    tev.c */
+    RTI_SET_TEV_SERVE = 4096, /* holds a time_event that serves (not rt_tev_none)  tev.c */
+    RTI_SET_INSTANT_IN = 8192 /* one whose instant takes values from outside (not
+                                 instant_own): its parts end where they change     tev.c */
 };
 /* The first block of set s that keeps it from being linear in its state, or -1. */
 int rti_nonlinear_block(const rt_scene *sc, const rt_sim *sim, uint8_t s);

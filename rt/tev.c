@@ -364,7 +364,7 @@ static void dyn_step(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick, 
         real_t td = (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) ? rti_tev_dyn_next(sc, sim, s, t)
                                                                 : (real_t)RT_TEV_NEVER;
         uint16_t bi = 0;
-        real_t ti = (sim->plan.set_flags[s] & RTI_SET_INSTANT)
+        real_t ti = (sim->plan.set_flags[s] & RTI_SET_INSTANT_IN)
                         ? input_next(sc, sim, s, t, t_end, &bi) : (real_t)RT_TEV_NEVER;
         td = ti < td ? ti : td;
         if (td < tb && rt_same_instant(td, tb))
@@ -561,6 +561,7 @@ static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
                                                                         : 0) |
                        (kd->step_end ? RTI_SET_STEP_END : 0) |
                        (kd->instant ? RTI_SET_INSTANT : 0) |
+                       (kd->instant && !kd->instant_own ? RTI_SET_INSTANT_IN : 0) |
                        (kd->nr && kd->roots_every_sign ? RTI_SET_EVERY_SIGN : 0));
     }
     return f;

@@ -309,7 +309,7 @@ static int ends_there(const rt_sim *sim, uint16_t reader, real_t t)
     if (reader >= sim->sc->nblocks)
         return 0;
     uint8_t s = sim->sc->blocks[reader].set;
-    if (sim->plan.set_flags[s] & (RTI_SET_TEV_SERVE | RTI_SET_STEP_END | RTI_SET_INSTANT))
+    if (sim->plan.set_flags[s] & (RTI_SET_TEV_SERVE | RTI_SET_STEP_END | RTI_SET_INSTANT_IN))
         return 0;
     real_t from = rti_tick_time(sim->state.set_tick[s], sim->sc->dt);
 #if RT_MAX_TEV > 0

@@ -146,7 +146,8 @@ static void test_messages(void)
     join(tail, " (", decimal(num, RT_MAX_ROOTS), " in rt_config.h)");
     TH_CHECK(init() == RT_E_CAPACITY &&
              rt_streq(rt_error_text(&tu_sim),
-                      join(want, "block Last: state-event root functions exceed RT_MAX_ROOTS",
+                      join(want, "block Last: state-event root functions (a when: one, a located "
+                                 "switch: two) exceed RT_MAX_ROOTS",
                            tail, "")));
 #endif
 }

@@ -141,9 +141,8 @@ static void expr(FILE *f, const scn_ctx *c, const node *nd, int i, int top)
         return;
     default:
         if (in->op >= SCN_OP_LT && in->a >= SCN_SW_BASE) { /* a located switch, as the VM */
-            fputs("rt_x_sw(", f), kids(f, c, nd, x, ", ");
-            fprintf(f, ", a->x[%u], %s(", in->a - SCN_SW_BASE, cond[in->op - SCN_OP_LT]);
-            kids(f, c, nd, x, ", "), fputs("))", f);
+            fputs("rt_x_swc(", f), kids(f, c, nd, x, ", ");
+            fprintf(f, ", a->x[%u], %d)", in->a - SCN_SW_BASE, in->op - SCN_OP_LT);
             return;
         }
         if (in->op >= SCN_OP_LT && in->a) { /* t with an instant: rt_x_at, as the VM */
@@ -437,7 +436,7 @@ static void define_kind(FILE *f, const scn_ctx *c, const scn_define *d)
     if (d->nr)
         fprintf(f, " .roots = %s_roots, .event = %s_event, .root_dir = %s_rdir,", pre, pre, pre);
     if (d->nswm)
-        fprintf(f, " .instant = %s_instant,", pre);
+        fprintf(f, " .instant = %s_instant, .instant_own = 1,", pre);
     if (d->ntev)
         fprintf(f, " .next_event = %s_next, .time_event = rt_tev_none,", pre);
     if (d->nband)

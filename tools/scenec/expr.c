@@ -616,18 +616,19 @@ static int logic_code(const scn_define *d, const scn_ins *code, uint32_t i0, uin
    emitted at code index c->sc.ncode; its `a` is set by finish_switches */
 static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
 {
-    if (c->def && logic_code(c->def, c->sc.code, a0, b1))
-        return; /* (truth values change only where their comparisons' sides meet) */
     scn_define *d = c->def;
     const scn_ins *code = c->sc.code;
     if (c->err || !d || d->type != SCN_DEF_SS || d->nx == 0 || d->nsw >= SCN_MAX_PORTS ||
-        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
-        (fixed_code(code, a0, a1) && fixed_code(code, a1, b1)))
+        (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
+        (fixed_code(code, a0, a1) && fixed_code(code, a1, b1)) ||
+        logic_code(d, code, a0, b1)) /* (truth values change where their sides meet) */
         return;
-    for (uint32_t i = a0; i < b1; i++)
-        if (code[i].op == SCN_OP_TPIECE) /* (a time event inside: t_piece is the step's) */
+    for (uint32_t i = a0; i < b1; i++) /* (a time event inside: t_piece is the step's; h
+                                            is the call's, 0 at an instant) */
+        if (code[i].op == SCN_OP_TPIECE || code[i].op == SCN_OP_STEP)
             return;
     d->sw[d->nsw][0] = a0, d->sw[d->nsw][1] = a1, d->sw[d->nsw][2] = b1;
+    d->sw_let[d->nsw] = c->st_kind == SCN_ST_LET ? (int16_t)d->nloc : -1; /* (its let) */
     d->sw_pos[d->nsw++] = c->tok.pos;
 }
 
@@ -968,6 +969,7 @@ static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, 
         return;
     }
     uint32_t code0 = s->ncode;
+    c->sdepth = 0; /* (a statement of its own, as add_stmt_to's) */
     if (a0 == a1)
         emit_const(c, v);
     for (uint32_t i = a0; i < b1; i++) /* (the sides in a row: [a0, a1), then [a1, b1)) */
@@ -979,28 +981,30 @@ static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, 
 }
 
 /* the body's located switches (state_switch), after its own statements: for each its
-   mode, a hidden state switch<k> (0.5: no crossing yet; its derivative 0), and two roots
-   after the body's `when`s, its sides' difference rising and falling, whose handlers
-   set the mode to the comparison's value past the crossing. One past the define's
-   SCN_MAX_PORTS states or roots stays a plain comparison */
+   mode, a hidden state #switch<k> (0.5: no crossing yet; its derivative 0), and two
+   roots after the body's `when`s, its sides' difference rising and falling, whose
+   handlers set the mode to the comparison's value past the crossing. A comparison in a
+   let no derivative reads, or one past the define's SCN_MAX_PORTS states or roots,
+   stays a plain comparison */
 static void finish_switches(scn_ctx *c, scn_define *d)
 {
     static const uint8_t rising_true[] = {0, 0, 1, 1}; /* < <= > >= */
-    uint16_t nx0 = d->nx;
+    uint8_t need[SCN_MAX_LOCALS] = {0}; /* the lets a derivative reads, through lets too */
+    for (uint32_t s = c->sc.nst; s-- > d->st0;) {
+        const scn_stmt *st = &c->sc.st[s];
+        if (st->kind == SCN_ST_DER || (st->kind == SCN_ST_LET && need[st->index]))
+            for (uint32_t i = st->code0; i < st->code1; i++)
+                if (c->sc.code[i].op == SCN_OP_LOC)
+                    need[c->sc.code[i].a] = 1;
+    }
     for (uint16_t k = 0; k < d->nsw && !c->err; k++) {
         uint32_t a0 = d->sw[k][0], a1 = d->sw[k][1], b1 = d->sw[k][2];
         scn_ins *cmp = &c->sc.code[b1];
-        if (d->nx >= SCN_MAX_PORTS || d->nr + 2 > SCN_MAX_PORTS)
-            continue; /* (a plain comparison, as before there were switches) */
-        const char *name = scn_fmt(c, "switch%u", k + 1u);
-        const scn_var *all[4] = {d->u, d->y, d->p, d->x};
-        uint16_t cnt[4] = {d->nu, d->ny, d->np, nx0};
-        for (int j = 0; j < 4; j++)
-            for (uint16_t i = 0; i < cnt[j] && !c->err; i++)
-                if (!strcmp(all[j][i].name.s, name))
-                    scn_fail(c, all[j][i].name.pos, name, "name of a switch's mode",
-                             "a name other than switch<k> (the mode of the k-th comparison "
-                             "of states, docs/scene-language.md)");
+        if (d->nx >= SCN_MAX_PORTS || d->nr + 2 > SCN_MAX_PORTS ||
+            (d->sw_let[k] >= 0 && !need[d->sw_let[k]]))
+            continue; /* (a plain comparison: past the limits, or no derivative reads it) */
+        /* (a name the language cannot write: the mode is no state a scene refers to) */
+        const char *name = scn_fmt(c, "#switch%u", d->nswm + 1u);
         uint16_t q = d->nx++;
         d->x[q] = (scn_var){{name, d->sw_pos[k]}, 0.5};
         cmp->a = (uint16_t)(SCN_SW_BASE + q);

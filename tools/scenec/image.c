@@ -66,7 +66,7 @@ static void events(scn_ctx *c, const scn_define *d, const real_t *k, scn_vm_spec
     kd->roots = scn_vm_roots, kd->event = scn_vm_event;
     vs->sw = d->swm, vs->nsw = d->nswm;
     if (d->nswm)
-        kd->instant = scn_vm_instant;
+        kd->instant = scn_vm_instant, kd->instant_own = 1;
 }
 
 /* the kind of a define with its services */

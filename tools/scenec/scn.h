@@ -230,6 +230,7 @@ typedef struct scn_define {
     uint16_t nsw;               /* comparisons of states made located switches (state_switch) */
     uint32_t sw[SCN_MAX_PORTS][3]; /* each one's sides, code [0, 1) and [1, 2), and [2] its
                                    comparison instruction */
+    int16_t sw_let[SCN_MAX_PORTS]; /* the let it is in, -1: a derivative */
     scn_pos sw_pos[SCN_MAX_PORTS]; /* where its statement is */
     uint8_t loc_logic[SCN_MAX_LOCALS]; /* 1: let i holds a truth value (state_switch) */
     uint16_t nswm;              /* the switches made (finish_switches; one past the limits

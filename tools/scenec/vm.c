@@ -83,7 +83,7 @@ static void run(const scn_prog *p, const rt_args *a, real_t *out)
             } else if (in->a >= SCN_SW_BASE) { /* a located switch: its mode at a tie */
                 sp--;
                 real_t l = st[sp - 1], r = st[sp];
-                st[sp - 1] = rt_x_sw(l, r, a->x[in->a - SCN_SW_BASE], binop(in->op, l, r));
+                st[sp - 1] = rt_x_swc(l, r, a->x[in->a - SCN_SW_BASE], in->op - SCN_OP_LT);
             } else { /* (t compared with an instant: the time rt_x_at reads) */
                 sp--;
                 real_t l = st[sp - 1], r = st[sp];
@@ -143,7 +143,7 @@ void scn_vm_roots(const rt_args *a, real_t *r)
 int scn_vm_instant(const rt_args *a, real_t *x, real_t *d)
 {
     const scn_vm_spec *vs = a->spec;
-    real_t r[2 * SCN_MAX_PORTS];
+    real_t r[SCN_MAX_PORTS];
     int changed = 0;
     run(&vs->roots, a, r);
     for (uint16_t k = 0; k < vs->nsw; k++) {
