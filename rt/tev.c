@@ -31,10 +31,11 @@
  * step's end and counted (tev_limit, RT_E_TEV), never merged silently.
  *
  * Values a kind takes only at instants (rt_kind.instant: an FMU's discrete inputs and
- * tunable parameters, which FMI lets change in event mode alone): the start and the end
+ * tunable parameters, which FMI lets change in event mode alone; a defined system's
+ * located switches, their modes from its own state and inputs, instant_own): the start and the end
  * of every part are such instants, where the kind is handed its inputs and parameters and
  * takes what changed (an event of its own); inside a part it holds them. So a part also
- * ends where such an input is known to change: at each point strictly inside the step of
+ * ends where such an input (RTI_SET_INSTANT_IN) is known to change: at each point strictly inside the step of
  * the history of a set that feeds it (the tick at which the other set's held value moves
  * on). A parameter written between ticks (rt_set_param) is taken at the start of the
  * set's next part, its next instant. */
@@ -548,8 +549,9 @@ static rt_status check_set(const rt_scene *sc, rt_sim *sim, uint8_t s)
 /* the flags of set s's kinds: RTI_SET_TEV (time events, known ahead or at run time),
    RTI_SET_TEV_DYN (at run time), RTI_SET_TEV_SERVE (with a handler that serves: not
    rt_tev_none), RTI_SET_STEP_END (a step-end service), RTI_SET_INSTANT
-   (values taken at instants), RTI_SET_EVERY_SIGN (roots whose every sign change is a
-   crossing, rt/step.c) */
+   (values taken at instants), RTI_SET_INSTANT_IN (from outside the kind: an FMU's
+   discrete inputs; not a defined system's switch modes, rt_kind.instant_own),
+   RTI_SET_EVERY_SIGN (roots whose every sign change is a crossing, rt/step.c) */
 static uint16_t tev_flags(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 {
     uint16_t f = 0;

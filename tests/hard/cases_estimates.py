@@ -391,17 +391,21 @@ record (B.yo);
 
 
 def located_switch_limits(s):
-    """H: what stays a plain comparison: one of h (x' = 1 at h = 10 ms: x(0.1) = 0.1;
-    before the review 0.2, status ok), an output's table nobody's derivative reads (one
+    """H: what stays a plain comparison: one of h, itself or through lets (x' = 1 at
+    h = 10 ms: x(0.1) = 0.1; before the reviews 0.2, status ok), an output's table nobody's derivative reads (one
     step of 1 s, no event: status ok); a switch beside a held reader keeps the set's
     step-end hold (A.x(1) = 0.495 less rk4's hold error, 0.4950117 as without the switch;
     0.4951667 before the review); 23 switches in one define compile and run (the 22nd
     was refused before the review: each added statement's stack depth was kept)"""
-    rc, summ, rows = run_text(s.modrt, SWITCH_H, [])
-    err = abs(rows[-1][1] - 0.1) if rows else math.inf
-    s.row("a comparison of h, x(0.1)", "rk4", "0.01", err, summ, rc)
-    s.check(rc == 0 and err <= 1e-12, "comparison of h: x(0.1) off by %.3g (status %s)"
-            % (err, summ.get("status")))
+    for body in ("der(x) = if(h > 0.005, 1, 2);", "let hh = 2 * h;\n    let h2 = hh;\n"
+                 "    der(x) = if(h2 > 0.01, 1, 2);"):
+        rc, summ, rows = run_text(s.modrt, SWITCH_H.replace(
+            "der(x) = if(h > 0.005, 1, 2);", body), [])
+        err = abs(rows[-1][1] - 0.1) if rows else math.inf
+        s.row("a comparison of h%s, x(0.1)" % (" through lets" if "let" in body else ""),
+              "rk4", "0.01", err, summ, rc)
+        s.check(rc == 0 and err <= 1e-12, "comparison of h (%s): x(0.1) off by %.3g "
+                "(status %s)" % (body, err, summ.get("status")))
     rc, summ, rows = run_text(s.modrt, SWITCH_TABLE, [])
     s.row("an unread output table: events", "rk4", "1", float(summ.get("events", "0")
                                                               .split()[0]), summ, rc)

@@ -604,16 +604,26 @@ static int logic_code(const scn_define *d, const scn_ins *code, uint32_t i0, uin
     return 0;
 }
 
-/* an order comparison in an output, derivative or let of an ss_system with states, its
-   sides not both fixed and no time event (time_switch): a switch of the dynamics where
-   its sides meet. Inside a step no estimate sees it (the stages after the crossing read
-   the other branch, and the method's companion does too), so it becomes a located
-   switch (finish_switches, at the body's end): two roots, the sides' difference rising
-   and falling, located and handled as a `when`'s, whose handlers set a hidden state, the
-   switch's mode, to the comparison's value past the crossing; where the sides are
-   exactly equal (the step that starts on the located crossing) the comparison reads that
-   mode (rt_x_sw), else its own value. Registers the comparison that is about to be
-   emitted at code index c->sc.ncode; its `a` is set by finish_switches */
+/* does code [i0, i1) read h, itself or through a let (the call's step: 0 at an instant,
+   where a switch's mode is taken, state_switch) */
+static int step_code(const scn_define *d, const scn_ins *code, uint32_t i0, uint32_t i1)
+{
+    for (uint32_t i = i0; i < i1; i++)
+        if (code[i].op == SCN_OP_STEP || (code[i].op == SCN_OP_LOC && d->loc_step[code[i].a]))
+            return 1;
+    return 0;
+}
+
+/* an order comparison in a derivative or let of an ss_system with states, its sides not
+   both fixed, no truth values, no h and no time event (time_switch): a switch of the
+   dynamics where its sides meet. Inside a step no estimate sees it (the stages after the
+   crossing read the other branch, and the method's companion does too), so it becomes a
+   located switch (finish_switches, at the body's end, for a let only if a derivative
+   reads it): two roots, the sides' difference rising and falling, located and handled as
+   a `when`'s, whose handlers set a hidden state, the switch's mode, to the comparison's
+   value past the crossing; the kind takes the modes at each instant (rt_kind.instant)
+   and the comparison reads its mode (rt_x_swc) once it has one. Registers the comparison
+   about to be emitted at code index c->sc.ncode; its `a` is set by finish_switches */
 static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
 {
     scn_define *d = c->def;
@@ -621,11 +631,11 @@ static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
     if (c->err || !d || d->type != SCN_DEF_SS || d->nx == 0 || d->nsw >= SCN_MAX_PORTS ||
         (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
         (fixed_code(code, a0, a1) && fixed_code(code, a1, b1)) ||
-        logic_code(d, code, a0, b1)) /* (truth values change where their sides meet) */
+        logic_code(d, code, a0, b1) || /* (truth values change where their sides meet) */
+        step_code(d, code, a0, b1))
         return;
-    for (uint32_t i = a0; i < b1; i++) /* (a time event inside: t_piece is the step's; h
-                                            is the call's, 0 at an instant) */
-        if (code[i].op == SCN_OP_TPIECE || code[i].op == SCN_OP_STEP)
+    for (uint32_t i = a0; i < b1; i++) /* (a time event inside: t_piece is the step's) */
+        if (code[i].op == SCN_OP_TPIECE)
             return;
     d->sw[d->nsw][0] = a0, d->sw[d->nsw][1] = a1, d->sw[d->nsw][2] = b1;
     d->sw_let[d->nsw] = c->st_kind == SCN_ST_LET ? (int16_t)d->nloc : -1; /* (its let) */
@@ -790,6 +800,7 @@ static void let_stmt(scn_ctx *c)
     uint32_t code0 = c->sc.ncode;
     add_stmt(c, SCN_ST_LET, i, pos);
     d->loc_logic[i] = (uint8_t)logic_code(d, c->sc.code, code0, c->sc.ncode);
+    d->loc_step[i] = (uint8_t)step_code(d, c->sc.code, code0, c->sc.ncode);
     d->loc[d->nloc++] = n;
 }
 

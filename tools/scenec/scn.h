@@ -233,6 +233,7 @@ typedef struct scn_define {
     int16_t sw_let[SCN_MAX_PORTS]; /* the let it is in, -1: a derivative */
     scn_pos sw_pos[SCN_MAX_PORTS]; /* where its statement is */
     uint8_t loc_logic[SCN_MAX_LOCALS]; /* 1: let i holds a truth value (state_switch) */
+    uint8_t loc_step[SCN_MAX_LOCALS]; /* 1: let i reads h (state_switch) */
     uint16_t nswm;              /* the switches made (finish_switches; one past the limits
                                    stays a plain comparison) */
     uint16_t swm[SCN_MAX_PORTS][4]; /* each made one's mode state, rising root, 1 if its
