@@ -44,6 +44,16 @@ static inline real_t rt_x_sw(real_t a, real_t b, real_t m, real_t v)
     return a == a && b == b && (m == 0 || m == 1) ? m : v;
 }
 
+/* a located switch's root, its sides' difference a - b; where that is NaN from two
+   infinities of one sign, 0, and from sides that are not NaN its sign */
+static inline real_t rt_x_side(real_t a, real_t b)
+{
+    real_t d = a - b;
+    if (d == d || a != a || b != b)
+        return d;
+    return a > b ? (real_t)1 : a < b ? (real_t)-1 : (real_t)0;
+}
+
 /* rt_x_sw of the comparison op (0 <, 1 <=, 2 >, 3 >=) of a and b: its sides once */
 static inline real_t rt_x_swc(real_t a, real_t b, real_t m, int op)
 {

@@ -20,6 +20,8 @@ const scn_fn scn_fns[] = {
     {"pow", 2, 0, rt_pow, "rt_pow"},        {"tanh", 1, rt_tanh, 0, "rt_tanh"},
     {"abs", 1, rt_fabs, 0, "rt_fabs"},      {"floor", 1, rt_floor, 0, "rt_floor"},
     {"min", 2, 0, rt_x_min, "rt_x_min"},    {"max", 2, 0, rt_x_max, "rt_x_max"},
+    {"#side", 2, 0, rt_x_side, "rt_x_side"}, /* a switch's root (finish_switches): no
+                                                name a scene can write */
     {0, 0, 0, 0, 0},
 };
 
@@ -410,7 +412,8 @@ static void call(scn_ctx *c, scn_name n)
         const char *fn[32];
         size_t k = 0;
         for (int i = 0; scn_fns[i].name; i++)
-            fn[k++] = scn_fns[i].name;
+            if (scn_fns[i].name[0] != '#')
+                fn[k++] = scn_fns[i].name;
         fn[k++] = "if";
         scn_fail(c, n.pos, n.s, "unknown function", scn_list(c, fn, k, 32));
         return;
@@ -966,8 +969,8 @@ static void body_complete(scn_ctx *c, scn_define *d, scn_pos end)
     }
 }
 
-/* a statement of kind `kind` into index (root `root` for a handler) whose code is a copy
-   of the code [a0, a1) less [b0, b1) (b1 = b0: a copy alone), or with a0 = a1 the
+/* a statement of kind `kind` into index (root `root` for a handler) whose code is the
+   difference of the sides [a0, a1) and [a1, b1) (rt_x_side), or with a0 = a1 the
    constant v: the statements a switch adds (finish_switches) */
 static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, scn_pos pos,
                        uint32_t a0, uint32_t a1, uint32_t b1, double v)
@@ -985,8 +988,11 @@ static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, 
         emit_const(c, v);
     for (uint32_t i = a0; i < b1; i++) /* (the sides in a row: [a0, a1), then [a1, b1)) */
         emit(c, s->code[i].op, s->code[i].a, 0);
+    uint16_t side = 0; /* rt_x_side, the row of scn_fns named #side */
+    while (b1 > a1 && strcmp(scn_fns[side].name, "#side") != 0)
+        side++;
     if (b1 > a1)
-        emit(c, SCN_OP_SUB, 0, 0);
+        emit(c, SCN_OP_CALL, side, 0);
     emit(c, SCN_OP_OUT, index, 0);
     s->st[s->nst++] = (scn_stmt){kind, index, code0, s->ncode, pos, root};
 }
