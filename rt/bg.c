@@ -23,7 +23,8 @@
 /* ------------------------------------------------------------------ checks at init */
 
 /* what a background set may not hold: discrete (sampled) blocks, whose outputs the tick
-   computes; state events, whose handlers change d where the trace reads it. (Its recorded
+   computes; state events, whose handlers change d where the trace reads it, and so a
+   defined system's located switches, whose roots and handlers are state events. (Its recorded
    or exported multibody signals, joint reactions too, are held: the step computes them at
    its end in the context that stepped, rti_hold_bg_signals) */
 static rt_status check_members(const rt_scene *sc, rt_sim *sim, uint8_t s)
@@ -34,8 +35,9 @@ static rt_status check_members(const rt_scene *sc, rt_sim *sim, uint8_t s)
             continue;
         if (k->type == RT_KIND_DSS || k->nr > 0)
             return rti_fail(sim, RT_E_SCENE, "block ", sc->blocks[b].name, " of background set ",
-                            sc->sets[s].name, ": sampled blocks and state events must run in "
-                            "a set of the tick", (const char *)0);
+                            sc->sets[s].name, ": sampled blocks and state events (a when, "
+                            "a located switch) must run in a set of the tick",
+                            (const char *)0);
     }
     return RT_OK;
 }
