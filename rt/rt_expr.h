@@ -44,8 +44,8 @@ static inline real_t rt_x_sw(real_t a, real_t b, real_t m, real_t v)
     return a == a && b == b && (m == 0 || m == 1) ? m : v;
 }
 
-/* a located switch's root, its sides' difference a - b; where that is NaN from two
-   infinities of one sign, 0, and from sides that are not NaN its sign */
+/* a located switch's sides' difference a - b; where that is NaN from two infinities of
+   one sign, 0, and from sides that are not NaN its sign */
 static inline real_t rt_x_side(real_t a, real_t b)
 {
     real_t d = a - b;
@@ -53,6 +53,28 @@ static inline real_t rt_x_side(real_t a, real_t b)
         return d;
     return a > b ? (real_t)1 : a < b ? (real_t)-1 : (real_t)0;
 }
+
+/* the smallest normal real_t: how far a switch's root stands off 0 where its sides are
+   equal */
+#define RT_X_SW_OFF (RT_REAL_IS_FLOAT ? (real_t)1.17549435e-38f : (real_t)2.2250738585072014e-308)
+
+/* a located switch's root for its comparison of a and b: positive exactly where the
+   comparison holds, negative where it does not, never 0 (at equality RT_X_SW_OFF on the
+   side the operator gives it): a side that rests on the other and then leaves it is a
+   crossing (a root from exactly 0 would not be one), and elsewhere it is the sides'
+   difference itself (d - RT_X_SW_OFF rounds to d) */
+static inline real_t rt_x_swgt(real_t a, real_t b)
+{
+    real_t d = rt_x_side(a, b);
+    return d > 0 ? d : d - RT_X_SW_OFF;
+}
+static inline real_t rt_x_swge(real_t a, real_t b)
+{
+    real_t d = rt_x_side(a, b);
+    return d >= 0 ? d + RT_X_SW_OFF : d;
+}
+static inline real_t rt_x_swlt(real_t a, real_t b) { return rt_x_swgt(b, a); }
+static inline real_t rt_x_swle(real_t a, real_t b) { return rt_x_swge(b, a); }
 
 /* rt_x_sw of the comparison op (0 <, 1 <=, 2 >, 3 >=) of a and b: its sides once */
 static inline real_t rt_x_swc(real_t a, real_t b, real_t m, int op)
@@ -62,18 +84,12 @@ static inline real_t rt_x_swc(real_t a, real_t b, real_t m, int op)
     return rt_x_sw(a, b, m, v);
 }
 
-/* the mode a located switch takes from its sides' difference r at an instant (the start
-   of a step part): 1 or 0 as the comparison whose value is 1 where r > 0 (rising_true,
-   a > or >=) or where r < 0 (<, <=); at r == 0 the mode a crossing located at this very
-   instant set (just: the side it went to), else the comparison's own value there (eq: 1
-   for >= and <=; sides that stay equal, a comparison of a switch's value); NaN keeps it */
-static inline real_t rt_x_sw_mode(real_t r, real_t m, int rising_true, int eq, int just)
+/* the mode a located switch takes from its root r (rt_x_swgt ...) at an instant (the
+   start or end of a step part, a tick): 1 where the comparison holds (r > 0), 0 where it
+   does not; NaN keeps the mode */
+static inline real_t rt_x_sw_mode(real_t r, real_t m)
 {
-    if (r != r)
-        return m;
-    if (r == 0)
-        return just && (m == 0 || m == 1) ? m : (real_t)(eq ? 1 : 0);
-    return (real_t)((r > 0) == (rising_true != 0) ? 1 : 0);
+    return r != r ? m : r > 0 ? (real_t)1 : (real_t)0;
 }
 
 /* if(c, a, b): a where c is nonzero, b where it is 0, NaN where it is NaN */

@@ -309,14 +309,12 @@ static void event_services(FILE *f, const scn_ctx *c, const scn_define *d, const
         return;
     /* scn_vm_instant: the located switches' modes at the start of a step part */
     fprintf(f, "\nstatic int %s_instant(const rt_args *a, real_t *x, real_t *d)\n{\n"
-               "    real_t r[%u], m, v;\n    int changed = 0, just;\n"
+               "    real_t r[%u], m, v;\n    int changed = 0;\n    (void)d;\n"
                "    %s_roots(a, r);\n", id, (unsigned)d->nr, id);
     for (uint16_t k = 0; k < d->nswm; k++)
-        fprintf(f, "    just = rt_same_instant(d[%u], a->t) || rt_same_instant(d[%u], a->t);\n"
-                   "    m = x[%u], v = rt_x_sw_mode(r[%u], m, %u, %u, just);\n"
+        fprintf(f, "    m = x[%u], v = rt_x_sw_mode(r[%u], m);\n"
                    "    changed |= (m == 0 || m == 1) && v != m;\n    x[%u] = v;\n",
-                d->swm[k][1], d->swm[k][1] + 1u, d->swm[k][0], d->swm[k][1], d->swm[k][2],
-                d->swm[k][3], d->swm[k][0]);
+                d->swm[k][0], d->swm[k][1], d->swm[k][0]);
     fputs("    return changed;\n}\n", f);
 }
 

@@ -20,8 +20,9 @@ const scn_fn scn_fns[] = {
     {"pow", 2, 0, rt_pow, "rt_pow"},        {"tanh", 1, rt_tanh, 0, "rt_tanh"},
     {"abs", 1, rt_fabs, 0, "rt_fabs"},      {"floor", 1, rt_floor, 0, "rt_floor"},
     {"min", 2, 0, rt_x_min, "rt_x_min"},    {"max", 2, 0, rt_x_max, "rt_x_max"},
-    {"#side", 2, 0, rt_x_side, "rt_x_side"}, /* a switch's root (finish_switches): no
-                                                name a scene can write */
+    /* a switch's root for <, <=, > and >= (finish_switches): no name a scene can write */
+    {"#swlt", 2, 0, rt_x_swlt, "rt_x_swlt"}, {"#swle", 2, 0, rt_x_swle, "rt_x_swle"},
+    {"#swgt", 2, 0, rt_x_swgt, "rt_x_swgt"}, {"#swge", 2, 0, rt_x_swge, "rt_x_swge"},
     {0, 0, 0, 0, 0},
 };
 
@@ -970,10 +971,10 @@ static void body_complete(scn_ctx *c, scn_define *d, scn_pos end)
 }
 
 /* a statement of kind `kind` into index (root `root` for a handler) whose code is the
-   difference of the sides [a0, a1) and [a1, b1) (rt_x_side), or with a0 = a1 the
-   constant v: the statements a switch adds (finish_switches) */
+   root of the comparison op of the sides [a0, a1) and [a1, b1) (rt_x_swgt ...), or with
+   a0 = a1 the constant v: the statements a switch adds (finish_switches) */
 static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, scn_pos pos,
-                       uint32_t a0, uint32_t a1, uint32_t b1, double v)
+                       uint32_t a0, uint32_t a1, uint32_t b1, double v, uint8_t op)
 {
     scn_scene *s = &c->sc;
     if (c->err || s->nst >= SCN_MAX_STMTS) {
@@ -988,24 +989,24 @@ static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, 
         emit_const(c, v);
     for (uint32_t i = a0; i < b1; i++) /* (the sides in a row: [a0, a1), then [a1, b1)) */
         emit(c, s->code[i].op, s->code[i].a, 0);
-    uint16_t side = 0; /* rt_x_side, the row of scn_fns named #side */
-    while (b1 > a1 && strcmp(scn_fns[side].name, "#side") != 0)
-        side++;
+    static const char *const root_fn[] = {"#swlt", "#swle", "#swgt", "#swge"};
+    uint16_t f = 0; /* its row of scn_fns */
+    while (b1 > a1 && strcmp(scn_fns[f].name, root_fn[op - SCN_OP_LT]) != 0)
+        f++;
     if (b1 > a1)
-        emit(c, SCN_OP_CALL, side, 0);
+        emit(c, SCN_OP_CALL, f, 0);
     emit(c, SCN_OP_OUT, index, 0);
     s->st[s->nst++] = (scn_stmt){kind, index, code0, s->ncode, pos, root};
 }
 
 /* the body's located switches (state_switch), after its own statements: for each its
-   mode, a hidden state #switch<k> (0.5: no crossing yet; its derivative 0), and two
-   roots after the body's `when`s, its sides' difference rising and falling, whose
-   handlers set the mode to the comparison's value past the crossing. A comparison in a
+   mode, a hidden state #switch<k> (0.5: no value yet; its derivative 0), and two roots
+   after the body's `when`s, both its root (rt_x_swgt ...: positive where the comparison
+   holds, never 0), rising and falling, whose handlers set the mode to 1 and 0. A comparison in a
    let no derivative reads, or one past the define's SCN_MAX_PORTS states or roots,
    stays a plain comparison */
 static void finish_switches(scn_ctx *c, scn_define *d)
 {
-    static const uint8_t rising_true[] = {0, 0, 1, 1}; /* < <= > >= */
     uint8_t need[SCN_MAX_LOCALS] = {0}; /* the lets a derivative reads, through lets too */
     for (uint32_t s = c->sc.nst; s-- > d->st0;) {
         const scn_stmt *st = &c->sc.st[s];
@@ -1025,16 +1026,14 @@ static void finish_switches(scn_ctx *c, scn_define *d)
         uint16_t q = d->nx++;
         d->x[q] = (scn_var){{name, d->sw_pos[k]}, 0.5};
         cmp->a = (uint16_t)(SCN_SW_BASE + q);
-        d->swm[d->nswm][0] = q, d->swm[d->nswm][1] = d->nr;
-        d->swm[d->nswm][2] = rising_true[cmp->op - SCN_OP_LT];
-        d->swm[d->nswm++][3] = cmp->op == SCN_OP_LE || cmp->op == SCN_OP_GE;
-        added_stmt(c, SCN_ST_DER, q, 0, d->sw_pos[k], 0, 0, 0, 0);
+        d->swm[d->nswm][0] = q, d->swm[d->nswm++][1] = d->nr;
+        added_stmt(c, SCN_ST_DER, q, 0, d->sw_pos[k], 0, 0, 0, 0, 0);
         for (int dir = 1; dir >= -1 && !c->err; dir -= 2) {
             uint16_t r = d->nr++;
             d->rdir[r] = (int8_t)dir, d->rest[r] = 0;
-            added_stmt(c, SCN_ST_ROOT, r, 0, d->sw_pos[k], a0, a1, b1, 0);
-            int v = rising_true[cmp->op - SCN_OP_LT] ? dir > 0 : dir < 0;
-            added_stmt(c, SCN_ST_EVENT, q, r, d->sw_pos[k], 0, 0, 0, v);
+            added_stmt(c, SCN_ST_ROOT, r, 0, d->sw_pos[k], a0, a1, b1, 0, cmp->op);
+            /* (the root is positive where the comparison holds: rising, it holds) */
+            added_stmt(c, SCN_ST_EVENT, q, r, d->sw_pos[k], 0, 0, 0, dir > 0, 0);
         }
     }
 }

@@ -147,7 +147,7 @@ typedef struct scn_vm_spec {
     const scn_prog *event;      /* one handler program per root */
     const scn_prog *rest_t;     /* per root: its shortest flight (n = 0: no rest clause) */
     const scn_prog *rest;       /* per root: its rest handler */
-    const uint16_t (*sw)[4];    /* the located switches (scn_define.swm) */
+    const uint16_t (*sw)[2];    /* the located switches (scn_define.swm) */
     uint16_t nsw;
 } scn_vm_spec;
 
@@ -236,8 +236,7 @@ typedef struct scn_define {
     uint8_t loc_step[SCN_MAX_LOCALS]; /* 1: let i reads h (state_switch) */
     uint16_t nswm;              /* the switches made (finish_switches; one past the limits
                                    stays a plain comparison) */
-    uint16_t swm[SCN_MAX_PORTS][4]; /* each made one's mode state, rising root, 1 if its
-                                   comparison is > or >=, 1 if it holds at equality */
+    uint16_t swm[SCN_MAX_PORTS][2]; /* each made one's mode state and rising root */
     uint16_t ntev;              /* instants `t` is compared with (SCN_ST_TEV statements) */
     uint16_t nband;             /* sin and cos arguments affine in `t` (SCN_ST_BAND) */
     scn_matrix A, B, C, D;      /* LSS */

@@ -145,12 +145,11 @@ int scn_vm_instant(const rt_args *a, real_t *x, real_t *d)
     const scn_vm_spec *vs = a->spec;
     real_t r[SCN_MAX_PORTS];
     int changed = 0;
+    (void)d;
     run(&vs->roots, a, r);
     for (uint16_t k = 0; k < vs->nsw; k++) {
         const uint16_t *w = vs->sw[k];
-        /* (a crossing located at this instant: its root's t_last, d[root], is now) */
-        int just = rt_same_instant(d[w[1]], a->t) || rt_same_instant(d[w[1] + 1], a->t);
-        real_t m = x[w[0]], v = rt_x_sw_mode(r[w[1]], m, w[2], w[3], just);
+        real_t m = x[w[0]], v = rt_x_sw_mode(r[w[1]], m);
         changed |= (m == 0 || m == 1) && v != m;
         x[w[0]] = v;
     }
