@@ -450,7 +450,7 @@ static RTI_INLINE void diag_shares(real_t *lv, const real_t *W, const real_t *M,
 
 /* point b's shares of A = W M^-1 W^T (a set of points, M = m I) over the pairs of rows
    it touches: a row with itself (C.C) / m (the same C.C at both its points, which see C
-   and -C: rt_joint_kind.anti; written-out code forms it once per row), two rows
+   and -C: rt_joint_kind.anti), two rows
    (W_i . W_k) / m; 1/m kept after M's factors */
 static RTI_INLINE void point_shares(rt_mbs_work *w, unsigned b)
 {
@@ -529,15 +529,12 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
 {
     rt_mbs_work *w = &sim->work.mbs;
     const uint16_t *trow = w->trow;
-    int points = w->points[set]; /* points only: no spec to look up */
     for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
         unsigned b = w->sblk[k], i = w->to[b], i1 = w->to[b + 1];
-        const rt_mbs_spec *sp = points ? 0 : spec_of(sc, (uint16_t)b);
-        unsigned nz = points ? 3 : sp->nz;
         real_t *d = dz + w->zo[b];
         const real_t *M = w->M + w->mo[b], *Wi = w->W + w->wo[b], *Yi = w->Y + w->yo[b];
-        int diag = points || (sp->flags & RT_MBS_M_DIAG);
-        if (points) { /* M = m I: each touch's multiplier times 1/m, kept in registers */
+        if (w->points[set]) { /* M = m I, no spec to look up: each touch's multiplier
+                                 times 1/m, kept in registers */
             real_t d0 = add ? d[0] : 0, d1 = add ? d[1] : 0, d2 = add ? d[2] : 0;
             for (real_t im = M[3]; i < i1; i++, Wi += 3) { /* 1/m after M (rti_mbs_m_inv) */
                 real_t s = v[trow[i]] * im;
@@ -548,6 +545,9 @@ void rti_mbs_correct(const rt_scene *sc, rt_sim *sim, uint8_t set, const real_t 
             d[0] = d0, d[1] = d1, d[2] = d2;
             continue;
         }
+        const rt_mbs_spec *sp = spec_of(sc, (uint16_t)b);
+        unsigned nz = sp->nz;
+        int diag = (sp->flags & RT_MBS_M_DIAG) != 0;
         if (diag && nz == 3) { /* a diagonal M of three velocities (a point among bodies, a
                                   planar body): the same sums, kept in registers */
             real_t d0 = add ? d[0] : 0, d1 = add ? d[1] : 0, d2 = add ? d[2] : 0;
@@ -606,13 +606,14 @@ void rti_mbs_lambda(const rt_scene *sc, rt_sim *sim, uint8_t set, real_t t)
             lam[r] += sc->baumgarte[0] * w->gd[r] + sc->baumgarte[1] * w->g[r];
     if (w->points[set])
         point_accels(sc, w, set, lam);
-    for (unsigned k = w->sb[set], k1 = w->points[set] ? 0 : w->sb[set + 1]; k < k1; k++) {
-        unsigned b = w->sblk[k], nz = spec_of(sc, (uint16_t)b)->nz;
-        const real_t *ab = w->a + w->zo[b];
-        const real_t *Wi = w->W + w->wo[b];
-        for (unsigned i = w->to[b], i1 = w->to[b + 1]; i < i1; i++, Wi += nz)
-            lam[w->trow[i]] += dot(Wi, ab, 0, (uint16_t)nz);
-    }
+    else
+        for (unsigned k = w->sb[set], k1 = w->sb[set + 1]; k < k1; k++) {
+            unsigned b = w->sblk[k], nz = spec_of(sc, (uint16_t)b)->nz;
+            const real_t *ab = w->a + w->zo[b];
+            const real_t *Wi = w->W + w->wo[b];
+            for (unsigned i = w->to[b], i1 = w->to[b + 1]; i < i1; i++, Wi += nz)
+                lam[w->trow[i]] += dot(Wi, ab, 0, (uint16_t)nz);
+        }
     rti_mbs_solve(sim, set, lam);
     rti_mbs_correct(sc, sim, set, lam, w->a, 1); /* z' = M^-1 k - Y lambda, into a */
     if (!w->need_lambda) /* nobody reads a joint's multipliers */

@@ -638,9 +638,6 @@ static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
         logic_code(d, code, a0, b1) || /* (truth values change where their sides meet) */
         step_code(d, code, a0, b1))
         return;
-    for (uint32_t i = a0; i < b1; i++) /* (a time event inside: t_piece is the step's) */
-        if (code[i].op == SCN_OP_TPIECE)
-            return;
     d->sw[d->nsw][0] = a0, d->sw[d->nsw][1] = a1, d->sw[d->nsw][2] = b1;
     d->sw_let[d->nsw] = c->st_kind == SCN_ST_LET ? (int16_t)d->nloc : -1; /* (its let) */
     d->sw_pos[d->nsw++] = c->tok.pos;
@@ -660,10 +657,12 @@ static void binary(scn_ctx *c, size_t lv)
         scn_next(c);
         binary(c, lv + 1);
         uint16_t side = 0; /* (t == c holds at an instant alone: no time event) */
-        if (levels[lv].code[i] >= SCN_OP_LT && levels[lv].code[i] <= SCN_OP_GE)
+        if (levels[lv].code[i] >= SCN_OP_LT && levels[lv].code[i] <= SCN_OP_GE) {
+            uint16_t ntev = c->ntev; /* (a time event is no switch of states) */
             side = time_switch(c, a0, a1, c->sc.ncode);
-        if (levels[lv].code[i] >= SCN_OP_LT && levels[lv].code[i] <= SCN_OP_GE && !side)
-            state_switch(c, a0, a1, c->sc.ncode);
+            if (c->ntev == ntev)
+                state_switch(c, a0, a1, c->sc.ncode);
+        }
         emit(c, levels[lv].code[i], side, -1);
     }
 }

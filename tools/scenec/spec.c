@@ -795,8 +795,9 @@ static void solve(FILE *f, const rt_sim *sim, uint8_t s, const char *v)
 
 /* rti_mbs_correct of a set of points: dz = -M^-1 W^T v into a, added to it if add (a
    set of points adds to its M^-1 k where force_at finds it and writes z' into xdot,
-   which rti_mbs_accel copies from a); with from >= 0 a point's dz is added to its
-   x[from .. from + 3) at once (rt/mbs_project.c points_add: the same sums) */
+   which rti_mbs_accel copies from a); without add a point's dz is added to its
+   x[from .. from + 3) at once (rt/mbs_project.c points_add: the same sums; from is read
+   for a set of points alone) */
 static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int add, int from)
 {
     const rt_mbs_work *w = &sim->work.mbs;
@@ -835,14 +836,14 @@ static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int ad
             fprintf(f, "    d1 -= %s[%u] * vi;\n", y, wi + 1);
             fprintf(f, "    d2 -= %s[%u] * vi;\n", y, wi + 2);
         }
-        if (add && w->points[s]) {
+        if (!w->points[s]) {
+            fprintf(f, "    a[%u] = d0, a[%u] = d1, a[%u] = d2;\n", zo, zo + 1, zo + 2);
+        } else if (add) {
             unsigned q = sim->plan.x_off[b] - sim->plan.set_x[s] + 3;
             fprintf(f, "    xdot[%u] = d0, xdot[%u] = d1, xdot[%u] = d2;\n", q, q + 1, q + 2);
-        } else if (from >= 0 && w->points[s]) { /* points_add of this point, at once */
+        } else { /* points_add of this point, at once */
             unsigned xo = sim->plan.x_off[b] + (unsigned)from;
             fprintf(f, "    xw[%u] += d0, xw[%u] += d1, xw[%u] += d2;\n", xo, xo + 1, xo + 2);
-        } else {
-            fprintf(f, "    a[%u] = d0, a[%u] = d1, a[%u] = d2;\n", zo, zo + 1, zo + 2);
         }
     }
 }
@@ -909,12 +910,10 @@ static void lambda_accel(FILE *f, const rt_scene *sc, const rt_sim *sim, uint8_t
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1] && !w->points[s]; k++) {
         uint16_t b = w->sblk[k];
         unsigned nz = nz_of(sim, b);
-        const char *src;
-        unsigned at;
-        force_at(sc, sim, s, b, &src, &at);
         for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += nz)
             if (nz == 3)
-                fprintf(f, "    gam[%u] += dot3(W + %u, %s + %u);\n", w->trow[i], wi, src, at);
+                fprintf(f, "    gam[%u] += dot3(W + %u, a + %u);\n", w->trow[i], wi,
+                        w->zo[b]);
             else
                 fprintf(f, "    gam[%u] += dotn(W + %u, a + %u, %u);\n", w->trow[i], wi,
                         w->zo[b], nz);
