@@ -110,6 +110,42 @@ static void combine(real_t *out, const real_t *base, real_t h, const real_t *c, 
    estimate stage) or k[0] (FSAL: no buffer of its own, so Dormand-Prince needs six stage
    buffers, not seven, RT_MAX_STAGES, #14), and its term is added last, in the order one
    sum would take (the same bits). */
+/* |h (x0_i + es kx_i)| / (sa + |x_i|) (with_kx 0: without the term), the scaled error
+   of state i: a ratio >= 0, or NaN */
+static RTI_INLINE real_t err_ratio(const real_t *restrict x0, const real_t *restrict kx,
+                                   real_t es, real_t h, real_t sa, const real_t *x,
+                                   uint32_t i, int with_kx)
+{
+    real_t acc = with_kx ? x0[i] + es * kx[i] : x0[i];
+    return rt_fabs(h * acc) / (sa + rt_fabs(x[i]));
+}
+
+/* the largest err_ratio over the n states, NaN if one is. Taken on the bits, as the
+   state's norm (rt/step.c): a ratio's bits with the sign cleared order as the ratios do,
+   a NaN's above them all, so an integer maximum keeps the largest or the NaN with no
+   compare of reals and no branch per state; two states per iteration, each into a
+   maximum of its own. with_kx is a constant where erk_estimate calls this */
+static RTI_INLINE real_t err_norm(const real_t *restrict x0, const real_t *restrict kx,
+                                  real_t es, real_t h, real_t sa, const real_t *x, uint16_t n,
+                                  int with_kx)
+{
+    rt_real_bits m0 = 0, m1 = 0;
+    uint32_t i = 0;
+    for (; i + 2u <= n; i += 2u) {
+        rt_real_rep r0 = {.r = err_ratio(x0, kx, es, h, sa, x, i, with_kx)};
+        rt_real_rep r1 = {.r = err_ratio(x0, kx, es, h, sa, x, i + 1u, with_kx)};
+        rt_real_bits a0 = r0.u & ~RT_SIGN_BIT, a1 = r1.u & ~RT_SIGN_BIT;
+        m0 = a0 > m0 ? a0 : m0, m1 = a1 > m1 ? a1 : m1;
+    }
+    if (i < n) { /* the last state of an odd count, alone */
+        rt_real_rep r = {.r = err_ratio(x0, kx, es, h, sa, x, i, with_kx)};
+        rt_real_bits a = r.u & ~RT_SIGN_BIT;
+        m0 = a > m0 ? a : m0;
+    }
+    rt_real_rep m = {.u = m1 > m0 ? m1 : m0};
+    return m.r; /* (a NaN with its sign cleared: the same bits on every target) */
+}
+
 static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, real_t h,
                            const real_t *x, uint16_t n, const rt_iwork *w)
 {
@@ -122,16 +158,9 @@ static real_t erk_estimate(const rt_integrator *m, const rt_rhs *f, real_t t, re
         if (st != RT_OK) /* no derivative at the end: nothing to vouch for the step */
             return (real_t)1 / (real_t)0;
     }
-    real_t mx = 0, sa = rti_err_floor(w->cfg), es = kx ? tab->e[s] : 0;
-    const real_t *restrict x0 = w->x0;
-    for (uint16_t i = 0; i < n; i++) {
-        real_t acc = kx ? x0[i] + es * kx[i] : x0[i];
-        real_t r = rt_fabs(h * acc) / (sa + rt_fabs(x[i]));
-        if (r != r)
-            return r;
-        mx = r > mx ? r : mx;
-    }
-    return mx;
+    real_t sa = rti_err_floor(w->cfg);
+    return kx ? err_norm(w->x0, kx, tab->e[s], h, sa, x, n, 1)
+              : err_norm(w->x0, 0, 0, h, sa, x, n, 0);
 }
 
 /* the stage that serves only the estimate (erk_tab.ae), into k[s], evaluated with the

@@ -12,32 +12,35 @@
    cleared) order as the values do for every non-negative value, inf's are RT_EXP_BITS and
    a NaN's more, so an integer maximum per value gives the same bits with no compare of
    reals (a call each on a soft-float target) and no branch. An integer maximum is exact
-   in any order: two states per iteration, each into a maximum of its own, halve the
-   loop's overhead. With xs, x is also kept there (the state a failed step goes back to,
-   rti_step_set, an event's re-steps start from, trial, and the method reads as the
-   step's start, rt_iwork.xs), in the same pass */
+   in any order: four states per iteration, two into each of two maxima, quarter the
+   loop's own count and test. With xs, x is also kept there (the state a failed step goes
+   back to, rti_step_set, an event's re-steps start from, trial, and the method reads as
+   the step's start, rt_iwork.xs), in the same pass */
+#define RT_ABS_BITS(v) ((v).u & ~RT_SIGN_BIT)
+#define RT_MAX_BITS(m, a) ((a) > (m) ? (a) : (m))
 static RTI_INLINE real_t norm_bits(const real_t *x, real_t *xs, uint16_t n)
 {
     rt_real_bits m0 = ((rt_real_rep){.r = 1}).u, m1 = m0;
-    uint32_t pairs = (uint32_t)n / 2u;
-    for (uint32_t p = 0; p < pairs; p++) {
-        uint32_t i = 2u * p;
-        rt_real_rep v0 = {.r = x[i]}, v1 = {.r = x[i + 1u]};
-        rt_real_bits a0 = v0.u & ~RT_SIGN_BIT, a1 = v1.u & ~RT_SIGN_BIT;
-        if (xs)
-            xs[i] = v0.r, xs[i + 1u] = v1.r; /* as read: a store to xs makes no reload of x */
-        m0 = a0 > m0 ? a0 : m0, m1 = a1 > m1 ? a1 : m1;
+    uint32_t i = 0;
+    for (; i + 4u <= n; i += 4u) {
+        rt_real_rep v0 = {.r = x[i]}, v1 = {.r = x[i + 1u]}, v2 = {.r = x[i + 2u]},
+                    v3 = {.r = x[i + 3u]};
+        if (xs) /* as read: a store to xs makes no reload of x */
+            xs[i] = v0.r, xs[i + 1u] = v1.r, xs[i + 2u] = v2.r, xs[i + 3u] = v3.r;
+        m0 = RT_MAX_BITS(m0, RT_ABS_BITS(v0)), m1 = RT_MAX_BITS(m1, RT_ABS_BITS(v1));
+        m0 = RT_MAX_BITS(m0, RT_ABS_BITS(v2)), m1 = RT_MAX_BITS(m1, RT_ABS_BITS(v3));
     }
-    if (n & 1u) { /* the last state of an odd count, alone */
-        rt_real_rep v = {.r = x[n - 1u]};
-        rt_real_bits a = v.u & ~RT_SIGN_BIT;
+    for (; i < n; i++) { /* the last states of a count not a multiple of four, alone */
+        rt_real_rep v = {.r = x[i]};
         if (xs)
-            xs[n - 1u] = v.r;
-        m0 = a > m0 ? a : m0;
+            xs[i] = v.r;
+        m0 = RT_MAX_BITS(m0, RT_ABS_BITS(v));
     }
-    rt_real_rep m = {.u = m1 > m0 ? m1 : m0};
-    return m.u > RT_EXP_BITS ? (real_t)0 / (real_t)0 : m.r;
+    rt_real_rep m = {.u = RT_MAX_BITS(m0, m1)};
+    return m.r; /* (a NaN with its sign cleared where x holds one) */
 }
+#undef RT_ABS_BITS
+#undef RT_MAX_BITS
 
 static real_t norm(const real_t *x, uint16_t n) { return norm_bits(x, 0, n); }
 

@@ -200,6 +200,7 @@ static void test_rk4_linear(void)
 typedef struct diag_rhs {
     real_t *x;
     uint16_t n, first; /* n states, the first of them state `first` of the table */
+    uint16_t nan_at;   /* 1 + the state whose derivative is NaN, 0: none */
 } diag_rhs;
 
 static rt_status diag_eval(void *ctx, real_t t, real_t *xdot)
@@ -208,37 +209,52 @@ static rt_status diag_eval(void *ctx, real_t t, real_t *xdot)
     for (uint16_t i = 0; i < c->n; i++) {
         uint16_t j = (uint16_t)(c->first + i);
         xdot[i] = (real_t)(0.3 - 0.11 * j) * c->x[i] * rt_cos(t) + (real_t)(0.05 * j);
+        if (i + 1u == c->nan_at)
+            xdot[i] = (real_t)0 / (real_t)0;
     }
     return RT_OK;
 }
 
-static void diag_step(const rt_integrator *m, real_t *x, uint16_t n, uint16_t first)
+/* one step of the n uncoupled states; returns its error estimate */
+static real_t diag_step(const rt_integrator *m, real_t *x, uint16_t n, uint16_t first,
+                        uint16_t nan_at)
 {
     static const rt_set_cfg cfg = {0};
-    diag_rhs c = {x, n, first};
+    diag_rhs c = {x, n, first, nan_at};
     rt_rhs f = {diag_eval, &c};
     rt_iwork w = iwork(&cfg, 0);
     m->step(m, &f, (real_t)0.3, (real_t)0.25, x, n, &w);
+    return w.stats->last_err;
 }
 
 /* the stage sums take two states at a time (a vector register's two lanes where the
    target has them) and an odd count's last state alone: every state of a set of 1 to 9
    uncoupled states must end each step with the same bits as the same state stepped
-   alone, whatever its lane, for every explicit method */
+   alone, whatever its lane, for every explicit method. The estimate, a maximum over the
+   states taken two at a time too, is the largest of the states' own, and NaN when any
+   one state's is, in every lane */
 static void test_lanes(void)
 {
     static const rt_integrator *const ms[] = {&rt_euler, &rt_heun, &rt_bs3, &rt_rk4,
                                               &rt_dopri5};
     for (unsigned k = 0; k < sizeof ms / sizeof ms[0]; k++)
         for (uint16_t n = 1; n <= 9; n++) {
-            real_t x[9];
+            real_t x[9], largest = 0;
             for (uint16_t i = 0; i < n; i++)
                 x[i] = (real_t)(1 + 0.37 * i);
-            diag_step(ms[k], x, n, 0);
+            real_t est = diag_step(ms[k], x, n, 0, 0);
             for (uint16_t i = 0; i < n; i++) {
                 real_t xi = (real_t)(1 + 0.37 * i);
-                diag_step(ms[k], &xi, 1, i);
+                real_t ei = diag_step(ms[k], &xi, 1, i, 0);
                 TH_CHECK(x[i] == xi && x[i] != (real_t)(1 + 0.37 * i));
+                largest = ei > largest ? ei : largest;
+            }
+            TH_CHECK(est == largest && est > 0);
+            for (uint16_t j = 1; j <= n; j++) {
+                for (uint16_t i = 0; i < n; i++)
+                    x[i] = (real_t)(1 + 0.37 * i);
+                est = diag_step(ms[k], x, n, 0, j);
+                TH_CHECK(est != est);
             }
         }
 }
@@ -257,7 +273,7 @@ static void test_kept_start(void)
         real_t x[9], y[9], xs[9];
         for (uint16_t i = 0; i < 9; i++)
             x[i] = y[i] = xs[i] = (real_t)(1 + 0.37 * i);
-        diag_rhs cx = {x, 9, 0}, cy = {y, 9, 0};
+        diag_rhs cx = {x, 9, 0, 0}, cy = {y, 9, 0, 0};
         rt_rhs fx = {diag_eval, &cx}, fy = {diag_eval, &cy};
         rt_iwork w = iwork(&cfg, 0);
         tu_sim.state.imp[0].valid = 0, tu_sim.state.imp[0].age = 0;
