@@ -627,20 +627,30 @@ static int step_code(const scn_define *d, const scn_ins *code, uint32_t i0, uint
    a `when`'s, whose handlers set a hidden state, the switch's mode, to the comparison's
    value past the crossing; the kind takes the modes at each instant (rt_kind.instant)
    and the comparison reads its mode (rt_x_swc) once it has one. Registers the comparison
-   about to be emitted at code index c->sc.ncode; its `a` is set by finish_switches */
-static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
+   about to be emitted at code index c->sc.ncode, its operator `op` at `pos`; its `a` is
+   set by finish_switches. One past the define's SCN_MAX_PORTS comparisons is refused: a
+   plain comparison there would cross its switch unseen */
+static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1, scn_pos pos,
+                         const char *op)
 {
     scn_define *d = c->def;
     const scn_ins *code = c->sc.code;
-    if (c->err || !d || d->type != SCN_DEF_SS || d->nx == 0 || d->nsw >= SCN_MAX_PORTS ||
+    if (c->err || !d || d->type != SCN_DEF_SS || d->nx == 0 ||
         (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
         (fixed_code(code, a0, a1) && fixed_code(code, a1, b1)) ||
         logic_code(d, code, a0, b1) || /* (truth values change where their sides meet) */
         step_code(d, code, a0, b1))
         return;
+    if (d->nsw >= SCN_MAX_PORTS) {
+        scn_fail(c, pos, op, "too many comparisons of states",
+                 scn_fmt(c, "at most %u in one define's body (each a located switch)",
+                         SCN_MAX_PORTS));
+        return;
+    }
     d->sw[d->nsw][0] = a0, d->sw[d->nsw][1] = a1, d->sw[d->nsw][2] = b1;
     d->sw_let[d->nsw] = c->st_kind == SCN_ST_LET ? (int16_t)d->nloc : -1; /* (its let) */
-    d->sw_pos[d->nsw++] = c->tok.pos;
+    d->sw_op[d->nsw] = op;
+    d->sw_pos[d->nsw++] = pos;
 }
 
 static void binary(scn_ctx *c, size_t lv)
@@ -654,6 +664,7 @@ static void binary(scn_ctx *c, size_t lv)
     int i;
     while (!c->err && (i = level_op(c, lv)) >= 0) {
         uint32_t a1 = c->sc.ncode;
+        scn_pos op_pos = c->tok.pos;
         scn_next(c);
         binary(c, lv + 1);
         uint16_t side = 0; /* (t == c holds at an instant alone: no time event) */
@@ -661,7 +672,7 @@ static void binary(scn_ctx *c, size_t lv)
             uint16_t ntev = c->ntev; /* (a time event is no switch of states) */
             side = time_switch(c, a0, a1, c->sc.ncode);
             if (c->ntev == ntev)
-                state_switch(c, a0, a1, c->sc.ncode);
+                state_switch(c, a0, a1, c->sc.ncode, op_pos, levels[lv].ops[i]);
         }
         emit(c, levels[lv].code[i], side, -1);
     }
@@ -1002,8 +1013,8 @@ static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, 
    mode, a hidden state #switch<k> (0.5: no value yet; its derivative 0), and two roots
    after the body's `when`s, both its root (rt_x_swgt ...: positive where the comparison
    holds, never 0), rising and falling, whose handlers set the mode to 1 and 0. A comparison in a
-   let no derivative reads, or one past the define's SCN_MAX_PORTS states or roots,
-   stays a plain comparison */
+   let no derivative reads stays a plain comparison; one past the define's SCN_MAX_PORTS
+   states or roots is refused (plain, its switch would pass unseen inside a step) */
 static void finish_switches(scn_ctx *c, scn_define *d)
 {
     uint8_t need[SCN_MAX_LOCALS] = {0}; /* the lets a derivative reads, through lets too */
@@ -1017,9 +1028,15 @@ static void finish_switches(scn_ctx *c, scn_define *d)
     for (uint16_t k = 0; k < d->nsw && !c->err; k++) {
         uint32_t a0 = d->sw[k][0], a1 = d->sw[k][1], b1 = d->sw[k][2];
         scn_ins *cmp = &c->sc.code[b1];
-        if (d->nx >= SCN_MAX_PORTS || d->nr + 2 > SCN_MAX_PORTS ||
-            (d->sw_let[k] >= 0 && !need[d->sw_let[k]]))
-            continue; /* (a plain comparison: past the limits, or no derivative reads it) */
+        if (d->sw_let[k] >= 0 && !need[d->sw_let[k]])
+            continue; /* (a plain comparison: no derivative reads it) */
+        if (d->nx >= SCN_MAX_PORTS || d->nr + 2 > SCN_MAX_PORTS) {
+            scn_fail(c, d->sw_pos[k], d->sw_op[k], "too many states and roots for a located switch",
+                     scn_fmt(c, "at most %u states and %u roots in one define, with a "
+                             "state and two roots for each comparison of states",
+                             SCN_MAX_PORTS, SCN_MAX_PORTS));
+            return;
+        }
         /* (a name the language cannot write: the mode is no state a scene refers to) */
         const char *name = scn_fmt(c, "#switch%u", d->nswm + 1u);
         uint16_t q = d->nx++;

@@ -231,11 +231,12 @@ typedef struct scn_define {
     uint32_t sw[SCN_MAX_PORTS][3]; /* each one's sides, code [0, 1) and [1, 2), and [2] its
                                    comparison instruction */
     int16_t sw_let[SCN_MAX_PORTS]; /* the let it is in, -1: a derivative */
-    scn_pos sw_pos[SCN_MAX_PORTS]; /* where its statement is */
+    scn_pos sw_pos[SCN_MAX_PORTS]; /* where its operator is */
+    const char *sw_op[SCN_MAX_PORTS]; /* and its text */
     uint8_t loc_logic[SCN_MAX_LOCALS]; /* 1: let i holds a truth value (state_switch) */
     uint8_t loc_step[SCN_MAX_LOCALS]; /* 1: let i reads h (state_switch) */
-    uint16_t nswm;              /* the switches made (finish_switches; one past the limits
-                                   stays a plain comparison) */
+    uint16_t nswm;              /* the switches made (finish_switches; one in a let no
+                                   derivative reads stays a plain comparison) */
     uint16_t swm[SCN_MAX_PORTS][2]; /* each made one's mode state and rising root */
     uint16_t ntev;              /* instants `t` is compared with (SCN_ST_TEV statements) */
     uint16_t nband;             /* sin and cos arguments affine in `t` (SCN_ST_BAND) */
