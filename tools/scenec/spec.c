@@ -647,6 +647,7 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
     for (uint16_t k = w->sb[s]; k < w->sb[s + 1]; k++) {
         uint16_t b = w->sblk[k];
         unsigned nt = (unsigned)(w->to[b + 1] - w->to[b]), wo = w->wo[b], nz = nz_of(sim, b);
+        unsigned inv = w->mo[b] + rti_mbs_m_inv(spec_of(sim->sc, b)); /* 1/m (points) */
         const uint16_t *ps = w->pslot + w->po[b];
         for (unsigned i = 0; i < nt && w->points[s]; i++)
             for (unsigned kk = i; kk < nt; kk++) {
@@ -655,10 +656,10 @@ static void schur(FILE *f, const rt_sim *sim, uint8_t s)
                 if (kk == i) /* 1/m after M (rti_mbs_m_inv) */
                     fprintf(f, " += (W[%u] * W[%u] + W[%u] * W[%u] + W[%u] * W[%u]) * M[%u];\n",
                             wo + 3 * i, wo + 3 * i, wo + 3 * i + 1, wo + 3 * i + 1,
-                            wo + 3 * i + 2, wo + 3 * i + 2, w->mo[b] + 3);
+                            wo + 3 * i + 2, wo + 3 * i + 2, inv);
                 else
                     fprintf(f, " += dot3(W + %u, W + %u) * M[%u];\n", wo + 3 * i,
-                            wo + 3 * kk, w->mo[b] + 3);
+                            wo + 3 * kk, inv);
             }
         for (unsigned i = 0; i < nt && !w->points[s]; i++)
             for (unsigned kk = i; kk < nt; kk++) {
@@ -829,7 +830,8 @@ static void correct(FILE *f, const rt_sim *sim, uint8_t s, const char *v, int ad
         const char *y = w->points[s] ? "W" : "q"; /* points: v times 1/m (M = m I) */
         for (unsigned i = w->to[b], wi = w->wo[b]; i < w->to[b + 1]; i++, wi += 3) {
             if (w->points[s])
-                fprintf(f, "    vi = %s[%u] * M[%u];\n", v, w->trow[i], w->mo[b] + 3);
+                fprintf(f, "    vi = %s[%u] * M[%u];\n", v, w->trow[i],
+                        w->mo[b] + rti_mbs_m_inv(spec_of(sim->sc, b)));
             else
                 fprintf(f, "    vi = %s[%u];\n", v, w->trow[i]);
             fprintf(f, "    d0 -= %s[%u] * vi;\n", y, wi);
