@@ -164,6 +164,10 @@ def flags(s):
     # the audit's horizon: backward Euler's answer 31 times the exact one (e^(t h / 2))
     flagged(s, "x' = x beuler to 690 s", "global_exp.scn",
             ["--method", "main=beuler", "--t-end", "690"], math.exp, "G.y")
+    # a state far below 1 with the set's absolute accuracy below it: the check's tolerance
+    # is the set's A + R max|y|, not its R alone (before: tol 1e-3, global_status ok)
+    flagged(s, "x' = x from 1e-15, accuracy (1e-3, 1e-21)", "global_small.scn", [],
+            lambda t: 1e-15 * math.exp(t), "G.y")
     flagged(s, "Kepler rk4 at 20 ms", "global_kepler.scn", ["--step", "main=0.02"],
             lambda t: kepler(t)[1], "K.py", col=2)
     summ = flagged(s, "library ball euler", "zeno.scn", ["--method", "main=euler"], None,

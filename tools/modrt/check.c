@@ -125,15 +125,16 @@ static double fabs_(double v)
 }
 
 /* The global tolerance of recorded signal i, absolute and relative to its range: the
-   options', or the accuracy of the set of the signal's block read as atol = rtol (the
-   runtime's scaled norm |e| / (1 + |x|) <= accuracy). The one place it is read: a set's
-   own absolute and relative tolerances take over the default here. */
+   options', or the set's own of the signal's block: `accuracy (R, A)`'s A and R (the
+   runtime's scaled norm |e| / (A / R + |x|) <= R, rti_err_floor), `accuracy (E)` read as
+   A = R = E. The one place it is read. */
 static void sig_tol(const rt_scene *sc, uint16_t i, const check_opts *o, double *atol,
                     double *rtol)
 {
     const rt_set *st = &sc->sets[sc->blocks[sc->recs[i].block].set];
-    double acc = (double)rt_set_cfg_of(&st->cfg).accuracy;
-    *atol = o->atol >= 0 ? o->atol : acc;
+    rt_set_cfg c = rt_set_cfg_of(&st->cfg);
+    double acc = (double)c.accuracy, a = c.atol > 0 ? (double)c.atol : acc;
+    *atol = o->atol >= 0 ? o->atol : a;
     *rtol = o->rtol >= 0 ? o->rtol : acc;
 }
 
@@ -455,11 +456,12 @@ void check_print(FILE *f, const rt_scene *sc, const check_result *r)
     if (r->atol >= 0)
         fprintf(f, "global_tol: atol %g", r->atol);
     else
-        fputs("global_tol: atol = the accuracy of the signal's set", f);
+        fputs("global_tol: atol = the absolute accuracy of the signal's set (its accuracy's A, "
+              "else its accuracy)", f);
     if (r->rtol >= 0)
         fprintf(f, ", rtol %g", r->rtol);
     else
-        fputs(", rtol = the same accuracy", f);
+        fputs(", rtol = its accuracy", f);
     fputs(" (a signal's tolerance: atol + rtol * its largest |y|)\n", f);
     fprintf(f, "check_compared: %llu instants every %g s\n", (unsigned long long)r->ncmp,
             r->every_s);
