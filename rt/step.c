@@ -542,13 +542,14 @@ static void handled(const event_effect *e, real_t t, real_t *out)
         d[i] = keep_d[i];
 }
 
-/* the largest relative difference of the handled states in k[3] from those in k[2] */
+/* the largest difference of the handled states in k[3] from those in k[2], scaled as the
+   set's steps scale their errors (rti_err_floor: |e| / (A / R + |x|)) */
 static real_t handled_diff(const event_effect *e)
 {
     const real_t *x0 = e->sim->work.w.k[2], *x1 = e->sim->work.w.k[3];
-    real_t g = 0;
+    real_t g = 0, sa = rti_err_floor(&e->sc->sets[e->s].cfg);
     for (uint16_t i = 0; i < e->sc->blocks[e->blk].kind->nx; i++) {
-        real_t q = rt_fabs(x1[i] - x0[i]) / (1 + rt_fabs(x0[i]));
+        real_t q = rt_fabs(x1[i] - x0[i]) / (sa + rt_fabs(x0[i]));
         g = q > g || q != q ? q : g;
     }
     return g;
@@ -633,9 +634,9 @@ static void judge_event(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t te, r
     const real_t *f0 = sim->work.w.k[1], *f1 = sim->work.w.k[0], *x = sim->state.x + x0;
     rti_rhs_ctx ctx = {sc, sim, s, h};
     rti_rhs(&ctx, te, sim->work.w.k[0]);
-    real_t g = 0;
+    real_t g = 0, sa = rti_err_floor(&sc->sets[s].cfg); /* (scaled as the steps' errors) */
     for (uint16_t i = 0; i < n; i++) {
-        real_t e = rt_fabs(f1[i] - f0[i]) / (1 + rt_fabs(x[i]));
+        real_t e = rt_fabs(f1[i] - f0[i]) / (sa + rt_fabs(x[i]));
         g = e > g || e != e ? e : g;
     }
     rti_xset_judge(sc, sim, s, b, g * off + dx);

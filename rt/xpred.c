@@ -73,8 +73,9 @@ static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, int h
 #if RT_MAX_TEV > 0
     sim->work.t_piece = keep_piece;
 #endif
+    real_t sa = rti_err_floor(&sc->sets[s].cfg); /* scaled as the set's steps scale errors */
     for (uint16_t i = 0; i < n; i++) {
-        real_t e = rt_fabs(f1[i] - f0[i]) / (1 + rt_fabs(sim->state.x[x0 + i]));
+        real_t e = rt_fabs(f1[i] - f0[i]) / (sa + rt_fabs(sim->state.x[x0 + i]));
         if (!(e <= g))
             g = e; /* (a NaN stays) */
     }

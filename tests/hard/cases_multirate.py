@@ -470,7 +470,28 @@ def gain_at(s):
                     "y(10) off by %.3g with status ok" % (cond, ts, err))
 
 
+def small_reader(s):
+    """a coupling error into a state far below 1 (mr_small.scn, accuracy (1e-3, 1e-15)):
+    more than ten times the set's tolerance A + R max|x| off is never ok, and a flag only
+    on an answer at least a tenth of it off, at slow steps of 100, 10 and 1 ms (before: ok
+    at 100 ms, 17 times the tolerance off)"""
+    w = 2 * math.pi
+    exact = lambda t: 1e-6 * (1 - math.cos(w * t)) / w
+    tol = 1e-15 + 1e-3 * 2e-6 / w
+    for h in ("0.1", "0.01", "0.001"):
+        rc, summ, rows = run(s.modrt, os.path.join(HERE, "mr_small.scn"),
+                             ["--step", "slow=" + h])
+        err = error(rows, float(h), exact) if rows else math.inf
+        s.row("mr_small: x' = 1e-6 sin, accuracy (1e-3, 1e-15)", "rk4", h, err, summ, rc)
+        s.check(rc in (0, 1, 3) and (rc != 0 or err <= 10 * tol),
+                "mr_small h=%s: exit %d, error %.3g above %.3g with status %s (xset_est %s)"
+                % (h, rc, err, 10 * tol, summ.get("status"), summ.get("xset_est.slow", "-")))
+        s.check(rc == 0 or err >= tol / 10, "mr_small h=%s: flagged (%s) with error %.3g, "
+                "within a tenth of the tolerance %.3g" % (h, summ.get("status"), err, tol))
+
+
 def extra(s, long):
+    small_reader(s)
     gain_at(s)
     switched_gain(s)
     narrow_pulse(s)
