@@ -39,6 +39,41 @@ void rti_xset_predict_reset(rt_sim *sim)
    size d. Every scheme reproduces a constant shift of all the history's points, so the
    points of v move by d for one right-hand side and are restored bit for bit; the second
    one, unshifted, leaves the set's outputs as they were at t. NaN if f is not finite */
+/* the modes of set s's located switches (rt_kind.instant with instant_own: a defined
+   system's, which reads its mode between instants) taken anew at t from the inputs as
+   they read now, after the set's outputs: a switch on an input's level (`if(u > 0.5, 1,
+   0)`) then answers a moved input as the set's next instant would, where its kept mode
+   would not. Such an instant changes the kind's states alone (its modes): the set's
+   state is kept in work.xb (free at a step's start) and put back by restore_modes */
+static int own_instants(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t)
+{
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    if (!(sim->plan.set_flags[s] & RTI_SET_INSTANT))
+        return 0;
+    for (uint16_t i = 0; i < n; i++)
+        sim->work.xb[i] = sim->state.x[x0 + i];
+    rti_outputs(sc, sim, (rti_at){t, s, RTI_IN_STEP});
+    for (uint16_t j = sim->plan.blk_of[s]; j < sim->plan.blk_of[s + 1]; j++) {
+        uint16_t b = sim->plan.set_blk[j];
+        const rt_kind *kd = sc->blocks[b].kind;
+        if (!kd->instant || !kd->instant_own)
+            continue;
+        rt_args a;
+        rti_gather(sim, b, t);
+        rti_args(sc, sim, b, t, 0, &a);
+        a.t_piece = rti_piece(sc, sim, kd, t);
+        kd->instant(&a, sim->state.x + sim->plan.x_off[b], sim->state.d + sim->plan.d_off[b]);
+    }
+    return 1;
+}
+
+static void restore_modes(rt_sim *sim, uint8_t s)
+{
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    for (uint16_t i = 0; i < n; i++)
+        sim->state.x[x0 + i] = sim->work.xb[i];
+}
+
 static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, int held, real_t t,
                    real_t h, real_t d)
 {
@@ -60,14 +95,20 @@ static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, int h
 #endif
     if (held) { /* a sampled output: its live value, which no evaluation of s writes */
         keep[0] = sim->state.y[v], sim->state.y[v] += d;
+        int modes = own_instants(sc, sim, s, t);
         rti_rhs(&c, t, f1);
         sim->state.y[v] = keep[0];
+        if (modes)
+            restore_modes(sim, s);
     } else {
         for (int i = 0; i < RT_HIST; i++)
             keep[i] = sim->state.hist_y[i][v], sim->state.hist_y[i][v] += d;
+        int modes = own_instants(sc, sim, s, t);
         rti_rhs(&c, t, f1);
         for (int i = 0; i < RT_HIST; i++)
             sim->state.hist_y[i][v] = keep[i];
+        if (modes)
+            restore_modes(sim, s);
     }
     rti_rhs(&c, t, f0);
 #if RT_MAX_TEV > 0
@@ -79,16 +120,22 @@ static real_t gain(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t v, int h
         if (!(e <= g))
             g = e; /* (a NaN stays) */
     }
-    return g / d;
+    return g / rt_fabs(d);
 }
 #endif
 
 #if RT_MAX_XPRED > 0
-/* input k's sensitivity, measured now (set s at its step's start t, step h) */
-static void measure(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real_t t, real_t h)
+/* input k's sensitivity, measured now (set s at its step's start t, step h): by a small
+   difference, or over `miss` where that is larger, the change of the input the set
+   missed (signed: from the input's value now to the one the set read instead). Over the
+   miss the difference sees what a small one cannot: a switch on the input's level
+   (`if(u > 0.5, 1, 0)`, 0 slope on either side) that the miss crossed */
+static void measure(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, real_t t, real_t h,
+                    real_t miss)
 {
     /* a set without states (sampled blocks alone) takes no error from it */
     real_t d = RT_XSET_FD * (1 + sim->state.xscale[k]);
+    d = rt_fabs(miss) > d ? miss : d;
     uint16_t v = sim->plan.src[sim->plan.xpred_in[k]];
     int held = sim->plan.xpred_how[k] == RTI_XP_HELD;
     sim->state.xgain[k] = rti_set_nx(sim, s) ? gain(sc, sim, s, v, held, t, h, d) : 0;
@@ -112,7 +159,7 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
     int due = steps_at(sc, sim, s, RT_XSET_GAIN_EVERY);
     for (uint16_t k = sim->plan.xpred_of[s]; k < sim->plan.xpred_of[s + 1]; k++)
         if (due || sim->state.xgain[k] != sim->state.xgain[k])
-            measure(sc, sim, s, k, t, h);
+            measure(sc, sim, s, k, t, h, 0);
 #else
     (void)sc, (void)sim, (void)s, (void)t, (void)h;
 #endif
@@ -128,14 +175,14 @@ void rti_xset_gain(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t, real_t 
    the tick (t: this step's start, h its step), by its next step for the background set
    (which never evaluates in the tick) */
 static void judge(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t b, uint16_t k,
-                  real_t w, real_t t, real_t h)
+                  real_t w, real_t miss, real_t t, real_t h)
 {
     real_t g = sim->state.xgain[k], fresh = RT_XSET_FRESH * rti_accuracy(&sc->sets[s].cfg);
     real_t strong = 1 / ((1 + sim->state.xscale[k]) * h), est = w * g; /* RT_XSET_NOGAIN */
     if (!(est <= fresh) || (g <= RT_XSET_NOGAIN * strong && w * strong > fresh) ||
         (2 * w * strong > RT_XSET_BIGMISS && steps_at(sc, sim, s, RT_XSET_BIGMISS_EVERY))) {
         if (!sc->sets[s].background) {
-            measure(sc, sim, s, k, t, h);
+            measure(sc, sim, s, k, t, h, miss);
             est = w * sim->state.xgain[k];
         } else {
             sim->state.xgain[k] = (real_t)0 / (real_t)0;
@@ -195,6 +242,11 @@ static void check_ahead(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, 
     real_t p = sim->state.xpred[k], y = sim->state.hist_y[0][v];
     if (past)
         y = rti_xset_value(sim, v, q, RT_INTERP_HERMITE, t, b);
+    /* a jump of the source at a known instant (rt/tev.c) here, the end of the step
+       judged: the point is its right side, the step rightly read the left one (a step
+       source at 0.06 s read by steps of 30 ms was flagged, its answer exact) */
+    if (here && rti_tev_was(sc, sim, q, sim->state.set_tick[s]))
+        p = (real_t)0 / (real_t)0;
     if (rt_isfinite(y) && (here || past)) {
         real_t e = rt_fabs(y - p), a = rt_fabs(y);
         sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
@@ -205,7 +257,7 @@ static void check_ahead(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, 
                 rti_count(sim, RT_CNT_ERREST, (int)b, RT_E_COUPLING);
                 sim->stats.errest[s]++;
             } else {
-                judge(sc, sim, s, b, k, (real_t)0.5 * h * e, t, h);
+                judge(sc, sim, s, b, k, (real_t)0.5 * h * e, p - y, t, h);
             }
         }
     }
@@ -223,7 +275,7 @@ static void check_held(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, r
     real_t p = sim->state.xpred[k], y = sim->state.y[v], a = rt_fabs(y);
     sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
     if (p == p && rt_isfinite(y))
-        judge(sc, sim, s, b, k, (real_t)0.5 * h * rt_fabs(y - p), t, h);
+        judge(sc, sim, s, b, k, (real_t)0.5 * h * rt_fabs(y - p), p - y, t, h);
     sim->state.xpred[k] = y;
 }
 
@@ -249,7 +301,7 @@ static void check_bg(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, rea
     real_t e = rt_fabs(y0 - p), a = rt_fabs(y0);
     sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
     if (rt_isfinite(e))
-        judge(sc, sim, s, b, k, (real_t)0.5 * (T[0] - T[1]) * e, t, h);
+        judge(sc, sim, s, b, k, (real_t)0.5 * (T[0] - T[1]) * e, p - y0, t, h);
 }
 
 /* the mean over [T1, T0] of the difference between what scheme reads of output v there
@@ -317,7 +369,7 @@ static void check_bracket(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k
     if (!rt_isfinite(m))
         return;
     sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
-    judge(sc, sim, s, b, k, (T[0] - T[1]) * m, t, h);
+    judge(sc, sim, s, b, k, (T[0] - T[1]) * m, 0, t, h); /* (a mean miss: no direction) */
 }
 #endif
 

@@ -490,7 +490,27 @@ def small_reader(s):
                 "within a tenth of the tolerance %.3g" % (h, summ.get("status"), err, tol))
 
 
+def threshold_reader(s):
+    """a switch on another set's input (mr_threshold.scn: x' = if(u > 0.5, 1, 0), u a
+    step at t0 in a 1 ms set), the reader's step and t0 swept: more than ten times the
+    accuracy off is never ok, a flag only on an answer a tenth of it off; at a step whose
+    grid holds t0 the answer is exact and ok (before: 90 ms with t0 = 0.06, 0.03 off, ok)"""
+    for h in ("0.09", "0.05", "0.03", "0.01", "0.001"):
+        for t0 in ("0.06", "0.061"):
+            rc, summ, rows = run(s.modrt, os.path.join(HERE, "mr_threshold.scn"),
+                                 ["--step", "main=" + h, "--set", "S.t0=" + t0])
+            err = error(rows, float(h), lambda t: max(0.0, t - float(t0))) if rows else math.inf
+            tag = "mr_threshold t0=%s" % t0
+            s.row(tag, "rk4", h, err, summ, rc)
+            judged(s, tag, h, rc, err, summ)
+            on_grid = abs(float(t0) / float(h) - round(float(t0) / float(h))) < 1e-9
+            if on_grid:
+                s.check(rc == 0 and err <= 1e-12, "%s h=%s: t0 on the reader's grid: error "
+                        "%.3g, %s" % (tag, h, err, summ.get("status")))
+
+
 def extra(s, long):
+    threshold_reader(s)
     small_reader(s)
     gain_at(s)
     switched_gain(s)
