@@ -522,7 +522,67 @@ def located_switch(s):
             m, err, summ.get("status")))
 
 
+def located_switch_review(s):
+    """H: a switch whose side holds a truth value inside it but is none itself,
+    x' = if(if(x > 0, x, -x) > 0.5, 1, 3) from -1: located where |x| = 0.5 (x(2) = 5/3
+    exactly, every explicit method at 10 ms, status ok; before, the outer comparison
+    stayed plain: 1 event, errest); 65 comparisons in a let no derivative reads, and a
+    comparison of a let of parameters in a define of 64 states, compile and run (refused
+    for a while: the limit counted unread and fixed comparisons)"""
+    text = ("scene (nested_switch);\nbase tick (10 ms);\nend time (2 s);\n"
+            "define ss_system (S) with outputs (o) states (x = -1) by {\n    o = x;\n"
+            "    der(x) = if(if(x > 0, x, -x) > 0.5, 1, 3);\n};\n"
+            "load system (A) of type (S);\nset (main) method (rk4) step (1 tick);\n"
+            "record (A.o);\n")
+    for m in ("heun", "bs3", "rk4", "dopri5"):
+        rc, summ, rows = run_text(s.modrt, text, ["--method", "main=" + m])
+        err = abs(rows[-1][1] - 5.0 / 3.0) if rows else math.inf
+        s.row("a switch of |x| = 0.5 (a truth value inside a side): x(2)", m, "0.01", err,
+              summ, rc)
+        s.check(rc == 0 and err <= 1e-9, "nested switch %s: x(2) off by %.3g (status %s)"
+                % (m, err, summ.get("status")))
+    unread = " + ".join("if(x > %g, 1, 0)" % (0.01 * i) for i in range(1, 66))
+    states = ", ".join("s%d = 0" % i for i in range(1, 64))
+    ders = "".join("    der(s%d) = 0;\n" % i for i in range(1, 64))
+    for what, body, decl in (
+            ("65 comparisons in an unread let", "    let a = %s;\n    o = a;\n"
+             "    der(x) = 1;\n" % unread, "x = 0"),
+            ("a let of parameters compared, 64 states", "    let k = 2 * p;\n    o = x;\n"
+             "    der(x) = if(k > 1, 1, 2);\n%s" % ders, "x = 0, " + states)):
+        text = ("scene (limits);\nbase tick (10 ms);\nend time (1 s);\n"
+                "define ss_system (S) with outputs (o) parameters (p = 2) states (%s) by "
+                "{\n%s};\nload system (A) of type (S);\n"
+                "set (main) method (rk4) step (1 tick);\nrecord (state A.x);\n"
+                % (decl, body))
+        rc, summ, rows = run_text(s.modrt, text, [])
+        err = abs(rows[-1][1] - 1.0) if rows else math.inf
+        s.row(what + ": x(1)", "rk4", "0.01", err, summ, rc)
+        s.check(rc == 0 and err <= 1e-12, "%s: exit %d, x(1) off by %.3g" % (what, rc, err))
+
+
+def nan_lanes(s):
+    """H: a derivative that turns NaN in any one of 1 to 9 states of a set, whatever its
+    place among them (the step's norm takes four states at a time, rt/step.c): counted
+    (nan), the set's state kept finite, never ok"""
+    for n in range(1, 10):
+        for j in range(n):
+            states = ", ".join("s%d = 1" % i for i in range(n))
+            ders = "".join("    der(s%d) = %s;\n" % (i, "if(t > 0.5, (s0 - s0) / (s0 - s0), 0)"
+                                                     if i == j else "0") for i in range(n))
+            text = ("scene (nan_lanes);\nbase tick (10 ms);\nend time (1 s);\n"
+                    "define ss_system (S) with outputs (o) states (%s) by {\n    o = 0;\n%s};\n"
+                    "load system (A) of type (S);\nset (main) method (rk4) step (1 tick);\n"
+                    "record (state A.s%d);\n" % (states, ders, j))
+            rc, summ, rows = run_text(s.modrt, text, [])
+            last = rows[-1][1] if rows else math.nan
+            s.check(rc != 0 and summ.get("nan", "0").split()[0] != "0" and last == last,
+                    "NaN in state %d of %d: exit %d, nan %s, s%d(1) = %g" % (j, n, rc,
+                                                                           summ.get("nan"), j, last))
+
+
 def extra(s, long):
+    nan_lanes(s)
+    located_switch_review(s)
     located_switch(s)
     located_switch_rest(s)
     located_switch_limits(s)

@@ -595,17 +595,30 @@ static uint16_t time_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
     return side;
 }
 
-/* does code [i0, i1) hold a truth value: a comparison, !, && or ||, or a let that does
-   (a side of one switches only where those do: no switch of its own, state_switch) */
+/* is the value of code [i0, i1) a truth value: its last operation (the code is postfix)
+   a comparison, !, && or ||, or a let that holds one (a side that is one switches only
+   where those do: no switch of its own, state_switch). A truth value inside a side that
+   is no truth value itself (`if(s > 0, s, -s) > 0.5`) leaves the side's own switch */
 static int logic_code(const scn_define *d, const scn_ins *code, uint32_t i0, uint32_t i1)
+{
+    if (i1 <= i0)
+        return 0;
+    uint8_t op = code[i1 - 1].op;
+    return (op >= SCN_OP_LT && op <= SCN_OP_OR) || op == SCN_OP_NOT ||
+           (op == SCN_OP_LOC && d->loc_logic[code[i1 - 1].a]);
+}
+
+/* is code [i0, i1) fixed during the run: constants, parameters, operators on them and
+   lets that are (state_switch: no switch of states) */
+static int fixed_side(const scn_define *d, const scn_ins *code, uint32_t i0, uint32_t i1)
 {
     for (uint32_t i = i0; i < i1; i++) {
         uint8_t op = code[i].op;
-        if ((op >= SCN_OP_LT && op <= SCN_OP_OR) || op == SCN_OP_NOT ||
-            (op == SCN_OP_LOC && d->loc_logic[code[i].a]))
-            return 1;
+        if (op != SCN_OP_CONST && op != SCN_OP_PAR && op < SCN_OP_NEG &&
+            !(op == SCN_OP_LOC && d->loc_fixed[code[i].a]))
+            return 0;
     }
-    return 0;
+    return i1 > i0;
 }
 
 /* does code [i0, i1) read h, itself or through a let (the call's step: 0 at an instant,
@@ -628,8 +641,9 @@ static int step_code(const scn_define *d, const scn_ins *code, uint32_t i0, uint
    value past the crossing; the kind takes the modes at each instant (rt_kind.instant)
    and the comparison reads its mode (rt_x_swc) once it has one. Registers the comparison
    about to be emitted at code index c->sc.ncode, its operator `op` at `pos`; its `a` is
-   set by finish_switches. One past the define's SCN_MAX_PORTS comparisons is refused: a
-   plain comparison there would cross its switch unseen */
+   set by finish_switches. Past the define's SCN_MAX_PORTS comparisons, one is noted
+   (sw_over): finish_switches refuses it where a derivative reads it, since plain it
+   would cross its switch unseen */
 static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1, scn_pos pos,
                          const char *op)
 {
@@ -637,14 +651,19 @@ static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1, scn_
     const scn_ins *code = c->sc.code;
     if (c->err || !d || d->type != SCN_DEF_SS || d->nx == 0 ||
         (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
-        (fixed_code(code, a0, a1) && fixed_code(code, a1, b1)) ||
-        logic_code(d, code, a0, b1) || /* (truth values change where their sides meet) */
-        step_code(d, code, a0, b1))
+        (fixed_side(d, code, a0, a1) && fixed_side(d, code, a1, b1)) ||
+        logic_code(d, code, a0, a1) || logic_code(d, code, a1, b1) ||
+        step_code(d, code, a0, b1)) /* (truth values change where their sides meet) */
         return;
     if (d->nsw >= SCN_MAX_PORTS) {
-        scn_fail(c, pos, op, "too many comparisons of states",
-                 scn_fmt(c, "at most %u in one define's body (each a located switch)",
-                         SCN_MAX_PORTS));
+        int16_t at = c->st_kind == SCN_ST_LET ? (int16_t)d->nloc : -1;
+        if (at < 0 ? !d->sw_over_der : !d->sw_over[at]) /* (the first one, to name) */
+            d->sw_over_pos[at < 0 ? SCN_MAX_LOCALS : at] = pos,
+            d->sw_over_op[at < 0 ? SCN_MAX_LOCALS : at] = op;
+        if (at < 0)
+            d->sw_over_der = 1;
+        else
+            d->sw_over[at] = 1;
         return;
     }
     d->sw[d->nsw][0] = a0, d->sw[d->nsw][1] = a1, d->sw[d->nsw][2] = b1;
@@ -813,8 +832,13 @@ static void let_stmt(scn_ctx *c)
     uint16_t i = d->nloc;
     uint32_t code0 = c->sc.ncode;
     add_stmt(c, SCN_ST_LET, i, pos);
-    d->loc_logic[i] = (uint8_t)logic_code(d, c->sc.code, code0, c->sc.ncode);
-    d->loc_step[i] = (uint8_t)step_code(d, c->sc.code, code0, c->sc.ncode);
+    /* its expression: code0 up to its SETLOC (time events add statements after it) */
+    uint32_t code1 = code0;
+    while (code1 < c->sc.ncode && c->sc.code[code1].op != SCN_OP_SETLOC)
+        code1++;
+    d->loc_logic[i] = (uint8_t)logic_code(d, c->sc.code, code0, code1);
+    d->loc_step[i] = (uint8_t)step_code(d, c->sc.code, code0, code1);
+    d->loc_fixed[i] = (uint8_t)fixed_side(d, c->sc.code, code0, code1);
     d->loc[d->nloc++] = n;
 }
 
@@ -1024,6 +1048,15 @@ static void finish_switches(scn_ctx *c, scn_define *d)
             for (uint32_t i = st->code0; i < st->code1; i++)
                 if (c->sc.code[i].op == SCN_OP_LOC)
                     need[c->sc.code[i].a] = 1;
+    }
+    for (int16_t at = -1; at < (int16_t)d->nloc && !c->err; at++) {
+        if (at < 0 ? !d->sw_over_der : !(d->sw_over[at] && need[at]))
+            continue; /* (no comparison past the limit that a derivative reads) */
+        uint16_t j = at < 0 ? SCN_MAX_LOCALS : (uint16_t)at;
+        scn_fail(c, d->sw_over_pos[j], d->sw_over_op[j], "too many comparisons of states",
+                 scn_fmt(c, "at most %u in one define's body, counting those in lets (a "
+                         "comparison a derivative reads is a located switch)", SCN_MAX_PORTS));
+        return;
     }
     for (uint16_t k = 0; k < d->nsw && !c->err; k++) {
         uint32_t a0 = d->sw[k][0], a1 = d->sw[k][1], b1 = d->sw[k][2];

@@ -235,6 +235,12 @@ typedef struct scn_define {
     const char *sw_op[SCN_MAX_PORTS]; /* and its text */
     uint8_t loc_logic[SCN_MAX_LOCALS]; /* 1: let i holds a truth value (state_switch) */
     uint8_t loc_step[SCN_MAX_LOCALS]; /* 1: let i reads h (state_switch) */
+    uint8_t loc_fixed[SCN_MAX_LOCALS]; /* 1: let i is fixed during the run (state_switch) */
+    uint8_t sw_over[SCN_MAX_LOCALS]; /* 1: let i holds a comparison of states past the
+                                       SCN_MAX_PORTS noted (finish_switches) */
+    uint8_t sw_over_der;        /* 1: a derivative does */
+    scn_pos sw_over_pos[SCN_MAX_LOCALS + 1]; /* the first such in let i, [SCN_MAX_LOCALS]: */
+    const char *sw_over_op[SCN_MAX_LOCALS + 1]; /* in a derivative; its operator */
     uint16_t nswm;              /* the switches made (finish_switches; one in a let no
                                    derivative reads stays a plain comparison) */
     uint16_t swm[SCN_MAX_PORTS][2]; /* each made one's mode state and rising root */
