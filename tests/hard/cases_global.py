@@ -195,6 +195,30 @@ def flags(s):
                                                                     summ.get("global_status")))
 
 
+def skipped_samples(s):
+    """a plant stepping over several samples of a sampled controller in another set
+    (global_subsample.scn), every run more than its tolerance off: at 30, 50 and 90 ms,
+    where the half run reads no sample the run did not, the check says so
+    (check_skipped_samples, doubtful, exit 3; at 30 ms the run's own status is ok, and
+    before the check was too); at 20, 40 and 60 ms the difference shows the coupling's
+    error (above tolerance, no such line)"""
+    exact = lambda t: (1 - 2 * 0.01) ** round(t / 0.01)
+    for h, blind in (("0.03", 1), ("0.05", 1), ("0.09", 1), ("0.02", 0), ("0.04", 0),
+                     ("0.06", 0)):
+        rc, summ, rows = check(s.modrt, "global_subsample.scn", ["--step", "plant=" + h])
+        tru = true_err(rows, exact, 1, float(h)) if rows else math.inf
+        est, tol = estimate(summ, "P.x")
+        print("  global subsample %s: status %s, estimate %.3e, true %.3e, tol %.3e, "
+              "global_status %s, exit %d" % (h, summ.get("status"), est, tru, tol,
+                                             summ.get("global_status"), rc))
+        s.check(tru > tol, "subsample %s: true error %.3g within the tolerance %.3g: no "
+                "test" % (h, tru, tol))
+        s.check(rc == 3 and summ.get("global_status") == "doubtful" and
+                ("check_skipped_samples" in summ) == bool(blind),
+                "subsample %s: exit %d, global_status %s, check_skipped_samples %s"
+                % (h, rc, summ.get("global_status"), summ.get("check_skipped_samples", "-")))
+
+
 def tune(s):
     """`modrt tune` on x' = x by Euler to 1 s at tolerance 0.025: the schedule it picks has
     a true error within the tolerance (20 ms is 0.0233 from its reference, 0.0269 from e)"""
@@ -214,4 +238,5 @@ def extra(s, long):
     observed(s)
     couplings(s)
     flags(s)
+    skipped_samples(s)
     tune(s)

@@ -65,6 +65,9 @@ typedef struct check_result {
     uint8_t kstate_lost;  /* 1: a block's internal state (an FMU's) could not be kept apart
                              between the runs: no estimate from then (severity 2); 2: nor
                              put back into the run, which went on from another's */
+    char skip[CHECK_WHY_LEN]; /* a set reading a sampled output of another set whose
+                             half step still spans several of its samples, or "" (then
+                             no estimate of that coupling: severity 1, find_skips) */
     uint16_t nsig;
     check_sig sig[RT_MAX_REC];
     int severity;         /* 0 within the tolerance; 1 above it, the event sequence not
