@@ -549,7 +549,7 @@ static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
                                  stepped at 1 ms is no error, tests/whitebox/test_actuated.c) */
             rti_lu_solve(c->w->imp->lu, c->n, c->w->imp->piv, e);
         real_t e2 = tab->lstable ? estimate(c, e) : scaled_norm(e, c->x, c->n, c->sa);
-        err = e2 == e2 && !(e2 <= err) ? e2 : err; /* (a NaN sticks) */
+        err = err == err && !(e2 <= err) ? e2 : err; /* (a NaN of either sticks) */
     }
     if (c->err == c->err && !(err <= c->err))
         c->err = err;

@@ -445,6 +445,8 @@ void rti_tev_moved(rt_sim *sim, uint8_t s);
 int rti_tev_at(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
 /* the same for any tick, past ones too (without rti_tev_at's memory of the next one) */
 int rti_tev_was(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick);
+/* 1 if block b (a kind that knows its instants ahead) has one at base tick `tick` */
+int rti_tev_block_was(const rt_scene *sc, rt_sim *sim, uint16_t b, uint64_t tick);
 
 /* ---- set steps and events (step.c) ---- */
 /* Advances set s from t by its step h, handling state events; never stops half-way, but

@@ -463,6 +463,20 @@ int rti_tev_was(const rt_scene *sc, rt_sim *sim, uint8_t s, uint64_t tick)
            next_after(sc, sim, s, tick - 1).tick == tick;
 }
 
+int rti_tev_block_was(const rt_scene *sc, rt_sim *sim, uint16_t b, uint64_t tick)
+{
+#if RT_MAX_TEV > 0
+    if (tick == 0 || !known_ahead(sc->blocks[b].kind))
+        return 0;
+    /* (asked half a tick before it, as next_after asks) */
+    real_t q = block_next(sc, sim, b, (rti_tick_real(tick - 1) + (real_t)0.5) * sc->dt) / sc->dt;
+    return q == q && rt_fabs(q - rti_tick_real(tick)) < (real_t)0.5;
+#else
+    (void)sc, (void)sim, (void)b, (void)tick;
+    return 0;
+#endif
+}
+
 void rti_tev_moved(rt_sim *sim, uint8_t s)
 {
 #if RT_MAX_TEV > 0

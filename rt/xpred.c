@@ -242,10 +242,13 @@ static void check_ahead(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, 
     real_t p = sim->state.xpred[k], y = sim->state.hist_y[0][v];
     if (past)
         y = rti_xset_value(sim, v, q, RT_INTERP_HERMITE, t, b);
-    /* a jump of the source at a known instant (rt/tev.c) here, the end of the step
-       judged: the point is its right side, the step rightly read the left one (a step
-       source at 0.06 s read by steps of 30 ms was flagged, its answer exact) */
-    if (here && rti_tev_was(sc, sim, q, sim->state.set_tick[s]))
+    /* a jump of the output's own block at a known instant (rt/tev.c) here, the end of
+       the step judged: the point is its right side, the step rightly read the left one
+       (a step source at 0.06 s read by steps of 30 ms was flagged, its answer exact).
+       The block's, not its set's: a pulse beside it whose edges meet the reader's grid
+       says nothing of a sine read (mr_tev_beside) */
+    if (here && rti_tev_was(sc, sim, q, sim->state.set_tick[s]) &&
+        rti_tev_block_was(sc, sim, rti_writer(sc, sim, v), sim->state.set_tick[s]))
         p = (real_t)0 / (real_t)0;
     if (rt_isfinite(y) && (here || past)) {
         real_t e = rt_fabs(y - p), a = rt_fabs(y);
@@ -369,7 +372,11 @@ static void check_bracket(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k
     if (!rt_isfinite(m))
         return;
     sim->state.xscale[k] = a > sim->state.xscale[k] ? a : sim->state.xscale[k];
-    judge(sc, sim, s, b, k, (T[0] - T[1]) * m, 0, t, h); /* (a mean miss: no direction) */
+    /* a hold read the older point where the signal went to the newer: the miss's
+       direction (a switch on the input's level between them, mr_threshold_slow); a
+       scheme that interpolates misses by a mean with no direction */
+    real_t dir = scheme == RT_INTERP_HOLD ? sim->state.hist_y[0][v] - sim->state.hist_y[1][v] : 0;
+    judge(sc, sim, s, b, k, (T[0] - T[1]) * m, dir, t, h);
 }
 #endif
 

@@ -509,7 +509,32 @@ def threshold_reader(s):
                         "%.3g, %s" % (tag, h, err, summ.get("status")))
 
 
+def tev_beside(s):
+    """a sine read every 50 ms from a 1 ms set whose pulse has instants on the reader's
+    grid (mr_tev_beside.scn): the sine's misses are judged, never ok more than ten times
+    the accuracy off"""
+    rc, summ, rows = run(s.modrt, os.path.join(HERE, "mr_tev_beside.scn"), [])
+    err = error(rows, 0.05, lambda t: (1 - math.cos(40 * t)) / 40) if rows else math.inf
+    s.row("a sine read beside a pulse on the reader's grid", "rk4", "0.05", err, summ, rc)
+    judged(s, "mr_tev_beside", "0.05", rc, err, summ)
+
+
+def threshold_slow(s):
+    """a switch on a slower set's output read by hold (mr_threshold_slow.scn), the slow
+    step swept: never ok more than ten times the accuracy off"""
+    above = lambda t: max(0.0, min(t, 0.5 - math.asin(0.2) / (2 * math.pi)) -
+                          math.asin(0.2) / (2 * math.pi))
+    for h in ("0.09", "0.05", "0.02"):
+        rc, summ, rows = run(s.modrt, os.path.join(HERE, "mr_threshold_slow.scn"),
+                             ["--step", "slow=" + h])
+        err = error(rows, 0.001, above) if rows else math.inf
+        s.row("a switch on a slower set's output, held", "rk4", h, err, summ, rc)
+        judged(s, "mr_threshold_slow", h, rc, err, summ)
+
+
 def extra(s, long):
+    tev_beside(s)
+    threshold_slow(s)
     threshold_reader(s)
     small_reader(s)
     gain_at(s)

@@ -186,8 +186,18 @@ static void find_order(const rt_scene *sc, const rt_sim *sim)
    controller that reads the plant held: at 15 ms it reads the sample of 10 ms, made from
    the plant at 0; the runs agree at every compared instant, 4 times the tolerance off).
    A half step that is a multiple of the period reads a sample made at its own start,
-   which the run did not: the difference shows the coupling (20 and 60 ms there). The
-   first such coupling, into r.skip */
+   which the run did not: the difference shows the coupling (20 and 60 ms there). Only
+   where the sampled block reads the reader's set (a loop): a sample made of other sets'
+   signals differs between the runs' reads, and the difference shows it. The first such
+   coupling, into r.skip */
+static int reads_set(const rt_scene *sc, uint16_t b, uint8_t s)
+{
+    for (uint16_t i = 0; i < sc->nconns; i++)
+        if (sc->conns[i].to == b && sc->blocks[sc->conns[i].from].set == s)
+            return 1;
+    return 0;
+}
+
 static void find_skips(const rt_scene *sc, const rt_sim *sim)
 {
     C.r.skip[0] = 0;
@@ -198,7 +208,8 @@ static void find_skips(const rt_scene *sc, const rt_sim *sim)
         double ts = (double)sc->blocks[c->from].ts, h = (double)sc->sets[s].ratio * sc->dt;
         uint64_t period = (uint64_t)(ts / (double)sc->dt + 0.5), ratio = sc->sets[s].ratio;
         if (rt_input_source(sim, c->to, c->u, &in) != RT_SRC_HELD || rt_set_nx(sim, s) == 0 ||
-            period == 0 || ratio <= 2 * period || ratio % (2 * period) == 0)
+            period == 0 || ratio <= 2 * period || ratio % (2 * period) == 0 ||
+            !reads_set(sc, c->from, s))
             continue;
         snprintf(C.r.skip, sizeof C.r.skip, "set %s steps %g s over samples of %s every %g s",
                  sc->sets[s].name, h, sc->blocks[c->from].name, ts);
