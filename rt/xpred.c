@@ -244,7 +244,7 @@ static void check_ahead(const rt_scene *sc, rt_sim *sim, uint8_t s, uint16_t k, 
         y = rti_xset_value(sim, v, q, RT_INTERP_HERMITE, t, b);
     /* a jump of the output's own block at a known instant (rt/tev.c) here, the end of
        the step judged: the point is its right side, the step rightly read the left one
-       (a step source at 0.06 s read by steps of 30 ms was flagged, its answer exact).
+       (a step source at 0.06 s read by steps of 30 ms is exact: no miss to judge).
        The block's, not its set's: a pulse beside it whose edges meet the reader's grid
        says nothing of a sine read (mr_tev_beside) */
     if (here && rti_tev_was(sc, sim, q, sim->state.set_tick[s]) &&
