@@ -166,6 +166,46 @@ static int solved(const solve_ctx *c, const real_t *H, int h_valid, const real_t
     return scaled_norm(c, s) <= RT_LOOP_STEP_FACTOR * tol;
 }
 
+/* does H still invert the loop's Jacobian along the correction it proposes, u = H F?
+   A solve that ends at once never updates H, so a loop whose gain jumped since H was
+   formed (a factor 1 -> 1e-10 of w - r) leaves F small and H F smaller still while w is
+   far off, tick after tick (its torn input frozen, 0.43 off, status ok). One difference
+   along u (stretched to SQRT_EPS of the torn inputs' scale where it is smaller), w and
+   the segment's outputs then put back bit for bit: stale when H (J u) is off u by more
+   than half of u. u, fu, z and the kept w are n values each of the solver's scratch */
+static int stale(const solve_ctx *c, const real_t *H, real_t *f, real_t *u, real_t *fu,
+                 real_t *z)
+{
+    uint16_t n = c->n;
+    real_t *keep = z + n, big = 0;
+    for (uint16_t i = 0; i < n; i++) {
+        u[i] = 0;
+        for (uint16_t j = 0; j < n; j++)
+            u[i] += H[i * n + j] * f[j];
+        real_t a = rt_fabs(u[i]) / (unit(c, i) + rt_fabs(c->w[i]));
+        big = a > big ? a : big;
+    }
+    if (!(big >= SQRT_EPS)) /* (too small to difference; 0: along every input) */
+        for (uint16_t i = 0; i < n; i++)
+            u[i] = big > 0 ? u[i] * (SQRT_EPS / big)
+                           : SQRT_EPS * (unit(c, i) + rt_fabs(c->w[i]));
+    for (uint16_t i = 0; i < n; i++)
+        keep[i] = c->w[i], c->w[i] += u[i];
+    int ok = residual(c, fu);
+    for (uint16_t i = 0; i < n; i++)
+        c->w[i] = keep[i];
+    if (!residual(c, f) || !ok)
+        return 0; /* (not finite: nothing to tell; the solve reports it) */
+    for (uint16_t i = 0; i < n; i++)
+        fu[i] -= f[i]; /* J u */
+    for (uint16_t i = 0; i < n; i++) {
+        z[i] = -u[i];
+        for (uint16_t j = 0; j < n; j++)
+            z[i] += H[i * n + j] * fu[j];
+    }
+    return scaled_norm(c, z) > (real_t)0.5 * scaled_norm(c, u);
+}
+
 static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode)
 {
     rt_loop *lp = &sim->plan.loops[l];
@@ -188,6 +228,11 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
         ok = residual(&c, f); /* the difference steps left the segment at w + d e_n */
     }
     int done = ok && solved(&c, H, sim->state.loop_h_valid[l], f, s, tol);
+    if (done && sim->state.loop_h_valid[l] && stale(&c, H, f, s, fn, scratch)) {
+        fd_inverse(&c, f, H, scratch, fn); /* formed afresh where the loop is now */
+        ok = residual(&c, f);
+        done = ok && solved(&c, H, 1, f, s, tol);
+    }
     while (!done && ok && it < max) {
         ok = newton_step(&c, H, f, fn, s, scratch, tol);
         it++;

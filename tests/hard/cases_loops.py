@@ -41,7 +41,36 @@ def ill_conditioned(s):
     s.check(rc != 0 or err <= 1e-2, "loop_gain: error %.3g with status ok" % err)
 
 
+def gain_jump(s):
+    """a loop whose gain jumps after its inverse Jacobian was formed: y = w - e (w - r),
+    e from 1 to E at 0.5 s, r = sin t: the torn input is w = sin t for any E != 0. Never ok
+    more than ten times the tolerance off (before: E = 1e-10 and 1e-12 left w at its value
+    of 0.5 s, 0.43 off, status ok); E = 1e-6 is ok and right"""
+    text = ("scene (loop_jump);\nbase tick (1 ms);\nend time (2 s);\n"
+            "load system (E) of type (step) from file (\"sources\");\n"
+            "load system (R) of type (sine) from file (\"sources\");\n"
+            "E.t0 = 0.5; E.y0 = 1; E.y1 = %s;\nR.amp = 1; R.omega = 1;\n"
+            "define ss_system (A) with inputs (w, e, r) outputs (y) by { y = w - e * (w - r); };\n"
+            "define ss_system (B) with inputs (v) outputs (z) by { z = v; };\n"
+            "load system (A) of type (A);\nload system (B) of type (B);\n"
+            "connect(A.y, B.v);\nconnect(B.z, A.w);\nconnect(E.y, A.e);\nconnect(R.y, A.r);\n"
+            "solve loops by (broyden);\nset (main) method (rk4) step (1 tick);\n"
+            "record (B.z);\n")
+    for e in ("1e-6", "1e-10", "1e-12"):
+        rc, summ, rows = run_text(s.modrt, text % e, [])
+        err = max((abs(r[1] - math.sin(r[0])) for r in rows), default=math.inf)
+        s.row("a loop whose gain jumps to %s" % e, "broyden", "0.001", err, summ, rc)
+        # (a solve's correction is within RT_LOOP_STEP_FACTOR (1000) tolerances (1e-10) of
+        # |w| + 1: ten times that is 2e-6)
+        s.check(rc in (0, 1, 3) and (rc != 0 or err <= 2e-6), "loop gain jump to %s: exit "
+                "%d, error %.3g with status %s" % (e, rc, err, summ.get("status")))
+        if e == "1e-6":
+            s.check(rc == 0 and err <= 1e-6, "loop gain jump to 1e-6: exit %d, error %.3g"
+                    % (rc, err))
+
+
 def extra(s, long):
+    gain_jump(s)
     ill_conditioned(s)
     for sc in SCALES:
         S = float(sc)
