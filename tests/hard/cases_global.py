@@ -219,6 +219,21 @@ def skipped_samples(s):
                 % (h, rc, summ.get("global_status"), summ.get("check_skipped_samples", "-")))
 
 
+def held_samples(s):
+    """a sampled output read by a set whose step does not divide its period
+    (global_zoh.scn): the check's order is 1 ("held samples couplings") and at 5 ms it is
+    not ok; at 2 ms, a step of the period, the staircase is integrated exactly: order 4, ok"""
+    for h, order, ok in (("0.005", "1", False), ("0.002", "4", True)):
+        rc, summ, rows = check(s.modrt, "global_zoh.scn", ["--step", "main=" + h])
+        print("  global zoh %s: %s, %s, global_status %s, exit %d" % (
+            h, summ.get("check_order"), summ.get("global_err.I.q"), summ.get("global_status"),
+            rc))
+        s.check(summ.get("check_order", "").split()[:1] == [order] and
+                (summ.get("global_status") == "ok") == ok,
+                "zoh %s: check_order %s, global_status %s" % (h, summ.get("check_order"),
+                                                              summ.get("global_status")))
+
+
 def tune(s):
     """`modrt tune` on x' = x by Euler to 1 s at tolerance 0.025: the schedule it picks has
     a true error within the tolerance (20 ms is 0.0233 from its reference, 0.0269 from e)"""
@@ -239,4 +254,5 @@ def extra(s, long):
     couplings(s)
     flags(s)
     skipped_samples(s)
+    held_samples(s)
     tune(s)

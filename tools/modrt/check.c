@@ -176,6 +176,21 @@ static void find_order(const rt_scene *sc, const rt_sim *sim)
             p = p == 0 || q < p ? q : p;
             why_add("%s%s%s couplings %u", rt_interp_name(in), "", q);
         }
+    /* a sampled output of another set read over a step that spans its samples or ends
+       between them: the reader holds a sample where the staircase moves on, first order
+       in its step (a 5 ms integrator reading a 2 ms hold) */
+    for (uint16_t i = 0; i < sc->nconns && p > 1; i++) {
+        const rt_conn *c = &sc->conns[i];
+        rt_interp in;
+        uint8_t s = sc->blocks[c->to].set;
+        uint64_t period = (uint64_t)((double)sc->blocks[c->from].ts / (double)sc->dt + 0.5);
+        uint64_t ratio = sc->sets[s].ratio;
+        if (rt_input_source(sim, c->to, c->u, &in) != RT_SRC_HELD || rt_set_nx(sim, s) == 0 ||
+            period == 0 || period % ratio == 0)
+            continue;
+        p = 1;
+        why_add("%s%s%s couplings %u", "held samples", "", 1);
+    }
     C.r.order = p;
 }
 
