@@ -129,7 +129,9 @@ echo "serial-qemu: plant image on $t: hash $h = pi_loop;$counts"
 # 3. the plant image in real time (the timer paces the ticks, an answer is applied at the
 # first tick after it arrived): whatever the timing, every answer is checked and counted
 # and each request is either answered or counted missing (the last one's answer is never
-# applied); the trace depends on the timing, so no hash is compared
+# applied); the trace depends on the timing, so no hash is compared. Some answer must
+# arrive, applied or counted late: on a loaded machine every one may come late (all 300
+# late, none applied, was seen), which is the timing, not the link
 sh tools/image.sh $t pi_link "" "-DRT_IMAGE_LINK_REALTIME=1" "" "" 0 > $T/image_rt.out 2>&1 &&
     cp build/image/$t/pi_link.elf $T/pi_link_rt.elf ||
     bad "make image TARGET=$t SCENE=pi_link (real time): $(cat $T/image_rt.out)"
@@ -141,11 +143,12 @@ kill $CTL 2>/dev/null; wait $CTL 2>/dev/null
 line=$(grep '^rt scene pi_link' $T/qemu.out)
 num() { echo "$line" | sed -n "s/.* $1 \([0-9]*\).*/\1/p"; }
 sent=$(num link_sent) applied=$(num link_applied) missing=$(num link_missing)
+late=$(num link_late)
 if [ "$(num ticks)" = 3000 ] && [ "$(num link_bad)" = 0 ] && [ "${sent:-0}" = 301 ] &&
-    [ "${applied:-0}" -ge 1 ] && [ $((applied + missing)) -ge 300 ] &&
+    [ $((${applied:-0} + ${late:-0})) -ge 1 ] && [ $((applied + missing)) -ge 300 ] &&
     [ $((applied + missing)) -le 301 ]; then ok
 else bad "plant on $t in real time: $(cat $T/qemu.out)"; fi
-echo "serial-qemu: plant image on $t in real time: sent $sent, applied $applied, missing $missing"
+echo "serial-qemu: plant image on $t in real time: sent $sent, applied $applied, late $late, missing $missing"
 
 cleanup
 echo "serial-qemu: $pass passed, $fail failed"
