@@ -166,7 +166,8 @@ static int solved(const solve_ctx *c, const real_t *H, int h_valid, const real_t
     return scaled_norm(c, s) <= RT_LOOP_STEP_FACTOR * tol;
 }
 
-/* does H still invert the loop's Jacobian along the correction it proposes, u = H F?
+/* does H still invert the loop's Jacobian along the correction it proposes, u = H F
+   (in u already: solved() formed it)?
    A solve that ends at once never updates H, so a loop whose gain jumped since H was
    formed (a factor 1 -> 1e-10 of w - r) leaves F small and H F smaller still while w is
    far off, tick after tick (its torn input frozen, 0.43 off, status ok). One difference
@@ -177,14 +178,7 @@ static int stale(const solve_ctx *c, const real_t *H, real_t *f, real_t *u, real
                  real_t *z)
 {
     uint16_t n = c->n;
-    real_t *keep = z + n, big = 0;
-    for (uint16_t i = 0; i < n; i++) {
-        u[i] = 0;
-        for (uint16_t j = 0; j < n; j++)
-            u[i] += H[i * n + j] * f[j];
-        real_t a = rt_fabs(u[i]) / (unit(c, i) + rt_fabs(c->w[i]));
-        big = a > big ? a : big;
-    }
+    real_t *keep = z + n, big = scaled_norm(c, u);
     if (!(big >= SQRT_EPS)) /* (too small to difference; 0: along every input) */
         for (uint16_t i = 0; i < n; i++)
             u[i] = big > 0 ? u[i] * (SQRT_EPS / big)
@@ -228,7 +222,7 @@ static void solve(const rt_scene *sc, rt_sim *sim, uint8_t l, real_t t, int mode
         ok = residual(&c, f); /* the difference steps left the segment at w + d e_n */
     }
     int done = ok && solved(&c, H, sim->state.loop_h_valid[l], f, s, tol);
-    if (done && sim->state.loop_h_valid[l] && stale(&c, H, f, s, fn, scratch)) {
+    if (done && sim->state.loop_h_valid[l] && stale(&c, H, f, s, fn, scratch)) { /* s: H F */
         fd_inverse(&c, f, H, scratch, fn); /* formed afresh where the loop is now */
         ok = residual(&c, f);
         done = ok && solved(&c, H, 1, f, s, tol);

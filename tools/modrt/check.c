@@ -154,6 +154,19 @@ static void why_add(const char *fmt, const char *a, const char *b, unsigned p)
         snprintf(C.r.why + n, sizeof C.r.why - n, fmt, n ? ", " : "", a, b, p);
 }
 
+/* is connection c a sampled output of another set held by a set with states
+   (RT_SRC_HELD): then the sample period and the reader's step, in base ticks */
+static int held_reader(const rt_scene *sc, const rt_sim *sim, const rt_conn *c,
+                       uint64_t *period, uint64_t *ratio)
+{
+    rt_interp in;
+    uint8_t s = sc->blocks[c->to].set;
+    *period = (uint64_t)((double)sc->blocks[c->from].ts / (double)sc->dt + 0.5);
+    *ratio = sc->sets[s].ratio;
+    return rt_input_source(sim, c->to, c->u, &in) == RT_SRC_HELD && rt_set_nx(sim, s) > 0 &&
+           *period > 0;
+}
+
 /* the lowest order among the sets with states and the couplings between sets */
 static void find_order(const rt_scene *sc, const rt_sim *sim)
 {
@@ -180,13 +193,8 @@ static void find_order(const rt_scene *sc, const rt_sim *sim)
        between them: the reader holds a sample where the staircase moves on, first order
        in its step (a 5 ms integrator reading a 2 ms hold) */
     for (uint16_t i = 0; i < sc->nconns && p > 1; i++) {
-        const rt_conn *c = &sc->conns[i];
-        rt_interp in;
-        uint8_t s = sc->blocks[c->to].set;
-        uint64_t period = (uint64_t)((double)sc->blocks[c->from].ts / (double)sc->dt + 0.5);
-        uint64_t ratio = sc->sets[s].ratio;
-        if (rt_input_source(sim, c->to, c->u, &in) != RT_SRC_HELD || rt_set_nx(sim, s) == 0 ||
-            period == 0 || period % ratio == 0)
+        uint64_t period, ratio;
+        if (!held_reader(sc, sim, &sc->conns[i], &period, &ratio) || period % ratio == 0)
             continue;
         p = 1;
         why_add("%s%s%s couplings %u", "held samples", "", 1);
@@ -218,16 +226,14 @@ static void find_skips(const rt_scene *sc, const rt_sim *sim)
     C.r.skip[0] = 0;
     for (uint16_t i = 0; i < sc->nconns && !C.r.skip[0]; i++) {
         const rt_conn *c = &sc->conns[i];
-        rt_interp in;
         uint8_t s = sc->blocks[c->to].set;
-        double ts = (double)sc->blocks[c->from].ts, h = (double)sc->sets[s].ratio * sc->dt;
-        uint64_t period = (uint64_t)(ts / (double)sc->dt + 0.5), ratio = sc->sets[s].ratio;
-        if (rt_input_source(sim, c->to, c->u, &in) != RT_SRC_HELD || rt_set_nx(sim, s) == 0 ||
-            period == 0 || ratio <= 2 * period || ratio % (2 * period) == 0 ||
-            !reads_set(sc, c->from, s))
+        uint64_t period, ratio;
+        if (!held_reader(sc, sim, c, &period, &ratio) || ratio <= 2 * period ||
+            ratio % (2 * period) == 0 || !reads_set(sc, c->from, s))
             continue;
         snprintf(C.r.skip, sizeof C.r.skip, "set %s steps %g s over samples of %s every %g s",
-                 sc->sets[s].name, h, sc->blocks[c->from].name, ts);
+                 sc->sets[s].name, (double)ratio * sc->dt, sc->blocks[c->from].name,
+                 (double)sc->blocks[c->from].ts);
     }
 }
 
