@@ -391,17 +391,39 @@ set (main) method (rk4) step (1 tick);
 record (B.o);
 """
 
-SWITCH_TABLE = """scene (switch_table) doc ("an output table nobody's derivative reads");
+SWITCH_TABLE = """scene (switch_table) doc ("an output table integrated by another block");
 base tick (1 ms);
 end time (1 s);
 define ss_system (P) with outputs (yo, tab) states (y = 0) by {
     yo = y;
-    tab = if(y < 0.1, 0, if(y < 0.2, 1, if(y < 0.3, 2, if(y < 0.4, 3, if(y < 0.5, 4, 5)))));
+    tab = if(y < 0.15, 0, if(y < 0.25, 1, if(y < 0.35, 2, if(y < 0.45, 3, if(y < 0.55, 4, 5)))));
     der(y) = 1;
 };
+define ss_system (I) with inputs (u) outputs (z) states (s = 0) by { z = s; der(s) = u; };
 load system (B) of type (P);
-set (main) method (rk4) step (1000 ticks);
-record (B.yo);
+load system (Z) of type (I);
+connect(B.tab, Z.u);
+set (main) method (rk4) step (100 ticks);
+record (Z.z);
+"""
+
+# x' = u, u a comparator (a define without states) of another block's output r = t
+# against 0.503: x(1) = 1 - 0.503
+SWITCH_COMPARATOR = """scene (switch_comparator) doc ("a comparator without states, integrated");
+base tick (10 ms);
+end time (1 s);
+define ss_system (R) with outputs (r) states (q = 0) by { r = q; der(q) = 1; };
+define ss_system (C) with inputs (u) outputs (y) parameters (L = 0.503) by {
+    y = if(u > L, 1, 0);
+};
+define ss_system (I) with inputs (u) outputs (z) states (s = 0) by { z = s; der(s) = u; };
+load system (R) of type (R);
+load system (C) of type (C);
+load system (Z) of type (I);
+connect(R.r, C.u);
+connect(C.y, Z.u);
+set (main) method (rk4) step (1 tick);
+record (Z.z);
 """
 
 
@@ -447,8 +469,7 @@ def located_switch_rest(s):
 
 def located_switch_limits(s):
     """H: what stays a plain comparison: one of h, itself or through lets (x' = 1 at
-    h = 10 ms: x(0.1) = 0.1; before the reviews 0.2, status ok), an output's table nobody's derivative reads (one
-    step of 1 s, no event: status ok); a switch beside a held reader keeps the set's
+    h = 10 ms: x(0.1) = 0.1; before the reviews 0.2, status ok); a switch beside a held reader keeps the set's
     step-end hold (A.x(1) = 0.495 less rk4's hold error, 0.4950117 as without the switch;
     0.4951667 before the review); 23 switches in one define compile and run (the 22nd
     was refused before the review: each added statement's stack depth was kept); sides
@@ -468,11 +489,6 @@ def located_switch_limits(s):
     s.row("a switch of sides at one infinity: z(0.1)", "rk4", "0.001", err, summ, rc)
     s.check(rc == 0 and err == 0, "switch of infinite sides: z(0.1) %.3g, status %s (its "
             "root inf - inf is NaN unless taken by sign)" % (err, summ.get("status")))
-    rc, summ, rows = run_text(s.modrt, SWITCH_TABLE, [])
-    s.row("an unread output table: events", "rk4", "1", float(summ.get("events", "0")
-                                                              .split()[0]), summ, rc)
-    s.check(rc == 0 and summ.get("events", "").split()[:1] == ["0"], "unread output table: %s "
-            "events, status %s" % (summ.get("events"), summ.get("status")))
     rc, summ, rows = run_text(s.modrt, SWITCH_BESIDE, [])
     err = abs(rows[-1][1] - 0.4950116666666667) if rows else math.inf
     s.row("a switch beside a held reader: A.x(1) against the hold's", "rk4", "0.001", err,
@@ -522,11 +538,34 @@ def located_switch(s):
             m, err, summ.get("status")))
 
 
+def output_switches(s):
+    """H: a comparison in an output is a located switch, also in a define without states:
+    the block that integrates the output reads one smooth branch per step part. An output
+    table of y = t with levels between the steps of 0.1 s, integrated by another block:
+    z(1) = 0.1 (1 + 2 + 3 + 4) + 0.45 * 5 = 3.25 within 1e-12, 5 events, status ok, every
+    method (before: no event, z(1) off by up to 0.05 with status ok under rk4); a
+    comparator without states of another block's output t against 0.503 at 10 ms:
+    z(1) = 0.497 (before 0.4983, status ok)"""
+    for m in ("heun", "bs3", "rk4", "dopri5", "ros2", "sdirk3"):
+        rc, summ, rows = run_text(s.modrt, SWITCH_TABLE, ["--method", "main=" + m])
+        err = abs(rows[-1][1] - 3.25) if rows else math.inf
+        s.row("an output table integrated by another block: z(1)", m, "0.1", err, summ, rc)
+        s.check(rc == 0 and err <= 1e-12 and summ.get("events", "").split()[:1] == ["5"],
+                "output table %s: z(1) off by %.3g, events %s, status %s" % (
+                    m, err, summ.get("events"), summ.get("status")))
+    for m in ("heun", "rk4", "dopri5"):
+        rc, summ, rows = run_text(s.modrt, SWITCH_COMPARATOR, ["--method", "main=" + m])
+        err = abs(rows[-1][1] - 0.497) if rows else math.inf
+        s.row("a comparator without states, integrated: z(1)", m, "0.01", err, summ, rc)
+        s.check(rc == 0 and err <= 1e-12, "comparator %s: z(1) off by %.3g, status %s" % (
+            m, err, summ.get("status")))
+
+
 def located_switch_review(s):
     """H: a switch whose side holds a truth value inside it but is none itself,
     x' = if(if(x > 0, x, -x) > 0.5, 1, 3) from -1: located where |x| = 0.5 (x(2) = 5/3
     exactly, every explicit method at 10 ms, status ok; before, the outer comparison
-    stayed plain: 1 event, errest); 65 comparisons in a let no derivative reads, and a
+    stayed plain: 1 event, errest); 65 comparisons in a let nothing reads, and a
     comparison of a let of parameters in a define of 64 states, compile and run (refused
     for a while: the limit counted unread and fixed comparisons)"""
     text = ("scene (nested_switch);\nbase tick (10 ms);\nend time (2 s);\n"
@@ -545,7 +584,7 @@ def located_switch_review(s):
     states = ", ".join("s%d = 0" % i for i in range(1, 64))
     ders = "".join("    der(s%d) = 0;\n" % i for i in range(1, 64))
     for what, body, decl in (
-            ("65 comparisons in an unread let", "    let a = %s;\n    o = a;\n"
+            ("65 comparisons in an unread let", "    let a = %s;\n    o = x;\n"
              "    der(x) = 1;\n" % unread, "x = 0"),
             ("a let of parameters compared, 64 states", "    let k = 2 * p;\n    o = x;\n"
              "    der(x) = if(k > 1, 1, 2);\n%s" % ders, "x = 0, " + states)):
@@ -583,7 +622,8 @@ def nan_lanes(s):
 def dirk_start(s):
     """H: SDIRK has no stage at its step's start: a jump of the derivative inside
     [t, t + c_1 h) reaches every stage and the first companion alike. An output's
-    comparison integrated (z' = if(x > c, 10, 0), x = t: z(2) = 10 (2 - c)) and a floor
+    comparison integrated (z' = if(x > c, 10, 0), x = t: z(2) = 10 (2 - c); a located
+    switch since output_switches, the case stays for a kind's output) and a floor
     of t (x' = 10 floor(t + 0.58): x(1) = 5.8), 100 ms steps: a run more than twice its
     tolerance off is never ok (before: SDIRK3 0.2 off, estimate 1e-16, status ok)"""
     out = ("scene (dirk_out);\nbase tick (100 ms);\nend time (2 s);\n"
@@ -619,6 +659,7 @@ def extra(s, long):
     dirk_start(s)
     nan_lanes(s)
     located_switch_review(s)
+    output_switches(s)
     located_switch(s)
     located_switch_rest(s)
     located_switch_limits(s)

@@ -631,26 +631,27 @@ static int step_code(const scn_define *d, const scn_ins *code, uint32_t i0, uint
     return 0;
 }
 
-/* an order comparison in a derivative or let of an ss_system with states, its sides not
+/* an order comparison in an output, a derivative or a let of an ss_system, its sides not
    both fixed, no truth values, no h and no time event (time_switch): a switch of the
-   dynamics where its sides meet. Inside a step no estimate sees it (the stages after the
-   crossing read the other branch, and the method's companion does too), so it becomes a
-   located switch (finish_switches, at the body's end, for a let only if a derivative
-   reads it): two roots, the sides' difference rising and falling, located and handled as
+   dynamics where its sides meet (in an output, of the block that integrates it). Inside a
+   step no estimate sees it (the stages after the crossing read the other branch, and the
+   method's companion does too), so it becomes a located switch (finish_switches, at the
+   body's end, for a let only if an output or a derivative reads it; in a system without
+   states its mode makes it a continuous one): two roots, the sides' difference rising and falling, located and handled as
    a `when`'s, whose handlers set a hidden state, the switch's mode, to the comparison's
    value past the crossing; the kind takes the modes at each instant (rt_kind.instant)
    and the comparison reads its mode (rt_x_swc) once it has one. Registers the comparison
    about to be emitted at code index c->sc.ncode, its operator `op` at `pos`; its `a` is
    set by finish_switches. Past the define's SCN_MAX_PORTS comparisons, one is noted
-   (sw_over): finish_switches refuses it where a derivative reads it, since plain it
-   would cross its switch unseen */
+   (sw_over): finish_switches refuses it where an output or a derivative reads it, since
+   plain it would cross its switch unseen */
 static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1, scn_pos pos,
                          const char *op)
 {
     scn_define *d = c->def;
     const scn_ins *code = c->sc.code;
-    if (c->err || !d || d->type != SCN_DEF_SS || d->nx == 0 ||
-        (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
+    if (c->err || !d || d->type != SCN_DEF_SS ||
+        (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_LET) ||
         (fixed_side(d, code, a0, a1) && fixed_side(d, code, a1, b1)) ||
         logic_code(d, code, a0, a1) || logic_code(d, code, a1, b1) ||
         step_code(d, code, a0, b1)) /* (truth values change where their sides meet) */
@@ -1037,25 +1038,28 @@ static void added_stmt(scn_ctx *c, uint8_t kind, uint16_t index, uint16_t root, 
    mode, a hidden state #switch<k> (0.5: no value yet; its derivative 0), and two roots
    after the body's `when`s, both its root (rt_x_swgt ...: positive where the comparison
    holds, never 0), rising and falling, whose handlers set the mode to 1 and 0. A comparison in a
-   let no derivative reads stays a plain comparison; one past the define's SCN_MAX_PORTS
+   let no output or derivative reads stays a plain comparison; one past the define's SCN_MAX_PORTS
    states or roots is refused (plain, its switch would pass unseen inside a step) */
 static void finish_switches(scn_ctx *c, scn_define *d)
 {
-    uint8_t need[SCN_MAX_LOCALS] = {0}; /* the lets a derivative reads, through lets too */
+    uint8_t need[SCN_MAX_LOCALS] = {0}; /* the lets an output or derivative reads (also
+                                           through lets) */
     for (uint32_t s = c->sc.nst; s-- > d->st0;) {
         const scn_stmt *st = &c->sc.st[s];
-        if (st->kind == SCN_ST_DER || (st->kind == SCN_ST_LET && need[st->index]))
+        if (st->kind == SCN_ST_DER || st->kind == SCN_ST_OUT ||
+            (st->kind == SCN_ST_LET && need[st->index]))
             for (uint32_t i = st->code0; i < st->code1; i++)
                 if (c->sc.code[i].op == SCN_OP_LOC)
                     need[c->sc.code[i].a] = 1;
     }
     for (int16_t at = -1; at < (int16_t)d->nloc && !c->err; at++) {
         if (at < 0 ? !d->sw_over_der : !(d->sw_over[at] && need[at]))
-            continue; /* (no comparison past the limit that a derivative reads) */
+            continue; /* (no comparison past the limit that is read) */
         uint16_t j = at < 0 ? SCN_MAX_LOCALS : (uint16_t)at;
         scn_fail(c, d->sw_over_pos[j], d->sw_over_op[j], "too many comparisons of states",
                  scn_fmt(c, "at most %u in one define's body, counting those in lets (a "
-                         "comparison a derivative reads is a located switch)", SCN_MAX_PORTS));
+                         "comparison an output or a derivative reads is a located switch)",
+                         SCN_MAX_PORTS));
         return;
     }
     for (uint16_t k = 0; k < d->nsw && !c->err; k++) {

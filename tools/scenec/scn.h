@@ -238,7 +238,7 @@ typedef struct scn_define {
     uint8_t loc_fixed[SCN_MAX_LOCALS]; /* 1: let i is fixed during the run (state_switch) */
     uint8_t sw_over[SCN_MAX_LOCALS]; /* 1: let i holds a comparison of states past the
                                        SCN_MAX_PORTS noted (finish_switches) */
-    uint8_t sw_over_der;        /* 1: a derivative does */
+    uint8_t sw_over_der;        /* 1: an output or a derivative does */
     scn_pos sw_over_pos[SCN_MAX_LOCALS + 1]; /* the first such in let i, [SCN_MAX_LOCALS]: */
     const char *sw_over_op[SCN_MAX_LOCALS + 1]; /* in a derivative; its operator */
     uint16_t nswm;              /* the switches made (finish_switches; one in a let no
