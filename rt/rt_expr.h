@@ -119,6 +119,21 @@ static inline real_t rt_x_next(real_t t, const real_t *v, unsigned n)
     return best;
 }
 
+/* how long after now the value u = a t + b of a `floor`'s argument, moving at rate a,
+   reaches the next integer (a defined system's floor of t, tools/scenec: an instant of
+   its next_event, where the floor jumps); an integer u names to rounding (the tick at a
+   jump) is now's, not the next one. RT_TEV_NEVER where a is 0 or either is NaN */
+static inline real_t rt_x_floor_next(real_t u, real_t a)
+{
+    if (!(a != 0) || u != u)
+        return RT_TEV_NEVER;
+    real_t m = rt_fabs(u) > 1 ? rt_fabs(u) : (real_t)1, slack = (real_t)RT_TICK_SLACK * m;
+    real_t n = a > 0 ? rt_floor(u) + 1 : -rt_floor(-u) - 1; /* the next integer past u */
+    if (a > 0 ? n - u <= slack : u - n <= slack)
+        n += a > 0 ? 1 : -1;
+    return (n - u) / a;
+}
+
 /* a defined system's rt_kind.band: the largest |v1_i - v0_i| over its n sin and cos
    arguments w t + phi taken at t = 1 (v1) and t = 0 (v0), |w| each (a NaN stays) */
 static inline real_t rt_x_band(const real_t *v0, const real_t *v1, unsigned n)

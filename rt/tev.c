@@ -648,8 +648,8 @@ static void carriers(const rt_scene *sc, const rt_sim *sim, uint16_t b, carried 
     }
 }
 
-/* block b's band against the steps that integrate it: each block with states of its own
-   that carries it or reads a carrier, at its set's step or the longer sampling the
+/* block b's band against the steps that integrate it: each block with states or roots
+   of its own that carries it or reads a carrier, at its set's step or the longer sampling the
    signal had on its way; a band of 0 (no time dependence, a sine of amplitude 0) none */
 static rt_status check_band(const rt_scene *sc, rt_sim *sim, uint16_t b)
 {
@@ -665,8 +665,8 @@ static rt_status check_band(const rt_scene *sc, rt_sim *sim, uint16_t b)
     carriers(sc, sim, b, via);
     for (uint16_t r = 0; r < sc->nblocks; r++) {
         const rt_kind *k = sc->blocks[r].kind;
-        if (k->nx == 0 || k->type == RT_KIND_DSS)
-            continue;
+        if ((k->nx == 0 && k->nr == 0) || k->type == RT_KIND_DSS)
+            continue; /* (roots sample it too: a crossing and back inside a step is unseen) */
         carried c = reads(sc, sim, r, via);
         if (c.at == -2)
             continue;

@@ -561,6 +561,33 @@ def output_switches(s):
             m, err, summ.get("status")))
 
 
+def floor_time(s):
+    """H: a floor of t, floor(a t + b), jumps where a t + b is an integer: each jump is a
+    time event, so a step ends a part there and every stage of a part reads one stair.
+    x' = J min(floor(t / c), 1) (audit 14: dopri5 at 100 ms, c from 0.057 to 0.065,
+    4 to 19 times its tolerance off with run and check ok; x(0.3) = J (0.3 - c)),
+    x' = floor(-t / 0.07 + 5) (falling, x(1) = -2.65), x' = 10 floor(t + 0.58) (x(1) = 5.8):
+    exact to 1e-12 by every method; a staircase finer than a step's parts
+    (floor(t / 0.003) at 100 ms) is never ok"""
+    text = ("scene (floor_t);\nbase tick (10 ms);\nend time (%s s);\n"
+            "define ss_system (Q) with outputs (y) states (x = 0) by {\n    y = x;\n"
+            "    der(x) = %s;\n};\nload system (P) of type (Q);\n"
+            "set (main) method (rk4) step (10 ticks);\nrecord (P.y);\n")
+    cases = [("3 * min(floor(t / %g), 1)" % c, 0.3, 3 * (0.3 - c))
+             for c in (0.057, 0.06, 0.064, 0.065)]
+    cases += [("floor(-t / 0.07 + 5)", 1, -2.65), ("10 * floor(t + 0.58)", 1, 5.8)]
+    for der, t_end, exact in cases:
+        for m in ("heun", "bs3", "rk4", "dopri5", "ros2", "sdirk3"):
+            rc, summ, rows = run_text(s.modrt, text % (t_end, der), ["--method", "main=" + m])
+            err = abs(rows[-1][1] - exact) if rows else math.inf
+            s.row("x' = %s: x(%g)" % (der, t_end), m, "0.1", err, summ, rc)
+            s.check(rc == 0 and err <= 1e-12 * (1 + abs(exact)), "floor of t %s, %s: x(%g) "
+                    "off by %.3g, status %s" % (der, m, t_end, err, summ.get("status")))
+    rc, summ, rows = run_text(s.modrt, text % (1, "floor(t / 0.003)"), [])
+    s.row("x' = floor(t / 0.003): parts", "rk4", "0.1", rc, summ, rc)
+    s.check(rc != 0, "a staircase finer than the parts: status %s" % summ.get("status"))
+
+
 def located_switch_review(s):
     """H: a switch whose side holds a truth value inside it but is none itself,
     x' = if(if(x > 0, x, -x) > 0.5, 1, 3) from -1: located where |x| = 0.5 (x(2) = 5/3
@@ -660,6 +687,7 @@ def extra(s, long):
     nan_lanes(s)
     located_switch_review(s)
     output_switches(s)
+    floor_time(s)
     located_switch(s)
     located_switch_rest(s)
     located_switch_limits(s)

@@ -23,6 +23,8 @@ const scn_fn scn_fns[] = {
     /* a switch's root for <, <=, > and >= (finish_switches): no name a scene can write */
     {"#swlt", 2, 0, rt_x_swlt, "rt_x_swlt"}, {"#swle", 2, 0, rt_x_swle, "rt_x_swle"},
     {"#swgt", 2, 0, rt_x_swgt, "rt_x_swgt"}, {"#swge", 2, 0, rt_x_swge, "rt_x_swge"},
+    /* the time to a floor's next jump (floor_time, flush_tev) */
+    {"#floor_next", 2, 0, rt_x_floor_next, "rt_x_floor_next"},
     {0, 0, 0, 0, 0},
 };
 
@@ -383,14 +385,15 @@ static in_t affine_in_t(const scn_ins *code, uint32_t i0, uint32_t i1)
 }
 
 /* a sin or cos of an argument affine in `t` (code [a0, a1): w t + phi, w and phi fixed)
-   in an output, derivative or let of a continuous define: its |w| is the kind's band
+   in an output, derivative, let or root of a continuous define: its |w| is the kind's band
    (rt_kind.band), so rt_init refuses a set that samples the signal at w h >= pi, as a sine
    source's (an alias no estimate can tell: 1 - cos(w t) read where cos is 1 is 0). The
    argument becomes an SCN_ST_BAND statement after the one compiled (flush_tev) */
 static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
 {
     if (c->err || !c->def || c->def->type != SCN_DEF_SS ||
-        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
+        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET &&
+         c->st_kind != SCN_ST_ROOT) ||
         (strcmp(scn_fns[f].name, "sin") != 0 && strcmp(scn_fns[f].name, "cos") != 0) ||
         affine_in_t(c->sc.code, a0, a1) != IN_T_AFFINE)
         return;
@@ -398,6 +401,33 @@ static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
         return; /* (more than the bound: the first SCN_MAX_BAND say the band) */
     c->tev[c->ntev][0] = a0, c->tev[c->ntev][1] = a1, c->tev[c->ntev][2] = SCN_ST_BAND;
     c->tev[c->ntev][3] = c->tev[c->ntev][4] = 0;
+    c->ntev++;
+}
+
+/* floor(a t + b) (a, b fixed) in an output, derivative or let of a continuous define:
+   a staircase of t whose jumps, where a t + b is an integer, no step's error estimate
+   sees (every stage past a jump reads the next stair, and so does the companion: dopri5's
+   estimate of a jump in the first 0.3 of its step is 1/170 of its error). Each jump is a
+   time event known at run time, as a comparison of t with an instant (time_switch): the
+   kind's next_event gives the next one, t + rt_x_floor_next(a t + b, a), so a step of
+   its set ends a part there, and the argument's `t` reads t_piece (inside a part its
+   midpoint: every stage reads one stair). The argument is code [a0, a1); past the
+   define's SCN_MAX_TEV instants, or past the VM's stack, it stays a plain floor */
+static uint32_t code_depth(const scn_ins *code, uint32_t i0, uint32_t i1);
+
+static void floor_time(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
+{
+    scn_ins *code = c->sc.code;
+    if (c->err || !c->def || c->def->type != SCN_DEF_SS ||
+        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
+        strcmp(scn_fns[f].name, "floor") != 0 || affine_in_t(code, a0, a1) != IN_T_AFFINE ||
+        code_depth(code, a0, a1) + 3 > SCN_MAX_STACK || c->def->ntev + c->ntev >= SCN_MAX_TEV)
+        return;
+    for (uint32_t i = a0; i < a1; i++)
+        if (code[i].op == SCN_OP_TIME)
+            code[i].op = SCN_OP_TPIECE;
+    c->tev[c->ntev][0] = c->tev[c->ntev][1] = 0, c->tev[c->ntev][2] = SCN_ST_TEV;
+    c->tev[c->ntev][3] = a0, c->tev[c->ntev][4] = a1;
     c->ntev++;
 }
 
@@ -434,7 +464,7 @@ static void call(scn_ctx *c, scn_name n)
         emit(c, SCN_OP_SEL, 0, -2);
     else if (!c->err) {
         if (want == 1)
-            band_arg(c, f, a0, c->sc.ncode);
+            band_arg(c, f, a0, c->sc.ncode), floor_time(c, f, a0, c->sc.ncode);
         emit(c, SCN_OP_CALL, (uint16_t)f, 1 - want);
     }
 }
@@ -729,6 +759,25 @@ static void side_at(scn_ctx *c, uint32_t i0, uint32_t i1, double v)
     }
 }
 
+/* the index of #floor_next in scn_fns */
+static int floor_next_fn(void)
+{
+    int f = 0;
+    while (scn_fns[f].name && strcmp(scn_fns[f].name, "#floor_next") != 0)
+        f++;
+    return f;
+}
+
+/* a copy of code [i0, i1), the argument a t + b of a floor (floor_time: its `t` reads
+   t_piece), reading `t` itself: the argument now */
+static void arg_now(scn_ctx *c, uint32_t i0, uint32_t i1)
+{
+    for (uint32_t i = i0; i < i1 && !c->err; i++) {
+        scn_ins in = c->sc.code[i];
+        emit(c, in.op == SCN_OP_TPIECE ? SCN_OP_TIME : in.op, in.a, 0);
+    }
+}
+
 /* the instants the statement just compiled compares `t` with (time_switch), and its sin
    and cos arguments affine in `t` (band_arg): each an SCN_ST_TEV or SCN_ST_BAND statement
    of its own, a copy of its code stored into the next one */
@@ -746,7 +795,16 @@ static void flush_tev(scn_ctx *c, scn_pos pos)
         uint32_t code0 = s->ncode;
         for (uint32_t i = c->tev[k][0]; i < c->tev[k][1]; i++)
             emit(c, s->code[i].op, s->code[i].a, 0);
-        if (c->tev[k][4] > c->tev[k][3]) { /* r, a t + b: (r - b) / a */
+        if (c->tev[k][1] == c->tev[k][0]) { /* floor(a t + b): t + its next jump's time */
+            uint32_t s0 = c->tev[k][3], s1 = c->tev[k][4];
+            emit(c, SCN_OP_TIME, 0, 0);
+            arg_now(c, s0, s1);
+            side_at(c, s0, s1, 1);
+            side_at(c, s0, s1, 0);
+            emit(c, SCN_OP_SUB, 0, 0);
+            emit(c, SCN_OP_CALL, (uint16_t)floor_next_fn(), 0);
+            emit(c, SCN_OP_ADD, 0, 0);
+        } else if (c->tev[k][4] > c->tev[k][3]) { /* r, a t + b: (r - b) / a */
             side_at(c, c->tev[k][3], c->tev[k][4], 0);
             emit(c, SCN_OP_SUB, 0, 0);
             side_at(c, c->tev[k][3], c->tev[k][4], 1);
