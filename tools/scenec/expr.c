@@ -703,6 +703,83 @@ static void state_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1, scn_
     d->sw_pos[d->nsw++] = pos;
 }
 
+/* the comparison op of the sides code [a0, a1) and [a1, ncode): a time event, a located
+   switch or a plain comparison (time_switch, state_switch) */
+static void comparison(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos pos,
+                       const char *name)
+{
+    uint16_t side = 0; /* (t == c holds at an instant alone: no time event) */
+    if (op >= SCN_OP_LT && op <= SCN_OP_GE) {
+        uint16_t ntev = c->ntev; /* (a time event is no switch of states) */
+        side = time_switch(c, a0, a1, c->sc.ncode);
+        if (c->ntev == ntev)
+            state_switch(c, a0, a1, c->sc.ncode, pos, name);
+    }
+    emit(c, op, side, -1);
+}
+
+/* is code [i0, i1) abs(e), e not empty */
+static int abs_code(const scn_ins *code, uint32_t i0, uint32_t i1)
+{
+    return i1 > i0 + 1 && code[i1 - 1].op == SCN_OP_CALL &&
+           strcmp(scn_fns[code[i1 - 1].a].name, "abs") == 0;
+}
+
+/* the operands instruction in pushes (+1), pops (a binary operator: -1) or leaves */
+static int pushes(scn_ins in)
+{
+    if (in.op <= SCN_OP_LOC)
+        return 1;
+    if (in.op == SCN_OP_NEG || in.op == SCN_OP_NOT)
+        return 0;
+    if (in.op == SCN_OP_SEL)
+        return -2;
+    return in.op == SCN_OP_CALL ? 1 - scn_fns[in.a].nargs : -1;
+}
+
+/* the n instructions at from emitted again, with their stack effect */
+static void emit_copy(scn_ctx *c, const scn_ins *from, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++)
+        emit(c, from[i].op, from[i].a, pushes(from[i]));
+}
+
+/* an order comparison with abs(e) on one side and r on the other, nothing registered
+   inside either (no instant, band or switch whose code would move): abs(e) < r is
+   e < r && -e < r, abs(e) > r is e > r || -e > r (<= and >= alike, r op abs(e) mirrored).
+   As one comparison its root r - |e| is a tent that a step crosses through and back
+   unseen (a thin layer |z - zl| < w passed in one step: 140 times the tolerance off, run
+   and check ok); as two, each side's root is as smooth as e, and each is a time event
+   or a located switch of its own. Returns 0 (nothing done) if it is no such comparison */
+static int split_abs(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos pos,
+                     const char *name)
+{
+    static scn_ins e[SCN_MAX_CODE], r[SCN_MAX_CODE];
+    scn_scene *s = &c->sc;
+    uint32_t b1 = s->ncode;
+    int left = abs_code(s->code, a0, a1), right = abs_code(s->code, a1, b1);
+    if (c->err || op < SCN_OP_LT || op > SCN_OP_GE || left == right)
+        return 0;
+    uint32_t e0 = left ? a0 : a1, ne = (left ? a1 : b1) - 1 - e0;
+    uint32_t r0 = left ? a1 : a0, nr = (left ? b1 : a1) - r0;
+    memcpy(e, &s->code[e0], ne * sizeof *e);
+    memcpy(r, &s->code[r0], nr * sizeof *r);
+    if (right) /* r op abs(e): abs(e) op' r */
+        op = op == SCN_OP_LT ? SCN_OP_GT : op == SCN_OP_LE ? SCN_OP_GE
+           : op == SCN_OP_GT ? SCN_OP_LT : SCN_OP_LE;
+    s->ncode = a0, c->sdepth -= 2; /* (both sides' values gone) */
+    emit_copy(c, e, ne);
+    emit_copy(c, r, nr);
+    comparison(c, a0, a0 + ne, op, pos, name);
+    uint32_t p = s->ncode;
+    emit_copy(c, e, ne);
+    emit(c, SCN_OP_NEG, 0, 0);
+    emit_copy(c, r, nr);
+    comparison(c, p, p + ne + 1, op, pos, name);
+    emit(c, op == SCN_OP_LT || op == SCN_OP_LE ? SCN_OP_AND : SCN_OP_OR, 0, -1);
+    return 1;
+}
+
 static void binary(scn_ctx *c, size_t lv)
 {
     if (lv == NLEVELS) {
@@ -710,6 +787,7 @@ static void binary(scn_ctx *c, size_t lv)
         return;
     }
     uint32_t a0 = c->sc.ncode;
+    uint16_t ntev = c->ntev, nsw = c->def ? c->def->nsw : 0; /* (registered before it) */
     binary(c, lv + 1);
     int i;
     while (!c->err && (i = level_op(c, lv)) >= 0) {
@@ -717,14 +795,10 @@ static void binary(scn_ctx *c, size_t lv)
         scn_pos op_pos = c->tok.pos;
         scn_next(c);
         binary(c, lv + 1);
-        uint16_t side = 0; /* (t == c holds at an instant alone: no time event) */
-        if (levels[lv].code[i] >= SCN_OP_LT && levels[lv].code[i] <= SCN_OP_GE) {
-            uint16_t ntev = c->ntev; /* (a time event is no switch of states) */
-            side = time_switch(c, a0, a1, c->sc.ncode);
-            if (c->ntev == ntev)
-                state_switch(c, a0, a1, c->sc.ncode, op_pos, levels[lv].ops[i]);
-        }
-        emit(c, levels[lv].code[i], side, -1);
+        uint8_t op = levels[lv].code[i];
+        int moved = c->ntev != ntev || (c->def && c->def->nsw != nsw);
+        if (moved || !split_abs(c, a0, a1, op, op_pos, levels[lv].ops[i]))
+            comparison(c, a0, a1, op, op_pos, levels[lv].ops[i]);
     }
 }
 
