@@ -126,9 +126,9 @@ struct rt_state {
     real_t r[RT_MAX_ROOTS];          /* root values at the end of the last step */
     real_t r_prev[RT_MAX_ROOTS];     /* root values one integration before state.r, and
                                         per set that integration's length (r_prev_h; 0:
-                                        none, or an event since): three equally spaced
-                                        values show a root that crosses and returns
-                                        within one step (rt/step.c, excursion) */
+                                        none, or an event since): three values show a
+                                        root that crosses and returns within one step
+                                        (rt/step.c, excursion) */
     real_t r_prev_h[RT_MAX_SETS];
     real_t r_late[RT_MAX_SETS];      /* per set with r_kept: how long before the tick the
                                         crossing may have come (0: at the tick), judged

@@ -332,6 +332,11 @@ enum {
    start (a root on its level, rt/step.c; a mode condition past it, rt/held.c) is seen */
 #define RTI_ROOT_HAIR (RT_REAL_IS_FLOAT ? (real_t)1e-30 : (real_t)1e-300)
 
+/* the shortest previous integration, as a fraction of the current one (and the longest,
+   as its inverse), whose start a root's excursion parabola takes as its third point
+   (rt/step.c excursion): closer, its curvature is a difference of rounding */
+#define RTI_EXCURSION_SPAN ((real_t)0.015625)
+
 /* state.hist_ev: the set's step in progress fired an event (its next push's interval) */
 #define RTI_HIST_EV_STEP 0x80u
 

@@ -664,9 +664,11 @@ static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, con
 }
 
 /* a root that crossed its level and came back within the integration from t0 over sub (ra
-   at its start, rb at its end, on one side): the parabola through it one integration
-   before (state.r_prev, of the same length), ra and rb reaches beyond the level between
-   them. The first such root's parabola's extremum is tried (trial: the real state there)
+   at its start, rb at its end, on one side): the parabola through it at the start of
+   the integration before (state.r_prev, r_prev_h before t0: of the same length, or of
+   another between RTI_EXCURSION_SPAN and its inverse times sub, the rest of a step
+   after an event or a part before a time event), ra and rb reaches beyond the level
+   between them. The first such root's parabola's extremum is tried (trial: the real state there)
    and, if a root crossed by then, the crossing is located in [0, th] as any other: a ball
    thrown up to a ceiling it touches for less than a step. Its roots are written into rt,
    th into *th, its block into *blk and its index there into *which; -1 if none (the state
@@ -680,13 +682,20 @@ static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *
 {
     uint16_t r0 = sim->plan.set_r[s], nr = (uint16_t)(sim->plan.set_r[s + 1] - r0);
     const real_t *rp = sim->state.r_prev + r0, *rb = sim->work.rs;
-    if (sim->state.r_prev_h[s] != sub)
+    real_t d = sim->state.r_prev_h[s] / sub; /* the first point's distance, in sub */
+    if (!(d >= (real_t)RTI_EXCURSION_SPAN && d <= 1 / (real_t)RTI_EXCURSION_SPAN))
         return -1;
     real_t at = 2;
     for (uint16_t i = 0; i < nr; i++) {
         if (rs->side[i] != 0 || rs->lvl[i] != 0 || !(ra[i] * rb[i] > 0))
             continue; /* held at a level, or not on one side at both ends */
-        real_t a = (real_t)0.5 * (rb[i] - 2 * ra[i] + rp[i]), b = (real_t)0.5 * (rb[i] - rp[i]);
+        real_t a, b; /* ra + b u + a u^2 through rp at u = -d, ra at 0 and rb at 1 */
+        if (d == 1) {
+            a = (real_t)0.5 * (rb[i] - 2 * ra[i] + rp[i]), b = (real_t)0.5 * (rb[i] - rp[i]);
+        } else {
+            a = (rp[i] - ra[i] + d * (rb[i] - ra[i])) / (d * (d + 1));
+            b = (rb[i] - ra[i]) - a;
+        }
         real_t sx = -b / (2 * a); /* the extremum, in steps from t0 */
         if (sx > 0 && sx < 1 && sx < at && (ra[i] + (b + a * sx) * sx) * ra[i] < 0)
             at = sx;
