@@ -120,18 +120,28 @@ static inline real_t rt_x_next(real_t t, const real_t *v, unsigned n)
 }
 
 /* how long after now the value u = a t + b of a `floor`'s argument, moving at rate a,
-   reaches the next integer (a defined system's floor of t, tools/scenec: an instant of
-   its next_event, where the floor jumps); an integer u names to rounding (the tick at a
-   jump) is now's, not the next one. RT_TEV_NEVER where a is 0 or either is NaN */
+   reaches the next integer past u (a defined system's floor of t, tools/scenec: an
+   instant of its next_event, where the floor jumps; the integer after it is another, so
+   that one of them follows now when the first is now's to rounding, rt_x_next).
+   RT_TEV_NEVER where a is 0 or either is NaN */
 static inline real_t rt_x_floor_next(real_t u, real_t a)
 {
     if (!(a != 0) || u != u)
         return RT_TEV_NEVER;
-    real_t m = rt_fabs(u) > 1 ? rt_fabs(u) : (real_t)1, slack = (real_t)RT_TICK_SLACK * m;
     real_t n = a > 0 ? rt_floor(u) + 1 : -rt_floor(-u) - 1; /* the next integer past u */
-    if (a > 0 ? n - u <= slack : u - n <= slack)
-        n += a > 0 ? 1 : -1;
     return (n - u) / a;
+}
+
+/* u = a t + b taken as the integer it lies on to its rounding (RT_TICK_SLACK of the
+   larger of |u|, m = |b| and 1: a t + b rounds by that much, however small u is), so a
+   jump of the floor that is now's (a part ending at it) is not found again a rounding
+   later as a next one (rt_x_floor_next) */
+static inline real_t rt_x_floor_snap(real_t u, real_t m)
+{
+    real_t n = rt_floor(u + (real_t)0.5), au = rt_fabs(u);
+    real_t big = au > m ? au : m;
+    big = big > 1 ? big : 1;
+    return rt_fabs(u - n) <= (real_t)RT_TICK_SLACK * big ? n : u;
 }
 
 /* a defined system's rt_kind.band: the largest |v1_i - v0_i| over its n sin and cos

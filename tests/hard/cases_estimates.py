@@ -567,15 +567,20 @@ def floor_time(s):
     x' = J min(floor(t / c), 1) (audit 14: dopri5 at 100 ms, c from 0.057 to 0.065,
     4 to 19 times its tolerance off with run and check ok; x(0.3) = J (0.3 - c)),
     x' = floor(-t / 0.07 + 5) (falling, x(1) = -2.65), x' = 10 floor(t + 0.58) (x(1) = 5.8):
-    exact to 1e-12 by every method; a staircase finer than a step's parts
-    (floor(t / 0.003) at 100 ms) is never ok"""
+    x' = max(floor((t - 10) / 0.03), 0) (x(10.2) = 0.57: a part ending a rounding before
+    a jump, u = 0.99999999999997868, skipped the stair while its jump was taken as now's,
+    0.600 with status ok, in the review), exact to 1e-12 by every method; a staircase
+    finer than a step's parts (floor(t / 0.003) at 100 ms) is never ok; a counter of
+    samples in an output, n = floor(t / 0.001) at 10 ms steps, stays plain: n(1) = 1000,
+    status ok"""
     text = ("scene (floor_t);\nbase tick (10 ms);\nend time (%s s);\n"
             "define ss_system (Q) with outputs (y) states (x = 0) by {\n    y = x;\n"
             "    der(x) = %s;\n};\nload system (P) of type (Q);\n"
             "set (main) method (rk4) step (10 ticks);\nrecord (P.y);\n")
     cases = [("3 * min(floor(t / %g), 1)" % c, 0.3, 3 * (0.3 - c))
              for c in (0.057, 0.06, 0.064, 0.065)]
-    cases += [("floor(-t / 0.07 + 5)", 1, -2.65), ("10 * floor(t + 0.58)", 1, 5.8)]
+    cases += [("floor(-t / 0.07 + 5)", 1, -2.65), ("10 * floor(t + 0.58)", 1, 5.8),
+              ("max(floor((t - 10) / 0.03), 0)", 10.2, 0.57)]
     for der, t_end, exact in cases:
         for m in ("heun", "bs3", "rk4", "dopri5", "ros2", "sdirk3"):
             rc, summ, rows = run_text(s.modrt, text % (t_end, der), ["--method", "main=" + m])
@@ -586,6 +591,13 @@ def floor_time(s):
     rc, summ, rows = run_text(s.modrt, text % (1, "floor(t / 0.003)"), [])
     s.row("x' = floor(t / 0.003): parts", "rk4", "0.1", rc, summ, rc)
     s.check(rc != 0, "a staircase finer than the parts: status %s" % summ.get("status"))
+    counter = text.replace("    y = x;", "    y = floor(t / 0.001);").replace(
+        "step (10 ticks)", "step (1 tick)")
+    rc, summ, rows = run_text(s.modrt, counter % (1, "1"), [])
+    n = rows[-1][1] if rows else math.nan
+    s.row("an output counter n = floor(t / 0.001): n(1)", "rk4", "0.01", abs(n - 1000), summ,
+          rc)
+    s.check(rc == 0 and n == 1000, "output counter: n(1) %s, status %s" % (n, summ.get("status")))
 
 
 def abs_split(s):

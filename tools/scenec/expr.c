@@ -25,6 +25,7 @@ const scn_fn scn_fns[] = {
     {"#swgt", 2, 0, rt_x_swgt, "rt_x_swgt"}, {"#swge", 2, 0, rt_x_swge, "rt_x_swge"},
     /* the time to a floor's next jump (floor_time, flush_tev) */
     {"#floor_next", 2, 0, rt_x_floor_next, "rt_x_floor_next"},
+    {"#floor_snap", 2, 0, rt_x_floor_snap, "rt_x_floor_snap"},
     {0, 0, 0, 0, 0},
 };
 
@@ -404,31 +405,36 @@ static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
     c->ntev++;
 }
 
-/* floor(a t + b) (a, b fixed) in an output, derivative or let of a continuous define:
-   a staircase of t whose jumps, where a t + b is an integer, no step's error estimate
-   sees (every stage past a jump reads the next stair, and so does the companion: dopri5's
-   estimate of a jump in the first 0.3 of its step is 1/170 of its error). Each jump is a
-   time event known at run time, as a comparison of t with an instant (time_switch): the
-   kind's next_event gives the next one, t + rt_x_floor_next(a t + b, a), so a step of
-   its set ends a part there, and the argument's `t` reads t_piece (inside a part its
-   midpoint: every stage reads one stair). The argument is code [a0, a1); past the
-   define's SCN_MAX_TEV instants, or past the VM's stack, it stays a plain floor */
+/* floor(a t + b) (a, b fixed) in a derivative or let of a continuous define: a staircase
+   of t whose jumps, where a t + b is an integer, no step's error estimate sees (every
+   stage past a jump reads the next stair, and so does the companion: dopri5's estimate
+   of a jump in the first 0.3 of its step is 1/170 of its error). Each jump is a time
+   event known at run time, as a comparison of t with an instant (time_switch): two
+   instants of the kind's next_event, t + rt_x_floor_next(a t + b, a) and one stair
+   further (the first may be now's to rounding), so a step of its set ends a part there,
+   and the argument's `t` reads t_piece (inside a part its midpoint: every stage reads
+   one stair). In an output it stays a plain floor: a counter of samples recorded, its
+   stairs finer than a step, is no staircase integrated, and its instants would pass
+   RT_TEV_PARTS_MAX. The argument is code [a0, a1); past the define's SCN_MAX_TEV
+   instants, or past the VM's stack, it stays plain */
 static uint32_t code_depth(const scn_ins *code, uint32_t i0, uint32_t i1);
 
 static void floor_time(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
 {
     scn_ins *code = c->sc.code;
     if (c->err || !c->def || c->def->type != SCN_DEF_SS ||
-        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
+        (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
         strcmp(scn_fns[f].name, "floor") != 0 || affine_in_t(code, a0, a1) != IN_T_AFFINE ||
-        code_depth(code, a0, a1) + 3 > SCN_MAX_STACK || c->def->ntev + c->ntev >= SCN_MAX_TEV)
+        code_depth(code, a0, a1) + 4 > SCN_MAX_STACK || c->def->ntev + c->ntev + 1 >= SCN_MAX_TEV)
         return;
     for (uint32_t i = a0; i < a1; i++)
         if (code[i].op == SCN_OP_TIME)
             code[i].op = SCN_OP_TPIECE;
-    c->tev[c->ntev][0] = c->tev[c->ntev][1] = 0, c->tev[c->ntev][2] = SCN_ST_TEV;
-    c->tev[c->ntev][3] = a0, c->tev[c->ntev][4] = a1;
-    c->ntev++;
+    for (uint16_t k = 0; k < 2; k++) { /* (i0 = i1: a floor's; k: stairs after the next) */
+        c->tev[c->ntev][0] = c->tev[c->ntev][1] = k, c->tev[c->ntev][2] = SCN_ST_TEV;
+        c->tev[c->ntev][3] = a0, c->tev[c->ntev][4] = a1;
+        c->ntev++;
+    }
 }
 
 /* f(args): an elementary function, or if(c, a, b) */
@@ -762,6 +768,12 @@ static int split_abs(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos p
         return 0;
     uint32_t e0 = left ? a0 : a1, ne = (left ? a1 : b1) - 1 - e0;
     uint32_t r0 = left ? a1 : a0, nr = (left ? b1 : a1) - r0;
+    uint32_t de = code_depth(s->code, e0, e0 + ne), dr = code_depth(s->code, r0, r0 + nr);
+    if (c->sdepth + (de > dr ? de : dr) > SCN_MAX_STACK) /* (-e op r on e op r's value) */
+        return 0;
+    if (nr == 1 && s->code[r0].op == SCN_OP_CONST && !(s->k[s->code[r0].a] > 0))
+        return 0; /* abs(e) < 0 never holds, abs(e) > 0 wherever e is not 0: split, the
+                     halves would switch where the whole does not */
     memcpy(e, &s->code[e0], ne * sizeof *e);
     memcpy(r, &s->code[r0], nr * sizeof *r);
     if (right) /* r op abs(e): abs(e) op' r */
@@ -833,13 +845,23 @@ static void side_at(scn_ctx *c, uint32_t i0, uint32_t i1, double v)
     }
 }
 
-/* the index of #floor_next in scn_fns */
-static int floor_next_fn(void)
+/* the index of function `name` in scn_fns */
+static int fn_index(const char *name)
 {
     int f = 0;
-    while (scn_fns[f].name && strcmp(scn_fns[f].name, "#floor_next") != 0)
+    while (scn_fns[f].name && strcmp(scn_fns[f].name, name) != 0)
         f++;
     return f;
+}
+
+static int floor_next_fn(void)
+{
+    return fn_index("#floor_next");
+}
+
+static int abs_fn(void)
+{
+    return fn_index("abs");
 }
 
 /* a copy of code [i0, i1), the argument a t + b of a floor (floor_time: its `t` reads
@@ -873,11 +895,24 @@ static void flush_tev(scn_ctx *c, scn_pos pos)
             uint32_t s0 = c->tev[k][3], s1 = c->tev[k][4];
             emit(c, SCN_OP_TIME, 0, 0);
             arg_now(c, s0, s1);
+            side_at(c, s0, s1, 0);
+            emit(c, SCN_OP_CALL, (uint16_t)abs_fn(), 0);
+            emit(c, SCN_OP_CALL, (uint16_t)fn_index("#floor_snap"), 0);
             side_at(c, s0, s1, 1);
             side_at(c, s0, s1, 0);
             emit(c, SCN_OP_SUB, 0, 0);
             emit(c, SCN_OP_CALL, (uint16_t)floor_next_fn(), 0);
             emit(c, SCN_OP_ADD, 0, 0);
+            if (c->tev[k][0] == 1) { /* one stair further: + 1 / |a| */
+                emit_const(c, 1);
+                c->sdepth--; /* (an instant's statement counts no depth) */
+                side_at(c, s0, s1, 1);
+                side_at(c, s0, s1, 0);
+                emit(c, SCN_OP_SUB, 0, 0);
+                emit(c, SCN_OP_CALL, (uint16_t)abs_fn(), 0);
+                emit(c, SCN_OP_DIV, 0, 0);
+                emit(c, SCN_OP_ADD, 0, 0);
+            }
         } else if (c->tev[k][4] > c->tev[k][3]) { /* r, a t + b: (r - b) / a */
             side_at(c, c->tev[k][3], c->tev[k][4], 0);
             emit(c, SCN_OP_SUB, 0, 0);
