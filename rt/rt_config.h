@@ -231,6 +231,13 @@ typedef double real_t;
 #ifndef RT_W_DRIFT
 #define RT_W_DRIFT ((real_t)0.25)
 #endif
+#ifndef RT_HIDDEN_OSC_HL
+/* an L-stable implicit step whose estimate its iteration matrix filtered within the
+   accuracy, though the raw difference was not, takes the raw one when the difference
+   holds a mode of |h lambda| above this that does not decay over the step (an undamped
+   stiff oscillation the method wipes out; integ_implicit.c hidden_oscillation) */
+#define RT_HIDDEN_OSC_HL 2
+#endif
 #ifndef RT_TRANSITION_THETA
 /* the transition method's phi functions: h J is halved until its 1-norm is at most this,
    a Taylor polynomial of degree RT_TRANSITION_TAYLOR is summed there (truncation

@@ -635,6 +635,45 @@ def abs_split(s):
                         form, m, step, err, summ.get("events"), summ.get("status")))
 
 
+def hidden_oscillation(s):
+    """H: an undamped stiff oscillation an L-stable method wipes out: x'' = -w^2 x - 2 z w x',
+    w = 1e4 (1.6 kHz), x(0) = 0, v(0) = 0.3, at 20 ms. Undamped (z = 0, the library
+    oscillator) and lightly damped (z = 1e-3, h Re lambda = -0.2) the exact v keeps its
+    amplitude while ROS2, SDIRK2, SDIRK3 and backward Euler return v near 0 from the first
+    step: never ok (audit 14: ROS2 and SDIRK3 status ok, their estimates filtered by the
+    iteration matrix 1e5 times below the error; modrt check ok). Strongly damped (z = 0.5:
+    h Re lambda = -100, the mode gone within the step) ROS2's and SDIRK3's runs are right,
+    v(1) within 1e-12 of 0, and ok: no alarm where the filter is right. (At z = 1e-3 the
+    mode has decayed by e^-10 at 1 s: the error shown is v(1)'s; the run was 0.3 off over
+    its first 0.1 s)"""
+    text = ("scene (stiff_osc);\nbase tick (1 ms);\nend time (1 s);\n"
+            "define ss_system (O) with outputs (xo, vo) parameters (w = 10000, z = %s) "
+            "states (x = 0, v = 0.3) by {\n    xo = x;\n    vo = v;\n    der(x) = v;\n"
+            "    der(v) = -w * w * x - 2 * z * w * v;\n};\nload system (A) of type (O);\n"
+            "set (main) method (ros2) step (20 ticks);\nrecord (A.xo, A.vo);\n")
+    lib = ("scene (stiff_lib);\nbase tick (1 ms);\nend time (1 s);\n"
+           "load system (O) of type (oscillator);\nO.omega = 10000;\nO.x = 0;\nO.v = 0.3;\n"
+           "set (main) method (ros2) step (20 ticks);\nrecord (O.x, O.v);\n")
+    for m in ("ros2", "sdirk2", "sdirk3", "beuler"):
+        for what, scene in (("undamped, the library oscillator", lib),
+                            ("undamped", text % "0"), ("z = 1e-3", text % "0.001")):
+            rc, summ, rows = run_text(s.modrt, scene, ["--method", "main=" + m])
+            v = rows[-1][2] if rows else math.nan
+            err = abs(v - 0.3 * math.cos(1e4) * (math.exp(-0.001 * 1e4) if "1e-3" in what
+                                                   else 1))
+            s.row("a stiff oscillation (%s) damped by the method: v(1)" % what, m, "0.02",
+                  err, summ, rc)
+            s.check(rc != 0, "hidden oscillation %s, %s: v(1) %.3g (%.3g off), status %s" % (
+                what, m, v, err, summ.get("status")))
+    for m in ("ros2", "sdirk3"):  # (SDIRK2's and backward Euler's estimates flag it anyway)
+        rc, summ, rows = run_text(s.modrt, text % "0.5", ["--method", "main=" + m])
+        v = rows[-1][2] if rows else math.nan
+        s.row("a stiff oscillation, z = 0.5, gone within the step: v(1)", m, "0.02", abs(v),
+              summ, rc)
+        s.check(rc == 0 and abs(v) <= 1e-12, "damped stiff oscillation %s: v(1) %.3g, status "
+                "%s" % (m, v, summ.get("status")))
+
+
 def located_switch_review(s):
     """H: a switch whose side holds a truth value inside it but is none itself,
     x' = if(if(x > 0, x, -x) > 0.5, 1, 3) from -1: located where |x| = 0.5 (x(2) = 5/3
@@ -736,6 +775,7 @@ def extra(s, long):
     output_switches(s)
     floor_time(s)
     abs_split(s)
+    hidden_oscillation(s)
     located_switch(s)
     located_switch_rest(s)
     located_switch_limits(s)
