@@ -426,7 +426,8 @@ static real_t estimate(imp_step *c, real_t *e)
    Wanner's filter presumes the mode decays). The mode comes from the Ritz values of M^-1
    on the Krylov space span {w, M^-1 w} of the difference's stiff part w = (I - M^-1) u
    (a slow mode's mu is near 1: without it the space holds the stiff pair alone), each
-   mu = 1 / (1 - h_f lambda), h_f the factored h gamma. u, a and b (n values each) are
+   mu = 1 / (1 - h_f lambda), h_f the factored h gamma, where that space is nearly
+   invariant (an oscillation the difference holds alone). u, a and b (n values each) are
    overwritten. h: the step */
 static int hidden_oscillation(const imp_step *c, real_t *u, real_t *a, real_t *b, real_t h)
 {
@@ -441,10 +442,10 @@ static int hidden_oscillation(const imp_step *c, real_t *u, real_t *a, real_t *b
     for (uint16_t i = 0; i < n; i++)
         u[i] = b[i];
     rti_lu_solve(ws->lu, n, ws->piv, u); /* M^-2 w */
-    real_t ww = 0, wa = 0, aa = 0, wb = 0, ab = 0;
+    real_t ww = 0, wa = 0, aa = 0, wb = 0, ab = 0, bb = 0;
     for (uint16_t i = 0; i < n; i++)
         ww += a[i] * a[i], wa += a[i] * b[i], aa += b[i] * b[i], wb += a[i] * u[i],
-        ab += b[i] * u[i];
+        ab += b[i] * u[i], bb += u[i] * u[i];
     real_t nw = rt_sqrt(ww), al = wa / nw, p2 = aa - al * al;
     if (!(ww > 0 && p2 > 0))
         return 0; /* (w an eigenvector, or nothing: no pair) */
@@ -455,6 +456,13 @@ static int hidden_oscillation(const imp_step *c, real_t *u, real_t *a, real_t *b
     if (!(disc < 0))
         return 0; /* real Ritz values: a real mode, decaying or caught by watch_damping */
     real_t mi = rt_sqrt(-disc), m2 = tr * tr + mi * mi; /* mu = tr +- i mi */
+    /* the space must be nearly invariant: of M^-1 q2, what lies outside it (squared)
+       below RT_HIDDEN_OSC_RES^2 |mu|^2. Else the Ritz values are points of M^-1's field
+       of values, not its eigenvalues: a non-normal J with real decaying modes (a chain of
+       stiff lags) gives complex ones that read as an oscillation */
+    real_t c2 = al / nw, out = (bb - 2 * c2 * ab + c2 * c2 * aa) / p2 - h12 * h12 - h22 * h22;
+    if (!(out <= R(RT_HIDDEN_OSC_RES) * R(RT_HIDDEN_OSC_RES) * m2))
+        return 0;
     real_t s = h / ws->h_factored; /* h lambda = s (1 - 1 / mu) */
     real_t re = s * (1 - tr / m2), im = s * (mi / m2);
     return re > -R(0.6931471805599453) &&

@@ -238,6 +238,12 @@ typedef double real_t;
    stiff oscillation the method wipes out; integ_implicit.c hidden_oscillation) */
 #define RT_HIDDEN_OSC_HL 2
 #endif
+#ifndef RT_HIDDEN_OSC_RES
+/* ... when the Krylov space that mode comes from is invariant to this fraction of |mu|
+   (what M^-1 maps out of it): the mode is one of M's, not a point of its field of
+   values */
+#define RT_HIDDEN_OSC_RES 1e-3
+#endif
 #ifndef RT_TRANSITION_THETA
 /* the transition method's phi functions: h J is halved until its 1-norm is at most this,
    a Taylor polynomial of degree RT_TRANSITION_TAYLOR is summed there (truncation
