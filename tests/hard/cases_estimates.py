@@ -608,7 +608,10 @@ def abs_split(s):
     root crosses and is located. z(1) from the closed form (free fall to zl + w, the lag
     v' = -g - k v to zl - w by Newton, free fall to 1 s) within 1e-5 (the tolerance 4e-3),
     2 events, status ok (bs3 at 20 ms doubtful: its estimate of the part after the layer);
-    the same for `>`, and for the mirrored `w > abs(z - zl)`"""
+    the same for `>`, for the mirrored `w > abs(z - zl)`, and for max(z - zl, zl - z) < w
+    and min(zl - z, z - zl) > -w (split the same way). A pulse of t, 100 over
+    |t - ts| < w = 2 ms inside a 50 ms step, written max(t - ts, ts - t) < w: x(1) = 0.4
+    (audit 14: 0, run and check ok), the halves two time events"""
     g, zl, w, k = 9.81, 0.5, 0.001, 500.0
     t1 = math.sqrt(2 * (1 - (zl + w)) / g)
     v1, z1 = -g * t1, zl + w
@@ -619,7 +622,8 @@ def abs_split(s):
     v2, rest = -g / k + (v1 + g / k) * math.exp(-k * tau), 1 - t1 - tau
     exact = zl - w + v2 * rest - g / 2 * rest * rest
     for form in ("if(abs(z - zl) < w, k * v, 0)", "if(abs(z - zl) > w, 0, k * v)",
-                 "if(w > abs(z - zl), k * v, 0)"):
+                 "if(w > abs(z - zl), k * v, 0)", "if(max(z - zl, zl - z) < w, k * v, 0)",
+                 "if(min(zl - z, z - zl) > -w, k * v, 0)"):
         text = ("scene (layer);\nbase tick (0.1 ms);\nend time (1 s);\n"
                 "define ss_system (B) with outputs (zo) parameters (g = 9.81, zl = 0.5, "
                 "w = 0.001, k = 500) states (z = 1, v = 0) by {\n    zo = z;\n"
@@ -633,6 +637,17 @@ def abs_split(s):
             s.check(rc in (0, 3) and err <= 1e-5 and summ.get("events", "").split()[:1] == ["2"],
                     "layer %s, %s at %s: z(1) off by %.3g, events %s, status %s" % (
                         form, m, step, err, summ.get("events"), summ.get("status")))
+    pulse = ("scene (pulse);\nbase tick (1 ms);\nend time (1 s);\n"
+             "define ss_system (P) with outputs (y) parameters (ts = 0.4537, w = 0.002) "
+             "states (x = 0) by {\n    y = x;\n    der(x) = if(max(t - ts, ts - t) < w, 100, 0);"
+             "\n};\nload system (B) of type (P);\nset (main) method (rk4) step (50 ticks);\n"
+             "record (B.y);\n")
+    for m in ("rk4", "dopri5", "sdirk3"):
+        rc, summ, rows = run_text(s.modrt, pulse, ["--method", "main=" + m])
+        err = abs(rows[-1][1] - 0.4) if rows else math.inf
+        s.row("a pulse max(t - ts, ts - t) < w inside a step: x(1)", m, "0.05", err, summ, rc)
+        s.check(rc == 0 and err <= 1e-12, "pulse window %s: x(1) off by %.3g, status %s" % (
+            m, err, summ.get("status")))
 
 
 def hidden_oscillation(s):

@@ -724,11 +724,14 @@ static void comparison(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos
     emit(c, op, side, -1);
 }
 
-/* is code [i0, i1) abs(e), e not empty */
-static int abs_code(const scn_ins *code, uint32_t i0, uint32_t i1)
+/* the kink function code [i0, i1) ends in: abs (1), max (2), min (3), or 0 if none (or
+   its argument is empty) */
+static int kink_code(const scn_ins *code, uint32_t i0, uint32_t i1)
 {
-    return i1 > i0 + 1 && code[i1 - 1].op == SCN_OP_CALL &&
-           strcmp(scn_fns[code[i1 - 1].a].name, "abs") == 0;
+    if (i1 < i0 + 2 || code[i1 - 1].op != SCN_OP_CALL)
+        return 0;
+    const char *f = scn_fns[code[i1 - 1].a].name;
+    return strcmp(f, "abs") == 0 ? 1 : strcmp(f, "max") == 0 ? 2 : strcmp(f, "min") == 0 ? 3 : 0;
 }
 
 /* the operands instruction in pushes (+1), pops (a binary operator: -1) or leaves */
@@ -750,45 +753,68 @@ static void emit_copy(scn_ctx *c, const scn_ins *from, uint32_t n)
         emit(c, from[i].op, from[i].a, pushes(from[i]));
 }
 
-/* an order comparison with abs(e) on one side and r on the other, nothing registered
-   inside either (no instant, band or switch whose code would move): abs(e) < r is
-   e < r && -e < r, abs(e) > r is e > r || -e > r (<= and >= alike, r op abs(e) mirrored).
-   As one comparison its root r - |e| is a tent that a step crosses through and back
-   unseen (a thin layer |z - zl| < w passed in one step: 140 times the tolerance off, run
-   and check ok); as two, each side's root is as smooth as e, and each is a time event
-   or a located switch of its own. Returns 0 (nothing done) if it is no such comparison */
-static int split_abs(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos pos,
-                     const char *name)
+/* where the second argument of a two-argument call ending code [i0, i1) begins: the
+   shortest suffix before the call that is a whole expression */
+static uint32_t second_arg(const scn_ins *code, uint32_t i0, uint32_t i1)
 {
-    static scn_ins e[SCN_MAX_CODE], r[SCN_MAX_CODE];
+    int need = 1;
+    uint32_t i = i1 - 1; /* (the call) */
+    while (i > i0 && need > 0)
+        need -= pushes(code[--i]);
+    return i;
+}
+
+/* an order comparison with a kink on one side, abs(e), max(p, q) or min(p, q), and r on
+   the other, nothing registered inside either (no instant, band or switch whose code
+   would move): abs(e) < r is e < r && -e < r, max(p, q) < r is p < r && q < r, min(p, q)
+   < r is p < r || q < r, and > swaps && and || (<= and >= alike, r op f(...) mirrored).
+   As one comparison its root is a tent that a step crosses through and back unseen (a
+   thin layer |z - zl| < w passed in one step: 140 times the tolerance off, a pulse
+   max(t - ts, ts - t) < w inside a step: 0 for 0.4, run and check ok); as two, each
+   half's root is as smooth as its argument, and each is a time event or a located switch
+   of its own. Returns 0 (nothing done) if it is no such comparison */
+static int split_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos pos,
+                      const char *name)
+{
+    static scn_ins h1[SCN_MAX_CODE], h2[SCN_MAX_CODE], r[SCN_MAX_CODE];
     scn_scene *s = &c->sc;
     uint32_t b1 = s->ncode;
-    int left = abs_code(s->code, a0, a1), right = abs_code(s->code, a1, b1);
-    if (c->err || op < SCN_OP_LT || op > SCN_OP_GE || left == right)
+    int kl = kink_code(s->code, a0, a1), kr = kink_code(s->code, a1, b1);
+    if (c->err || op < SCN_OP_LT || op > SCN_OP_GE || (kl != 0) == (kr != 0))
         return 0;
-    uint32_t e0 = left ? a0 : a1, ne = (left ? a1 : b1) - 1 - e0;
-    uint32_t r0 = left ? a1 : a0, nr = (left ? b1 : a1) - r0;
-    uint32_t de = code_depth(s->code, e0, e0 + ne), dr = code_depth(s->code, r0, r0 + nr);
-    if (c->sdepth + (de > dr ? de : dr) > SCN_MAX_STACK) /* (-e op r on e op r's value) */
+    int kind = kl ? kl : kr;
+    uint32_t f0 = kl ? a0 : a1, f1 = (kl ? a1 : b1) - 1; /* the arguments: [f0, f1) */
+    uint32_t r0 = kl ? a1 : a0, nr = (kl ? b1 : a1) - r0;
+    uint32_t m = kind == 1 ? f1 : second_arg(s->code, f0, f1 + 1);
+    if (kind != 1 && !(m > f0 && m < f1))
         return 0;
-    if (nr == 1 && s->code[r0].op == SCN_OP_CONST && !(s->k[s->code[r0].a] > 0))
+    uint32_t n1 = m - f0, n2 = kind == 1 ? n1 + 1 : f1 - m;
+    uint32_t d1 = code_depth(s->code, f0, m), d2 = kind == 1 ? d1 : code_depth(s->code, m, f1);
+    uint32_t dr = code_depth(s->code, r0, r0 + nr), dh = d1 > d2 ? d1 : d2;
+    if (c->sdepth + (dh > dr ? dh : dr) > SCN_MAX_STACK) /* (a half op r on one's value) */
+        return 0;
+    if (kind == 1 && nr == 1 && s->code[r0].op == SCN_OP_CONST && !(s->k[s->code[r0].a] > 0))
         return 0; /* abs(e) < 0 never holds, abs(e) > 0 wherever e is not 0: split, the
                      halves would switch where the whole does not */
-    memcpy(e, &s->code[e0], ne * sizeof *e);
+    memcpy(h1, &s->code[f0], n1 * sizeof *h1);
+    if (kind == 1)
+        memcpy(h2, h1, n1 * sizeof *h2), h2[n1] = (scn_ins){SCN_OP_NEG, 0};
+    else
+        memcpy(h2, &s->code[m], n2 * sizeof *h2);
     memcpy(r, &s->code[r0], nr * sizeof *r);
-    if (right) /* r op abs(e): abs(e) op' r */
+    if (kr) /* r op f(...): f(...) op' r */
         op = op == SCN_OP_LT ? SCN_OP_GT : op == SCN_OP_LE ? SCN_OP_GE
            : op == SCN_OP_GT ? SCN_OP_LT : SCN_OP_LE;
+    int below = op == SCN_OP_LT || op == SCN_OP_LE; /* max below r: both halves are */
     s->ncode = a0, c->sdepth -= 2; /* (both sides' values gone) */
-    emit_copy(c, e, ne);
+    emit_copy(c, h1, n1);
     emit_copy(c, r, nr);
-    comparison(c, a0, a0 + ne, op, pos, name);
+    comparison(c, a0, a0 + n1, op, pos, name);
     uint32_t p = s->ncode;
-    emit_copy(c, e, ne);
-    emit(c, SCN_OP_NEG, 0, 0);
+    emit_copy(c, h2, n2);
     emit_copy(c, r, nr);
-    comparison(c, p, p + ne + 1, op, pos, name);
-    emit(c, op == SCN_OP_LT || op == SCN_OP_LE ? SCN_OP_AND : SCN_OP_OR, 0, -1);
+    comparison(c, p, p + n2, op, pos, name);
+    emit(c, (kind == 3) != below ? SCN_OP_AND : SCN_OP_OR, 0, -1);
     return 1;
 }
 
@@ -809,7 +835,7 @@ static void binary(scn_ctx *c, size_t lv)
         binary(c, lv + 1);
         uint8_t op = levels[lv].code[i];
         int moved = c->ntev != ntev || (c->def && c->def->nsw != nsw);
-        if (moved || !split_abs(c, a0, a1, op, op_pos, levels[lv].ops[i]))
+        if (moved || !split_kink(c, a0, a1, op, op_pos, levels[lv].ops[i]))
             comparison(c, a0, a1, op, op_pos, levels[lv].ops[i]);
     }
 }
