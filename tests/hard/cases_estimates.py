@@ -569,7 +569,9 @@ def floor_time(s):
     x' = floor(-t / 0.07 + 5) (falling, x(1) = -2.65), x' = 10 floor(t + 0.58) (x(1) = 5.8):
     x' = max(floor((t - 10) / 0.03), 0) (x(10.2) = 0.57: a part ending a rounding before
     a jump, u = 0.99999999999997868, skipped the stair while its jump was taken as now's,
-    0.600 with status ok, in the review), exact to 1e-12 by every method; a staircase
+    0.600 with status ok, in the review), exact to 1e-12 by every method; over a let of
+    parameters, 3 min(floor(t / P), 1) with P = 2 T0 (audit 14c: dopri5 8.6 times its
+    tolerance off, run and check ok), exact; a staircase
     finer than a step's parts (floor(t / 0.003) at 100 ms) is never ok; a counter of
     samples in an output, n = floor(t / 0.001) at 10 ms steps, stays plain: n(1) = 1000,
     status ok"""
@@ -591,6 +593,16 @@ def floor_time(s):
     rc, summ, rows = run_text(s.modrt, text % (1, "floor(t / 0.003)"), [])
     s.row("x' = floor(t / 0.003): parts", "rk4", "0.1", rc, summ, rc)
     s.check(rc != 0, "a staircase finer than the parts: status %s" % summ.get("status"))
+    let = text.replace("states (x = 0) by {", "parameters (T0 = 0.0325) states (x = 0) by {\n"
+                       "    let P = 2 * T0;")
+    for m in ("rk4", "dopri5"):
+        rc, summ, rows = run_text(s.modrt, let % (1, "3 * min(floor(t / P), 1)"),
+                                  ["--method", "main=" + m])
+        err = abs(rows[-1][1] - 3 * (1 - 0.065)) if rows else math.inf
+        s.row("x' = 3 min(floor(t / P), 1), P a let of parameters: x(1)", m, "0.1", err, summ,
+              rc)
+        s.check(rc == 0 and err <= 1e-12, "floor of t over a let %s: x(1) off by %.3g, status "
+                "%s" % (m, err, summ.get("status")))
     counter = text.replace("    y = x;", "    y = floor(t / 0.001);").replace(
         "step (10 ticks)", "step (1 tick)")
     rc, summ, rows = run_text(s.modrt, counter % (1, "1"), [])

@@ -355,16 +355,18 @@ static int indexed_ref(scn_ctx *c, scn_name n)
     return 1;
 }
 
-/* what code [i0, i1) is as a function of `t` (band_arg) */
+/* what code [i0, i1) is as a function of `t` (band_arg); d: a define whose fixed lets
+   (lets of constants and parameters) count as fixed, or NULL */
 typedef enum { IN_T_FIXED, IN_T_AFFINE, IN_T_OTHER } in_t;
 
-static in_t affine_in_t(const scn_ins *code, uint32_t i0, uint32_t i1)
+static in_t affine_in_t(const scn_define *d, const scn_ins *code, uint32_t i0, uint32_t i1)
 {
     uint8_t st[SCN_MAX_STACK + 1];
     int sp = 0;
     for (uint32_t i = i0; i < i1; i++) {
         uint8_t op = code[i].op, a, b;
-        if (op == SCN_OP_CONST || op == SCN_OP_PAR || op == SCN_OP_TIME) {
+        if (op == SCN_OP_CONST || op == SCN_OP_PAR || op == SCN_OP_TIME ||
+            (op == SCN_OP_LOC && d && d->loc_fixed[code[i].a])) {
             if (sp > SCN_MAX_STACK)
                 return IN_T_OTHER;
             st[sp++] = op == SCN_OP_TIME ? IN_T_AFFINE : IN_T_FIXED;
@@ -396,7 +398,7 @@ static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
         (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET &&
          c->st_kind != SCN_ST_ROOT) ||
         (strcmp(scn_fns[f].name, "sin") != 0 && strcmp(scn_fns[f].name, "cos") != 0) ||
-        affine_in_t(c->sc.code, a0, a1) != IN_T_AFFINE)
+        affine_in_t(0, c->sc.code, a0, a1) != IN_T_AFFINE)
         return;
     if (c->def->nband + c->ntev >= SCN_MAX_BAND)
         return; /* (more than the bound: the first SCN_MAX_BAND say the band) */
@@ -405,7 +407,8 @@ static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
     c->ntev++;
 }
 
-/* floor(a t + b) (a, b fixed) in a derivative or let of a continuous define: a staircase
+/* floor(a t + b) (a, b fixed: constants, parameters, lets of them) in a derivative or let
+   of a continuous define: a staircase
    of t whose jumps, where a t + b is an integer, no step's error estimate sees (every
    stage past a jump reads the next stair, and so does the companion: dopri5's estimate
    of a jump in the first 0.3 of its step is 1/170 of its error). Each jump is a time
@@ -424,7 +427,8 @@ static void floor_time(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
     scn_ins *code = c->sc.code;
     if (c->err || !c->def || c->def->type != SCN_DEF_SS ||
         (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
-        strcmp(scn_fns[f].name, "floor") != 0 || affine_in_t(code, a0, a1) != IN_T_AFFINE ||
+        strcmp(scn_fns[f].name, "floor") != 0 ||
+        affine_in_t(c->def, code, a0, a1) != IN_T_AFFINE ||
         code_depth(code, a0, a1) + 4 > SCN_MAX_STACK || c->def->ntev + c->ntev + 1 >= SCN_MAX_TEV)
         return;
     for (uint32_t i = a0; i < a1; i++)
@@ -604,9 +608,9 @@ static uint16_t time_switch(scn_ctx *c, uint32_t a0, uint32_t a1, uint32_t b1)
         t = a0, i0 = a1, i1 = b1, side = SCN_TSIDE_LEFT;
     else if (b1 == a1 + 1 && code[a1].op == SCN_OP_TIME && fixed_code(code, a0, a1))
         t = a1, i0 = a0, i1 = a1, side = SCN_TSIDE_RIGHT;
-    else if (affine_in_t(code, a0, a1) == IN_T_AFFINE && fixed_code(code, a1, b1))
+    else if (affine_in_t(0, code, a0, a1) == IN_T_AFFINE && fixed_code(code, a1, b1))
         s0 = a0, s1 = a1, i0 = a1, i1 = b1;
-    else if (affine_in_t(code, a1, b1) == IN_T_AFFINE && fixed_code(code, a0, a1))
+    else if (affine_in_t(0, code, a1, b1) == IN_T_AFFINE && fixed_code(code, a0, a1))
         s0 = a1, s1 = b1, i0 = a0, i1 = a1;
     else
         return 0;
