@@ -37,7 +37,9 @@ static uint32_t checked_inputs(const rt_scene *sc, const rt_sim *sim, uint8_t s)
 /* the method's bound times the method steps one step of the set can take: the step
    itself and, with roots, every located event's re-steps and the rest of the step after
    it (rt/step.c), with one probe per handled event (and one integration more where a
-   root's every sign change counts, up to its return) and one trial of an excursion;
+   root's every sign change counts, up to its return) and one trial of an excursion (with
+   a probe where no earlier point serves), and after each event one more probe and trial
+   (and its integration again in a multibody set);
    each part at a known time event again (rt/tev.c); and the coupling monitor's two right-hand sides per sensitivity,
    measured at most twice a step per checked input (rt/xset.c) */
 rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
@@ -48,11 +50,11 @@ rt_step_work rt_set_step_bound(const rt_scene *sc, const rt_sim *sim, uint8_t s)
     if (sim->plan.set_r[s + 1] > sim->plan.set_r[s]) {
         /* (and one trial of a root's excursion within the step, rt/step.c; a multibody
            set integrates its step again after a trial that found nothing) */
-        steps += RT_EVENTS_PER_STEP_MAX * (RT_EVENT_ITER_MAX + 1u) + 2u;
+        steps += RT_EVENTS_PER_STEP_MAX * (RT_EVENT_ITER_MAX + 3u) + 2u;
         /* a root that returns within the probe ends the next integration there */
         if (sim->plan.set_flags[s] & RTI_SET_EVERY_SIGN)
             steps += RT_EVENTS_PER_STEP_MAX;
-        probes = RT_EVENTS_PER_STEP_MAX + 1u;
+        probes = 2u * RT_EVENTS_PER_STEP_MAX + 2u;
         /* an event of a set reading other sets is judged: a probe before its handlers
            and the derivatives after them (rt/step.c, unsure_by) */
         if (sim->plan.set_flags[s] & RTI_SET_XPRED)

@@ -663,12 +663,37 @@ static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, con
     }
 }
 
+/* an integration from t0 over sub with no earlier point for its excursions (its end
+   state in x, its start in work.xs): its roots a probe's length after its start (RT_EVENT_PROBE of the rest, an
+   Euler step, rt's probe) into rq, the state and outputs at the end put back. Returns the
+   probe's length as a fraction of sub, 0 if none fits (the rest shorter than two probes,
+   or a time event right after t0) */
+static real_t after_probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t0, real_t sub,
+                          real_t *rq)
+{
+    uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    real_t tau = sub * RT_EVENT_PROBE, t_max = probe_limit(sc, sim, s, t0);
+    tau = t0 + tau > t_max ? t_max - t0 : tau;
+    if (!(tau > 0 && tau < (real_t)0.5 * sub))
+        return 0;
+    real_t *x = sim->state.x + x0, *end = sim->work.w.k[RT_MAX_STAGES - 1];
+    for (uint16_t i = 0; i < n; i++)
+        end[i] = x[i], x[i] = sim->work.xs[i];
+    probe(sc, sim, s, t0, tau, rq); /* (x back at t0) */
+    for (uint16_t i = 0; i < n; i++)
+        x[i] = end[i];
+    rti_outputs(sc, sim, (rti_at){t0 + sub, s, RTI_IN_STEP});
+    return tau / sub;
+}
+
 /* a root that crossed its level and came back within the integration from t0 over sub (ra
    at its start, rb at its end, on one side): the parabola through it at the start of
    the integration before (state.r_prev, r_prev_h before t0: of the same length, or of
    another between RTI_EXCURSION_SPAN and its inverse times sub, the rest of a step
-   after an event or a part before a time event), ra and rb reaches beyond the level
-   between them. The first such root's parabola's extremum is tried (trial: the real state there)
+   after an event or a part before a time event; where there is none, the run's first
+   step, the rest of a step after an event (after: tried there too), a step after a rest
+   shorter than that, a probe's point from its start: after_probe), ra and rb reaches
+   beyond the level between them. The first such root's parabola's extremum is tried (trial: the real state there)
    and, if a root crossed by then, the crossing is located in [0, th] as any other: a ball
    thrown up to a ceiling it touches for less than a step. Its roots are written into rt,
    th into *th, its block into *blk and its index there into *which; -1 if none (the state
@@ -683,14 +708,21 @@ static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *
     uint16_t r0 = sim->plan.set_r[s], nr = (uint16_t)(sim->plan.set_r[s + 1] - r0);
     const real_t *rp = sim->state.r_prev + r0, *rb = sim->work.rs;
     real_t d = sim->state.r_prev_h[s] / sub; /* the first point's distance, in sub */
-    if (!(d >= (real_t)RTI_EXCURSION_SPAN && d <= 1 / (real_t)RTI_EXCURSION_SPAN))
-        return -1;
+    real_t e = 0, rq[RT_MAX_ROOTS]; /* after an event: the probe's point, at u = e */
+    if (!(d >= (real_t)RTI_EXCURSION_SPAN && d <= 1 / (real_t)RTI_EXCURSION_SPAN)) {
+        if (!(e = after_probe(sc, sim, s, t0, sub, rq)))
+            return -1;
+        rp = rq;
+    }
     real_t at = 2;
     for (uint16_t i = 0; i < nr; i++) {
         if (rs->side[i] != 0 || rs->lvl[i] != 0 || !(ra[i] * rb[i] > 0))
             continue; /* held at a level, or not on one side at both ends */
-        real_t a, b; /* ra + b u + a u^2 through rp at u = -d, ra at 0 and rb at 1 */
-        if (d == 1) {
+        real_t a, b; /* ra + b u + a u^2 through rp at u = -d (or e), ra at 0, rb at 1 */
+        if (e > 0) {
+            a = (rp[i] - ra[i] - e * (rb[i] - ra[i])) / (e * (e - 1));
+            b = (rb[i] - ra[i]) - a;
+        } else if (d == 1) {
             a = (real_t)0.5 * (rb[i] - 2 * ra[i] + rp[i]), b = (real_t)0.5 * (rb[i] - rp[i]);
         } else {
             a = (rp[i] - ra[i] + d * (rb[i] - ra[i])) / (d * (d + 1));
@@ -743,7 +775,7 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
     /* span: the rest of the step from t0; sub: this integration's part of it (less only
        after an event whose root returns within the probe, settle) */
     real_t t0 = t, span = h, cap = 0, rt[RT_MAX_ROOTS], late = sim->state.r_late[s];
-    int nan_seen = 0, tried = 0, kept = sim->state.r_kept[s];
+    int nan_seen = 0, tried = 0, after = 0, kept = sim->state.r_kept[s];
     sim->state.r_late[s] = 0, sim->state.r_kept[s] = 0;
     for (int ev = 0;; ev++) {
         /* a root crossed by the inputs' jump at the tick (rt/held.c): its crossing is at
@@ -763,9 +795,16 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
             start_on_level(sc, sim, s, &rs, r, sim->work.rs);
         int c = find_crossing(sc, sim, s, &rs, r, sim->work.rs, &blk, &which);
         real_t b = 1, rb = c >= 0 ? sim->work.rs[c] : 0;
-        if (c < 0 && sub > 0 && !tried++ &&
-            (c = excursion(sc, sim, s, &rs, r, t0, sub, rt, &b, &blk, &which)) >= 0)
-            rb = rt[c];
+        /* an excursion: where nothing crossed, once a step; after an event also before a
+           crossing the rest found (the handled mode pushes another root through its level
+           and back before the first crosses: a body reversing in a layer it entered) */
+        if (sub > 0 && (after || (c < 0 && !tried++))) {
+            uint16_t eb, ew;
+            int ce = excursion(sc, sim, s, &rs, r, t0, sub, rt, &b, &eb, &ew);
+            if (ce >= 0)
+                c = ce, rb = rt[ce], blk = eb, which = ew;
+        }
+        after = 0;
         if (c < 0) {
             check_guards(sc, sim, s, &rs, r, sim->work.rs);
             release(nr, &rs, sim->work.rs);
@@ -814,6 +853,7 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
         cap = ev + 1 < RT_EVENTS_PER_STEP_MAX ? cap : 0; /* past the bound: to the end */
         if (!(span > 0))
             return t + h; /* an event at the step's end: r holds the roots after them */
+        after = 1; /* (the rest is checked for an excursion from a probe: excursion) */
         if (may_stop && (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) &&
             rti_tev_dyn_next(sc, sim, s, t0) < t0 + span)
             return t0; /* r holds the roots after its handlers */
