@@ -667,11 +667,17 @@ static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, con
    state in x, its start in work.xs): its roots a probe's length after its start (RT_EVENT_PROBE of the rest, an
    Euler step, rt's probe) into rq, the state and outputs at the end put back. Returns the
    probe's length as a fraction of sub, 0 if none fits (the rest shorter than two probes,
-   or a time event right after t0) */
+   or a time event right after t0) or the set's method keeps state a trial would move (an
+   implicit or transition method) or it has joints */
 static real_t after_probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t0, real_t sub,
                           real_t *rq)
 {
     uint16_t x0 = sim->plan.set_x[s], n = (uint16_t)(sim->plan.set_x[s + 1] - x0);
+    const rt_integrator *m = sc->sets[s].method;
+    if (m->implicit || m->linear || (sc->mbs && sim->work.mbs.nz[s] > 0))
+        return 0; /* (a trial's integration moves an implicit method's kept Jacobian and
+                     its schedule, a probe a multibody set's multipliers: a run with no
+                     excursion must keep its bits) */
     real_t tau = sub * RT_EVENT_PROBE, t_max = probe_limit(sc, sim, s, t0);
     tau = t0 + tau > t_max ? t_max - t0 : tau;
     if (!(tau > 0 && tau < (real_t)0.5 * sub))
@@ -853,7 +859,9 @@ static real_t step_with_events(const rt_scene *sc, rt_sim *sim, uint8_t s, real_
         cap = ev + 1 < RT_EVENTS_PER_STEP_MAX ? cap : 0; /* past the bound: to the end */
         if (!(span > 0))
             return t + h; /* an event at the step's end: r holds the roots after them */
-        after = 1; /* (the rest is checked for an excursion from a probe: excursion) */
+        /* the rest is checked for an excursion (excursion) while its events are located:
+           past the bound a crossing an excursion finds inside the rest would go on */
+        after = ev + 1 < RT_EVENTS_PER_STEP_MAX;
         if (may_stop && (sim->plan.set_flags[s] & RTI_SET_TEV_DYN) &&
             rti_tev_dyn_next(sc, sim, s, t0) < t0 + span)
             return t0; /* r holds the roots after its handlers */

@@ -571,16 +571,17 @@ static int fixed_code(const scn_ins *code, uint32_t i0, uint32_t i1)
     return i1 > i0;
 }
 
-/* the most operands code [i0, i1) of operands and unary and binary operators pushes */
+static int pushes(scn_ins in);
+
+/* the most operands code [i0, i1) pushes at once */
 static uint32_t code_depth(const scn_ins *code, uint32_t i0, uint32_t i1)
 {
-    uint32_t d = 0, most = 0;
+    int d = 0, most = 0;
     for (uint32_t i = i0; i < i1; i++) {
-        uint8_t op = code[i].op;
-        d = op <= SCN_OP_LOC ? d + 1 : op >= SCN_OP_ADD && d > 0 ? d - 1 : d;
+        d += pushes(code[i]);
         most = d > most ? d : most;
     }
-    return most;
+    return (uint32_t)most;
 }
 
 /* an order comparison of `t` alone with an expression fixed during the run (`t < t1`,
@@ -784,7 +785,8 @@ static int split_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos 
     scn_scene *s = &c->sc;
     uint32_t b1 = s->ncode;
     int kl = kink_code(s->code, a0, a1), kr = kink_code(s->code, a1, b1);
-    if (c->err || op < SCN_OP_LT || op > SCN_OP_GE || (kl != 0) == (kr != 0))
+    if (c->err || !c->def || op < SCN_OP_LT || op > SCN_OP_GE || (kl != 0) == (kr != 0) ||
+        c->def->ntev + c->ntev + 2 > SCN_MAX_TEV) /* (halves of t: two instants more) */
         return 0;
     int kind = kl ? kl : kr;
     uint32_t f0 = kl ? a0 : a1, f1 = (kl ? a1 : b1) - 1; /* the arguments: [f0, f1) */
