@@ -623,7 +623,10 @@ def abs_split(s):
     the same for `>`, for the mirrored `w > abs(z - zl)`, and for max(z - zl, zl - z) < w
     and min(zl - z, z - zl) > -w (split the same way). A pulse of t, 100 over
     |t - ts| < w = 2 ms inside a 50 ms step, written max(t - ts, ts - t) < w: x(1) = 0.4
-    (audit 14: 0, run and check ok), the halves two time events"""
+    (audit 14: 0, run and check ok), the halves two time events; the same written with the
+    kink wrapped once by a fixed operand, abs(t - ts) - w < 0, 2 * abs(t - ts) < 2 * w,
+    w - abs(t - ts) > 0 (audit 14c: 0, run and check ok), and the layer as
+    abs(z - zl) - w < 0"""
     g, zl, w, k = 9.81, 0.5, 0.001, 500.0
     t1 = math.sqrt(2 * (1 - (zl + w)) / g)
     v1, z1 = -g * t1, zl + w
@@ -635,7 +638,7 @@ def abs_split(s):
     exact = zl - w + v2 * rest - g / 2 * rest * rest
     for form in ("if(abs(z - zl) < w, k * v, 0)", "if(abs(z - zl) > w, 0, k * v)",
                  "if(w > abs(z - zl), k * v, 0)", "if(max(z - zl, zl - z) < w, k * v, 0)",
-                 "if(min(zl - z, z - zl) > -w, k * v, 0)"):
+                 "if(min(zl - z, z - zl) > -w, k * v, 0)", "if(abs(z - zl) - w < 0, k * v, 0)"):
         text = ("scene (layer);\nbase tick (0.1 ms);\nend time (1 s);\n"
                 "define ss_system (B) with outputs (zo) parameters (g = 9.81, zl = 0.5, "
                 "w = 0.001, k = 500) states (z = 1, v = 0) by {\n    zo = z;\n"
@@ -654,12 +657,15 @@ def abs_split(s):
              "states (x = 0) by {\n    y = x;\n    der(x) = if(max(t - ts, ts - t) < w, 100, 0);"
              "\n};\nload system (B) of type (P);\nset (main) method (rk4) step (50 ticks);\n"
              "record (B.y);\n")
-    for m in ("rk4", "dopri5", "sdirk3"):
-        rc, summ, rows = run_text(s.modrt, pulse, ["--method", "main=" + m])
-        err = abs(rows[-1][1] - 0.4) if rows else math.inf
-        s.row("a pulse max(t - ts, ts - t) < w inside a step: x(1)", m, "0.05", err, summ, rc)
-        s.check(rc == 0 and err <= 1e-12, "pulse window %s: x(1) off by %.3g, status %s" % (
-            m, err, summ.get("status")))
+    for form in ("max(t - ts, ts - t) < w", "abs(t - ts) - w < 0", "2 * abs(t - ts) < 2 * w",
+                 "w - abs(t - ts) > 0"):
+        for m in ("rk4", "dopri5", "sdirk3"):
+            rc, summ, rows = run_text(s.modrt, pulse.replace("max(t - ts, ts - t) < w", form),
+                                      ["--method", "main=" + m])
+            err = abs(rows[-1][1] - 0.4) if rows else math.inf
+            s.row("a pulse %s inside a step: x(1)" % form, m, "0.05", err, summ, rc)
+            s.check(rc == 0 and err <= 1e-12, "pulse window %s %s: x(1) off by %.3g, status %s"
+                    % (form, m, err, summ.get("status")))
 
 
 def hidden_oscillation(s):

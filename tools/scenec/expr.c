@@ -824,6 +824,86 @@ static int split_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos 
     return 1;
 }
 
+/* is code [s0, s1) a kink wrapped once by a fixed operand: K + C, C + K, K - C, C - K, and
+   K * C, C * K, K / C with C a constant above 0 (K a kink, kink_code; C fixed code). Sets
+   the kink's range [*k0, *k1), the operand's [*c0, *c1), the operation and whether K
+   comes first */
+static int wrapped_kink(const scn_scene *s, uint32_t s0, uint32_t s1, uint32_t *k0,
+                        uint32_t *k1, uint32_t *c0, uint32_t *c1, uint8_t *aop, int *kfirst)
+{
+    if (s1 < s0 + 3)
+        return 0;
+    uint8_t o = s->code[s1 - 1].op;
+    if (o < SCN_OP_ADD || o > SCN_OP_DIV)
+        return 0;
+    uint32_t m = second_arg(s->code, s0, s1);
+    if (!(m > s0 && m < s1 - 1))
+        return 0;
+    int first = kink_code(s->code, s0, m) != 0 && fixed_code(s->code, m, s1 - 1);
+    int second = !first && kink_code(s->code, m, s1 - 1) != 0 && fixed_code(s->code, s0, m);
+    if (!first && !second)
+        return 0;
+    *k0 = first ? s0 : m, *k1 = first ? m : s1 - 1;
+    *c0 = first ? m : s0, *c1 = first ? s1 - 1 : m;
+    if ((o == SCN_OP_MUL || o == SCN_OP_DIV) &&
+        !(*c1 == *c0 + 1 && s->code[*c0].op == SCN_OP_CONST && s->k[s->code[*c0].a] > 0))
+        return 0; /* (a factor of unknown sign would turn the comparison) */
+    if (o == SCN_OP_DIV && !first)
+        return 0; /* (C / K is no kink of K's kind) */
+    *aop = o, *kfirst = first;
+    return 1;
+}
+
+/* a comparison of a kink wrapped once by a fixed operand (wrapped_kink: abs(e) - w < 0,
+   2 * abs(x) < 2 * w) as the bare kink against the other side undone: K + C op r is
+   K op r - C, C - K op r is K op' C - r, K * C op r is K op r / C, so the kink is split
+   (split_kink) as when written bare (a pulse abs(t - ts) - w < 0 inside a step: 0 for 0.4,
+   run and check ok). Returns 1 if it compiled the comparison */
+static int unwrap_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos pos,
+                       const char *name)
+{
+    static scn_ins kk[SCN_MAX_CODE], cc[SCN_MAX_CODE], r[SCN_MAX_CODE];
+    scn_scene *s = &c->sc;
+    uint32_t b1 = s->ncode, k0, k1, c0, c1;
+    uint8_t aop;
+    int kfirst;
+    if (c->err || !c->def || op < SCN_OP_LT || op > SCN_OP_GE ||
+        kink_code(s->code, a0, a1) || kink_code(s->code, a1, b1))
+        return 0;
+    int left = wrapped_kink(s, a0, a1, &k0, &k1, &c0, &c1, &aop, &kfirst);
+    if (!left && !wrapped_kink(s, a1, b1, &k0, &k1, &c0, &c1, &aop, &kfirst))
+        return 0;
+    uint32_t r0 = left ? a1 : a0, nr = (left ? b1 : a1) - r0, nk = k1 - k0, nc = c1 - c0;
+    uint32_t dk = code_depth(s->code, k0, k1), dc = code_depth(s->code, c0, c1);
+    uint32_t dr = code_depth(s->code, r0, r0 + nr), d = dk > dr ? dk : dr;
+    d = d > dc + 1 ? d : dc + 1;
+    if (c->sdepth + d + 1 > SCN_MAX_STACK)
+        return 0;
+    memcpy(kk, &s->code[k0], nk * sizeof *kk);
+    memcpy(cc, &s->code[c0], nc * sizeof *cc);
+    memcpy(r, &s->code[r0], nr * sizeof *r);
+    uint8_t turn[4] = {SCN_OP_GT, SCN_OP_GE, SCN_OP_LT, SCN_OP_LE}; /* (op mirrored) */
+    if (!left) /* r op W: W op' r */
+        op = turn[op - SCN_OP_LT];
+    s->ncode = a0, c->sdepth -= 2; /* (both sides' values gone) */
+    emit_copy(c, kk, nk);
+    uint32_t a1n = s->ncode;
+    if (aop == SCN_OP_SUB && !kfirst) { /* C - K op r: K op' C - r */
+        emit_copy(c, cc, nc);
+        emit_copy(c, r, nr);
+        emit(c, SCN_OP_SUB, 0, -1);
+        op = turn[op - SCN_OP_LT];
+    } else { /* K + C: r - C; K - C: r + C; K * C: r / C; K / C: r * C */
+        emit_copy(c, r, nr);
+        emit_copy(c, cc, nc);
+        emit(c, aop == SCN_OP_ADD ? SCN_OP_SUB : aop == SCN_OP_SUB ? SCN_OP_ADD
+              : aop == SCN_OP_MUL ? SCN_OP_DIV : SCN_OP_MUL, 0, -1);
+    }
+    if (!split_kink(c, a0, a1n, op, pos, name))
+        comparison(c, a0, a1n, op, pos, name);
+    return 1;
+}
+
 static void binary(scn_ctx *c, size_t lv)
 {
     if (lv == NLEVELS) {
@@ -841,7 +921,8 @@ static void binary(scn_ctx *c, size_t lv)
         binary(c, lv + 1);
         uint8_t op = levels[lv].code[i];
         int moved = c->ntev != ntev || (c->def && c->def->nsw != nsw);
-        if (moved || !split_kink(c, a0, a1, op, op_pos, levels[lv].ops[i]))
+        if (moved || (!split_kink(c, a0, a1, op, op_pos, levels[lv].ops[i]) &&
+                      !unwrap_kink(c, a0, a1, op, op_pos, levels[lv].ops[i])))
             comparison(c, a0, a1, op, op_pos, levels[lv].ops[i]);
     }
 }
