@@ -769,6 +769,16 @@ static uint32_t second_arg(const scn_ins *code, uint32_t i0, uint32_t i1)
     return i;
 }
 
+/* is code [i0, i1) a constant, c or -c: its value in *v */
+static int const_value(const scn_scene *s, uint32_t i0, uint32_t i1, double *v)
+{
+    if (i1 == i0 + 1 && s->code[i0].op == SCN_OP_CONST)
+        return *v = s->k[s->code[i0].a], 1;
+    if (i1 == i0 + 2 && s->code[i0].op == SCN_OP_CONST && s->code[i0 + 1].op == SCN_OP_NEG)
+        return *v = -s->k[s->code[i0].a], 1;
+    return 0;
+}
+
 /* an order comparison with a kink on one side, abs(e), max(p, q) or min(p, q), and r on
    the other, nothing registered inside either (no instant, band or switch whose code
    would move): abs(e) < r is e < r && -e < r, max(p, q) < r is p < r && q < r, min(p, q)
@@ -799,7 +809,8 @@ static int split_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos 
     uint32_t dr = code_depth(s->code, r0, r0 + nr), dh = d1 > d2 ? d1 : d2;
     if (c->sdepth + (dh > dr ? dh : dr) > SCN_MAX_STACK) /* (a half op r on one's value) */
         return 0;
-    if (kind == 1 && nr == 1 && s->code[r0].op == SCN_OP_CONST && !(s->k[s->code[r0].a] > 0))
+    double rv;
+    if (kind == 1 && const_value(s, r0, r0 + nr, &rv) && !(rv > 0))
         return 0; /* abs(e) < 0 never holds, abs(e) > 0 wherever e is not 0: split, the
                      halves would switch where the whole does not */
     memcpy(h1, &s->code[f0], n1 * sizeof *h1);
@@ -867,13 +878,23 @@ static int unwrap_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos
     uint32_t b1 = s->ncode, k0, k1, c0, c1;
     uint8_t aop;
     int kfirst;
-    if (c->err || !c->def || op < SCN_OP_LT || op > SCN_OP_GE ||
+    if (c->err || !c->def || c->def->type != SCN_DEF_SS || op < SCN_OP_LT || op > SCN_OP_GE ||
+        (c->st_kind != SCN_ST_OUT && c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
         kink_code(s->code, a0, a1) || kink_code(s->code, a1, b1))
-        return 0;
+        return 0; /* (only where a split locates something: moving C across rounds, which a
+                     sampled system's tie or a handler's test would see) */
     int left = wrapped_kink(s, a0, a1, &k0, &k1, &c0, &c1, &aop, &kfirst);
     if (!left && !wrapped_kink(s, a1, b1, &k0, &k1, &c0, &c1, &aop, &kfirst))
         return 0;
     uint32_t r0 = left ? a1 : a0, nr = (left ? b1 : a1) - r0, nk = k1 - k0, nc = c1 - c0;
+    double rv, cv;
+    if (kink_code(s->code, k0, k1) == 1 && const_value(s, r0, r0 + nr, &rv) &&
+        const_value(s, c0, c1, &cv)) {
+        double v = aop == SCN_OP_ADD ? rv - cv : aop == SCN_OP_SUB ? (kfirst ? rv + cv : cv - rv)
+                 : aop == SCN_OP_MUL ? rv / cv : rv * cv;
+        if (!(v > 0))
+            return 0; /* (abs against a value not above 0: split_kink's own exception) */
+    }
     uint32_t dk = code_depth(s->code, k0, k1), dc = code_depth(s->code, c0, c1);
     uint32_t dr = code_depth(s->code, r0, r0 + nr), d = dk > dr ? dk : dr;
     d = d > dc + 1 ? d : dc + 1;
