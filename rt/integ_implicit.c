@@ -579,10 +579,10 @@ static real_t dirk_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     watch_damping(c);
     /* an A-stable method that does not damp stiff modes (trap: R(-inf) = -1) carries
        their error on, ringing: its estimate is taken raw. The raw difference of an
-       L-stable one is kept in k[IMP_BUF_F] (the Newton corrections' buffer, done with)
-       for hidden_oscillation */
+       L-stable one above the accuracy is kept in k[IMP_BUF_F] (the Newton corrections'
+       buffer, done with) for hidden_oscillation */
     real_t raw = scaled_norm(e, c->x, c->n, c->sa), *u = w->k[IMP_BUF_F];
-    for (uint16_t j = 0; tab->lstable && j < c->n; j++)
+    for (uint16_t j = 0; tab->lstable && raw > rti_accuracy(w->cfg) && j < c->n; j++)
         u[j] = e[j];
     real_t err = tab->lstable ? estimate(c, e) : raw;
     if (start) {
@@ -808,7 +808,7 @@ static real_t ros2_attempt(imp_step *c, const void *tp, real_t t, real_t h)
     real_t e;
     if (rti_set_cfg_of(w->cfg).jac_every <= 1) {
         real_t *u = w->k[IMP_BUF_S], raw = scaled_norm(ft, x, n, c->sa); /* (f1: done) */
-        for (uint16_t i = 0; i < n; i++)
+        for (uint16_t i = 0; raw > rti_accuracy(w->cfg) && i < n; i++)
             u[i] = ft[i];
         e = estimate(c, ft);
         if (ws->valid && raw > rti_accuracy(w->cfg) && e <= rti_accuracy(w->cfg) &&

@@ -664,8 +664,9 @@ static void start_on_level(const rt_scene *sc, const rt_sim *sim, uint8_t s, con
 }
 
 /* an integration from t0 over sub with no earlier point for its excursions (its end
-   state in x, its start in work.xs): its roots a probe's length after its start (RT_EVENT_PROBE of the rest, an
-   Euler step, rt's probe) into rq, the state and outputs at the end put back. Returns the
+   state in x, its start in work.xs): its roots a probe's length after its start
+   (RT_EVENT_PROBE of sub, an Euler step: probe) into rq, the state and outputs at the
+   end put back. Returns the
    probe's length as a fraction of sub, 0 if none fits (the rest shorter than two probes,
    or a time event right after t0) or the set's method keeps state a trial would move (an
    implicit or transition method) or it has joints */
@@ -699,8 +700,8 @@ static real_t after_probe(const rt_scene *sc, rt_sim *sim, uint8_t s, real_t t0,
    after an event or a part before a time event; where there is none, the run's first
    step, the rest of a step after an event (after: tried there too), a step after a rest
    shorter than that, a probe's point from its start: after_probe), ra and rb reaches
-   beyond the level between them. The first such root's parabola's extremum is tried (trial: the real state there)
-   and, if a root crossed by then, the crossing is located in [0, th] as any other: a ball
+   beyond the level between them. The first such root's parabola's extremum is tried
+   (trial: the real state there) and, if a root crossed by then, the crossing is located in [0, th] as any other: a ball
    thrown up to a ceiling it touches for less than a step. Its roots are written into rt,
    th into *th, its block into *blk and its index there into *which; -1 if none (the state
    and outputs at the end restored). Once a step at most: one integration more in its work
@@ -713,10 +714,10 @@ static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *
 {
     uint16_t r0 = sim->plan.set_r[s], nr = (uint16_t)(sim->plan.set_r[s + 1] - r0);
     const real_t *rp = sim->state.r_prev + r0, *rb = sim->work.rs;
-    real_t d = sim->state.r_prev_h[s] / sub; /* the first point's distance, in sub */
-    real_t e = 0, rq[RT_MAX_ROOTS]; /* after an event: the probe's point, at u = e */
+    /* the third point's place, in sub from t0: -d before it, or a probe's at d < 0 */
+    real_t d = sim->state.r_prev_h[s] / sub, rq[RT_MAX_ROOTS];
     if (!(d >= (real_t)RTI_EXCURSION_SPAN && d <= 1 / (real_t)RTI_EXCURSION_SPAN)) {
-        if (!(e = after_probe(sc, sim, s, t0, sub, rq)))
+        if (!(d = -after_probe(sc, sim, s, t0, sub, rq)))
             return -1;
         rp = rq;
     }
@@ -724,11 +725,8 @@ static int excursion(const rt_scene *sc, rt_sim *sim, uint8_t s, const rootset *
     for (uint16_t i = 0; i < nr; i++) {
         if (rs->side[i] != 0 || rs->lvl[i] != 0 || !(ra[i] * rb[i] > 0))
             continue; /* held at a level, or not on one side at both ends */
-        real_t a, b; /* ra + b u + a u^2 through rp at u = -d (or e), ra at 0, rb at 1 */
-        if (e > 0) {
-            a = (rp[i] - ra[i] - e * (rb[i] - ra[i])) / (e * (e - 1));
-            b = (rb[i] - ra[i]) - a;
-        } else if (d == 1) {
+        real_t a, b; /* ra + b u + a u^2 through rp at u = -d, ra at 0, rb at 1 */
+        if (d == 1) { /* (equal lengths: the arithmetic of three equally spaced values) */
             a = (real_t)0.5 * (rb[i] - 2 * ra[i] + rp[i]), b = (real_t)0.5 * (rb[i] - rp[i]);
         } else {
             a = (rp[i] - ra[i] + d * (rb[i] - ra[i])) / (d * (d + 1));

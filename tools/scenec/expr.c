@@ -408,10 +408,10 @@ static void band_arg(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
 }
 
 /* floor(a t + b) (a, b fixed: constants, parameters, lets of them) in a derivative or let
-   of a continuous define: a staircase
-   of t whose jumps, where a t + b is an integer, no step's error estimate sees (every
-   stage past a jump reads the next stair, and so does the companion: dopri5's estimate
-   of a jump in the first 0.3 of its step is 1/170 of its error). Each jump is a time
+   of a continuous define: a staircase of t whose jumps, where a t + b is an integer, no
+   step's error estimate sees (every stage past a jump reads the next stair, and so does
+   the companion: dopri5's estimate of a jump in the first 0.3 of its step is 1/170 of
+   its error). Each jump is a time
    event known at run time, as a comparison of t with an instant (time_switch): two
    instants of the kind's next_event, t + rt_x_floor_next(a t + b, a) and one stair
    further (the first may be now's to rounding), so a step of its set ends a part there,
@@ -429,7 +429,8 @@ static void floor_time(scn_ctx *c, int f, uint32_t a0, uint32_t a1)
         (c->st_kind != SCN_ST_DER && c->st_kind != SCN_ST_LET) ||
         strcmp(scn_fns[f].name, "floor") != 0 ||
         affine_in_t(c->def, code, a0, a1) != IN_T_AFFINE ||
-        code_depth(code, a0, a1) + 4 > SCN_MAX_STACK || c->def->ntev + c->ntev + 1 >= SCN_MAX_TEV)
+        code_depth(code, a0, a1) + 4 > SCN_MAX_STACK ||
+        c->def->ntev + c->ntev + 1 >= SCN_MAX_TEV)
         return;
     for (uint32_t i = a0; i < a1; i++)
         if (code[i].op == SCN_OP_TIME)
@@ -678,8 +679,8 @@ static int step_code(const scn_define *d, const scn_ins *code, uint32_t i0, uint
    step no estimate sees it (the stages after the crossing read the other branch, and the
    method's companion does too), so it becomes a located switch (finish_switches, at the
    body's end, for a let only if an output or a derivative reads it; in a system without
-   states its mode makes it a continuous one): two roots, the sides' difference rising and falling, located and handled as
-   a `when`'s, whose handlers set a hidden state, the switch's mode, to the comparison's
+   states its mode makes it a continuous one): two roots, the sides' difference rising and
+   falling, located and handled as a `when`'s, whose handlers set a hidden state, the switch's mode, to the comparison's
    value past the crossing; the kind takes the modes at each instant (rt_kind.instant)
    and the comparison reads its mode (rt_x_swc) once it has one. Registers the comparison
    about to be emitted at code index c->sc.ncode, its operator `op` at `pos`; its `a` is
@@ -779,6 +780,13 @@ static int const_value(const scn_scene *s, uint32_t i0, uint32_t i1, double *v)
     return 0;
 }
 
+/* order comparison op with its sides swapped: a < b is b > a */
+static uint8_t mirrored(uint8_t op)
+{
+    return op == SCN_OP_LT ? SCN_OP_GT : op == SCN_OP_LE ? SCN_OP_GE
+         : op == SCN_OP_GT ? SCN_OP_LT : SCN_OP_LE;
+}
+
 /* an order comparison with a kink on one side, abs(e), max(p, q) or min(p, q), and r on
    the other, nothing registered inside either (no instant, band or switch whose code
    would move): abs(e) < r is e < r && -e < r, max(p, q) < r is p < r && q < r, min(p, q)
@@ -820,8 +828,7 @@ static int split_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos 
         memcpy(h2, &s->code[m], n2 * sizeof *h2);
     memcpy(r, &s->code[r0], nr * sizeof *r);
     if (kr) /* r op f(...): f(...) op' r */
-        op = op == SCN_OP_LT ? SCN_OP_GT : op == SCN_OP_LE ? SCN_OP_GE
-           : op == SCN_OP_GT ? SCN_OP_LT : SCN_OP_LE;
+        op = mirrored(op);
     int below = op == SCN_OP_LT || op == SCN_OP_LE; /* max below r: both halves are */
     s->ncode = a0, c->sdepth -= 2; /* (both sides' values gone) */
     emit_copy(c, h1, n1);
@@ -903,9 +910,8 @@ static int unwrap_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos
     memcpy(kk, &s->code[k0], nk * sizeof *kk);
     memcpy(cc, &s->code[c0], nc * sizeof *cc);
     memcpy(r, &s->code[r0], nr * sizeof *r);
-    uint8_t turn[4] = {SCN_OP_GT, SCN_OP_GE, SCN_OP_LT, SCN_OP_LE}; /* (op mirrored) */
     if (!left) /* r op W: W op' r */
-        op = turn[op - SCN_OP_LT];
+        op = mirrored(op);
     s->ncode = a0, c->sdepth -= 2; /* (both sides' values gone) */
     emit_copy(c, kk, nk);
     uint32_t a1n = s->ncode;
@@ -913,7 +919,7 @@ static int unwrap_kink(scn_ctx *c, uint32_t a0, uint32_t a1, uint8_t op, scn_pos
         emit_copy(c, cc, nc);
         emit_copy(c, r, nr);
         emit(c, SCN_OP_SUB, 0, -1);
-        op = turn[op - SCN_OP_LT];
+        op = mirrored(op);
     } else { /* K + C: r - C; K - C: r + C; K * C: r / C; K / C: r * C */
         emit_copy(c, r, nr);
         emit_copy(c, cc, nc);
@@ -988,15 +994,6 @@ static int fn_index(const char *name)
     return f;
 }
 
-static int floor_next_fn(void)
-{
-    return fn_index("#floor_next");
-}
-
-static int abs_fn(void)
-{
-    return fn_index("abs");
-}
 
 /* a copy of code [i0, i1), the argument a t + b of a floor (floor_time: its `t` reads
    t_piece), reading `t` itself: the argument now */
@@ -1030,12 +1027,12 @@ static void flush_tev(scn_ctx *c, scn_pos pos)
             emit(c, SCN_OP_TIME, 0, 0);
             arg_now(c, s0, s1);
             side_at(c, s0, s1, 0);
-            emit(c, SCN_OP_CALL, (uint16_t)abs_fn(), 0);
+            emit(c, SCN_OP_CALL, (uint16_t)fn_index("abs"), 0);
             emit(c, SCN_OP_CALL, (uint16_t)fn_index("#floor_snap"), 0);
             side_at(c, s0, s1, 1);
             side_at(c, s0, s1, 0);
             emit(c, SCN_OP_SUB, 0, 0);
-            emit(c, SCN_OP_CALL, (uint16_t)floor_next_fn(), 0);
+            emit(c, SCN_OP_CALL, (uint16_t)fn_index("#floor_next"), 0);
             emit(c, SCN_OP_ADD, 0, 0);
             if (c->tev[k][0] == 1) { /* one stair further: + 1 / |a| */
                 emit_const(c, 1);
@@ -1043,7 +1040,7 @@ static void flush_tev(scn_ctx *c, scn_pos pos)
                 side_at(c, s0, s1, 1);
                 side_at(c, s0, s1, 0);
                 emit(c, SCN_OP_SUB, 0, 0);
-                emit(c, SCN_OP_CALL, (uint16_t)abs_fn(), 0);
+                emit(c, SCN_OP_CALL, (uint16_t)fn_index("abs"), 0);
                 emit(c, SCN_OP_DIV, 0, 0);
                 emit(c, SCN_OP_ADD, 0, 0);
             }
